@@ -1,0 +1,515 @@
+#include "ExactGeodesic.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gs
+{
+
+namespace
+{
+constexpr double Inf = std::numeric_limits<double>::infinity();
+
+// Distance from (ix, iy) to the segment [b0, b1] of the x axis.
+inline double SegmentDistance(double ix, double iy, double b0, double b1)
+{
+  if (ix < b0)
+  {
+    return std::hypot(b0 - ix, iy);
+  }
+  if (ix > b1)
+  {
+    return std::hypot(ix - b1, iy);
+  }
+  return std::abs(iy);
+}
+} // namespace
+
+ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
+  : M(mesh)
+{
+  const int nh = M.NumberOfHalfedges();
+  Cx.resize(nh);
+  Cy.resize(nh);
+  for (int h = 0; h < nh; ++h)
+  {
+    // The opposite vertex C seen from Origin(h): |AC| at the corner angle of A.
+    const double b = M.EdgeLength(TriangleMesh::Prev(h));
+    const double a = M.CornerAngle(h);
+    Cx[h] = b * std::cos(a);
+    Cy[h] = b * std::sin(a);
+  }
+  const int nv = M.NumberOfVertices();
+  Dist.assign(nv, Inf);
+  Origin.assign(nv, 0);
+  CrossHalfedge.assign(nv, -1);
+  CrossX.assign(nv, 0.0);
+  Final.assign(nv, 0);
+  Propagated.assign(nv, 0);
+  // Distances are compared with an absolute tolerance well above rounding noise and far below
+  // any meaningful length of the mesh.
+  Tolerance = 1e-11 * std::max(M.BoundingBoxDiagonal(), 1e-300);
+}
+
+void ExactGeodesicSolver::Reset()
+{
+  for (int v : Touched)
+  {
+    Dist[v] = Inf;
+    Origin[v] = 0;
+    CrossHalfedge[v] = -1;
+    Final[v] = 0;
+    Propagated[v] = 0;
+  }
+  Touched.clear();
+  FinalOrder.clear();
+  Queue.clear();
+  VertexQueue.clear();
+  Stats = ExactGeodesicStatistics();
+}
+
+std::vector<double> ExactGeodesicSolver::Distances() const
+{
+  std::vector<double> d(M.NumberOfVertices(), Unreachable);
+  for (int v : FinalOrder)
+  {
+    d[v] = Dist[v];
+  }
+  return d;
+}
+
+void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, double crossing)
+{
+  if (!(d < Dist[v]) || Final[v])
+  {
+    return;
+  }
+  if (Dist[v] == Inf)
+  {
+    Touched.push_back(v);
+  }
+  Dist[v] = d;
+  Origin[v] = origin;
+  CrossHalfedge[v] = via;
+  CrossX[v] = crossing;
+  VertexQueue.push_back({ d, v });
+  std::push_heap(VertexQueue.begin(), VertexQueue.end(),
+    [](const VertexKey& a, const VertexKey& b) { return a.D > b.D; });
+  if (M.IsPseudoSourceVertex(v) && !Propagated[v])
+  {
+    Window e;
+    e.Key = d;
+    e.B0 = e.B1 = e.Ix = e.Iy = 0.0;
+    e.Sigma = d;
+    e.H = -1 - v;
+    e.Src = -1 - v;
+    Queue.push_back(e);
+    std::push_heap(Queue.begin(), Queue.end(), WindowOrder());
+  }
+}
+
+bool ExactGeodesicSolver::Trim(Window& w) const
+{
+  const int h = w.H;
+  const double L = M.EdgeLength(h);
+  const double ix = w.Ix, iy = w.Iy, s = w.Sigma;
+  const double tol = Tolerance;
+
+  // A point p = (t, 0) of the window is useless when a known path through an end point of the
+  // edge reaches it at least as short: D(A) + t <= s + |I p|. The difference is monotone in t
+  // for A (and for B), so the useless part is an interval at that end, found in closed form.
+  const double dA = Dist[M.Origin(h)];
+  if (dA < Inf)
+  {
+    const double target = dA + tol;
+    auto g = [&](double t) { return s + std::hypot(t - ix, iy) - t; };
+    if (g(w.B1) >= target)
+    {
+      return false;
+    }
+    if (g(w.B0) >= target)
+    {
+      const double k = target - s;
+      const double denom = 2.0 * (k + ix);
+      if (denom > 0.0)
+      {
+        const double t = (ix * ix + iy * iy - k * k) / denom;
+        w.B0 = std::min(std::max(t, w.B0), w.B1);
+      }
+    }
+  }
+  const double dB = Dist[M.Destination(h)];
+  if (dB < Inf)
+  {
+    const double target = dB + tol;
+    auto g = [&](double t) { return s + std::hypot(t - ix, iy) - (L - t); };
+    if (g(w.B0) >= target)
+    {
+      return false;
+    }
+    if (g(w.B1) >= target)
+    {
+      const double k = target - s;
+      const double mx = L - ix;
+      const double denom = 2.0 * (k + mx);
+      if (denom > 0.0)
+      {
+        const double t = L - (mx * mx + iy * iy - k * k) / denom;
+        w.B1 = std::max(std::min(t, w.B1), w.B0);
+      }
+    }
+  }
+  // The opposite vertex C dominates the whole window when D(C) + |C p| <= s + |I p| for every p
+  // of the window: the minimum of s + |I p| - |C p| is at an end or where p lies on the line
+  // through I and C mirrored below the edge.
+  const double dC = Dist[M.Opposite(h)];
+  if (dC < Inf)
+  {
+    const double cx = Cx[h], cy = Cy[h];
+    auto f = [&](double t) { return s + std::hypot(t - ix, iy) - std::hypot(t - cx, cy); };
+    double lowest = std::min(f(w.B0), f(w.B1));
+    const double dy = -cy - iy;
+    if (std::abs(dy) > 1e-300)
+    {
+      const double t = ix + (cx - ix) * (-iy) / dy;
+      if (t > w.B0 && t < w.B1)
+      {
+        lowest = std::min(lowest, f(t));
+      }
+    }
+    if (lowest >= dC + tol)
+    {
+      return false;
+    }
+  }
+  if (!(w.B1 - w.B0 > 1e-14 * L))
+  {
+    return false;
+  }
+  w.Key = s + SegmentDistance(ix, iy, w.B0, w.B1);
+  return true;
+}
+
+void ExactGeodesicSolver::PushWindow(Window w)
+{
+  ++Stats.WindowsCreated;
+  if (!Trim(w))
+  {
+    return;
+  }
+  Queue.push_back(w);
+  std::push_heap(Queue.begin(), Queue.end(), WindowOrder());
+  Stats.MaximumQueueSize =
+    std::max<std::int64_t>(Stats.MaximumQueueSize, static_cast<std::int64_t>(Queue.size()));
+}
+
+void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
+{
+  ++Stats.PseudoSourceEvents;
+  const int start = M.VertexHalfedge(v);
+  int h = start;
+  do
+  {
+    // Face f = face(h) with h: v -> a, Next(h): a -> b, Prev(h): b -> v.
+    const int opp = TriangleMesh::Next(h);
+    const int a = M.Destination(h);
+    const int b = M.Origin(TriangleMesh::Prev(h));
+    UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0);
+    UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0);
+    const int t = M.Twin(opp);
+    if (t >= 0)
+    {
+      // In t's frame (origin b, x towards a, the next face above), v lies below the edge at
+      // distance |bv| and at the corner angle of b.
+      const double bv = M.EdgeLength(TriangleMesh::Prev(h));
+      const double beta = M.CornerAngle(TriangleMesh::Prev(h));
+      Window w;
+      w.H = t;
+      w.B0 = 0.0;
+      w.B1 = M.EdgeLength(t);
+      w.Ix = bv * std::cos(beta);
+      w.Iy = -bv * std::sin(beta);
+      w.Sigma = sigma;
+      w.Src = src;
+      PushWindow(w);
+    }
+    h = M.RotateCCW(h);
+  } while (h >= 0 && h != start);
+}
+
+void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const int e = 3 * f + k;
+    const Vec3& X = M.Position(M.Origin(e));
+    const Vec3& Y = M.Position(M.Destination(e));
+    UpdateVertex(M.Origin(e), Norm(p - X), src, -1, 0.0);
+    const int t = M.Twin(e);
+    const double len = M.EdgeLength(e);
+    // t runs Y -> X; in its frame the source lies below the edge (on f's side).
+    const Vec3 u = (X - Y) / len;
+    const Vec3 d = p - Y;
+    const double x = Dot(d, u);
+    const double y = -Norm(d - u * x);
+    if (t < 0 || y > -1e-12 * len)
+    {
+      continue; // boundary edge, or the source lies on this edge (the neighbour face covers it)
+    }
+    Window w;
+    w.H = t;
+    w.B0 = 0.0;
+    w.B1 = len;
+    w.Ix = x;
+    w.Iy = y;
+    w.Sigma = 0.0;
+    w.Src = src;
+    PushWindow(w);
+  }
+}
+
+void ExactGeodesicSolver::Propagate(Window w)
+{
+  ++Stats.WindowsPropagated;
+  const int h = w.H;
+  const double L = M.EdgeLength(h);
+  const double cx = Cx[h], cy = Cy[h];
+  const double ix = w.Ix, iy = w.Iy;
+  // Where the ray from I through C crosses the edge.
+  const double xc = ix + (cx - ix) * (-iy) / (cy - iy);
+  bool left = xc > w.B0;  // some rays leave through edge A-C
+  bool right = xc < w.B1; // some rays leave through edge C-B
+  const double cover = 1e-10 * L;
+  if (xc >= w.B0 - cover && xc <= w.B1 + cover)
+  {
+    const int vC = M.Opposite(h);
+    const double dC = w.Sigma + std::hypot(cx - ix, cy - iy);
+    if (dC < Dist[vC])
+    {
+      UpdateVertex(vC, dC, w.Src, h, xc);
+    }
+    else if (dC > Dist[vC] + Tolerance && CrossHalfedge[vC] == h)
+    {
+      // One angle, one split: a better path reaches C through this edge at CrossX; every ray of
+      // this window on the far side of it crosses that path and is longer beyond the crossing.
+      if (xc < CrossX[vC])
+      {
+        right = false;
+      }
+      else if (xc > CrossX[vC])
+      {
+        left = false;
+      }
+    }
+  }
+
+  // Intersection of the ray from I' through P' with the new edge (y' = 0), in the new frame.
+  auto hit = [](double jx, double jy, double px, double py, double fallback) {
+    const double den = py - jy;
+    return den > 1e-300 ? jx + (px - jx) * (-jy) / den : fallback;
+  };
+
+  if (left)
+  {
+    const int t = M.Twin(TriangleMesh::Prev(h));
+    if (t >= 0)
+    {
+      // New frame: origin A, x along A -> C.
+      const double b = M.EdgeLength(t);
+      const double ux = cx / b, uy = cy / b;
+      Window c;
+      c.Ix = ix * ux + iy * uy;
+      c.Iy = std::min(ux * iy - uy * ix, -1e-12 * b);
+      c.B0 = hit(c.Ix, c.Iy, w.B0 * ux, -w.B0 * uy, 0.0);
+      c.B1 = right ? b : hit(c.Ix, c.Iy, w.B1 * ux, -w.B1 * uy, b);
+      c.B0 = std::min(std::max(c.B0, 0.0), b);
+      c.B1 = std::min(std::max(c.B1, 0.0), b);
+      if (c.B1 > c.B0)
+      {
+        c.H = t;
+        c.Sigma = w.Sigma;
+        c.Src = w.Src;
+        PushWindow(c);
+      }
+    }
+  }
+  if (right)
+  {
+    const int t = M.Twin(TriangleMesh::Next(h));
+    if (t >= 0)
+    {
+      // New frame: origin C, x along C -> B.
+      const double a = M.EdgeLength(t);
+      const double ux = (L - cx) / a, uy = -cy / a;
+      auto toX = [&](double px, double py) { return (px - cx) * ux + (py - cy) * uy; };
+      auto toY = [&](double px, double py) { return ux * (py - cy) - uy * (px - cx); };
+      Window c;
+      c.Ix = toX(ix, iy);
+      c.Iy = std::min(toY(ix, iy), -1e-12 * a);
+      c.B0 = left ? 0.0 : hit(c.Ix, c.Iy, toX(w.B0, 0.0), toY(w.B0, 0.0), 0.0);
+      c.B1 = hit(c.Ix, c.Iy, toX(w.B1, 0.0), toY(w.B1, 0.0), a);
+      c.B0 = std::min(std::max(c.B0, 0.0), a);
+      c.B1 = std::min(std::max(c.B1, 0.0), a);
+      if (c.B1 > c.B0)
+      {
+        c.H = t;
+        c.Sigma = w.Sigma;
+        c.Src = w.Src;
+        PushWindow(c);
+      }
+    }
+  }
+}
+
+void ExactGeodesicSolver::FinalizeUpTo(double key)
+{
+  auto order = [](const VertexKey& a, const VertexKey& b) { return a.D > b.D; };
+  while (!VertexQueue.empty() && VertexQueue.front().D <= key)
+  {
+    const VertexKey k = VertexQueue.front();
+    std::pop_heap(VertexQueue.begin(), VertexQueue.end(), order);
+    VertexQueue.pop_back();
+    if (Final[k.V] || k.D != Dist[k.V])
+    {
+      continue;
+    }
+    Final[k.V] = 1;
+    FinalOrder.push_back(k.V);
+  }
+}
+
+bool ExactGeodesicSolver::Solve(
+  const std::vector<SurfacePoint>& sources, const ExactGeodesicOptions& options)
+{
+  Reset();
+  const int nv = M.NumberOfVertices();
+  const int nf = M.NumberOfFaces();
+  for (const SurfacePoint& s : sources)
+  {
+    if (s.IsVertex())
+    {
+      if (s.Vertex >= nv)
+      {
+        return false;
+      }
+      continue;
+    }
+    if (s.Face < 0 || s.Face >= nf)
+    {
+      return false;
+    }
+    const double sum = s.Bary[0] + s.Bary[1] + s.Bary[2];
+    if (!std::isfinite(sum) || std::abs(sum - 1.0) > 1e-6 || s.Bary[0] < -1e-6 ||
+      s.Bary[1] < -1e-6 || s.Bary[2] < -1e-6)
+    {
+      return false;
+    }
+  }
+  if (sources.empty())
+  {
+    return false;
+  }
+
+  const double maxDistance =
+    options.MaximumDistance > 0.0 && std::isfinite(options.MaximumDistance) ? options.MaximumDistance
+                                                                             : Inf;
+  const std::size_t maxFinal =
+    options.MaximumFinalVertices > 0 ? static_cast<std::size_t>(options.MaximumFinalVertices) : 0;
+
+  for (int i = 0; i < static_cast<int>(sources.size()); ++i)
+  {
+    SurfacePoint s = sources[i];
+    if (!s.IsVertex())
+    {
+      // Normalize; a point at a corner is a vertex source.
+      std::array<double, 3> b = s.Bary;
+      for (double& x : b)
+      {
+        x = std::max(x, 0.0);
+      }
+      const double sum = b[0] + b[1] + b[2];
+      for (double& x : b)
+      {
+        x /= sum;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        if (b[k] > 1.0 - 1e-12)
+        {
+          s = SurfacePoint::AtVertex(M.Face(s.Face)[k]);
+          break;
+        }
+      }
+      if (!s.IsVertex())
+      {
+        const Vec3 p = M.Interpolate(s.Face, b);
+        AddFaceSourceWindows(s.Face, p, i);
+        for (int k = 0; k < 3; ++k)
+        {
+          // On an edge: the face across it holds the source too.
+          const int e = 3 * s.Face + (k + 1) % 3; // edge opposite corner k
+          if (b[k] < 1e-12 && M.Twin(e) >= 0)
+          {
+            AddFaceSourceWindows(M.Twin(e) / 3, p, i);
+          }
+        }
+        continue;
+      }
+    }
+    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0);
+    if (!Propagated[s.Vertex])
+    {
+      Propagated[s.Vertex] = 1;
+      PropagateFromVertex(s.Vertex, 0.0, i);
+    }
+  }
+
+  bool truncated = false;
+  while (!Queue.empty())
+  {
+    std::pop_heap(Queue.begin(), Queue.end(), WindowOrder());
+    Window w = Queue.back();
+    Queue.pop_back();
+    if (w.Key > maxDistance)
+    {
+      break;
+    }
+    FinalizeUpTo(w.Key);
+    if (maxFinal > 0 && FinalOrder.size() >= maxFinal)
+    {
+      truncated = true;
+      break;
+    }
+    if (w.H < 0)
+    {
+      const int v = -1 - w.H;
+      if (!Propagated[v] && Dist[v] == w.Key)
+      {
+        Propagated[v] = 1;
+        PropagateFromVertex(v, w.Key, w.Src);
+      }
+      continue;
+    }
+    // Vertex distances may have dropped since the window was queued: trim it again.
+    if (Trim(w))
+    {
+      Propagate(w);
+    }
+  }
+  if (!truncated)
+  {
+    FinalizeUpTo(maxDistance);
+  }
+  if (maxFinal > 0 && FinalOrder.size() > maxFinal)
+  {
+    // Keep exactly the K nearest.
+    for (std::size_t i = maxFinal; i < FinalOrder.size(); ++i)
+    {
+      Final[FinalOrder[i]] = 0;
+    }
+    FinalOrder.resize(maxFinal);
+  }
+  return true;
+}
+
+} // namespace gs

@@ -1,0 +1,130 @@
+// Exact polyhedral geodesic distance by window propagation (the Chen-Han family: windows carry
+// an unfolded pseudo-source across faces; saddle and boundary vertices become pseudo-sources).
+//
+// What it implements, and the pruning that makes it fast (all of it provably exact):
+//  - windows are processed in increasing order of their smallest distance (a priority queue),
+//    so a vertex whose distance is <= the queue's smallest key is final: the solve can stop after
+//    the K nearest vertices (saddle vertex graph) or past a maximum distance;
+//  - "one angle, one split" (Xin and Wang 2009, ICH): a window that reaches the opposite vertex
+//    later than the best known path through the same edge keeps only the child on its own side;
+//  - vertex trimming: the part of a window where a path through an edge end point (or the
+//    opposite vertex) is already shorter is cut off before propagation.
+// Boundary vertices act as pseudo-sources like saddles; disconnected parts stay unreachable.
+//
+// The solver is built once per mesh and reused: each Solve() resets only what it touched, so
+// thousands of small truncated solves (one per vertex) cost only their own work.
+#pragma once
+
+#include "SurfacePoint.h"
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace gs
+{
+
+struct ExactGeodesicOptions
+{
+  // Stop once every vertex closer than this is final (0 or infinity: unlimited). Vertices beyond
+  // it are reported unreachable.
+  double MaximumDistance = 0.0;
+  // Stop once this many vertices are final (0: unlimited). The K nearest vertices are then exact;
+  // the others are unreachable.
+  int MaximumFinalVertices = 0;
+};
+
+struct ExactGeodesicStatistics
+{
+  std::int64_t WindowsCreated = 0;
+  std::int64_t WindowsPropagated = 0;
+  std::int64_t PseudoSourceEvents = 0;
+  std::int64_t MaximumQueueSize = 0;
+};
+
+class ExactGeodesicSolver
+{
+public:
+  static constexpr double Unreachable = std::numeric_limits<double>::infinity();
+
+  // The mesh must outlive the solver.
+  explicit ExactGeodesicSolver(const TriangleMesh& mesh);
+
+  // Multi-source solve. Returns false (and leaves every distance unreachable) when a source is
+  // invalid (out of range, barycentric coordinates not finite or not summing to about 1).
+  bool Solve(const std::vector<SurfacePoint>& sources,
+    const ExactGeodesicOptions& options = ExactGeodesicOptions());
+  bool Solve(int sourceVertex, const ExactGeodesicOptions& options = ExactGeodesicOptions())
+  {
+    return this->Solve(std::vector<SurfacePoint>{ SurfacePoint::AtVertex(sourceVertex) }, options);
+  }
+
+  // Distance of vertex v after the last solve (Unreachable if not reached or beyond the limits).
+  double Distance(int v) const
+  {
+    return Final[v] ? Dist[v] : Unreachable;
+  }
+  // All distances (copy), Unreachable where not reached.
+  std::vector<double> Distances() const;
+  // Vertices made final by the last solve, in non-decreasing distance order.
+  const std::vector<int>& FinalVertices() const { return FinalOrder; }
+  // The pseudo-source of the shortest path found to v: a source index (>= 0: the path is direct,
+  // through no saddle or boundary vertex) or -(1 + w) for a saddle/boundary vertex w passed
+  // through last. Undefined for unreachable vertices.
+  int PathOrigin(int v) const { return Origin[v]; }
+  // True when the shortest path to v passes through no saddle or boundary vertex (other than a
+  // source itself): the edges of the saddle vertex graph.
+  bool IsDirect(int v) const { return Final[v] && Origin[v] >= 0; }
+
+  const ExactGeodesicStatistics& Statistics() const { return Stats; }
+  const TriangleMesh& Mesh() const { return M; }
+
+private:
+  struct Window
+  {
+    double Key;    // smallest distance over the window (priority)
+    double B0, B1; // interval along half-edge H, measured from Origin(H)
+    double Ix, Iy; // unfolded pseudo-source in H's frame (x along H, y > 0 towards face(H))
+    double Sigma;  // distance from the real source to the pseudo-source
+    int H;         // half-edge the window lies on; it propagates into face(H). <0: vertex event
+    int Src;       // PathOrigin code of the pseudo-source
+  };
+  struct WindowOrder
+  {
+    bool operator()(const Window& a, const Window& b) const { return a.Key > b.Key; }
+  };
+
+  void Reset();
+  void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing);
+  void PushWindow(Window w);
+  void Propagate(Window w);
+  void PropagateFromVertex(int v, double sigma, int src);
+  void AddFaceSourceWindows(int f, const Vec3& p, int src);
+  bool Trim(Window& w) const;
+  void FinalizeUpTo(double key);
+
+  const TriangleMesh& M;
+  // Position of the opposite vertex of each half-edge in the half-edge's frame.
+  std::vector<double> Cx, Cy;
+
+  std::vector<double> Dist;
+  std::vector<int> Origin;
+  std::vector<int> CrossHalfedge; // half-edge crossed by the best path to v in its last face
+  std::vector<double> CrossX;     // where it crossed (in that half-edge's frame)
+  std::vector<unsigned char> Final;
+  std::vector<unsigned char> Propagated; // pseudo-source vertex already spread its windows
+  std::vector<int> Touched;
+  std::vector<int> FinalOrder;
+  std::vector<Window> Queue; // binary heap
+  struct VertexKey
+  {
+    double D;
+    int V;
+  };
+  std::vector<VertexKey> VertexQueue; // binary heap of tentative vertex distances
+  double Tolerance = 0.0;             // absolute distance tolerance (scaled to the mesh)
+  ExactGeodesicStatistics Stats;
+};
+
+} // namespace gs

@@ -1,0 +1,36 @@
+// Analytic test surfaces with known geodesic distances: the bundled Data/ meshes and the unit
+// tests are made from these.
+#pragma once
+
+#include "Vector.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace gs
+{
+
+struct TriangleSoup
+{
+  std::vector<Vec3> Points;
+  std::vector<std::array<long long, 3>> Triangles;
+};
+
+// Planar grid on [0, sizeX] x [0, sizeY] (z = 0), nx x ny quads split into two triangles each,
+// the diagonals alternating so that the mesh has no preferred direction.
+TriangleSoup MakePlanarGrid(int nx, int ny, double sizeX, double sizeY);
+// L-shaped planar domain: [0, 2]^2 minus (1, 2] x (1, 2], n cells per unit length. Its re-entrant
+// corner at (1, 1) is a boundary vertex with a 270 degree angle.
+TriangleSoup MakeLShape(int n);
+// Open cone (developable) of apex angle 2*halfAngle, slant height `slant`, `rings` rings and
+// `sectors` sectors; the apex is vertex 0. The lateral surface unrolls to a circular sector.
+TriangleSoup MakeCone(double halfAngle, double slant, int rings, int sectors);
+// Open cylinder of radius r along z from 0 to height, `sectors` x `rings` (developable).
+TriangleSoup MakeCylinder(double radius, double height, int sectors, int rings);
+// Unit-radius-scaled sphere by subdividing an icosahedron `level` times (20 * 4^level faces).
+TriangleSoup MakeIcosphere(double radius, int level);
+// Torus with major radius R and minor radius r, n x m quads split into triangles.
+TriangleSoup MakeTorus(double majorRadius, double minorRadius, int n, int m);
+
+} // namespace gs

@@ -1,0 +1,504 @@
+#include "TriangleMesh.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+namespace gs
+{
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+// Angle between vectors a and b, robust for tiny and near-degenerate angles.
+double AngleBetween(const Vec3& a, const Vec3& b)
+{
+  return std::atan2(Norm(Cross(a, b)), Dot(a, b));
+}
+
+struct PointHash
+{
+  std::size_t operator()(const Vec3& p) const
+  {
+    auto h = [](double d) {
+      if (d == 0.0)
+      {
+        d = 0.0; // -0 and +0 weld
+      }
+      std::uint64_t bits;
+      static_assert(sizeof(bits) == sizeof(d), "double size");
+      std::memcpy(&bits, &d, sizeof(d));
+      return std::hash<std::uint64_t>()(bits);
+    };
+    return h(p.x) ^ (h(p.y) * 0x9E3779B97F4A7C15ull) ^ (h(p.z) * 0xC2B2AE3D27D4EB4Full);
+  }
+};
+struct PointEqual
+{
+  bool operator()(const Vec3& a, const Vec3& b) const
+  {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+  }
+};
+
+std::string FaceLabel(std::size_t i)
+{
+  std::ostringstream s;
+  s << "triangle " << i;
+  return s.str();
+}
+} // namespace
+
+std::vector<int> TriangleMesh::OutgoingHalfedges(int v) const
+{
+  std::vector<int> out;
+  const int start = OutHalfedge[v];
+  int h = start;
+  do
+  {
+    out.push_back(h);
+    h = RotateCCW(h);
+  } while (h >= 0 && h != start);
+  return out;
+}
+
+Vec3 TriangleMesh::FaceNormal(int f) const
+{
+  const auto& t = Faces[f];
+  Vec3 n = Cross(Positions[t[1]] - Positions[t[0]], Positions[t[2]] - Positions[t[0]]);
+  const double l = Norm(n);
+  return l > 0 ? n / l : Vec3(0, 0, 0);
+}
+
+Vec3 TriangleMesh::Interpolate(int f, const std::array<double, 3>& b) const
+{
+  const auto& t = Faces[f];
+  return Positions[t[0]] * b[0] + Positions[t[1]] * b[1] + Positions[t[2]] * b[2];
+}
+
+void TriangleMesh::ComputeDerivedData()
+{
+  const int nf = NumberOfFaces();
+  const int nv = NumberOfVertices();
+  Lengths.assign(3 * nf, 0.0);
+  Angles.assign(3 * nf, 0.0);
+  Areas.assign(nf, 0.0);
+  double sum = 0.0;
+  for (int f = 0; f < nf; ++f)
+  {
+    const auto& t = Faces[f];
+    for (int k = 0; k < 3; ++k)
+    {
+      const Vec3& a = Positions[t[k]];
+      const Vec3& b = Positions[t[(k + 1) % 3]];
+      const Vec3& c = Positions[t[(k + 2) % 3]];
+      Lengths[3 * f + k] = Norm(b - a);
+      Angles[3 * f + k] = AngleBetween(b - a, c - a);
+      sum += Lengths[3 * f + k];
+    }
+    Areas[f] = 0.5 * Norm(Cross(Positions[t[1]] - Positions[t[0]], Positions[t[2]] - Positions[t[0]]));
+  }
+  MeanEdge = nf > 0 ? sum / (3.0 * nf) : 0.0;
+
+  Vec3 lo = Positions.empty() ? Vec3() : Positions[0], hi = lo;
+  for (const Vec3& p : Positions)
+  {
+    lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+    hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+  }
+  BoxDiagonal = Norm(hi - lo);
+
+  VertexAngleSum.assign(nv, 0.0);
+  for (int h = 0; h < 3 * nf; ++h)
+  {
+    VertexAngleSum[Origin(h)] += Angles[h];
+  }
+  BoundaryVertex.assign(nv, 0);
+  SaddleVertex.assign(nv, 0);
+  PseudoSource.assign(nv, 0);
+  for (int v = 0; v < nv; ++v)
+  {
+    BoundaryVertex[v] = Twins[OutHalfedge[v]] < 0 ? 1 : 0;
+    // A small tolerance keeps flat vertices of planar meshes (angle sum 2 pi up to rounding)
+    // from being taken as saddles.
+    SaddleVertex[v] = (!BoundaryVertex[v] && VertexAngleSum[v] > 2.0 * Pi + 1e-10) ? 1 : 0;
+    PseudoSource[v] =
+      (SaddleVertex[v] || (BoundaryVertex[v] && VertexAngleSum[v] > Pi + 1e-10)) ? 1 : 0;
+  }
+
+  // Boundary loops: follow boundary half-edges. The boundary half-edge leaving Destination(h)
+  // after boundary half-edge h is found by rotating clockwise about Destination(h).
+  Loops.clear();
+  std::vector<unsigned char> visited(3 * nf, 0);
+  for (int h0 = 0; h0 < 3 * nf; ++h0)
+  {
+    if (Twins[h0] >= 0 || visited[h0])
+    {
+      continue;
+    }
+    std::vector<int> loop;
+    int h = h0;
+    while (!visited[h])
+    {
+      visited[h] = 1;
+      loop.push_back(Origin(h));
+      // Next boundary half-edge: the one leaving Destination(h).
+      h = OutHalfedge[Destination(h)];
+    }
+    Loops.push_back(std::move(loop));
+  }
+
+  // Connected components over face adjacency.
+  FaceComponentIds.assign(nf, -1);
+  NumComponents = 0;
+  std::vector<int> stack;
+  for (int f0 = 0; f0 < nf; ++f0)
+  {
+    if (FaceComponentIds[f0] >= 0)
+    {
+      continue;
+    }
+    const int c = NumComponents++;
+    FaceComponentIds[f0] = c;
+    stack.push_back(f0);
+    while (!stack.empty())
+    {
+      const int f = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k)
+      {
+        const int t = Twins[3 * f + k];
+        if (t >= 0 && FaceComponentIds[t / 3] < 0)
+        {
+          FaceComponentIds[t / 3] = c;
+          stack.push_back(t / 3);
+        }
+      }
+    }
+  }
+
+  // Edge count: every interior edge has two half-edges, a boundary edge one.
+  int boundaryHalfedges = 0;
+  for (int h = 0; h < 3 * nf; ++h)
+  {
+    boundaryHalfedges += Twins[h] < 0 ? 1 : 0;
+  }
+  NumEdges = (3 * nf - boundaryHalfedges) / 2 + boundaryHalfedges;
+
+  // Genus per component: chi_c = V_c - E_c + F_c = 2 - 2 g_c - b_c.
+  std::vector<long long> vc(NumComponents, 0), ec2(NumComponents, 0), fc(NumComponents, 0),
+    bc(NumComponents, 0);
+  for (int v = 0; v < nv; ++v)
+  {
+    vc[VertexComponent(v)]++;
+  }
+  for (int f = 0; f < nf; ++f)
+  {
+    fc[FaceComponentIds[f]]++;
+    for (int k = 0; k < 3; ++k)
+    {
+      // Count twice each edge: interior half-edges once each, boundary half-edges twice.
+      ec2[FaceComponentIds[f]] += Twins[3 * f + k] < 0 ? 2 : 1;
+    }
+  }
+  for (const auto& loop : Loops)
+  {
+    bc[VertexComponent(loop[0])]++;
+  }
+  TotalGenus = 0;
+  for (int c = 0; c < NumComponents; ++c)
+  {
+    const long long chi = vc[c] - ec2[c] / 2 + fc[c];
+    TotalGenus += static_cast<int>((2 - chi - bc[c]) / 2);
+  }
+}
+
+MeshBuildResult TriangleMeshBuilder::Build(
+  const std::vector<Vec3>& points, const std::vector<std::array<long long, 3>>& triangles)
+{
+  MeshBuildResult r;
+  const std::size_t np = points.size();
+  if (triangles.empty())
+  {
+    r.Error = "the input has no triangles";
+    return r;
+  }
+  if (np > static_cast<std::size_t>(0x3fffffff) || triangles.size() > static_cast<std::size_t>(0x2aaaaaaa))
+  {
+    r.Error = "the input is too large (more than 2^30 points or 7e8 triangles)";
+    return r;
+  }
+
+  // 1. Check indices and coordinates of referenced points; weld exactly coincident points.
+  r.PointToVertex.assign(np, -1);
+  std::vector<int> weldTarget(np, -1); // input point -> representative input point
+  std::unordered_map<Vec3, int, PointHash, PointEqual> firstAt;
+  firstAt.reserve(np);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const long long p = triangles[i][k];
+      if (p < 0 || static_cast<std::size_t>(p) >= np)
+      {
+        r.Error = FaceLabel(i) + " refers to point " + std::to_string(p) + ", which does not exist";
+        return r;
+      }
+      if (weldTarget[p] >= 0)
+      {
+        continue;
+      }
+      if (!IsFinite(points[p]))
+      {
+        r.Error = "point " + std::to_string(p) + " (used by " + FaceLabel(i) +
+          ") has a NaN or infinite coordinate";
+        return r;
+      }
+      auto it = firstAt.emplace(points[p], static_cast<int>(p)).first;
+      weldTarget[p] = it->second;
+      if (it->second != p)
+      {
+        r.NumberOfWeldedPoints++;
+      }
+    }
+  }
+  // Mesh vertices: representatives, in input order.
+  TriangleMesh& m = r.Mesh;
+  for (std::size_t p = 0; p < np; ++p)
+  {
+    if (weldTarget[p] == static_cast<int>(p))
+    {
+      r.PointToVertex[p] = static_cast<int>(m.Positions.size());
+      r.VertexToPoint.push_back(static_cast<int>(p));
+      m.Positions.push_back(points[p]);
+    }
+  }
+  for (std::size_t p = 0; p < np; ++p)
+  {
+    if (weldTarget[p] >= 0)
+    {
+      r.PointToVertex[p] = r.PointToVertex[weldTarget[p]];
+    }
+  }
+  const int nv = static_cast<int>(m.Positions.size());
+
+  // 2. Faces; degenerate and duplicate triangles.
+  m.Faces.resize(triangles.size());
+  double scale = 0.0;
+  for (const Vec3& p : m.Positions)
+  {
+    scale = std::max({ scale, std::abs(p.x), std::abs(p.y), std::abs(p.z) });
+  }
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+  {
+    auto& t = m.Faces[i];
+    for (int k = 0; k < 3; ++k)
+    {
+      t[k] = r.PointToVertex[triangles[i][k]];
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+    {
+      r.Error = FaceLabel(i) + " is degenerate: it uses the same point twice (after welding "
+                               "coincident points)";
+      return r;
+    }
+    const Vec3 e1 = m.Positions[t[1]] - m.Positions[t[0]];
+    const Vec3 e2 = m.Positions[t[2]] - m.Positions[t[0]];
+    const Vec3 e3 = m.Positions[t[2]] - m.Positions[t[1]];
+    const double twiceArea = Norm(Cross(e1, e2));
+    const double longest = std::max({ Norm(e1), Norm(e2), Norm(e3) });
+    // Zero area relative to its own size (a collinear or needle-thin triangle), or below what
+    // double precision can resolve at this coordinate magnitude.
+    if (!(twiceArea > 1e-12 * longest * longest) || !(longest > 1e-13 * scale))
+    {
+      r.Error = FaceLabel(i) + " is degenerate (zero area)";
+      return r;
+    }
+  }
+  {
+    std::vector<std::pair<std::array<int, 3>, int>> sorted(m.Faces.size());
+    for (std::size_t i = 0; i < m.Faces.size(); ++i)
+    {
+      auto t = m.Faces[i];
+      std::sort(t.begin(), t.end());
+      sorted[i] = { t, static_cast<int>(i) };
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 1; i < sorted.size(); ++i)
+    {
+      if (sorted[i].first == sorted[i - 1].first)
+      {
+        r.Error = FaceLabel(sorted[i].second) + " duplicates " + FaceLabel(sorted[i - 1].second);
+        return r;
+      }
+    }
+  }
+
+  // 3. Undirected edge adjacency: at most two faces per edge.
+  const int nf = m.NumberOfFaces();
+  struct EdgeUse
+  {
+    long long Key;
+    int H;
+  };
+  std::vector<EdgeUse> uses(3 * static_cast<std::size_t>(nf));
+  for (int h = 0; h < 3 * nf; ++h)
+  {
+    const long long a = m.Origin(h), b = m.Destination(h);
+    uses[h] = { std::min(a, b) * nv + std::max(a, b), h };
+  }
+  std::sort(uses.begin(), uses.end(),
+    [](const EdgeUse& x, const EdgeUse& y) { return x.Key < y.Key || (x.Key == y.Key && x.H < y.H); });
+  std::vector<int> partner(3 * nf, -1);
+  for (std::size_t i = 0; i < uses.size();)
+  {
+    std::size_t j = i;
+    while (j < uses.size() && uses[j].Key == uses[i].Key)
+    {
+      ++j;
+    }
+    if (j - i > 2)
+    {
+      const int a = m.Origin(uses[i].H), b = m.Destination(uses[i].H);
+      r.Error = "non-manifold edge between points " + std::to_string(r.VertexToPoint[a]) + " and " +
+        std::to_string(r.VertexToPoint[b]) + ": it is shared by " + std::to_string(j - i) +
+        " triangles";
+      return r;
+    }
+    if (j - i == 2)
+    {
+      partner[uses[i].H] = uses[i + 1].H;
+      partner[uses[i + 1].H] = uses[i].H;
+    }
+    i = j;
+  }
+
+  // 4. Consistent orientation: flip faces by breadth-first search over each component.
+  std::vector<signed char> flip(nf, -1);
+  int flipped = 0;
+  for (int f0 = 0; f0 < nf; ++f0)
+  {
+    if (flip[f0] >= 0)
+    {
+      continue;
+    }
+    flip[f0] = 0;
+    std::vector<int> queue{ f0 };
+    std::vector<int> comp;
+    for (std::size_t qi = 0; qi < queue.size(); ++qi)
+    {
+      const int f = queue[qi];
+      comp.push_back(f);
+      for (int k = 0; k < 3; ++k)
+      {
+        const int h = 3 * f + k;
+        const int t = partner[h];
+        if (t < 0)
+        {
+          continue;
+        }
+        // Same direction in both faces means opposite orientations.
+        const bool sameDir = m.Origin(h) == m.Origin(t);
+        const signed char want = static_cast<signed char>(flip[f] ^ (sameDir ? 1 : 0));
+        if (flip[t / 3] < 0)
+        {
+          flip[t / 3] = want;
+          queue.push_back(t / 3);
+        }
+        else if (flip[t / 3] != want)
+        {
+          r.Error = "the surface is not orientable (a Moebius-like strip contains " +
+            FaceLabel(f) + ")";
+          return r;
+        }
+      }
+    }
+    // Keep the majority orientation of the component.
+    int nflip = 0;
+    for (int f : comp)
+    {
+      nflip += flip[f];
+    }
+    if (2 * nflip > static_cast<int>(comp.size()))
+    {
+      for (int f : comp)
+      {
+        flip[f] = static_cast<signed char>(1 - flip[f]);
+      }
+    }
+  }
+  for (int f = 0; f < nf; ++f)
+  {
+    if (flip[f])
+    {
+      std::swap(m.Faces[f][1], m.Faces[f][2]);
+      ++flipped;
+    }
+  }
+  if (flipped > 0)
+  {
+    r.Warnings.push_back(std::to_string(flipped) +
+      " triangles were re-oriented to match their neighbours (inconsistent orientation)");
+  }
+
+  // 5. Twins (recomputed after flips).
+  m.Twins.assign(3 * nf, -1);
+  for (int h = 0; h < 3 * nf; ++h)
+  {
+    const long long a = m.Origin(h), b = m.Destination(h);
+    uses[h] = { std::min(a, b) * nv + std::max(a, b), h };
+  }
+  std::sort(uses.begin(), uses.end(),
+    [](const EdgeUse& x, const EdgeUse& y) { return x.Key < y.Key || (x.Key == y.Key && x.H < y.H); });
+  for (std::size_t i = 0; i + 1 < uses.size(); ++i)
+  {
+    if (uses[i].Key == uses[i + 1].Key)
+    {
+      m.Twins[uses[i].H] = uses[i + 1].H;
+      m.Twins[uses[i + 1].H] = uses[i].H;
+      ++i;
+    }
+  }
+
+  // 6. Outgoing half-edge per vertex (the boundary one if any) and manifold vertices: the faces
+  // around a vertex must form a single fan.
+  m.OutHalfedge.assign(nv, -1);
+  std::vector<int> degree(nv, 0);
+  for (int h = 0; h < 3 * nf; ++h)
+  {
+    const int v = m.Origin(h);
+    degree[v]++;
+    if (m.OutHalfedge[v] < 0 || m.Twins[h] < 0)
+    {
+      m.OutHalfedge[v] = h;
+    }
+  }
+  for (int v = 0; v < nv; ++v)
+  {
+    int count = 0;
+    const int start = m.OutHalfedge[v];
+    int h = start;
+    do
+    {
+      ++count;
+      h = m.RotateCCW(h);
+    } while (h >= 0 && h != start && count <= degree[v]);
+    if (count != degree[v])
+    {
+      r.Error = "non-manifold vertex at point " + std::to_string(r.VertexToPoint[v]) +
+        ": its triangles form more than one fan";
+      return r;
+    }
+  }
+
+  m.ComputeDerivedData();
+  r.Ok = true;
+  return r;
+}
+
+} // namespace gs

@@ -1,0 +1,53 @@
+// Small fixed-size vector types used by the geometry core (no VTK, no Eigen in headers).
+#pragma once
+
+#include <cmath>
+
+namespace gs
+{
+
+struct Vec2
+{
+  double x = 0.0, y = 0.0;
+  Vec2() = default;
+  Vec2(double x_, double y_) : x(x_), y(y_) {}
+  Vec2 operator+(const Vec2& o) const { return { x + o.x, y + o.y }; }
+  Vec2 operator-(const Vec2& o) const { return { x - o.x, y - o.y }; }
+  Vec2 operator*(double s) const { return { x * s, y * s }; }
+};
+
+inline double Dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
+inline double Cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+inline double Norm(const Vec2& a) { return std::hypot(a.x, a.y); }
+
+struct Vec3
+{
+  double x = 0.0, y = 0.0, z = 0.0;
+  Vec3() = default;
+  Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+  Vec3 operator+(const Vec3& o) const { return { x + o.x, y + o.y, z + o.z }; }
+  Vec3 operator-(const Vec3& o) const { return { x - o.x, y - o.y, z - o.z }; }
+  Vec3 operator*(double s) const { return { x * s, y * s, z * s }; }
+  Vec3 operator/(double s) const { return { x / s, y / s, z / s }; }
+  Vec3& operator+=(const Vec3& o)
+  {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+inline double Dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 Cross(const Vec3& a, const Vec3& b)
+{
+  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
+}
+inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
+inline bool IsFinite(const Vec3& a)
+{
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+
+} // namespace gs
