@@ -10,16 +10,23 @@ namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
 
+// Plain sqrt: std::hypot's overflow guards cost more than the whole window update, and the
+// coordinates here are mesh-sized (checked finite when the mesh is built).
+inline double Hypot(double x, double y)
+{
+  return std::sqrt(x * x + y * y);
+}
+
 // Distance from (ix, iy) to the segment [b0, b1] of the x axis.
 inline double SegmentDistance(double ix, double iy, double b0, double b1)
 {
   if (ix < b0)
   {
-    return std::hypot(b0 - ix, iy);
+    return Hypot(b0 - ix, iy);
   }
   if (ix > b1)
   {
-    return std::hypot(ix - b1, iy);
+    return Hypot(ix - b1, iy);
   }
   return std::abs(iy);
 }
@@ -64,6 +71,8 @@ void ExactGeodesicSolver::Reset()
   Touched.clear();
   FinalOrder.clear();
   Queue.clear();
+  Pool.clear();
+  FreeSlots.clear();
   VertexQueue.clear();
   Stats = ExactGeodesicStatistics();
 }
@@ -103,8 +112,7 @@ void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, dou
     e.Sigma = d;
     e.H = -1 - v;
     e.Src = -1 - v;
-    Queue.push_back(e);
-    std::push_heap(Queue.begin(), Queue.end(), WindowOrder());
+    Enqueue(e);
   }
 }
 
@@ -122,7 +130,7 @@ bool ExactGeodesicSolver::Trim(Window& w) const
   if (dA < Inf)
   {
     const double target = dA + tol;
-    auto g = [&](double t) { return s + std::hypot(t - ix, iy) - t; };
+    auto g = [&](double t) { return s + Hypot(t - ix, iy) - t; };
     if (g(w.B1) >= target)
     {
       return false;
@@ -142,7 +150,7 @@ bool ExactGeodesicSolver::Trim(Window& w) const
   if (dB < Inf)
   {
     const double target = dB + tol;
-    auto g = [&](double t) { return s + std::hypot(t - ix, iy) - (L - t); };
+    auto g = [&](double t) { return s + Hypot(t - ix, iy) - (L - t); };
     if (g(w.B0) >= target)
     {
       return false;
@@ -166,7 +174,7 @@ bool ExactGeodesicSolver::Trim(Window& w) const
   if (dC < Inf)
   {
     const double cx = Cx[h], cy = Cy[h];
-    auto f = [&](double t) { return s + std::hypot(t - ix, iy) - std::hypot(t - cx, cy); };
+    auto f = [&](double t) { return s + Hypot(t - ix, iy) - Hypot(t - cx, cy); };
     double lowest = std::min(f(w.B0), f(w.B1));
     const double dy = -cy - iy;
     if (std::abs(dy) > 1e-300)
@@ -190,6 +198,33 @@ bool ExactGeodesicSolver::Trim(Window& w) const
   return true;
 }
 
+void ExactGeodesicSolver::Enqueue(const Window& w)
+{
+  int slot;
+  if (!FreeSlots.empty())
+  {
+    slot = FreeSlots.back();
+    FreeSlots.pop_back();
+    Pool[slot] = w;
+  }
+  else
+  {
+    slot = static_cast<int>(Pool.size());
+    Pool.push_back(w);
+  }
+  Queue.push_back({ w.Key, slot });
+  std::push_heap(Queue.begin(), Queue.end(), EntryOrder());
+}
+
+ExactGeodesicSolver::Window ExactGeodesicSolver::Dequeue()
+{
+  std::pop_heap(Queue.begin(), Queue.end(), EntryOrder());
+  const int slot = Queue.back().Slot;
+  Queue.pop_back();
+  FreeSlots.push_back(slot);
+  return Pool[slot];
+}
+
 void ExactGeodesicSolver::PushWindow(Window w)
 {
   ++Stats.WindowsCreated;
@@ -197,8 +232,7 @@ void ExactGeodesicSolver::PushWindow(Window w)
   {
     return;
   }
-  Queue.push_back(w);
-  std::push_heap(Queue.begin(), Queue.end(), WindowOrder());
+  Enqueue(w);
   Stats.MaximumQueueSize =
     std::max<std::int64_t>(Stats.MaximumQueueSize, static_cast<std::int64_t>(Queue.size()));
 }
@@ -283,7 +317,7 @@ void ExactGeodesicSolver::Propagate(Window w)
   if (xc >= w.B0 - cover && xc <= w.B1 + cover)
   {
     const int vC = M.Opposite(h);
-    const double dC = w.Sigma + std::hypot(cx - ix, cy - iy);
+    const double dC = w.Sigma + Hypot(cx - ix, cy - iy);
     if (dC < Dist[vC])
     {
       UpdateVertex(vC, dC, w.Src, h, xc);
@@ -467,9 +501,7 @@ bool ExactGeodesicSolver::Solve(
   bool truncated = false;
   while (!Queue.empty())
   {
-    std::pop_heap(Queue.begin(), Queue.end(), WindowOrder());
-    Window w = Queue.back();
-    Queue.pop_back();
+    Window w = Dequeue();
     if (w.Key > maxDistance)
     {
       break;

@@ -90,14 +90,22 @@ private:
     int H;         // half-edge the window lies on; it propagates into face(H). <0: vertex event
     int Src;       // PathOrigin code of the pseudo-source
   };
-  struct WindowOrder
+  // The queue orders small (key, slot) entries; windows stay in a pool with a free list.
+  struct QueueEntry
   {
-    bool operator()(const Window& a, const Window& b) const { return a.Key > b.Key; }
+    double Key;
+    int Slot;
+  };
+  struct EntryOrder
+  {
+    bool operator()(const QueueEntry& a, const QueueEntry& b) const { return a.Key > b.Key; }
   };
 
   void Reset();
   void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing);
   void PushWindow(Window w);
+  void Enqueue(const Window& w);
+  Window Dequeue();
   void Propagate(Window w);
   void PropagateFromVertex(int v, double sigma, int src);
   void AddFaceSourceWindows(int f, const Vec3& p, int src);
@@ -116,7 +124,9 @@ private:
   std::vector<unsigned char> Propagated; // pseudo-source vertex already spread its windows
   std::vector<int> Touched;
   std::vector<int> FinalOrder;
-  std::vector<Window> Queue; // binary heap
+  std::vector<Window> Pool;
+  std::vector<int> FreeSlots;
+  std::vector<QueueEntry> Queue; // binary heap
   struct VertexKey
   {
     double D;

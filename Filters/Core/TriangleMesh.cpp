@@ -478,6 +478,11 @@ MeshBuildResult TriangleMeshBuilder::Build(
       m.OutHalfedge[v] = h;
     }
   }
+  // A vertex whose triangles form several fans (a pinch) is split into one vertex per fan. Where
+  // the pinch exists only because coincident points were welded (a mesh whose holes touch at a
+  // point, stored with separate copies), this restores the input's topology; where one input
+  // point itself joins several fans, the input is non-manifold and is rejected below.
+  std::vector<int> pinched;
   for (int v = 0; v < nv; ++v)
   {
     int count = 0;
@@ -490,10 +495,103 @@ MeshBuildResult TriangleMeshBuilder::Build(
     } while (h >= 0 && h != start && count <= degree[v]);
     if (count != degree[v])
     {
-      r.Error = "non-manifold vertex at point " + std::to_string(r.VertexToPoint[v]) +
-        ": its triangles form more than one fan";
-      return r;
+      pinched.push_back(v);
     }
+  }
+  if (!pinched.empty())
+  {
+    std::vector<int> slot(nv, -1);
+    for (std::size_t i = 0; i < pinched.size(); ++i)
+    {
+      slot[pinched[i]] = static_cast<int>(i);
+    }
+    std::vector<std::vector<int>> outgoing(pinched.size());
+    for (int h = 0; h < 3 * nf; ++h)
+    {
+      if (slot[m.Origin(h)] >= 0)
+      {
+        outgoing[slot[m.Origin(h)]].push_back(h);
+      }
+    }
+    std::vector<unsigned char> assigned(3 * nf, 0);
+    for (std::size_t i = 0; i < pinched.size(); ++i)
+    {
+      const int v = pinched[i];
+      bool first = true;
+      for (int h0 : outgoing[i])
+      {
+        if (assigned[h0])
+        {
+          continue;
+        }
+        // Go to the clockwise end of h0's fan, then collect it counter-clockwise.
+        int start = h0;
+        for (int guard = 0; guard < degree[v]; ++guard)
+        {
+          const int cw = m.RotateCW(start);
+          if (cw < 0 || cw == h0)
+          {
+            break;
+          }
+          start = cw;
+        }
+        int target = v;
+        if (!first)
+        {
+          target = static_cast<int>(m.Positions.size());
+          m.Positions.push_back(m.Positions[v]);
+          r.VertexToPoint.push_back(r.VertexToPoint[v]);
+          m.OutHalfedge.push_back(start);
+        }
+        else
+        {
+          m.OutHalfedge[v] = start;
+        }
+        first = false;
+        int h = start;
+        do
+        {
+          assigned[h] = 1;
+          m.Faces[h / 3][h % 3] = target;
+          h = m.RotateCCW(h);
+        } while (h >= 0 && h != start && !assigned[h]);
+      }
+    }
+    // Each input point must lie in a single fan.
+    std::vector<int> seen(np, -1);
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const int corner = flip[i] ? (3 - k) % 3 : k; // flipped faces swapped corners 1 and 2
+        const long long p = triangles[i][k];
+        const int v = m.Faces[i][corner];
+        if (seen[p] >= 0 && seen[p] != v)
+        {
+          r.Error = "non-manifold vertex at point " + std::to_string(p) +
+            ": its triangles form more than one fan";
+          return r;
+        }
+        seen[p] = v;
+      }
+    }
+    for (std::size_t p = 0; p < np; ++p)
+    {
+      r.PointToVertex[p] = seen[p];
+    }
+    for (int v = 0; v < m.NumberOfVertices(); ++v)
+    {
+      r.VertexToPoint[v] = -1;
+    }
+    for (std::size_t p = np; p-- > 0;)
+    {
+      if (seen[p] >= 0)
+      {
+        r.VertexToPoint[seen[p]] = static_cast<int>(p);
+      }
+    }
+    r.Warnings.push_back(std::to_string(m.NumberOfVertices() - nv) +
+      " coincident points were kept apart: welding them would pinch separate fans of triangles");
   }
 
   m.ComputeDerivedData();

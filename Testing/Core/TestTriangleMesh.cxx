@@ -258,6 +258,27 @@ TEST(TriangleMesh, RejectsBadInput)
     { { 0, 1, 2 }, { 0, 3, 4 } }, "non-manifold vertex");
 }
 
+TEST(TriangleMesh, KeepsApartCoincidentPointsThatWouldPinch)
+{
+  // Two triangles touching at one location through two distinct (coincident) points: welding
+  // would make a bow tie, so the two copies stay separate vertices.
+  auto r = TriangleMeshBuilder::Build(
+    { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { -1, 0, 0 }, { -1, -1, 0 }, { 0, 0, 0 } },
+    { { 0, 1, 2 }, { 5, 3, 4 } });
+  ASSERT_TRUE(r.Ok) << r.Error;
+  EXPECT_EQ(r.Mesh.NumberOfVertices(), 6);
+  EXPECT_EQ(r.Mesh.NumberOfComponents(), 2);
+  EXPECT_NE(r.PointToVertex[0], r.PointToVertex[5]);
+  ASSERT_EQ(r.Warnings.size(), 1u);
+  EXPECT_EQ(r.Mesh.Face(0)[0], r.PointToVertex[0]);
+  EXPECT_EQ(r.Mesh.Face(1)[0], r.PointToVertex[5]);
+  for (int v = 0; v < 6; ++v)
+  {
+    EXPECT_EQ(r.PointToVertex[r.VertexToPoint[v]], v);
+    EXPECT_TRUE(r.Mesh.IsBoundaryVertex(v));
+  }
+}
+
 TEST(TriangleMesh, RejectsMoebiusStrip)
 {
   TriangleSoup s;
