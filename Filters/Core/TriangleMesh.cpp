@@ -259,6 +259,12 @@ MeshBuildResult TriangleMeshBuilder::Build(
           ") has a NaN or infinite coordinate";
         return r;
       }
+      if (std::max({ std::abs(points[p].x), std::abs(points[p].y), std::abs(points[p].z) }) > 1e100)
+      {
+        r.Error = "point " + std::to_string(p) + " (used by " + FaceLabel(i) +
+          ") has a coordinate beyond 1e100: rescale the mesh";
+        return r;
+      }
       auto it = firstAt.emplace(points[p], static_cast<int>(p)).first;
       weldTarget[p] = it->second;
       if (it->second != p)

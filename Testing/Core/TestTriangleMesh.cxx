@@ -251,6 +251,7 @@ TEST(TriangleMesh, RejectsBadInput)
   fails({ { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 } }, { { 0, 1, 2 } }, "degenerate");
   fails({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 0, 0 } }, { { 0, 1, 2 } }, "degenerate");
   fails({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, nan, 0 } }, { { 0, 1, 2 } }, "NaN");
+  fails({ { 0, 0, 0 }, { 1e120, 0, 0 }, { 0, 1, 0 } }, { { 0, 1, 2 } }, "rescale");
   fails(pts, { { 0, 1, 2 }, { 2, 1, 0 } }, "duplicates");
   fails(pts, { { 0, 1, 2 }, { 1, 0, 3 }, { 0, 1, 4 } }, "non-manifold edge");
   // Bow tie: two triangles sharing only vertex 0.
