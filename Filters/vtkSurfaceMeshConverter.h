@@ -1,0 +1,42 @@
+// vtkSurfaceMeshConverter: vtkPolyData -> gs::TriangleMesh, done once per pipeline update.
+//
+// Not a vtkObject and not wrapped (a private class of the GeodesicShapes::Filters module). It
+//  - triangulates polygons with more than three points and triangle strips (vtkTriangleFilter,
+//    vertices and lines dropped) and says so in Warnings; otherwise lines and vertices are ignored;
+//  - hands the points and triangles to gs::TriangleMeshBuilder, which welds exactly coincident
+//    points and rejects empty, non-finite, degenerate, duplicate and non-manifold input;
+//  - keeps the polydata the filters output (the input itself, or its triangulation) and a
+//    triangles-only polydata whose cell i is core face i, for point location.
+#ifndef vtkSurfaceMeshConverter_h
+#define vtkSurfaceMeshConverter_h
+
+#include "TriangleMesh.h"
+
+#include <vtkSmartPointer.h>
+
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+class vtkSurfaceMeshConverter
+{
+public:
+  struct Result
+  {
+    bool Ok = false;
+    std::string Error;                 // why the input was rejected (empty when Ok)
+    std::vector<std::string> Warnings; // triangulation, re-oriented faces, ...
+    // The mesh to output: the input (shallow copy) or its triangulation, same point ids.
+    vtkSmartPointer<vtkPolyData> Surface;
+    // Only the triangles of Surface, cell i = core face i (for vtkStaticCellLocator).
+    vtkSmartPointer<vtkPolyData> Triangles;
+    // The core mesh plus the maps input point <-> mesh vertex.
+    gs::MeshBuildResult Build;
+  };
+
+  // Converts `input`; never throws on bad input (Result::Ok false, Result::Error set).
+  static Result Convert(vtkPolyData* input);
+};
+
+#endif
