@@ -28,31 +28,40 @@ def check(condition, message):
 LoadPlugin(args.plugin, remote=False, ns=globals())
 check("SVGGeodesicDistance" in globals(), "the plugin does not define SVGGeodesicDistance")
 
-# 1. A ParaView sphere, distance from the north pole (point 0): the great-circle distance
-#    R * acos(z / R). The polyhedral distance converges to it as the mesh is refined; on this
-#    64 x 64 sphere it is within 1% of the half circumference.
+# 1. ParaView spheres, distance from the north pole (point 0) against the great-circle distance
+#    R * acos(z / R). The polyhedral distance converges to it as the mesh is refined: check two
+#    resolutions, the finer within 0.5% of the half circumference and closer than the coarser.
 radius = 2.0
-sphere = Sphere(Radius=radius, ThetaResolution=64, PhiResolution=64)
-geodesic = SVGGeodesicDistance(Input=sphere, SourceVertexIds=[0])
-check(geodesic.Solver == "Exact", "default Solver is %r" % (geodesic.Solver,))
-check(geodesic.ResultArrayName == "GeodesicDistance", "default ResultArrayName")
-output = servermanager.Fetch(geodesic)
-array = output.GetPointData().GetArray("GeodesicDistance")
-check(array is not None, "no GeodesicDistance array")
-if array is not None:
+
+
+def sphere_error(resolution):
+    sphere = Sphere(Radius=radius, ThetaResolution=resolution, PhiResolution=resolution)
+    geodesic = SVGGeodesicDistance(Input=sphere, SourceVertexIds=[0])
+    check(geodesic.Solver == "Exact", "default Solver is %r" % (geodesic.Solver,))
+    check(geodesic.ResultArrayName == "GeodesicDistance", "default ResultArrayName")
+    output = servermanager.Fetch(geodesic)
+    array = output.GetPointData().GetArray("GeodesicDistance")
+    check(array is not None, "no GeodesicDistance array")
+    if array is None:
+        return geodesic, float("inf")
     distance = vtk_to_numpy(array)
     points = vtk_to_numpy(output.GetPoints().GetData())
     check(len(distance) == output.GetNumberOfPoints(), "array size")
+    check(distance.min() == 0.0, "distance at the source is not 0")
+    check(distance.max() <= 1.001 * math.pi * radius, "distance larger than half circumference")
     worst = 0.0
     for d, p in zip(distance, points):
         great_circle = radius * math.acos(max(-1.0, min(1.0, p[2] / radius)))
         worst = max(worst, abs(d - great_circle))
-    print("sphere: max |geodesic - great circle| = %.4g (half circumference %.4g)"
-          % (worst, math.pi * radius))
-    check(worst < 0.01 * math.pi * radius, "sphere distances far from great-circle distances")
-    check(distance.min() == 0.0, "distance at the source is not 0")
-    # Polyhedral geodesics on an inscribed mesh are never longer than on the sphere.
-    check(distance.max() <= 1.001 * math.pi * radius, "distance larger than half circumference")
+    print("sphere %dx%d: max |geodesic - great circle| = %.4g (half circumference %.4g)"
+          % (resolution, resolution, worst, math.pi * radius))
+    return geodesic, worst
+
+
+_, coarse_error = sphere_error(24)
+geodesic, fine_error = sphere_error(64)
+check(fine_error < coarse_error, "no convergence to the great-circle distance")
+check(fine_error < 0.005 * math.pi * radius, "sphere distances far from great-circle distances")
 
 # 2. The bundled L-shaped domain read from PLY, two sources given as points on the second port,
 #    and a maximum distance: planar, so Euclidean to the nearest source (both sources see the
