@@ -20,6 +20,7 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -420,6 +421,23 @@ void TestMaximumDistance()
   }
 }
 
+void TestPrintSelf()
+{
+  vtkNew<vtkSVGGeodesicDistance> filter;
+  filter->AddSourceVertexId(3);
+  filter->AddSourceVertexId(8);
+  filter->SetMaximumDistance(2.5);
+  filter->SetResultArrayName("d");
+  std::ostringstream os;
+  filter->Print(os);
+  const std::string text = os.str();
+  for (const char* expected :
+    { "Solver: 0 (Exact)", "SourceVertexIds (2): 3 8", "MaximumDistance: 2.5", "ResultArrayName: d" })
+  {
+    Check(text.find(expected) != std::string::npos, "PrintSelf", std::string("no ") + expected);
+  }
+}
+
 void TestDisconnected()
 {
   // Two separate squares: the one without the source is unreachable (NaN).
@@ -458,6 +476,7 @@ int main()
   TestEmptySourcePoints();
   TestMaximumDistance();
   TestDisconnected();
+  TestPrintSelf();
   if (Failures > 0)
   {
     std::cerr << Failures << " check(s) failed\n";

@@ -61,6 +61,12 @@ def sphere_error(resolution):
 _, coarse_error = sphere_error(24)
 geodesic, fine_error = sphere_error(64)
 check(fine_error < coarse_error, "no convergence to the great-circle distance")
+
+# Changing only the sources re-executes on the cached mesh: the new source has distance 0.
+geodesic.SourceVertexIds = [5, 7]
+moved = vtk_to_numpy(servermanager.Fetch(geodesic).GetPointData().GetArray("GeodesicDistance"))
+check(moved[5] == 0.0 and moved[7] == 0.0 and moved[0] > 0.0, "changing SourceVertexIds")
+geodesic.SourceVertexIds = [0]
 check(fine_error < 0.005 * math.pi * radius, "sphere distances far from great-circle distances")
 
 # 2. The bundled L-shaped domain read from PLY, two sources given as points on the second port,
