@@ -253,16 +253,14 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
     const int t = M.Twin(opp);
     if (t >= 0)
     {
-      // In t's frame (origin b, x towards a, the next face above), v lies below the edge at
-      // distance |bv| and at the corner angle of b.
-      const double bv = M.EdgeLength(TriangleMesh::Prev(h));
-      const double beta = M.CornerAngle(TriangleMesh::Prev(h));
+      // v is the opposite vertex of opp, at (Cx, Cy) in opp's frame; t's frame is opp's turned
+      // by half a turn about the edge's midpoint.
       Window w;
       w.H = t;
       w.B0 = 0.0;
       w.B1 = M.EdgeLength(t);
-      w.Ix = bv * std::cos(beta);
-      w.Iy = -bv * std::sin(beta);
+      w.Ix = w.B1 - Cx[opp];
+      w.Iy = -Cy[opp];
       w.Sigma = sigma;
       w.Src = src;
       PushWindow(w);

@@ -4,7 +4,9 @@
 // from corner k of f to corner k+1 (mod 3). Faces are oriented consistently (counter-clockwise
 // about the outward normal), so the twin of a half-edge runs the other way in the neighbour face.
 // Only vertices referenced by a face exist in the mesh; the builder keeps the map from the caller's
-// point ids (after welding coincident points) to mesh vertices.
+// point ids (after welding coincident points) to mesh vertices. Face i is always the caller's
+// triangle i; a triangle re-oriented to match its neighbours has its corners 1 and 2 swapped.
+// Algorithms that keep a reference to a mesh (solvers) must not outlive it.
 #pragma once
 
 #include "Vector.h"
