@@ -22,7 +22,7 @@ packages=(
   libavutil-dev libswscale-dev libgl2ps-dev libpng-dev libnetcdf-dev libgdal-dev libx11-dev
   libopenmpi-dev libglew-dev libexpat1-dev liblzma-dev liblz4-dev libdouble-conversion-dev
   libjpeg-dev libtiff-dev libfreetype-dev zlib1g-dev
-  libgtest-dev ninja-build libcgal-demo openclipart-png openclipart-svg libgl1-mesa-dri
+  libgtest-dev ninja-build libcgal-demo libcgal-dev libgmp-dev libmpfr-dev openclipart-png openclipart-svg libgl1-mesa-dri
   cmake g++ pkg-config
 )
 

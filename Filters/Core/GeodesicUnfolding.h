@@ -1,0 +1,22 @@
+// Geodesic triangle unfolding (GTU, Wang et al. 2016, Section 3.2): the geodesic distance from a
+// source to a point inside a face, from the source's distances to the face's corners. For each
+// edge, the geodesic triangle (source, edge end points) is unfolded into the face's plane beside
+// the edge; the straight line from the unfolded source to the point, when it crosses the edge,
+// gives a candidate. Corner paths (corner distance plus the straight segment) are candidates too;
+// the smallest candidate wins. Exact on developable surfaces whenever the corner distances are.
+#pragma once
+
+#include "TriangleMesh.h"
+
+#include <array>
+
+namespace gs
+{
+
+// Distance at barycentric point `bary` of face f, given the source's distances to the face's
+// corners (corner order of mesh.Face(f); infinite corners are ignored). Infinite when all three
+// corners are.
+double UnfoldedDistance(const TriangleMesh& mesh, int f, const std::array<double, 3>& bary,
+  const std::array<double, 3>& cornerDistances);
+
+} // namespace gs

@@ -1,0 +1,86 @@
+// Near-exact geodesic distance on a saddle vertex graph, from any surface points or curves.
+//
+//  - Vertex sources seed the graph directly.
+//  - Point sources inside faces (and curves) first get an exact window-propagation solve
+//    truncated to their own K-nearest vertices, which seeds the graph with exact distances: the
+//    source behaves as if it were a graph node with its direct geodesics.
+//  - Curve sources: a polyline on the surface, as a sequence of surface points; consecutive
+//    points are joined by the straight surface path between them (traced across faces), and
+//    each piece of it inside a face is a source.
+//  - Queries at arbitrary surface points use geodesic triangle unfolding, and the exact
+//    in-face distance to point or curve sources lying in the same face.
+#pragma once
+
+#include "ExactGeodesic.h"
+#include "SaddleVertexGraph.h"
+#include "SurfacePoint.h"
+#include "TriangleMesh.h"
+
+#include <functional>
+#include <vector>
+
+namespace gs
+{
+
+struct SVGSolveOptions
+{
+  GraphAlgorithm Algorithm = GraphAlgorithm::LabelCorrecting;
+  // Refine graph distances by geodesic unfolding (see SVGGeodesicSolver::Refine).
+  bool Refine = false;
+  double MaximumDistance = 0.0; // > 0: vertices farther stay unreached (infinite)
+};
+
+class SVGGeodesicSolver
+{
+public:
+  // The mesh and the graph (built for this mesh) must outlive the solver.
+  SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVertexGraph& graph);
+
+  // Distances from the sources to every vertex. False when a source is invalid.
+  bool Solve(const std::vector<SurfacePoint>& sources, const SVGSolveOptions& options = {});
+  // Distances from a curve (see the class comment) to every vertex. False when a point is
+  // invalid or the curve is empty.
+  bool SolveCurve(const std::vector<SurfacePoint>& curve, const SVGSolveOptions& options = {});
+
+  double Distance(int v) const { return Graph.Distance(v); }
+  std::vector<double> Distances() const { return Graph.Distances(); }
+  // Distance of any surface point from the last solve's sources.
+  double DistanceAt(const SurfacePoint& q) const;
+
+  // One-off queries (each runs a solve from a).
+  double Distance(const SurfacePoint& a, const SurfacePoint& b);
+  std::vector<double> DistancesTo(const SurfacePoint& a, const std::vector<SurfacePoint>& targets);
+
+  // Number of curve pieces (segments inside one face) of the last curve solve.
+  int NumberOfCurvePieces() const { return static_cast<int>(Pieces.size()); }
+
+private:
+  struct Piece
+  {
+    int Face;
+    Vec3 A, B; // a segment (A == B for a point source) inside Face
+  };
+  bool ValidPoint(const SurfacePoint& p) const;
+  Vec3 PositionOf(const SurfacePoint& p) const;
+  // Pieces of the straight surface path between two surface points (one per face crossed).
+  void TraceSegment(const SurfacePoint& from, const SurfacePoint& to,
+    const std::function<void(int, const Vec3&, const Vec3&)>& addPiece) const;
+  // Geodesic-unfolding refinement of the graph distances: a label-setting sweep that updates a
+  // vertex from a face edge whose two end points have the same anchor, through the unfolded
+  // anchor (exact for direct geodesics over developable parts).
+  void Refine(double maxDistance);
+  bool SolveFromPieces(const std::vector<SurfacePoint>& exactSources, int finalVertices,
+    const SVGSolveOptions& options);
+
+  const TriangleMesh& M;
+  const SaddleVertexGraph& G;
+  ExactGeodesicSolver Local;
+  GraphDistanceSolver Graph;
+public:
+  std::vector<Piece> Pieces; // sorted by face
+  std::vector<unsigned char> AnchorVertex;
+  std::vector<unsigned char> Done;
+  std::vector<int> Reached;
+};
+
+} // namespace gs

@@ -1,0 +1,544 @@
+#include "SaddleVertexGraph.h"
+
+#include "ExactGeodesic.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <unistd.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gs
+{
+
+namespace
+{
+constexpr double Inf = std::numeric_limits<double>::infinity();
+constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '1' };
+
+// FNV-1a, 64 bits.
+struct Hasher
+{
+  std::uint64_t H = 1469598103934665603ull;
+  void Add(const void* data, std::size_t n)
+  {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      H ^= p[i];
+      H *= 1099511628211ull;
+    }
+  }
+  template <typename T>
+  void AddVector(const std::vector<T>& v)
+  {
+    if (!v.empty())
+    {
+      Add(v.data(), v.size() * sizeof(T));
+    }
+  }
+};
+
+double PhysicalMemoryBytes()
+{
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
+}
+} // namespace
+
+std::size_t SaddleVertexGraph::MemoryBytes() const
+{
+  return Offsets.size() * sizeof(std::int64_t) + Targets.size() * sizeof(int) +
+    Weights.size() * sizeof(double);
+}
+
+std::uint64_t SaddleVertexGraph::HashMesh(const TriangleMesh& mesh)
+{
+  Hasher h;
+  const int nv = mesh.NumberOfVertices(), nf = mesh.NumberOfFaces();
+  h.Add(&nv, sizeof(nv));
+  h.Add(&nf, sizeof(nf));
+  h.AddVector(mesh.GetPositions());
+  for (int f = 0; f < nf; ++f)
+  {
+    h.Add(mesh.Face(f).data(), 3 * sizeof(int));
+  }
+  return h.H;
+}
+
+bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+  const ProgressCallback& progress, std::string& error)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  Offsets.clear();
+  Targets.clear();
+  Weights.clear();
+  K = 0;
+  const int nv = mesh.NumberOfVertices();
+  if (nv == 0)
+  {
+    error = "the mesh has no vertices";
+    return false;
+  }
+  if (options.K < 1)
+  {
+    error = "K must be at least 1 (got " + std::to_string(options.K) + ")";
+    return false;
+  }
+  const int k = std::min(options.K, nv);
+  // Each vertex keeps at most k links, doubled by symmetry, plus mesh edges; each costs 12 bytes
+  // stored and about 16 while building. Refuse before allocating what the machine cannot hold.
+  const double estimate = (2.0 * k + 8.0) * nv * 28.0;
+  const double physical = PhysicalMemoryBytes();
+  if (physical > 0 && estimate > 0.6 * physical)
+  {
+    error = "a saddle vertex graph with K = " + std::to_string(k) + " on " + std::to_string(nv) +
+      " vertices needs about " + std::to_string(static_cast<long long>(estimate / 1048576.0)) +
+      " MiB, more than this machine can spare; lower K";
+    return false;
+  }
+
+  std::vector<std::vector<std::pair<int, double>>> direct(nv);
+  std::atomic<int> done(0);
+  std::atomic<bool> aborted(false);
+  const int threads = options.NumberOfThreads;
+#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
+  {
+    ExactGeodesicSolver solver(mesh);
+    ExactGeodesicOptions opt;
+    opt.MaximumFinalVertices = k;
+#pragma omp for schedule(dynamic, 64)
+    for (int s = 0; s < nv; ++s)
+    {
+      if (aborted.load(std::memory_order_relaxed))
+      {
+        continue;
+      }
+      solver.Solve(s, opt);
+      auto& out = direct[s];
+      for (int v : solver.FinalVertices())
+      {
+        if (v != s && solver.IsDirect(v))
+        {
+          out.emplace_back(v, solver.Distance(v));
+        }
+      }
+      const int n = ++done;
+#ifdef _OPENMP
+      const bool master = omp_get_thread_num() == 0;
+#else
+      const bool master = true;
+#endif
+      if (master && progress && (n % 256 == 0) && !progress(0.95 * n / nv))
+      {
+        aborted = true;
+      }
+    }
+  }
+  if (aborted)
+  {
+    error = "aborted";
+    return false;
+  }
+
+  // Symmetrize and add the mesh edges; duplicates keep the smallest weight, so that both
+  // directions of a link carry the same value.
+  std::vector<std::int64_t> count(nv + 1, 0);
+  for (int s = 0; s < nv; ++s)
+  {
+    count[s + 1] += static_cast<std::int64_t>(direct[s].size());
+    for (const auto& e : direct[s])
+    {
+      count[e.first + 1]++;
+    }
+  }
+  for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
+  {
+    count[mesh.Origin(h) + 1]++;
+    count[mesh.Destination(h) + 1]++;
+  }
+  for (int v = 0; v < nv; ++v)
+  {
+    count[v + 1] += count[v];
+  }
+  std::vector<std::pair<int, double>> raw(static_cast<std::size_t>(count[nv]));
+  std::vector<std::int64_t> fill(count.begin(), count.end() - 1);
+  for (int s = 0; s < nv; ++s)
+  {
+    for (const auto& e : direct[s])
+    {
+      raw[fill[s]++] = e;
+      raw[fill[e.first]++] = { s, e.second };
+    }
+    std::vector<std::pair<int, double>>().swap(direct[s]);
+  }
+  for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
+  {
+    const int a = mesh.Origin(h), b = mesh.Destination(h);
+    raw[fill[a]++] = { b, mesh.EdgeLength(h) };
+    raw[fill[b]++] = { a, mesh.EdgeLength(h) };
+  }
+  std::vector<std::int64_t> kept(nv + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
+  for (int v = 0; v < nv; ++v)
+  {
+    auto first = raw.begin() + count[v], last = raw.begin() + count[v + 1];
+    std::sort(first, last);
+    // Sorted by (target, weight): the first of each run is the smallest weight.
+    auto out = first;
+    for (auto it = first; it != last; ++it)
+    {
+      if (out == first || (out - 1)->first != it->first)
+      {
+        *out++ = *it;
+      }
+    }
+    kept[v + 1] = out - first;
+  }
+  Offsets.assign(nv + 1, 0);
+  for (int v = 0; v < nv; ++v)
+  {
+    Offsets[v + 1] = Offsets[v] + kept[v + 1];
+  }
+  Targets.resize(Offsets[nv]);
+  Weights.resize(Offsets[nv]);
+  for (int v = 0; v < nv; ++v)
+  {
+    for (std::int64_t i = 0; i < kept[v + 1]; ++i)
+    {
+      Targets[Offsets[v] + i] = raw[count[v] + i].first;
+      Weights[Offsets[v] + i] = raw[count[v] + i].second;
+    }
+  }
+  K = k;
+  Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+bool SaddleVertexGraph::Save(
+  const std::string& path, std::uint64_t meshHash, std::string& error) const
+{
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out)
+  {
+    error = "cannot write " + path;
+    return false;
+  }
+  const std::int64_t nv = NumberOfVertices(), ne = NumberOfEntries();
+  const std::int32_t k = K;
+  Hasher sum;
+  sum.Add(&meshHash, sizeof(meshHash));
+  sum.Add(&k, sizeof(k));
+  sum.Add(&nv, sizeof(nv));
+  sum.Add(&ne, sizeof(ne));
+  sum.AddVector(Offsets);
+  sum.AddVector(Targets);
+  sum.AddVector(Weights);
+  out.write(Magic, sizeof(Magic));
+  out.write(reinterpret_cast<const char*>(&meshHash), sizeof(meshHash));
+  out.write(reinterpret_cast<const char*>(&k), sizeof(k));
+  out.write(reinterpret_cast<const char*>(&nv), sizeof(nv));
+  out.write(reinterpret_cast<const char*>(&ne), sizeof(ne));
+  out.write(reinterpret_cast<const char*>(Offsets.data()), Offsets.size() * sizeof(std::int64_t));
+  out.write(reinterpret_cast<const char*>(Targets.data()), Targets.size() * sizeof(int));
+  out.write(reinterpret_cast<const char*>(Weights.data()), Weights.size() * sizeof(double));
+  out.write(reinterpret_cast<const char*>(&sum.H), sizeof(sum.H));
+  if (!out)
+  {
+    error = "error while writing " + path;
+    return false;
+  }
+  return true;
+}
+
+bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error)
+{
+  Offsets.clear();
+  Targets.clear();
+  Weights.clear();
+  K = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    error = "cannot open " + path;
+    return false;
+  }
+  in.seekg(0, std::ios::end);
+  const std::int64_t fileSize = static_cast<std::int64_t>(in.tellg());
+  in.seekg(0, std::ios::beg);
+  char magic[8] = {};
+  std::uint64_t hash = 0;
+  std::int32_t fileK = 0;
+  std::int64_t nv = 0, ne = 0;
+  in.read(magic, sizeof(magic));
+  in.read(reinterpret_cast<char*>(&hash), sizeof(hash));
+  in.read(reinterpret_cast<char*>(&fileK), sizeof(fileK));
+  in.read(reinterpret_cast<char*>(&nv), sizeof(nv));
+  in.read(reinterpret_cast<char*>(&ne), sizeof(ne));
+  if (!in || std::memcmp(magic, Magic, sizeof(Magic)) != 0)
+  {
+    error = path + " is not a saddle vertex graph cache file";
+    return false;
+  }
+  if (hash != meshHash)
+  {
+    error = path + " was made for another mesh";
+    return false;
+  }
+  if (fileK != k)
+  {
+    error = path + " was made with K = " + std::to_string(fileK) + ", not " + std::to_string(k);
+    return false;
+  }
+  const std::int64_t header = sizeof(Magic) + sizeof(hash) + sizeof(fileK) + 2 * sizeof(std::int64_t);
+  if (nv < 1 || ne < 0 || nv > (1LL << 31) || ne > (1LL << 40) ||
+    fileSize != header + (nv + 1) * 8 + ne * 12 + 8)
+  {
+    error = path + " is truncated or corrupt (size does not match its header)";
+    return false;
+  }
+  std::vector<std::int64_t> offsets(nv + 1);
+  std::vector<int> targets(ne);
+  std::vector<double> weights(ne);
+  std::uint64_t stored = 0;
+  in.read(reinterpret_cast<char*>(offsets.data()), offsets.size() * sizeof(std::int64_t));
+  in.read(reinterpret_cast<char*>(targets.data()), targets.size() * sizeof(int));
+  in.read(reinterpret_cast<char*>(weights.data()), weights.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
+  if (!in)
+  {
+    error = path + " is truncated";
+    return false;
+  }
+  Hasher sum;
+  sum.Add(&hash, sizeof(hash));
+  sum.Add(&fileK, sizeof(fileK));
+  sum.Add(&nv, sizeof(nv));
+  sum.Add(&ne, sizeof(ne));
+  sum.AddVector(offsets);
+  sum.AddVector(targets);
+  sum.AddVector(weights);
+  if (sum.H != stored)
+  {
+    error = path + " is corrupt (checksum mismatch)";
+    return false;
+  }
+  // Structural checks, so that even a forged file with a valid checksum cannot cause
+  // out-of-range reads.
+  if (offsets[0] != 0 || offsets[nv] != ne)
+  {
+    error = path + " is corrupt (bad offsets)";
+    return false;
+  }
+  for (std::int64_t v = 0; v < nv; ++v)
+  {
+    if (offsets[v + 1] < offsets[v])
+    {
+      error = path + " is corrupt (bad offsets)";
+      return false;
+    }
+  }
+  for (std::int64_t e = 0; e < ne; ++e)
+  {
+    if (targets[e] < 0 || targets[e] >= nv || !(weights[e] >= 0.0) || !std::isfinite(weights[e]))
+    {
+      error = path + " is corrupt (bad link)";
+      return false;
+    }
+  }
+  Offsets = std::move(offsets);
+  Targets = std::move(targets);
+  Weights = std::move(weights);
+  K = fileK;
+  Seconds = 0.0;
+  return true;
+}
+
+GraphDistanceSolver::GraphDistanceSolver(const SaddleVertexGraph& graph)
+  : G(graph)
+{
+  const int nv = G.NumberOfVertices();
+  Dist.assign(nv, Inf);
+  Anchor.assign(nv, -1);
+  InQueue.assign(nv, 0);
+  Ring.assign(nv + 1, 0);
+}
+
+void GraphDistanceSolver::Solve(const std::vector<std::pair<int, double>>& seeds,
+  GraphAlgorithm algorithm, double maxDistance, const std::vector<int>& anchors)
+{
+  for (int v : Touched)
+  {
+    Dist[v] = Inf;
+    InQueue[v] = 0;
+  }
+  Touched.clear();
+  NumRelaxations = 0;
+  const double limit = maxDistance > 0.0 ? maxDistance : Inf;
+  for (const auto& s : seeds)
+  {
+    if (s.first < 0 || s.first >= G.NumberOfVertices() || !(s.second <= limit))
+    {
+      continue;
+    }
+    if (Dist[s.first] == Inf)
+    {
+      Touched.push_back(s.first);
+    }
+    if (s.second < Dist[s.first])
+    {
+      Dist[s.first] = s.second;
+      Anchor[s.first] = s.first;
+    }
+  }
+  for (std::size_t i = 0; i < anchors.size() && i < seeds.size(); ++i)
+  {
+    const auto& s = seeds[i];
+    if (s.first >= 0 && s.first < G.NumberOfVertices() && Dist[s.first] == s.second)
+    {
+      Anchor[s.first] = anchors[i];
+    }
+  }
+  if (algorithm == GraphAlgorithm::Dijkstra)
+  {
+    SolveDijkstra(limit);
+  }
+  else
+  {
+    SolveLabelCorrecting(limit);
+  }
+}
+
+void GraphDistanceSolver::SolveLabelCorrecting(double limit)
+{
+  // A circular deque holding each vertex at most once. SLF (small label first): a vertex whose
+  // new label is below the front's goes to the front. LLL (large label last): a front vertex
+  // whose label exceeds the queue's mean is moved to the back before extraction.
+  const std::size_t cap = Ring.size();
+  std::size_t head = 0, size = 0;
+  double sum = 0.0;
+  auto pushBack = [&](int v) {
+    Ring[(head + size) % cap] = v;
+    ++size;
+  };
+  auto pushFront = [&](int v) {
+    head = (head + cap - 1) % cap;
+    Ring[head] = v;
+    ++size;
+  };
+  for (int v : Touched)
+  {
+    InQueue[v] = 1;
+    pushBack(v);
+    sum += Dist[v];
+  }
+  while (size > 0)
+  {
+    const double mean = sum / static_cast<double>(size);
+    for (std::size_t tries = 0; tries < size && Dist[Ring[head]] > mean; ++tries)
+    {
+      const int v = Ring[head];
+      head = (head + 1) % cap;
+      Ring[(head + size - 1) % cap] = v;
+    }
+    const int u = Ring[head];
+    head = (head + 1) % cap;
+    --size;
+    InQueue[u] = 0;
+    sum -= Dist[u];
+    if (size == 0)
+    {
+      sum = 0.0; // no drift accumulates across emptyings
+    }
+    const double du = Dist[u];
+    for (std::int64_t e = G.Begin(u), end = G.End(u); e < end; ++e)
+    {
+      const int v = G.Target(e);
+      const double nd = du + G.Weight(e);
+      if (nd < Dist[v] && nd <= limit)
+      {
+        ++NumRelaxations;
+        if (Dist[v] == Inf)
+        {
+          Touched.push_back(v);
+        }
+        Anchor[v] = AnchorOf(u);
+        if (InQueue[v])
+        {
+          sum += nd - Dist[v];
+          Dist[v] = nd;
+          continue;
+        }
+        Dist[v] = nd;
+        InQueue[v] = 1;
+        sum += nd;
+        if (size > 0 && nd < Dist[Ring[head]])
+        {
+          pushFront(v);
+        }
+        else
+        {
+          pushBack(v);
+        }
+      }
+    }
+  }
+}
+
+void GraphDistanceSolver::SolveDijkstra(double limit)
+{
+  struct Item
+  {
+    double D;
+    int V;
+    bool operator<(const Item& o) const { return D > o.D; }
+  };
+  std::vector<Item> heap;
+  heap.reserve(Touched.size() * 4 + 16);
+  for (int v : Touched)
+  {
+    heap.push_back({ Dist[v], v });
+  }
+  std::make_heap(heap.begin(), heap.end());
+  while (!heap.empty())
+  {
+    std::pop_heap(heap.begin(), heap.end());
+    const Item it = heap.back();
+    heap.pop_back();
+    if (it.D > Dist[it.V])
+    {
+      continue;
+    }
+    for (std::int64_t e = G.Begin(it.V), end = G.End(it.V); e < end; ++e)
+    {
+      const int v = G.Target(e);
+      const double nd = it.D + G.Weight(e);
+      if (nd < Dist[v] && nd <= limit)
+      {
+        ++NumRelaxations;
+        if (Dist[v] == Inf)
+        {
+          Touched.push_back(v);
+        }
+        Dist[v] = nd;
+        Anchor[v] = AnchorOf(it.V);
+        heap.push_back({ nd, v });
+        std::push_heap(heap.begin(), heap.end());
+      }
+    }
+  }
+}
+
+} // namespace gs

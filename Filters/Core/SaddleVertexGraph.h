@@ -1,0 +1,129 @@
+// Saddle vertex graph (Ying, Wang, He 2013): a sparse graph whose shortest paths are geodesic
+// distances. Every vertex is linked to each vertex of its K-nearest geodesic disk that it reaches
+// by a direct geodesic (one through no saddle or boundary vertex), with the exact length; mesh
+// edges are always kept so that the graph is connected wherever the mesh is. A shortest path on
+// the surface is a chain of direct geodesics between pseudo-source vertices, so graph distances
+// are exact whenever each link is shorter than the K-disk radius, and near-exact otherwise.
+//
+// Built in parallel (OpenMP), identical for any thread count, stored as CSR, savable to a cache
+// file keyed by a hash of the mesh geometry.
+#pragma once
+
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gs
+{
+
+// Called with the fraction done (0..1) from the calling thread; returning false aborts.
+using ProgressCallback = std::function<bool(double)>;
+
+struct SaddleVertexGraphOptions
+{
+  int K = 50;              // geodesic disk size: number of nearest vertices solved exactly
+  int NumberOfThreads = 0; // 0: OpenMP's default
+};
+
+class SaddleVertexGraph
+{
+public:
+  // Builds the graph. Returns false when aborted by the progress callback or when the request is
+  // invalid (error says why); the graph is then empty.
+  bool Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+    const ProgressCallback& progress, std::string& error);
+
+  bool Empty() const { return Offsets.size() <= 1; }
+  int NumberOfVertices() const { return Offsets.empty() ? 0 : static_cast<int>(Offsets.size()) - 1; }
+  // Directed adjacency entries (each undirected link counts twice).
+  std::int64_t NumberOfEntries() const { return static_cast<std::int64_t>(Targets.size()); }
+  double MeanDegree() const
+  {
+    return NumberOfVertices() ? static_cast<double>(Targets.size()) / NumberOfVertices() : 0.0;
+  }
+  int GetK() const { return K; }
+  double BuildSeconds() const { return Seconds; }
+  std::size_t MemoryBytes() const;
+
+  // Neighbours of v: Targets[Begin(v) .. End(v)) with Weights.
+  std::int64_t Begin(int v) const { return Offsets[v]; }
+  std::int64_t End(int v) const { return Offsets[v + 1]; }
+  int Target(std::int64_t e) const { return Targets[e]; }
+  double Weight(std::int64_t e) const { return Weights[e]; }
+
+  // A hash of the mesh geometry and connectivity (positions bit for bit, faces).
+  static std::uint64_t HashMesh(const TriangleMesh& mesh);
+  // Cache files: Save writes the graph with the mesh hash and K; Load accepts a file only if it
+  // is intact (checksum), for the same mesh hash and K, and well-formed; otherwise it returns
+  // false with the reason and leaves the graph empty.
+  bool Save(const std::string& path, std::uint64_t meshHash, std::string& error) const;
+  bool Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error);
+
+  bool operator==(const SaddleVertexGraph& o) const
+  {
+    return Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights;
+  }
+
+private:
+  std::vector<std::int64_t> Offsets;
+  std::vector<int> Targets;
+  std::vector<double> Weights;
+  int K = 0;
+  double Seconds = 0.0;
+};
+
+enum class GraphAlgorithm
+{
+  LabelCorrecting, // SLF insertion, LLL extraction (the paper's choice)
+  Dijkstra         // binary heap
+};
+
+// Single- or multi-source shortest paths on a saddle vertex graph. Reusable: a solve resets only
+// what the previous one touched.
+class GraphDistanceSolver
+{
+public:
+  explicit GraphDistanceSolver(const SaddleVertexGraph& graph);
+
+  // Seeds are (vertex, initial distance). Vertices farther than maxDistance (> 0) stay
+  // unreached (infinite); maxDistance <= 0 means unlimited. `anchors`, when given, names for
+  // each seed the pseudo-source its distance comes from (see Anchor()).
+  void Solve(const std::vector<std::pair<int, double>>& seeds, GraphAlgorithm algorithm,
+    double maxDistance = 0.0, const std::vector<int>& anchors = {});
+  double Distance(int v) const { return Dist[v]; }
+  const std::vector<double>& Distances() const { return Dist; }
+  // The last pseudo-source on v's shortest path: a vertex marked by SetAnchorVertices (a saddle
+  // or reflex boundary vertex) or a seed's anchor. Paths with the same anchor are direct
+  // geodesics from one point, which geodesic unfolding can refine.
+  int AnchorOf(int v) const { return IsAnchor && (*IsAnchor)[v] ? v : Anchor[v]; }
+  int StoredAnchor(int v) const { return Anchor[v]; }
+  // Vertices that act as pseudo-sources (must outlive the solver); none by default.
+  void SetAnchorVertices(const std::vector<unsigned char>* flags) { IsAnchor = flags; }
+  // Refinement passes may lower distances (keeping them consistent with anchors).
+  void Lower(int v, double d, int anchor)
+  {
+    Dist[v] = d;
+    Anchor[v] = anchor;
+  }
+  // Vertices reached by the last solve (unordered).
+  const std::vector<int>& Reached() const { return Touched; }
+  std::int64_t Relaxations() const { return NumRelaxations; }
+
+private:
+  void SolveLabelCorrecting(double maxDistance);
+  void SolveDijkstra(double maxDistance);
+
+  const SaddleVertexGraph& G;
+  std::vector<double> Dist;
+  std::vector<int> Anchor;
+  const std::vector<unsigned char>* IsAnchor = nullptr;
+  std::vector<unsigned char> InQueue;
+  std::vector<int> Touched;
+  std::vector<int> Ring; // circular deque for the label-correcting queue
+  std::int64_t NumRelaxations = 0;
+};
+
+} // namespace gs

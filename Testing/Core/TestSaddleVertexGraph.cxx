@@ -1,0 +1,423 @@
+#include "ExactGeodesic.h"
+#include "GeodesicUnfolding.h"
+#include "MeshGenerators.h"
+#include "SVGGeodesicSolver.h"
+#include "SaddleVertexGraph.h"
+#include "TriangleMesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+
+using namespace gs;
+
+namespace
+{
+TriangleMesh BuildMesh(const TriangleSoup& s)
+{
+  auto r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r.Mesh;
+}
+
+TriangleMesh Bumpy(int level, unsigned seed)
+{
+  TriangleSoup s = MakeIcosphere(1.0, level);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.9, 1.1);
+  for (Vec3& p : s.Points)
+    p = p * u(rng);
+  return BuildMesh(s);
+}
+
+SaddleVertexGraph BuildGraph(const TriangleMesh& m, int k, int threads = 0)
+{
+  SaddleVertexGraph g;
+  std::string error;
+  SaddleVertexGraphOptions o;
+  o.K = k;
+  o.NumberOfThreads = threads;
+  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  return g;
+}
+
+struct ErrorStats
+{
+  double Mean = 0, Max = 0;
+};
+ErrorStats Compare(const std::vector<double>& approx, const std::vector<double>& exact)
+{
+  ErrorStats s;
+  int n = 0;
+  for (std::size_t v = 0; v < exact.size(); ++v)
+  {
+    if (!(exact[v] > 1e-12) || !std::isfinite(exact[v]))
+      continue;
+    const double e = std::abs(approx[v] - exact[v]) / exact[v];
+    s.Mean += e;
+    s.Max = std::max(s.Max, e);
+    ++n;
+  }
+  s.Mean /= std::max(n, 1);
+  return s;
+}
+
+std::string TempPath(const char* name)
+{
+  return std::string(::testing::TempDir()) + name;
+}
+} // namespace
+
+TEST(SaddleVertexGraph, SymmetricSortedAndDeterministic)
+{
+  const TriangleMesh m = Bumpy(3, 1);
+  const SaddleVertexGraph g = BuildGraph(m, 50);
+  ASSERT_EQ(g.NumberOfVertices(), m.NumberOfVertices());
+  EXPECT_GT(g.MeanDegree(), 6.0);
+  EXPECT_LE(g.MeanDegree(), 2.0 * 50 + 6);
+  for (int v = 0; v < g.NumberOfVertices(); ++v)
+  {
+    for (std::int64_t e = g.Begin(v); e < g.End(v); ++e)
+    {
+      const int w = g.Target(e);
+      ASSERT_NE(w, v);
+      if (e > g.Begin(v))
+        EXPECT_LT(g.Target(e - 1), w);
+      bool found = false;
+      for (std::int64_t f = g.Begin(w); f < g.End(w); ++f)
+      {
+        if (g.Target(f) == v)
+        {
+          found = true;
+          EXPECT_EQ(g.Weight(f), g.Weight(e));
+        }
+      }
+      EXPECT_TRUE(found);
+      // A link is never shorter than the straight 3D chord.
+      EXPECT_GE(g.Weight(e), Norm(m.Position(v) - m.Position(w)) * (1 - 1e-12));
+    }
+  }
+  EXPECT_TRUE(BuildGraph(m, 50, 1) == BuildGraph(m, 50, 2));
+}
+
+TEST(SaddleVertexGraph, RejectsBadK)
+{
+  const TriangleMesh m = Bumpy(1, 1);
+  SaddleVertexGraph g;
+  std::string error;
+  SaddleVertexGraphOptions o;
+  o.K = 0;
+  EXPECT_FALSE(g.Build(m, o, nullptr, error));
+  EXPECT_NE(error.find("K must be"), std::string::npos);
+  o.K = 1000000; // clamped to the vertex count
+  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_EQ(g.GetK(), m.NumberOfVertices());
+}
+
+TEST(SaddleVertexGraph, ProgressCanAbort)
+{
+  const TriangleMesh m = Bumpy(4, 1);
+  SaddleVertexGraph g;
+  std::string error;
+  int calls = 0;
+  EXPECT_FALSE(g.Build(m, SaddleVertexGraphOptions(), [&](double) { return ++calls < 2; }, error));
+  EXPECT_EQ(error, "aborted");
+  EXPECT_TRUE(g.Empty());
+}
+
+TEST(SaddleVertexGraph, LabelCorrectingEqualsDijkstra)
+{
+  const TriangleMesh m = Bumpy(3, 2);
+  const SaddleVertexGraph g = BuildGraph(m, 30);
+  GraphDistanceSolver a(g), b(g);
+  for (int s : { 0, 99, 500 })
+  {
+    a.Solve({ { s, 0.0 } }, GraphAlgorithm::LabelCorrecting);
+    b.Solve({ { s, 0.0 } }, GraphAlgorithm::Dijkstra);
+    for (int v = 0; v < m.NumberOfVertices(); ++v)
+      EXPECT_NEAR(a.Distance(v), b.Distance(v), 1e-12);
+  }
+  // Multi-source with offsets, and a maximum distance.
+  a.Solve({ { 3, 0.2 }, { 400, 0.0 } }, GraphAlgorithm::LabelCorrecting, 0.7);
+  b.Solve({ { 3, 0.2 }, { 400, 0.0 } }, GraphAlgorithm::Dijkstra, 0.7);
+  int reached = 0;
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    EXPECT_EQ(std::isfinite(a.Distance(v)), std::isfinite(b.Distance(v)));
+    if (std::isfinite(a.Distance(v)))
+    {
+      ++reached;
+      EXPECT_LE(a.Distance(v), 0.7);
+      EXPECT_NEAR(a.Distance(v), b.Distance(v), 1e-12);
+    }
+  }
+  EXPECT_GT(reached, 10);
+  EXPECT_LT(reached, m.NumberOfVertices());
+}
+
+TEST(SaddleVertexGraph, AccuracyAgainstExactSolver)
+{
+  for (unsigned seed : { 3u, 4u })
+  {
+    const TriangleMesh m = Bumpy(4, seed);
+    ExactGeodesicSolver exact(m);
+    double previous = INFINITY;
+    for (int k : { 50, 100 })
+    {
+      const SaddleVertexGraph g = BuildGraph(m, k);
+      SVGGeodesicSolver svg(m, g);
+      ErrorStats total;
+      for (int s : { 7, 1234, 2000 })
+      {
+        exact.Solve(s);
+        ASSERT_TRUE(svg.Solve({ SurfacePoint::AtVertex(s) }));
+        const ErrorStats e = Compare(svg.Distances(), exact.Distances());
+        total.Mean += e.Mean / 3;
+        total.Max = std::max(total.Max, e.Max);
+      }
+      EXPECT_LT(total.Mean, 1e-3) << "K = " << k;
+      EXPECT_LT(total.Max, 2e-2) << "K = " << k;
+      EXPECT_LE(total.Mean, previous) << "a larger K must not be less accurate";
+      previous = total.Mean;
+    }
+  }
+}
+
+TEST(SaddleVertexGraph, FacePointSourceExactInsideItsDiskOnAPlane)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(30, 30, 3.0, 3.0));
+  const SaddleVertexGraph g = BuildGraph(m, 50);
+  SVGGeodesicSolver svg(m, g);
+  const SurfacePoint src = SurfacePoint::InFace(901, 0.2, 0.3, 0.5);
+  ASSERT_TRUE(svg.Solve({ src }));
+  const Vec3 s = m.Interpolate(src.Face, src.Bary);
+  // The source's own K-disk: the exact solver's K nearest vertices.
+  ExactGeodesicSolver exact(m);
+  ExactGeodesicOptions opt;
+  opt.MaximumFinalVertices = 50;
+  exact.Solve({ src }, opt);
+  const double radius = exact.Distance(exact.FinalVertices().back());
+  for (int v : exact.FinalVertices())
+    EXPECT_NEAR(svg.Distance(v), Norm(m.Position(v) - s), 1e-9 * (1 + radius));
+  // Arbitrary points of faces whose corners are all inside the disk.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int checked = 0;
+  for (int f = 0; f < m.NumberOfFaces(); ++f)
+  {
+    const auto& t = m.Face(f);
+    if (std::max({ Norm(m.Position(t[0]) - s), Norm(m.Position(t[1]) - s),
+          Norm(m.Position(t[2]) - s) }) > 0.95 * radius)
+      continue;
+    double a = u(rng), b = u(rng);
+    if (a + b > 1)
+    {
+      a = 1 - a;
+      b = 1 - b;
+    }
+    const SurfacePoint q = SurfacePoint::InFace(f, a, b, 1 - a - b);
+    EXPECT_NEAR(svg.DistanceAt(q), Norm(m.Interpolate(f, q.Bary) - s), 1e-9) << "face " << f;
+    ++checked;
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(SaddleVertexGraph, ArbitraryPointsAgainstExactSolver)
+{
+  TriangleSoup soup = MakeIcosphere(1.0, 4);
+  {
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<double> u(0.9, 1.1);
+    for (Vec3& p : soup.Points)
+      p = p * u(rng);
+  }
+  const TriangleMesh m = BuildMesh(soup);
+  const SaddleVertexGraph g = BuildGraph(m, 50);
+  SVGGeodesicSolver svg(m, g);
+  ExactGeodesicSolver exact(m);
+  std::mt19937 rng(8);
+  std::uniform_int_distribution<int> face(0, m.NumberOfFaces() - 1);
+  std::uniform_real_distribution<double> u(0.05, 0.9);
+  double mean = 0, pointMean = 0;
+  int n = 0;
+  for (int trial = 0; trial < 4; ++trial)
+  {
+    const double a = u(rng), b = (1 - a) * u(rng);
+    const SurfacePoint src = SurfacePoint::InFace(face(rng), a, b, 1 - a - b);
+    ASSERT_TRUE(svg.Solve({ src }));
+    exact.Solve({ src });
+    const ErrorStats e = Compare(svg.Distances(), exact.Distances());
+    mean += e.Mean;
+    ++n;
+    // Point to point: the exact reference inserts the target point as a vertex of its face
+    // (splitting it in three: the same surface) and solves from the source point.
+    SurfacePoint q = SurfacePoint::InFace(face(rng), 0.3, 0.25, 0.45);
+    if (q.Face == src.Face)
+      q.Face = (q.Face + 1) % m.NumberOfFaces();
+    TriangleSoup split = soup;
+    const long long qv = static_cast<long long>(split.Points.size());
+    split.Points.push_back(m.Interpolate(q.Face, q.Bary));
+    const auto t = m.Face(q.Face);
+    split.Triangles[q.Face] = { t[0], t[1], qv };
+    split.Triangles.push_back({ t[1], t[2], qv });
+    split.Triangles.push_back({ t[2], t[0], qv });
+    const TriangleMesh ms = BuildMesh(split);
+    ExactGeodesicSolver reference(ms);
+    reference.Solve({ src });
+    const double ref = reference.Distance(static_cast<int>(qv));
+    const double got = svg.DistanceAt(q);
+    // Unfolding assumes the geodesic triangle is flat: on this deliberately rough surface a point
+    // query is within a couple of percent (on developable surfaces it is exact, tested above).
+    EXPECT_NEAR(got, ref, 2e-2 * ref);
+    pointMean += std::abs(got - ref) / ref;
+    EXPECT_NEAR(svg.Distance(src, q), got, 1e-12);
+    EXPECT_NEAR(svg.DistancesTo(src, { q, src })[0], got, 1e-12);
+  }
+  EXPECT_LT(mean / n, 1e-3);
+  EXPECT_LT(pointMean / n, 1e-2);
+}
+
+TEST(SaddleVertexGraph, UnfoldingIsExactOnAPlane)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(4, 4, 1.0, 1.0));
+  const Vec3 s(-0.7, 0.35, 0.0); // outside the mesh, as an unfolded source would be
+  for (int f = 0; f < m.NumberOfFaces(); ++f)
+  {
+    const auto& t = m.Face(f);
+    const std::array<double, 3> d = { { Norm(m.Position(t[0]) - s), Norm(m.Position(t[1]) - s),
+      Norm(m.Position(t[2]) - s) } };
+    const std::array<double, 3> b = { { 0.25, 0.6, 0.15 } };
+    EXPECT_NEAR(UnfoldedDistance(m, f, b, d), Norm(m.Interpolate(f, b) - s), 1e-12);
+  }
+}
+
+TEST(SaddleVertexGraph, CurveSourceOnAPlane)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(40, 40, 4.0, 4.0));
+  const SaddleVertexGraph g = BuildGraph(m, 50);
+  SVGGeodesicSolver svg(m, g);
+  // A straight curve from (1.03, 1.51) to (2.97, 2.23), as surface points a fraction of an edge
+  // apart (each in the face containing it).
+  const Vec3 a(1.03, 1.51, 0), b(2.97, 2.23, 0);
+  auto locate = [&](const Vec3& p) {
+    for (int f = 0; f < m.NumberOfFaces(); ++f)
+    {
+      const auto& t = m.Face(f);
+      const Vec3 P0 = m.Position(t[0]), P1 = m.Position(t[1]), P2 = m.Position(t[2]);
+      const double area = Cross(P1 - P0, P2 - P0).z;
+      const double w0 = Cross(P1 - p, P2 - p).z / area, w1 = Cross(P2 - p, P0 - p).z / area;
+      const double w2 = 1 - w0 - w1;
+      if (w0 >= -1e-12 && w1 >= -1e-12 && w2 >= -1e-12)
+        return SurfacePoint::InFace(f, w0, w1, w2);
+    }
+    return SurfacePoint();
+  };
+  std::vector<SurfacePoint> curve;
+  for (int i = 0; i <= 60; ++i)
+    curve.push_back(locate(a + (b - a) * (i / 60.0)));
+  ASSERT_TRUE(svg.SolveCurve(curve));
+  EXPECT_GT(svg.NumberOfCurvePieces(), 60);
+  double mean = 0, worst = 0;
+  int n = 0;
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    const Vec3 p = m.Position(v);
+    const Vec3 ab = b - a;
+    const double t = std::min(1.0, std::max(0.0, Dot(p - a, ab) / Dot(ab, ab)));
+    const double exact = Norm(p - (a + ab * t));
+    if (exact < 1e-9)
+      continue;
+    const double e = std::abs(svg.Distance(v) - exact) / exact;
+    mean += e;
+    worst = std::max(worst, e);
+    ++n;
+  }
+  EXPECT_LT(mean / n, 1e-3);
+  EXPECT_LT(worst, 2e-2);
+  // A point of a face the curve crosses: the exact in-face distance to the curve.
+  const SurfacePoint q = locate(Vec3(2.0, 1.9, 0));
+  const Vec3 qp = m.Interpolate(q.Face, q.Bary);
+  const double t = Dot(qp - a, b - a) / Dot(b - a, b - a);
+  EXPECT_NEAR(svg.DistanceAt(q), Norm(qp - (a + (b - a) * t)), 1e-9);
+}
+
+TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
+{
+  const TriangleMesh m = Bumpy(2, 9);
+  const SaddleVertexGraph g = BuildGraph(m, 20);
+  const std::uint64_t hash = SaddleVertexGraph::HashMesh(m);
+  const std::string path = TempPath("gs_cache_test.svg");
+  std::string error;
+  ASSERT_TRUE(g.Save(path, hash, error)) << error;
+  SaddleVertexGraph loaded;
+  ASSERT_TRUE(loaded.Load(path, hash, 20, error)) << error;
+  EXPECT_TRUE(loaded == g);
+  EXPECT_FALSE(loaded.Load(path, hash + 1, 20, error));
+  EXPECT_NE(error.find("another mesh"), std::string::npos) << error;
+  EXPECT_TRUE(loaded.Empty());
+  EXPECT_FALSE(loaded.Load(path, hash, 21, error));
+  EXPECT_NE(error.find("K ="), std::string::npos) << error;
+  EXPECT_FALSE(loaded.Load(TempPath("does_not_exist.svg"), hash, 20, error));
+
+  // A stale file: the mesh moved a little.
+  TriangleSoup s = MakeIcosphere(1.0, 2);
+  const TriangleMesh other = BuildMesh(s);
+  EXPECT_NE(SaddleVertexGraph::HashMesh(other), hash);
+
+  // Corruption: one flipped byte in the payload, a truncated file, garbage.
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  auto writeFile = [&](const std::string& content) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << content;
+  };
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] ^= 0x10;
+  writeFile(flipped);
+  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_NE(error.find("corrupt"), std::string::npos) << error;
+  writeFile(bytes.substr(0, bytes.size() - 100));
+  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  writeFile("not a graph at all");
+  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  writeFile("");
+  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  writeFile(bytes);
+  EXPECT_TRUE(loaded.Load(path, hash, 20, error)) << error;
+  std::remove(path.c_str());
+}
+
+TEST(SaddleVertexGraph, UnfoldingRefinementOnDevelopableSurfaces)
+{
+  // Without saddles, graph paths are polylines; unfolding the anchor across faces makes the
+  // distances exact up to the cut locus on developable surfaces.
+  for (const TriangleSoup& soup : { MakePlanarGrid(30, 20, 3.0, 2.0), MakeCylinder(1.0, 3.0, 32, 12) })
+  {
+    const TriangleMesh m = BuildMesh(soup);
+    const SaddleVertexGraph g = BuildGraph(m, 50);
+    SVGGeodesicSolver svg(m, g);
+    ExactGeodesicSolver exact(m);
+    for (int s : { 0, 77, 301 })
+    {
+      exact.Solve(s);
+      SVGSolveOptions plain, refined;
+      refined.Refine = true;
+      svg.Solve({ SurfacePoint::AtVertex(s) }, plain);
+      const ErrorStats before = Compare(svg.Distances(), exact.Distances());
+      svg.Solve({ SurfacePoint::AtVertex(s) }, refined);
+      const ErrorStats after = Compare(svg.Distances(), exact.Distances());
+      EXPECT_GT(before.Mean, 5e-4);
+      EXPECT_LT(after.Mean, 1e-4);
+      EXPECT_LT(after.Max, before.Max);
+      // Refinement only lowers graph distances, never below the exact ones here.
+      for (int v = 0; v < m.NumberOfVertices(); ++v)
+        EXPECT_GE(svg.Distance(v), exact.Distance(v) * (1 - 1e-9));
+    }
+  }
+}
