@@ -247,163 +247,46 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
   return SolveFromPieces(facePoints, k * static_cast<int>(facePoints.size()), options);
 }
 
-bool SVGGeodesicSolver::SolveCurve(const std::vector<SurfacePoint>& curve, const SVGSolveOptions& options)
+bool SVGGeodesicSolver::SolveCurves(
+  const std::vector<std::vector<SurfacePoint>>& curves, const SVGSolveOptions& options)
 {
   Pieces.clear();
-  if (curve.empty() || G.NumberOfVertices() != M.NumberOfVertices())
+  std::vector<CurvePiece> pieces;
+  bool valid = !curves.empty() && G.NumberOfVertices() == M.NumberOfVertices();
+  for (const auto& curve : curves)
+  {
+    valid = valid && !curve.empty();
+    for (const SurfacePoint& s : curve)
+    {
+      valid = valid && ValidPoint(s);
+    }
+  }
+  if (!valid)
   {
     Graph.Solve({}, options.Algorithm);
     return false;
   }
-  for (const SurfacePoint& s : curve)
+  for (const auto& curve : curves)
   {
-    if (!ValidPoint(s))
-    {
-      Graph.Solve({}, options.Algorithm);
-      return false;
-    }
+    const std::vector<CurvePiece> traced = TraceSurfaceCurve(M, curve);
+    pieces.insert(pieces.end(), traced.begin(), traced.end());
   }
-  auto faceOf = [&](const SurfacePoint& s) { return s.IsVertex() ? M.VertexHalfedge(s.Vertex) / 3 : s.Face; };
   // The exact local solve starts from samples along the pieces, dense enough that the sampled
   // curve is within a small fraction of an edge of the true one; the pieces themselves give the
   // exact in-face distances.
-  std::vector<SurfacePoint> samples;
-  const double spacing = 0.125 * M.MeanEdgeLength();
-  auto addPiece = [&](int f, const Vec3& a, const Vec3& b) {
-    Pieces.push_back({ f, a, b });
-    const auto& t = M.Face(f);
-    const Vec3 P0 = M.Position(t[0]), P1 = M.Position(t[1]), P2 = M.Position(t[2]);
-    const Vec3 n = Cross(P1 - P0, P2 - P0);
-    const double n2 = Dot(n, n);
-    const int steps = std::max(1, static_cast<int>(std::ceil(Norm(b - a) / spacing)));
-    for (int i = 0; i <= steps; ++i)
-    {
-      const Vec3 x = a + (b - a) * (static_cast<double>(i) / steps);
-      // Barycentric coordinates of x in f (clamped: x lies in f up to rounding).
-      const double w0 = std::max(0.0, Dot(Cross(P1 - x, P2 - x), n) / n2);
-      const double w1 = std::max(0.0, Dot(Cross(P2 - x, P0 - x), n) / n2);
-      const double w2 = std::max(0.0, 1.0 - Dot(Cross(P1 - x, P2 - x), n) / n2 -
-          Dot(Cross(P2 - x, P0 - x), n) / n2);
-      const double sum = w0 + w1 + w2;
-      samples.push_back(SurfacePoint::InFace(f, w0 / sum, w1 / sum, w2 / sum));
-    }
-  };
+  const std::vector<SurfacePoint> samples =
+    SampleCurvePieces(M, pieces, CurveSampleSpacing * M.MeanEdgeLength());
   std::vector<int> faces;
-  if (curve.size() == 1)
+  for (const CurvePiece& p : pieces)
   {
-    const Vec3 p = PositionOf(curve[0]);
-    addPiece(faceOf(curve[0]), p, p);
-  }
-  for (std::size_t i = 0; i + 1 < curve.size(); ++i)
-  {
-    TraceSegment(curve[i], curve[i + 1], addPiece);
-  }
-  for (const Piece& p : Pieces)
-  {
+    Pieces.push_back({ p.Face, p.A, p.B });
     faces.push_back(p.Face);
   }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  const int k = std::max(G.GetK(), 1);
-  const long long wanted = static_cast<long long>(k) * static_cast<long long>(faces.size());
-  return SolveFromPieces(samples, static_cast<int>(std::min<long long>(wanted, M.NumberOfVertices())), options);
-}
-
-void SVGGeodesicSolver::TraceSegment(const SurfacePoint& from, const SurfacePoint& to,
-  const std::function<void(int, const Vec3&, const Vec3&)>& addPiece) const
-{
-  const Vec3 q = PositionOf(to);
-  Vec3 x = PositionOf(from);
-  auto hasCorner = [&](int f, int v) {
-    const auto& t = M.Face(f);
-    return t[0] == v || t[1] == v || t[2] == v;
-  };
-  // The face to start in: from's face, or for a vertex the face around it that points at q.
-  int target = to.IsVertex() ? -1 : to.Face;
-  int f = from.Face;
-  if (from.IsVertex())
-  {
-    if (target >= 0 && hasCorner(target, from.Vertex))
-    {
-      f = target;
-    }
-    else
-    {
-      double best = Inf;
-      for (int h : M.OutgoingHalfedges(from.Vertex))
-      {
-        const int g = h / 3;
-        const Vec3 c = M.Interpolate(g, { { 1.0 / 3, 1.0 / 3, 1.0 / 3 } });
-        if (Norm(c - q) < best)
-        {
-          best = Norm(c - q);
-          f = g;
-        }
-      }
-    }
-  }
-  auto done = [&](int g) { return g == target || (to.IsVertex() && hasCorner(g, to.Vertex)); };
-  int entry = -1; // half-edge of f through which the walk entered
-  // Walk straight towards q across faces, re-aiming in each face's plane; a segment between
-  // nearby points crosses a few faces. Give up (keeping the end points) if it wanders.
-  for (int step = 0; step < 256; ++step)
-  {
-    if (done(f))
-    {
-      addPiece(f, x, q);
-      return;
-    }
-    const Vec3 n = M.FaceNormal(f);
-    Vec3 dir = q - x;
-    dir = dir - n * Dot(n, dir);
-    if (Norm(dir) <= 1e-14 * M.MeanEdgeLength())
-    {
-      break;
-    }
-    double bestT = Inf, bestS = 0.0;
-    int exit = -1;
-    for (int k = 0; k < 3; ++k)
-    {
-      const int e = 3 * f + k;
-      if (e == entry)
-      {
-        continue;
-      }
-      const Vec3 A = M.Position(M.Origin(e)), B = M.Position(M.Destination(e));
-      // Only edges the ray leaves through (den < 0 for counter-clockwise faces); the start may
-      // lie on such an edge already (t = 0), e.g. a curve point on an edge.
-      const double den = Dot(Cross(B - A, dir), n);
-      if (!(den < 0.0))
-      {
-        continue;
-      }
-      const double t = Dot(Cross(x - A, B - A), n) / den;
-      const double sEdge = Dot(Cross(x - A, dir), n) / den;
-      if (t > -1e-9 && sEdge >= -1e-9 && sEdge <= 1.0 + 1e-9 && t < bestT)
-      {
-        bestT = t;
-        bestS = sEdge;
-        exit = e;
-      }
-    }
-    if (exit < 0)
-    {
-      break;
-    }
-    // Stay off the vertices, where the next face would be ambiguous.
-    bestS = std::min(1.0 - 1e-9, std::max(1e-9, bestS));
-    const Vec3 y = M.Position(M.Origin(exit)) * (1.0 - bestS) + M.Position(M.Destination(exit)) * bestS;
-    addPiece(f, x, y);
-    x = y;
-    entry = M.Twin(exit);
-    if (entry < 0)
-    {
-      break; // the boundary
-    }
-    f = entry / 3;
-  }
-  // The walk did not reach the end point's face: keep the end point itself.
-  addPiece(to.IsVertex() ? M.VertexHalfedge(to.Vertex) / 3 : to.Face, q, q);
+  const long long wanted = static_cast<long long>(std::max(G.GetK(), 1)) * static_cast<long long>(faces.size());
+  return SolveFromPieces(
+    samples, static_cast<int>(std::min<long long>(wanted, M.NumberOfVertices())), options);
 }
 
 double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const

@@ -13,10 +13,10 @@
 
 #include "ExactGeodesic.h"
 #include "SaddleVertexGraph.h"
+#include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
-#include <functional>
 #include <vector>
 
 namespace gs
@@ -38,9 +38,15 @@ public:
 
   // Distances from the sources to every vertex. False when a source is invalid.
   bool Solve(const std::vector<SurfacePoint>& sources, const SVGSolveOptions& options = {});
-  // Distances from a curve (see the class comment) to every vertex. False when a point is
-  // invalid or the curve is empty.
-  bool SolveCurve(const std::vector<SurfacePoint>& curve, const SVGSolveOptions& options = {});
+  // Distances from curves (see the class comment) to every vertex. False when a point is
+  // invalid or a curve is empty.
+  bool SolveCurves(const std::vector<std::vector<SurfacePoint>>& curves, const SVGSolveOptions& options = {});
+  bool SolveCurve(const std::vector<SurfacePoint>& curve, const SVGSolveOptions& options = {})
+  {
+    return SolveCurves({ curve }, options);
+  }
+  // Spacing of the samples seeding the exact solve near a curve, in mean edge lengths.
+  static constexpr double CurveSampleSpacing = 0.125;
 
   double Distance(int v) const { return Graph.Distance(v); }
   std::vector<double> Distances() const { return Graph.Distances(); }
@@ -62,9 +68,6 @@ private:
   };
   bool ValidPoint(const SurfacePoint& p) const;
   Vec3 PositionOf(const SurfacePoint& p) const;
-  // Pieces of the straight surface path between two surface points (one per face crossed).
-  void TraceSegment(const SurfacePoint& from, const SurfacePoint& to,
-    const std::function<void(int, const Vec3&, const Vec3&)>& addPiece) const;
   // Geodesic-unfolding refinement of the graph distances: a label-setting sweep that updates a
   // vertex from a face edge whose two end points have the same anchor, through the unfolded
   // anchor (exact for direct geodesics over developable parts).
@@ -76,7 +79,6 @@ private:
   const SaddleVertexGraph& G;
   ExactGeodesicSolver Local;
   GraphDistanceSolver Graph;
-public:
   std::vector<Piece> Pieces; // sorted by face
   std::vector<unsigned char> AnchorVertex;
   std::vector<unsigned char> Done;

@@ -1,0 +1,162 @@
+#include "SurfaceCurve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gs
+{
+
+namespace
+{
+Vec3 PositionOf(const TriangleMesh& M, const SurfacePoint& p)
+{
+  return p.IsVertex() ? M.Position(p.Vertex) : M.Interpolate(p.Face, p.Bary);
+}
+
+// Appends the pieces of the straight surface path from `from` to `to`.
+void TraceSegment(const TriangleMesh& M, const SurfacePoint& from, const SurfacePoint& to,
+  std::vector<CurvePiece>& out)
+{
+  auto addPiece = [&](int f, const Vec3& a, const Vec3& b) { out.push_back({ f, a, b }); };
+  const Vec3 q = PositionOf(M, to);
+  Vec3 x = PositionOf(M, from);
+  auto hasCorner = [&](int f, int v) {
+    const auto& t = M.Face(f);
+    return t[0] == v || t[1] == v || t[2] == v;
+  };
+  // The face to start in: from's face, or for a vertex the face around it that points at q.
+  int target = to.IsVertex() ? -1 : to.Face;
+  int f = from.Face;
+  if (from.IsVertex())
+  {
+    if (target >= 0 && hasCorner(target, from.Vertex))
+    {
+      f = target;
+    }
+    else
+    {
+      double best = std::numeric_limits<double>::infinity();
+      for (int h : M.OutgoingHalfedges(from.Vertex))
+      {
+        const int g = h / 3;
+        const Vec3 c = M.Interpolate(g, { { 1.0 / 3, 1.0 / 3, 1.0 / 3 } });
+        if (Norm(c - q) < best)
+        {
+          best = Norm(c - q);
+          f = g;
+        }
+      }
+    }
+  }
+  auto done = [&](int g) { return g == target || (to.IsVertex() && hasCorner(g, to.Vertex)); };
+  int entry = -1; // half-edge of f through which the walk entered
+  // Walk straight towards q across faces, re-aiming in each face's plane; a segment between
+  // nearby points crosses a few faces. Give up (keeping the end points) if it wanders.
+  for (int step = 0; step < 256; ++step)
+  {
+    if (done(f))
+    {
+      addPiece(f, x, q);
+      return;
+    }
+    const Vec3 n = M.FaceNormal(f);
+    Vec3 dir = q - x;
+    dir = dir - n * Dot(n, dir);
+    if (Norm(dir) <= 1e-14 * M.MeanEdgeLength())
+    {
+      break;
+    }
+    double bestT = std::numeric_limits<double>::infinity(), bestS = 0.0;
+    int exit = -1;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int e = 3 * f + k;
+      if (e == entry)
+      {
+        continue;
+      }
+      const Vec3 A = M.Position(M.Origin(e)), B = M.Position(M.Destination(e));
+      // Only edges the ray leaves through (den < 0 for counter-clockwise faces); the start may
+      // lie on such an edge already (t = 0), e.g. a curve point on an edge.
+      const double den = Dot(Cross(B - A, dir), n);
+      if (!(den < 0.0))
+      {
+        continue;
+      }
+      const double t = Dot(Cross(x - A, B - A), n) / den;
+      const double sEdge = Dot(Cross(x - A, dir), n) / den;
+      if (t > -1e-9 && sEdge >= -1e-9 && sEdge <= 1.0 + 1e-9 && t < bestT)
+      {
+        bestT = t;
+        bestS = sEdge;
+        exit = e;
+      }
+    }
+    if (exit < 0)
+    {
+      break;
+    }
+    // Stay off the vertices, where the next face would be ambiguous.
+    bestS = std::min(1.0 - 1e-9, std::max(1e-9, bestS));
+    const Vec3 y = M.Position(M.Origin(exit)) * (1.0 - bestS) + M.Position(M.Destination(exit)) * bestS;
+    addPiece(f, x, y);
+    x = y;
+    entry = M.Twin(exit);
+    if (entry < 0)
+    {
+      break; // the boundary
+    }
+    f = entry / 3;
+  }
+  // The walk did not reach the end point's face: keep the end point itself.
+  addPiece(to.IsVertex() ? M.VertexHalfedge(to.Vertex) / 3 : to.Face, q, q);
+}
+} // namespace
+
+std::vector<CurvePiece> TraceSurfaceCurve(const TriangleMesh& M, const std::vector<SurfacePoint>& curve)
+{
+  std::vector<CurvePiece> out;
+  if (curve.size() == 1)
+  {
+    const Vec3 p = PositionOf(M, curve[0]);
+    out.push_back({ curve[0].IsVertex() ? M.VertexHalfedge(curve[0].Vertex) / 3 : curve[0].Face, p, p });
+  }
+  for (std::size_t i = 0; i + 1 < curve.size(); ++i)
+  {
+    TraceSegment(M, curve[i], curve[i + 1], out);
+  }
+  return out;
+}
+
+std::vector<SurfacePoint> SampleCurvePieces(
+  const TriangleMesh& M, const std::vector<CurvePiece>& pieces, double spacing)
+{
+  std::vector<SurfacePoint> samples;
+  for (const CurvePiece& piece : pieces)
+  {
+    const auto& t = M.Face(piece.Face);
+    const Vec3 P0 = M.Position(t[0]), P1 = M.Position(t[1]), P2 = M.Position(t[2]);
+    const Vec3 n = Cross(P1 - P0, P2 - P0);
+    const double n2 = Dot(n, n);
+    const double length = Norm(piece.B - piece.A);
+    const int steps = spacing > 0.0 ? std::max(1, static_cast<int>(std::ceil(length / spacing))) : 1;
+    for (int i = 0; i <= steps; ++i)
+    {
+      const Vec3 x = piece.A + (piece.B - piece.A) * (static_cast<double>(i) / steps);
+      // Barycentric coordinates of x in the face (clamped: x lies in it up to rounding).
+      const double u0 = Dot(Cross(P1 - x, P2 - x), n) / n2;
+      const double u1 = Dot(Cross(P2 - x, P0 - x), n) / n2;
+      const double w0 = std::max(0.0, u0), w1 = std::max(0.0, u1), w2 = std::max(0.0, 1.0 - u0 - u1);
+      const double sum = w0 + w1 + w2;
+      samples.push_back(SurfacePoint::InFace(piece.Face, w0 / sum, w1 / sum, w2 / sum));
+      if (length == 0.0)
+      {
+        break;
+      }
+    }
+  }
+  return samples;
+}
+
+} // namespace gs
