@@ -47,6 +47,20 @@ ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
     Cy[h] = b * std::sin(a);
   }
   const int nv = M.NumberOfVertices();
+  FanAngle.assign(nh, 0.0);
+  for (int v = 0; v < nv; ++v)
+  {
+    const int start = M.VertexHalfedge(v);
+    double angle = 0.0;
+    int h = start;
+    do
+    {
+      FanAngle[h] = angle;
+      angle += M.CornerAngle(h);
+      h = M.RotateCCW(h);
+    } while (h >= 0 && h != start);
+  }
+  InAngle.assign(nv, std::numeric_limits<double>::quiet_NaN());
   Dist.assign(nv, Inf);
   Origin.assign(nv, 0);
   CrossHalfedge.assign(nv, -1);
@@ -67,6 +81,7 @@ void ExactGeodesicSolver::Reset()
     CrossHalfedge[v] = -1;
     Final[v] = 0;
     Propagated[v] = 0;
+    InAngle[v] = std::numeric_limits<double>::quiet_NaN();
   }
   Touched.clear();
   FinalOrder.clear();
@@ -87,11 +102,29 @@ std::vector<double> ExactGeodesicSolver::Distances() const
   return d;
 }
 
-void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, double crossing)
+void ExactGeodesicSolver::UpdateVertex(
+  int v, double d, int origin, int via, double crossing, double inAngle)
 {
-  if (!(d < Dist[v]) || Final[v])
+  if (Final[v] || !(d < Dist[v] + Tolerance))
   {
     return;
+  }
+  if (d >= Dist[v] - Tolerance)
+  {
+    // A tie: two paths of (nearly) equal length. Keep the direction only if they agree, so that
+    // a pseudo-source spreads into the union of both shadows.
+    if (!(std::abs(inAngle - InAngle[v]) <= 1e-9))
+    {
+      InAngle[v] = std::numeric_limits<double>::quiet_NaN();
+    }
+    if (!(d < Dist[v]))
+    {
+      return;
+    }
+  }
+  else
+  {
+    InAngle[v] = inAngle;
   }
   if (Dist[v] == Inf)
   {
@@ -240,30 +273,100 @@ void ExactGeodesicSolver::PushWindow(Window w)
 void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
 {
   ++Stats.PseudoSourceEvents;
+  // A shortest path through a saddle or boundary vertex leaves it at an angle of at least pi
+  // from where it arrived, on both sides (on the surface side for a boundary vertex): only that
+  // shadow needs windows. A real source, or an unknown/ambiguous arrival, spreads everywhere.
+  constexpr double Pi = 3.14159265358979323846;
+  const double theta = M.TotalAngle(v);
+  const double in = InAngle[v];
+  const double margin = 1e-9;
+  double intervals[2][2];
+  int numIntervals = 0;
+  if (src >= 0 || std::isnan(in))
+  {
+    intervals[numIntervals][0] = -1.0;
+    intervals[numIntervals++][1] = theta + 1.0;
+  }
+  else if (M.IsBoundaryVertex(v))
+  {
+    intervals[numIntervals][0] = -1.0;
+    intervals[numIntervals++][1] = in - Pi + margin;
+    intervals[numIntervals][0] = in + Pi - margin;
+    intervals[numIntervals++][1] = theta + 1.0;
+  }
+  else
+  {
+    // [in + pi, in + theta - pi], taken modulo theta.
+    double lo = in + Pi - margin, hi = in + theta - Pi + margin;
+    if (lo >= theta)
+    {
+      lo -= theta;
+      hi -= theta;
+    }
+    intervals[numIntervals][0] = lo;
+    intervals[numIntervals++][1] = hi;
+    if (hi > theta)
+    {
+      intervals[numIntervals][0] = lo - theta;
+      intervals[numIntervals++][1] = hi - theta;
+    }
+  }
+
   const int start = M.VertexHalfedge(v);
   int h = start;
   do
   {
-    // Face f = face(h) with h: v -> a, Next(h): a -> b, Prev(h): b -> v.
+    // Face f = face(h) with h: v -> a, Next(h): a -> b, Prev(h): b -> v; its corner at v spans
+    // [FanAngle[h], FanAngle[h] + beta] about v.
     const int opp = TriangleMesh::Next(h);
     const int a = M.Destination(h);
     const int b = M.Origin(TriangleMesh::Prev(h));
-    UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0);
-    UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0);
-    const int t = M.Twin(opp);
-    if (t >= 0)
+    const double p0 = FanAngle[h], beta = M.CornerAngle(h);
+    for (int i = 0; i < numIntervals; ++i)
     {
+      const bool fromStart = intervals[i][0] <= p0;
+      const bool toEnd = intervals[i][1] >= p0 + beta;
+      const double r0 = fromStart ? 0.0 : intervals[i][0] - p0;
+      const double r1 = toEnd ? beta : intervals[i][1] - p0;
+      if (r0 > r1)
+      {
+        continue;
+      }
+      if (fromStart)
+      {
+        const int back = M.Twin(h);
+        UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0,
+          back >= 0 ? FanAngle[back] : M.TotalAngle(a));
+      }
+      if (toEnd)
+      {
+        UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0,
+          FanAngle[TriangleMesh::Prev(h)]);
+      }
+      const int t = M.Twin(opp);
+      if (t < 0)
+      {
+        continue;
+      }
       // v is the opposite vertex of opp, at (Cx, Cy) in opp's frame; t's frame is opp's turned
-      // by half a turn about the edge's midpoint.
+      // by half a turn about the edge's midpoint. The ray from v at angle r from v->a meets the
+      // opposite edge at |va| sin r / sin(r + alpha_a) from a (law of sines).
+      const double ab = M.EdgeLength(t);
+      const double va = M.EdgeLength(h);
+      const double alphaA = M.CornerAngle(opp);
+      auto fromA = [&](double r) { return va * std::sin(r) / std::sin(r + alphaA); };
       Window w;
       w.H = t;
-      w.B0 = 0.0;
-      w.B1 = M.EdgeLength(t);
-      w.Ix = w.B1 - Cx[opp];
+      w.B0 = toEnd ? 0.0 : std::max(0.0, ab - fromA(r1));
+      w.B1 = fromStart ? ab : std::min(ab, ab - fromA(r0));
+      w.Ix = ab - Cx[opp];
       w.Iy = -Cy[opp];
       w.Sigma = sigma;
       w.Src = src;
-      PushWindow(w);
+      if (w.B1 > w.B0)
+      {
+        PushWindow(w);
+      }
     }
     h = M.RotateCCW(h);
   } while (h >= 0 && h != start);
@@ -276,7 +379,9 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src)
     const int e = 3 * f + k;
     const Vec3& X = M.Position(M.Origin(e));
     const Vec3& Y = M.Position(M.Destination(e));
-    UpdateVertex(M.Origin(e), Norm(p - X), src, -1, 0.0);
+    const Vec3 toP = p - X, toY = Y - X;
+    UpdateVertex(M.Origin(e), Norm(toP), src, -1, 0.0,
+      FanAngle[e] + std::atan2(Norm(Cross(toY, toP)), Dot(toY, toP)));
     const int t = M.Twin(e);
     const double len = M.EdgeLength(e);
     // t runs Y -> X; in its frame the source lies below the edge (on f's side).
@@ -316,9 +421,13 @@ void ExactGeodesicSolver::Propagate(Window w)
   {
     const int vC = M.Opposite(h);
     const double dC = w.Sigma + Hypot(cx - ix, cy - iy);
-    if (dC < Dist[vC])
+    if (dC < Dist[vC] + Tolerance)
     {
-      UpdateVertex(vC, dC, w.Src, h, xc);
+      // Arrival direction at C, towards I, measured from C -> A (counter-clockwise in this
+      // face's frame, as about C's fan).
+      const double ax = -cx, ay = -cy, qx = ix - cx, qy = iy - cy;
+      UpdateVertex(vC, dC, w.Src, h, xc,
+        FanAngle[TriangleMesh::Prev(h)] + std::atan2(ax * qy - ay * qx, ax * qx + ay * qy));
     }
     else if (dC > Dist[vC] + Tolerance && CrossHalfedge[vC] == h)
     {
@@ -488,7 +597,7 @@ bool ExactGeodesicSolver::Solve(
         continue;
       }
     }
-    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0);
+    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, std::numeric_limits<double>::quiet_NaN());
     if (!Propagated[s.Vertex])
     {
       Propagated[s.Vertex] = 1;

@@ -102,7 +102,9 @@ private:
   };
 
   void Reset();
-  void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing);
+  // inAngle: direction (in v's fan, see FanAngle) towards where the path comes from; NaN if
+  // unknown. It limits which directions v spreads into when it becomes a pseudo-source.
+  void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing, double inAngle);
   void PushWindow(Window w);
   void Enqueue(const Window& w);
   Window Dequeue();
@@ -115,10 +117,14 @@ private:
   const TriangleMesh& M;
   // Position of the opposite vertex of each half-edge in the half-edge's frame.
   std::vector<double> Cx, Cy;
+  // Angle of each half-edge's direction about its origin, counter-clockwise from the origin's
+  // VertexHalfedge (0 .. total angle).
+  std::vector<double> FanAngle;
 
   std::vector<double> Dist;
   std::vector<int> Origin;
   std::vector<int> CrossHalfedge; // half-edge crossed by the best path to v in its last face
+  std::vector<double> InAngle;    // where the best path to v arrives from (NaN: several/unknown)
   std::vector<double> CrossX;     // where it crossed (in that half-edge's frame)
   std::vector<unsigned char> Final;
   std::vector<unsigned char> Propagated; // pseudo-source vertex already spread its windows
