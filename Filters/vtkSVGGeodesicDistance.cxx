@@ -1,38 +1,68 @@
 #include "vtkSVGGeodesicDistance.h"
 
+#include "vtkSaddleVertexGraphCache.h"
 #include "vtkSurfaceMeshConverter.h"
+#include "vtkSurfacePointLocator.h"
 
 #include "ExactGeodesic.h"
+#include "SVGGeodesicSolver.h"
+#include "SaddleVertexGraph.h"
+#include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 
-#include <vtkCell.h>
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPolyData.h>
-#include <vtkStaticCellLocator.h>
+#include <vtkStringArray.h>
 
-#include <array>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <sstream>
+#include <memory>
 
 vtkStandardNewMacro(vtkSVGGeodesicDistance);
 
-// The converted mesh and its solver, kept while the input mesh is unchanged (same object, same
-// modification time), so that changing only the sources or parameters does not rebuild them.
+// The converted mesh and what is derived from it, kept while the input mesh is unchanged (same
+// object, same modification time), so that changing only the sources or parameters does not
+// redo them. The saddle vertex graph itself lives in vtkSaddleVertexGraphCache (shared by the
+// whole process); this only holds on to the one in use and the solver over it.
 struct vtkSVGGeodesicDistance::Cache
 {
   vtkPolyData* Input = nullptr;
   vtkMTimeType InputTime = 0;
   vtkSurfaceMeshConverter::Result Mesh;
-  std::unique_ptr<gs::ExactGeodesicSolver> Exact; // refers to Mesh.Build.Mesh
-  vtkSmartPointer<vtkStaticCellLocator> Locator;  // over Mesh.Triangles, built on demand
+  std::unique_ptr<gs::ExactGeodesicSolver> Exact;   // refers to Mesh.Build.Mesh; on demand
+  std::unique_ptr<vtkSurfacePointLocator> Locator;  // refers to Mesh; on demand
+  bool HashValid = false;
+  std::uint64_t Hash = 0; // gs::SaddleVertexGraph::HashMesh(Mesh.Build.Mesh); on demand
+  std::shared_ptr<const gs::SaddleVertexGraph> Graph;
+  std::unique_ptr<gs::SVGGeodesicSolver> SVG; // over Mesh.Build.Mesh and *Graph
 };
+
+namespace
+{
+// Spacing of the 3D samples of a curve source before snapping, in mean edge lengths.
+constexpr double CurveSnapSpacing = 0.25;
+// Spacing of the curve samples seeding the exact solver (the exact reference), in mean edges.
+constexpr double ExactCurveSpacing = 1.0 / 16.0;
+// At most this many samples per polyline segment (a segment far longer than the mesh).
+constexpr vtkIdType MaximumSamplesPerSegment = 1 << 20;
+
+bool SameSurfacePoint(const gs::SurfacePoint& a, const gs::SurfacePoint& b)
+{
+  return a.Vertex == b.Vertex && a.Face == b.Face && a.Bary == b.Bary;
+}
+}
 
 //------------------------------------------------------------------------------
 vtkSVGGeodesicDistance::vtkSVGGeodesicDistance()
@@ -43,6 +73,22 @@ vtkSVGGeodesicDistance::vtkSVGGeodesicDistance()
 
 //------------------------------------------------------------------------------
 vtkSVGGeodesicDistance::~vtkSVGGeodesicDistance() = default;
+
+//------------------------------------------------------------------------------
+const char* vtkSVGGeodesicDistance::GetSolverName(int solver)
+{
+  switch (solver)
+  {
+    case EXACT:
+      return "Exact";
+    case SVG_LABEL_CORRECTING:
+      return "SVG (label-correcting)";
+    case SVG_DIJKSTRA:
+      return "SVG (Dijkstra)";
+    default:
+      return "unknown";
+  }
+}
 
 //------------------------------------------------------------------------------
 void vtkSVGGeodesicDistance::AddSourceVertexId(vtkIdType id)
@@ -95,9 +141,10 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
 
-  if (this->Solver != EXACT)
+  if (this->Solver < EXACT || this->Solver > SVG_DIJKSTRA)
   {
-    vtkErrorMacro("Unknown Solver " << this->Solver << " (0 = Exact).");
+    vtkErrorMacro("Unknown Solver " << this->Solver
+                                    << " (0 = Exact, 1 = SVG (label-correcting), 2 = SVG (Dijkstra)).");
     return 1;
   }
   if (this->ResultArrayName.empty())
@@ -105,6 +152,7 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
     vtkErrorMacro("ResultArrayName is empty.");
     return 1;
   }
+  const bool useGraph = this->Solver != EXACT;
 
   // 1. The core mesh, converted once while the input is unchanged.
   if (!this->MeshCache || this->MeshCache->Input != input ||
@@ -114,10 +162,6 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
     this->MeshCache->Input = input;
     this->MeshCache->InputTime = input->GetMTime();
     this->MeshCache->Mesh = vtkSurfaceMeshConverter::Convert(input);
-    if (this->MeshCache->Mesh.Ok)
-    {
-      this->MeshCache->Exact.reset(new gs::ExactGeodesicSolver(this->MeshCache->Mesh.Build.Mesh));
-    }
   }
   Cache& cache = *this->MeshCache;
   for (const std::string& warning : cache.Mesh.Warnings)
@@ -131,68 +175,115 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   }
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
-  this->UpdateProgress(0.2);
+  this->UpdateProgress(0.1);
   if (this->CheckAbort())
   {
     return 1;
   }
 
-  // 2. Sources: snapped points of port 1, or the listed point ids.
-  std::vector<gs::SurfacePoint> surfaceSources;
+  // 2. Sources: curves (line cells of port 1) and points (its other points), or the listed
+  //    point ids.
+  std::vector<gs::SurfacePoint> pointSources;
+  std::vector<std::vector<gs::SurfacePoint>> curveSources;
   if (sources)
   {
     if (!cache.Locator)
     {
-      cache.Locator = vtkSmartPointer<vtkStaticCellLocator>::New();
-      cache.Locator->SetDataSet(cache.Mesh.Triangles);
-      cache.Locator->BuildLocator();
+      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
+    }
+    std::string reason;
+    auto snap = [&](const double x[3], gs::SurfacePoint& p, vtkIdType pointId) {
+      if (!cache.Locator->Snap(x, p, reason))
+      {
+        vtkErrorMacro("Source point " << pointId << ": " << reason << ".");
+        return false;
+      }
+      return true;
+    };
+    std::vector<unsigned char> onCurve(static_cast<size_t>(sources->GetNumberOfPoints()), 0);
+    vtkPolyData* polySources = vtkPolyData::SafeDownCast(sources);
+    if (polySources && polySources->GetNumberOfLines() > 0)
+    {
+      const double spacing = CurveSnapSpacing * mesh.MeanEdgeLength();
+      auto it = vtk::TakeSmartPointer(polySources->GetLines()->NewIterator());
+      vtkIdType npts;
+      const vtkIdType* pts;
+      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+      {
+        it->GetCurrentCell(npts, pts);
+        std::vector<gs::SurfacePoint> curve;
+        auto add = [&](const double x[3], vtkIdType pointId) {
+          gs::SurfacePoint p;
+          if (!snap(x, p, pointId))
+          {
+            return false;
+          }
+          if (curve.empty() || !SameSurfacePoint(curve.back(), p))
+          {
+            curve.push_back(p);
+          }
+          return true;
+        };
+        for (vtkIdType i = 0; i < npts; ++i)
+        {
+          if (pts[i] < 0 || pts[i] >= sources->GetNumberOfPoints())
+          {
+            vtkErrorMacro("Source line cell refers to point " << pts[i] << ", out of range.");
+            return 1;
+          }
+          onCurve[static_cast<size_t>(pts[i])] = 1;
+          double a[3];
+          sources->GetPoint(pts[i], a);
+          if (!add(a, pts[i]))
+          {
+            return 1;
+          }
+          if (i + 1 == npts)
+          {
+            break;
+          }
+          // Samples between a and the next point, at most `spacing` apart.
+          double b[3];
+          sources->GetPoint(pts[i + 1], b);
+          const double length = std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
+          if (!std::isfinite(length))
+          {
+            vtkErrorMacro("Source point " << pts[i + 1] << ": non-finite coordinates.");
+            return 1;
+          }
+          const vtkIdType steps = static_cast<vtkIdType>(
+            std::min<double>(MaximumSamplesPerSegment, std::ceil(length / spacing)));
+          for (vtkIdType s = 1; s < steps; ++s)
+          {
+            const double t = static_cast<double>(s) / static_cast<double>(steps);
+            const double x[3] = { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]),
+              a[2] + t * (b[2] - a[2]) };
+            if (!add(x, pts[i]))
+            {
+              return 1;
+            }
+          }
+        }
+        if (!curve.empty())
+        {
+          curveSources.push_back(std::move(curve));
+        }
+      }
     }
     for (vtkIdType i = 0; i < sources->GetNumberOfPoints(); ++i)
     {
-      double x[3], closest[3], pcoords[3], weights[3], dist2;
-      vtkIdType cellId = -1;
-      int subId = 0;
+      if (onCurve[static_cast<size_t>(i)])
+      {
+        continue;
+      }
+      double x[3];
       sources->GetPoint(i, x);
-      if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+      gs::SurfacePoint p;
+      if (!snap(x, p, i))
       {
-        vtkErrorMacro("Source point " << i << " has non-finite coordinates.");
         return 1;
       }
-      cache.Locator->FindClosestPoint(x, closest, cellId, subId, dist2);
-      if (cellId < 0 || cellId >= mesh.NumberOfFaces())
-      {
-        vtkErrorMacro("Source point " << i << " could not be snapped to the surface.");
-        return 1;
-      }
-      // Barycentric coordinates in the triangle's point order; then matched to the core face's
-      // corners by vertex (the builder may have re-oriented the face).
-      vtkCell* triangle = cache.Mesh.Triangles->GetCell(cellId);
-      double snapped[3];
-      triangle->EvaluatePosition(closest, snapped, subId, pcoords, dist2, weights);
-      const std::array<int, 3>& face = mesh.Face(static_cast<int>(cellId));
-      std::array<double, 3> bary{ { 0.0, 0.0, 0.0 } };
-      int matched = 0;
-      for (int k = 0; k < 3; ++k)
-      {
-        const int v = pointToVertex[static_cast<size_t>(triangle->GetPointId(k))];
-        for (int c = 0; c < 3; ++c)
-        {
-          if (face[c] == v)
-          {
-            bary[c] = std::max(0.0, weights[k]);
-            ++matched;
-          }
-        }
-      }
-      const double sum = bary[0] + bary[1] + bary[2];
-      if (matched != 3 || !(sum > 0.0))
-      {
-        vtkErrorMacro("Internal error: triangle " << cellId << " does not match core face.");
-        return 1;
-      }
-      surfaceSources.push_back(
-        gs::SurfacePoint::InFace(static_cast<int>(cellId), bary[0] / sum, bary[1] / sum,
-          bary[2] / sum));
+      pointSources.push_back(p);
     }
   }
   else
@@ -212,20 +303,102 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
         vtkErrorMacro("Source vertex id " << id << " is not used by any triangle.");
         return 1;
       }
-      surfaceSources.push_back(gs::SurfacePoint::AtVertex(v));
+      pointSources.push_back(gs::SurfacePoint::AtVertex(v));
     }
   }
-  if (surfaceSources.empty())
+  if (pointSources.empty() && curveSources.empty())
   {
-    vtkErrorMacro("No source: set SourceVertexIds or connect source points to the Sources "
-                  "port (with at least one point).");
+    vtkErrorMacro("No source: set SourceVertexIds or connect source points or lines to the "
+                  "Sources port (with at least one point).");
     return 1;
   }
 
-  // 3. Solve.
-  gs::ExactGeodesicOptions options;
-  options.MaximumDistance = this->MaximumDistance;
-  if (!cache.Exact->Solve(surfaceSources, options))
+  // 3. The saddle vertex graph (SVG solvers): from this process's cache, the cache file, or
+  //    built now with progress 0.1 .. 0.8.
+  vtkSaddleVertexGraphCache::Origin graphOrigin = vtkSaddleVertexGraphCache::Origin::Memory;
+  if (useGraph)
+  {
+    if (!cache.HashValid)
+    {
+      cache.Hash = gs::SaddleVertexGraph::HashMesh(mesh);
+      cache.HashValid = true;
+    }
+    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::Get(mesh,
+      cache.Hash, this->K, this->CacheFileName, [this](double fraction) {
+        this->UpdateProgress(0.1 + 0.7 * fraction);
+        return !this->CheckAbort();
+      });
+    for (const std::string& warning : found.Warnings)
+    {
+      vtkWarningMacro("Saddle vertex graph (CacheFileName " << this->CacheFileName
+                                                           << "): " << warning);
+    }
+    if (found.Aborted)
+    {
+      return 1;
+    }
+    if (!found.Graph)
+    {
+      vtkErrorMacro("Saddle vertex graph: " << found.Error);
+      return 1;
+    }
+    graphOrigin = found.From;
+    if (found.Graph != cache.Graph || !cache.SVG)
+    {
+      cache.SVG.reset();
+      cache.Graph = found.Graph;
+      cache.SVG.reset(new gs::SVGGeodesicSolver(mesh, *cache.Graph));
+    }
+  }
+  this->UpdateProgress(0.8);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 4. Solve.
+  bool solved = false;
+  if (useGraph)
+  {
+    gs::SVGSolveOptions options;
+    options.Algorithm = this->Solver == SVG_DIJKSTRA ? gs::GraphAlgorithm::Dijkstra
+                                                     : gs::GraphAlgorithm::LabelCorrecting;
+    options.MaximumDistance = this->MaximumDistance;
+    options.Refine = this->UnfoldingRefinement;
+    if (curveSources.empty())
+    {
+      solved = cache.SVG->Solve(pointSources, options);
+    }
+    else
+    {
+      // Point sources join the curve solve as one-point curves.
+      for (const gs::SurfacePoint& p : pointSources)
+      {
+        curveSources.push_back({ p });
+      }
+      solved = cache.SVG->SolveCurves(curveSources, options);
+    }
+  }
+  else
+  {
+    if (!cache.Exact)
+    {
+      cache.Exact.reset(new gs::ExactGeodesicSolver(mesh));
+    }
+    // Curves: traced across faces and densely sampled; the exact solver runs from every sample.
+    std::vector<gs::SurfacePoint> exactSources = pointSources;
+    for (const auto& curve : curveSources)
+    {
+      const std::vector<gs::CurvePiece> pieces = gs::TraceSurfaceCurve(mesh, curve);
+      const std::vector<gs::SurfacePoint> samples =
+        gs::SampleCurvePieces(mesh, pieces, ExactCurveSpacing * mesh.MeanEdgeLength());
+      exactSources.insert(exactSources.end(), samples.begin(), samples.end());
+    }
+    gs::ExactGeodesicOptions options;
+    options.MaximumDistance = this->MaximumDistance;
+    solved = cache.Exact->Solve(exactSources, options);
+  }
+  if (!solved)
   {
     vtkErrorMacro("The geodesic solver rejected the sources.");
     return 1;
@@ -236,7 +409,7 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
     return 1;
   }
 
-  // 4. Map back to every input point (welded points share their vertex's distance).
+  // 5. Map back to every input point (welded points share their vertex's distance).
   const double nan = std::numeric_limits<double>::quiet_NaN();
   vtkNew<vtkDoubleArray> distance;
   distance->SetName(this->ResultArrayName.c_str());
@@ -245,9 +418,12 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   for (size_t i = 0; i < pointToVertex.size(); ++i)
   {
     const int v = pointToVertex[i];
-    double d = v >= 0 ? cache.Exact->Distance(v) : nan;
-    if (!std::isfinite(d) ||
-      (this->MaximumDistance > 0.0 && d > this->MaximumDistance))
+    double d = nan;
+    if (v >= 0)
+    {
+      d = useGraph ? cache.SVG->Distance(v) : cache.Exact->Distance(v);
+    }
+    if (!std::isfinite(d) || (this->MaximumDistance > 0.0 && d > this->MaximumDistance))
     {
       d = nan;
     }
@@ -257,6 +433,28 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   output->ShallowCopy(cache.Mesh.Surface);
   output->GetPointData()->AddArray(distance);
   output->GetPointData()->SetActiveScalars(distance->GetName());
+  if (useGraph)
+  {
+    // A fresh field data object: the surface's own (shallow-copied) one is left untouched.
+    vtkNew<vtkFieldData> fieldData;
+    if (vtkFieldData* inputFieldData = output->GetFieldData())
+    {
+      fieldData->ShallowCopy(inputFieldData);
+    }
+    vtkNew<vtkDoubleArray> meanDegree;
+    meanDegree->SetName("SVGMeanDegree");
+    meanDegree->InsertNextValue(cache.Graph->MeanDegree());
+    vtkNew<vtkDoubleArray> buildSeconds;
+    buildSeconds->SetName("SVGBuildSeconds");
+    buildSeconds->InsertNextValue(cache.Graph->BuildSeconds());
+    vtkNew<vtkStringArray> origin;
+    origin->SetName("SVGGraphOrigin");
+    origin->InsertNextValue(vtkSaddleVertexGraphCache::OriginName(graphOrigin));
+    fieldData->AddArray(meanDegree);
+    fieldData->AddArray(buildSeconds);
+    fieldData->AddArray(origin);
+    output->SetFieldData(fieldData);
+  }
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -265,7 +463,7 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
 void vtkSVGGeodesicDistance::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Solver: " << this->Solver << (this->Solver == EXACT ? " (Exact)" : "") << "\n";
+  os << indent << "Solver: " << this->Solver << " (" << GetSolverName(this->Solver) << ")\n";
   os << indent << "SourceVertexIds (" << this->SourceVertexIds.size() << "):";
   for (vtkIdType id : this->SourceVertexIds)
   {
@@ -275,4 +473,8 @@ void vtkSVGGeodesicDistance::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumDistance: " << this->MaximumDistance
      << (this->MaximumDistance > 0.0 ? "" : " (unlimited)") << "\n";
   os << indent << "ResultArrayName: " << this->ResultArrayName << "\n";
+  os << indent << "K: " << this->K << "\n";
+  os << indent << "CacheFileName: "
+     << (this->CacheFileName.empty() ? "(none)" : this->CacheFileName) << "\n";
+  os << indent << "UnfoldingRefinement: " << (this->UnfoldingRefinement ? "on" : "off") << "\n";
 }

@@ -4,7 +4,7 @@
 // The source is the vertex at (2, 1), the top of the lower arm. A point p is seen directly when
 // p.y <= 1 (distance |p - s|); otherwise the geodesic bends around the re-entrant corner
 // c = (1, 1): distance |s - c| + |c - p| = 1 + |p - c|. The mesh is planar, so the exact solver
-// must match to rounding.
+// must match to rounding (the Exact solver; the image is its field).
 #include "vtkSVGGeodesicDistance.h"
 
 #include <vtkActor.h>
@@ -85,6 +85,7 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkSVGGeodesicDistance> geodesic;
   geodesic->SetInputConnection(reader->GetOutputPort());
+  geodesic->SetSolverToExact();
   geodesic->AddSourceVertexId(source);
   geodesic->Update();
   vtkPolyData* output = geodesic->GetOutput();

@@ -1,6 +1,8 @@
 // vtkSVGGeodesicDistance on malformed and unusual input: each malformed case must give an
-// error message and an empty output, never a crash; the unusual-but-valid cases (quads,
-// unreferenced points, split OBJ-style vertices, source points) must give the right distances.
+// error message and an empty output with every solver, never a crash; the unusual-but-valid
+// cases (quads, unreferenced points, split OBJ-style vertices, source points) must give the
+// right distances (checked to 1e-9 with the Exact solver, and for the graph solvers where their
+// result is exact too).
 #include "vtkSVGGeodesicDistance.h"
 
 #include <vtkCellArray.h>
@@ -52,10 +54,15 @@ struct RunResult
   }
 };
 
+const int AllSolvers[] = { vtkSVGGeodesicDistance::EXACT,
+  vtkSVGGeodesicDistance::SVG_LABEL_CORRECTING, vtkSVGGeodesicDistance::SVG_DIJKSTRA };
+
 RunResult Run(vtkPolyData* mesh, const std::vector<vtkIdType>& sourceIds,
-  vtkPolyData* sourcePoints = nullptr, double maximumDistance = 0.0)
+  vtkPolyData* sourcePoints = nullptr, double maximumDistance = 0.0,
+  int solver = vtkSVGGeodesicDistance::EXACT)
 {
   vtkNew<vtkSVGGeodesicDistance> filter;
+  filter->SetSolver(solver);
   vtkNew<MessageRecorder> recorder;
   filter->AddObserver(vtkCommand::ErrorEvent, recorder);
   filter->AddObserver(vtkCommand::WarningEvent, recorder);
@@ -133,26 +140,30 @@ void Check(bool condition, const std::string& test, const std::string& what)
   }
 }
 
-// A malformed input: an error mentioning `keyword`, an empty output.
-void ExpectRejected(const std::string& test, vtkPolyData* mesh, const std::vector<vtkIdType>& ids,
+// A malformed input: an error mentioning `keyword`, an empty output, with every solver.
+void ExpectRejected(const std::string& name, vtkPolyData* mesh, const std::vector<vtkIdType>& ids,
   const std::string& keyword)
 {
-  const RunResult r = Run(mesh, ids);
-  Check(!r.Errors.empty(), test, "no error message");
-  Check(r.Output->GetNumberOfPoints() == 0 && r.Output->GetNumberOfCells() == 0, test,
-    "output is not empty");
-  bool mentioned = false;
-  for (const std::string& e : r.Errors)
+  for (int solver : AllSolvers)
   {
-    std::string lower = e;
-    for (char& c : lower)
+    const std::string test = name + "[" + vtkSVGGeodesicDistance::GetSolverName(solver) + "]";
+    const RunResult r = Run(mesh, ids, nullptr, 0.0, solver);
+    Check(!r.Errors.empty(), test, "no error message");
+    Check(r.Output->GetNumberOfPoints() == 0 && r.Output->GetNumberOfCells() == 0, test,
+      "output is not empty");
+    bool mentioned = false;
+    for (const std::string& e : r.Errors)
     {
-      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      std::string lower = e;
+      for (char& c : lower)
+      {
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      }
+      mentioned = mentioned || lower.find(keyword) != std::string::npos;
+      std::cout << test << ": error: " << e;
     }
-    mentioned = mentioned || lower.find(keyword) != std::string::npos;
-    std::cout << test << ": error: " << e;
+    Check(mentioned, test, "no error mentions '" + keyword + "'");
   }
-  Check(mentioned, test, "no error mentions '" + keyword + "'");
 }
 
 // Two triangles forming the unit square, the shared diagonal 1-2.
@@ -264,17 +275,21 @@ void TestUnreferencedPoints()
   points.insert(points.begin() + 2, { { 5, 5, 5 } }); // point 2 is used by no triangle
   points.push_back({ { 7, 7, 7 } });                   // nor is point 5
   auto mesh = MakeMesh(points, { { 0, 1, 3 }, { 1, 4, 3 } });
-  const RunResult r = Run(mesh, { 0 });
-  Check(r.Errors.empty(), test, "unexpected error");
-  vtkDoubleArray* d = r.Distance();
-  Check(d && d->GetNumberOfTuples() == 6, test, "missing or wrongly sized array");
-  if (d && d->GetNumberOfTuples() == 6)
+  for (int solver : AllSolvers)
   {
-    Check(std::isnan(d->GetValue(2)) && std::isnan(d->GetValue(5)), test,
-      "unreferenced points are not NaN");
-    Check(std::abs(d->GetValue(0)) < 1e-12 && std::abs(d->GetValue(1) - 1.0) < 1e-12 &&
-        std::abs(d->GetValue(3) - 1.0) < 1e-12 && std::abs(d->GetValue(4) - std::sqrt(2.0)) < 1e-12,
-      test, "wrong distances on the square");
+    const RunResult r = Run(mesh, { 0 }, nullptr, 0.0, solver);
+    Check(r.Errors.empty(), test, "unexpected error");
+    vtkDoubleArray* d = r.Distance();
+    Check(d && d->GetNumberOfTuples() == 6, test, "missing or wrongly sized array");
+    if (d && d->GetNumberOfTuples() == 6)
+    {
+      Check(std::isnan(d->GetValue(2)) && std::isnan(d->GetValue(5)), test,
+        "unreferenced points are not NaN");
+      Check(std::abs(d->GetValue(0)) < 1e-12 && std::abs(d->GetValue(1) - 1.0) < 1e-12 &&
+          std::abs(d->GetValue(3) - 1.0) < 1e-12 &&
+          std::abs(d->GetValue(4) - std::sqrt(2.0)) < 1e-12,
+        test, "wrong distances on the square");
+    }
   }
 }
 
@@ -336,20 +351,23 @@ void TestSplitVertices()
       soupSource = static_cast<vtkIdType>(i);
     }
   }
-  const RunResult a = Run(shared, { 10 });
-  const RunResult b = Run(soup, { soupSource });
-  Check(a.Errors.empty() && b.Errors.empty(), test, "unexpected error");
-  vtkDoubleArray* da = a.Distance();
-  vtkDoubleArray* db = b.Distance();
-  Check(da && db && db->GetNumberOfTuples() == static_cast<vtkIdType>(original.size()), test,
-    "missing or wrongly sized array");
-  for (size_t i = 0; da && db && i < original.size(); ++i)
+  for (int solver : AllSolvers)
   {
-    const double expected = da->GetValue(original[i]);
-    if (!(std::abs(db->GetValue(static_cast<vtkIdType>(i)) - expected) <= 1e-12))
+    const RunResult a = Run(shared, { 10 }, nullptr, 0.0, solver);
+    const RunResult b = Run(soup, { soupSource }, nullptr, 0.0, solver);
+    Check(a.Errors.empty() && b.Errors.empty(), test, "unexpected error");
+    vtkDoubleArray* da = a.Distance();
+    vtkDoubleArray* db = b.Distance();
+    Check(da && db && db->GetNumberOfTuples() == static_cast<vtkIdType>(original.size()), test,
+      "missing or wrongly sized array");
+    for (size_t i = 0; da && db && i < original.size(); ++i)
     {
-      Check(false, test, "welded distance differs at soup point " + std::to_string(i));
-      break;
+      const double expected = da->GetValue(original[i]);
+      if (!(std::abs(db->GetValue(static_cast<vtkIdType>(i)) - expected) <= 1e-12))
+      {
+        Check(false, test, "welded distance differs at soup point " + std::to_string(i));
+        break;
+      }
     }
   }
 }
@@ -424,15 +442,23 @@ void TestMaximumDistance()
 void TestPrintSelf()
 {
   vtkNew<vtkSVGGeodesicDistance> filter;
+  Check(filter->GetSolver() == vtkSVGGeodesicDistance::SVG_LABEL_CORRECTING && filter->GetK() == 50 &&
+      std::string(filter->GetCacheFileName()).empty() && !filter->GetUnfoldingRefinement(),
+    "Defaults", "Solver SVG (label-correcting), K 50, no cache file, no refinement");
   filter->AddSourceVertexId(3);
   filter->AddSourceVertexId(8);
   filter->SetMaximumDistance(2.5);
   filter->SetResultArrayName("d");
+  filter->SetSolverToSVGDijkstra();
+  filter->SetK(7);
+  filter->SetCacheFileName("/tmp/graph.svgg");
+  filter->UnfoldingRefinementOn();
   std::ostringstream os;
   filter->Print(os);
   const std::string text = os.str();
   for (const char* expected :
-    { "Solver: 0 (Exact)", "SourceVertexIds (2): 3 8", "MaximumDistance: 2.5", "ResultArrayName: d" })
+    { "Solver: 2 (SVG (Dijkstra))", "SourceVertexIds (2): 3 8", "MaximumDistance: 2.5",
+      "ResultArrayName: d", "K: 7", "CacheFileName: /tmp/graph.svgg", "UnfoldingRefinement: on" })
   {
     Check(text.find(expected) != std::string::npos, "PrintSelf", std::string("no ") + expected);
   }
@@ -445,12 +471,15 @@ void TestDisconnected()
   auto mesh = MakeMesh({ { { 0, 0, 0 } }, { { 1, 0, 0 } }, { { 0, 1, 0 } }, { { 1, 1, 0 } },
                          { { 3, 0, 0 } }, { { 4, 0, 0 } }, { { 3, 1, 0 } }, { { 4, 1, 0 } } },
     { { 0, 1, 2 }, { 1, 3, 2 }, { 4, 5, 6 }, { 5, 7, 6 } });
-  const RunResult r = Run(mesh, { 0 });
-  Check(r.Errors.empty(), test, "unexpected error");
-  vtkDoubleArray* d = r.Distance();
-  Check(d && std::abs(d->GetValue(3) - std::sqrt(2.0)) < 1e-12 && std::isnan(d->GetValue(4)) &&
-      std::isnan(d->GetValue(7)),
-    test, "wrong distances");
+  for (int solver : AllSolvers)
+  {
+    const RunResult r = Run(mesh, { 0 }, nullptr, 0.0, solver);
+    Check(r.Errors.empty(), test, "unexpected error");
+    vtkDoubleArray* d = r.Distance();
+    Check(d && std::abs(d->GetValue(3) - std::sqrt(2.0)) < 1e-12 && std::isnan(d->GetValue(4)) &&
+        std::isnan(d->GetValue(7)),
+      test, "wrong distances");
+  }
 }
 }
 

@@ -1,0 +1,239 @@
+#include "vtkSaddleVertexGraphCache.h"
+
+#include <algorithm>
+#include <deque>
+#include <filesystem>
+#include <mutex>
+#include <set>
+#include <system_error>
+
+namespace
+{
+using GraphPointer = std::shared_ptr<const gs::SaddleVertexGraph>;
+
+struct Entry
+{
+  std::uint64_t Hash = 0;
+  int K = 0;
+  std::weak_ptr<const gs::SaddleVertexGraph> Graph;
+  std::set<std::string> Files; // cache files known to hold this graph
+};
+
+struct Store
+{
+  std::mutex Mutex;
+  std::vector<Entry> Entries;       // every graph alive somewhere (pruned when expired)
+  std::deque<GraphPointer> Recent;  // most recently used first, at most Capacity
+};
+
+Store& TheStore()
+{
+  static Store store; // function-local: constructed on first use, shared by the whole process
+  return store;
+}
+
+// Callers hold the store's mutex.
+void Touch(Store& store, const GraphPointer& graph)
+{
+  auto it = std::find(store.Recent.begin(), store.Recent.end(), graph);
+  if (it != store.Recent.end())
+  {
+    store.Recent.erase(it);
+  }
+  store.Recent.push_front(graph);
+  while (store.Recent.size() > vtkSaddleVertexGraphCache::Capacity)
+  {
+    store.Recent.pop_back();
+  }
+}
+
+Entry* Find(Store& store, std::uint64_t hash, int k)
+{
+  store.Entries.erase(std::remove_if(store.Entries.begin(), store.Entries.end(),
+                        [](const Entry& e) { return e.Graph.expired(); }),
+    store.Entries.end());
+  for (Entry& e : store.Entries)
+  {
+    if (e.Hash == hash && e.K == k)
+    {
+      return &e;
+    }
+  }
+  return nullptr;
+}
+
+bool FileExists(const std::string& path)
+{
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
+// Writes the graph to `fileName` unless the entry already knows the file holds it.
+void SaveIfNeeded(const GraphPointer& graph, std::uint64_t hash, int k,
+  const std::string& fileName, std::vector<std::string>& warnings)
+{
+  Store& store = TheStore();
+  {
+    std::lock_guard<std::mutex> lock(store.Mutex);
+    Entry* e = Find(store, hash, k);
+    if (e && e->Files.count(fileName) && FileExists(fileName))
+    {
+      return;
+    }
+  }
+  std::string error;
+  if (!graph->Save(fileName, hash, error))
+  {
+    warnings.push_back("could not save the saddle vertex graph to the cache file: " + error);
+    return;
+  }
+  std::lock_guard<std::mutex> lock(store.Mutex);
+  if (Entry* e = Find(store, hash, k))
+  {
+    e->Files.insert(fileName);
+  }
+}
+
+// Adds a new graph (or returns the one another thread added meanwhile).
+GraphPointer Insert(const GraphPointer& graph, std::uint64_t hash, int k, const std::string& file)
+{
+  Store& store = TheStore();
+  std::lock_guard<std::mutex> lock(store.Mutex);
+  Entry* e = Find(store, hash, k);
+  GraphPointer kept = e ? e->Graph.lock() : nullptr;
+  if (!kept)
+  {
+    if (!e)
+    {
+      store.Entries.push_back(Entry());
+      e = &store.Entries.back();
+      e->Hash = hash;
+      e->K = k;
+    }
+    e->Graph = graph;
+    e->Files.clear();
+    kept = graph;
+  }
+  if (!file.empty())
+  {
+    e->Files.insert(file);
+  }
+  Touch(store, kept);
+  return kept;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+const char* vtkSaddleVertexGraphCache::OriginName(Origin origin)
+{
+  switch (origin)
+  {
+    case Origin::Memory:
+      return "memory";
+    case Origin::File:
+      return "loaded";
+    case Origin::Built:
+    default:
+      return "built";
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::TriangleMesh& mesh,
+  std::uint64_t meshHash, int k, const std::string& fileName, const gs::ProgressCallback& progress)
+{
+  Result result;
+  const int nv = mesh.NumberOfVertices();
+  const bool validK = k >= 1 && nv > 0;
+  const int key = validK ? std::min(k, nv) : k; // the core clamps K to the vertex count
+
+  // 1. Memory.
+  if (validK)
+  {
+    GraphPointer graph;
+    {
+      Store& store = TheStore();
+      std::lock_guard<std::mutex> lock(store.Mutex);
+      if (Entry* e = Find(store, meshHash, key))
+      {
+        graph = e->Graph.lock();
+        if (graph)
+        {
+          Touch(store, graph);
+        }
+      }
+    }
+    if (graph)
+    {
+      if (!fileName.empty())
+      {
+        SaveIfNeeded(graph, meshHash, key, fileName, result.Warnings);
+      }
+      result.Graph = graph;
+      result.From = Origin::Memory;
+      return result;
+    }
+  }
+
+  // 2. The cache file.
+  if (validK && !fileName.empty() && FileExists(fileName))
+  {
+    auto graph = std::make_shared<gs::SaddleVertexGraph>();
+    std::string error;
+    if (graph->Load(fileName, meshHash, key, error))
+    {
+      result.Graph = Insert(graph, meshHash, key, fileName);
+      result.From = Origin::File;
+      return result;
+    }
+    result.Warnings.push_back("cache file not used (" + error + "); rebuilding");
+  }
+
+  // 3. Build. The core ignores the callback's answer to its final call (1.0): remember any
+  // abort request so that a graph completed after it is not handed out or cached.
+  bool abortRequested = false;
+  gs::ProgressCallback watch = [&](double fraction) {
+    const bool go = !progress || progress(fraction);
+    abortRequested = abortRequested || !go;
+    return go;
+  };
+  auto graph = std::make_shared<gs::SaddleVertexGraph>();
+  gs::SaddleVertexGraphOptions options;
+  options.K = k;
+  std::string error;
+  const bool built = graph->Build(mesh, options, watch, error);
+  if (abortRequested)
+  {
+    result.Aborted = true;
+    return result;
+  }
+  if (!built)
+  {
+    result.Error = error.empty() ? "the saddle vertex graph could not be built" : error;
+    return result;
+  }
+  result.Graph = Insert(graph, meshHash, key, std::string());
+  result.From = Origin::Built;
+  if (!fileName.empty())
+  {
+    SaveIfNeeded(result.Graph, meshHash, key, fileName, result.Warnings);
+  }
+  return result;
+}
+
+//------------------------------------------------------------------------------
+void vtkSaddleVertexGraphCache::Clear()
+{
+  Store& store = TheStore();
+  std::lock_guard<std::mutex> lock(store.Mutex);
+  store.Entries.clear();
+  store.Recent.clear();
+}
+
+//------------------------------------------------------------------------------
+std::size_t vtkSaddleVertexGraphCache::NumberOfGraphs()
+{
+  Store& store = TheStore();
+  std::lock_guard<std::mutex> lock(store.Mutex);
+  return store.Recent.size();
+}

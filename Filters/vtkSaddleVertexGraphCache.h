@@ -1,0 +1,68 @@
+// vtkSaddleVertexGraphCache: the process-wide store of saddle vertex graphs (gs::SaddleVertexGraph),
+// so that a graph is built once per mesh geometry and K and then shared by every filter instance
+// and every filter of the suite that needs it.
+//
+// Not a vtkObject and not wrapped (a private class of the GeodesicShapes::Filters module).
+//  - Graphs are keyed by (gs::SaddleVertexGraph::HashMesh(mesh), effective K), where the
+//    effective K is K clamped to the vertex count (the core does the same). A pipeline that
+//    re-executes and produces a new vtkPolyData with identical points and cells hashes to the
+//    same key: the graph is not rebuilt.
+//  - The Capacity most recently used graphs are kept alive by the cache; any graph still held by
+//    a filter (a shared_ptr) is found as well, however old.
+//  - With a file name: a graph found in memory is written there once (so the file exists for
+//    the next session); otherwise the file is loaded when it matches the mesh and K; a missing
+//    file is silent, a stale or corrupt one gets a warning and the graph is rebuilt, then saved
+//    (a failed save is a warning).
+//  - An aborted build (the progress callback returned false) caches nothing.
+// Thread-safe (one mutex around the store; builds and file I/O run outside it).
+#ifndef vtkSaddleVertexGraphCache_h
+#define vtkSaddleVertexGraphCache_h
+
+#include "GeodesicShapesFiltersModule.h" // for export macro (tests reset the cache)
+
+#include "SaddleVertexGraph.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+class GEODESICSHAPESFILTERS_EXPORT vtkSaddleVertexGraphCache
+{
+public:
+  // Where a graph handed out by Get() came from.
+  enum class Origin
+  {
+    Memory, // already in the process (this or another filter built or loaded it)
+    File,   // loaded from the cache file
+    Built   // built now
+  };
+  // "memory", "loaded", "built" (the values of the SVGGraphOrigin field data array).
+  static const char* OriginName(Origin origin);
+
+  struct Result
+  {
+    std::shared_ptr<const gs::SaddleVertexGraph> Graph; // null on error or abort
+    Origin From = Origin::Built;
+    bool Aborted = false;
+    std::string Error;                 // why there is no graph (empty on abort)
+    std::vector<std::string> Warnings; // stale/corrupt cache file, failed save
+  };
+
+  // The graph of `mesh` (whose HashMesh is `meshHash`) for K, from memory, from `fileName` (if
+  // not empty) or built with the core's default thread count. `progress` (may be empty) sees
+  // the build's fraction done and aborts it by returning false. K < 1 is an error (the core's
+  // message).
+  static Result Get(const gs::TriangleMesh& mesh, std::uint64_t meshHash, int k,
+    const std::string& fileName, const gs::ProgressCallback& progress);
+
+  // Number of most recently used graphs the cache keeps alive.
+  static constexpr std::size_t Capacity = 4;
+  // Forgets every graph (graphs still held by filters stay valid but are no longer found).
+  static void Clear();
+  // Graphs kept alive by the cache itself (at most Capacity).
+  static std::size_t NumberOfGraphs();
+};
+
+#endif

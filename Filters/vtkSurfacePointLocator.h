@@ -1,0 +1,44 @@
+// vtkSurfacePointLocator: snaps points in space to the closest point of a converted surface, as
+// a core gs::SurfacePoint (a face of the core mesh with barycentric coordinates).
+//
+// Not a vtkObject and not wrapped (a private class of the GeodesicShapes::Filters module): every
+// filter that takes sources or queries as points in space (source points, curve samples) snaps
+// them with it. Built on a vtkStaticCellLocator over vtkSurfaceMeshConverter::Result::Triangles,
+// whose cell i is core face i.
+#ifndef vtkSurfacePointLocator_h
+#define vtkSurfacePointLocator_h
+
+#include "vtkSurfaceMeshConverter.h"
+
+#include "SurfacePoint.h"
+
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include <string>
+
+class vtkGenericCell;
+class vtkStaticCellLocator;
+
+class vtkSurfacePointLocator
+{
+public:
+  // `mesh` must be a successful conversion and outlive the locator. Builds the cell locator.
+  explicit vtkSurfacePointLocator(const vtkSurfaceMeshConverter::Result& mesh);
+  ~vtkSurfacePointLocator();
+
+  // The closest surface point to x (on a vertex, an edge or inside a face; always returned as a
+  // face point with barycentric coordinates in the core face's corner order). False, with the
+  // reason in `error`, for non-finite coordinates or when x cannot be snapped.
+  bool Snap(const double x[3], gs::SurfacePoint& point, std::string& error);
+
+  vtkSurfacePointLocator(const vtkSurfacePointLocator&) = delete;
+  vtkSurfacePointLocator& operator=(const vtkSurfacePointLocator&) = delete;
+
+private:
+  const vtkSurfaceMeshConverter::Result& Mesh;
+  vtkSmartPointer<vtkStaticCellLocator> Locator;
+  vtkSmartPointer<vtkGenericCell> Cell; // scratch cell for the queries
+};
+
+#endif
