@@ -41,7 +41,9 @@ bool vtkSurfacePointLocator::Snap(const double x[3], gs::SurfacePoint& point, st
     return false;
   }
   // Barycentric coordinates in the triangle's point order, then matched to the core face's
-  // corners by vertex (the mesh builder may have re-oriented the face).
+  // corners by vertex (the mesh builder may have re-oriented the face). The locator used
+  // Cell as scratch space: fetch the closest triangle itself.
+  this->Mesh.Triangles->GetCell(cellId, this->Cell);
   double snapped[3];
   this->Cell->EvaluatePosition(closest, snapped, subId, pcoords, dist2, weights);
   const std::array<int, 3>& face = mesh.Face(static_cast<int>(cellId));
