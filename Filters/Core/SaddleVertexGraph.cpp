@@ -21,7 +21,7 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
-constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '1' };
+constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '2' };
 
 // FNV-1a, 64 bits.
 struct Hasher
@@ -115,6 +115,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     ExactGeodesicSolver solver(mesh);
     ExactGeodesicOptions opt;
     opt.MaximumFinalVertices = k;
+    int masterCount = 0;
 #pragma omp for schedule(dynamic, 64)
     for (int s = 0; s < nv; ++s)
     {
@@ -137,7 +138,8 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
 #else
       const bool master = true;
 #endif
-      if (master && progress && (n % 256 == 0) && !progress(0.95 * n / nv))
+      // The calling thread reports (and may abort) every few of its own vertices.
+      if (master && progress && (++masterCount % 16 == 0) && !progress(0.95 * n / nv))
       {
         aborted = true;
       }
@@ -218,12 +220,16 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
       Weights[Offsets[v] + i] = raw[count[v] + i].second;
     }
   }
+  if (progress && !progress(1.0))
+  {
+    Offsets.clear();
+    Targets.clear();
+    Weights.clear();
+    error = "aborted";
+    return false;
+  }
   K = k;
   Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (progress)
-  {
-    progress(1.0);
-  }
   return true;
 }
 
@@ -238,9 +244,11 @@ bool SaddleVertexGraph::Save(
   }
   const std::int64_t nv = NumberOfVertices(), ne = NumberOfEntries();
   const std::int32_t k = K;
+  const double seconds = Seconds;
   Hasher sum;
   sum.Add(&meshHash, sizeof(meshHash));
   sum.Add(&k, sizeof(k));
+  sum.Add(&seconds, sizeof(seconds));
   sum.Add(&nv, sizeof(nv));
   sum.Add(&ne, sizeof(ne));
   sum.AddVector(Offsets);
@@ -249,6 +257,7 @@ bool SaddleVertexGraph::Save(
   out.write(Magic, sizeof(Magic));
   out.write(reinterpret_cast<const char*>(&meshHash), sizeof(meshHash));
   out.write(reinterpret_cast<const char*>(&k), sizeof(k));
+  out.write(reinterpret_cast<const char*>(&seconds), sizeof(seconds));
   out.write(reinterpret_cast<const char*>(&nv), sizeof(nv));
   out.write(reinterpret_cast<const char*>(&ne), sizeof(ne));
   out.write(reinterpret_cast<const char*>(Offsets.data()), Offsets.size() * sizeof(std::int64_t));
@@ -281,10 +290,12 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   char magic[8] = {};
   std::uint64_t hash = 0;
   std::int32_t fileK = 0;
+  double seconds = 0.0;
   std::int64_t nv = 0, ne = 0;
   in.read(magic, sizeof(magic));
   in.read(reinterpret_cast<char*>(&hash), sizeof(hash));
   in.read(reinterpret_cast<char*>(&fileK), sizeof(fileK));
+  in.read(reinterpret_cast<char*>(&seconds), sizeof(seconds));
   in.read(reinterpret_cast<char*>(&nv), sizeof(nv));
   in.read(reinterpret_cast<char*>(&ne), sizeof(ne));
   if (!in || std::memcmp(magic, Magic, sizeof(Magic)) != 0)
@@ -297,12 +308,14 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
     error = path + " was made for another mesh";
     return false;
   }
-  if (fileK != k)
+  // K is clamped to the vertex count when building: compare the clamped request.
+  if (nv >= 1 && static_cast<std::int64_t>(fileK) != std::min<std::int64_t>(k, nv))
   {
     error = path + " was made with K = " + std::to_string(fileK) + ", not " + std::to_string(k);
     return false;
   }
-  const std::int64_t header = sizeof(Magic) + sizeof(hash) + sizeof(fileK) + 2 * sizeof(std::int64_t);
+  const std::int64_t header =
+    sizeof(Magic) + sizeof(hash) + sizeof(fileK) + sizeof(seconds) + 2 * sizeof(std::int64_t);
   if (nv < 1 || ne < 0 || nv > (1LL << 31) || ne > (1LL << 40) ||
     fileSize != header + (nv + 1) * 8 + ne * 12 + 8)
   {
@@ -325,6 +338,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   Hasher sum;
   sum.Add(&hash, sizeof(hash));
   sum.Add(&fileK, sizeof(fileK));
+  sum.Add(&seconds, sizeof(seconds));
   sum.Add(&nv, sizeof(nv));
   sum.Add(&ne, sizeof(ne));
   sum.AddVector(offsets);
@@ -362,7 +376,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   Targets = std::move(targets);
   Weights = std::move(weights);
   K = fileK;
-  Seconds = 0.0;
+  Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;
   return true;
 }
 

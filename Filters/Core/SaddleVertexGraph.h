@@ -31,8 +31,9 @@ struct SaddleVertexGraphOptions
 class SaddleVertexGraph
 {
 public:
-  // Builds the graph. Returns false when aborted by the progress callback or when the request is
-  // invalid (error says why); the graph is then empty.
+  // Builds the graph. Returns false when aborted by the progress callback (its last call, with
+  // 1.0, may still abort) or when the request is invalid (error says why); the graph is then
+  // empty. The calling thread reports progress every 16 of the vertices it solves.
   bool Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
     const ProgressCallback& progress, std::string& error);
 
@@ -56,9 +57,10 @@ public:
 
   // A hash of the mesh geometry and connectivity (positions bit for bit, faces).
   static std::uint64_t HashMesh(const TriangleMesh& mesh);
-  // Cache files: Save writes the graph with the mesh hash and K; Load accepts a file only if it
-  // is intact (checksum), for the same mesh hash and K, and well-formed; otherwise it returns
-  // false with the reason and leaves the graph empty.
+  // Cache files: Save writes the graph with the mesh hash, K and its build time; Load accepts a
+  // file only if it is intact (checksum), for the same mesh hash and K (clamped to the vertex
+  // count, as Build does), and well-formed; otherwise it returns false with the reason and leaves
+  // the graph empty. BuildSeconds() of a loaded graph is the original build's.
   bool Save(const std::string& path, std::uint64_t meshHash, std::string& error) const;
   bool Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error);
 

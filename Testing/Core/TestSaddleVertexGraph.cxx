@@ -349,18 +349,19 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
   const TriangleMesh m = Bumpy(2, 9);
   const SaddleVertexGraph g = BuildGraph(m, 20);
   const std::uint64_t hash = SaddleVertexGraph::HashMesh(m);
-  const std::string path = TempPath("gs_cache_test.svg");
+  const std::string path = TempPath("gs_cache_test.svgg");
   std::string error;
   ASSERT_TRUE(g.Save(path, hash, error)) << error;
   SaddleVertexGraph loaded;
   ASSERT_TRUE(loaded.Load(path, hash, 20, error)) << error;
   EXPECT_TRUE(loaded == g);
+  EXPECT_EQ(loaded.BuildSeconds(), g.BuildSeconds());
   EXPECT_FALSE(loaded.Load(path, hash + 1, 20, error));
   EXPECT_NE(error.find("another mesh"), std::string::npos) << error;
   EXPECT_TRUE(loaded.Empty());
   EXPECT_FALSE(loaded.Load(path, hash, 21, error));
   EXPECT_NE(error.find("K ="), std::string::npos) << error;
-  EXPECT_FALSE(loaded.Load(TempPath("does_not_exist.svg"), hash, 20, error));
+  EXPECT_FALSE(loaded.Load(TempPath("does_not_exist.svgg"), hash, 20, error));
 
   // A stale file: the mesh moved a little.
   TriangleSoup s = MakeIcosphere(1.0, 2);
