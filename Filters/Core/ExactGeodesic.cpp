@@ -61,6 +61,7 @@ ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
     } while (h >= 0 && h != start);
   }
   InAngle.assign(nv, std::numeric_limits<double>::quiet_NaN());
+  Departure.assign(nv, std::numeric_limits<double>::quiet_NaN());
   Dist.assign(nv, Inf);
   Origin.assign(nv, 0);
   CrossHalfedge.assign(nv, -1);
@@ -82,6 +83,7 @@ void ExactGeodesicSolver::Reset()
     Final[v] = 0;
     Propagated[v] = 0;
     InAngle[v] = std::numeric_limits<double>::quiet_NaN();
+    Departure[v] = std::numeric_limits<double>::quiet_NaN();
   }
   Touched.clear();
   FinalOrder.clear();
@@ -103,7 +105,7 @@ std::vector<double> ExactGeodesicSolver::Distances() const
 }
 
 void ExactGeodesicSolver::UpdateVertex(
-  int v, double d, int origin, int via, double crossing, double inAngle)
+  int v, double d, int origin, int via, double crossing, double inAngle, double departure)
 {
   if (Final[v] || !(d < Dist[v] + Tolerance))
   {
@@ -132,6 +134,7 @@ void ExactGeodesicSolver::UpdateVertex(
   }
   Dist[v] = d;
   Origin[v] = origin;
+  Departure[v] = departure;
   CrossHalfedge[v] = via;
   CrossX[v] = crossing;
   VertexQueue.push_back({ d, v });
@@ -142,6 +145,7 @@ void ExactGeodesicSolver::UpdateVertex(
     Window e;
     e.Key = d;
     e.B0 = e.B1 = e.Ix = e.Iy = 0.0;
+    e.Phi = 0.0;
     e.Sigma = d;
     e.H = -1 - v;
     e.Src = -1 - v;
@@ -336,12 +340,12 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       {
         const int back = M.Twin(h);
         UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0,
-          back >= 0 ? FanAngle[back] : M.TotalAngle(a));
+          back >= 0 ? FanAngle[back] : M.TotalAngle(a), src >= 0 ? p0 : std::numeric_limits<double>::quiet_NaN());
       }
       if (toEnd)
       {
         UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0,
-          FanAngle[TriangleMesh::Prev(h)]);
+          FanAngle[TriangleMesh::Prev(h)], src >= 0 ? p0 + beta : std::numeric_limits<double>::quiet_NaN());
       }
       const int t = M.Twin(opp);
       if (t < 0)
@@ -361,6 +365,8 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       w.B1 = fromStart ? ab : std::min(ab, ab - fromA(r0));
       w.Ix = ab - Cx[opp];
       w.Iy = -Cy[opp];
+      // In t's frame the direction from v to a is (Cx, Cy) of opp: departure angle p0.
+      w.Phi = p0 - std::atan2(Cy[opp], Cx[opp]);
       w.Sigma = sigma;
       w.Src = src;
       if (w.B1 > w.B0)
@@ -372,8 +378,31 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
   } while (h >= 0 && h != start);
 }
 
-void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src)
+void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src, int sourceFace)
 {
+  // Departure angles are measured in the source face's plane from its first edge; a neighbour
+  // face (source on an edge) is unfolded about the shared edge into that plane.
+  const Vec3 n0 = M.FaceNormal(sourceFace);
+  const Vec3 e0 = M.Position(M.Face(sourceFace)[1]) - M.Position(M.Face(sourceFace)[0]);
+  const Vec3 x0 = e0 / Norm(e0), y0 = Cross(n0, x0);
+  const Vec3 nf = M.FaceNormal(f);
+  // Angle of a direction d lying in face f, expressed in the source face's frame.
+  auto angleOf = [&](const Vec3& d) {
+    Vec3 u = d;
+    if (f != sourceFace)
+    {
+      // Rotate about the shared edge so that face f lies in the source face's plane.
+      const Vec3 axis = Cross(nf, n0);
+      const double s = Norm(axis);
+      if (s > 1e-15)
+      {
+        const Vec3 k = axis / s;
+        const double c = Dot(nf, n0);
+        u = u * c + Cross(k, u) * s + k * (Dot(k, u) * (1.0 - c));
+      }
+    }
+    return std::atan2(Dot(u, y0), Dot(u, x0));
+  };
   for (int k = 0; k < 3; ++k)
   {
     const int e = 3 * f + k;
@@ -381,7 +410,7 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src)
     const Vec3& Y = M.Position(M.Destination(e));
     const Vec3 toP = p - X, toY = Y - X;
     UpdateVertex(M.Origin(e), Norm(toP), src, -1, 0.0,
-      FanAngle[e] + std::atan2(Norm(Cross(toY, toP)), Dot(toY, toP)));
+      FanAngle[e] + std::atan2(Norm(Cross(toY, toP)), Dot(toY, toP)), angleOf(X - p));
     const int t = M.Twin(e);
     const double len = M.EdgeLength(e);
     // t runs Y -> X; in its frame the source lies below the edge (on f's side).
@@ -399,6 +428,8 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src)
     w.B1 = len;
     w.Ix = x;
     w.Iy = y;
+    // The frame's x axis (Y -> X) has angle angleOf(X - Y) in the source frame.
+    w.Phi = angleOf(X - Y);
     w.Sigma = 0.0;
     w.Src = src;
     PushWindow(w);
@@ -427,7 +458,8 @@ void ExactGeodesicSolver::Propagate(Window w)
       // face's frame, as about C's fan).
       const double ax = -cx, ay = -cy, qx = ix - cx, qy = iy - cy;
       UpdateVertex(vC, dC, w.Src, h, xc,
-        FanAngle[TriangleMesh::Prev(h)] + std::atan2(ax * qy - ay * qx, ax * qx + ay * qy));
+        FanAngle[TriangleMesh::Prev(h)] + std::atan2(ax * qy - ay * qx, ax * qx + ay * qy),
+        w.Src >= 0 ? w.Phi + std::atan2(cy - iy, cx - ix) : std::numeric_limits<double>::quiet_NaN());
     }
     else if (dC > Dist[vC] + Tolerance && CrossHalfedge[vC] == h)
     {
@@ -470,6 +502,7 @@ void ExactGeodesicSolver::Propagate(Window w)
         c.H = t;
         c.Sigma = w.Sigma;
         c.Src = w.Src;
+        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(cy, cx) : 0.0;
         PushWindow(c);
       }
     }
@@ -496,6 +529,7 @@ void ExactGeodesicSolver::Propagate(Window w)
         c.H = t;
         c.Sigma = w.Sigma;
         c.Src = w.Src;
+        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(-cy, L - cx) : 0.0;
         PushWindow(c);
       }
     }
@@ -584,20 +618,21 @@ bool ExactGeodesicSolver::Solve(
       if (!s.IsVertex())
       {
         const Vec3 p = M.Interpolate(s.Face, b);
-        AddFaceSourceWindows(s.Face, p, i);
+        AddFaceSourceWindows(s.Face, p, i, s.Face);
         for (int k = 0; k < 3; ++k)
         {
           // On an edge: the face across it holds the source too.
           const int e = 3 * s.Face + (k + 1) % 3; // edge opposite corner k
           if (b[k] < 1e-12 && M.Twin(e) >= 0)
           {
-            AddFaceSourceWindows(M.Twin(e) / 3, p, i);
+            AddFaceSourceWindows(M.Twin(e) / 3, p, i, s.Face);
           }
         }
         continue;
       }
     }
-    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, std::numeric_limits<double>::quiet_NaN());
+    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, std::numeric_limits<double>::quiet_NaN(),
+      std::numeric_limits<double>::quiet_NaN());
     if (!Propagated[s.Vertex])
     {
       Propagated[s.Vertex] = 1;

@@ -76,6 +76,11 @@ public:
   // True when the shortest path to v passes through no saddle or boundary vertex (other than a
   // source itself): the edges of the saddle vertex graph.
   bool IsDirect(int v) const { return Final[v] && Origin[v] >= 0; }
+  // For a direct vertex: the direction in which its shortest path leaves the source, as an
+  // angle about the source counter-clockwise (about the outward normal) from the source's
+  // VertexHalfedge (vertex source, 0 .. its total angle) or from the face's first edge, corner 0
+  // to corner 1 (face point source). NaN for other vertices. (The log-map angle.)
+  double DepartureAngle(int v) const { return IsDirect(v) ? Departure[v] : std::numeric_limits<double>::quiet_NaN(); }
 
   const ExactGeodesicStatistics& Statistics() const { return Stats; }
   const TriangleMesh& Mesh() const { return M; }
@@ -87,6 +92,7 @@ private:
     double B0, B1; // interval along half-edge H, measured from Origin(H)
     double Ix, Iy; // unfolded pseudo-source in H's frame (x along H, y > 0 towards face(H))
     double Sigma;  // distance from the real source to the pseudo-source
+    double Phi;    // for a real source: departure angle = Phi + angle of (x - I) in this frame
     int H;         // half-edge the window lies on; it propagates into face(H). <0: vertex event
     int Src;       // PathOrigin code of the pseudo-source
   };
@@ -104,13 +110,14 @@ private:
   void Reset();
   // inAngle: direction (in v's fan, see FanAngle) towards where the path comes from; NaN if
   // unknown. It limits which directions v spreads into when it becomes a pseudo-source.
-  void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing, double inAngle);
+  void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing, double inAngle,
+    double departure);
   void PushWindow(Window w);
   void Enqueue(const Window& w);
   Window Dequeue();
   void Propagate(Window w);
   void PropagateFromVertex(int v, double sigma, int src);
-  void AddFaceSourceWindows(int f, const Vec3& p, int src);
+  void AddFaceSourceWindows(int f, const Vec3& p, int src, int sourceFace);
   bool Trim(Window& w) const;
   void FinalizeUpTo(double key);
 
@@ -125,6 +132,7 @@ private:
   std::vector<int> Origin;
   std::vector<int> CrossHalfedge; // half-edge crossed by the best path to v in its last face
   std::vector<double> InAngle;    // where the best path to v arrives from (NaN: several/unknown)
+  std::vector<double> Departure;  // departure angle at the source of the best path to v
   std::vector<double> CrossX;     // where it crossed (in that half-edge's frame)
   std::vector<unsigned char> Final;
   std::vector<unsigned char> Propagated; // pseudo-source vertex already spread its windows

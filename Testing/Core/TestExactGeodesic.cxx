@@ -399,3 +399,62 @@ TEST(ExactGeodesic, RejectsInvalidSources)
   EXPECT_FALSE(solver.Solve({ SurfacePoint::InFace(0, NAN, 0.5, 0.5) }));
   EXPECT_EQ(solver.Distance(0), ExactGeodesicSolver::Unreachable);
 }
+
+TEST(ExactGeodesic, DepartureAnglesAreTheLogMapAngles)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(16, 16, 2.0, 2.0));
+  ExactGeodesicSolver solver(m);
+  auto wrap = [](double a) {
+    a = std::fmod(a, 2 * Pi);
+    return a < 0 ? a + 2 * Pi : a;
+  };
+  auto angleDiff = [&](double a, double b) {
+    const double d = wrap(a - b);
+    return std::min(d, 2 * Pi - d);
+  };
+  // Vertex source in the interior: angles from the direction of its VertexHalfedge.
+  const int s = 8 * 17 + 8;
+  ASSERT_TRUE(solver.Solve(s));
+  const Vec3 ps = m.Position(s);
+  const Vec3 ref = m.Position(m.Destination(m.VertexHalfedge(s))) - ps;
+  const double ref0 = std::atan2(ref.y, ref.x);
+  int checked = 0;
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    if (v == s)
+      continue;
+    const Vec3 d = m.Position(v) - ps;
+    ASSERT_TRUE(std::isfinite(solver.DepartureAngle(v))) << v;
+    EXPECT_LT(angleDiff(solver.DepartureAngle(v), std::atan2(d.y, d.x) - ref0), 1e-9) << v;
+    ++checked;
+  }
+  EXPECT_EQ(checked, m.NumberOfVertices() - 1);
+  // Face point source: angles from the face's first edge.
+  const SurfacePoint fp = SurfacePoint::InFace(200, 0.3, 0.3, 0.4);
+  ASSERT_TRUE(solver.Solve({ fp }));
+  const Vec3 p = m.Interpolate(fp.Face, fp.Bary);
+  const Vec3 e0 = m.Position(m.Face(fp.Face)[1]) - m.Position(m.Face(fp.Face)[0]);
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    const Vec3 d = m.Position(v) - p;
+    EXPECT_LT(angleDiff(solver.DepartureAngle(v), std::atan2(d.y, d.x) - std::atan2(e0.y, e0.x)), 1e-9) << v;
+  }
+  // Behind a saddle or reflex corner: no departure angle.
+  const TriangleMesh l = BuildMesh(MakeLShape(4));
+  ExactGeodesicSolver ls(l);
+  int top = -1;
+  for (int v = 0; v < l.NumberOfVertices(); ++v)
+    if (l.Position(v).x == 0.0 && l.Position(v).y == 2.0)
+      top = v;
+  ASSERT_GE(top, 0);
+  ls.Solve(top);
+  int hidden = 0;
+  for (int v = 0; v < l.NumberOfVertices(); ++v)
+  {
+    if (v == top)
+      continue;
+    EXPECT_EQ(std::isfinite(ls.DepartureAngle(v)), ls.IsDirect(v));
+    hidden += !ls.IsDirect(v);
+  }
+  EXPECT_GT(hidden, 0);
+}
