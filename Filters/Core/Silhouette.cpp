@@ -1,0 +1,407 @@
+#include "Silhouette.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace gs
+{
+
+std::size_t SilhouetteMask::Count() const
+{
+  return static_cast<std::size_t>(std::count(this->Inside.begin(), this->Inside.end(), 1));
+}
+
+//------------------------------------------------------------------------------
+SilhouetteReadResult MakeSilhouette(const float* pixels, int width, int height, int channels,
+  int alphaChannel, const SilhouetteThresholds& thresholds)
+{
+  SilhouetteReadResult result;
+  if (width <= 0 || height <= 0 || channels <= 0 || !pixels)
+  {
+    result.Error = "empty image";
+    return result;
+  }
+  result.FromAlpha = alphaChannel >= 0 && alphaChannel < channels;
+  SilhouetteMask& mask = result.Mask;
+  mask.Width = width;
+  mask.Height = height;
+  mask.Inside.assign(static_cast<std::size_t>(width) * height, 0);
+  const int colours = result.FromAlpha ? std::min(alphaChannel, 3) : std::min(channels, 3);
+  for (int row = 0; row < height; ++row)
+  {
+    const int y = height - 1 - row; // files store the top row first; y is up
+    for (int x = 0; x < width; ++x)
+    {
+      const float* p = pixels + (static_cast<std::size_t>(row) * width + x) * channels;
+      bool inside;
+      if (result.FromAlpha)
+      {
+        inside = p[alphaChannel] >= thresholds.AlphaThreshold;
+      }
+      else
+      {
+        // Rec. 709 luminance of RGB; a grey image is its own luminance.
+        const double lum =
+          colours >= 3 ? 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2] : p[0];
+        inside = lum < thresholds.LuminanceThreshold;
+      }
+      mask.Inside[static_cast<std::size_t>(y) * width + x] = inside ? 1 : 0;
+    }
+  }
+  const std::size_t count = mask.Count();
+  if (count == 0)
+  {
+    result.Error = result.FromAlpha
+      ? "no pixel has alpha >= AlphaThreshold (all transparent): empty silhouette"
+      : "no pixel has luminance < LuminanceThreshold (all light): empty silhouette";
+    return result;
+  }
+  if (count == mask.Inside.size())
+  {
+    result.Error = result.FromAlpha
+      ? "every pixel has alpha >= AlphaThreshold (all opaque): the silhouette is the whole image"
+      : "every pixel has luminance < LuminanceThreshold (all dark): the silhouette is the whole "
+        "image";
+    return result;
+  }
+  result.Ok = true;
+  return result;
+}
+
+//------------------------------------------------------------------------------
+SilhouetteReadResult ReadSilhouetteImage(
+  const std::string& fileName, const SilhouetteThresholds& thresholds)
+{
+  SilhouetteReadResult result;
+  auto input = OIIO::ImageInput::open(fileName);
+  if (!input)
+  {
+    result.Error = "cannot read image '" + fileName + "': " + OIIO::geterror();
+    return result;
+  }
+  const OIIO::ImageSpec spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+  {
+    result.Error = "image '" + fileName + "' is empty";
+    return result;
+  }
+  std::vector<float> pixels(
+    static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+  {
+    result.Error = "cannot read the pixels of '" + fileName + "': " + input->geterror();
+    return result;
+  }
+  input->close();
+  result = MakeSilhouette(
+    pixels.data(), spec.width, spec.height, spec.nchannels, spec.alpha_channel, thresholds);
+  if (!result.Ok)
+  {
+    result.Error = "image '" + fileName + "': " + result.Error;
+  }
+  return result;
+}
+
+//------------------------------------------------------------------------------
+bool WriteSilhouetteImage(
+  const SilhouetteMask& mask, const std::string& fileName, bool withAlpha, std::string* error)
+{
+  auto fail = [&](const std::string& message) {
+    if (error)
+    {
+      *error = message;
+    }
+    return false;
+  };
+  if (mask.Width <= 0 || mask.Height <= 0)
+  {
+    return fail("empty mask");
+  }
+  auto output = OIIO::ImageOutput::create(fileName);
+  if (!output)
+  {
+    return fail("cannot create '" + fileName + "': " + OIIO::geterror());
+  }
+  const int channels = withAlpha ? 4 : 1;
+  OIIO::ImageSpec spec(mask.Width, mask.Height, channels, OIIO::TypeDesc::UINT8);
+  if (withAlpha)
+  {
+    spec.alpha_channel = 3;
+  }
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(mask.Width) * mask.Height * channels);
+  for (int row = 0; row < mask.Height; ++row)
+  {
+    const int y = mask.Height - 1 - row;
+    for (int x = 0; x < mask.Width; ++x)
+    {
+      unsigned char* p = &pixels[(static_cast<std::size_t>(row) * mask.Width + x) * channels];
+      const bool in = mask.At(x, y);
+      if (withAlpha)
+      {
+        p[0] = p[1] = p[2] = 0;
+        p[3] = in ? 255 : 0;
+      }
+      else
+      {
+        p[0] = in ? 0 : 255;
+      }
+    }
+  }
+  if (!output->open(fileName, spec) ||
+    !output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !output->close())
+  {
+    return fail("cannot write '" + fileName + "': " + output->geterror());
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::size_t Shape2D::NumberOfEdges() const
+{
+  std::size_t n = 0;
+  for (const auto& ring : this->Rings)
+  {
+    n += ring.size();
+  }
+  return n;
+}
+
+double Shape2D::Area() const
+{
+  double twice = 0.0;
+  for (const auto& ring : this->Rings)
+  {
+    for (std::size_t k = 0; k < ring.size(); ++k)
+    {
+      twice += Cross(ring[k], ring[(k + 1) % ring.size()]);
+    }
+  }
+  return 0.5 * twice;
+}
+
+namespace
+{
+bool RingContains(const std::vector<Vec2>& ring, const Vec2& p)
+{
+  bool inside = false;
+  for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+  {
+    const Vec2& a = ring[k];
+    const Vec2& b = ring[(k + 1) % n];
+    if ((a.y > p.y) != (b.y > p.y))
+    {
+      const double x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+      if (x > p.x)
+      {
+        inside = !inside;
+      }
+    }
+  }
+  return inside;
+}
+} // namespace
+
+bool Shape2D::Contains(const Vec2& p) const
+{
+  bool inside = false;
+  for (const auto& ring : this->Rings)
+  {
+    inside ^= RingContains(ring, p);
+  }
+  return inside;
+}
+
+//------------------------------------------------------------------------------
+Shape2D ShapeFromMask(const SilhouetteMask& mask)
+{
+  // Directed pixel-boundary edges with the inside on the left; vertex (x, y) has id
+  // y * (W + 1) + x. Directions: 0 = +x, 1 = +y, 2 = -x, 3 = -y.
+  const int W = mask.Width, H = mask.Height;
+  const auto vid = [W](int x, int y) { return static_cast<std::size_t>(y) * (W + 1) + x; };
+  struct Edge
+  {
+    std::size_t From, To;
+    int Dir;
+  };
+  std::vector<Edge> edges;
+  std::vector<int> out0(static_cast<std::size_t>(W + 1) * (H + 1), -1);
+  std::vector<int> out1(out0.size(), -1);
+  auto add = [&](int x0, int y0, int x1, int y1, int dir) {
+    const Edge e{ vid(x0, y0), vid(x1, y1), dir };
+    const int id = static_cast<int>(edges.size());
+    edges.push_back(e);
+    (out0[e.From] < 0 ? out0[e.From] : out1[e.From]) = id;
+  };
+  for (int y = 0; y < H; ++y)
+  {
+    for (int x = 0; x < W; ++x)
+    {
+      if (!mask.At(x, y))
+      {
+        continue;
+      }
+      if (!mask.At(x, y - 1))
+        add(x, y, x + 1, y, 0);
+      if (!mask.At(x + 1, y))
+        add(x + 1, y, x + 1, y + 1, 1);
+      if (!mask.At(x, y + 1))
+        add(x + 1, y + 1, x, y + 1, 2);
+      if (!mask.At(x - 1, y))
+        add(x, y + 1, x, y, 3);
+    }
+  }
+  Shape2D shape;
+  std::vector<char> used(edges.size(), 0);
+  std::vector<int> loop;
+  for (std::size_t start = 0; start < edges.size(); ++start)
+  {
+    if (used[start])
+    {
+      continue;
+    }
+    loop.clear();
+    int cur = static_cast<int>(start);
+    while (cur >= 0 && !used[cur])
+    {
+      used[cur] = 1;
+      loop.push_back(cur);
+      const std::size_t v = edges[cur].To;
+      int a = out0[v], b = out1[v];
+      if (a >= 0 && used[a])
+        a = -1;
+      if (b >= 0 && used[b])
+        b = -1;
+      if (a >= 0 && b >= 0)
+      {
+        // Two ways on at a corner shared by diagonal pixels: turn right (joins them).
+        const int right = (edges[cur].Dir + 3) % 4;
+        cur = edges[a].Dir == right ? a : b;
+      }
+      else
+      {
+        cur = a >= 0 ? a : b;
+      }
+    }
+    // Keep only the corners (where the direction changes).
+    std::vector<Vec2> ring;
+    const std::size_t n = loop.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const Edge& e = edges[loop[k]];
+      if (e.Dir != edges[loop[(k + n - 1) % n]].Dir)
+      {
+        ring.emplace_back(
+          static_cast<double>(e.From % (W + 1)), static_cast<double>(e.From / (W + 1)));
+      }
+    }
+    if (ring.size() >= 3)
+    {
+      shape.Rings.push_back(std::move(ring));
+    }
+  }
+  return shape;
+}
+
+//------------------------------------------------------------------------------
+Shape2D ShapeFromPolygons(const std::vector<std::vector<Vec2>>& polygons)
+{
+  Shape2D shape;
+  for (const auto& polygon : polygons)
+  {
+    std::vector<Vec2> ring;
+    for (const Vec2& p : polygon)
+    {
+      if (ring.empty() || p.x != ring.back().x || p.y != ring.back().y)
+      {
+        ring.push_back(p);
+      }
+    }
+    while (ring.size() > 1 && ring.front().x == ring.back().x && ring.front().y == ring.back().y)
+    {
+      ring.pop_back();
+    }
+    double twice = 0.0;
+    for (std::size_t k = 0; k < ring.size(); ++k)
+    {
+      twice += Cross(ring[k], ring[(k + 1) % ring.size()]);
+    }
+    if (ring.size() >= 3 && twice != 0.0)
+    {
+      shape.Rings.push_back(std::move(ring));
+    }
+  }
+  // Orientation from the nesting depth: outer rings counter-clockwise, holes clockwise.
+  const std::size_t n = shape.Rings.size();
+  std::vector<int> depth(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (std::size_t j = 0; j < n; ++j)
+    {
+      if (i != j && RingContains(shape.Rings[j], shape.Rings[i][0]))
+      {
+        ++depth[i];
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    auto& ring = shape.Rings[i];
+    double twice = 0.0;
+    for (std::size_t k = 0; k < ring.size(); ++k)
+    {
+      twice += Cross(ring[k], ring[(k + 1) % ring.size()]);
+    }
+    if ((twice > 0.0) != (depth[i] % 2 == 0))
+    {
+      std::reverse(ring.begin(), ring.end());
+    }
+  }
+  return shape;
+}
+
+//------------------------------------------------------------------------------
+SilhouetteMask RasterizeShape(
+  const Shape2D& shape, int width, int height, const Vec2& origin, double pixelSize)
+{
+  SilhouetteMask mask;
+  mask.Width = std::max(width, 0);
+  mask.Height = std::max(height, 0);
+  mask.Inside.assign(static_cast<std::size_t>(mask.Width) * mask.Height, 0);
+  std::vector<double> crossings;
+  for (int y = 0; y < mask.Height; ++y)
+  {
+    const double py = origin.y + (y + 0.5) * pixelSize;
+    crossings.clear();
+    for (const auto& ring : shape.Rings)
+    {
+      for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+      {
+        const Vec2& a = ring[k];
+        const Vec2& b = ring[(k + 1) % n];
+        if ((a.y > py) != (b.y > py))
+        {
+          crossings.push_back(a.x + (py - a.y) / (b.y - a.y) * (b.x - a.x));
+        }
+      }
+    }
+    std::sort(crossings.begin(), crossings.end());
+    for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
+    {
+      // Pixels whose centre lies in [crossings[k], crossings[k+1]).
+      const double x0 = (crossings[k] - origin.x) / pixelSize - 0.5;
+      const double x1 = (crossings[k + 1] - origin.x) / pixelSize - 0.5;
+      const int first = std::max(0, static_cast<int>(std::ceil(x0)));
+      const int last = std::min(mask.Width - 1, static_cast<int>(std::ceil(x1)) - 1);
+      for (int x = first; x <= last; ++x)
+      {
+        mask.Inside[static_cast<std::size_t>(y) * mask.Width + x] = 1;
+      }
+    }
+  }
+  return mask;
+}
+
+} // namespace gs
