@@ -1,0 +1,412 @@
+#include "vtkMSDTSource.h"
+
+#include "SafeDistanceTable.h"
+#include "Silhouette.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkDemandDrivenPipeline.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <cmath>
+#include <initializer_list>
+#include <map>
+#include <sstream>
+
+vtkStandardNewMacro(vtkMSDTSource);
+
+//------------------------------------------------------------------------------
+vtkMSDTSource::vtkMSDTSource()
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(3);
+}
+
+vtkMSDTSource::~vtkMSDTSource() = default;
+
+//------------------------------------------------------------------------------
+void vtkMSDTSource::AddShapeFileName(const char* fileName)
+{
+  this->ShapeFileNames.emplace_back(fileName ? fileName : "");
+  this->Modified();
+}
+
+void vtkMSDTSource::RemoveAllShapeFileNames()
+{
+  if (!this->ShapeFileNames.empty())
+  {
+    this->ShapeFileNames.clear();
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkMSDTSource::GetTablesOutput()
+{
+  return vtkImageData::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+vtkPolyData* vtkMSDTSource::GetOutlinesOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+vtkImageData* vtkMSDTSource::GetSilhouettesOutput()
+{
+  return vtkImageData::SafeDownCast(this->GetOutputDataObject(2));
+}
+
+//------------------------------------------------------------------------------
+int vtkMSDTSource::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port != 0)
+    return 0;
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkMSDTSource::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 1 ? "vtkPolyData" : "vtkImageData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkMSDTSource::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->RequestData(request, inputVector, outputVector);
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+namespace
+{
+vtkSmartPointer<vtkDoubleArray> DoubleArray(const char* name, int components)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  return a.GetPointer();
+}
+
+vtkSmartPointer<vtkIntArray> IntArray(const char* name)
+{
+  vtkNew<vtkIntArray> a;
+  a->SetName(name);
+  return a.GetPointer();
+}
+
+// Closed rings per class from polygon / polyline cells (z ignored).
+bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& classes,
+  std::string& error)
+{
+  vtkDataArray* ids = input->GetCellData()->GetArray("ClassId");
+  std::map<long long, std::vector<std::vector<gs::Vec2>>> byClass;
+  std::vector<long long> order;
+  const vtkIdType numVerts = input->GetNumberOfVerts();
+  vtkIdType cellId = numVerts; // cells are numbered verts, lines, polys, strips
+  for (vtkCellArray* cells : { input->GetLines(), input->GetPolys() })
+  {
+    auto it = vtk::TakeSmartPointer(cells->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
+    {
+      vtkIdType n;
+      const vtkIdType* pts;
+      it->GetCurrentCell(n, pts);
+      std::vector<gs::Vec2> ring;
+      for (vtkIdType k = 0; k < n; ++k)
+      {
+        double p[3];
+        input->GetPoint(pts[k], p);
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]))
+        {
+          error = "polygon cell " + std::to_string(cellId) + " has non-finite coordinates";
+          return false;
+        }
+        ring.emplace_back(p[0], p[1]);
+      }
+      const long long key = ids ? static_cast<long long>(ids->GetComponent(cellId, 0)) : cellId;
+      if (!byClass.count(key))
+        order.push_back(key);
+      byClass[key].push_back(std::move(ring));
+    }
+  }
+  for (long long key : order)
+  {
+    gs::SafeDistanceInput in;
+    in.Name = (ids ? "polygons ClassId " : "polygon cell ") + std::to_string(key);
+    in.Shape = gs::ShapeFromPolygons(byClass[key]);
+    if (in.Shape.Rings.empty() || !(std::abs(in.Shape.Area()) > 0.0))
+    {
+      error = in.Name + " has no area";
+      return false;
+    }
+    classes.push_back(std::move(in));
+  }
+  return true;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* tables = vtkImageData::GetData(outputVector, 0);
+  vtkPolyData* outlines = vtkPolyData::GetData(outputVector, 1);
+  vtkImageData* silhouettes = vtkImageData::GetData(outputVector, 2);
+  if (!tables || !outlines || !silhouettes)
+  {
+    vtkErrorMacro("Missing outputs.");
+    return 0;
+  }
+  tables->Initialize();
+  outlines->Initialize();
+  silhouettes->Initialize();
+  this->UpdateProgress(0.0);
+
+  if (this->AngleBins < 1 || this->AngleBins > 4096)
+  {
+    vtkErrorMacro("AngleBins must be in [1, 4096], got " << this->AngleBins << ".");
+    return 1;
+  }
+  if (this->DistanceSteps < 1 || this->DistanceSteps > (1 << 20))
+  {
+    vtkErrorMacro("DistanceSteps must be in [1, 1048576], got " << this->DistanceSteps << ".");
+    return 1;
+  }
+  if (!(this->MaximumAspectRatio >= 1.0))
+  {
+    vtkErrorMacro("MaximumAspectRatio must be at least 1, got " << this->MaximumAspectRatio << ".");
+    return 1;
+  }
+  if (!(this->AlphaThreshold >= 0.0 && this->AlphaThreshold <= 1.0) ||
+    !(this->LuminanceThreshold >= 0.0 && this->LuminanceThreshold <= 1.0))
+  {
+    vtkErrorMacro("AlphaThreshold and LuminanceThreshold must be in [0, 1].");
+    return 1;
+  }
+  if (this->TextureSize < 1 || this->TextureSize > 8192)
+  {
+    vtkErrorMacro("TextureSize must be in [1, 8192], got " << this->TextureSize << ".");
+    return 1;
+  }
+
+  // 1. Shapes: images, then polygons.
+  std::vector<gs::SafeDistanceInput> classes;
+  gs::SilhouetteThresholds thresholds;
+  thresholds.AlphaThreshold = this->AlphaThreshold;
+  thresholds.LuminanceThreshold = this->LuminanceThreshold;
+  for (const std::string& file : this->ShapeFileNames)
+  {
+    const gs::SilhouetteReadResult read = gs::ReadSilhouetteImage(file, thresholds);
+    if (!read.Ok)
+    {
+      vtkErrorMacro("Shape " << classes.size() << ": " << read.Error << ".");
+      return 1;
+    }
+    classes.push_back({ file, gs::ShapeFromMask(read.Mask) });
+  }
+  vtkPolyData* polygons = inputVector[0]->GetNumberOfInformationObjects() > 0
+    ? vtkPolyData::GetData(inputVector[0], 0)
+    : nullptr;
+  if (polygons)
+  {
+    std::string error;
+    if (!PolygonClasses(polygons, classes, error))
+    {
+      vtkErrorMacro("Polygons input: " << error << ".");
+      return 1;
+    }
+  }
+  if (classes.empty())
+  {
+    vtkErrorMacro("No shape: set ShapeFileNames or connect polygons.");
+    return 1;
+  }
+  this->UpdateProgress(0.1);
+
+  // 2. The tables.
+  gs::SafeDistanceOptions options;
+  options.AngleBins = this->AngleBins;
+  options.DistanceSteps = this->DistanceSteps;
+  options.MaximumAspectRatio = this->MaximumAspectRatio;
+  const gs::SafeDistanceResult result =
+    gs::ComputeSafeDistanceTables(classes, options, [this](double p) {
+      this->UpdateProgress(0.1 + 0.8 * p);
+      return !this->CheckAbort();
+    });
+  if (!result.Ok)
+  {
+    if (result.Error != "aborted")
+    {
+      vtkErrorMacro("Safe distance tables: " << result.Error << ".");
+    }
+    return 1;
+  }
+  const gs::SafeDistanceTables& T = result.Tables;
+  const int ka = T.AngleBins, P = T.NumberOfParts();
+
+  // 3. Port 0: the tables and their description.
+  tables->SetDimensions(ka, ka, P * P);
+  tables->SetSpacing(T.BinWidth(), T.BinWidth(), 1.0);
+  tables->SetOrigin(0.0, 0.0, 0.0);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("SafeDistance");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(T.Values.size()));
+  for (std::size_t k = 0; k < T.Values.size(); ++k)
+  {
+    values->SetValue(static_cast<vtkIdType>(k), T.Values[k]);
+  }
+  tables->GetPointData()->SetScalars(values);
+
+  vtkFieldData* fd = tables->GetFieldData();
+  vtkNew<vtkStringArray> className;
+  className->SetName("ClassName");
+  auto classRadius = DoubleArray("ClassRadius", 1);
+  auto classCentre = DoubleArray("ClassSourceCentre", 2);
+  auto classAspect = DoubleArray("ClassAspectRatio", 1);
+  auto classAxis = DoubleArray("ClassMajorAxis", 2);
+  auto classParts = IntArray("ClassNumberOfParts");
+  for (const gs::SafeDistanceClass& c : T.Classes)
+  {
+    className->InsertNextValue(c.Name);
+    classRadius->InsertNextValue(c.Radius);
+    classCentre->InsertNextTuple2(c.SourceCircle.Centre.x, c.SourceCircle.Centre.y);
+    classAspect->InsertNextValue(c.AspectRatio);
+    classAxis->InsertNextTuple2(c.MajorAxis.x, c.MajorAxis.y);
+    classParts->InsertNextValue(static_cast<int>(c.Parts.size()));
+  }
+  auto partClass = IntArray("PartClassId");
+  auto partIndex = IntArray("PartIndex");
+  auto partCentre = DoubleArray("PartCentre", 2);
+  auto partRadius = DoubleArray("PartRadius", 1);
+  for (const gs::SafeDistancePart& p : T.Parts)
+  {
+    partClass->InsertNextValue(p.ClassId);
+    partIndex->InsertNextValue(p.Index);
+    partCentre->InsertNextTuple2(p.Centre.x, p.Centre.y);
+    partRadius->InsertNextValue(p.Radius);
+  }
+  auto pairA = IntArray("PairPartA");
+  auto pairB = IntArray("PairPartB");
+  auto pairStep = DoubleArray("PairDistanceStep", 1);
+  for (int a = 0; a < P; ++a)
+  {
+    for (int b = 0; b < P; ++b)
+    {
+      pairA->InsertNextValue(a);
+      pairB->InsertNextValue(b);
+      pairStep->InsertNextValue(T.Step(a, b));
+    }
+  }
+  auto single = [&](const char* name, double v, bool integer) {
+    if (integer)
+    {
+      auto a = IntArray(name);
+      a->InsertNextValue(static_cast<int>(v));
+      fd->AddArray(a);
+    }
+    else
+    {
+      auto a = DoubleArray(name, 1);
+      a->InsertNextValue(v);
+      fd->AddArray(a);
+    }
+  };
+  for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ className, classRadius,
+         classCentre, classAspect, classAxis, classParts, partClass, partIndex, partCentre,
+         partRadius, pairA, pairB, pairStep })
+  {
+    fd->AddArray(a);
+  }
+  single("AngleBins", ka, true);
+  single("DistanceSteps", T.DistanceSteps, true);
+  single("RotationSamples", T.RotationSamples, true);
+  single("Scale", T.Scale, false);
+
+  // 4. Port 1: outlines.
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  auto classId = IntArray("ClassId");
+  for (std::size_t c = 0; c < T.Classes.size(); ++c)
+  {
+    for (const auto& ring : T.Classes[c].Outline.Rings)
+    {
+      const vtkIdType first = points->GetNumberOfPoints();
+      for (const gs::Vec2& p : ring)
+      {
+        points->InsertNextPoint(p.x, p.y, 0.0);
+      }
+      lines->InsertNextCell(static_cast<vtkIdType>(ring.size() + 1));
+      for (std::size_t k = 0; k <= ring.size(); ++k)
+      {
+        lines->InsertCellPoint(first + static_cast<vtkIdType>(k % ring.size()));
+      }
+      classId->InsertNextValue(static_cast<int>(c));
+    }
+  }
+  outlines->SetPoints(points);
+  outlines->SetLines(lines);
+  outlines->GetCellData()->AddArray(classId);
+
+  // 5. Port 2: silhouettes as decal textures (the square around each class's circle).
+  const int ts = this->TextureSize;
+  const int m = static_cast<int>(T.Classes.size());
+  silhouettes->SetDimensions(ts, ts, 1);
+  silhouettes->SetSpacing(2.0 / ts, 2.0 / ts, 1.0);
+  silhouettes->SetOrigin(-1.0 + 1.0 / ts, -1.0 + 1.0 / ts, 0.0);
+  vtkNew<vtkUnsignedCharArray> texels;
+  texels->SetName("Silhouette");
+  texels->SetNumberOfComponents(m);
+  texels->SetNumberOfTuples(static_cast<vtkIdType>(ts) * ts);
+  for (int c = 0; c < m; ++c)
+  {
+    const double r = T.Classes[c].Radius;
+    const gs::SilhouetteMask mask =
+      gs::RasterizeShape(T.Classes[c].Outline, ts, ts, { -r, -r }, 2.0 * r / ts);
+    for (std::size_t k = 0; k < mask.Inside.size(); ++k)
+    {
+      texels->SetTypedComponent(static_cast<vtkIdType>(k), c, mask.Inside[k] ? 255 : 0);
+    }
+  }
+  silhouettes->GetPointData()->SetScalars(texels);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkMSDTSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ShapeFileNames: " << this->ShapeFileNames.size() << "\n";
+  for (const std::string& f : this->ShapeFileNames)
+  {
+    os << indent.GetNextIndent() << f << "\n";
+  }
+  os << indent << "AngleBins: " << this->AngleBins << "\n";
+  os << indent << "DistanceSteps: " << this->DistanceSteps << "\n";
+  os << indent << "AlphaThreshold: " << this->AlphaThreshold << "\n";
+  os << indent << "LuminanceThreshold: " << this->LuminanceThreshold << "\n";
+  os << indent << "MaximumAspectRatio: " << this->MaximumAspectRatio << "\n";
+  os << indent << "TextureSize: " << this->TextureSize << "\n";
+}
