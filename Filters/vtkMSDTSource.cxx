@@ -26,6 +26,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -94,6 +95,20 @@ vtkTypeBool vtkMSDTSource::ProcessRequest(
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
   {
     return this->RequestData(request, inputVector, outputVector);
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
+  {
+    // The silhouettes' extent is known up front (image filters downstream need it). The
+    // tables' depth (number of part pairs) is only known after reading the shapes.
+    const int ts = std::max(1, this->TextureSize);
+    const int extent[6] = { 0, ts - 1, 0, ts - 1, 0, 0 };
+    vtkInformation* info = outputVector->GetInformationObject(2);
+    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    const double spacing[3] = { 2.0 / ts, 2.0 / ts, 1.0 };
+    const double origin[3] = { -1.0 + 1.0 / ts, -1.0 + 1.0 / ts, 0.0 };
+    info->Set(vtkDataObject::SPACING(), spacing, 3);
+    info->Set(vtkDataObject::ORIGIN(), origin, 3);
+    return 1;
   }
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
