@@ -29,111 +29,156 @@ SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVerte
   , Local(mesh)
   , Graph(graph)
 {
-  AnchorVertex.assign(M.NumberOfVertices(), 0);
-  for (int v = 0; v < M.NumberOfVertices(); ++v)
-  {
-    AnchorVertex[v] = M.IsPseudoSourceVertex(v) ? 1 : 0;
-  }
-  Graph.SetAnchorVertices(&AnchorVertex);
-  Done.assign(M.NumberOfVertices(), 0);
+  Exact.assign(M.NumberOfVertices(), 0);
 }
 
 void SVGGeodesicSolver::Refine(double maxDistance)
 {
+  // Geodesic triangle unfolding over each vertex's polar stencil, swept in order of distance
+  // (Gauss-Seidel), so that refined values feed the vertices beyond them. For a vertex x and two
+  // stencil neighbours u1, u2 adjacent in angle (less than pi apart), the geodesic triangle
+  // (x, u1, u2) is laid out in x's tangent plane from the exact lengths and angles of the
+  // stencil; the source is unfolded across the segment u1 u2 from the distances D(u1), D(u2),
+  // and its distance to x is a candidate when the straight line to x crosses that segment.
+  // Exact on developable surfaces; on curved ones it removes most of the graph's polyline
+  // error (graph paths bend at every vertex they pass).
   const double limit = maxDistance > 0.0 ? maxDistance : Inf;
-  struct Item
-  {
-    double D;
-    int V;
-    bool operator<(const Item& o) const { return D > o.D; }
-  };
-  std::vector<Item> heap;
   const std::vector<int>& reached = Graph.Reached();
-  heap.reserve(reached.size());
+  Order.clear();
+  Order.reserve(reached.size());
   for (int v : reached)
   {
-    heap.push_back({ Graph.Distance(v), v });
+    Order.push_back({ Graph.Distance(v), v });
   }
-  std::make_heap(heap.begin(), heap.end());
-  Reached.assign(reached.begin(), reached.end());
-  // The anchor shared by an edge's end points, and its own distance: for a vertex anchor its
-  // distance, for a source point zero.
-  auto sigma = [&](int a) { return a >= 0 ? Graph.Distance(a) : 0.0; };
-  while (!heap.empty())
+  std::sort(Order.begin(), Order.end(),
+    [](const std::pair<double, int>& a, const std::pair<double, int>& b) { return a < b; });
+  for (const auto& item : Order)
   {
-    std::pop_heap(heap.begin(), heap.end());
-    const Item it = heap.back();
-    heap.pop_back();
-    const int v = it.V;
-    if (Done[v] || it.D > Graph.Distance(v))
+    const int x = item.second;
+    if (Exact[x])
     {
       continue;
     }
-    Done[v] = 1;
-    const int av = Graph.StoredAnchor(v);
-    int h = M.VertexHalfedge(v);
-    const int start = h;
-    do
+    const std::int64_t begin = G.StencilBegin(x), end = G.StencilEnd(x);
+    if (end - begin < 1)
     {
-      // Face (v, a, b): update b from edge (v, a) and a from edge (v, b).
-      for (int side = 0; side < 2; ++side)
+      continue;
+    }
+    double best = Graph.Distance(x);
+    // The direction towards the source: the graph predecessor's place in the stencil (a scan
+    // of the stencil's ids only); without one, the stencil neighbour giving the best distance.
+    const int pred = Graph.Predecessor(x);
+    std::int64_t arrival = -1;
+    for (std::int64_t e = begin; e < end && pred >= 0; ++e)
+    {
+      if (G.StencilTarget(e) == pred)
       {
-        const int e = side == 0 ? h : TriangleMesh::Prev(h); // edge v-w in this face
-        const int w = side == 0 ? M.Destination(h) : M.Origin(e);
-        const int c = side == 0 ? M.Opposite(h) : M.Destination(h);
-        if (!Done[w] || Done[c])
+        arrival = e;
+        break;
+      }
+    }
+    if (arrival < 0)
+    {
+      double arrivalDistance = Inf;
+      for (std::int64_t e = begin; e < end; ++e)
+      {
+        const double c = Graph.Distance(G.StencilTarget(e)) + G.StencilDistance(e);
+        if (c < arrivalDistance)
         {
-          continue;
-        }
-        const int aw = Graph.StoredAnchor(w);
-        int anchor;
-        if (av == aw && av != -1)
-          anchor = av;
-        else if (aw == v && AnchorVertex[v])
-          anchor = v;
-        else if (av == w && AnchorVertex[w])
-          anchor = w;
-        else
-          continue;
-        const double s0 = sigma(anchor);
-        const double rv = anchor == v ? 0.0 : Graph.Distance(v) - s0;
-        const double rw = anchor == w ? 0.0 : Graph.Distance(w) - s0;
-        if (!(rv >= 0.0) || !(rw >= 0.0))
-          continue;
-        // Layout: v at the origin, w on the x axis, c above.
-        const double L = M.EdgeLength(e);
-        const double lvc = side == 0 ? M.EdgeLength(TriangleMesh::Prev(h)) : M.EdgeLength(h);
-        const double angle = M.CornerAngle(h); // angle at v in this face
-        const double cx = lvc * std::cos(angle), cy = lvc * std::sin(angle);
-        const double x = (rv * rv - rw * rw + L * L) / (2.0 * L);
-        const double y2 = rv * rv - x * x;
-        if (y2 < 0.0)
-          continue;
-        const double sy = -std::sqrt(y2);
-        const double denom = cy - sy;
-        if (!(denom > 0.0))
-          continue;
-        const double xc = x + (cx - x) * (-sy) / denom;
-        if (xc < -1e-9 * L || xc > L * (1.0 + 1e-9))
-          continue;
-        const double cand = s0 + std::hypot(cx - x, cy - sy);
-        if (cand < Graph.Distance(c) * (1.0 - 1e-12) && cand <= limit)
-        {
-          if (!std::isfinite(Graph.Distance(c)))
-          {
-            Reached.push_back(c);
-          }
-          Graph.Lower(c, cand, anchor);
-          heap.push_back({ cand, c });
-          std::push_heap(heap.begin(), heap.end());
+          arrivalDistance = c;
+          arrival = e;
         }
       }
-      h = M.RotateCCW(h);
-    } while (h >= 0 && h != start);
-  }
-  for (int v : Reached)
-  {
-    Done[v] = 0;
+    }
+    if (!(Graph.Distance(G.StencilTarget(arrival)) < Inf))
+    {
+      continue;
+    }
+    // Unfold only the geodesic triangles around that direction (within a wide margin of the
+    // graph's angular error): the straddling pair is among them.
+    const std::int64_t n = end - begin;
+    const bool closed = !M.IsBoundaryVertex(x);
+    const double ax = G.StencilX(arrival), ay = G.StencilY(arrival);
+    const double ar = std::sqrt(ax * ax + ay * ay);
+    auto within = [&](std::int64_t e) {
+      const double ex = G.StencilX(e), ey = G.StencilY(e);
+      return ax * ex + ay * ey >= ConeCosine * ar * std::sqrt(ex * ex + ey * ey);
+    };
+    // Offsets (relative to arrival, in stencil order) of the first and last pair to try.
+    std::int64_t lo = 0, hi = 0;
+    const std::int64_t a = arrival - begin;
+    while (lo > -(n - 1) && (closed || a + lo > 0) && within(begin + ((a + lo - 1) % n + n) % n))
+    {
+      --lo;
+    }
+    while (hi < n - 1 && (closed || a + hi < n - 1) && within(begin + (a + hi + 1) % n))
+    {
+      ++hi;
+    }
+    // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too.
+    for (std::int64_t k = lo - 1; k <= hi; ++k)
+    {
+      if (!closed && (a + k < 0 || a + k + 1 > n - 1))
+      {
+        continue;
+      }
+      const std::int64_t i1 = ((a + k) % n + n) % n;
+      const bool wraps = i1 == n - 1;
+      if (wraps && !closed)
+      {
+        continue;
+      }
+      const std::int64_t e1 = begin + i1;
+      const std::int64_t e2 = wraps ? begin : e1 + 1;
+      const double d1 = Graph.Distance(G.StencilTarget(e1));
+      const double d2 = Graph.Distance(G.StencilTarget(e2));
+      // Graph relaxation with the (refined) distances of the cone's stencil vertices.
+      best = std::min(best, std::min(d1 + G.StencilDistance(e1), d2 + G.StencilDistance(e2)));
+      if (!(d1 < Inf) || !(d2 < Inf))
+      {
+        continue;
+      }
+      const double p1x = G.StencilX(e1), p1y = G.StencilY(e1);
+      const double p2x = wraps ? G.StencilWrapX(x) : G.StencilX(e2);
+      const double p2y = wraps ? G.StencilWrapY(x) : G.StencilY(e2);
+      // The two directions must span an angle strictly between 0 and pi (counter-clockwise
+      // from p1 to p2); vertices in the same direction form no triangle.
+      const double cross = p1x * p2y - p1y * p2x;
+      if (!(cross > 1e-12 * (std::abs(p1x) + std::abs(p1y)) * (std::abs(p2x) + std::abs(p2y))))
+      {
+        continue;
+      }
+      const double ex = p2x - p1x, ey = p2y - p1y;
+      const double L = std::sqrt(ex * ex + ey * ey);
+      const double ux = ex / L, uy = ey / L;
+      // Away from x (the origin): x is to the left of p1 -> p2, so the source is to the right.
+      const double nx = uy, ny = -ux;
+      const double along = (d1 * d1 - d2 * d2 + L * L) / (2.0 * L);
+      const double h2 = d1 * d1 - along * along;
+      if (h2 < 0.0)
+      {
+        continue;
+      }
+      const double h = std::sqrt(h2);
+      const double sx = p1x + ux * along + nx * h, sy = p1y + uy * along + ny * h;
+      // The segment from the unfolded source to x crosses p1 p2 (between its end points).
+      const double qx = -sx, qy = -sy;
+      const double den = ex * qy - ey * qx;
+      if (den == 0.0)
+      {
+        continue;
+      }
+      const double t = ((sx - p1x) * qy - (sy - p1y) * qx) / den;
+      if (t < -1e-9 || t > 1.0 + 1e-9)
+      {
+        continue;
+      }
+      best = std::min(best, std::sqrt(sx * sx + sy * sy));
+    }
+    if (best < Graph.Distance(x) && best <= limit)
+    {
+      Graph.Lower(x, best);
+    }
   }
 }
 
@@ -161,11 +206,7 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
   int finalVertices, const SVGSolveOptions& options)
 {
   std::sort(Pieces.begin(), Pieces.end(), [](const Piece& a, const Piece& b) { return a.Face < b.Face; });
-  // Anchors of seeds: -2 - i for source point i of the exact solve (distance 0), a vertex id for
-  // a saddle the exact path passed through, -2 - n - j for curve piece j.
   std::vector<std::pair<int, double>> seeds;
-  std::vector<int> anchors;
-  const int n = static_cast<int>(exactSources.size());
   if (!exactSources.empty())
   {
     ExactGeodesicOptions local;
@@ -178,25 +219,30 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
     for (int v : Local.FinalVertices())
     {
       seeds.emplace_back(v, Local.Distance(v));
-      const int origin = Local.PathOrigin(v);
-      anchors.push_back(origin >= 0 ? -2 - origin : -1 - origin);
     }
   }
   // Corners of faces holding a piece: the exact in-face distance to the piece.
-  for (std::size_t j = 0; j < Pieces.size(); ++j)
+  for (const Piece& p : Pieces)
   {
-    const Piece& p = Pieces[j];
     const auto& t = M.Face(p.Face);
     for (int k = 0; k < 3; ++k)
     {
       seeds.emplace_back(t[k], PointSegmentDistance(M.Position(t[k]), p.A, p.B));
-      anchors.push_back(-2 - n - static_cast<int>(j));
     }
   }
-  Graph.Solve(seeds, options.Algorithm, options.MaximumDistance, anchors);
+  Graph.Solve(seeds, options.Algorithm, options.MaximumDistance);
   if (options.Refine)
   {
+    // The exact local solve's vertices need no refinement.
+    for (int v : Local.FinalVertices())
+    {
+      Exact[v] = !exactSources.empty();
+    }
     Refine(options.MaximumDistance);
+    for (int v : Local.FinalVertices())
+    {
+      Exact[v] = 0;
+    }
   }
   return true;
 }
@@ -234,7 +280,15 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
     Graph.Solve(vertexSeeds, options.Algorithm, options.MaximumDistance);
     if (options.Refine)
     {
+      for (const auto& v : vertexSeeds)
+      {
+        Exact[v.first] = 1;
+      }
       Refine(options.MaximumDistance);
+      for (const auto& v : vertexSeeds)
+      {
+        Exact[v.first] = 0;
+      }
     }
     return true;
   }

@@ -21,7 +21,7 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
-constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '2' };
+constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '3' };
 
 // FNV-1a, 64 bits.
 struct Hasher
@@ -56,8 +56,22 @@ double PhysicalMemoryBytes()
 
 std::size_t SaddleVertexGraph::MemoryBytes() const
 {
-  return Offsets.size() * sizeof(std::int64_t) + Targets.size() * sizeof(int) +
-    Weights.size() * sizeof(double);
+  return (Offsets.size() + StencilOffsets.size()) * sizeof(std::int64_t) +
+    (Targets.size() + StencilTargets.size()) * sizeof(int) +
+    (Weights.size() + StencilR.size() + StencilXY.size() + WrapXY.size()) * sizeof(double);
+}
+
+void SaddleVertexGraph::Clear()
+{
+  Offsets.clear();
+  Targets.clear();
+  Weights.clear();
+  StencilOffsets.clear();
+  StencilTargets.clear();
+  StencilR.clear();
+  StencilXY.clear();
+  WrapXY.clear();
+  K = 0;
 }
 
 std::uint64_t SaddleVertexGraph::HashMesh(const TriangleMesh& mesh)
@@ -78,10 +92,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   const ProgressCallback& progress, std::string& error)
 {
   const auto t0 = std::chrono::steady_clock::now();
-  Offsets.clear();
-  Targets.clear();
-  Weights.clear();
-  K = 0;
+  Clear();
   const int nv = mesh.NumberOfVertices();
   if (nv == 0)
   {
@@ -107,6 +118,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   }
 
   std::vector<std::vector<std::pair<int, double>>> direct(nv);
+  std::vector<std::vector<double>> angles(nv);
   std::atomic<int> done(0);
   std::atomic<bool> aborted(false);
   const int threads = options.NumberOfThreads;
@@ -130,6 +142,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
         if (v != s && solver.IsDirect(v))
         {
           out.emplace_back(v, solver.Distance(v));
+          angles[s].push_back(solver.DepartureAngle(v));
         }
       }
       const int n = ++done;
@@ -149,6 +162,45 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   {
     error = "aborted";
     return false;
+  }
+
+  // Polar stencils: each vertex's own direct neighbours sorted by departure angle.
+  StencilOffsets.assign(nv + 1, 0);
+  for (int v = 0; v < nv; ++v)
+  {
+    StencilOffsets[v + 1] = StencilOffsets[v] + static_cast<std::int64_t>(direct[v].size());
+  }
+  StencilTargets.resize(StencilOffsets[nv]);
+  StencilR.resize(StencilOffsets[nv]);
+  StencilXY.resize(2 * StencilOffsets[nv]);
+  WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
+  for (int v = 0; v < nv; ++v)
+  {
+    std::vector<int> order(direct[v].size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      order[i] = static_cast<int>(i);
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return angles[v][a] < angles[v][b] || (angles[v][a] == angles[v][b] && a < b);
+    });
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      const std::int64_t e = StencilOffsets[v] + static_cast<std::int64_t>(i);
+      const double r = direct[v][order[i]].second, a = angles[v][order[i]];
+      StencilTargets[e] = direct[v][order[i]].first;
+      StencilR[e] = r;
+      StencilXY[2 * e] = r * std::cos(a);
+      StencilXY[2 * e + 1] = r * std::sin(a);
+      if (i == 0)
+      {
+        const double wrapped = a + mesh.TotalAngle(v);
+        WrapXY[2 * v] = r * std::cos(wrapped);
+        WrapXY[2 * v + 1] = r * std::sin(wrapped);
+      }
+    }
+    std::vector<double>().swap(angles[v]);
   }
 
   // Symmetrize and add the mesh edges; duplicates keep the smallest weight, so that both
@@ -222,9 +274,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   }
   if (progress && !progress(1.0))
   {
-    Offsets.clear();
-    Targets.clear();
-    Weights.clear();
+    Clear();
     error = "aborted";
     return false;
   }
@@ -254,6 +304,13 @@ bool SaddleVertexGraph::Save(
   sum.AddVector(Offsets);
   sum.AddVector(Targets);
   sum.AddVector(Weights);
+  const std::int64_t ns = static_cast<std::int64_t>(StencilTargets.size());
+  sum.Add(&ns, sizeof(ns));
+  sum.AddVector(StencilOffsets);
+  sum.AddVector(StencilTargets);
+  sum.AddVector(StencilR);
+  sum.AddVector(StencilXY);
+  sum.AddVector(WrapXY);
   out.write(Magic, sizeof(Magic));
   out.write(reinterpret_cast<const char*>(&meshHash), sizeof(meshHash));
   out.write(reinterpret_cast<const char*>(&k), sizeof(k));
@@ -263,6 +320,12 @@ bool SaddleVertexGraph::Save(
   out.write(reinterpret_cast<const char*>(Offsets.data()), Offsets.size() * sizeof(std::int64_t));
   out.write(reinterpret_cast<const char*>(Targets.data()), Targets.size() * sizeof(int));
   out.write(reinterpret_cast<const char*>(Weights.data()), Weights.size() * sizeof(double));
+  out.write(reinterpret_cast<const char*>(&ns), sizeof(ns));
+  out.write(reinterpret_cast<const char*>(StencilOffsets.data()), StencilOffsets.size() * sizeof(std::int64_t));
+  out.write(reinterpret_cast<const char*>(StencilTargets.data()), StencilTargets.size() * sizeof(int));
+  out.write(reinterpret_cast<const char*>(StencilR.data()), StencilR.size() * sizeof(double));
+  out.write(reinterpret_cast<const char*>(StencilXY.data()), StencilXY.size() * sizeof(double));
+  out.write(reinterpret_cast<const char*>(WrapXY.data()), WrapXY.size() * sizeof(double));
   out.write(reinterpret_cast<const char*>(&sum.H), sizeof(sum.H));
   if (!out)
   {
@@ -274,10 +337,7 @@ bool SaddleVertexGraph::Save(
 
 bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error)
 {
-  Offsets.clear();
-  Targets.clear();
-  Weights.clear();
-  K = 0;
+  Clear();
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
@@ -316,8 +376,9 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   }
   const std::int64_t header =
     sizeof(Magic) + sizeof(hash) + sizeof(fileK) + sizeof(seconds) + 2 * sizeof(std::int64_t);
-  if (nv < 1 || ne < 0 || nv > (1LL << 31) || ne > (1LL << 40) ||
-    fileSize != header + (nv + 1) * 8 + ne * 12 + 8)
+  // Size of everything before the stencil count, and what the stencil adds for ns entries.
+  const std::int64_t linksEnd = header + (nv + 1) * 8 + ne * 12;
+  if (nv < 1 || ne < 0 || nv > (1LL << 31) || ne > (1LL << 40) || fileSize < linksEnd + 16)
   {
     error = path + " is truncated or corrupt (size does not match its header)";
     return false;
@@ -325,10 +386,26 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   std::vector<std::int64_t> offsets(nv + 1);
   std::vector<int> targets(ne);
   std::vector<double> weights(ne);
-  std::uint64_t stored = 0;
+  std::int64_t ns = -1;
   in.read(reinterpret_cast<char*>(offsets.data()), offsets.size() * sizeof(std::int64_t));
   in.read(reinterpret_cast<char*>(targets.data()), targets.size() * sizeof(int));
   in.read(reinterpret_cast<char*>(weights.data()), weights.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(&ns), sizeof(ns));
+  if (!in || ns < 0 || ns > (1LL << 40) ||
+    fileSize != linksEnd + 8 + (nv + 1) * 8 + ns * (4 + 8 + 16) + 16 * nv + 8)
+  {
+    error = path + " is truncated or corrupt (size does not match its header)";
+    return false;
+  }
+  std::vector<std::int64_t> stencilOffsets(nv + 1);
+  std::vector<int> stencilTargets(ns);
+  std::vector<double> stencilR(ns), stencilXY(2 * ns), wrapXY(2 * nv);
+  std::uint64_t stored = 0;
+  in.read(reinterpret_cast<char*>(stencilOffsets.data()), stencilOffsets.size() * sizeof(std::int64_t));
+  in.read(reinterpret_cast<char*>(stencilTargets.data()), stencilTargets.size() * sizeof(int));
+  in.read(reinterpret_cast<char*>(stencilR.data()), stencilR.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(stencilXY.data()), stencilXY.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(wrapXY.data()), wrapXY.size() * sizeof(double));
   in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
   if (!in)
   {
@@ -344,6 +421,12 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   sum.AddVector(offsets);
   sum.AddVector(targets);
   sum.AddVector(weights);
+  sum.Add(&ns, sizeof(ns));
+  sum.AddVector(stencilOffsets);
+  sum.AddVector(stencilTargets);
+  sum.AddVector(stencilR);
+  sum.AddVector(stencilXY);
+  sum.AddVector(wrapXY);
   if (sum.H != stored)
   {
     error = path + " is corrupt (checksum mismatch)";
@@ -351,18 +434,18 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   }
   // Structural checks, so that even a forged file with a valid checksum cannot cause
   // out-of-range reads.
-  if (offsets[0] != 0 || offsets[nv] != ne)
+  auto validOffsets = [nv](const std::vector<std::int64_t>& o, std::int64_t total) {
+    if (o[0] != 0 || o[nv] != total)
+      return false;
+    for (std::int64_t v = 0; v < nv; ++v)
+      if (o[v + 1] < o[v])
+        return false;
+    return true;
+  };
+  if (!validOffsets(offsets, ne) || !validOffsets(stencilOffsets, ns))
   {
     error = path + " is corrupt (bad offsets)";
     return false;
-  }
-  for (std::int64_t v = 0; v < nv; ++v)
-  {
-    if (offsets[v + 1] < offsets[v])
-    {
-      error = path + " is corrupt (bad offsets)";
-      return false;
-    }
   }
   for (std::int64_t e = 0; e < ne; ++e)
   {
@@ -372,9 +455,31 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
       return false;
     }
   }
+  for (std::int64_t e = 0; e < ns; ++e)
+  {
+    if (stencilTargets[e] < 0 || stencilTargets[e] >= nv || !std::isfinite(stencilR[e]) ||
+      !std::isfinite(stencilXY[2 * e]) || !std::isfinite(stencilXY[2 * e + 1]))
+    {
+      error = path + " is corrupt (bad stencil)";
+      return false;
+    }
+  }
+  for (double w : wrapXY)
+  {
+    if (!std::isfinite(w))
+    {
+      error = path + " is corrupt (bad stencil)";
+      return false;
+    }
+  }
   Offsets = std::move(offsets);
   Targets = std::move(targets);
   Weights = std::move(weights);
+  StencilOffsets = std::move(stencilOffsets);
+  StencilTargets = std::move(stencilTargets);
+  StencilR = std::move(stencilR);
+  StencilXY = std::move(stencilXY);
+  WrapXY = std::move(wrapXY);
   K = fileK;
   Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;
   return true;
@@ -385,17 +490,18 @@ GraphDistanceSolver::GraphDistanceSolver(const SaddleVertexGraph& graph)
 {
   const int nv = G.NumberOfVertices();
   Dist.assign(nv, Inf);
-  Anchor.assign(nv, -1);
+  Pred.assign(nv, -1);
   InQueue.assign(nv, 0);
   Ring.assign(nv + 1, 0);
 }
 
 void GraphDistanceSolver::Solve(const std::vector<std::pair<int, double>>& seeds,
-  GraphAlgorithm algorithm, double maxDistance, const std::vector<int>& anchors)
+  GraphAlgorithm algorithm, double maxDistance)
 {
   for (int v : Touched)
   {
     Dist[v] = Inf;
+    Pred[v] = -1;
     InQueue[v] = 0;
   }
   Touched.clear();
@@ -411,19 +517,7 @@ void GraphDistanceSolver::Solve(const std::vector<std::pair<int, double>>& seeds
     {
       Touched.push_back(s.first);
     }
-    if (s.second < Dist[s.first])
-    {
-      Dist[s.first] = s.second;
-      Anchor[s.first] = s.first;
-    }
-  }
-  for (std::size_t i = 0; i < anchors.size() && i < seeds.size(); ++i)
-  {
-    const auto& s = seeds[i];
-    if (s.first >= 0 && s.first < G.NumberOfVertices() && Dist[s.first] == s.second)
-    {
-      Anchor[s.first] = anchors[i];
-    }
+    Dist[s.first] = std::min(Dist[s.first], s.second);
   }
   if (algorithm == GraphAlgorithm::Dijkstra)
   {
@@ -488,7 +582,7 @@ void GraphDistanceSolver::SolveLabelCorrecting(double limit)
         {
           Touched.push_back(v);
         }
-        Anchor[v] = AnchorOf(u);
+        Pred[v] = u;
         if (InQueue[v])
         {
           sum += nd - Dist[v];
@@ -547,7 +641,7 @@ void GraphDistanceSolver::SolveDijkstra(double limit)
           Touched.push_back(v);
         }
         Dist[v] = nd;
-        Anchor[v] = AnchorOf(it.V);
+        Pred[v] = it.V;
         heap.push_back({ nd, v });
         std::push_heap(heap.begin(), heap.end());
       }

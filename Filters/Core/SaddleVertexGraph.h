@@ -48,12 +48,26 @@ public:
   int GetK() const { return K; }
   double BuildSeconds() const { return Seconds; }
   std::size_t MemoryBytes() const;
+  void Clear();
 
   // Neighbours of v: Targets[Begin(v) .. End(v)) with Weights.
   std::int64_t Begin(int v) const { return Offsets[v]; }
   std::int64_t End(int v) const { return Offsets[v + 1]; }
   int Target(std::int64_t e) const { return Targets[e]; }
   double Weight(std::int64_t e) const { return Weights[e]; }
+
+  // The polar stencil of v: the vertices of v's own K-disk reached by direct geodesics, sorted by
+  // the angle at which their geodesic leaves v (the log map), with their exact distance and
+  // their position (r cos a, r sin a) in v's developed tangent plane. StencilWrap gives the
+  // first entry's position turned by v's total angle, for the pair that closes the fan.
+  std::int64_t StencilBegin(int v) const { return StencilOffsets[v]; }
+  std::int64_t StencilEnd(int v) const { return StencilOffsets[v + 1]; }
+  int StencilTarget(std::int64_t e) const { return StencilTargets[e]; }
+  double StencilDistance(std::int64_t e) const { return StencilR[e]; }
+  double StencilX(std::int64_t e) const { return StencilXY[2 * e]; }
+  double StencilY(std::int64_t e) const { return StencilXY[2 * e + 1]; }
+  double StencilWrapX(int v) const { return WrapXY[2 * v]; }
+  double StencilWrapY(int v) const { return WrapXY[2 * v + 1]; }
 
   // A hash of the mesh geometry and connectivity (positions bit for bit, faces).
   static std::uint64_t HashMesh(const TriangleMesh& mesh);
@@ -66,13 +80,20 @@ public:
 
   bool operator==(const SaddleVertexGraph& o) const
   {
-    return Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights;
+    return Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights &&
+      StencilOffsets == o.StencilOffsets && StencilTargets == o.StencilTargets &&
+      StencilR == o.StencilR && StencilXY == o.StencilXY && WrapXY == o.WrapXY;
   }
 
 private:
   std::vector<std::int64_t> Offsets;
   std::vector<int> Targets;
   std::vector<double> Weights;
+  std::vector<std::int64_t> StencilOffsets;
+  std::vector<int> StencilTargets;
+  std::vector<double> StencilR;
+  std::vector<double> StencilXY;
+  std::vector<double> WrapXY;
   int K = 0;
   double Seconds = 0.0;
 };
@@ -91,28 +112,18 @@ public:
   explicit GraphDistanceSolver(const SaddleVertexGraph& graph);
 
   // Seeds are (vertex, initial distance). Vertices farther than maxDistance (> 0) stay
-  // unreached (infinite); maxDistance <= 0 means unlimited. `anchors`, when given, names for
-  // each seed the pseudo-source its distance comes from (see Anchor()).
+  // unreached (infinite); maxDistance <= 0 means unlimited.
   void Solve(const std::vector<std::pair<int, double>>& seeds, GraphAlgorithm algorithm,
-    double maxDistance = 0.0, const std::vector<int>& anchors = {});
+    double maxDistance = 0.0);
   double Distance(int v) const { return Dist[v]; }
   const std::vector<double>& Distances() const { return Dist; }
-  // The last pseudo-source on v's shortest path: a vertex marked by SetAnchorVertices (a saddle
-  // or reflex boundary vertex) or a seed's anchor. Paths with the same anchor are direct
-  // geodesics from one point, which geodesic unfolding can refine.
-  int AnchorOf(int v) const { return IsAnchor && (*IsAnchor)[v] ? v : Anchor[v]; }
-  int StoredAnchor(int v) const { return Anchor[v]; }
-  // Vertices that act as pseudo-sources (must outlive the solver); none by default.
-  void SetAnchorVertices(const std::vector<unsigned char>* flags) { IsAnchor = flags; }
-  // Refinement passes may lower distances (keeping them consistent with anchors).
-  void Lower(int v, double d, int anchor)
-  {
-    Dist[v] = d;
-    Anchor[v] = anchor;
-  }
   // Vertices reached by the last solve (unordered).
   const std::vector<int>& Reached() const { return Touched; }
   std::int64_t Relaxations() const { return NumRelaxations; }
+  // The vertex whose link gave v its distance (-1 for seeds and unreached vertices).
+  int Predecessor(int v) const { return Pred[v]; }
+  // Refinement passes may lower a reached vertex's distance.
+  void Lower(int v, double d) { Dist[v] = d; }
 
 private:
   void SolveLabelCorrecting(double maxDistance);
@@ -120,8 +131,7 @@ private:
 
   const SaddleVertexGraph& G;
   std::vector<double> Dist;
-  std::vector<int> Anchor;
-  const std::vector<unsigned char>* IsAnchor = nullptr;
+  std::vector<int> Pred;
   std::vector<unsigned char> InQueue;
   std::vector<int> Touched;
   std::vector<int> Ring; // circular deque for the label-correcting queue

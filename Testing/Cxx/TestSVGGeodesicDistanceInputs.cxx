@@ -443,8 +443,8 @@ void TestPrintSelf()
 {
   vtkNew<vtkSVGGeodesicDistance> filter;
   Check(filter->GetSolver() == vtkSVGGeodesicDistance::SVG_LABEL_CORRECTING && filter->GetK() == 50 &&
-      std::string(filter->GetCacheFileName()).empty() && !filter->GetUnfoldingRefinement(),
-    "Defaults", "Solver SVG (label-correcting), K 50, no cache file, no refinement");
+      std::string(filter->GetCacheFileName()).empty() && filter->GetUnfoldingRefinement(),
+    "Defaults", "Solver SVG (label-correcting), K 50, no cache file, refinement on");
   filter->AddSourceVertexId(3);
   filter->AddSourceVertexId(8);
   filter->SetMaximumDistance(2.5);
@@ -452,13 +452,13 @@ void TestPrintSelf()
   filter->SetSolverToSVGDijkstra();
   filter->SetK(7);
   filter->SetCacheFileName("/tmp/graph.svgg");
-  filter->UnfoldingRefinementOn();
+  filter->UnfoldingRefinementOff();
   std::ostringstream os;
   filter->Print(os);
   const std::string text = os.str();
   for (const char* expected :
     { "Solver: 2 (SVG (Dijkstra))", "SourceVertexIds (2): 3 8", "MaximumDistance: 2.5",
-      "ResultArrayName: d", "K: 7", "CacheFileName: /tmp/graph.svgg", "UnfoldingRefinement: on" })
+      "ResultArrayName: d", "K: 7", "CacheFileName: /tmp/graph.svgg", "UnfoldingRefinement: off" })
   {
     Check(text.find(expected) != std::string::npos, "PrintSelf", std::string("no ") + expected);
   }
