@@ -44,7 +44,7 @@
  * made the active scalars). Points that are unreachable (another connected component), beyond
  * MaximumDistance, or not used by any triangle get NaN. With an SVG solver the field data also
  * describes the graph: SVGMeanDegree (double, graph links per vertex), SVGBuildSeconds (double,
- * time of the build; 0 for a graph read from a cache file) and SVGGraphOrigin (string: "built",
+ * time of the build, also for a graph read from a cache file) and SVGGraphOrigin (string: "built",
  * "loaded" from the cache file, or "memory" when an earlier execution made it).
  *
  * Progress: the graph build reports 0.1 to 0.8 and can be aborted (empty output, nothing
@@ -140,7 +140,7 @@ public:
   ///@{
   /// SVG solvers: refine the graph distances by geodesic triangle unfolding over the polar
   /// stencils. Exact on developable surfaces (planes, cylinders, cones), 2-8x more accurate on
-  /// curved ones, for about the cost of a second graph solve. Default on.
+  /// curved ones, for about three times the cost of a graph solve. Default on.
   vtkSetMacro(UnfoldingRefinement, bool);
   vtkGetMacro(UnfoldingRefinement, bool);
   vtkBooleanMacro(UnfoldingRefinement, bool);
