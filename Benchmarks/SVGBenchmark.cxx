@@ -37,6 +37,8 @@ int main(int argc, char** argv)
   std::vector<std::string> files;
   std::vector<int> ks = { 50, 100, 200 };
   int numSources = 5, threads = 0;
+  double maxError = 0.0; // > 0: exit 1 when the refined mean error exceeds it (a test)
+  bool failed = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -52,9 +54,13 @@ int main(int argc, char** argv)
       numSources = std::max(1, std::atoi(argv[++i]));
     else if (a == "--threads" && i + 1 < argc)
       threads = std::atoi(argv[++i]);
+    else if (a == "--max-error" && i + 1 < argc)
+      maxError = std::atof(argv[++i]);
     else if (a == "--help" || a == "-h")
     {
-      std::printf("usage: %s mesh [...] [--k 50,100,200] [--sources N] [--threads T]\n", argv[0]);
+      std::printf("usage: %s mesh [...] [--k 50,100,200] [--sources N] [--threads T] "
+                  "[--max-error E (exit 1 when the mean error exceeds E)]\n",
+        argv[0]);
       return 0;
     }
     else
@@ -176,6 +182,10 @@ int main(int argc, char** argv)
         }
       }
       refined /= numSources;
+      if (maxError > 0.0 && !(refinedErr / refinedCount <= maxError))
+      {
+        failed = true;
+      }
       double pointErr = 0;
       long long pointCount = 0;
       for (std::size_t i = 0; i < points.size(); ++i)
@@ -206,5 +216,5 @@ int main(int argc, char** argv)
               "result); pt_err: mean error from face-point sources; exact_s: exact solve; "
               "lc/dij_ms: label-correcting / Dijkstra solve on the graph; svg_ms: full solve with "
               "refinement.\n");
-  return 0;
+  return failed ? 1 : 0;
 }
