@@ -340,12 +340,12 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       {
         const int back = M.Twin(h);
         UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0,
-          back >= 0 ? FanAngle[back] : M.TotalAngle(a), src >= 0 ? p0 : std::numeric_limits<double>::quiet_NaN());
+          back >= 0 ? FanAngle[back] : M.TotalAngle(a), src >= 0 ? p0 : Departure[v]);
       }
       if (toEnd)
       {
         UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0,
-          FanAngle[TriangleMesh::Prev(h)], src >= 0 ? p0 + beta : std::numeric_limits<double>::quiet_NaN());
+          FanAngle[TriangleMesh::Prev(h)], src >= 0 ? p0 + beta : Departure[v]);
       }
       const int t = M.Twin(opp);
       if (t < 0)
@@ -366,7 +366,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       w.Ix = ab - Cx[opp];
       w.Iy = -Cy[opp];
       // In t's frame the direction from v to a is (Cx, Cy) of opp: departure angle p0.
-      w.Phi = p0 - std::atan2(Cy[opp], Cx[opp]);
+      w.Phi = src >= 0 ? p0 - std::atan2(Cy[opp], Cx[opp]) : Departure[v];
       w.Sigma = sigma;
       w.Src = src;
       if (w.B1 > w.B0)
@@ -459,7 +459,7 @@ void ExactGeodesicSolver::Propagate(Window w)
       const double ax = -cx, ay = -cy, qx = ix - cx, qy = iy - cy;
       UpdateVertex(vC, dC, w.Src, h, xc,
         FanAngle[TriangleMesh::Prev(h)] + std::atan2(ax * qy - ay * qx, ax * qx + ay * qy),
-        w.Src >= 0 ? w.Phi + std::atan2(cy - iy, cx - ix) : std::numeric_limits<double>::quiet_NaN());
+        w.Src >= 0 ? w.Phi + std::atan2(cy - iy, cx - ix) : w.Phi);
     }
     else if (dC > Dist[vC] + Tolerance && CrossHalfedge[vC] == h)
     {
@@ -502,7 +502,7 @@ void ExactGeodesicSolver::Propagate(Window w)
         c.H = t;
         c.Sigma = w.Sigma;
         c.Src = w.Src;
-        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(cy, cx) : 0.0;
+        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(cy, cx) : w.Phi;
         PushWindow(c);
       }
     }
@@ -529,7 +529,7 @@ void ExactGeodesicSolver::Propagate(Window w)
         c.H = t;
         c.Sigma = w.Sigma;
         c.Src = w.Src;
-        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(-cy, L - cx) : 0.0;
+        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(-cy, L - cx) : w.Phi;
         PushWindow(c);
       }
     }

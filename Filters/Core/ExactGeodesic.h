@@ -76,11 +76,12 @@ public:
   // True when the shortest path to v passes through no saddle or boundary vertex (other than a
   // source itself): the edges of the saddle vertex graph.
   bool IsDirect(int v) const { return Final[v] && Origin[v] >= 0; }
-  // For a direct vertex: the direction in which its shortest path leaves the source, as an
-  // angle about the source counter-clockwise (about the outward normal) from the source's
-  // VertexHalfedge (vertex source, 0 .. its total angle) or from the face's first edge, corner 0
-  // to corner 1 (face point source). NaN for other vertices. (The log-map angle.)
-  double DepartureAngle(int v) const { return IsDirect(v) ? Departure[v] : std::numeric_limits<double>::quiet_NaN(); }
+  // The direction in which the shortest path to v leaves its source (the log-map angle), for
+  // every reached vertex other than the sources: counter-clockwise about the outward normal from
+  // the source's VertexHalfedge (vertex source, 0 .. its total angle) or from the face's first
+  // edge, corner 0 to corner 1 (face point source). A path through saddles or reflex boundary
+  // vertices leaves in the direction of the first of them. NaN where unknown.
+  double DepartureAngle(int v) const { return Final[v] ? Departure[v] : std::numeric_limits<double>::quiet_NaN(); }
 
   const ExactGeodesicStatistics& Statistics() const { return Stats; }
   const TriangleMesh& Mesh() const { return M; }
@@ -92,7 +93,8 @@ private:
     double B0, B1; // interval along half-edge H, measured from Origin(H)
     double Ix, Iy; // unfolded pseudo-source in H's frame (x along H, y > 0 towards face(H))
     double Sigma;  // distance from the real source to the pseudo-source
-    double Phi;    // for a real source: departure angle = Phi + angle of (x - I) in this frame
+    double Phi;    // departure angle: Phi + angle of (x - I) in this frame for a real source
+                   // (Src >= 0), Phi itself behind a pseudo-source
     int H;         // half-edge the window lies on; it propagates into face(H). <0: vertex event
     int Src;       // PathOrigin code of the pseudo-source
   };
