@@ -14,6 +14,7 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -24,16 +25,29 @@
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
-#include <cmath>
-#include <initializer_list>
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <sstream>
 
 vtkStandardNewMacro(vtkMSDTSource);
 
+// The classes and parts of the last read (ComputeSafeDistanceParts, no table values yet),
+// keyed by everything they depend on.
+struct vtkMSDTSource::ShapeCache
+{
+  std::string Key;
+  bool Ok = false;
+  std::string Error;   // when !Ok, the message (already reported when the read happened)
+  gs::SafeDistanceTables Parts;
+};
+
 //------------------------------------------------------------------------------
 vtkMSDTSource::vtkMSDTSource()
+  : Shapes(new ShapeCache)
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(3);
@@ -98,17 +112,7 @@ vtkTypeBool vtkMSDTSource::ProcessRequest(
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
   {
-    // The silhouettes' extent is known up front (image filters downstream need it). The
-    // tables' depth (number of part pairs) is only known after reading the shapes.
-    const int ts = std::max(1, this->TextureSize);
-    const int extent[6] = { 0, ts - 1, 0, ts - 1, 0, 0 };
-    vtkInformation* info = outputVector->GetInformationObject(2);
-    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    const double spacing[3] = { 2.0 / ts, 2.0 / ts, 1.0 };
-    const double origin[3] = { -1.0 + 1.0 / ts, -1.0 + 1.0 / ts, 0.0 };
-    info->Set(vtkDataObject::SPACING(), spacing, 3);
-    info->Set(vtkDataObject::ORIGIN(), origin, 3);
-    return 1;
+    return this->RequestInformation(request, inputVector, outputVector);
   }
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
@@ -130,10 +134,12 @@ vtkSmartPointer<vtkIntArray> IntArray(const char* name)
   return a.GetPointer();
 }
 
-// Closed rings per class from polygon / polyline cells (z ignored).
+// Closed rings per class from polygon / polyline cells (z ignored). `openPolylines` counts the
+// polyline cells whose last point differs from their first (they are closed all the same).
 bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& classes,
-  std::string& error)
+  std::string& error, vtkIdType& openPolylines)
 {
+  openPolylines = 0;
   vtkDataArray* ids = input->GetCellData()->GetArray("ClassId");
   std::map<long long, std::vector<std::vector<gs::Vec2>>> byClass;
   std::vector<long long> order;
@@ -159,6 +165,11 @@ bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& clas
         }
         ring.emplace_back(p[0], p[1]);
       }
+      if (cells == input->GetLines() && n > 0 &&
+        (ring.front().x != ring.back().x || ring.front().y != ring.back().y))
+      {
+        ++openPolylines;
+      }
       const long long key = ids ? static_cast<long long>(ids->GetComponent(cellId, 0)) : cellId;
       if (!byClass.count(key))
         order.push_back(key);
@@ -179,7 +190,181 @@ bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& clas
   }
   return true;
 }
+
+// What the classes and parts depend on: file names with modification times and sizes, the
+// thresholds, MaximumAspectRatio and the polygons (data object and its modification time).
+std::string ShapeKey(const std::vector<std::string>& files, double alpha, double luminance,
+  double aspect, vtkPolyData* polygons)
+{
+  std::ostringstream key;
+  key.precision(17);
+  for (const std::string& file : files)
+  {
+    std::error_code ec;
+    const auto time = std::filesystem::last_write_time(file, ec);
+    const long long stamp = ec ? -1 : static_cast<long long>(time.time_since_epoch().count());
+    const auto size = std::filesystem::file_size(file, ec);
+    key << file << '\0' << stamp << ' ' << (ec ? -1 : static_cast<long long>(size)) << '\n';
+  }
+  key << alpha << ' ' << luminance << ' ' << aspect << ' ';
+  if (polygons)
+  {
+    key << static_cast<const void*>(polygons) << ' ' << polygons->GetMTime();
+  }
+  return key.str();
+}
 } // namespace
+
+//------------------------------------------------------------------------------
+std::string vtkMSDTSource::ParameterError() const
+{
+  std::ostringstream error;
+  if (this->AngleBins < 1 || this->AngleBins > 4096)
+  {
+    error << "AngleBins must be in [1, 4096], got " << this->AngleBins << ".";
+  }
+  else if (this->DistanceSteps < 1 || this->DistanceSteps > (1 << 20))
+  {
+    error << "DistanceSteps must be in [1, 1048576], got " << this->DistanceSteps << ".";
+  }
+  else if (!(this->MaximumAspectRatio >= 1.0))
+  {
+    error << "MaximumAspectRatio must be at least 1, got " << this->MaximumAspectRatio << ".";
+  }
+  else if (!(this->AlphaThreshold >= 0.0 && this->AlphaThreshold <= 1.0) ||
+    !(this->LuminanceThreshold >= 0.0 && this->LuminanceThreshold <= 1.0))
+  {
+    error << "AlphaThreshold and LuminanceThreshold must be in [0, 1].";
+  }
+  else if (this->TextureSize < 1 || this->TextureSize > 8192)
+  {
+    error << "TextureSize must be in [1, 8192], got " << this->TextureSize << ".";
+  }
+  return error.str();
+}
+
+//------------------------------------------------------------------------------
+void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
+{
+  vtkPolyData* polygons = nullptr;
+  if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    // The number of parts depends on the polygons: bring them up to date now (in the
+    // information pass their upstream has not executed yet).
+    int port = 0;
+    if (vtkAlgorithm* upstream = this->GetInputAlgorithm(0, 0, port))
+    {
+      upstream->Update(port);
+    }
+    polygons = vtkPolyData::GetData(inputVector[0], 0);
+  }
+  const std::string key = ShapeKey(this->ShapeFileNames, this->AlphaThreshold,
+    this->LuminanceThreshold, this->MaximumAspectRatio, polygons);
+  ShapeCache& cache = *this->Shapes;
+  if (this->NumberOfShapeLoads > 0 && key == cache.Key)
+  {
+    return;
+  }
+  ++this->NumberOfShapeLoads;
+  cache = ShapeCache();
+  cache.Key = key;
+
+  // Images, then polygons.
+  std::vector<gs::SafeDistanceInput> classes;
+  gs::SilhouetteThresholds thresholds;
+  thresholds.AlphaThreshold = this->AlphaThreshold;
+  thresholds.LuminanceThreshold = this->LuminanceThreshold;
+  for (const std::string& file : this->ShapeFileNames)
+  {
+    const gs::SilhouetteReadResult read = gs::ReadSilhouetteImage(file, thresholds);
+    if (!read.Ok)
+    {
+      cache.Error = "Shape " + std::to_string(classes.size()) + ": " + read.Error + ".";
+      return;
+    }
+    classes.push_back({ file, gs::ShapeFromMask(read.Mask) });
+  }
+  if (polygons)
+  {
+    std::string error;
+    vtkIdType open = 0;
+    if (!PolygonClasses(polygons, classes, error, open))
+    {
+      cache.Error = "Polygons input: " + error + ".";
+      return;
+    }
+    if (open > 0)
+    {
+      vtkWarningMacro("Polygons input: " << open << " open polyline(s) (last point not equal to "
+                                         << "the first) treated as closed.");
+    }
+  }
+  if (classes.empty())
+  {
+    cache.Error = "No shape: set ShapeFileNames or connect polygons.";
+    return;
+  }
+  gs::SafeDistanceOptions options;
+  options.MaximumAspectRatio = this->MaximumAspectRatio;
+  gs::SafeDistanceResult parts = gs::ComputeSafeDistanceParts(classes, options);
+  if (!parts.Ok)
+  {
+    cache.Error = "Safe distance tables: " + parts.Error + ".";
+    return;
+  }
+  cache.Ok = true;
+  cache.Parts = std::move(parts.Tables);
+}
+
+//------------------------------------------------------------------------------
+int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Whole extents: empty unless the parameters are valid and the shapes were read.
+  const int none[6] = { 0, -1, 0, -1, 0, -1 };
+  for (int port : { 0, 2 })
+  {
+    outputVector->GetInformationObject(port)->Set(
+      vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), none, 6);
+  }
+  const std::string parameterError = this->ParameterError();
+  if (!parameterError.empty())
+  {
+    vtkErrorMacro(<< parameterError);
+    return 1;
+  }
+  this->UpdateShapes(inputVector);
+  if (!this->Shapes->Ok)
+  {
+    vtkErrorMacro(<< this->Shapes->Error);
+    return 1;
+  }
+  const gs::SafeDistanceTables& T = this->Shapes->Parts;
+  const int ka = this->AngleBins, P = T.NumberOfParts(), m = static_cast<int>(T.Classes.size());
+
+  // Port 0: ka x ka x P^2 tables.
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  const int tablesExtent[6] = { 0, ka - 1, 0, ka - 1, 0, P * P - 1 };
+  const double w = 2.0 * vtkMath::Pi() / ka;
+  const double tablesSpacing[3] = { w, w, 1.0 };
+  const double zero[3] = { 0.0, 0.0, 0.0 };
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), tablesExtent, 6);
+  info->Set(vtkDataObject::SPACING(), tablesSpacing, 3);
+  info->Set(vtkDataObject::ORIGIN(), zero, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_DOUBLE, 1);
+
+  // Port 2: TextureSize^2 silhouettes, one component per class.
+  const int ts = this->TextureSize;
+  info = outputVector->GetInformationObject(2);
+  const int texturesExtent[6] = { 0, ts - 1, 0, ts - 1, 0, 0 };
+  const double texturesSpacing[3] = { 2.0 / ts, 2.0 / ts, 1.0 };
+  const double texturesOrigin[3] = { -1.0 + 1.0 / ts, -1.0 + 1.0 / ts, 0.0 };
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), texturesExtent, 6);
+  info->Set(vtkDataObject::SPACING(), texturesSpacing, 3);
+  info->Set(vtkDataObject::ORIGIN(), texturesOrigin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_UNSIGNED_CHAR, m);
+  return 1;
+}
 
 //------------------------------------------------------------------------------
 int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
@@ -198,63 +383,19 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   silhouettes->Initialize();
   this->UpdateProgress(0.0);
 
-  if (this->AngleBins < 1 || this->AngleBins > 4096)
+  // Errors were reported by RequestInformation (same parameters, same cached shapes).
+  if (!this->ParameterError().empty())
   {
-    vtkErrorMacro("AngleBins must be in [1, 4096], got " << this->AngleBins << ".");
     return 1;
   }
-  if (this->DistanceSteps < 1 || this->DistanceSteps > (1 << 20))
+  const int loads = this->NumberOfShapeLoads;
+  this->UpdateShapes(inputVector); // normally a cache hit
+  if (!this->Shapes->Ok)
   {
-    vtkErrorMacro("DistanceSteps must be in [1, 1048576], got " << this->DistanceSteps << ".");
-    return 1;
-  }
-  if (!(this->MaximumAspectRatio >= 1.0))
-  {
-    vtkErrorMacro("MaximumAspectRatio must be at least 1, got " << this->MaximumAspectRatio << ".");
-    return 1;
-  }
-  if (!(this->AlphaThreshold >= 0.0 && this->AlphaThreshold <= 1.0) ||
-    !(this->LuminanceThreshold >= 0.0 && this->LuminanceThreshold <= 1.0))
-  {
-    vtkErrorMacro("AlphaThreshold and LuminanceThreshold must be in [0, 1].");
-    return 1;
-  }
-  if (this->TextureSize < 1 || this->TextureSize > 8192)
-  {
-    vtkErrorMacro("TextureSize must be in [1, 8192], got " << this->TextureSize << ".");
-    return 1;
-  }
-
-  // 1. Shapes: images, then polygons.
-  std::vector<gs::SafeDistanceInput> classes;
-  gs::SilhouetteThresholds thresholds;
-  thresholds.AlphaThreshold = this->AlphaThreshold;
-  thresholds.LuminanceThreshold = this->LuminanceThreshold;
-  for (const std::string& file : this->ShapeFileNames)
-  {
-    const gs::SilhouetteReadResult read = gs::ReadSilhouetteImage(file, thresholds);
-    if (!read.Ok)
+    if (this->NumberOfShapeLoads != loads)
     {
-      vtkErrorMacro("Shape " << classes.size() << ": " << read.Error << ".");
-      return 1;
+      vtkErrorMacro(<< this->Shapes->Error);
     }
-    classes.push_back({ file, gs::ShapeFromMask(read.Mask) });
-  }
-  vtkPolyData* polygons = inputVector[0]->GetNumberOfInformationObjects() > 0
-    ? vtkPolyData::GetData(inputVector[0], 0)
-    : nullptr;
-  if (polygons)
-  {
-    std::string error;
-    if (!PolygonClasses(polygons, classes, error))
-    {
-      vtkErrorMacro("Polygons input: " << error << ".");
-      return 1;
-    }
-  }
-  if (classes.empty())
-  {
-    vtkErrorMacro("No shape: set ShapeFileNames or connect polygons.");
     return 1;
   }
   this->UpdateProgress(0.1);
@@ -265,7 +406,7 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   options.DistanceSteps = this->DistanceSteps;
   options.MaximumAspectRatio = this->MaximumAspectRatio;
   const gs::SafeDistanceResult result =
-    gs::ComputeSafeDistanceTables(classes, options, [this](double p) {
+    gs::ComputeSafeDistanceValues(this->Shapes->Parts, options, [this](double p) {
       this->UpdateProgress(0.1 + 0.8 * p);
       return !this->CheckAbort();
     });

@@ -38,7 +38,15 @@
  * the class point r_k ((2u + 1) / T - 1, (2v + 1) / T - 1): the square around its circle, ready
  * to use as a decal texture. Geometry: origin (-1 + 1/T, -1 + 1/T), spacing 2/T.
  *
- * Errors (vtkErrorMacro, empty outputs): no shape, unreadable / empty / all-transparent /
+ * Pipeline: RequestInformation reads the shapes and splits them into parts, so the whole extent
+ * of every image output is known up front (downstream image filters see ka x ka x P^2); the
+ * classes and parts are cached and reused (RequestData does not read again) until a file name,
+ * a file's modification time or size, the polygons input, a threshold or MaximumAspectRatio
+ * changes. When the Polygons port is connected its upstream is brought up to date during the
+ * information pass (the number of parts depends on it). Open polylines on that port (last point
+ * not equal to the first) are closed, with a warning.
+ *
+ * Errors (vtkErrorMacro, empty outputs and empty whole extents): no shape, unreadable / empty / all-transparent /
  * all-opaque images, AngleBins outside [1, 4096], DistanceSteps outside [1, 2^20],
  * MaximumAspectRatio < 1, thresholds outside [0, 1], TextureSize outside [1, 8192].
  * Progress is reported and the computation can be aborted.
@@ -54,6 +62,7 @@
 #include "GeodesicShapesFiltersModule.h" // for export macro
 #include "vtkAlgorithm.h"
 
+#include <memory> // for std::unique_ptr
 #include <string> // for std::string
 #include <vector> // for std::vector
 
@@ -111,6 +120,10 @@ public:
   vtkGetMacro(TextureSize, int);
   ///@}
 
+  /// How many times the shapes were read and split into parts since construction (at most once
+  /// per change of their inputs, see the class comment). For tests and diagnostics.
+  int GetNumberOfShapeLoads() const { return this->NumberOfShapeLoads; }
+
   /// Connect the optional polygons (port 0).
   void SetPolygonsConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(0, output); }
   void SetPolygonsData(vtkDataObject* data) { this->SetInputDataObject(0, data); }
@@ -128,12 +141,23 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector);
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector);
 
 private:
   vtkMSDTSource(const vtkMSDTSource&) = delete;
   void operator=(const vtkMSDTSource&) = delete;
+
+  /// The parameter error, empty when all parameters are valid.
+  std::string ParameterError() const;
+  /// Reads and splits the shapes unless the cache already holds them for the current inputs.
+  void UpdateShapes(vtkInformationVector** inputVector);
+
+  struct ShapeCache; // classes and parts of the last read, with what they were read from
+  std::unique_ptr<ShapeCache> Shapes;
+  int NumberOfShapeLoads = 0;
 
   std::vector<std::string> ShapeFileNames;
   int AngleBins = 64;

@@ -253,24 +253,13 @@ void AddSegment(const Vec2& a, const Vec2& b, double delta, double Y, double h, 
 } // namespace
 
 //------------------------------------------------------------------------------
-SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,
-  const SafeDistanceOptions& options, const std::function<bool(double)>& progress)
+SafeDistanceResult ComputeSafeDistanceParts(
+  const std::vector<SafeDistanceInput>& shapes, const SafeDistanceOptions& options)
 {
   SafeDistanceResult result;
-  const int ka = options.AngleBins, kr = options.DistanceSteps;
   if (shapes.empty())
   {
     result.Error = "no shape";
-    return result;
-  }
-  if (ka < 1 || ka > 4096)
-  {
-    result.Error = "AngleBins must be in [1, 4096], got " + std::to_string(ka);
-    return result;
-  }
-  if (kr < 1 || kr > 1 << 20)
-  {
-    result.Error = "DistanceSteps must be in [1, 1048576], got " + std::to_string(kr);
     return result;
   }
   if (!(options.MaximumAspectRatio >= 1.0))
@@ -278,25 +267,9 @@ SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput
     result.Error = "MaximumAspectRatio must be at least 1";
     return result;
   }
-  if (options.Rows < 2 || options.Rows > 1 << 20 || options.RotationSamples < 0 ||
-    options.RotationSamples > 4096)
-  {
-    result.Error = "Rows must be in [2, 1048576] and RotationSamples in [0, 4096]";
-    return result;
-  }
-  auto report = [&](double value) { return !progress || progress(value); };
-
   SafeDistanceTables& T = result.Tables;
-  T.AngleBins = ka;
-  T.DistanceSteps = kr;
-  T.Conservative = options.Conservative;
-  T.RotationSamples = !options.Conservative
-    ? 1
-    : (options.RotationSamples > 0
-          ? options.RotationSamples
-          : std::max(1, static_cast<int>(std::ceil(8.0 * Pi * kr / ka - 1e-9))));
 
-  // 1. Classes: circles, normalization, moments, parts.
+  // Classes: circles, normalization, moments, parts.
   for (std::size_t c = 0; c < shapes.size(); ++c)
   {
     const Shape2D& shape = shapes[c].Shape;
@@ -403,11 +376,55 @@ SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput
     }
     T.Classes.push_back(std::move(cls));
   }
+  result.Ok = true;
+  return result;
+}
+
+//------------------------------------------------------------------------------
+SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
+  const SafeDistanceOptions& options, const std::function<bool(double)>& progress)
+{
+  SafeDistanceResult result;
+  const int ka = options.AngleBins, kr = options.DistanceSteps;
+  if (parts.Parts.empty())
+  {
+    result.Error = "no shape";
+    return result;
+  }
+  if (ka < 1 || ka > 4096)
+  {
+    result.Error = "AngleBins must be in [1, 4096], got " + std::to_string(ka);
+    return result;
+  }
+  if (kr < 1 || kr > 1 << 20)
+  {
+    result.Error = "DistanceSteps must be in [1, 1048576], got " + std::to_string(kr);
+    return result;
+  }
+  if (options.Rows < 2 || options.Rows > 1 << 20 || options.RotationSamples < 0 ||
+    options.RotationSamples > 4096)
+  {
+    result.Error = "Rows must be in [2, 1048576] and RotationSamples in [0, 4096]";
+    return result;
+  }
+  auto report = [&](double value) { return !progress || progress(value); };
   if (!report(0.05))
   {
     result.Error = "aborted";
     return result;
   }
+
+  SafeDistanceTables& T = result.Tables;
+  T = std::move(parts);
+  T.AngleBins = ka;
+  T.DistanceSteps = kr;
+  T.Conservative = options.Conservative;
+  T.RotationSamples = !options.Conservative
+    ? 1
+    : (options.RotationSamples > 0
+          ? options.RotationSamples
+          : std::max(1, static_cast<int>(std::ceil(8.0 * Pi * kr / ka - 1e-9))));
+  T.Values.clear();
 
   // 2. Extent profiles of every part at every angle bin, on one row grid over [-Y, Y].
   const int P = T.NumberOfParts();
@@ -519,6 +536,18 @@ SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput
   report(1.0);
   result.Ok = true;
   return result;
+}
+
+//------------------------------------------------------------------------------
+SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,
+  const SafeDistanceOptions& options, const std::function<bool(double)>& progress)
+{
+  SafeDistanceResult parts = ComputeSafeDistanceParts(shapes, options);
+  if (!parts.Ok)
+  {
+    return parts;
+  }
+  return ComputeSafeDistanceValues(std::move(parts.Tables), options, progress);
 }
 
 } // namespace gs

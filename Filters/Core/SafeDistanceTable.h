@@ -145,7 +145,18 @@ struct SafeDistanceResult
   SafeDistanceTables Tables;
 };
 
-/// Builds the classes, parts and all P^2 tables. OpenMP-parallel (profiles over angle bins,
+/// Step 1 alone: the classes (circles, normalization, aspect ratio) and parts, without table
+/// values. Cheap (no rotation): a pipeline's information pass uses it to know the number of
+/// parts. Only options.MaximumAspectRatio matters here.
+SafeDistanceResult ComputeSafeDistanceParts(
+  const std::vector<SafeDistanceInput>& shapes, const SafeDistanceOptions& options = {});
+
+/// Step 2: the P^2 tables of the classes and parts made by ComputeSafeDistanceParts (its
+/// MaximumAspectRatio is not looked at again). Progress and abort as below.
+SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
+  const SafeDistanceOptions& options = {}, const std::function<bool(double)>& progress = nullptr);
+
+/// Both steps: builds the classes, parts and all P^2 tables. OpenMP-parallel (profiles over angle bins,
 /// tables over rows) and deterministic. `progress` (optional) is called from the calling
 /// thread with values in [0, 1]; returning false aborts (the result is then not Ok).
 SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,

@@ -17,6 +17,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 
 #include <cmath>
@@ -42,6 +43,14 @@ int Errors = 0;
 void CountError(vtkObject*, unsigned long, void*, void*)
 {
   ++Errors;
+}
+
+int Warnings = 0;
+std::string LastWarning;
+void CountWarning(vtkObject*, unsigned long, void*, void* message)
+{
+  ++Warnings;
+  LastWarning = message ? static_cast<const char*>(message) : "";
 }
 
 gs::SilhouetteMask Disk(int size, double radius)
@@ -215,6 +224,64 @@ int main(int argc, char* argv[])
   CHECK(fd->GetArray("PartClassId") && fd->GetArray("PartClassId")->GetTuple1(3) == 1);
   CHECK(std::abs(fd->GetArray("Scale")->GetTuple1(0) - 2 * std::sqrt(2.0)) < 1e-9);
   CHECK(source->GetOutlinesOutput()->GetNumberOfCells() == 3);
+
+  // 3b. Polylines: an open one (last point not the first) is closed with a warning; closed
+  //     ones (first point repeated) and polygon cells (implicitly closed) give none.
+  {
+    vtkNew<vtkCallbackCommand> onWarning;
+    onWarning->SetCallback(CountWarning);
+    vtkNew<vtkMSDTSource> lines;
+    lines->AddObserver(vtkCommand::ErrorEvent, onError);
+    lines->AddObserver(vtkCommand::WarningEvent, onWarning);
+    lines->SetAngleBins(8);
+    lines->SetDistanceSteps(8);
+    auto polylines = [](bool closeFirst, bool closeSecond) {
+      vtkNew<vtkPoints> p;
+      vtkNew<vtkCellArray> c;
+      for (int k = 0; k < 2; ++k)
+      {
+        const double x = 10.0 * k;
+        const vtkIdType a = p->InsertNextPoint(x, 0, 0), b = p->InsertNextPoint(x + 2, 0, 0),
+                        d = p->InsertNextPoint(x + 2, 1, 0), e = p->InsertNextPoint(x, 1, 0);
+        const bool closed = k == 0 ? closeFirst : closeSecond;
+        c->InsertNextCell(closed ? 5 : 4);
+        for (vtkIdType id : { a, b, d, e })
+          c->InsertCellPoint(id);
+        if (closed)
+          c->InsertCellPoint(a);
+      }
+      vtkNew<vtkPolyData> pd;
+      pd->SetPoints(p);
+      pd->SetLines(c);
+      return vtkSmartPointer<vtkPolyData>(pd.GetPointer());
+    };
+    lines->SetPolygonsData(polylines(true, false));
+    Warnings = 0;
+    CHECK(Run(lines) == 0);
+    CHECK(Warnings == 1);
+    CHECK(LastWarning.find("1 open polyline(s)") != std::string::npos &&
+      LastWarning.find("treated as closed") != std::string::npos);
+    // Open or not, the shape is the same rectangle: 2 classes of one part each.
+    CHECK(lines->GetTablesOutput()->GetFieldData()->GetArray("ClassRadius") &&
+      lines->GetTablesOutput()->GetFieldData()->GetArray("ClassRadius")->GetNumberOfTuples() == 2);
+    CHECK(lines->GetOutlinesOutput()->GetNumberOfCells() == 2);
+    lines->SetPolygonsData(polylines(false, false));
+    Warnings = 0;
+    CHECK(Run(lines) == 0);
+    CHECK(Warnings == 1 && LastWarning.find("2 open polyline(s)") != std::string::npos);
+    lines->SetPolygonsData(polylines(true, true));
+    Warnings = 0;
+    CHECK(Run(lines) == 0);
+    CHECK(Warnings == 0);
+    // The same open rings as polygon cells: no warning.
+    vtkSmartPointer<vtkPolyData> asPolygons = polylines(false, false);
+    asPolygons->SetPolys(asPolygons->GetLines());
+    asPolygons->SetLines(nullptr);
+    lines->SetPolygonsData(asPolygons);
+    Warnings = 0;
+    CHECK(Run(lines) == 0);
+    CHECK(Warnings == 0 && lines->GetOutlinesOutput()->GetNumberOfCells() == 2);
+  }
 
   // 4. Abort: empty output, no error.
   vtkNew<vtkCallbackCommand> abort;
