@@ -3,8 +3,10 @@
 // TestSafeDistanceTable and Benchmarks/MSDTBenchmark.
 //
 // Regions are even-odd sets of closed rings, in coordinates relative to the shape's circle
-// centre. Interiors overlap iff two boundary edges cross properly, or a ring of one region lies
-// inside the other region. Touching (common points only on the boundaries) is not an overlap.
+// centre, or the part of such a region within a slab (PartOfRegion: a long shape's part).
+// Interiors overlap iff two boundary edges cross properly, or a boundary piece of one region
+// lies inside the other region (tested with one seed point per piece). Touching (common points
+// only on the boundaries) is not an overlap.
 #pragma once
 
 #include "Vector.h"
@@ -17,22 +19,155 @@ namespace gs_test
 {
 using gs::Vec2;
 
+struct BoundarySegment
+{
+  Vec2 A, B;
+};
+
+/// A region's boundary as segments (a closed 1-cycle, any order) plus seed points: at least one
+/// point on every connected piece of the boundary.
+struct RegionBoundary
+{
+  std::vector<BoundarySegment> Segments;
+  std::vector<Vec2> Seeds;
+};
+
+/// The part of the even-odd region `rings` where lo <= Dot(p, axis) <= hi (|bound| >= 1e299:
+/// no cut on that side), written independently of the table code's StripBoundary: ring edges
+/// clipped to the slab, plus the pieces of each cut line inside the region (crossings of the
+/// line sorted along it and paired, even-odd), all with the region on their left when the rings
+/// are oriented so (outer rings counter-clockwise, holes clockwise). Seeds: the first clipped edge of every run of
+/// consecutive surviving edges of a ring, and every cut piece.
+inline RegionBoundary PartOfRegion(
+  const std::vector<std::vector<Vec2>>& rings, const Vec2& axis, double lo, double hi)
+{
+  RegionBoundary part;
+  const Vec2 across{ -axis.y, axis.x };
+  const bool cutLo = lo > -1e299, cutHi = hi < 1e299;
+  auto at = [](const Vec2& a, const Vec2& b, double t) { return a + (b - a) * t; };
+  for (const auto& ring : rings)
+  {
+    bool previousReachedEnd = false; // the previous edge survived up to its end point
+    bool firstStartsAtStart = false;
+    std::size_t firstSeed = part.Seeds.size();
+    for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+    {
+      const Vec2& a = ring[k];
+      const Vec2& b = ring[(k + 1) % n];
+      const double sa = gs::Dot(a, axis), sb = gs::Dot(b, axis);
+      double t0 = 0.0, t1 = 1.0;
+      if (sa == sb)
+      {
+        if (sa < lo || sa > hi)
+          t1 = -1.0;
+      }
+      else
+      {
+        for (double bound : { lo, hi })
+        {
+          if (std::abs(bound) >= 1e299)
+            continue;
+          const double t = (bound - sa) / (sb - sa);
+          // Keep the side of the bound inside the slab.
+          const bool enteringAtT = (bound == lo) == (sb > sa);
+          if (enteringAtT)
+            t0 = std::max(t0, t);
+          else
+            t1 = std::min(t1, t);
+        }
+      }
+      if (!(t0 < t1))
+      {
+        previousReachedEnd = false;
+        continue;
+      }
+      const Vec2 p = at(a, b, t0), q = at(a, b, t1);
+      part.Segments.push_back({ p, q });
+      const bool startsAtStart = t0 == 0.0;
+      if (k == 0)
+        firstStartsAtStart = startsAtStart;
+      if (!(startsAtStart && previousReachedEnd))
+        part.Seeds.push_back((p + q) * 0.5); // a new run of surviving edges
+      previousReachedEnd = t1 == 1.0;
+    }
+    // The run through the ring's first vertex was counted twice (its start and its end).
+    if (previousReachedEnd && firstStartsAtStart && part.Seeds.size() > firstSeed + 1)
+      part.Seeds.erase(part.Seeds.begin() + static_cast<std::ptrdiff_t>(firstSeed));
+  }
+  for (double bound : { lo, hi })
+  {
+    if (!((bound == lo && cutLo) || (bound == hi && cutHi)))
+      continue;
+    std::vector<double> along;
+    for (const auto& ring : rings)
+    {
+      for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+      {
+        const Vec2& a = ring[k];
+        const Vec2& b = ring[(k + 1) % n];
+        const double sa = gs::Dot(a, axis), sb = gs::Dot(b, axis);
+        if ((sa < bound) != (sb < bound))
+          along.push_back(gs::Dot(at(a, b, (bound - sa) / (sb - sa)), across));
+      }
+    }
+    std::sort(along.begin(), along.end());
+    for (std::size_t k = 0; k + 1 < along.size(); k += 2)
+    {
+      // Oriented with the part on the left (as the rings are): -across on the lo line.
+      const Vec2 p = axis * bound + across * along[k], q = axis * bound + across * along[k + 1];
+      if (bound == lo)
+        part.Segments.push_back({ q, p });
+      else
+        part.Segments.push_back({ p, q });
+      part.Seeds.push_back((p + q) * 0.5);
+    }
+  }
+  return part;
+}
+
 class OverlapOracle
 {
 public:
   /// `rings` relative to the circle centre; `radius`: the circle radius (all points within).
   OverlapOracle(std::vector<std::vector<Vec2>> rings, double radius)
-    : Rings(std::move(rings)), Radius(radius)
+    : Radius(radius)
   {
-    for (const auto& ring : this->Rings)
+    for (const auto& ring : rings)
     {
+      if (!ring.empty())
+        this->Seeds.push_back(ring[0]);
       for (std::size_t k = 0, n = ring.size(); k < n; ++k)
       {
-        Edge e{ ring[k], ring[(k + 1) % n], 0.0 };
-        e.Reach = std::max(gs::Norm(e.A), gs::Norm(e.B));
-        this->Edges.push_back(e);
+        this->AddEdge(ring[k], ring[(k + 1) % n]);
       }
     }
+    this->BuildGrid();
+  }
+
+  /// A region given by its boundary (e.g. PartOfRegion), relative to the circle centre.
+  OverlapOracle(const RegionBoundary& boundary, double radius)
+    : Seeds(boundary.Seeds), Radius(radius)
+  {
+    for (const BoundarySegment& s : boundary.Segments)
+    {
+      this->AddEdge(s.A, s.B);
+    }
+    this->BuildGrid();
+  }
+
+  /// The farthest boundary point from the centre (at most the radius for a valid circle).
+  double GetReach() const { return this->Edges.empty() ? 0.0 : this->Edges.front().Reach; }
+
+private:
+  void AddEdge(const Vec2& a, const Vec2& b)
+  {
+    Edge e{ a, b, std::max(gs::Norm(a), gs::Norm(b)) };
+    this->Edges.push_back(e);
+  }
+
+  void BuildGrid()
+  {
+    const double radius = this->Radius;
     std::sort(this->Edges.begin(), this->Edges.end(),
       [](const Edge& x, const Edge& y) { return x.Reach > y.Reach; });
     // Uniform grid over [-R, R]^2 holding the edges by bounding box.
@@ -50,6 +185,7 @@ public:
     }
   }
 
+public:
   double GetRadius() const { return this->Radius; }
 
   /// Does A (this, centre at the origin, rotated by alphaA) overlap B (centre at (d, 0),
@@ -74,39 +210,20 @@ public:
       if (this->Crosses(a, b))
         return true;
     }
-    // No crossing: each ring is entirely inside or outside the other region.
-    for (const auto& ring : B.Rings)
+    // No crossing: each boundary piece is entirely inside or outside the other region, so one
+    // seed point per piece decides.
+    for (const Vec2& seed : B.Seeds)
     {
-      bool outsideCircle = false;
-      for (const Vec2& p : ring)
-      {
-        if (gs::Norm(toA(p)) > this->Radius)
-        {
-          outsideCircle = true;
-          break;
-        }
-      }
-      if (!outsideCircle && this->Contains(toA(ring[0])))
+      const Vec2 p = toA(seed);
+      if (gs::Norm(p) <= this->Radius && this->Contains(p))
         return true;
     }
-    // A's rings in B's frame: q -> R(-alphaB) (R(alphaA) q - (d, 0)) = R(-rel) (q - t).
-    for (const auto& ring : this->Rings)
+    // A's seeds in B's frame: q -> R(-alphaB) (R(alphaA) q - (d, 0)) = R(-rel) (q - t).
+    for (const Vec2& seed : this->Seeds)
     {
-      bool outsideCircle = false;
-      Vec2 first;
-      for (std::size_t k = 0; k < ring.size(); ++k)
-      {
-        const Vec2 q = ring[k] - t;
-        const Vec2 p{ c * q.x + s * q.y, -s * q.x + c * q.y };
-        if (k == 0)
-          first = p;
-        if (gs::Norm(p) > B.Radius)
-        {
-          outsideCircle = true;
-          break;
-        }
-      }
-      if (!outsideCircle && B.Contains(first))
+      const Vec2 q = seed - t;
+      const Vec2 p{ c * q.x + s * q.y, -s * q.x + c * q.y };
+      if (gs::Norm(p) <= B.Radius && B.Contains(p))
         return true;
     }
     return false;
@@ -183,7 +300,7 @@ private:
     return false;
   }
 
-  std::vector<std::vector<Vec2>> Rings;
+  std::vector<Vec2> Seeds; // at least one point on every boundary piece
   double Radius;
   std::vector<Edge> Edges;
   int Cells = 8;

@@ -515,6 +515,87 @@ TEST(SafeDistanceTable, LongShapesAreSplitAlongTheirMajorAxis)
   EXPECT_EQ(whole.Tables.NumberOfParts(), 1);
 }
 
+TEST(SafeDistanceTable, NonConvexSplitPartsAreConservative)
+{
+  // A comb 12 x 3 with teeth (spine 12 x 1, 6 teeth 1 wide, 2 long) and a square hole: its
+  // aspect (about 4) gives 2 parts; the cut crosses the spine and a tooth or gap, so each part
+  // is non-convex and may have several pieces on the cut line. Parts are rebuilt by the
+  // oracle's own clipping (gs_test::PartOfRegion) and probed pair by pair.
+  std::vector<Vec2> comb{ { 0, 0 }, { 12, 0 }, { 12, 1 } };
+  for (int t = 5; t >= 0; --t)
+  {
+    const double x = 2.0 * t;
+    comb.insert(comb.end(), { { x + 1.5, 1 }, { x + 1.5, 3 }, { x + 0.5, 3 }, { x + 0.5, 1 } });
+  }
+  comb.push_back({ 0, 1 });
+  const std::vector<Vec2> hole{ { 3.2, 0.3 }, { 3.6, 0.3 }, { 3.6, 0.7 }, { 3.2, 0.7 } };
+  SafeDistanceOptions options;
+  options.AngleBins = 24;
+  options.DistanceSteps = 24;
+  const SafeDistanceResult r =
+    ComputeSafeDistanceTables({ { "comb", ShapeFromPolygons({ comb, hole }) } }, options);
+  ASSERT_TRUE(r.Ok) << r.Error;
+  const SafeDistanceTables& T = r.Tables;
+  ASSERT_GE(T.NumberOfParts(), 2);
+  SafeDistanceOptions sampledOptions = options;
+  sampledOptions.Conservative = false;
+  const SafeDistanceResult sampled =
+    ComputeSafeDistanceTables({ { "comb", ShapeFromPolygons({ comb, hole }) } }, sampledOptions);
+  ASSERT_TRUE(sampled.Ok);
+
+  std::vector<gs_test::OverlapOracle> oracles;
+  double area = 0.0;
+  for (const SafeDistancePart& part : T.Parts)
+  {
+    gs_test::RegionBoundary region =
+      gs_test::PartOfRegion(T.Classes[0].Outline.Rings, part.Axis, part.From, part.To);
+    for (const auto& s : region.Segments)
+      area += 0.5 * Cross(s.A, s.B); // oriented boundaries: the parts' areas add up
+    for (auto& s : region.Segments)
+    {
+      s.A = s.A - part.Centre;
+      s.B = s.B - part.Centre;
+    }
+    for (auto& seed : region.Seeds)
+      seed = seed - part.Centre;
+    oracles.emplace_back(region, part.Radius);
+    EXPECT_LE(oracles.back().GetReach(), part.Radius * (1 + 1e-9));
+  }
+  EXPECT_NEAR(area, T.Classes[0].Outline.Area(), 1e-12);
+
+  const int P = T.NumberOfParts();
+  const double w = T.BinWidth();
+  std::mt19937_64 random(99);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int overlaps = 0;
+  for (int k = 0; k < 40000; ++k)
+  {
+    const int a = k % P, b = (k / P) % P;
+    const int i = static_cast<int>(unit(random) * T.AngleBins) % T.AngleBins;
+    const int j = static_cast<int>(unit(random) * T.AngleBins) % T.AngleBins;
+    const double d0 = T.Value(a, b, i, j);
+    const double d = k % 2 ? d0 : d0 + unit(random) * (T.Parts[a].Radius + T.Parts[b].Radius - d0);
+    overlaps += oracles[a].Overlaps((i + unit(random) - 0.5) * w, oracles[b],
+      (j + unit(random) - 0.5) * w, d);
+  }
+  EXPECT_EQ(overlaps, 0);
+  // The oracle sees the parts: 1.5 steps below the sampled table they overlap.
+  int below = 0, tested = 0;
+  for (int a = 0; a < P; ++a)
+    for (int b = 0; b < P; ++b)
+      for (int i = 0; i < T.AngleBins; i += 2)
+        for (int j = 0; j < T.AngleBins; j += 2)
+        {
+          const double d = sampled.Tables.Value(a, b, i, j) - 1.5 * T.Step(a, b);
+          if (d <= 0)
+            continue;
+          ++tested;
+          below += oracles[a].Overlaps(i * w, oracles[b], j * w, d);
+        }
+  EXPECT_GT(tested, 100);
+  EXPECT_GE(below, tested * 95 / 100);
+}
+
 TEST(SafeDistanceTable, DeterministicAcrossThreadCounts)
 {
   const Shape2D star = PixelStar(64);
