@@ -10,6 +10,12 @@ namespace gs
 double UnfoldedDistance(const TriangleMesh& mesh, int f, const std::array<double, 3>& bary,
   const std::array<double, 3>& d)
 {
+  return UnfoldTriangle(mesh, f, bary, d).Distance;
+}
+
+UnfoldedTriangle UnfoldTriangle(const TriangleMesh& mesh, int f, const std::array<double, 3>& bary,
+  const std::array<double, 3>& d)
+{
   // The face laid out in its plane: corner 0 at the origin, corner 1 on the x axis.
   const double l01 = mesh.EdgeLength(3 * f);
   const double l02 = mesh.EdgeLength(3 * f + 2);
@@ -18,12 +24,20 @@ double UnfoldedDistance(const TriangleMesh& mesh, int f, const std::array<double
     Vec2(l02 * std::cos(a0), l02 * std::sin(a0)) };
   const Vec2 q = P[0] * bary[0] + P[1] * bary[1] + P[2] * bary[2];
 
+  UnfoldedTriangle out;
+  out.Point = q;
+  for (int i = 0; i < 3; ++i)
+  {
+    out.Corners[i] = P[i];
+  }
   double best = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i)
   {
-    if (std::isfinite(d[i]))
+    if (std::isfinite(d[i]) && d[i] + Norm(q - P[i]) < best)
     {
-      best = std::min(best, d[i] + Norm(q - P[i]));
+      best = d[i] + Norm(q - P[i]);
+      out.Source = P[i];
+      out.FromEdge = false;
     }
   }
   for (int i = 0; i < 3; ++i)
@@ -60,9 +74,15 @@ double UnfoldedDistance(const TriangleMesh& mesh, int f, const std::array<double
     {
       continue;
     }
-    best = std::min(best, Norm(sq));
+    if (Norm(sq) < best)
+    {
+      best = Norm(sq);
+      out.Source = s;
+      out.FromEdge = true;
+    }
   }
-  return best;
+  out.Distance = best;
+  return out;
 }
 
 } // namespace gs

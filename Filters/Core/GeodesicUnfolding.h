@@ -19,4 +19,18 @@ namespace gs
 double UnfoldedDistance(const TriangleMesh& mesh, int f, const std::array<double, 3>& bary,
   const std::array<double, 3>& cornerDistances);
 
+// The same, with the geometry behind the winning candidate, in the face's plane laid out with
+// corner 0 at the origin and corner 1 on the +x axis: the point, the corners, and the unfolded
+// source (for a corner candidate, that corner; FromEdge tells which kind won).
+struct UnfoldedTriangle
+{
+  double Distance;
+  Vec2 Point;
+  Vec2 Corners[3];
+  Vec2 Source;
+  bool FromEdge = false;
+};
+UnfoldedTriangle UnfoldTriangle(const TriangleMesh& mesh, int f, const std::array<double, 3>& bary,
+  const std::array<double, 3>& cornerDistances);
+
 } // namespace gs

@@ -1,0 +1,61 @@
+// Geodesic polar coordinates about a surface point (Wang et al. 2016, Section 3.3): for every
+// vertex within a radius, rho = geodesic distance and theta = direction in which the geodesic
+// leaves the source (the log map), counter-clockwise about the outward normal from a reference
+// direction, in [0, 2 pi). At a source vertex whose angle sum is not 2 pi (a cone point or a
+// saddle), angles are scaled so that a full turn is 2 pi. The inverse map shoots the geodesic
+// back, so that a shape given in polar coordinates can be drawn on the surface.
+//
+// This version computes the coordinates with the exact solver truncated at the radius: exact
+// distances and exact departure angles (behind a saddle or reflex boundary vertex, the angle of
+// the path to it). The `Iso-curve arc length` angle mode and curve sources are not part of it.
+#pragma once
+
+#include "ExactGeodesic.h"
+#include "SurfacePoint.h"
+#include "TriangleMesh.h"
+
+#include <vector>
+
+namespace gs
+{
+
+class GeodesicPolarCoordinates
+{
+public:
+  // The mesh must outlive this object.
+  explicit GeodesicPolarCoordinates(const TriangleMesh& mesh);
+
+  // Coordinates about `source` of every vertex closer than `radius` (> 0; infinity: the whole
+  // reachable surface). `referenceAngle` is theta's zero, as a tangent angle at the source (see
+  // TangentAngle in GeodesicShooting.h; 0: the source's first edge). False for an invalid source
+  // or radius.
+  bool Compute(const SurfacePoint& source, double radius, double referenceAngle = 0.0);
+
+  // Per vertex, NaN outside the radius (or unreachable).
+  double Rho(int v) const { return R[v]; }
+  double Theta(int v) const { return T[v]; }
+  // Vertices inside the radius, by increasing rho.
+  const std::vector<int>& Inside() const { return Solver.FinalVertices(); }
+
+  // Coordinates of any surface point (interpolated inside its face: rho by geodesic triangle
+  // unfolding, theta circularly; exact in the source's own face). False outside the radius.
+  bool PolarAt(const SurfacePoint& q, double& rho, double& theta) const;
+
+  // The inverse map: the surface point at (rho, theta) (geodesic shooting).
+  SurfacePoint ToSurface(double rho, double theta) const;
+
+  // Full turn of raw tangent angles at the source (its angle sum, or 2 pi for a face point).
+  double SourceAngleSum() const { return Turn; }
+
+private:
+  double RawToTheta(double raw) const;
+
+  const TriangleMesh& M;
+  ExactGeodesicSolver Solver;
+  SurfacePoint Source;
+  double Reference = 0.0;
+  double Turn = 0.0;
+  std::vector<double> R, T;
+};
+
+} // namespace gs

@@ -1,0 +1,211 @@
+#include "GeodesicPolarCoordinates.h"
+#include "GeodesicShooting.h"
+#include "MeshGenerators.h"
+#include "TriangleMesh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace gs;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+TriangleMesh BuildMesh(const TriangleSoup& s)
+{
+  auto r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r.Mesh;
+}
+
+double AngleDiff(double a, double b)
+{
+  double d = std::fmod(a - b, 2 * Pi);
+  if (d < 0)
+    d += 2 * Pi;
+  return std::min(d, 2 * Pi - d);
+}
+
+// No face with all corners inside the radius flips in (rho cos theta, rho sin theta).
+int FlippedFaces(const TriangleMesh& m, const GeodesicPolarCoordinates& pc, int source)
+{
+  int flipped = 0;
+  for (int f = 0; f < m.NumberOfFaces(); ++f)
+  {
+    const auto& t = m.Face(f);
+    if (t[0] == source || t[1] == source || t[2] == source)
+      continue;
+    Vec2 p[3];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      inside = inside && std::isfinite(pc.Rho(t[k]));
+      p[k] = Vec2(pc.Rho(t[k]) * std::cos(pc.Theta(t[k])), pc.Rho(t[k]) * std::sin(pc.Theta(t[k])));
+    }
+    if (inside && !(Cross(p[1] - p[0], p[2] - p[0]) > 0))
+      ++flipped;
+  }
+  return flipped;
+}
+} // namespace
+
+TEST(GeodesicPolarCoordinates, PlaneIsPolarCoordinates)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(20, 20, 2.0, 2.0));
+  GeodesicPolarCoordinates pc(m);
+  const int s = 10 * 21 + 10; // (1, 1)
+  const Vec3 ps = m.Position(s);
+  // Reference: +y, given as a tangent angle.
+  const double ref = TangentAngle(m, SurfacePoint::AtVertex(s), Vec3(0, 1, 0));
+  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 0.8, ref));
+  int inside = 0;
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    const Vec3 d = m.Position(v) - ps;
+    if (Norm(d) > 0.8 - 1e-9)
+    {
+      EXPECT_TRUE(std::isnan(pc.Rho(v)) || Norm(d) <= 0.8 + 1e-9);
+      continue;
+    }
+    if (v == s)
+      continue;
+    ++inside;
+    EXPECT_NEAR(pc.Rho(v), Norm(d), 1e-9 * 2);
+    EXPECT_LT(AngleDiff(pc.Theta(v), std::atan2(d.y, d.x) - Pi / 2), 1e-9) << v;
+    EXPECT_GE(pc.Theta(v), 0.0);
+    EXPECT_LT(pc.Theta(v), 2 * Pi);
+  }
+  EXPECT_GT(inside, 150);
+  EXPECT_EQ(FlippedFaces(m, pc, s), 0);
+  // A face point source, and the coordinates of points inside faces.
+  const SurfacePoint fp = SurfacePoint::InFace(300, 0.3, 0.3, 0.4);
+  const Vec3 pf = m.Interpolate(fp.Face, fp.Bary);
+  const Vec3 e0 = m.Position(m.Face(300)[1]) - m.Position(m.Face(300)[0]);
+  ASSERT_TRUE(pc.Compute(fp, 0.7));
+  for (int f : { 300, 301, 250, 340 })
+  {
+    const SurfacePoint q = SurfacePoint::InFace(f, 0.2, 0.5, 0.3);
+    const Vec3 d = m.Interpolate(f, q.Bary) - pf;
+    double rho, theta;
+    ASSERT_TRUE(pc.PolarAt(q, rho, theta)) << f;
+    EXPECT_NEAR(rho, Norm(d), 1e-9) << f;
+    // Exact on a plane, in the source's face and through the unfolding elsewhere.
+    EXPECT_LT(AngleDiff(theta, std::atan2(d.y, d.x) - std::atan2(e0.y, e0.x)), 1e-9) << f;
+  }
+}
+
+TEST(GeodesicPolarCoordinates, ConeApexAnglesAreScaledToAFullTurn)
+{
+  const int rings = 8, sectors = 24;
+  const TriangleMesh m = BuildMesh(MakeCone(0.4, 2.0, rings, sectors));
+  GeodesicPolarCoordinates pc(m);
+  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(0), 10.0));
+  EXPECT_LT(pc.SourceAngleSum(), 2 * Pi);
+  // Ring vertices of sector j sit at azimuth 2 pi j / sectors (up to a common offset, in the
+  // direction the generator's orientation gives).
+  const double offset = pc.Theta(1);
+  const double sign = AngleDiff(pc.Theta(2) - offset, 2 * Pi / sectors) < 1e-6 ? 1.0 : -1.0;
+  for (int v = 1; v < m.NumberOfVertices(); ++v)
+  {
+    const int i = (v - 1) / sectors + 1, j = (v - 1) % sectors;
+    EXPECT_NEAR(pc.Rho(v), 2.0 * i / rings, 1e-9);
+    EXPECT_LT(AngleDiff(pc.Theta(v) - offset, sign * 2 * Pi * j / sectors), 1e-9) << v;
+  }
+  EXPECT_EQ(FlippedFaces(m, pc, 0), 0);
+}
+
+TEST(GeodesicPolarCoordinates, ConeAwayFromTheApexMatchesTheDevelopment)
+{
+  const int rings = 10, sectors = 32;
+  const double halfAngle = 0.5, slant = 2.0;
+  const TriangleMesh m = BuildMesh(MakeCone(halfAngle, slant, rings, sectors));
+  const double gamma = 2 * std::asin(std::sin(halfAngle) * std::sin(Pi / sectors));
+  // Development: vertex (ring i, sector j) at polar (slant i / rings, -j gamma) about the apex
+  // (the generator's faces turn clockwise with j: mirrored, the development keeps the mesh's
+  // orientation counter-clockwise).
+  auto developed = [&](int v, double around) {
+    if (v == 0)
+      return Vec2(0, 0);
+    const int i = (v - 1) / sectors + 1, j = (v - 1) % sectors;
+    double a = -j * gamma;
+    // Unroll on the side nearest to `around`.
+    const double full = sectors * gamma;
+    while (a - around > full / 2)
+      a -= full;
+    while (around - a > full / 2)
+      a += full;
+    return Vec2(slant * i / rings * std::cos(a), slant * i / rings * std::sin(a));
+  };
+  const int s = 1 + 5 * sectors + 7;
+  const double around = -7 * gamma;
+  const Vec2 ps = developed(s, around);
+  const Vec2 first = developed(m.Destination(m.VertexHalfedge(s)), around) - ps;
+  GeodesicPolarCoordinates pc(m);
+  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 0.9));
+  int checked = 0;
+  for (int v : pc.Inside())
+  {
+    if (v == s)
+      continue;
+    const Vec2 d = developed(v, around) - ps;
+    EXPECT_NEAR(pc.Rho(v), Norm(d), 1e-9);
+    EXPECT_LT(AngleDiff(pc.Theta(v), std::atan2(d.y, d.x) - std::atan2(first.y, first.x)), 1e-9) << v;
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
+  EXPECT_EQ(FlippedFaces(m, pc, s), 0);
+}
+
+TEST(GeodesicPolarCoordinates, SphereCapAgainstAnalyticPolarCoordinates)
+{
+  const TriangleMesh m = BuildMesh(MakeIcosphere(1.0, 4));
+  GeodesicPolarCoordinates pc(m);
+  const int s = 0;
+  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 0.7));
+  const Vec3 n = m.Position(s) / Norm(m.Position(s));
+  // Analytic azimuth about the axis, from the direction of the source's first edge.
+  auto tangent = [&](const Vec3& p) { return p - n * Dot(n, p); };
+  const Vec3 e1 = tangent(m.Position(m.Destination(m.VertexHalfedge(s))));
+  const Vec3 e1u = e1 / Norm(e1), e2u = Cross(n, e1u);
+  std::vector<double> thetaErrors;
+  for (int v : pc.Inside())
+  {
+    if (v == s)
+      continue;
+    const Vec3 p = m.Position(v);
+    const double exactRho = std::acos(std::clamp(Dot(n, p / Norm(p)), -1.0, 1.0));
+    EXPECT_NEAR(pc.Rho(v), exactRho, 0.01 * exactRho);
+    const Vec3 t = tangent(p);
+    thetaErrors.push_back(AngleDiff(pc.Theta(v), std::atan2(Dot(t, e2u), Dot(t, e1u))));
+  }
+  ASSERT_GT(thetaErrors.size(), 100u);
+  std::nth_element(thetaErrors.begin(), thetaErrors.begin() + thetaErrors.size() / 2, thetaErrors.end());
+  EXPECT_LT(thetaErrors[thetaErrors.size() / 2], 0.5 * Pi / 180);
+  EXPECT_EQ(FlippedFaces(m, pc, s), 0);
+  // Inverse map: back to each vertex.
+  double worst = 0;
+  for (int v : pc.Inside())
+  {
+    if (v == s)
+      continue;
+    const SurfacePoint q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
+    worst = std::max(worst, Norm(m.Interpolate(q.Face, q.Bary) - m.Position(v)));
+  }
+  EXPECT_LT(worst, 1e-6 * m.MeanEdgeLength());
+}
+
+TEST(GeodesicPolarCoordinates, RejectsBadArguments)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(4, 4, 1.0, 1.0));
+  GeodesicPolarCoordinates pc(m);
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), 0.0));
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), -1.0));
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), NAN));
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(999), 1.0));
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), 1.0, NAN));
+  EXPECT_TRUE(pc.Compute(SurfacePoint::AtVertex(3), INFINITY));
+  EXPECT_TRUE(std::isfinite(pc.Rho(24)));
+}
