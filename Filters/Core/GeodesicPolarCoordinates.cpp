@@ -22,10 +22,14 @@ double Wrap(double a)
 }
 } // namespace
 
-GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh)
+GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
   : M(mesh)
   , Solver(mesh)
 {
+  if (graph && graph->NumberOfVertices() == mesh.NumberOfVertices())
+  {
+    Svg.reset(new SVGGeodesicSolver(mesh, *graph));
+  }
   R.assign(M.NumberOfVertices(), NaN);
   T.assign(M.NumberOfVertices(), NaN);
 }
@@ -37,28 +41,56 @@ double GeodesicPolarCoordinates::RawToTheta(double raw) const
 
 bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius, double referenceAngle)
 {
-  for (int v : Solver.FinalVertices())
+  for (int v : InsideList)
   {
     R[v] = NaN;
     T[v] = NaN;
   }
+  InsideList.clear();
   if (!(radius > 0.0) || !std::isfinite(referenceAngle))
   {
     return false;
   }
-  ExactGeodesicOptions options;
-  options.MaximumDistance = std::isfinite(radius) ? radius : 0.0;
-  if (!Solver.Solve({ source }, options))
+  const double maxDistance = std::isfinite(radius) ? radius : 0.0;
+  Turn = source.IsVertex() && source.Vertex >= 0 && source.Vertex < M.NumberOfVertices()
+    ? M.TotalAngle(source.Vertex)
+    : TwoPi;
+  Reference = referenceAngle;
+  if (Svg)
   {
-    return false;
+    SVGSolveOptions options;
+    options.MaximumDistance = maxDistance;
+    options.Angles = true;
+    if (!Svg->Solve({ source }, options))
+    {
+      return false;
+    }
+    for (int v : Svg->Reached())
+    {
+      if (Svg->Distance(v) <= radius)
+      {
+        InsideList.push_back(v);
+      }
+    }
+    std::sort(InsideList.begin(), InsideList.end(), [&](int a, int b) {
+      return Svg->Distance(a) < Svg->Distance(b) || (Svg->Distance(a) == Svg->Distance(b) && a < b);
+    });
+  }
+  else
+  {
+    ExactGeodesicOptions options;
+    options.MaximumDistance = maxDistance;
+    if (!Solver.Solve({ source }, options))
+    {
+      return false;
+    }
+    InsideList = Solver.FinalVertices();
   }
   Source = source;
-  Turn = source.IsVertex() ? M.TotalAngle(source.Vertex) : TwoPi;
-  Reference = referenceAngle;
-  for (int v : Solver.FinalVertices())
+  for (int v : InsideList)
   {
-    R[v] = Solver.Distance(v);
-    const double raw = Solver.DepartureAngle(v);
+    R[v] = Svg ? Svg->Distance(v) : Solver.Distance(v);
+    const double raw = Svg ? Svg->DepartureAngle(v) : Solver.DepartureAngle(v);
     // The source vertex itself is the pole: angle 0 by convention.
     T[v] = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
   }

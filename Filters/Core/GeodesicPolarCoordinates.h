@@ -5,15 +5,20 @@
 // saddle), angles are scaled so that a full turn is 2 pi. The inverse map shoots the geodesic
 // back, so that a shape given in polar coordinates can be drawn on the surface.
 //
-// This version computes the coordinates with the exact solver truncated at the radius: exact
-// distances and exact departure angles (behind a saddle or reflex boundary vertex, the angle of
-// the path to it). The `Iso-curve arc length` angle mode and curve sources are not part of it.
+// Two engines: the exact solver truncated at the radius (exact distances and departure angles;
+// behind a saddle or reflex boundary vertex, the angle of the path to it), or, given a saddle
+// vertex graph, the SVG solver (exact in the source's K-disk, near-exact beyond, several times
+// faster on large patches). The `Iso-curve arc length` angle mode and curve sources are not part
+// of this version.
 #pragma once
 
 #include "ExactGeodesic.h"
+#include "SVGGeodesicSolver.h"
+#include "SaddleVertexGraph.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
+#include <memory>
 #include <vector>
 
 namespace gs
@@ -22,8 +27,8 @@ namespace gs
 class GeodesicPolarCoordinates
 {
 public:
-  // The mesh must outlive this object.
-  explicit GeodesicPolarCoordinates(const TriangleMesh& mesh);
+  // The mesh (and graph) must outlive this object. Without a graph: the exact engine.
+  explicit GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph = nullptr);
 
   // Coordinates about `source` of every vertex closer than `radius` (> 0; infinity: the whole
   // reachable surface). `referenceAngle` is theta's zero, as a tangent angle at the source (see
@@ -35,7 +40,7 @@ public:
   double Rho(int v) const { return R[v]; }
   double Theta(int v) const { return T[v]; }
   // Vertices inside the radius, by increasing rho.
-  const std::vector<int>& Inside() const { return Solver.FinalVertices(); }
+  const std::vector<int>& Inside() const { return InsideList; }
 
   // Coordinates of any surface point (interpolated inside its face: rho by geodesic triangle
   // unfolding, theta circularly; exact in the source's own face). False outside the radius.
@@ -52,6 +57,8 @@ private:
 
   const TriangleMesh& M;
   ExactGeodesicSolver Solver;
+  std::unique_ptr<SVGGeodesicSolver> Svg;
+  std::vector<int> InsideList;
   SurfacePoint Source;
   double Reference = 0.0;
   double Turn = 0.0;

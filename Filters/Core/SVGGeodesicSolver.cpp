@@ -12,6 +12,7 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
+const double NaN = std::numeric_limits<double>::quiet_NaN();
 
 double PointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
 {
@@ -30,9 +31,10 @@ SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVerte
   , Graph(graph)
 {
   Exact.assign(M.NumberOfVertices(), 0);
+  Angle.assign(M.NumberOfVertices(), NaN);
 }
 
-void SVGGeodesicSolver::Refine(double maxDistance)
+void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
 {
   // Geodesic triangle unfolding over each vertex's polar stencil, swept in order of distance
   // (Gauss-Seidel), so that refined values feed the vertices beyond them. For a vertex x and two
@@ -59,6 +61,10 @@ void SVGGeodesicSolver::Refine(double maxDistance)
     {
       continue;
     }
+    // The angle that goes with the current distance: the graph predecessor's.
+    const int graphPred = Graph.Predecessor(x);
+    double bestAngle = angles && graphPred >= 0 ? Angle[graphPred] : NaN;
+    double unfolded = Inf, unfoldedAngle = NaN;
     const std::int64_t begin = G.StencilBegin(x), end = G.StencilEnd(x);
     if (end - begin < 1)
     {
@@ -133,7 +139,21 @@ void SVGGeodesicSolver::Refine(double maxDistance)
       const double d1 = Graph.Distance(G.StencilTarget(e1));
       const double d2 = Graph.Distance(G.StencilTarget(e2));
       // Graph relaxation with the (refined) distances of the cone's stencil vertices.
-      best = std::min(best, std::min(d1 + G.StencilDistance(e1), d2 + G.StencilDistance(e2)));
+      for (const std::int64_t e : { e1, e2 })
+      {
+        const double c = Graph.Distance(G.StencilTarget(e)) + G.StencilDistance(e);
+        if (unfold && c < best)
+        {
+          best = c;
+          bestAngle = Angle[G.StencilTarget(e)];
+        }
+        // A neighbour whose angle is known stands in when the predecessor's is not (the
+        // source itself has none).
+        if (angles && !std::isfinite(bestAngle) && std::isfinite(Angle[G.StencilTarget(e)]))
+        {
+          bestAngle = Angle[G.StencilTarget(e)];
+        }
+      }
       if (!(d1 < Inf) || !(d2 < Inf))
       {
         continue;
@@ -173,11 +193,84 @@ void SVGGeodesicSolver::Refine(double maxDistance)
       {
         continue;
       }
-      best = std::min(best, std::sqrt(sx * sx + sy * sy));
+      const double candidate = std::sqrt(sx * sx + sy * sy);
+      best = std::min(best, candidate);
+      if (angles && candidate < unfolded)
+      {
+        // Interpolated along u1 u2 where the unfolded geodesic crosses it.
+        const double a1 = Angle[G.StencilTarget(e1)], a2 = Angle[G.StencilTarget(e2)];
+        if (std::isfinite(a1) && std::isfinite(a2))
+        {
+          // In the development, the angle at the unfolded source from u_i's direction to x's is
+          // the difference of their departure angles: exact on developable surfaces. The two
+          // estimates are blended by where the geodesic crosses u1 u2.
+          auto turn = [&](double px, double py) {
+            const double ax = px - sx, ay = py - sy;
+            return std::atan2(ax * qy - ay * qx, ax * qx + ay * qy);
+          };
+          const double w = std::min(1.0, std::max(0.0, t));
+          const double b1 = a1 + turn(p1x, p1y), b2 = a2 + turn(p2x, p2y);
+          double d = b2 - b1;
+          d -= AnglePeriod * std::round(d / AnglePeriod);
+          unfolded = candidate;
+          unfoldedAngle = b1 + w * d;
+        }
+      }
+    }
+    // The unfolded geodesic's angle when it is (one of) the shortest. Otherwise the source is
+    // placed in x's tangent plane from x's distance and that of the cone neighbour with a known
+    // angle and the shortest path through it (two circles; the intersection on the arrival
+    // side), and the angle is carried over from that neighbour.
+    if (angles && unfolded <= best * (1.0 + 1e-9))
+    {
+      bestAngle = unfoldedAngle;
+    }
+    else if (angles)
+    {
+      std::int64_t via = -1;
+      double viaDistance = Inf;
+      for (std::int64_t k = lo - 1; k <= hi + 1; ++k)
+      {
+        if (!closed && (a + k < 0 || a + k > n - 1))
+        {
+          continue;
+        }
+        const std::int64_t e = begin + ((a + k) % n + n) % n;
+        const int u = G.StencilTarget(e);
+        const double c = Graph.Distance(u) + G.StencilDistance(e);
+        if (std::isfinite(Angle[u]) && c < viaDistance)
+        {
+          viaDistance = c;
+          via = e;
+        }
+      }
+      if (via >= 0)
+      {
+        const double px = G.StencilX(via), py = G.StencilY(via);
+        const double L = std::sqrt(px * px + py * py);
+        const double du = Graph.Distance(G.StencilTarget(via));
+        // |S| = best, |S - p| = du.
+        const double along = (best * best - du * du + L * L) / (2.0 * L);
+        const double h = std::sqrt(std::max(0.0, best * best - along * along));
+        const double ux = px / L, uy = py / L;
+        double sx = ux * along - uy * h, sy = uy * along + ux * h;
+        if ((-uy) * ax + ux * ay < 0.0) // the arrival direction is on the other side
+        {
+          sx = ux * along + uy * h;
+          sy = uy * along - ux * h;
+        }
+        const double qx = -sx, qy = -sy, bx = px - sx, by = py - sy;
+        bestAngle = Angle[G.StencilTarget(via)] + std::atan2(bx * qy - by * qx, bx * qx + by * qy);
+      }
     }
     if (best < Graph.Distance(x) && best <= limit)
     {
       Graph.Lower(x, best);
+    }
+    if (angles)
+    {
+      Angle[x] = bestAngle;
+      AngleSet.push_back(x);
     }
   }
 }
@@ -231,14 +324,26 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
     }
   }
   Graph.Solve(seeds, options.Algorithm, options.MaximumDistance);
-  if (options.Refine)
+  // Departure angles only make sense from a single point.
+  const bool angles = options.Angles && exactSources.size() == 1 && Pieces.size() <= 1;
+  if (options.Refine || angles)
   {
-    // The exact local solve's vertices need no refinement.
+    // The exact local solve's vertices need no refinement, and their angles are exact.
     for (int v : Local.FinalVertices())
     {
       Exact[v] = !exactSources.empty();
+      if (angles)
+      {
+        Angle[v] = Local.DepartureAngle(v);
+        AngleSet.push_back(v);
+      }
     }
-    Refine(options.MaximumDistance);
+    if (angles)
+    {
+      const SurfacePoint& s = exactSources.front();
+      AnglePeriod = s.IsVertex() ? M.TotalAngle(s.Vertex) : 2.0 * 3.14159265358979323846;
+    }
+    Refine(options.MaximumDistance, options.Refine, angles);
     for (int v : Local.FinalVertices())
     {
       Exact[v] = 0;
@@ -247,9 +352,19 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
   return true;
 }
 
+void SVGGeodesicSolver::ClearAngles()
+{
+  for (int v : AngleSet)
+  {
+    Angle[v] = NaN;
+  }
+  AngleSet.clear();
+}
+
 bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SVGSolveOptions& options)
 {
   Pieces.clear();
+  ClearAngles();
   if (sources.empty() || G.NumberOfVertices() != M.NumberOfVertices())
   {
     Graph.Solve({}, options.Algorithm);
@@ -275,7 +390,8 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
       Pieces.push_back({ s.Face, p, p });
     }
   }
-  if (facePoints.empty())
+  // (A single vertex source with angles goes through the exact local solve, like a point.)
+  if (facePoints.empty() && !(options.Angles && sources.size() == 1))
   {
     Graph.Solve(vertexSeeds, options.Algorithm, options.MaximumDistance);
     if (options.Refine)
@@ -284,7 +400,7 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
       {
         Exact[v.first] = 1;
       }
-      Refine(options.MaximumDistance);
+      Refine(options.MaximumDistance, true, false);
       for (const auto& v : vertexSeeds)
       {
         Exact[v.first] = 0;
@@ -305,6 +421,7 @@ bool SVGGeodesicSolver::SolveCurves(
   const std::vector<std::vector<SurfacePoint>>& curves, const SVGSolveOptions& options)
 {
   Pieces.clear();
+  ClearAngles();
   std::vector<CurvePiece> pieces;
   bool valid = !curves.empty() && G.NumberOfVertices() == M.NumberOfVertices();
   for (const auto& curve : curves)

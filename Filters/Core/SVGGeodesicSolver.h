@@ -29,6 +29,10 @@ struct SVGSolveOptions
   // (see SVGGeodesicSolver::Refine): exact on developable surfaces, about 2x more accurate on
   // curved ones, for about the cost of a second graph solve.
   bool Refine = true;
+  // Also compute, for a single point or vertex source, the direction in which each vertex's
+  // geodesic leaves the source (see DepartureAngle). Exact in the source's K-disk, carried
+  // beyond it along the graph and interpolated across the unfolded geodesic triangles.
+  bool Angles = false;
   double MaximumDistance = 0.0; // > 0: vertices farther stay unreached (infinite)
 };
 
@@ -54,7 +58,13 @@ public:
   static constexpr double CurveSampleSpacing = 0.125;
 
   double Distance(int v) const { return Graph.Distance(v); }
+  // With SVGSolveOptions::Angles: the departure angle at the source of v's geodesic, in the
+  // convention of ExactGeodesicSolver::DepartureAngle (modulo the source's angle sum); NaN for
+  // the source itself, unreached vertices, or when not computed.
+  double DepartureAngle(int v) const { return Angle[v]; }
   std::vector<double> Distances() const { return Graph.Distances(); }
+  // Vertices reached by the last solve (unordered).
+  const std::vector<int>& Reached() const { return Graph.Reached(); }
   // Distance of any surface point from the last solve's sources.
   double DistanceAt(const SurfacePoint& q) const;
 
@@ -74,7 +84,8 @@ private:
   bool ValidPoint(const SurfacePoint& p) const;
   Vec3 PositionOf(const SurfacePoint& p) const;
   // Geodesic triangle unfolding over the polar stencils, in order of distance.
-  void Refine(double maxDistance);
+  void Refine(double maxDistance, bool unfold, bool angles);
+  void ClearAngles();
   bool SolveFromPieces(const std::vector<SurfacePoint>& exactSources, int finalVertices,
     const SVGSolveOptions& options);
 
@@ -84,6 +95,9 @@ private:
   GraphDistanceSolver Graph;
   std::vector<Piece> Pieces; // sorted by face
   std::vector<unsigned char> Exact; // seeds with exact distances (left alone by Refine)
+  std::vector<double> Angle;        // departure angles (Angles option)
+  std::vector<int> AngleSet;        // vertices whose Angle is set
+  double AnglePeriod = 0.0;         // full turn of the source's tangent angles
   std::vector<std::pair<double, int>> Order;
 };
 

@@ -1,6 +1,7 @@
 #include "GeodesicPolarCoordinates.h"
 #include "GeodesicShooting.h"
 #include "MeshGenerators.h"
+#include "SaddleVertexGraph.h"
 #include "TriangleMesh.h"
 
 #include <gtest/gtest.h>
@@ -208,4 +209,59 @@ TEST(GeodesicPolarCoordinates, RejectsBadArguments)
   EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), 1.0, NAN));
   EXPECT_TRUE(pc.Compute(SurfacePoint::AtVertex(3), INFINITY));
   EXPECT_TRUE(std::isfinite(pc.Rho(24)));
+}
+
+namespace
+{
+SaddleVertexGraph Graph(const TriangleMesh& m)
+{
+  SaddleVertexGraph g;
+  std::string error;
+  EXPECT_TRUE(g.Build(m, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  return g;
+}
+
+// Largest rho (relative) and theta errors of the SVG engine against the exact one.
+void CompareEngines(const TriangleMesh& m, const SurfacePoint& source, double radius,
+  double rhoTolerance, double thetaToleranceDegrees, double medianThetaDegrees)
+{
+  const SaddleVertexGraph g = Graph(m);
+  GeodesicPolarCoordinates exact(m), svg(m, &g);
+  ASSERT_TRUE(exact.Compute(source, radius));
+  ASSERT_TRUE(svg.Compute(source, radius));
+  double worstRho = 0, worstTheta = 0;
+  std::vector<double> thetas;
+  for (int v : exact.Inside())
+  {
+    if (exact.Rho(v) < 1e-12 || exact.Rho(v) > 0.98 * radius)
+      continue;
+    ASSERT_TRUE(std::isfinite(svg.Rho(v))) << v;
+    worstRho = std::max(worstRho, std::abs(svg.Rho(v) - exact.Rho(v)) / exact.Rho(v));
+    const double d = AngleDiff(svg.Theta(v), exact.Theta(v)) * 180 / Pi;
+    worstTheta = std::max(worstTheta, d);
+    thetas.push_back(d);
+  }
+  ASSERT_GT(thetas.size(), 20u);
+  std::nth_element(thetas.begin(), thetas.begin() + thetas.size() / 2, thetas.end());
+  EXPECT_LT(worstRho, rhoTolerance);
+  EXPECT_LT(worstTheta, thetaToleranceDegrees);
+  EXPECT_LT(thetas[thetas.size() / 2], medianThetaDegrees);
+}
+} // namespace
+
+TEST(GeodesicPolarCoordinates, GraphEngineOnAPlaneAndACone)
+{
+  // The figures: rho within 1e-3 relative, theta within 0.1 degree.
+  CompareEngines(BuildMesh(MakePlanarGrid(40, 40, 4.0, 4.0)), SurfacePoint::AtVertex(20 * 41 + 20),
+    1.8, 1e-3, 0.1, 0.05);
+  CompareEngines(BuildMesh(MakePlanarGrid(40, 40, 4.0, 4.0)), SurfacePoint::InFace(1000, 0.2, 0.3, 0.5),
+    1.5, 1e-3, 0.1, 0.05);
+  CompareEngines(BuildMesh(MakeCone(0.5, 2.0, 16, 48)), SurfacePoint::AtVertex(1 + 9 * 48 + 5), 1.0,
+    1e-3, 0.1, 0.05);
+}
+
+TEST(GeodesicPolarCoordinates, GraphEngineOnASphereCap)
+{
+  const TriangleMesh m = BuildMesh(MakeIcosphere(1.0, 4));
+  CompareEngines(m, SurfacePoint::AtVertex(0), 0.8, 1e-2, 2.0, 0.5);
 }
