@@ -124,37 +124,16 @@ GeodesicShot ShootGeodesic(const TriangleMesh& m, const SurfacePoint& from, doub
   }
   double remaining = std::max(0.0, length);
   int entry = -1;
-  const double eps = 1e-12 * std::max(m.MeanEdgeLength(), 1e-300);
   // A geodesic of length L crosses at most about L / (shortest altitude) faces; the bound only
   // guards against loops caused by rounding.
   const int maxSteps = 1000000;
   for (int step = 0; step < maxSteps; ++step)
   {
     const Vec3 n = m.FaceNormal(f);
-    double bestT = std::numeric_limits<double>::infinity(), bestS = 0.0;
-    int exit = -1;
-    for (int k = 0; k < 3; ++k)
-    {
-      const int e = 3 * f + k;
-      if (e == entry)
-      {
-        continue;
-      }
-      const Vec3 A = m.Position(m.Origin(e)), B = m.Position(m.Destination(e));
-      const double den = Dot(Cross(B - A, d), n);
-      if (!(den < 0.0))
-      {
-        continue; // the ray does not leave through this edge
-      }
-      const double t = Dot(Cross(x - A, B - A), n) / den;
-      const double s = Dot(Cross(x - A, d), n) / den;
-      if (t > -eps && s >= -1e-9 && s <= 1.0 + 1e-9 && t < bestT)
-      {
-        bestT = std::max(t, 0.0);
-        bestS = s;
-        exit = e;
-      }
-    }
+    const FaceExit out = FindFaceExit(m, f, x, d, entry);
+    const int exit = out.Edge;
+    const double bestT = out.T;
+    double bestS = out.S;
     if (exit < 0 || bestT >= remaining)
     {
       // Ends inside this face (or, by rounding, found no way out: stay here).

@@ -7,6 +7,37 @@
 namespace gs
 {
 
+FaceExit FindFaceExit(const TriangleMesh& M, int f, const Vec3& x, const Vec3& d, int entry)
+{
+  const Vec3 n = M.FaceNormal(f);
+  FaceExit best;
+  best.T = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k)
+  {
+    const int e = 3 * f + k;
+    if (e == entry)
+    {
+      continue;
+    }
+    const Vec3 A = M.Position(M.Origin(e)), B = M.Position(M.Destination(e));
+    // Only edges the ray leaves through (den < 0 for counter-clockwise faces).
+    const double den = Dot(Cross(B - A, d), n);
+    if (!(den < 0.0))
+    {
+      continue;
+    }
+    const double t = Dot(Cross(x - A, B - A), n) / den;
+    const double s = Dot(Cross(x - A, d), n) / den;
+    if (t > -1e-9 * std::max(M.EdgeLength(e), 1e-300) && s >= -1e-9 && s <= 1.0 + 1e-9 && t < best.T)
+    {
+      best.Edge = e;
+      best.T = std::max(t, 0.0);
+      best.S = s;
+    }
+  }
+  return best;
+}
+
 namespace
 {
 Vec3 PositionOf(const TriangleMesh& M, const SurfacePoint& p)
@@ -67,32 +98,9 @@ void TraceSegment(const TriangleMesh& M, const SurfacePoint& from, const Surface
     {
       break;
     }
-    double bestT = std::numeric_limits<double>::infinity(), bestS = 0.0;
-    int exit = -1;
-    for (int k = 0; k < 3; ++k)
-    {
-      const int e = 3 * f + k;
-      if (e == entry)
-      {
-        continue;
-      }
-      const Vec3 A = M.Position(M.Origin(e)), B = M.Position(M.Destination(e));
-      // Only edges the ray leaves through (den < 0 for counter-clockwise faces); the start may
-      // lie on such an edge already (t = 0), e.g. a curve point on an edge.
-      const double den = Dot(Cross(B - A, dir), n);
-      if (!(den < 0.0))
-      {
-        continue;
-      }
-      const double t = Dot(Cross(x - A, B - A), n) / den;
-      const double sEdge = Dot(Cross(x - A, dir), n) / den;
-      if (t > -1e-9 && sEdge >= -1e-9 && sEdge <= 1.0 + 1e-9 && t < bestT)
-      {
-        bestT = t;
-        bestS = sEdge;
-        exit = e;
-      }
-    }
+    const FaceExit out = FindFaceExit(M, f, x, dir, entry);
+    const int exit = out.Edge;
+    double bestS = out.S;
     if (exit < 0)
     {
       break;

@@ -21,6 +21,16 @@ struct CurvePiece
 // walk that cannot reach the next point (boundary, more than 256 faces) keeps that point alone.
 std::vector<CurvePiece> TraceSurfaceCurve(const TriangleMesh& mesh, const std::vector<SurfacePoint>& curve);
 
+// Where a ray from x (in face f) with in-plane direction d leaves the face: the edge (a
+// half-edge of f other than `entry`, -1 if none), the ray parameter t and the position s along
+// the edge (0 at its origin). A start on the edge it leaves through counts (t = 0).
+struct FaceExit
+{
+  int Edge = -1;
+  double T = 0.0, S = 0.0;
+};
+FaceExit FindFaceExit(const TriangleMesh& mesh, int f, const Vec3& x, const Vec3& d, int entry);
+
 // Surface points along the pieces, at most `spacing` apart within each piece (both ends kept).
 std::vector<SurfacePoint> SampleCurvePieces(
   const TriangleMesh& mesh, const std::vector<CurvePiece>& pieces, double spacing);
