@@ -1,0 +1,337 @@
+#include "vtkGeodesicPolarCoordinates.h"
+
+#include "vtkSurfaceMeshConverter.h"
+#include "vtkSurfacePointLocator.h"
+
+#include "GeodesicPolarCoordinates.h"
+#include "GeodesicShooting.h"
+#include "SurfacePoint.h"
+
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkGeodesicPolarCoordinates);
+
+// The converted mesh and what is derived from it, kept while the input mesh is unchanged (same
+// object, same modification time), so that changing only the source, the radius or the
+// reference direction does not convert the mesh again.
+struct vtkGeodesicPolarCoordinates::Cache
+{
+  vtkPolyData* Input = nullptr;
+  vtkMTimeType InputTime = 0;
+  vtkSurfaceMeshConverter::Result Mesh;
+  std::unique_ptr<vtkSurfacePointLocator> Locator;         // refers to Mesh; on demand
+  std::unique_ptr<gs::GeodesicPolarCoordinates> Polar;      // refers to Mesh.Build.Mesh
+};
+
+namespace
+{
+// A snapped point this close to a corner (in barycentric weight) is that vertex: the source then
+// has the vertex's angle sum and first edge, as with SourceVertexId.
+constexpr double VertexSnapTolerance = 1e-12;
+// Mapping to input points checks for abort every this many points.
+constexpr size_t AbortCheckInterval = 1 << 14;
+}
+
+//------------------------------------------------------------------------------
+vtkGeodesicPolarCoordinates::vtkGeodesicPolarCoordinates()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(1);
+}
+
+//------------------------------------------------------------------------------
+vtkGeodesicPolarCoordinates::~vtkGeodesicPolarCoordinates() = default;
+
+//------------------------------------------------------------------------------
+const char* vtkGeodesicPolarCoordinates::GetAngleModeName(int mode)
+{
+  switch (mode)
+  {
+    case GEODESIC_DIRECTION:
+      return "Geodesic direction";
+    default:
+      return "unknown";
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkGeodesicPolarCoordinates::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    return 1;
+  }
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
+  return 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPointSet* source =
+    inputVector[1]->GetNumberOfInformationObjects() > 0 ? vtkPointSet::GetData(inputVector[1], 0)
+                                                        : nullptr;
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Missing input or output mesh.");
+    return 0;
+  }
+  output->Initialize(); // empty unless everything succeeds
+  this->UpdateProgress(0.0);
+
+  // 1. Parameters.
+  if (this->AngleMode != GEODESIC_DIRECTION)
+  {
+    vtkErrorMacro("Unknown AngleMode " << this->AngleMode
+                                       << ": only 0 (Geodesic direction) exists in this version "
+                                          "(Iso-curve arc length is planned).");
+    return 1;
+  }
+  if (!(this->Radius > 0.0))
+  {
+    vtkErrorMacro("Radius must be > 0 (it is " << this->Radius << ").");
+    return 1;
+  }
+  if (!(this->DecalSize > 0.0) || !std::isfinite(this->DecalSize))
+  {
+    vtkErrorMacro("DecalSize must be finite and > 0 (it is " << this->DecalSize << ").");
+    return 1;
+  }
+  const double* reference = this->ReferenceDirection;
+  if (!std::isfinite(reference[0]) || !std::isfinite(reference[1]) ||
+    !std::isfinite(reference[2]))
+  {
+    vtkErrorMacro("ReferenceDirection (" << reference[0] << ", " << reference[1] << ", "
+                                         << reference[2] << ") is not finite.");
+    return 1;
+  }
+  const bool firstEdgeReference =
+    reference[0] == 0.0 && reference[1] == 0.0 && reference[2] == 0.0;
+
+  // A curve source is rejected before the mesh is touched: this version has no curve solve.
+  vtkPolyData* polySource = vtkPolyData::SafeDownCast(source);
+  if (polySource && polySource->GetNumberOfLines() > 0)
+  {
+    vtkErrorMacro("The Source input has line cells (a curve source): curve sources are not "
+                  "supported by this version of Geodesic Polar Coordinates yet; connect a single "
+                  "point (e.g. a Point Source) or use SourceVertexId.");
+    return 1;
+  }
+  if (source && source->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("The Source input has no point.");
+    return 1;
+  }
+
+  // 2. The core mesh, converted once while the input is unchanged.
+  if (!this->MeshCache || this->MeshCache->Input != input ||
+    this->MeshCache->InputTime != input->GetMTime())
+  {
+    this->MeshCache.reset(new Cache);
+    this->MeshCache->Input = input;
+    this->MeshCache->InputTime = input->GetMTime();
+    this->MeshCache->Mesh = vtkSurfaceMeshConverter::Convert(input);
+  }
+  Cache& cache = *this->MeshCache;
+  for (const std::string& warning : cache.Mesh.Warnings)
+  {
+    vtkWarningMacro("Input mesh: " << warning);
+  }
+  if (!cache.Mesh.Ok)
+  {
+    vtkErrorMacro("Invalid input mesh: " << cache.Mesh.Error);
+    return 1;
+  }
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  this->UpdateProgress(0.2);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 3. The source: the first point of port 1 snapped to the surface, or SourceVertexId.
+  gs::SurfacePoint sourcePoint;
+  if (source)
+  {
+    if (source->GetNumberOfPoints() > 1)
+    {
+      vtkWarningMacro("The Source input has " << source->GetNumberOfPoints()
+                                              << " points: only the first one is used.");
+    }
+    if (!cache.Locator)
+    {
+      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
+    }
+    double x[3];
+    source->GetPoint(0, x);
+    std::string reason;
+    if (!cache.Locator->Snap(x, sourcePoint, reason))
+    {
+      vtkErrorMacro("Source point 0: " << reason << ".");
+      return 1;
+    }
+    const auto corner = std::max_element(sourcePoint.Bary.begin(), sourcePoint.Bary.end());
+    if (*corner >= 1.0 - VertexSnapTolerance)
+    {
+      sourcePoint = gs::SurfacePoint::AtVertex(
+        mesh.Face(sourcePoint.Face)[static_cast<size_t>(corner - sourcePoint.Bary.begin())]);
+    }
+  }
+  else
+  {
+    const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
+    if (this->SourceVertexId < 0 || this->SourceVertexId >= numberOfPoints)
+    {
+      vtkErrorMacro("SourceVertexId " << this->SourceVertexId << " is out of range [0, "
+                                      << numberOfPoints << ").");
+      return 1;
+    }
+    const int v = pointToVertex[static_cast<size_t>(this->SourceVertexId)];
+    if (v < 0)
+    {
+      vtkErrorMacro("SourceVertexId " << this->SourceVertexId
+                                      << " is not used by any triangle.");
+      return 1;
+    }
+    sourcePoint = gs::SurfacePoint::AtVertex(v);
+  }
+
+  // 4. Theta's zero as a tangent angle at the source.
+  double referenceAngle = 0.0;
+  if (!firstEdgeReference)
+  {
+    const double angle = gs::TangentAngle(
+      mesh, sourcePoint, gs::Vec3(reference[0], reference[1], reference[2]));
+    if (std::isfinite(angle))
+    {
+      referenceAngle = angle;
+    }
+    else
+    {
+      vtkWarningMacro("ReferenceDirection (" << reference[0] << ", " << reference[1] << ", "
+                                             << reference[2]
+                                             << ") is normal to the surface at the source: "
+                                                "using the source's first edge instead.");
+    }
+  }
+
+  // 5. Solve (exact geodesics truncated at the radius).
+  if (!cache.Polar)
+  {
+    cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh));
+  }
+  gs::GeodesicPolarCoordinates& polar = *cache.Polar;
+  if (!polar.Compute(sourcePoint, this->Radius, referenceAngle))
+  {
+    vtkErrorMacro("The geodesic polar coordinates solver rejected the source or the radius.");
+    return 1;
+  }
+  this->UpdateProgress(0.8);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 6. Map back to every input point (welded points share their vertex's coordinates).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
+  vtkNew<vtkDoubleArray> rhoArray;
+  rhoArray->SetName("GeodesicDistance");
+  rhoArray->SetNumberOfTuples(numberOfPoints);
+  vtkNew<vtkDoubleArray> thetaArray;
+  thetaArray->SetName("PolarAngle");
+  thetaArray->SetNumberOfTuples(numberOfPoints);
+  vtkNew<vtkDoubleArray> decal;
+  decal->SetName("DecalCoordinates");
+  decal->SetNumberOfComponents(2);
+  decal->SetNumberOfTuples(numberOfPoints);
+  for (size_t i = 0; i < pointToVertex.size(); ++i)
+  {
+    if (i % AbortCheckInterval == AbortCheckInterval - 1)
+    {
+      this->UpdateProgress(0.8 + 0.2 * static_cast<double>(i) / pointToVertex.size());
+      if (this->CheckAbort())
+      {
+        output->Initialize();
+        return 1;
+      }
+    }
+    const int v = pointToVertex[i];
+    double rho = v >= 0 ? polar.Rho(v) : nan;
+    double theta = v >= 0 ? polar.Theta(v) : nan;
+    if (!std::isfinite(rho) || rho > this->Radius || !std::isfinite(theta))
+    {
+      rho = theta = nan;
+    }
+    const vtkIdType id = static_cast<vtkIdType>(i);
+    rhoArray->SetValue(id, rho);
+    thetaArray->SetValue(id, theta);
+    // A square of side DecalSize centred on the source -> [0, 1]^2 (NaN stays NaN).
+    decal->SetTypedComponent(id, 0, rho * std::cos(theta) / this->DecalSize + 0.5);
+    decal->SetTypedComponent(id, 1, rho * std::sin(theta) / this->DecalSize + 0.5);
+  }
+
+  output->ShallowCopy(cache.Mesh.Surface);
+  vtkPointData* pointData = output->GetPointData();
+  pointData->AddArray(rhoArray);
+  pointData->AddArray(thetaArray);
+  pointData->SetActiveScalars(rhoArray->GetName());
+  pointData->SetTCoords(decal);
+
+  // A fresh field data object: the surface's own (shallow-copied) one is left untouched.
+  vtkNew<vtkFieldData> fieldData;
+  if (vtkFieldData* inputFieldData = output->GetFieldData())
+  {
+    fieldData->ShallowCopy(inputFieldData);
+  }
+  vtkNew<vtkDoubleArray> angleSum;
+  angleSum->SetName("SourceAngleSum");
+  angleSum->InsertNextValue(polar.SourceAngleSum());
+  fieldData->AddArray(angleSum);
+  output->SetFieldData(fieldData);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkGeodesicPolarCoordinates::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SourceVertexId: " << this->SourceVertexId << "\n";
+  os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "ReferenceDirection: (" << this->ReferenceDirection[0] << ", "
+     << this->ReferenceDirection[1] << ", " << this->ReferenceDirection[2] << ")"
+     << (this->ReferenceDirection[0] == 0.0 && this->ReferenceDirection[1] == 0.0 &&
+            this->ReferenceDirection[2] == 0.0
+          ? " (the source's first edge)"
+          : "")
+     << "\n";
+  os << indent << "AngleMode: " << this->AngleMode << " (" << GetAngleModeName(this->AngleMode)
+     << ")\n";
+  os << indent << "DecalSize: " << this->DecalSize << "\n";
+}

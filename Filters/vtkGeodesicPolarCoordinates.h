@@ -1,0 +1,149 @@
+/**
+ * @class vtkGeodesicPolarCoordinates
+ * @brief Geodesic polar coordinates (rho, theta) about a point of a triangle mesh, and decal
+ * texture coordinates.
+ *
+ * A thin wrapper over gs::GeodesicPolarCoordinates (Filters/Core/GeodesicPolarCoordinates.h;
+ * Wang et al. 2016, Section 3.3): for every point of the input surface closer than Radius to the
+ * source, rho is the geodesic distance (exact polyhedral geodesics, truncated at Radius) and
+ * theta the direction in which the shortest geodesic leaves the source (the log map), measured
+ * counter-clockwise about the outward normal from a reference direction, in [0, 2 pi). At a
+ * source vertex whose angle sum is not 2 pi (a cone point or a saddle) the angles are scaled so
+ * that a full turn is 2 pi (the original angle sum is reported as SourceAngleSum).
+ *
+ * This version supports point sources and the "Geodesic direction" angle mode only. Planned:
+ * curve sources (coordinates (u, delta) along a polyline) and the "Iso-curve arc length" angle
+ * mode (theta proportional to the arc length along each iso-distance curve).
+ *
+ * Input port 0 ("Input", vtkPolyData): the surface. As in vtkSVGGeodesicDistance, polygons with
+ * more than three points and triangle strips are triangulated (with a warning), vertex and line
+ * cells are ignored, exactly coincident points are welded for the computation and the result is
+ * mapped back to every input point. Empty, non-finite, degenerate, duplicate or non-manifold
+ * input is rejected with an error and an empty output.
+ *
+ * Input port 1 ("Source", optional, vtkPointSet): its first point is snapped to the closest
+ * surface point (a vertex when it lands on one, otherwise an edge or face point) and is the
+ * source; SourceVertexId is then ignored. A Source with line cells (a curve source) is an error
+ * in this version (empty output).
+ *
+ * Properties:
+ *  - SourceVertexId (default 0): the input point used as the source when port 1 is not
+ *    connected; out of range or not used by a triangle: error, empty output.
+ *  - Radius (default 1, > 0, may be infinite): points farther than this get NaN.
+ *  - ReferenceDirection (default (0, 0, 0)): theta's zero. (0, 0, 0): the source's first edge
+ *    (a vertex's first outgoing edge in the core mesh, or the first edge of the source's face).
+ *    Otherwise a 3D direction projected onto the tangent plane at the source (gs::TangentAngle);
+ *    a direction normal to the surface there gets a warning and falls back to the first edge;
+ *    a non-finite one is an error.
+ *  - AngleMode: GEODESIC_DIRECTION (0, "Geodesic direction", the only mode of this version).
+ *  - DecalSize (default 1, > 0): side of the square image mapped by DecalCoordinates.
+ *
+ * Output (vtkPolyData): the input surface (its triangulation when it had to be triangulated)
+ * with double point arrays
+ *  - GeodesicDistance (rho, the active scalars),
+ *  - PolarAngle (theta, radians in [0, 2 pi); 0 at the source itself),
+ *  - DecalCoordinates (2 components, the active texture coordinates):
+ *    (rho cos theta, rho sin theta) / DecalSize + (0.5, 0.5), so that a square image of side
+ *    DecalSize centred on the source, its x axis along the reference direction, maps to
+ *    [0, 1]^2,
+ * all NaN for points beyond Radius, unreachable (another connected component) or not used by
+ * any triangle; and the field data array SourceAngleSum (double, the angle sum at the source:
+ * 2 pi for a face point or a flat vertex).
+ *
+ * Example (pvpython):
+ * @code
+ * LoadPlugin("build/lib/paraview-5.11/plugins/GeodesicShapes/GeodesicShapes.so", ns=globals())
+ * mesh = PLYReader(FileNames=["Data/torus.ply"])
+ * polar = GeodesicPolarCoordinates(Input=mesh, SourceVertexId=0, Radius=0.9,
+ *                                  ReferenceDirection=[0, 1, 0], DecalSize=1.8)
+ * # then colour by PolarAngle, or texture-map an image through DecalCoordinates
+ * @endcode
+ */
+#ifndef vtkGeodesicPolarCoordinates_h
+#define vtkGeodesicPolarCoordinates_h
+
+#include "GeodesicShapesFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory> // for std::unique_ptr
+
+class GEODESICSHAPESFILTERS_EXPORT vtkGeodesicPolarCoordinates : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkGeodesicPolarCoordinates* New();
+  vtkTypeMacro(vtkGeodesicPolarCoordinates, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Values of the AngleMode property.
+  enum AngleModeType
+  {
+    /// theta = direction of the shortest geodesic at the source (the log map).
+    GEODESIC_DIRECTION = 0
+    // Planned: ISO_CURVE_ARC_LENGTH = 1 (theta proportional to the arc length along each
+    // iso-distance curve, bijective past saddles and cut loci).
+  };
+
+  ///@{
+  /// Input point used as the source when the Source port is not connected. Default 0.
+  vtkSetMacro(SourceVertexId, vtkIdType);
+  vtkGetMacro(SourceVertexId, vtkIdType);
+  ///@}
+
+  ///@{
+  /// Geodesic radius of the parameterized disc (> 0; infinity: the whole reachable surface).
+  /// Points farther away get NaN. Default 1.
+  vtkSetMacro(Radius, double);
+  vtkGetMacro(Radius, double);
+  ///@}
+
+  ///@{
+  /// Direction of theta = 0, projected onto the tangent plane at the source. (0, 0, 0), the
+  /// default: the direction of the source's first edge.
+  vtkSetVector3Macro(ReferenceDirection, double);
+  vtkGetVector3Macro(ReferenceDirection, double);
+  ///@}
+
+  ///@{
+  /// How theta is defined. Only GEODESIC_DIRECTION (0, the default) in this version.
+  vtkSetMacro(AngleMode, int);
+  vtkGetMacro(AngleMode, int);
+  void SetAngleModeToGeodesicDirection() { this->SetAngleMode(GEODESIC_DIRECTION); }
+  /// The AngleMode's name as in the ParaView property ("Geodesic direction").
+  static const char* GetAngleModeName(int mode);
+  ///@}
+
+  ///@{
+  /// Side of the square image (centred on the source) that DecalCoordinates map to [0, 1]^2.
+  /// Must be > 0. Default 1.
+  vtkSetMacro(DecalSize, double);
+  vtkGetMacro(DecalSize, double);
+  ///@}
+
+  /// Connect the optional source (port 1): its first point is the source.
+  void SetSourceConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  void SetSourceData(vtkDataObject* source) { this->SetInputData(1, source); }
+
+protected:
+  vtkGeodesicPolarCoordinates();
+  ~vtkGeodesicPolarCoordinates() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+private:
+  vtkGeodesicPolarCoordinates(const vtkGeodesicPolarCoordinates&) = delete;
+  void operator=(const vtkGeodesicPolarCoordinates&) = delete;
+
+  vtkIdType SourceVertexId = 0;
+  double Radius = 1.0;
+  double ReferenceDirection[3] = { 0.0, 0.0, 0.0 };
+  int AngleMode = GEODESIC_DIRECTION;
+  double DecalSize = 1.0;
+
+  // Converted mesh, locator and polar-coordinate solver, reused while the input is unchanged.
+  struct Cache;
+  std::unique_ptr<Cache> MeshCache;
+};
+
+#endif
