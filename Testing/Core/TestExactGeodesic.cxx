@@ -1,6 +1,7 @@
 #include "ExactGeodesic.h"
 #include "MeshGenerators.h"
 #include "TriangleMesh.h"
+#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 
@@ -10,17 +11,11 @@
 #include <random>
 
 using namespace gs;
+using gs_test::BuildMesh;
 
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-
-TriangleMesh BuildMesh(const TriangleSoup& s)
-{
-  auto r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Mesh;
-}
 
 // Largest relative error of the solver's distances against an analytic function of the vertex.
 template <typename F>
@@ -67,17 +62,9 @@ std::vector<double> GraphDistances(const TriangleMesh& m, int source)
   return d;
 }
 
-// A sphere with its vertices pushed in and out: saddles everywhere, no analytic answer.
 TriangleMesh BumpyMesh(int level, unsigned seed)
 {
-  TriangleSoup s = MakeIcosphere(1.0, level);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.85, 1.15);
-  for (Vec3& p : s.Points)
-  {
-    p = p * u(rng);
-  }
-  return BuildMesh(s);
+  return gs_test::BuildMesh(gs_test::BumpySoup(level, seed, 0.15));
 }
 } // namespace
 

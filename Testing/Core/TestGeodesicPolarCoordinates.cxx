@@ -3,6 +3,7 @@
 #include "MeshGenerators.h"
 #include "SaddleVertexGraph.h"
 #include "TriangleMesh.h"
+#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 
@@ -10,17 +11,11 @@
 #include <cmath>
 
 using namespace gs;
+using gs_test::BuildMesh;
 
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-
-TriangleMesh BuildMesh(const TriangleSoup& s)
-{
-  auto r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Mesh;
-}
 
 double AngleDiff(double a, double b)
 {

@@ -2,6 +2,7 @@
 #include "GeodesicShooting.h"
 #include "MeshGenerators.h"
 #include "TriangleMesh.h"
+#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 
@@ -9,16 +10,10 @@
 #include <random>
 
 using namespace gs;
+using gs_test::BuildMesh;
 
 namespace
 {
-TriangleMesh BuildMesh(const TriangleSoup& s)
-{
-  auto r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Mesh;
-}
-
 Vec3 PositionOf(const TriangleMesh& m, const SurfacePoint& p)
 {
   return p.IsVertex() ? m.Position(p.Vertex) : m.Interpolate(p.Face, p.Bary);

@@ -4,6 +4,7 @@
 #include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
 #include "TriangleMesh.h"
+#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 
@@ -13,24 +14,13 @@
 #include <random>
 
 using namespace gs;
+using gs_test::BuildMesh;
 
 namespace
 {
-TriangleMesh BuildMesh(const TriangleSoup& s)
-{
-  auto r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Mesh;
-}
-
 TriangleMesh Bumpy(int level, unsigned seed)
 {
-  TriangleSoup s = MakeIcosphere(1.0, level);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.9, 1.1);
-  for (Vec3& p : s.Points)
-    p = p * u(rng);
-  return BuildMesh(s);
+  return gs_test::BuildMesh(gs_test::BumpySoup(level, seed, 0.1));
 }
 
 SaddleVertexGraph BuildGraph(const TriangleMesh& m, int k, int threads = 0)
