@@ -1,5 +1,7 @@
 #include "vtkGeodesicPolarCoordinates.h"
 
+#include "vtkSaddleVertexGraphCache.h"
+
 #include "vtkSurfaceMeshConverter.h"
 #include "vtkSurfacePointLocator.h"
 
@@ -36,6 +38,9 @@ struct vtkGeodesicPolarCoordinates::Cache
   vtkSurfaceMeshConverter::Result Mesh;
   std::unique_ptr<vtkSurfacePointLocator> Locator;         // refers to Mesh; on demand
   std::unique_ptr<gs::GeodesicPolarCoordinates> Polar;      // refers to Mesh.Build.Mesh
+  std::shared_ptr<const gs::SaddleVertexGraph> Graph;        // the graph Polar uses (K >= 1)
+  std::uint64_t Hash = 0;
+  bool HashValid = false;
 };
 
 namespace
@@ -240,10 +245,43 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
     }
   }
 
-  // 5. Solve (exact geodesics truncated at the radius).
-  if (!cache.Polar)
+  // 5. Solve: exact geodesics truncated at the radius (K = 0), or the saddle vertex graph of K
+  //    from the process-wide cache (built with progress 0.3 .. 0.7 when new).
+  if (this->K < 0)
   {
-    cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh));
+    vtkErrorMacro("K must be 0 (exact engine) or at least 1 (saddle vertex graph); it is "
+      << this->K << ".");
+    return 1;
+  }
+  std::shared_ptr<const gs::SaddleVertexGraph> graph;
+  if (this->K >= 1)
+  {
+    if (!cache.HashValid)
+    {
+      cache.Hash = gs::SaddleVertexGraph::HashMesh(mesh);
+      cache.HashValid = true;
+    }
+    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::Get(
+      mesh, cache.Hash, this->K, std::string(), [this](double fraction) {
+        this->UpdateProgress(0.3 + 0.4 * fraction);
+        return !this->CheckAbort();
+      });
+    if (found.Aborted)
+    {
+      return 1;
+    }
+    if (!found.Graph)
+    {
+      vtkErrorMacro("Saddle vertex graph: " << found.Error);
+      return 1;
+    }
+    graph = found.Graph;
+  }
+  if (!cache.Polar || graph != cache.Graph)
+  {
+    cache.Polar.reset();
+    cache.Graph = graph;
+    cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph.get()));
   }
   gs::GeodesicPolarCoordinates& polar = *cache.Polar;
   if (!polar.Compute(sourcePoint, this->Radius, referenceAngle))
@@ -334,4 +372,6 @@ void vtkGeodesicPolarCoordinates::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AngleMode: " << this->AngleMode << " (" << GetAngleModeName(this->AngleMode)
      << ")\n";
   os << indent << "DecalSize: " << this->DecalSize << "\n";
+  os << indent << "K: " << this->K << (this->K == 0 ? " (exact engine)" : " (saddle vertex graph)")
+     << "\n";
 }
