@@ -167,6 +167,136 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
   return true;
 }
 
+namespace
+{
+// Whether segments [p, q] and [a, b], lying in one face's plane with normal n, cross; the
+// crossing's parameter along [p, q] in t.
+bool SegmentsCross(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& n, double& t)
+{
+  const Vec3 r = q - p, s = b - a;
+  const double den = Dot(Cross(r, s), n);
+  if (den == 0.0)
+  {
+    return false;
+  }
+  t = Dot(Cross(a - p, s), n) / den;
+  const double u = Dot(Cross(a - p, r), n) / den;
+  return t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0;
+}
+} // namespace
+
+bool GeodesicPolarCoordinates::TraceIsoCurve(int v,
+  const std::vector<std::vector<std::pair<Vec3, Vec3>>>& reference, double& toReference,
+  double& length) const
+{
+  const double c = R[v];
+  // Distances just beyond the radius come from an exact solve a few edges further.
+  auto rho = [&](int w) { return std::isfinite(R[w]) ? R[w] : Solver.Distance(w); };
+  // Below the level: strictly closer than v (vertices at exactly the level count as above; v
+  // itself is where the loop starts and ends).
+  auto below = [&](int w) { return w != v && rho(w) < c; };
+  // Point on half-edge h where the level is reached (one end below, the other above).
+  auto crossing = [&](int h) {
+    const int a = M.Origin(h), b = M.Destination(h);
+    const double ra = a == v ? c : rho(a), rb = b == v ? c : rho(b);
+    const double t = std::isfinite(rb) && std::abs(rb - ra) > 0.0 ? (c - ra) / (rb - ra) : 1.0;
+    return M.Position(a) + (M.Position(b) - M.Position(a)) * std::min(1.0, std::max(0.0, t));
+  };
+  // Start: the face around v whose far edge goes from above to below counter-clockwise, so that
+  // the walk keeps the source (below) on its left.
+  int h0 = -1;
+  for (int h : M.OutgoingHalfedges(v))
+  {
+    const int a = M.Destination(h), b = M.Opposite(h);
+    if (!below(a) && below(b))
+    {
+      h0 = TriangleMesh::Next(h); // edge a -> b, crossed from v
+      break;
+    }
+  }
+  if (h0 < 0)
+  {
+    return false;
+  }
+  Vec3 x = M.Position(v);
+  int h = h0; // the edge the walk leaves its current face through
+  length = 0.0;
+  toReference = -1.0;
+  const int maxSteps = 4 * M.NumberOfFaces() + 8;
+  for (int step = 0; step < maxSteps; ++step)
+  {
+    const int f = h / 3;
+    // Every edge the walk leaves through runs from above to below; when its upper end is v, the
+    // level is reached at v itself: the loop is closed.
+    const bool closing = M.Origin(h) == v && step > 0;
+    const Vec3 y = closing ? M.Position(v) : crossing(h);
+    const double piece = Norm(y - x);
+    double t = 0.0;
+    for (const auto& seg : reference[f])
+    {
+      if (toReference < 0.0 && SegmentsCross(x, y, seg.first, seg.second, M.FaceNormal(f), t))
+      {
+        toReference = length + t * piece;
+      }
+    }
+    length += piece;
+    x = y;
+    if (closing)
+    {
+      return toReference >= 0.0 && length > 0.0;
+    }
+    const int twin = M.Twin(h);
+    if (twin < 0)
+    {
+      return false; // the iso-curve meets the mesh boundary: not a loop
+    }
+    // In the next face, leave through the other edge that changes side.
+    const int e1 = TriangleMesh::Next(twin), e2 = TriangleMesh::Prev(twin);
+    const int third = M.Destination(e1);
+    // twin runs from the shared edge's lower end to its upper end; the level leaves through e1
+    // (upper end to third) when third is below, through e2 (third to the lower end) otherwise.
+    h = below(third) == below(M.Origin(e1)) ? e2 : e1;
+  }
+  return false;
+}
+
+int GeodesicPolarCoordinates::UseIsoCurveAngles()
+{
+  // The reference geodesic: from the source in direction theta = 0 to the radius.
+  std::vector<std::vector<std::pair<Vec3, Vec3>>> reference(M.NumberOfFaces());
+  double radius = 0.0;
+  for (int v : InsideList)
+  {
+    radius = std::max(radius, R[v]);
+  }
+  const GeodesicShot ray = ShootGeodesic(M, Source, Reference, radius * 1.01 + M.MeanEdgeLength());
+  ExactGeodesicOptions beyond;
+  beyond.MaximumDistance = radius + 3.0 * M.MeanEdgeLength();
+  Solver.Solve({ Source }, beyond);
+  for (const CurvePiece& piece : ray.Pieces)
+  {
+    reference[piece.Face].push_back({ piece.A, piece.B });
+  }
+  int kept = 0;
+  for (int v : InsideList)
+  {
+    if (!(R[v] > 0.0))
+    {
+      continue;
+    }
+    double toReference = 0.0, length = 0.0;
+    if (TraceIsoCurve(v, reference, toReference, length))
+    {
+      T[v] = std::fmod(TwoPi * (length - toReference) / length, TwoPi);
+    }
+    else
+    {
+      ++kept;
+    }
+  }
+  return kept;
+}
+
 SurfacePoint GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
 {
   if (rho <= 0.0)

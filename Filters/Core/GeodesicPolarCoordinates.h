@@ -52,8 +52,23 @@ public:
   // Full turn of raw tangent angles at the source (its angle sum, or 2 pi for a face point).
   double SourceAngleSum() const { return Turn; }
 
+  // Replaces theta by the iso-curve arc-length angle (Section 3.3 of the paper): for each vertex,
+  // 2 pi times the arc length along its own iso-distance curve (the level set of the piecewise
+  // linear distance, traced face by face), counter-clockwise from where that curve crosses the
+  // reference geodesic, over the curve's length. Vertices whose iso-curve is not a closed loop
+  // inside the radius (it meets the mesh boundary) or misses the reference geodesic keep their
+  // geodesic-direction angle; the count is returned. Unlike the geodesic direction, it does not
+  // fold past saddles and cut loci wherever the level sets are single loops around the source
+  // (tested on a bumpy sphere and a torus); on a plane it equals the polar angle. Costs one loop
+  // trace per vertex (O(n sqrt n) for a patch of n vertices).
+  int UseIsoCurveAngles();
+
 private:
   double RawToTheta(double raw) const;
+  // Arc length along the iso-curve of v's level from v round to where it crosses the reference
+  // geodesic, and the loop's length; false if it is not a closed loop or misses the reference.
+  bool TraceIsoCurve(int v, const std::vector<std::vector<std::pair<Vec3, Vec3>>>& reference,
+    double& toReference, double& length) const;
 
   const TriangleMesh& M;
   ExactGeodesicSolver Solver;

@@ -260,3 +260,55 @@ TEST(GeodesicPolarCoordinates, GraphEngineOnASphereCap)
   const TriangleMesh m = BuildMesh(MakeIcosphere(1.0, 4));
   CompareEngines(m, SurfacePoint::AtVertex(0), 0.8, 1e-2, 2.0, 0.5);
 }
+
+TEST(GeodesicPolarCoordinates, IsoCurveAnglesOnAPlane)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(40, 40, 4.0, 4.0));
+  GeodesicPolarCoordinates pc(m);
+  const int s = 20 * 41 + 20;
+  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 1.5));
+  std::vector<double> geodesic(m.NumberOfVertices());
+  for (int v : pc.Inside())
+    geodesic[v] = pc.Theta(v);
+  EXPECT_EQ(pc.UseIsoCurveAngles(), 0); // every level is a closed loop crossing the reference
+  double nearWorst = 0, farWorst = 0;
+  for (int v : pc.Inside())
+  {
+    const double d = AngleDiff(pc.Theta(v), geodesic[v]) * 180 / Pi;
+    if (pc.Rho(v) >= 1.0)
+      farWorst = std::max(farWorst, d);
+    else if (pc.Rho(v) >= 0.3)
+      nearWorst = std::max(nearWorst, d);
+  }
+  // On a plane the arc-length fraction of a circle is its angle (the issue: 0.1 degree).
+  EXPECT_LT(nearWorst, 0.1);
+  EXPECT_LT(farWorst, 0.1);
+  EXPECT_EQ(FlippedFaces(m, pc, s), 0);
+  std::printf("iso-curve vs angle on the plane: %.2f deg (0.3 <= rho < 1), %.2f deg (rho >= 1)\n",
+    nearWorst, farWorst);
+}
+
+TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
+{
+  // A bumpy sphere: saddles everywhere; a radius well past the first cut loci.
+  const TriangleMesh m = BuildMesh(gs_test::BumpySoup(3, 4, 0.08));
+  GeodesicPolarCoordinates pc(m);
+  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(7), 1.2));
+  const int geodesicFlips = FlippedFaces(m, pc, 7);
+  EXPECT_EQ(pc.UseIsoCurveAngles(), 0);
+  const int isoFlips = FlippedFaces(m, pc, 7);
+  std::printf("flipped faces: geodesic direction %d, iso-curve arc length %d\n", geodesicFlips, isoFlips);
+  EXPECT_GT(geodesicFlips, 5); // the log map folds past the cut loci here
+  EXPECT_EQ(isoFlips, 0);
+  // The torus from its inner equator (negative curvature: saddles), well past the first
+  // conjugate points.
+  const TriangleMesh torus = BuildMesh(MakeTorus(2.0, 0.7, 48, 24));
+  GeodesicPolarCoordinates tp(torus);
+  const int inner = 12; // i = 0, j = 12: the inner equator
+  ASSERT_TRUE(tp.Compute(SurfacePoint::AtVertex(inner), 1.8));
+  const int torusGeodesicFlips = FlippedFaces(torus, tp, inner);
+  EXPECT_EQ(tp.UseIsoCurveAngles(), 0);
+  std::printf("torus: flipped faces geodesic direction %d, iso-curve %d\n", torusGeodesicFlips,
+    FlippedFaces(torus, tp, inner));
+  EXPECT_EQ(FlippedFaces(torus, tp, inner), 0);
+}
