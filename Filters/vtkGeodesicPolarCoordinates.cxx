@@ -69,6 +69,8 @@ const char* vtkGeodesicPolarCoordinates::GetAngleModeName(int mode)
   {
     case GEODESIC_DIRECTION:
       return "Geodesic direction";
+    case ISO_CURVE_ARC_LENGTH:
+      return "Iso-curve arc length";
     default:
       return "unknown";
   }
@@ -109,11 +111,10 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   this->UpdateProgress(0.0);
 
   // 1. Parameters.
-  if (this->AngleMode != GEODESIC_DIRECTION)
+  if (this->AngleMode != GEODESIC_DIRECTION && this->AngleMode != ISO_CURVE_ARC_LENGTH)
   {
     vtkErrorMacro("Unknown AngleMode " << this->AngleMode
-                                       << ": only 0 (Geodesic direction) exists in this version "
-                                          "(Iso-curve arc length is planned).");
+                                       << ": 0 (Geodesic direction) or 1 (Iso-curve arc length).");
     return 1;
   }
   if (!(this->Radius > 0.0))
@@ -288,6 +289,17 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   {
     vtkErrorMacro("The geodesic polar coordinates solver rejected the source or the radius.");
     return 1;
+  }
+  if (this->AngleMode == ISO_CURVE_ARC_LENGTH)
+  {
+    const int kept = polar.UseIsoCurveAngles();
+    if (kept > 0)
+    {
+      vtkWarningMacro(<< kept
+                      << " point(s) whose iso-distance curve is not a closed loop round the source "
+                         "(it meets the mesh boundary or misses the reference geodesic) keep the "
+                         "geodesic-direction angle.");
+    }
   }
   this->UpdateProgress(0.8);
   if (this->CheckAbort())

@@ -35,7 +35,11 @@
  *    Otherwise a 3D direction projected onto the tangent plane at the source (gs::TangentAngle);
  *    a direction normal to the surface there gets a warning and falls back to the first edge;
  *    a non-finite one is an error.
- *  - AngleMode: GEODESIC_DIRECTION (0, "Geodesic direction", the only mode of this version).
+ *  - AngleMode: GEODESIC_DIRECTION (0, "Geodesic direction": the log map) or
+ *    ISO_CURVE_ARC_LENGTH (1, "Iso-curve arc length": arc length along each iso-distance curve
+ *    from the reference geodesic over the curve's length; does not fold past saddles and cut
+ *    loci; points whose iso-curve is not a closed loop keep the geodesic direction, with a
+ *    warning).
  *  - DecalSize (default 1, > 0): side of the square image mapped by DecalCoordinates.
  *  - K (default 0): 0 computes with exact geodesics; K >= 1 with the saddle vertex graph of that
  *    K (shared process-wide with SVG Geodesic Distance; faster on large patches).
@@ -80,9 +84,10 @@ public:
   enum AngleModeType
   {
     /// theta = direction of the shortest geodesic at the source (the log map).
-    GEODESIC_DIRECTION = 0
-    // Planned: ISO_CURVE_ARC_LENGTH = 1 (theta proportional to the arc length along each
-    // iso-distance curve, bijective past saddles and cut loci).
+    GEODESIC_DIRECTION = 0,
+    /// theta proportional to the arc length along each vertex's iso-distance curve, from the
+    /// reference geodesic (bijective past saddles and cut loci where level sets are loops).
+    ISO_CURVE_ARC_LENGTH = 1
   };
 
   ///@{
@@ -110,6 +115,7 @@ public:
   vtkSetMacro(AngleMode, int);
   vtkGetMacro(AngleMode, int);
   void SetAngleModeToGeodesicDirection() { this->SetAngleMode(GEODESIC_DIRECTION); }
+  void SetAngleModeToIsoCurveArcLength() { this->SetAngleMode(ISO_CURVE_ARC_LENGTH); }
   /// The AngleMode's name as in the ParaView property ("Geodesic direction").
   static const char* GetAngleModeName(int mode);
   ///@}

@@ -58,6 +58,8 @@ case "$mode" in
     echo "Results: $root/output/geodesic_distance.vtp and $root/output/geodesic_distance.png"
     ;;
   test)
-    ctest --test-dir build --output-on-failure -j2
+    # Rendering tests start their own Xvfb; a server that fails to accept the connection now
+    # and then ("bad X server connection") is retried once. A real failure fails twice.
+    ctest --test-dir build --output-on-failure -j2 --repeat until-pass:2
     ;;
 esac

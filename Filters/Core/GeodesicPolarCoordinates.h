@@ -56,7 +56,8 @@ public:
   // 2 pi times the arc length along its own iso-distance curve (the level set of the piecewise
   // linear distance, traced face by face), counter-clockwise from where that curve crosses the
   // reference geodesic, over the curve's length. Vertices whose iso-curve is not a closed loop
-  // inside the radius (it meets the mesh boundary) or misses the reference geodesic keep their
+  // (it meets the mesh boundary) or does not go round the source (it misses the reference
+  // geodesic, e.g. a level set split around a limb) keep their
   // geodesic-direction angle; the count is returned. Unlike the geodesic direction, it does not
   // fold past saddles and cut loci wherever the level sets are single loops around the source
   // (tested on a bumpy sphere and a torus); on a plane it equals the polar angle. Costs one loop

@@ -385,8 +385,8 @@ void TestBadInputs(vtkPolyData* grid)
   }
   {
     Parameters q;
-    q.AngleMode = 1;
-    ExpectRejected("IsoCurveAngleMode", grid, q, "AngleMode");
+    q.AngleMode = 2;
+    ExpectRejected("UnknownAngleMode", grid, q, "AngleMode");
   }
   {
     // A curve source (a polyline on the Source port): not supported, not faked.
@@ -478,6 +478,42 @@ std::string DataDirectory(int argc, char* argv[])
 
 // The saddle vertex graph engine (K >= 1): on a plane the refined distances are exact and the
 // angles within the 0.1 degree; a negative K is rejected.
+// Iso-curve arc length on the plane: the polar angle within the 0.1 degree (inside the
+// grid, where the iso-curves are closed loops).
+void TestIsoCurveMode(vtkPolyData* grid)
+{
+  const std::string test = "IsoCurveMode";
+  Parameters p;
+  p.SourceVertexId = 10 * 21 + 10; // the centre of the unit square
+  p.Radius = 0.45;
+  p.AngleMode = vtkGeodesicPolarCoordinates::ISO_CURVE_ARC_LENGTH;
+  const RunResult iso = Run(grid, p);
+  p.AngleMode = vtkGeodesicPolarCoordinates::GEODESIC_DIRECTION;
+  const RunResult geodesic = Run(grid, p);
+  Check(iso.Errors.empty() && iso.Warnings.empty() && iso.Theta(), test, "errors or warnings");
+  if (!iso.Theta() || !geodesic.Theta())
+  {
+    return;
+  }
+  double worst = 0;
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    if (std::isfinite(geodesic.Rho()->GetValue(i)) && geodesic.Rho()->GetValue(i) > 0.12)
+    {
+      worst = std::max(worst, AngleDifference(iso.Theta()->GetValue(i), geodesic.Theta()->GetValue(i)));
+    }
+  }
+  Check(worst < 0.1 * Pi / 180, test, "iso-curve angle differs from the polar angle by 0.1 degree or more");
+  std::cout << test << ": worst difference " << worst * 180 / Pi << " degree\n";
+  // Past the square's boundary the iso-curves are not loops: those points keep the geodesic
+  // direction, with a warning.
+  p.AngleMode = vtkGeodesicPolarCoordinates::ISO_CURVE_ARC_LENGTH;
+  p.Radius = 0.8;
+  const RunResult open = Run(grid, p);
+  Check(open.Errors.empty() && Mentions(open.Warnings, "not a closed loop") && open.Theta(), test,
+    "no warning for iso-curves meeting the boundary");
+}
+
 void TestGraphEngine(vtkPolyData* grid)
 {
   const std::string test = "GraphEngine";
@@ -536,6 +572,7 @@ int main(int argc, char* argv[])
   TestBadInputs(grid);
   TestCacheAndAbort();
   TestGraphEngine(grid);
+  TestIsoCurveMode(grid);
   if (Failures > 0)
   {
     std::cerr << Failures << " failure(s)\n";
