@@ -62,6 +62,7 @@ ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
   }
   InAngle.assign(nv, std::numeric_limits<double>::quiet_NaN());
   Departure.assign(nv, std::numeric_limits<double>::quiet_NaN());
+  Root.assign(nv, -1);
   Dist.assign(nv, Inf);
   Origin.assign(nv, 0);
   CrossHalfedge.assign(nv, -1);
@@ -84,6 +85,7 @@ void ExactGeodesicSolver::Reset()
     Propagated[v] = 0;
     InAngle[v] = std::numeric_limits<double>::quiet_NaN();
     Departure[v] = std::numeric_limits<double>::quiet_NaN();
+    Root[v] = -1;
   }
   Touched.clear();
   FinalOrder.clear();
@@ -105,7 +107,7 @@ std::vector<double> ExactGeodesicSolver::Distances() const
 }
 
 void ExactGeodesicSolver::UpdateVertex(
-  int v, double d, int origin, int via, double crossing, double inAngle, double departure)
+  int v, double d, int origin, int via, double crossing, double inAngle, double departure, int root)
 {
   if (Final[v] || !(d < Dist[v] + Tolerance))
   {
@@ -135,6 +137,7 @@ void ExactGeodesicSolver::UpdateVertex(
   Dist[v] = d;
   Origin[v] = origin;
   Departure[v] = departure;
+  Root[v] = root;
   CrossHalfedge[v] = via;
   CrossX[v] = crossing;
   VertexQueue.push_back({ d, v });
@@ -149,6 +152,7 @@ void ExactGeodesicSolver::UpdateVertex(
     e.Sigma = d;
     e.H = -1 - v;
     e.Src = -1 - v;
+    e.Root = root;
     Enqueue(e);
   }
 }
@@ -277,6 +281,7 @@ void ExactGeodesicSolver::PushWindow(Window w)
 void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
 {
   ++Stats.PseudoSourceEvents;
+  const int root = src >= 0 ? src : Root[v];
   // A shortest path through a saddle or boundary vertex leaves it at an angle of at least pi
   // from where it arrived, on both sides (on the surface side for a boundary vertex): only that
   // shadow needs windows. A real source, or an unknown/ambiguous arrival, spreads everywhere.
@@ -340,12 +345,12 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       {
         const int back = M.Twin(h);
         UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0,
-          back >= 0 ? FanAngle[back] : M.TotalAngle(a), src >= 0 ? p0 : Departure[v]);
+          back >= 0 ? FanAngle[back] : M.TotalAngle(a), src >= 0 ? p0 : Departure[v], root);
       }
       if (toEnd)
       {
         UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0,
-          FanAngle[TriangleMesh::Prev(h)], src >= 0 ? p0 + beta : Departure[v]);
+          FanAngle[TriangleMesh::Prev(h)], src >= 0 ? p0 + beta : Departure[v], root);
       }
       const int t = M.Twin(opp);
       if (t < 0)
@@ -369,6 +374,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       w.Phi = src >= 0 ? p0 - std::atan2(Cy[opp], Cx[opp]) : Departure[v];
       w.Sigma = sigma;
       w.Src = src;
+      w.Root = root;
       if (w.B1 > w.B0)
       {
         PushWindow(w);
@@ -410,7 +416,7 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src, in
     const Vec3& Y = M.Position(M.Destination(e));
     const Vec3 toP = p - X, toY = Y - X;
     UpdateVertex(M.Origin(e), Norm(toP), src, -1, 0.0,
-      FanAngle[e] + std::atan2(Norm(Cross(toY, toP)), Dot(toY, toP)), angleOf(X - p));
+      FanAngle[e] + std::atan2(Norm(Cross(toY, toP)), Dot(toY, toP)), angleOf(X - p), src);
     const int t = M.Twin(e);
     const double len = M.EdgeLength(e);
     // t runs Y -> X; in its frame the source lies below the edge (on f's side).
@@ -432,6 +438,7 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src, in
     w.Phi = angleOf(X - Y);
     w.Sigma = 0.0;
     w.Src = src;
+    w.Root = src;
     PushWindow(w);
   }
 }
@@ -459,7 +466,7 @@ void ExactGeodesicSolver::Propagate(Window w)
       const double ax = -cx, ay = -cy, qx = ix - cx, qy = iy - cy;
       UpdateVertex(vC, dC, w.Src, h, xc,
         FanAngle[TriangleMesh::Prev(h)] + std::atan2(ax * qy - ay * qx, ax * qx + ay * qy),
-        w.Src >= 0 ? w.Phi + std::atan2(cy - iy, cx - ix) : w.Phi);
+        w.Src >= 0 ? w.Phi + std::atan2(cy - iy, cx - ix) : w.Phi, w.Root);
     }
     else if (dC > Dist[vC] + Tolerance && CrossHalfedge[vC] == h)
     {
@@ -502,6 +509,7 @@ void ExactGeodesicSolver::Propagate(Window w)
         c.H = t;
         c.Sigma = w.Sigma;
         c.Src = w.Src;
+        c.Root = w.Root;
         c.Phi = w.Src >= 0 ? w.Phi + std::atan2(cy, cx) : w.Phi;
         PushWindow(c);
       }
@@ -529,6 +537,7 @@ void ExactGeodesicSolver::Propagate(Window w)
         c.H = t;
         c.Sigma = w.Sigma;
         c.Src = w.Src;
+        c.Root = w.Root;
         c.Phi = w.Src >= 0 ? w.Phi + std::atan2(-cy, L - cx) : w.Phi;
         PushWindow(c);
       }
@@ -632,7 +641,7 @@ bool ExactGeodesicSolver::Solve(
       }
     }
     UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, std::numeric_limits<double>::quiet_NaN(),
-      std::numeric_limits<double>::quiet_NaN());
+      std::numeric_limits<double>::quiet_NaN(), i);
     if (!Propagated[s.Vertex])
     {
       Propagated[s.Vertex] = 1;

@@ -83,6 +83,10 @@ public:
   // vertices leaves in the direction of the first of them. NaN where unknown.
   double DepartureAngle(int v) const { return Final[v] ? Departure[v] : std::numeric_limits<double>::quiet_NaN(); }
 
+  // The index (in the sources given to Solve) of the source v's shortest path starts from,
+  // through saddles too; -1 for unreached vertices.
+  int SourceOf(int v) const { return Final[v] ? Root[v] : -1; }
+
   const ExactGeodesicStatistics& Statistics() const { return Stats; }
   const TriangleMesh& Mesh() const { return M; }
 
@@ -97,6 +101,7 @@ private:
                    // (Src >= 0), Phi itself behind a pseudo-source
     int H;         // half-edge the window lies on; it propagates into face(H). <0: vertex event
     int Src;       // PathOrigin code of the pseudo-source
+    int Root;      // index of the source the window's paths start from
   };
   // The queue orders small (key, slot) entries; windows stay in a pool with a free list.
   struct QueueEntry
@@ -113,7 +118,7 @@ private:
   // inAngle: direction (in v's fan, see FanAngle) towards where the path comes from; NaN if
   // unknown. It limits which directions v spreads into when it becomes a pseudo-source.
   void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing, double inAngle,
-    double departure);
+    double departure, int root);
   void PushWindow(Window w);
   void Enqueue(const Window& w);
   Window Dequeue();
@@ -135,6 +140,7 @@ private:
   std::vector<int> CrossHalfedge; // half-edge crossed by the best path to v in its last face
   std::vector<double> InAngle;    // where the best path to v arrives from (NaN: several/unknown)
   std::vector<double> Departure;  // departure angle at the source of the best path to v
+  std::vector<int> Root;          // source index of the best path to v
   std::vector<double> CrossX;     // where it crossed (in that half-edge's frame)
   std::vector<unsigned char> Final;
   std::vector<unsigned char> Propagated; // pseudo-source vertex already spread its windows

@@ -1,6 +1,7 @@
 #include "GeodesicPolarCoordinates.h"
 
 #include "GeodesicShooting.h"
+#include "SurfaceCurve.h"
 #include "GeodesicUnfolding.h"
 
 #include <algorithm>
@@ -47,6 +48,7 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
     T[v] = NaN;
   }
   InsideList.clear();
+  CurveMode = false;
   if (!(radius > 0.0) || !std::isfinite(referenceAngle))
   {
     return false;
@@ -97,9 +99,139 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
   return true;
 }
 
+bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& curve, double radius)
+{
+  for (int v : InsideList)
+  {
+    R[v] = NaN;
+    T[v] = NaN;
+  }
+  InsideList.clear();
+  CurveMode = true;
+  CurveTotal = 0.0;
+  if (!(radius > 0.0) || curve.empty())
+  {
+    return false;
+  }
+  for (const SurfacePoint& p : curve)
+  {
+    const bool valid = p.IsVertex()
+      ? p.Vertex < M.NumberOfVertices()
+      : p.Face >= 0 && p.Face < M.NumberOfFaces() && std::isfinite(p.Bary[0] + p.Bary[1] + p.Bary[2]);
+    if (!valid)
+    {
+      return false;
+    }
+  }
+  const std::vector<CurvePiece> pieces = TraceSurfaceCurve(M, curve);
+  // Samples along the pieces (as SampleCurvePieces makes them), with their arc length and the
+  // curve's tangent angle there.
+  const double spacing = M.MeanEdgeLength() / 16.0;
+  const std::vector<SurfacePoint> samples = SampleCurvePieces(M, pieces, spacing);
+  std::vector<double> arc, tangent;
+  for (const CurvePiece& piece : pieces)
+  {
+    const double length = Norm(piece.B - piece.A);
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+    for (int i = 0; i <= steps; ++i)
+    {
+      arc.push_back(CurveTotal + length * i / steps);
+      // In the convention the solver uses for this sample: its face's frame, or the fan of the
+      // vertex it sits on.
+      const SurfacePoint& sample = samples[std::min(arc.size() - 1, samples.size() - 1)];
+      SurfacePoint at = SurfacePoint::InFace(piece.Face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (sample.Face == piece.Face && sample.Bary[k] > 1.0 - 1e-12)
+        {
+          at = SurfacePoint::AtVertex(M.Face(piece.Face)[k]);
+        }
+      }
+      tangent.push_back(length > 0.0 ? TangentAngle(M, at, piece.B - piece.A) : NaN);
+      if (length == 0.0)
+      {
+        break;
+      }
+    }
+    CurveTotal += length;
+  }
+  if (!(CurveTotal > 0.0) || arc.size() != samples.size())
+  {
+    return false;
+  }
+  // A zero-length piece (a point of the curve alone) takes the direction of its neighbours.
+  for (std::size_t i = 0; i < tangent.size(); ++i)
+  {
+    if (std::isnan(tangent[i]))
+    {
+      for (std::size_t j = 1; j < tangent.size() && std::isnan(tangent[i]); ++j)
+      {
+        if (i + j < tangent.size() && std::isfinite(tangent[i + j]))
+          tangent[i] = tangent[i + j];
+        else if (j <= i && std::isfinite(tangent[i - j]))
+          tangent[i] = tangent[i - j];
+      }
+    }
+  }
+  ExactGeodesicOptions options;
+  options.MaximumDistance = std::isfinite(radius) ? radius : 0.0;
+  if (!Solver.Solve(samples, options))
+  {
+    return false;
+  }
+  InsideList = Solver.FinalVertices();
+  for (int v : InsideList)
+  {
+    const double d = Solver.Distance(v);
+    const int root = Solver.SourceOf(v);
+    const double departure = Solver.DepartureAngle(v);
+    // Left of the curve when the geodesic leaves its foot counter-clockwise from the tangent
+    // (angles in the foot face's frame: samples are face points of their piece's face).
+    double side = 1.0;
+    if (root >= 0 && std::isfinite(departure) && std::isfinite(tangent[root]))
+    {
+      side = std::sin(departure - tangent[root]) < 0.0 ? -1.0 : 1.0;
+    }
+    R[v] = d == 0.0 ? 0.0 : side * d;
+    T[v] = root >= 0 ? std::min(1.0, std::max(0.0, arc[root] / CurveTotal)) : NaN;
+  }
+  // Corners of the faces the curve crosses: the exact straight distance to the piece inside the
+  // face (the samples are 1/16 edge apart: close to the curve that matters).
+  double start = 0.0;
+  for (const CurvePiece& piece : pieces)
+  {
+    const Vec3 ab = piece.B - piece.A;
+    const double length = Norm(ab);
+    const Vec3 n = M.FaceNormal(piece.Face);
+    for (int k = 0; length > 0.0 && k < 3; ++k)
+    {
+      const int v = M.Face(piece.Face)[k];
+      if (!std::isfinite(R[v]))
+      {
+        continue;
+      }
+      const Vec3 p = M.Position(v);
+      const double t = std::min(1.0, std::max(0.0, Dot(p - piece.A, ab) / (length * length)));
+      const Vec3 foot = piece.A + ab * t;
+      const double d = Norm(p - foot);
+      if (d < std::abs(R[v]))
+      {
+        R[v] = Dot(Cross(ab, p - foot), n) < 0.0 ? -d : d;
+        T[v] = std::min(1.0, std::max(0.0, (start + t * length) / CurveTotal));
+      }
+    }
+    start += length;
+  }
+  return true;
+}
+
 bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, double& theta) const
 {
   rho = theta = NaN;
+  if (CurveMode)
+  {
+    return false;
+  }
   if (q.IsVertex())
   {
     rho = R[q.Vertex];
@@ -262,6 +394,10 @@ bool GeodesicPolarCoordinates::TraceIsoCurve(int v,
 
 int GeodesicPolarCoordinates::UseIsoCurveAngles()
 {
+  if (CurveMode)
+  {
+    return 0;
+  }
   // The reference geodesic: from the source in direction theta = 0 to the radius.
   std::vector<std::vector<std::pair<Vec3, Vec3>>> reference(M.NumberOfFaces());
   double radius = 0.0;
@@ -299,7 +435,7 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
 
 SurfacePoint GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
 {
-  if (rho <= 0.0)
+  if (rho <= 0.0 || CurveMode)
   {
     return Source;
   }

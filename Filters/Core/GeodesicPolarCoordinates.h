@@ -36,6 +36,21 @@ public:
   // or radius.
   bool Compute(const SurfacePoint& source, double radius, double referenceAngle = 0.0);
 
+  // Coordinates about a curve (a polyline of surface points, consecutive points joined by the
+  // straight surface path; the paper's Fig. 3 and 4): for every vertex closer than `radius` to
+  // the curve, Offset = signed geodesic distance delta (positive on the left of the curve's
+  // direction, with the outward normal up) and ArcLength = u in [0, 1], the normalized arc
+  // length along the curve of the point its shortest geodesic leaves from (its foot; the end
+  // points beyond the curve's ends). Exact solver from the curve sampled every 1/16 edge. False
+  // for an empty or zero-length curve, an invalid point or radius. In this mode Rho() and
+  // Theta() return Offset() and ArcLength(), and PolarAt/ToSurface/UseIsoCurveAngles are not
+  // available (false / the source / 0).
+  bool ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
+  bool IsCurve() const { return CurveMode; }
+  double Offset(int v) const { return R[v]; }
+  double ArcLength(int v) const { return T[v]; }
+  double CurveLength() const { return CurveTotal; }
+
   // Per vertex, NaN outside the radius (or unreachable).
   double Rho(int v) const { return R[v]; }
   double Theta(int v) const { return T[v]; }
@@ -79,6 +94,8 @@ private:
   double Reference = 0.0;
   double Turn = 0.0;
   std::vector<double> R, T;
+  bool CurveMode = false;
+  double CurveTotal = 0.0;
 };
 
 } // namespace gs

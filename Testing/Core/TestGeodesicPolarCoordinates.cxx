@@ -312,3 +312,65 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
     FlippedFaces(torus, tp, inner));
   EXPECT_EQ(FlippedFaces(torus, tp, inner), 0);
 }
+
+TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(40, 40, 4.0, 4.0));
+  auto locate = [&](const Vec3& p) {
+    for (int f = 0; f < m.NumberOfFaces(); ++f)
+    {
+      const auto& t = m.Face(f);
+      const Vec3 P0 = m.Position(t[0]), P1 = m.Position(t[1]), P2 = m.Position(t[2]);
+      const double area = Cross(P1 - P0, P2 - P0).z;
+      const double w0 = Cross(P1 - p, P2 - p).z / area, w1 = Cross(P2 - p, P0 - p).z / area;
+      if (w0 >= -1e-12 && w1 >= -1e-12 && 1 - w0 - w1 >= -1e-12)
+        return SurfacePoint::InFace(f, w0, w1, 1 - w0 - w1);
+    }
+    return SurfacePoint();
+  };
+  GeodesicPolarCoordinates pc(m);
+  // A straight segment: delta is the signed distance to the line, u the projection's fraction,
+  // for points beside the segment.
+  const Vec3 a(1.03, 1.51, 0), b(2.97, 2.23, 0);
+  ASSERT_TRUE(pc.ComputeCurve({ locate(a), locate(b) }, 0.6));
+  EXPECT_TRUE(pc.IsCurve());
+  EXPECT_NEAR(pc.CurveLength(), Norm(b - a), 1e-9);
+  const Vec3 dir = (b - a) / Norm(b - a);
+  int beside = 0;
+  for (int v : pc.Inside())
+  {
+    const Vec3 d = m.Position(v) - a;
+    const double along = Dot(d, dir) / Norm(b - a);
+    if (along < 0.02 || along > 0.98)
+      continue;
+    ++beside;
+    const double signedDistance = Cross(dir, d).z; // > 0 on the left (normal +z)
+    EXPECT_NEAR(pc.Offset(v), signedDistance, 2e-3 * std::max(0.1, std::abs(signedDistance))) << v;
+    EXPECT_NEAR(pc.ArcLength(v), along, 1e-2) << v;
+  }
+  EXPECT_GT(beside, 100);
+  // A circular arc about (2, 2): offsets are radius differences (inside the circle is on the left
+  // of a counter-clockwise arc), u the angle fraction.
+  std::vector<SurfacePoint> arc;
+  const double r0 = 1.0, a0 = 0.3, a1 = 2.4;
+  for (int i = 0; i <= 40; ++i)
+  {
+    const double t = a0 + (a1 - a0) * i / 40.0;
+    arc.push_back(locate(Vec3(2 + r0 * std::cos(t), 2 + r0 * std::sin(t), 0)));
+  }
+  ASSERT_TRUE(pc.ComputeCurve(arc, 0.4));
+  int checked = 0;
+  for (int v : pc.Inside())
+  {
+    const Vec3 d = m.Position(v) - Vec3(2, 2, 0);
+    const double angle = std::atan2(d.y, d.x);
+    if (angle < a0 + 0.05 || angle > a1 - 0.05)
+      continue;
+    ++checked;
+    EXPECT_NEAR(pc.Offset(v), r0 - Norm(d), 3e-3) << v; // the arc is a polyline of 40 chords
+    EXPECT_NEAR(pc.ArcLength(v), (angle - a0) / (a1 - a0), 1e-2) << v;
+  }
+  EXPECT_GT(checked, 50);
+  EXPECT_FALSE(pc.ComputeCurve({}, 1.0));
+  EXPECT_FALSE(pc.ComputeCurve({ locate(a), locate(a) }, 1.0)); // zero length
+}
