@@ -9,6 +9,8 @@
 #include "GeodesicShooting.h"
 #include "SurfacePoint.h"
 
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
@@ -48,6 +50,8 @@ namespace
 // A snapped point this close to a corner (in barycentric weight) is that vertex: the source then
 // has the vertex's angle sum and first edge, as with SourceVertexId.
 constexpr double VertexSnapTolerance = 1e-12;
+// Spacing of the 3D samples of a curve source before snapping, in mean edge lengths.
+constexpr double CurveSnapSpacing = 0.25;
 // Mapping to input points checks for abort every this many points.
 constexpr size_t AbortCheckInterval = 1 << 14;
 }
@@ -138,15 +142,9 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   const bool firstEdgeReference =
     reference[0] == 0.0 && reference[1] == 0.0 && reference[2] == 0.0;
 
-  // A curve source is rejected before the mesh is touched: this version has no curve solve.
+  // A Source with line cells is a curve source: its first polyline.
   vtkPolyData* polySource = vtkPolyData::SafeDownCast(source);
-  if (polySource && polySource->GetNumberOfLines() > 0)
-  {
-    vtkErrorMacro("The Source input has line cells (a curve source): curve sources are not "
-                  "supported by this version of Geodesic Polar Coordinates yet; connect a single "
-                  "point (e.g. a Point Source) or use SourceVertexId.");
-    return 1;
-  }
+  const bool curveSource = polySource && polySource->GetNumberOfLines() > 0;
   if (source && source->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro("The Source input has no point.");
@@ -180,9 +178,40 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
     return 1;
   }
 
-  // 3. The source: the first point of port 1 snapped to the surface, or SourceVertexId.
+  // 3. The source: the first polyline of port 1 (a curve), its first point, or SourceVertexId;
+  //    snapped to the surface.
   gs::SurfacePoint sourcePoint;
-  if (source)
+  std::vector<gs::SurfacePoint> curve;
+  if (curveSource)
+  {
+    if (!cache.Locator)
+    {
+      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
+    }
+    if (polySource->GetNumberOfLines() > 1)
+    {
+      vtkWarningMacro("The Source input has " << polySource->GetNumberOfLines()
+                                              << " line cells: only the first one is used.");
+    }
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    auto it = vtk::TakeSmartPointer(polySource->GetLines()->NewIterator());
+    it->GoToFirstCell();
+    it->GetCurrentCell(npts, pts);
+    std::string reason;
+    if (!cache.Locator->SnapPolyline(polySource->GetPoints(), npts, pts,
+          CurveSnapSpacing * mesh.MeanEdgeLength(), curve, reason))
+    {
+      vtkErrorMacro("Source curve: " << reason << ".");
+      return 1;
+    }
+    if (curve.size() < 2)
+    {
+      vtkErrorMacro("The Source curve has fewer than two distinct points on the surface.");
+      return 1;
+    }
+  }
+  else if (source)
   {
     if (source->GetNumberOfPoints() > 1)
     {
@@ -229,7 +258,7 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
 
   // 4. Theta's zero as a tangent angle at the source.
   double referenceAngle = 0.0;
-  if (!firstEdgeReference)
+  if (!firstEdgeReference && !curveSource)
   {
     const double angle = gs::TangentAngle(
       mesh, sourcePoint, gs::Vec3(reference[0], reference[1], reference[2]));
@@ -285,12 +314,21 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
     cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph.get()));
   }
   gs::GeodesicPolarCoordinates& polar = *cache.Polar;
-  if (!polar.Compute(sourcePoint, this->Radius, referenceAngle))
+  if (curveSource)
+  {
+    if (!polar.ComputeCurve(curve, this->Radius))
+    {
+      vtkErrorMacro("The geodesic polar coordinates solver rejected the curve (zero length?) or "
+                    "the radius.");
+      return 1;
+    }
+  }
+  else if (!polar.Compute(sourcePoint, this->Radius, referenceAngle))
   {
     vtkErrorMacro("The geodesic polar coordinates solver rejected the source or the radius.");
     return 1;
   }
-  if (this->AngleMode == ISO_CURVE_ARC_LENGTH)
+  if (this->AngleMode == ISO_CURVE_ARC_LENGTH && !curveSource)
   {
     const int kept = polar.UseIsoCurveAngles();
     if (kept > 0)
@@ -311,10 +349,10 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
   vtkNew<vtkDoubleArray> rhoArray;
-  rhoArray->SetName("GeodesicDistance");
+  rhoArray->SetName(curveSource ? "Offset" : "GeodesicDistance");
   rhoArray->SetNumberOfTuples(numberOfPoints);
   vtkNew<vtkDoubleArray> thetaArray;
-  thetaArray->SetName("PolarAngle");
+  thetaArray->SetName(curveSource ? "ArcLength" : "PolarAngle");
   thetaArray->SetNumberOfTuples(numberOfPoints);
   vtkNew<vtkDoubleArray> decal;
   decal->SetName("DecalCoordinates");
@@ -334,16 +372,25 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
     const int v = pointToVertex[i];
     double rho = v >= 0 ? polar.Rho(v) : nan;
     double theta = v >= 0 ? polar.Theta(v) : nan;
-    if (!std::isfinite(rho) || rho > this->Radius || !std::isfinite(theta))
+    if (!std::isfinite(rho) || std::abs(rho) > this->Radius || !std::isfinite(theta))
     {
       rho = theta = nan;
     }
     const vtkIdType id = static_cast<vtkIdType>(i);
     rhoArray->SetValue(id, rho);
     thetaArray->SetValue(id, theta);
-    // A square of side DecalSize centred on the source -> [0, 1]^2 (NaN stays NaN).
-    decal->SetTypedComponent(id, 0, rho * std::cos(theta) / this->DecalSize + 0.5);
-    decal->SetTypedComponent(id, 1, rho * std::sin(theta) / this->DecalSize + 0.5);
+    if (curveSource)
+    {
+      // (u, delta): along the curve, and a band of width DecalSize centred on it -> [0, 1].
+      decal->SetTypedComponent(id, 0, theta);
+      decal->SetTypedComponent(id, 1, rho / this->DecalSize + 0.5);
+    }
+    else
+    {
+      // A square of side DecalSize centred on the source -> [0, 1]^2 (NaN stays NaN).
+      decal->SetTypedComponent(id, 0, rho * std::cos(theta) / this->DecalSize + 0.5);
+      decal->SetTypedComponent(id, 1, rho * std::sin(theta) / this->DecalSize + 0.5);
+    }
   }
 
   output->ShallowCopy(cache.Mesh.Surface);
@@ -359,10 +406,10 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   {
     fieldData->ShallowCopy(inputFieldData);
   }
-  vtkNew<vtkDoubleArray> angleSum;
-  angleSum->SetName("SourceAngleSum");
-  angleSum->InsertNextValue(polar.SourceAngleSum());
-  fieldData->AddArray(angleSum);
+  vtkNew<vtkDoubleArray> summary;
+  summary->SetName(curveSource ? "CurveLength" : "SourceAngleSum");
+  summary->InsertNextValue(curveSource ? polar.CurveLength() : polar.SourceAngleSum());
+  fieldData->AddArray(summary);
   output->SetFieldData(fieldData);
   this->UpdateProgress(1.0);
   return 1;

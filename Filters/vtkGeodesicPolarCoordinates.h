@@ -11,9 +11,11 @@
  * source vertex whose angle sum is not 2 pi (a cone point or a saddle) the angles are scaled so
  * that a full turn is 2 pi (the original angle sum is reported as SourceAngleSum).
  *
- * This version supports point sources and the "Geodesic direction" angle mode only. Planned:
- * curve sources (coordinates (u, delta) along a polyline) and the "Iso-curve arc length" angle
- * mode (theta proportional to the arc length along each iso-distance curve).
+ * Curve sources (the first polyline of the Source port): coordinates (u, delta), delta the signed
+ * geodesic offset (positive on the left of the curve's direction, normal up) and u in [0, 1] the
+ * normalized arc length along the curve of the point the geodesic leaves from (Offset and
+ * ArcLength arrays; DecalCoordinates (u, delta / DecalSize + 0.5); field data CurveLength;
+ * computed with exact geodesics whatever K).
  *
  * Input port 0 ("Input", vtkPolyData): the surface. As in vtkSVGGeodesicDistance, polygons with
  * more than three points and triangle strips are triangulated (with a warning), vertex and line
@@ -23,8 +25,8 @@
  *
  * Input port 1 ("Source", optional, vtkPointSet): its first point is snapped to the closest
  * surface point (a vertex when it lands on one, otherwise an edge or face point) and is the
- * source; SourceVertexId is then ignored. A Source with line cells (a curve source) is an error
- * in this version (empty output).
+ * source; SourceVertexId is then ignored. A Source with line cells is a curve source: its first
+ * polyline, sampled every quarter edge and snapped (other cells ignored, with a warning).
  *
  * Properties:
  *  - SourceVertexId (default 0): the input point used as the source when port 1 is not

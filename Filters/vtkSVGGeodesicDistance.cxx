@@ -55,13 +55,7 @@ namespace
 constexpr double CurveSnapSpacing = 0.25;
 // Spacing of the curve samples seeding the exact solver (the exact reference), in mean edges.
 constexpr double ExactCurveSpacing = 1.0 / 16.0;
-// At most this many samples per polyline segment (a segment far longer than the mesh).
-constexpr vtkIdType MaximumSamplesPerSegment = 1 << 20;
 
-bool SameSurfacePoint(const gs::SurfacePoint& a, const gs::SurfacePoint& b)
-{
-  return a.Vertex == b.Vertex && a.Face == b.Face && a.Bary == b.Bary;
-}
 }
 
 //------------------------------------------------------------------------------
@@ -212,57 +206,14 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
       {
         it->GetCurrentCell(npts, pts);
         std::vector<gs::SurfacePoint> curve;
-        auto add = [&](const double x[3], vtkIdType pointId) {
-          gs::SurfacePoint p;
-          if (!snap(x, p, pointId))
-          {
-            return false;
-          }
-          if (curve.empty() || !SameSurfacePoint(curve.back(), p))
-          {
-            curve.push_back(p);
-          }
-          return true;
-        };
+        if (!cache.Locator->SnapPolyline(sources->GetPoints(), npts, pts, spacing, curve, reason))
+        {
+          vtkErrorMacro("Source curve: " << reason << ".");
+          return 1;
+        }
         for (vtkIdType i = 0; i < npts; ++i)
         {
-          if (pts[i] < 0 || pts[i] >= sources->GetNumberOfPoints())
-          {
-            vtkErrorMacro("Source line cell refers to point " << pts[i] << ", out of range.");
-            return 1;
-          }
           onCurve[static_cast<size_t>(pts[i])] = 1;
-          double a[3];
-          sources->GetPoint(pts[i], a);
-          if (!add(a, pts[i]))
-          {
-            return 1;
-          }
-          if (i + 1 == npts)
-          {
-            break;
-          }
-          // Samples between a and the next point, at most `spacing` apart.
-          double b[3];
-          sources->GetPoint(pts[i + 1], b);
-          const double length = std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
-          if (!std::isfinite(length))
-          {
-            vtkErrorMacro("Source point " << pts[i + 1] << ": non-finite coordinates.");
-            return 1;
-          }
-          const vtkIdType steps = static_cast<vtkIdType>(
-            std::min<double>(MaximumSamplesPerSegment, std::ceil(length / spacing)));
-          for (vtkIdType s = 1; s < steps; ++s)
-          {
-            const double t = static_cast<double>(s) / static_cast<double>(steps);
-            const double x[3] = { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]),
-              a[2] + t * (b[2] - a[2]) };
-            if (!add(x, pts[i]))
-            {
-              return 1;
-            }
-          }
         }
         if (!curve.empty())
         {

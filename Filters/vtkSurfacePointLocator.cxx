@@ -1,6 +1,8 @@
 #include "vtkSurfacePointLocator.h"
 
 #include <vtkGenericCell.h>
+#include <vtkMath.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStaticCellLocator.h>
 
@@ -69,5 +71,68 @@ bool vtkSurfacePointLocator::Snap(const double x[3], gs::SurfacePoint& point, st
   }
   point = gs::SurfacePoint::InFace(
     static_cast<int>(cellId), bary[0] / sum, bary[1] / sum, bary[2] / sum);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePointLocator::SnapPolyline(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
+  double spacing, std::vector<gs::SurfacePoint>& curve, std::string& error)
+{
+  // At most this many samples per segment (a segment far longer than the mesh).
+  constexpr vtkIdType MaximumSamplesPerSegment = 1 << 20;
+  curve.clear();
+  auto add = [&](const double x[3], vtkIdType pointId) {
+    gs::SurfacePoint p;
+    std::string reason;
+    if (!this->Snap(x, p, reason))
+    {
+      error = "point " + std::to_string(pointId) + ": " + reason;
+      return false;
+    }
+    const gs::SurfacePoint& last = curve.empty() ? p : curve.back();
+    if (curve.empty() || last.Vertex != p.Vertex || last.Face != p.Face || last.Bary != p.Bary)
+    {
+      curve.push_back(p);
+    }
+    return true;
+  };
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (ids[i] < 0 || ids[i] >= points->GetNumberOfPoints())
+    {
+      error = "a line cell refers to point " + std::to_string(ids[i]) + ", out of range";
+      return false;
+    }
+    double a[3];
+    points->GetPoint(ids[i], a);
+    if (!add(a, ids[i]))
+    {
+      return false;
+    }
+    if (i + 1 == n)
+    {
+      break;
+    }
+    double b[3];
+    points->GetPoint(ids[i + 1], b);
+    const double length = std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
+    if (!std::isfinite(length))
+    {
+      error = "point " + std::to_string(ids[i + 1]) + ": non-finite coordinates";
+      return false;
+    }
+    const vtkIdType steps = static_cast<vtkIdType>(
+      std::min<double>(MaximumSamplesPerSegment, std::ceil(length / spacing)));
+    for (vtkIdType s = 1; s < steps; ++s)
+    {
+      const double t = static_cast<double>(s) / static_cast<double>(steps);
+      const double x[3] = { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]),
+        a[2] + t * (b[2] - a[2]) };
+      if (!add(x, ids[i]))
+      {
+        return false;
+      }
+    }
+  }
   return true;
 }

@@ -16,8 +16,10 @@
 #include <vtkSmartPointer.h>
 
 #include <string>
+#include <vector>
 
 class vtkGenericCell;
+class vtkPoints;
 class vtkStaticCellLocator;
 
 class vtkSurfacePointLocator
@@ -31,6 +33,13 @@ public:
   // face point with barycentric coordinates in the core face's corner order). False, with the
   // reason in `error`, for non-finite coordinates or when x cannot be snapped.
   bool Snap(const double x[3], gs::SurfacePoint& point, std::string& error);
+
+  // A polyline of `points` (ids[0 .. n)) as a curve on the surface: each segment is sampled at
+  // most `spacing` apart in space and every sample snapped (consecutive duplicates dropped), so
+  // that consecutive surface points are close. False, with the reason, for an id out of range,
+  // non-finite coordinates or a point that cannot be snapped.
+  bool SnapPolyline(vtkPoints* points, vtkIdType n, const vtkIdType* ids, double spacing,
+    std::vector<gs::SurfacePoint>& curve, std::string& error);
 
   vtkSurfacePointLocator(const vtkSurfacePointLocator&) = delete;
   vtkSurfacePointLocator& operator=(const vtkSurfacePointLocator&) = delete;

@@ -127,8 +127,21 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
   // Samples along the pieces (as SampleCurvePieces makes them), with their arc length and the
   // curve's tangent angle there.
   const double spacing = M.MeanEdgeLength() / 16.0;
-  const std::vector<SurfacePoint> samples = SampleCurvePieces(M, pieces, spacing);
-  std::vector<double> arc, tangent;
+  std::vector<SurfacePoint> samples = SampleCurvePieces(M, pieces, spacing);
+  // Samples within rounding of a vertex (a curve through mesh vertices) are that vertex: a face
+  // point a hair's breadth from a corner makes needle-thin windows.
+  for (SurfacePoint& sample : samples)
+  {
+    for (int k = 0; k < 3 && !sample.IsVertex(); ++k)
+    {
+      if (sample.Bary[k] > 1.0 - 1e-7)
+      {
+        sample = SurfacePoint::AtVertex(M.Face(sample.Face)[k]);
+      }
+    }
+  }
+  std::vector<double> arc;
+  std::vector<Vec3> direction; // the curve's direction at each sample (0 on a zero-length piece)
   for (const CurvePiece& piece : pieces)
   {
     const double length = Norm(piece.B - piece.A);
@@ -136,18 +149,7 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     for (int i = 0; i <= steps; ++i)
     {
       arc.push_back(CurveTotal + length * i / steps);
-      // In the convention the solver uses for this sample: its face's frame, or the fan of the
-      // vertex it sits on.
-      const SurfacePoint& sample = samples[std::min(arc.size() - 1, samples.size() - 1)];
-      SurfacePoint at = SurfacePoint::InFace(piece.Face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
-      for (int k = 0; k < 3; ++k)
-      {
-        if (sample.Face == piece.Face && sample.Bary[k] > 1.0 - 1e-12)
-        {
-          at = SurfacePoint::AtVertex(M.Face(piece.Face)[k]);
-        }
-      }
-      tangent.push_back(length > 0.0 ? TangentAngle(M, at, piece.B - piece.A) : NaN);
+      direction.push_back(piece.B - piece.A);
       if (length == 0.0)
       {
         break;
@@ -159,19 +161,27 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
   {
     return false;
   }
-  // A zero-length piece (a point of the curve alone) takes the direction of its neighbours.
-  for (std::size_t i = 0; i < tangent.size(); ++i)
+  // A zero-length piece (a point of the curve alone) takes the direction of its nearest
+  // neighbour along the curve. Then each direction becomes a tangent angle in the convention
+  // the solver uses for that sample (its face's frame, or the fan of the vertex it is).
+  // (Pieces shorter than a millionth of an edge, e.g. the tracer's steps off a vertex, count as
+  // points: their direction is noise.)
+  const double tiny = 1e-6 * M.MeanEdgeLength();
+  std::vector<double> tangent(samples.size(), NaN);
+  for (std::size_t i = 0; i < samples.size(); ++i)
   {
-    if (std::isnan(tangent[i]))
+    Vec3 d = direction[i];
+    for (std::size_t j = 1; j < samples.size() && !(Norm(d) > tiny); ++j)
     {
-      for (std::size_t j = 1; j < tangent.size() && std::isnan(tangent[i]); ++j)
-      {
-        if (i + j < tangent.size() && std::isfinite(tangent[i + j]))
-          tangent[i] = tangent[i + j];
-        else if (j <= i && std::isfinite(tangent[i - j]))
-          tangent[i] = tangent[i - j];
-      }
+      if (i + j < samples.size() && Norm(direction[i + j]) > tiny)
+        d = direction[i + j];
+      else if (j <= i && Norm(direction[i - j]) > tiny)
+        d = direction[i - j];
     }
+    const SurfacePoint at = samples[i].IsVertex()
+      ? samples[i]
+      : SurfacePoint::InFace(samples[i].Face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
+    tangent[i] = TangentAngle(M, at, d);
   }
   ExactGeodesicOptions options;
   options.MaximumDistance = std::isfinite(radius) ? radius : 0.0;
@@ -203,7 +213,8 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     const Vec3 ab = piece.B - piece.A;
     const double length = Norm(ab);
     const Vec3 n = M.FaceNormal(piece.Face);
-    for (int k = 0; length > 0.0 && k < 3; ++k)
+    // (A piece of a millionth of an edge is a point: its direction cannot tell the side.)
+    for (int k = 0; length > tiny && k < 3; ++k)
     {
       const int v = M.Face(piece.Face)[k];
       if (!std::isfinite(R[v]))

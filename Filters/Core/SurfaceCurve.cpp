@@ -80,7 +80,25 @@ void TraceSegment(const TriangleMesh& M, const SurfacePoint& from, const Surface
       }
     }
   }
-  auto done = [&](int g) { return g == target || (to.IsVertex() && hasCorner(g, to.Vertex)); };
+  // The walk is over in a face that holds the end point: its own face, a face around it when it
+  // is a vertex, or any face whose closure contains it (an end point on an edge, reached from
+  // the face on the other side).
+  auto holds = [&](int g) {
+    const auto& t = M.Face(g);
+    const Vec3 P0 = M.Position(t[0]), P1 = M.Position(t[1]), P2 = M.Position(t[2]);
+    const Vec3 n = Cross(P1 - P0, P2 - P0);
+    const double n2 = Dot(n, n);
+    const double eps = 1e-9;
+    if (std::abs(Dot(q - P0, n)) > eps * std::sqrt(n2) * M.MeanEdgeLength())
+    {
+      return false;
+    }
+    const double u0 = Dot(Cross(P1 - q, P2 - q), n) / n2, u1 = Dot(Cross(P2 - q, P0 - q), n) / n2;
+    return u0 >= -eps && u1 >= -eps && 1.0 - u0 - u1 >= -eps;
+  };
+  auto done = [&](int g) {
+    return g == target || (to.IsVertex() && hasCorner(g, to.Vertex)) || holds(g);
+  };
   int entry = -1; // half-edge of f through which the walk entered
   // Walk straight towards q across faces, re-aiming in each face's plane; a segment between
   // nearby points crosses a few faces. Give up (keeping the end points) if it wanders.

@@ -373,4 +373,21 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
   EXPECT_GT(checked, 50);
   EXPECT_FALSE(pc.ComputeCurve({}, 1.0));
   EXPECT_FALSE(pc.ComputeCurve({ locate(a), locate(a) }, 1.0)); // zero length
+  // Along mesh edges and through mesh vertices (points on edges, some exactly on vertices, as
+  // face points): the side is still the side.
+  std::vector<SurfacePoint> grid;
+  for (int k = 0; k <= 42; ++k)
+    grid.push_back(locate(Vec3(1.0 + 2.0 * k / 42.0, 2.0, 0)));
+  ASSERT_TRUE(pc.ComputeCurve(grid, 0.5));
+  int wrong = 0, near = 0;
+  for (int v : pc.Inside())
+  {
+    const Vec3 p = m.Position(v);
+    if (p.x < 1.05 || p.x > 2.95)
+      continue;
+    ++near;
+    wrong += std::abs(pc.Offset(v) - (p.y - 2.0)) > 1e-6;
+  }
+  EXPECT_GT(near, 100);
+  EXPECT_EQ(wrong, 0);
 }

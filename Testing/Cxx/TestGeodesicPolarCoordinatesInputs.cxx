@@ -389,15 +389,15 @@ void TestBadInputs(vtkPolyData* grid)
     ExpectRejected("UnknownAngleMode", grid, q, "AngleMode");
   }
   {
-    // A curve source (a polyline on the Source port): not supported, not faked.
-    auto curve = PointsPolyData({ { 0.2, 0.5, 0.0 }, { 0.8, 0.5, 0.0 } });
+    // A curve of a single point on the surface (zero length): rejected.
+    auto curve = PointsPolyData({ { 0.5, 0.5, 0.0 }, { 0.5, 0.5, 0.0 } });
     vtkNew<vtkCellArray> lines;
     const vtkIdType ids[2] = { 0, 1 };
     lines->InsertNextCell(2, ids);
     curve->SetLines(lines);
     Parameters q;
     q.Source = curve;
-    ExpectRejected("CurveSource", grid, q, "curve sources are not supported");
+    ExpectRejected("ZeroLengthCurve", grid, q, "curve");
   }
   {
     auto none = PointsPolyData({});
@@ -478,6 +478,57 @@ std::string DataDirectory(int argc, char* argv[])
 
 // The saddle vertex graph engine (K >= 1): on a plane the refined distances are exact and the
 // angles within the 0.1 degree; a negative K is rejected.
+// A curve source on the plane: Offset is the signed distance to the segment's line (positive on
+// its left, +z up), ArcLength the projection's fraction, DecalCoordinates (u, delta / size + 0.5).
+void TestCurveSource(vtkPolyData* grid)
+{
+  const std::string test = "CurveSource";
+  const double a[3] = { 0.2, 0.3, 0.0 }, b[3] = { 0.8, 0.6, 0.0 };
+  auto curve = PointsPolyData({ { a[0], a[1], a[2] }, { b[0], b[1], b[2] } });
+  vtkNew<vtkCellArray> lines;
+  const vtkIdType ids[2] = { 0, 1 };
+  lines->InsertNextCell(2, ids);
+  curve->SetLines(lines);
+  Parameters p;
+  p.Source = curve;
+  p.Radius = 0.2;
+  p.DecalSize = 0.4;
+  const RunResult r = Run(grid, p);
+  vtkDoubleArray* offset = r.Array("Offset");
+  vtkDoubleArray* arc = r.Array("ArcLength");
+  Check(r.Errors.empty() && offset && arc && r.Decal(), test, "no Offset/ArcLength output");
+  if (!offset || !arc || !r.Decal())
+  {
+    return;
+  }
+  const double dx = b[0] - a[0], dy = b[1] - a[1], length = std::hypot(dx, dy);
+  double worstOffset = 0, worstArc = 0, worstDecal = 0;
+  int beside = 0;
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    grid->GetPoint(i, x);
+    const double along = ((x[0] - a[0]) * dx + (x[1] - a[1]) * dy) / (length * length);
+    const double side = (dx * (x[1] - a[1]) - dy * (x[0] - a[0])) / length;
+    if (std::abs(side) > 0.19 || along < 0.03 || along > 0.97)
+    {
+      continue;
+    }
+    ++beside;
+    worstOffset = std::max(worstOffset, std::abs(offset->GetValue(i) - side));
+    worstArc = std::max(worstArc, std::abs(arc->GetValue(i) - along));
+    worstDecal = std::max(worstDecal,
+      std::abs(r.Decal()->GetTypedComponent(i, 1) - (offset->GetValue(i) / 0.4 + 0.5)) +
+        std::abs(r.Decal()->GetTypedComponent(i, 0) - arc->GetValue(i)));
+  }
+  Check(beside > 50, test, "too few points beside the segment");
+  Check(worstOffset < 1e-3, test, "Offset differs from the signed distance");
+  Check(worstArc < 1e-2, test, "ArcLength differs from the projection's fraction");
+  Check(worstDecal < 1e-12, test, "DecalCoordinates differ from (u, delta / size + 0.5)");
+  std::cout << test << ": " << beside << " points beside the curve, offset error " << worstOffset
+            << ", arc length error " << worstArc << "\n";
+}
+
 // Iso-curve arc length on the plane: the polar angle within the 0.1 degree (inside the
 // grid, where the iso-curves are closed loops).
 void TestIsoCurveMode(vtkPolyData* grid)
@@ -573,6 +624,7 @@ int main(int argc, char* argv[])
   TestCacheAndAbort();
   TestGraphEngine(grid);
   TestIsoCurveMode(grid);
+  TestCurveSource(grid);
   if (Failures > 0)
   {
     std::cerr << Failures << " failure(s)\n";

@@ -130,12 +130,23 @@ above = vtk_to_numpy(servermanager.Fetch(point).GetPoints().GetData()).astype(fl
 check_analytic("Source port point", snapped, [above[0], above[1], 0.0], math.pi / 2, 0.25, 0.5)
 Delete(snapped)
 
-# 5. A curve source is not supported in this version: an error and an empty output.
-line = Line(Point1=[0.2, 0.5, 0.0], Point2=[0.8, 0.5, 0.0])
-from_curve = GeodesicPolarCoordinates(Input=grid, Source=line)
-print("(an error about curve sources is expected here)")
-output, _, _ = fetch(from_curve)
-check(output.GetNumberOfPoints() == 0, "a curve source gives a non-empty output")
+# 5. A curve source (a Line): signed offsets and normalized arc length along the curve.
+# (Resolution 6: the line's points fall on mesh vertices, and it runs along mesh edges.)
+line = Line(Point1=[0.2, 0.5, 0.0], Point2=[0.8, 0.5, 0.0], Resolution=6)
+from_curve = GeodesicPolarCoordinates(Input=grid, Source=line, Radius=0.2)
+curve_output = servermanager.Fetch(from_curve)
+offset = vtk_to_numpy(curve_output.GetPointData().GetArray("Offset"))
+arc = vtk_to_numpy(curve_output.GetPointData().GetArray("ArcLength"))
+points = vtk_to_numpy(curve_output.GetPoints().GetData()).astype(float)
+beside = (numpy.abs(points[:, 1] - 0.5) < 0.19) & (points[:, 0] > 0.22) & (points[:, 0] < 0.78)
+check(beside.sum() > 50, "too few points beside the curve")
+print("curve source: %d points beside, offset error %.3g, arc length error %.3g" % (
+    beside.sum(), numpy.max(numpy.abs(offset[beside] - (points[beside, 1] - 0.5))),
+    numpy.max(numpy.abs(arc[beside] - (points[beside, 0] - 0.2) / 0.6))))
+check(numpy.max(numpy.abs(offset[beside] - (points[beside, 1] - 0.5))) < 1e-3,
+      "Offset is not the signed distance to the line")
+check(numpy.max(numpy.abs(arc[beside] - (points[beside, 0] - 0.2) / 0.6)) < 1e-2,
+      "ArcLength is not the fraction along the line")
 Delete(from_curve)
 
 # 6. On the curved torus: render once, coloured by PolarAngle, as a user would.
