@@ -123,7 +123,8 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
       return false;
     }
   }
-  const std::vector<CurvePiece> pieces = TraceSurfaceCurve(M, curve);
+  CurvePieces = TraceSurfaceCurve(M, curve);
+  const std::vector<CurvePiece>& pieces = CurvePieces;
   // Samples along the pieces (as SampleCurvePieces makes them), with their arc length and the
   // curve's tangent angle there.
   const double spacing = M.MeanEdgeLength() / 16.0;
@@ -197,13 +198,27 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     const double departure = Solver.DepartureAngle(v);
     // Left of the curve when the geodesic leaves its foot counter-clockwise from the tangent
     // (angles in the foot face's frame: samples are face points of their piece's face).
-    double side = 1.0;
-    if (root >= 0 && std::isfinite(departure) && std::isfinite(tangent[root]))
+    if (root < 0)
     {
-      side = std::sin(departure - tangent[root]) < 0.0 ? -1.0 : 1.0;
+      R[v] = T[v] = NaN;
+      continue;
     }
-    R[v] = d == 0.0 ? 0.0 : side * d;
-    T[v] = root >= 0 ? std::min(1.0, std::max(0.0, arc[root] / CurveTotal)) : NaN;
+    double side = 1.0, along = 0.0, across = d;
+    if (std::isfinite(departure) && std::isfinite(tangent[root]))
+    {
+      // In the foot's tangent plane the vertex lies at angle alpha from the curve's direction:
+      // the foot of the perpendicular is d cos(alpha) further along (exact for a straight piece,
+      // removing the samples' spacing from both coordinates), at distance d |sin(alpha)|.
+      const double alpha = departure - tangent[root];
+      side = std::sin(alpha) < 0.0 ? -1.0 : 1.0;
+      along = d * std::cos(alpha);
+      across = d * std::abs(std::sin(alpha));
+    }
+    const double foot = arc[root] + along;
+    // Beyond an end of the curve the closest point is that end: the distance itself.
+    const bool cap = foot < 0.0 || foot > CurveTotal;
+    R[v] = d == 0.0 ? 0.0 : side * (cap ? d : across);
+    T[v] = std::min(1.0, std::max(0.0, foot / CurveTotal));
   }
   // Corners of the faces the curve crosses: the exact straight distance to the piece inside the
   // face (the samples are 1/16 edge apart: close to the curve that matters).
@@ -442,6 +457,56 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
     }
   }
   return kept;
+}
+
+SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta) const
+{
+  if (!CurveMode || !(CurveTotal > 0.0) || !std::isfinite(u) || !std::isfinite(delta))
+  {
+    return SurfacePoint();
+  }
+  // The curve point at arc length u L, and the curve's direction there.
+  const double target = std::min(1.0, std::max(0.0, u)) * CurveTotal;
+  const double tiny = 1e-6 * M.MeanEdgeLength();
+  double start = 0.0;
+  const CurvePiece* at = nullptr;
+  double t = 0.0;
+  for (const CurvePiece& piece : CurvePieces)
+  {
+    const double length = Norm(piece.B - piece.A);
+    if (length > tiny)
+    {
+      at = &piece;
+      t = std::min(1.0, std::max(0.0, (target - start) / length));
+      if (target <= start + length)
+      {
+        break;
+      }
+    }
+    start += length;
+  }
+  if (!at)
+  {
+    return SurfacePoint();
+  }
+  const Vec3 x = at->A + (at->B - at->A) * t;
+  const auto& f = M.Face(at->Face);
+  const Vec3 P0 = M.Position(f[0]), P1 = M.Position(f[1]), P2 = M.Position(f[2]);
+  const Vec3 n = Cross(P1 - P0, P2 - P0);
+  const double n2 = Dot(n, n);
+  const double w0 = std::max(0.0, Dot(Cross(P1 - x, P2 - x), n) / n2);
+  const double w1 = std::max(0.0, Dot(Cross(P2 - x, P0 - x), n) / n2);
+  const double w2 = std::max(0.0, 1.0 - w0 - w1);
+  const double sum = w0 + w1 + w2;
+  const SurfacePoint foot = SurfacePoint::InFace(at->Face, w0 / sum, w1 / sum, w2 / sum);
+  if (delta == 0.0)
+  {
+    return foot;
+  }
+  // Perpendicular to the curve: a quarter turn left of its direction for delta > 0.
+  const double tangentAngle = TangentAngle(M, foot, at->B - at->A);
+  const double quarter = 0.5 * 3.14159265358979323846;
+  return ShootGeodesic(M, foot, tangentAngle + (delta > 0.0 ? quarter : -quarter), std::abs(delta)).End;
 }
 
 SurfacePoint GeodesicPolarCoordinates::ToSurface(double rho, double theta) const

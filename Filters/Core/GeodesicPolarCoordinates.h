@@ -15,6 +15,7 @@
 #include "ExactGeodesic.h"
 #include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
+#include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
@@ -40,8 +41,10 @@ public:
   // straight surface path; the paper's Fig. 3 and 4): for every vertex closer than `radius` to
   // the curve, Offset = signed geodesic distance delta (positive on the left of the curve's
   // direction, with the outward normal up) and ArcLength = u in [0, 1], the normalized arc
-  // length along the curve of the point its shortest geodesic leaves from (its foot; the end
-  // points beyond the curve's ends). Exact solver from the curve sampled every 1/16 edge. False
+  // length along the curve of the point its shortest geodesic leaves from (its foot, where the
+  // geodesic leaves perpendicularly; the end points beyond the curve's ends). Exact solver from
+  // the curve sampled every 1/16 edge, the foot then placed by the departure angle (exact for
+  // straight pieces on developable surfaces, whatever the sampling). False
   // for an empty or zero-length curve, an invalid point or radius. In this mode Rho() and
   // Theta() return Offset() and ArcLength(), and PolarAt/ToSurface/UseIsoCurveAngles are not
   // available (false / the source / 0).
@@ -50,6 +53,9 @@ public:
   double Offset(int v) const { return R[v]; }
   double ArcLength(int v) const { return T[v]; }
   double CurveLength() const { return CurveTotal; }
+  // The inverse map of curve coordinates: the surface point at signed offset delta from the
+  // curve point at normalized arc length u, along the geodesic leaving it perpendicularly.
+  SurfacePoint ToSurfaceFromCurve(double u, double delta) const;
 
   // Per vertex, NaN outside the radius (or unreachable).
   double Rho(int v) const { return R[v]; }
@@ -95,6 +101,7 @@ private:
   double Turn = 0.0;
   std::vector<double> R, T;
   bool CurveMode = false;
+  std::vector<CurvePiece> CurvePieces;
   double CurveTotal = 0.0;
 };
 
