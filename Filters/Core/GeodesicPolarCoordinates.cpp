@@ -109,6 +109,8 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
   InsideList.clear();
   CurveMode = true;
   CurveTotal = 0.0;
+  Foot.assign(M.NumberOfVertices(), NaN);
+  Across.assign(M.NumberOfVertices(), NaN);
   if (!(radius > 0.0) || curve.empty())
   {
     return false;
@@ -184,8 +186,44 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
       : SurfacePoint::InFace(samples[i].Face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
     tangent[i] = TangentAngle(M, at, d);
   }
+  // A few edges beyond the radius, so that the offset curves near the radius can be traced.
+  // Straight runs of the curve: consecutive samples whose directions agree. A foot that
+  // projects past the end of its run, where the curve turns, is the turning point itself (the
+  // offset curve goes round it on the outer side).
+  std::vector<double> runStart(samples.size(), 0.0), runEnd(samples.size(), CurveTotal);
+  {
+    std::size_t first = 0;
+    Vec3 runDirection;
+    for (std::size_t i = 0; i <= samples.size(); ++i)
+    {
+      bool turns = i == samples.size();
+      if (!turns && Norm(direction[i]) > tiny)
+      {
+        const Vec3 u = direction[i] / Norm(direction[i]);
+        turns = Norm(runDirection) > 0.0 && Norm(Cross(u, runDirection)) + (Dot(u, runDirection) < 0.0 ? 1.0 : 0.0) > 1e-9;
+        if (!turns)
+        {
+          runDirection = u;
+        }
+      }
+      if (turns)
+      {
+        // Samples first .. i-1 form a run from arc[first] to arc[i-1].
+        for (std::size_t j = first; j < i; ++j)
+        {
+          runStart[j] = arc[first];
+          runEnd[j] = arc[i - 1];
+        }
+        first = i;
+        if (i < samples.size())
+        {
+          runDirection = direction[i] / Norm(direction[i]);
+        }
+      }
+    }
+  }
   ExactGeodesicOptions options;
-  options.MaximumDistance = std::isfinite(radius) ? radius : 0.0;
+  options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * M.MeanEdgeLength() : 0.0;
   if (!Solver.Solve(samples, options))
   {
     return false;
@@ -214,11 +252,19 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
       along = d * std::cos(alpha);
       across = d * std::abs(std::sin(alpha));
     }
-    const double foot = arc[root] + along;
+    double foot = arc[root] + along;
+    // Past a turn of the curve: the foot is the turning point, the offset the distance to it.
+    if ((foot > runEnd[root] && runEnd[root] < CurveTotal) || (foot < runStart[root] && runStart[root] > 0.0))
+    {
+      foot = foot > runEnd[root] ? runEnd[root] : runStart[root];
+      across = d;
+    }
     // Beyond an end of the curve the closest point is that end: the distance itself.
     const bool cap = foot < 0.0 || foot > CurveTotal;
     R[v] = d == 0.0 ? 0.0 : side * (cap ? d : across);
     T[v] = std::min(1.0, std::max(0.0, foot / CurveTotal));
+    Foot[v] = foot; // unclamped: continues past the ends along the end's direction
+    Across[v] = d == 0.0 ? 0.0 : side * across; // offset from the (extended) curve's line
   }
   // Corners of the faces the curve crosses: the exact straight distance to the piece inside the
   // face (the samples are 1/16 edge apart: close to the curve that matters).
@@ -244,11 +290,126 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
       {
         R[v] = Dot(Cross(ab, p - foot), n) < 0.0 ? -d : d;
         T[v] = std::min(1.0, std::max(0.0, (start + t * length) / CurveTotal));
+        // (A foot clamped to the piece's end keeps the solver's unclamped value.)
+        if (t > 0.0 && t < 1.0)
+        {
+          Foot[v] = start + t * length;
+          Across[v] = R[v];
+        }
       }
     }
     start += length;
   }
+  // u along each offset curve (the paper's Fig. 3): for every vertex beside the curve, the arc
+  // length along its own offset curve (the level set of |delta| on its side) back to where its
+  // foot reaches the curve's start, over the length between the two ends.
+  std::vector<double> offsetU(InsideList.size(), NaN);
+  for (std::size_t i = 0; i < InsideList.size(); ++i)
+  {
+    const int v = InsideList[i];
+    if (!(std::abs(R[v]) <= radius) || R[v] == 0.0 || !(T[v] > 0.0 && T[v] < 1.0))
+    {
+      continue;
+    }
+    // Walking with the curve on the left runs towards the start for points on the left.
+    const double towardsStart = WalkOffsetCurve(v, R[v] > 0.0, 0.0);
+    const double towardsEnd = WalkOffsetCurve(v, R[v] < 0.0, 1.0);
+    if (towardsStart >= 0.0 && towardsEnd >= 0.0 && towardsStart + towardsEnd > 0.0)
+    {
+      offsetU[i] = towardsStart / (towardsStart + towardsEnd);
+    }
+  }
+  // Keep what lies within the radius.
+  std::vector<int> inside;
+  for (std::size_t i = 0; i < InsideList.size(); ++i)
+  {
+    const int v = InsideList[i];
+    if (std::abs(R[v]) <= radius)
+    {
+      if (std::isfinite(offsetU[i]))
+      {
+        T[v] = offsetU[i];
+      }
+      inside.push_back(v);
+    }
+    else
+    {
+      R[v] = T[v] = NaN;
+    }
+  }
+  InsideList = std::move(inside);
   return true;
+}
+
+double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double stopAt) const
+{
+  // The offset curve through v, traced face by face like the iso-curves about a point
+  // (vertices at exactly the level count as above), until the interpolated foot parameter
+  // reaches `stopAt` (0: the start, 1: the end). -1 when it cannot (a boundary, back at v).
+  // The level function is the offset measured positive on v's side (signed, so that it stays
+  // linear across the curve, where |delta| has a kink).
+  // Beyond the curve's ends the offset from the extended end lines keeps the level sets
+  // straight up to where they are cut off.
+  const double side = R[v] < 0.0 ? -1.0 : 1.0;
+  const double c = side * Across[v];
+  auto level = [&](int w) { return w == v ? c : side * Across[w]; };
+  auto below = [&](int w) { return w != v && side * Across[w] < c; };
+  auto valid = [&](int w) { return w == v || (std::isfinite(Across[w]) && std::isfinite(Foot[w])); };
+  // The foot's arc length, unclamped: linear across the ends of straight curves, so that where
+  // an offset curve leaves the curve's span is found exactly.
+  const double end = stopAt * CurveTotal;
+  int h = -1;
+  for (int out : M.OutgoingHalfedges(v))
+  {
+    const int a = M.Destination(out), b = M.Opposite(out);
+    if (valid(a) && valid(b) && (curveOnLeft ? (!below(a) && below(b)) : (below(a) && !below(b))))
+    {
+      h = TriangleMesh::Next(out);
+      break;
+    }
+  }
+  if (h < 0)
+  {
+    return -1.0;
+  }
+  Vec3 x = M.Position(v);
+  double ux = Foot[v], length = 0.0;
+  const int maxSteps = 4 * M.NumberOfFaces() + 8;
+  for (int step = 0; step < maxSteps; ++step)
+  {
+    const int a = M.Origin(h), b = M.Destination(h);
+    if (!valid(a) || !valid(b) || (curveOnLeft ? b : a) == v)
+    {
+      return -1.0; // left the solved band, or back at the start without reaching an end
+    }
+    const double la = level(a), lb = level(b);
+    const double t = std::abs(lb - la) > 0.0 ? std::min(1.0, std::max(0.0, (c - la) / (lb - la))) : 0.5;
+    const Vec3 y = M.Position(a) + (M.Position(b) - M.Position(a)) * t;
+    const double uy = Foot[a] + (Foot[b] - Foot[a]) * t;
+    const double piece = Norm(y - x);
+    if ((stopAt == 0.0 && uy <= end) || (stopAt == 1.0 && uy >= end))
+    {
+      // The end is reached within this piece: where the foot meets it.
+      const double f = std::abs(uy - ux) > 0.0 ? std::min(1.0, std::abs(end - ux) / std::abs(uy - ux)) : 1.0;
+      return length + f * piece;
+    }
+    length += piece;
+    x = y;
+    ux = uy;
+    const int twin = M.Twin(h);
+    if (twin < 0)
+    {
+      return -1.0;
+    }
+    const int e1 = TriangleMesh::Next(twin), e2 = TriangleMesh::Prev(twin);
+    const int third = M.Destination(e1);
+    if (!valid(third))
+    {
+      return -1.0;
+    }
+    h = below(third) == below(M.Origin(e1)) ? e2 : e1;
+  }
+  return -1.0;
 }
 
 bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, double& theta) const

@@ -41,10 +41,11 @@ public:
   // straight surface path; the paper's Fig. 3 and 4): for every vertex closer than `radius` to
   // the curve, Offset = signed geodesic distance delta (positive on the left of the curve's
   // direction, with the outward normal up) and ArcLength = u in [0, 1], the normalized arc
-  // length along the curve of the point its shortest geodesic leaves from (its foot, where the
-  // geodesic leaves perpendicularly; the end points beyond the curve's ends). Exact solver from
-  // the curve sampled every 1/16 edge, the foot then placed by the departure angle (exact for
-  // straight pieces on developable surfaces, whatever the sampling). False
+  // length along the vertex's own offset curve (the level set of |delta| on its side), from
+  // where it leaves the curve's start to where it reaches its end (the paper's Fig. 3); points
+  // beyond the ends (in the caps) get 0 or 1. Exact solver from the curve sampled every 1/16
+  // edge; each point's foot (where its geodesic leaves the curve perpendicularly) is placed by
+  // the departure angle, exact for straight pieces on developable surfaces. False
   // for an empty or zero-length curve, an invalid point or radius. In this mode Rho() and
   // Theta() return Offset() and ArcLength(), and PolarAt/ToSurface/UseIsoCurveAngles are not
   // available (false / the source / 0).
@@ -54,7 +55,9 @@ public:
   double ArcLength(int v) const { return T[v]; }
   double CurveLength() const { return CurveTotal; }
   // The inverse map of curve coordinates: the surface point at signed offset delta from the
-  // curve point at normalized arc length u, along the geodesic leaving it perpendicularly.
+  // curve point at normalized arc length u along the curve, along the geodesic leaving it
+  // perpendicularly (the exact inverse where the offset curves are parallel to the curve:
+  // straight curves, circular arcs).
   SurfacePoint ToSurfaceFromCurve(double u, double delta) const;
 
   // Per vertex, NaN outside the radius (or unreachable).
@@ -87,6 +90,9 @@ public:
 
 private:
   double RawToTheta(double raw) const;
+  // Curve mode: arc length along v's offset curve until the foot parameter reaches stopAt,
+  // walking with the curve on the left or right; -1 if it cannot.
+  double WalkOffsetCurve(int v, bool curveOnLeft, double stopAt) const;
   // Arc length along the iso-curve of v's level from v round to where it crosses the reference
   // geodesic, and the loop's length; false if it is not a closed loop or misses the reference.
   bool TraceIsoCurve(int v, const std::vector<std::vector<std::pair<Vec3, Vec3>>>& reference,
@@ -102,6 +108,8 @@ private:
   std::vector<double> R, T;
   bool CurveMode = false;
   std::vector<CurvePiece> CurvePieces;
+  std::vector<double> Foot;   // curve mode: arc length of each vertex's foot, unclamped
+  std::vector<double> Across; // curve mode: signed offset from the foot's tangent line
   double CurveTotal = 0.0;
 };
 

@@ -394,3 +394,30 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
   EXPECT_GT(near, 100);
   EXPECT_EQ(wrong, 0);
 }
+
+TEST(GeodesicPolarCoordinates, CurveArcLengthAlongEachOffsetCurve)
+{
+  // A left turn: (1, 1) -> (2, 1) -> (2, 2). On the outer (right) side the offset curve at
+  // distance d is a segment, a quarter circle of radius d and a segment (length 2 + pi d / 2);
+  // on the inner side two segments of 1 - d. u runs along each of them (the paper's Fig. 3), not
+  // along the curve itself.
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(40, 40, 4.0, 4.0));
+  auto vertexAt = [&](double x, double y) {
+    return SurfacePoint::AtVertex(static_cast<int>(std::lround(y * 10) * 41 + std::lround(x * 10)));
+  };
+  GeodesicPolarCoordinates pc(m);
+  ASSERT_TRUE(pc.ComputeCurve({ vertexAt(1, 1), vertexAt(2, 1), vertexAt(2, 2) }, 0.35));
+  EXPECT_NEAR(pc.CurveLength(), 2.0, 1e-12);
+  const double d = 0.2;
+  for (int i = 11; i <= 17; ++i)
+  {
+    const double x = 0.1 * i;
+    const SurfacePoint outer = vertexAt(x, 1 - d), inner = vertexAt(x, 1 + d);
+    EXPECT_NEAR(pc.Offset(outer.Vertex), -d, 1e-9);
+    EXPECT_NEAR(pc.Offset(inner.Vertex), d, 1e-9);
+    // (The quarter circle is traced as chords across the faces: 0.2% shorter.)
+    EXPECT_NEAR(pc.ArcLength(outer.Vertex), (x - 1) / (2 + Pi * d / 2), 3e-3 * (x - 1) / 2) << x;
+    EXPECT_GT(std::abs(pc.ArcLength(outer.Vertex) - (x - 1) / 2), 0.05 * (x - 1) / 2) << x;
+    EXPECT_NEAR(pc.ArcLength(inner.Vertex), (x - 1) / (2 - 2 * d), 1e-6) << x;
+  }
+}
