@@ -13,7 +13,7 @@
  *
  * Curve sources (the first polyline of the Source port): coordinates (u, delta), delta the signed
  * geodesic offset (positive on the left of the curve's direction, normal up) and u in [0, 1] the
- * normalized arc length along the curve of the point the geodesic leaves from (Offset and
+ * normalized arc length along the point's own offset curve between the curve's ends (Offset and
  * ArcLength arrays; DecalCoordinates (u, delta / DecalSize + 0.5); field data CurveLength;
  * computed with exact geodesics whatever K).
  *
