@@ -417,7 +417,22 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
   rho = theta = NaN;
   if (CurveMode)
   {
-    return false;
+    // (Offset, ArcLength) inside a face: both vary linearly across a face beside a straight
+    // piece; interpolated.
+    if (q.IsVertex())
+    {
+      rho = R[q.Vertex];
+      theta = T[q.Vertex];
+      return std::isfinite(rho);
+    }
+    const auto& t = M.Face(q.Face);
+    if (!std::isfinite(R[t[0]]) || !std::isfinite(R[t[1]]) || !std::isfinite(R[t[2]]))
+    {
+      return false;
+    }
+    rho = q.Bary[0] * R[t[0]] + q.Bary[1] * R[t[1]] + q.Bary[2] * R[t[2]];
+    theta = q.Bary[0] * T[t[0]] + q.Bary[1] * T[t[1]] + q.Bary[2] * T[t[2]];
+    return true;
   }
   if (q.IsVertex())
   {

@@ -47,8 +47,8 @@ public:
   // edge; each point's foot (where its geodesic leaves the curve perpendicularly) is placed by
   // the departure angle, exact for straight pieces on developable surfaces. False
   // for an empty or zero-length curve, an invalid point or radius. In this mode Rho() and
-  // Theta() return Offset() and ArcLength(), and PolarAt/ToSurface/UseIsoCurveAngles are not
-  // available (false / the source / 0).
+  // Theta() return Offset() and ArcLength(); ToSurface and UseIsoCurveAngles do nothing (use
+  // ToSurfaceFromCurve).
   bool ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
   bool IsCurve() const { return CurveMode; }
   double Offset(int v) const { return R[v]; }

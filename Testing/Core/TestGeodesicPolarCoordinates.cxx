@@ -336,7 +336,7 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
   EXPECT_TRUE(pc.IsCurve());
   EXPECT_NEAR(pc.CurveLength(), Norm(b - a), 1e-9);
   const Vec3 dir = (b - a) / Norm(b - a);
-  int beside = 0;
+  int beside = 0, queried = 0;
   for (int v : pc.Inside())
   {
     const Vec3 d = m.Position(v) - a;
@@ -349,9 +349,19 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     EXPECT_NEAR(pc.ArcLength(v), along, 1e-9) << v;
     // Inverse map: back to the vertex.
     const SurfacePoint back = pc.ToSurfaceFromCurve(pc.ArcLength(v), pc.Offset(v));
+    // And the coordinates of that surface point (inside a face, all of whose corners are in the
+    // band) are the vertex's.
+    double offset = 0, u = 0;
+    if (pc.PolarAt(back, offset, u))
+    {
+      ++queried;
+      EXPECT_NEAR(offset, pc.Offset(v), 1e-6 * m.MeanEdgeLength());
+      EXPECT_NEAR(u, pc.ArcLength(v), 1e-6);
+    }
     EXPECT_LT(Norm(m.Interpolate(back.Face, back.Bary) - m.Position(v)), 1e-6 * m.MeanEdgeLength()) << v;
   }
   EXPECT_GT(beside, 100);
+  EXPECT_GT(queried, beside / 2);
   // A circular arc about (2, 2): offsets are radius differences (inside the circle is on the left
   // of a counter-clockwise arc), u the angle fraction.
   std::vector<SurfacePoint> arc;
