@@ -49,6 +49,7 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
   }
   InsideList.clear();
   CurveMode = false;
+  IsoAngles = false;
   if (!(radius > 0.0) || !std::isfinite(referenceAngle))
   {
     return false;
@@ -600,6 +601,7 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
   {
     return 0;
   }
+  IsoAngles = true;
   // The reference geodesic: from the source in direction theta = 0 to the radius.
   std::vector<std::vector<std::pair<Vec3, Vec3>>> reference(M.NumberOfFaces());
   double radius = 0.0;
@@ -691,7 +693,118 @@ SurfacePoint GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
   {
     return Source;
   }
+  if (IsoAngles)
+  {
+    return InverseIsoCurve(rho, theta);
+  }
   return ShootGeodesic(M, Source, Reference + theta * Turn / TwoPi, rho).End;
+}
+
+SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) const
+{
+  // The level loop at rho = c, traced counter-clockwise from where it crosses the reference
+  // geodesic (as UseIsoCurveAngles measured it), walked to the fraction theta / 2 pi of its length.
+  auto rho = [&](int w) { return std::isfinite(R[w]) ? R[w] : Solver.Distance(w); };
+  auto below = [&](int w) { return rho(w) < c; };
+  auto crossing = [&](int h) {
+    const int a = M.Origin(h), b = M.Destination(h);
+    const double ra = rho(a), rb = rho(b);
+    const double t = std::isfinite(rb) && std::abs(rb - ra) > 0.0 ? (c - ra) / (rb - ra) : 1.0;
+    return M.Position(a) + (M.Position(b) - M.Position(a)) * std::min(1.0, std::max(0.0, t));
+  };
+  auto toSurface = [&](int f, const Vec3& x) {
+    const auto& t = M.Face(f);
+    const Vec3 P0 = M.Position(t[0]), P1 = M.Position(t[1]), P2 = M.Position(t[2]);
+    const Vec3 n = Cross(P1 - P0, P2 - P0);
+    const double n2 = Dot(n, n);
+    const double w0 = std::max(0.0, Dot(Cross(P1 - x, P2 - x), n) / n2);
+    const double w1 = std::max(0.0, Dot(Cross(P2 - x, P0 - x), n) / n2);
+    const double w2 = std::max(0.0, 1.0 - w0 - w1);
+    const double sum = w0 + w1 + w2;
+    return SurfacePoint::InFace(f, w0 / sum, w1 / sum, w2 / sum);
+  };
+  // 1. Where the reference geodesic reaches the level.
+  const GeodesicShot ray = ShootGeodesic(M, Source, Reference, c * 1.01 + M.MeanEdgeLength());
+  int f0 = -1;
+  Vec3 start;
+  for (const CurvePiece& piece : ray.Pieces)
+  {
+    const auto& t = M.Face(piece.Face);
+    auto interpolated = [&](const Vec3& x) {
+      const SurfacePoint p = toSurface(piece.Face, x);
+      return p.Bary[0] * rho(t[0]) + p.Bary[1] * rho(t[1]) + p.Bary[2] * rho(t[2]);
+    };
+    const double ra = interpolated(piece.A), rb = interpolated(piece.B);
+    if (std::isfinite(ra) && std::isfinite(rb) && (ra - c) * (rb - c) <= 0.0 && ra != rb)
+    {
+      f0 = piece.Face;
+      start = piece.A + (piece.B - piece.A) * ((c - ra) / (rb - ra));
+      break;
+    }
+  }
+  if (f0 < 0)
+  {
+    return ShootGeodesic(M, Source, Reference + theta * Turn / TwoPi, c).End;
+  }
+  // 2. The loop, as points (with their faces) and cumulative lengths.
+  int h = -1;
+  for (int k = 0; k < 3; ++k)
+  {
+    const int e = 3 * f0 + k;
+    if (!below(M.Origin(e)) && below(M.Destination(e)))
+    {
+      h = e;
+    }
+  }
+  if (h < 0)
+  {
+    return toSurface(f0, start);
+  }
+  std::vector<Vec3> points{ start };
+  std::vector<int> faces;
+  std::vector<double> cumulative{ 0.0 };
+  const int maxSteps = 4 * M.NumberOfFaces() + 8;
+  for (int step = 0; step < maxSteps; ++step)
+  {
+    const Vec3 y = crossing(h);
+    faces.push_back(h / 3);
+    cumulative.push_back(cumulative.back() + Norm(y - points.back()));
+    points.push_back(y);
+    const int twin = M.Twin(h);
+    if (twin < 0)
+    {
+      break; // not a loop: walk what there is
+    }
+    const int g = twin / 3;
+    if (g == f0)
+    {
+      // Back in the start face: close the loop at the start point.
+      faces.push_back(f0);
+      cumulative.push_back(cumulative.back() + Norm(start - points.back()));
+      points.push_back(start);
+      break;
+    }
+    const int e1 = TriangleMesh::Next(twin), e2 = TriangleMesh::Prev(twin);
+    const int third = M.Destination(e1);
+    h = below(third) == below(M.Origin(e1)) ? e2 : e1;
+  }
+  // 3. The point at the fraction theta / 2 pi of the loop's length.
+  double a = std::fmod(theta, TwoPi);
+  if (a < 0.0)
+  {
+    a += TwoPi;
+  }
+  const double target = a / TwoPi * cumulative.back();
+  for (std::size_t i = 0; i + 1 < points.size(); ++i)
+  {
+    if (target <= cumulative[i + 1] || i + 2 == points.size())
+    {
+      const double piece = cumulative[i + 1] - cumulative[i];
+      const double t = piece > 0.0 ? std::min(1.0, std::max(0.0, (target - cumulative[i]) / piece)) : 0.0;
+      return toSurface(faces[i], points[i] + (points[i + 1] - points[i]) * t);
+    }
+  }
+  return toSurface(f0, start);
 }
 
 } // namespace gs

@@ -70,7 +70,8 @@ public:
   // unfolding, theta circularly; exact in the source's own face). False outside the radius.
   bool PolarAt(const SurfacePoint& q, double& rho, double& theta) const;
 
-  // The inverse map: the surface point at (rho, theta) (geodesic shooting).
+  // The inverse map: the surface point at (rho, theta): geodesic shooting, or after
+  // UseIsoCurveAngles, the point at the fraction theta / 2 pi along the level loop rho.
   SurfacePoint ToSurface(double rho, double theta) const;
 
   // Full turn of raw tangent angles at the source (its angle sum, or 2 pi for a face point).
@@ -93,6 +94,7 @@ private:
   // Curve mode: arc length along v's offset curve until the foot parameter reaches stopAt,
   // walking with the curve on the left or right; -1 if it cannot.
   double WalkOffsetCurve(int v, bool curveOnLeft, double stopAt) const;
+  SurfacePoint InverseIsoCurve(double rho, double theta) const;
   // Arc length along the iso-curve of v's level from v round to where it crosses the reference
   // geodesic, and the loop's length; false if it is not a closed loop or misses the reference.
   bool TraceIsoCurve(int v, const std::vector<std::vector<std::pair<Vec3, Vec3>>>& reference,
@@ -107,6 +109,7 @@ private:
   double Turn = 0.0;
   std::vector<double> R, T;
   bool CurveMode = false;
+  bool IsoAngles = false;
   std::vector<CurvePiece> CurvePieces;
   std::vector<double> Foot;   // curve mode: arc length of each vertex's foot, unclamped
   std::vector<double> Across; // curve mode: signed offset from the foot's tangent line

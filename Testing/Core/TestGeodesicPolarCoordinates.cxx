@@ -300,6 +300,16 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
   std::printf("flipped faces: geodesic direction %d, iso-curve arc length %d\n", geodesicFlips, isoFlips);
   EXPECT_GT(geodesicFlips, 5); // the log map folds past the cut loci here
   EXPECT_EQ(isoFlips, 0);
+  // The inverse map of iso-curve coordinates: back to every vertex.
+  double worst = 0;
+  for (int v : pc.Inside())
+  {
+    if (pc.Rho(v) <= 0.0)
+      continue;
+    const SurfacePoint q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
+    worst = std::max(worst, Norm(m.Interpolate(q.Face, q.Bary) - m.Position(v)));
+  }
+  EXPECT_LT(worst, 1e-6 * m.MeanEdgeLength());
   // The torus from its inner equator (negative curvature: saddles), well past the first
   // conjugate points.
   const TriangleMesh torus = BuildMesh(MakeTorus(2.0, 0.7, 48, 24));
