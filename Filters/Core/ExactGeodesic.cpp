@@ -60,8 +60,8 @@ ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
       h = M.RotateCCW(h);
     } while (h >= 0 && h != start);
   }
-  InAngle.assign(nv, std::numeric_limits<double>::quiet_NaN());
-  Departure.assign(nv, std::numeric_limits<double>::quiet_NaN());
+  InAngle.assign(nv, LazyAngle());
+  Departure.assign(nv, LazyAngle());
   Root.assign(nv, -1);
   Dist.assign(nv, Inf);
   Origin.assign(nv, 0);
@@ -83,8 +83,8 @@ void ExactGeodesicSolver::Reset()
     CrossHalfedge[v] = -1;
     Final[v] = 0;
     Propagated[v] = 0;
-    InAngle[v] = std::numeric_limits<double>::quiet_NaN();
-    Departure[v] = std::numeric_limits<double>::quiet_NaN();
+    InAngle[v] = LazyAngle();
+    Departure[v] = LazyAngle();
     Root[v] = -1;
   }
   Touched.clear();
@@ -106,8 +106,8 @@ std::vector<double> ExactGeodesicSolver::Distances() const
   return d;
 }
 
-void ExactGeodesicSolver::UpdateVertex(
-  int v, double d, int origin, int via, double crossing, double inAngle, double departure, int root)
+void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, double crossing,
+  const LazyAngle& inAngle, const LazyAngle& departure, int root)
 {
   if (Final[v] || !(d < Dist[v] + Tolerance))
   {
@@ -117,9 +117,9 @@ void ExactGeodesicSolver::UpdateVertex(
   {
     // A tie: two paths of (nearly) equal length. Keep the direction only if they agree, so that
     // a pseudo-source spreads into the union of both shadows.
-    if (!(std::abs(inAngle - InAngle[v]) <= 1e-9))
+    if (!(std::abs(inAngle.Value() - InAngle[v].Value()) <= 1e-9))
     {
-      InAngle[v] = std::numeric_limits<double>::quiet_NaN();
+      InAngle[v] = LazyAngle();
     }
     if (!(d < Dist[v]))
     {
@@ -287,7 +287,8 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
   // shadow needs windows. A real source, or an unknown/ambiguous arrival, spreads everywhere.
   constexpr double Pi = 3.14159265358979323846;
   const double theta = M.TotalAngle(v);
-  const double in = InAngle[v];
+  const double in = InAngle[v].Value();
+  const double departureHere = Departure[v].Value();
   const double margin = 1e-9;
   double intervals[2][2];
   int numIntervals = 0;
@@ -345,12 +346,14 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       {
         const int back = M.Twin(h);
         UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0,
-          back >= 0 ? FanAngle[back] : M.TotalAngle(a), src >= 0 ? p0 : Departure[v], root);
+          LazyAngle::Exactly(back >= 0 ? FanAngle[back] : M.TotalAngle(a)),
+          LazyAngle::Exactly(src >= 0 ? p0 : departureHere), root);
       }
       if (toEnd)
       {
         UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0,
-          FanAngle[TriangleMesh::Prev(h)], src >= 0 ? p0 + beta : Departure[v], root);
+          LazyAngle::Exactly(FanAngle[TriangleMesh::Prev(h)]),
+          LazyAngle::Exactly(src >= 0 ? p0 + beta : departureHere), root);
       }
       const int t = M.Twin(opp);
       if (t < 0)
@@ -371,7 +374,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       w.Ix = ab - Cx[opp];
       w.Iy = -Cy[opp];
       // In t's frame the direction from v to a is (Cx, Cy) of opp: departure angle p0.
-      w.Phi = src >= 0 ? p0 - std::atan2(Cy[opp], Cx[opp]) : Departure[v];
+      w.Phi = src >= 0 ? p0 - std::atan2(Cy[opp], Cx[opp]) : departureHere;
       w.Sigma = sigma;
       w.Src = src;
       w.Root = root;
@@ -416,7 +419,8 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src, in
     const Vec3& Y = M.Position(M.Destination(e));
     const Vec3 toP = p - X, toY = Y - X;
     UpdateVertex(M.Origin(e), Norm(toP), src, -1, 0.0,
-      FanAngle[e] + std::atan2(Norm(Cross(toY, toP)), Dot(toY, toP)), angleOf(X - p), src);
+      LazyAngle{ FanAngle[e], Dot(toY, toP), Norm(Cross(toY, toP)) },
+      LazyAngle::Exactly(angleOf(X - p)), src);
     const int t = M.Twin(e);
     const double len = M.EdgeLength(e);
     // t runs Y -> X; in its frame the source lies below the edge (on f's side).
@@ -465,8 +469,8 @@ void ExactGeodesicSolver::Propagate(Window w)
       // face's frame, as about C's fan).
       const double ax = -cx, ay = -cy, qx = ix - cx, qy = iy - cy;
       UpdateVertex(vC, dC, w.Src, h, xc,
-        FanAngle[TriangleMesh::Prev(h)] + std::atan2(ax * qy - ay * qx, ax * qx + ay * qy),
-        w.Src >= 0 ? w.Phi + std::atan2(cy - iy, cx - ix) : w.Phi, w.Root);
+        LazyAngle{ FanAngle[TriangleMesh::Prev(h)], ax * qx + ay * qy, ax * qy - ay * qx },
+        w.Src >= 0 ? LazyAngle{ w.Phi, cx - ix, cy - iy } : LazyAngle::Exactly(w.Phi), w.Root);
     }
     else if (dC > Dist[vC] + Tolerance && CrossHalfedge[vC] == h)
     {
@@ -640,8 +644,7 @@ bool ExactGeodesicSolver::Solve(
         continue;
       }
     }
-    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, std::numeric_limits<double>::quiet_NaN(),
-      std::numeric_limits<double>::quiet_NaN(), i);
+    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, LazyAngle(), LazyAngle(), i);
     if (!Propagated[s.Vertex])
     {
       Propagated[s.Vertex] = 1;

@@ -18,6 +18,7 @@
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -81,7 +82,10 @@ public:
   // the source's VertexHalfedge (vertex source, 0 .. its total angle) or from the face's first
   // edge, corner 0 to corner 1 (face point source). A path through saddles or reflex boundary
   // vertices leaves in the direction of the first of them. NaN where unknown.
-  double DepartureAngle(int v) const { return Final[v] ? Departure[v] : std::numeric_limits<double>::quiet_NaN(); }
+  double DepartureAngle(int v) const
+  {
+    return Final[v] ? Departure[v].Value() : std::numeric_limits<double>::quiet_NaN();
+  }
 
   // The index (in the sources given to Solve) of the source v's shortest path starts from,
   // through saddles too; -1 for unreached vertices.
@@ -104,6 +108,15 @@ private:
     int Root;      // index of the source the window's paths start from
   };
   // The queue orders small (key, slot) entries; windows stay in a pool with a free list.
+  // An angle kept as Base + atan2(Y, X), evaluated only when asked for: every window that
+  // improves a vertex would otherwise pay for trigonometry it rarely needs.
+  struct LazyAngle
+  {
+    double Base = std::numeric_limits<double>::quiet_NaN();
+    double X = 1.0, Y = 0.0;
+    static LazyAngle Exactly(double a) { return { a, 1.0, 0.0 }; }
+    double Value() const { return Y == 0.0 && X > 0.0 ? Base : Base + std::atan2(Y, X); }
+  };
   struct QueueEntry
   {
     double Key;
@@ -117,8 +130,8 @@ private:
   void Reset();
   // inAngle: direction (in v's fan, see FanAngle) towards where the path comes from; NaN if
   // unknown. It limits which directions v spreads into when it becomes a pseudo-source.
-  void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing, double inAngle,
-    double departure, int root);
+  void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing,
+    const LazyAngle& inAngle, const LazyAngle& departure, int root);
   void PushWindow(Window w);
   void Enqueue(const Window& w);
   Window Dequeue();
@@ -138,8 +151,8 @@ private:
   std::vector<double> Dist;
   std::vector<int> Origin;
   std::vector<int> CrossHalfedge; // half-edge crossed by the best path to v in its last face
-  std::vector<double> InAngle;    // where the best path to v arrives from (NaN: several/unknown)
-  std::vector<double> Departure;  // departure angle at the source of the best path to v
+  std::vector<LazyAngle> InAngle;   // where the best path to v arrives from (NaN: several/unknown)
+  std::vector<LazyAngle> Departure; // departure angle at the source of the best path to v
   std::vector<int> Root;          // source index of the best path to v
   std::vector<double> CrossX;     // where it crossed (in that half-edge's frame)
   std::vector<unsigned char> Final;
