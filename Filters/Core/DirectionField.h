@@ -1,0 +1,85 @@
+// N-direction fields on triangle meshes (N = 1: vector field, 2: line field, 4: cross field).
+//
+// Representation: one angle per face, measured in the face's tangent frame (X = its first edge,
+// Y = normal x X); the field is the N directions angle + 2 pi k / N. Faces are related by the
+// discrete Levi-Civita connection: crossing an edge rotates the frame by the transport angle that
+// unfolds the two faces about their shared edge.
+//
+// Singularity index of a vertex v: (sum of the field's jumps around v relative to transport
+// + angle defect of v) / 2 pi, where the jumps are taken as the smallest rotations modulo 2 pi / N.
+// Interior vertices get multiples of 1/N; boundary vertices use the geodesic-curvature defect
+// (pi - angle sum) and get real values: the boundary convention is that a boundary loop's indices
+// sum to 0 when the field keeps a constant angle to the boundary, and the sum of all indices is the
+// Euler characteristic (Poincare-Hopf) whatever the field.
+#pragma once
+
+#include "TriangleMesh.h"
+#include "Vector.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs
+{
+
+// A hard constraint: the field's direction in `Face` (a tangent vector; its component along the
+// face normal is ignored).
+struct FaceDirectionConstraint
+{
+  int Face = -1;
+  Vec3 Direction;
+};
+
+class DirectionFieldSolver
+{
+public:
+  explicit DirectionFieldSolver(const TriangleMesh& mesh);
+  ~DirectionFieldSolver();
+
+  const TriangleMesh& Mesh() const { return M; }
+
+  // Tangent frame of a face.
+  Vec3 FaceBasisX(int f) const { return BasisX[f]; }
+  Vec3 FaceBasisY(int f) const { return BasisY[f]; }
+  // Angle of a 3D vector in the frame of face f (projected onto the face plane).
+  double AngleInFace(int f, const Vec3& v) const;
+  Vec3 DirectionInFace(int f, double angle) const;
+  // Levi-Civita transport angle across half-edge h: an angle phi in face(h) becomes
+  // phi + TransportAngle(h) in face(twin(h)). 0 at boundary half-edges.
+  double TransportAngle(int h) const { return Transport[h]; }
+
+  // Knoppel et al. 2013 globally smoothest N-direction field (the smallest eigenvector of the
+  // connection Laplacian), or, with `curvatureAlignment` t > 0, the smoothest field pulled towards
+  // the principal curvature directions (N = 2, 4) with weight t (0: ignore curvature; 1: balanced).
+  // Hard constraints replace the eigenproblem by the smoothest extension of the constrained faces.
+  // Returns the angles per face. The factorization is kept and reused while N and t stay the same
+  // and the set of constrained faces does not change.
+  bool SolveSmoothest(int n, double curvatureAlignment,
+    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
+    std::string& error);
+
+  // Index (times N, an integer for interior vertices) of every vertex, as a real number.
+  std::vector<double> VertexIndices(int n, const std::vector<double>& angles) const;
+  // The index of every vertex rounded to a multiple of 1/N for interior vertices (boundary
+  // vertices keep their real value).
+  std::vector<double> RoundedVertexIndices(int n, const std::vector<double>& angles) const;
+
+  // Smoothness energy sum_e w_e |u_g - r_e u_f|^2 / sum_f A_f with u = exp(i N angle).
+  double Energy(int n, const std::vector<double>& angles) const;
+
+  // Smallest jump in [-pi/N, pi/N) of an N-direction angle.
+  static double WrapSymmetric(double a, int n);
+
+private:
+  struct Factorization;
+  void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
+
+  const TriangleMesh& M;
+  std::vector<Vec3> BasisX, BasisY;
+  std::vector<double> Transport;
+  std::vector<double> EdgeWeight; // per half-edge (same on both twins)
+  std::unique_ptr<Factorization> Cache;
+};
+
+} // namespace gs

@@ -1,0 +1,238 @@
+// Direction fields: Poincare-Hopf on closed meshes of genus 0, 1, 3 and on a disc, smoothest
+// fields on flat and developable meshes, hard stroke constraints, curvature alignment.
+#include "DirectionField.h"
+#include "TestMeshes.h"
+
+#include <cmath>
+#include <map>
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+double Sum(const std::vector<double>& v)
+{
+  double s = 0.0;
+  for (double x : v)
+  {
+    s += x;
+  }
+  return s;
+}
+
+// A closed slab of genus `holes`: an nx x ny grid with square holes, top and bottom copies and
+// walls along every boundary loop.
+gs::TriangleSoup HoledSlab(int holes)
+{
+  const int nx = 4 * holes + 1, ny = 5;
+  auto isHole = [&](int i, int j) { return j >= 2 && j < 3 && i % 4 >= 2 && i % 4 < 3 && i < nx - 1; };
+  gs::TriangleSoup s;
+  auto id = [&](int i, int j, int layer) { return static_cast<long long>(layer * (nx + 1) * (ny + 1) + j * (nx + 1) + i); };
+  for (int layer = 0; layer < 2; ++layer)
+  {
+    for (int j = 0; j <= ny; ++j)
+    {
+      for (int i = 0; i <= nx; ++i)
+      {
+        s.Points.emplace_back(i * 1.0, j * 1.0, layer * 1.0);
+      }
+    }
+  }
+  std::map<std::pair<long long, long long>, int> edgeCount;
+  std::vector<std::array<long long, 3>> top;
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      if (isHole(i, j))
+      {
+        continue;
+      }
+      const long long a = id(i, j, 1), b = id(i + 1, j, 1), c = id(i + 1, j + 1, 1), d = id(i, j + 1, 1);
+      top.push_back({ a, b, c });
+      top.push_back({ a, c, d });
+    }
+  }
+  for (const auto& t : top)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      edgeCount[{ t[k], t[(k + 1) % 3] }]++;
+    }
+  }
+  const long long layer = (nx + 1) * (ny + 1);
+  for (const auto& t : top)
+  {
+    s.Triangles.push_back(t);
+    s.Triangles.push_back({ t[0] - layer, t[2] - layer, t[1] - layer });
+    for (int k = 0; k < 3; ++k)
+    {
+      const long long a = t[k], b = t[(k + 1) % 3];
+      if (edgeCount.count({ b, a }) == 0)
+      {
+        // boundary edge a -> b of the top (counter-clockwise seen from above): wall outward
+        s.Triangles.push_back({ b, a, a - layer });
+        s.Triangles.push_back({ b, a - layer, b - layer });
+      }
+    }
+  }
+  return s;
+}
+
+void ExpectIntegerIndices(const gs::DirectionFieldSolver& solver, int n, const std::vector<double>& angles)
+{
+  const std::vector<double> raw = solver.VertexIndices(n, angles);
+  for (int v = 0; v < solver.Mesh().NumberOfVertices(); ++v)
+  {
+    if (!solver.Mesh().IsBoundaryVertex(v))
+    {
+      EXPECT_NEAR(raw[v] * n, std::round(raw[v] * n), 1e-8) << "vertex " << v;
+    }
+  }
+}
+
+int CountSingular(const gs::TriangleMesh& m, const std::vector<double>& index)
+{
+  int count = 0;
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    count += !m.IsBoundaryVertex(v) && index[v] != 0.0;
+  }
+  return count;
+}
+} // namespace
+
+TEST(DirectionField, PoincareHopfOnClosedMeshes)
+{
+  const gs::TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7u, 0.05));
+  const gs::TriangleMesh torus = gs_test::BuildMesh(gs::MakeTorus(1.0, 0.35, 40, 16));
+  const gs::TriangleMesh slab = gs_test::BuildMesh(HoledSlab(3));
+  ASSERT_EQ(slab.Genus(), 3);
+  for (const gs::TriangleMesh* m : { &sphere, &torus, &slab })
+  {
+    gs::DirectionFieldSolver solver(*m);
+    for (int n : { 1, 2, 4 })
+    {
+      std::vector<double> angles;
+      std::string error;
+      ASSERT_TRUE(solver.SolveSmoothest(n, 0.0, {}, angles, error)) << error;
+      ExpectIntegerIndices(solver, n, angles);
+      const std::vector<double> index = solver.RoundedVertexIndices(n, angles);
+      EXPECT_NEAR(Sum(index), m->EulerCharacteristic(), 1e-9) << "N = " << n;
+      // The smoothest field has no singularity of index beyond one quantum (generic case).
+      for (int v = 0; v < m->NumberOfVertices(); ++v)
+      {
+        EXPECT_LE(std::abs(index[v]), 1.0 / n + 1e-9) << "N = " << n << " vertex " << v;
+      }
+      // (On this torus of revolution the smoothest cross field has +-1/4 pairs, as in Knoppel
+      // et al. 2013; only the sum is fixed.)
+      if (m == &sphere)
+      {
+        EXPECT_EQ(CountSingular(*m, index), 2 * n) << "N = " << n;
+      }
+    }
+  }
+}
+
+TEST(DirectionField, FlatDiscIsConstantAndBoundaryConventionHolds)
+{
+  const gs::TriangleMesh disc = gs_test::BuildMesh(gs::MakePlanarGrid(12, 9, 1.2, 0.9));
+  gs::DirectionFieldSolver solver(disc);
+  for (int n : { 1, 2, 4 })
+  {
+    std::vector<double> angles;
+    std::string error;
+    ASSERT_TRUE(solver.SolveSmoothest(n, 0.0, {}, angles, error)) << error;
+    EXPECT_LT(solver.Energy(n, angles), 1e-12);
+    const gs::Vec3 d0 = solver.DirectionInFace(0, angles[0]);
+    for (int f = 0; f < disc.NumberOfFaces(); ++f)
+    {
+      const gs::Vec3 d = solver.DirectionInFace(f, angles[f]);
+      const double a = std::atan2(gs::Cross(d0, d).z, gs::Dot(d0, d));
+      EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(a, n), 0.0, 1e-6);
+    }
+    const std::vector<double> index = solver.RoundedVertexIndices(n, angles);
+    EXPECT_EQ(CountSingular(disc, index), 0);
+    EXPECT_NEAR(Sum(index), 1.0, 1e-9); // boundary loop: the tangent turns once
+  }
+}
+
+TEST(DirectionField, StrokeConstraintsAreHardAndPropagate)
+{
+  // Plane with a diagonal stroke constraint on a band of faces: the smoothest extension is that
+  // constant direction everywhere. On a bumpy sphere the constrained faces keep their direction.
+  const gs::TriangleMesh plane = gs_test::BuildMesh(gs::MakePlanarGrid(10, 10, 1.0, 1.0));
+  gs::DirectionFieldSolver solver(plane);
+  const gs::Vec3 dir(1.0, 2.0, 0.0);
+  std::vector<gs::FaceDirectionConstraint> c;
+  for (int f = 0; f < plane.NumberOfFaces(); f += 7)
+  {
+    c.push_back({ f, dir });
+  }
+  for (int n : { 1, 2, 4 })
+  {
+    std::vector<double> angles;
+    std::string error;
+    ASSERT_TRUE(solver.SolveSmoothest(n, 0.0, c, angles, error)) << error;
+    for (int f = 0; f < plane.NumberOfFaces(); ++f)
+    {
+      const gs::Vec3 d = solver.DirectionInFace(f, angles[f]);
+      const double a = std::atan2(gs::Cross(dir, d).z, gs::Dot(dir, d));
+      EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(a, n), 0.0, 1e-6) << "N " << n;
+    }
+  }
+  const gs::TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 3u, 0.05));
+  gs::DirectionFieldSolver s2(sphere);
+  std::vector<gs::FaceDirectionConstraint> c2;
+  for (int f = 0; f < sphere.NumberOfFaces(); f += 37)
+  {
+    const gs::Vec3 e = sphere.Position(sphere.Face(f)[1]) - sphere.Position(sphere.Face(f)[0]);
+    c2.push_back({ f, e });
+  }
+  std::vector<double> a1, a2;
+  std::string error;
+  ASSERT_TRUE(s2.SolveSmoothest(4, 0.0, c2, a1, error)) << error;
+  for (const auto& k : c2)
+  {
+    EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(a1[k.Face] - s2.AngleInFace(k.Face, k.Direction), 4), 0.0, 1e-9);
+  }
+  EXPECT_NEAR(Sum(s2.RoundedVertexIndices(4, a1)), 2.0, 1e-9);
+  // Same faces, other directions: re-solve with the kept factorization.
+  for (auto& k : c2)
+  {
+    k.Direction = gs::Cross(sphere.FaceNormal(k.Face), k.Direction);
+  }
+  ASSERT_TRUE(s2.SolveSmoothest(4, 0.0, c2, a2, error)) << error;
+  for (const auto& k : c2)
+  {
+    EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(a2[k.Face] - s2.AngleInFace(k.Face, k.Direction), 4), 0.0, 1e-9);
+  }
+  // Invalid constraints are refused with a message.
+  std::vector<double> a3;
+  EXPECT_FALSE(s2.SolveSmoothest(4, 0.0, { { sphere.NumberOfFaces(), dir } }, a3, error));
+  EXPECT_FALSE(error.empty());
+  EXPECT_FALSE(s2.SolveSmoothest(3, 0.0, {}, a3, error));
+}
+
+TEST(DirectionField, CurvatureAlignmentOnCylinder)
+{
+  // On a cylinder the principal directions are the axis and the circles: a strongly aligned
+  // line or cross field follows them.
+  const gs::TriangleMesh cyl = gs_test::BuildMesh(gs::MakeCylinder(1.0, 3.0, 48, 24));
+  gs::DirectionFieldSolver solver(cyl);
+  for (int n : { 2, 4 })
+  {
+    std::vector<double> angles;
+    std::string error;
+    ASSERT_TRUE(solver.SolveSmoothest(n, 10.0, {}, angles, error)) << error;
+    double worst = 0.0;
+    for (int f = 0; f < cyl.NumberOfFaces(); ++f)
+    {
+      const gs::Vec3 d = solver.DirectionInFace(f, angles[f]);
+      const double a = std::acos(std::min(1.0, std::abs(d.z)));
+      const double dev = std::min(a, 0.5 * Pi - a); // along the axis or around it
+      worst = std::max(worst, dev);
+    }
+    EXPECT_LT(worst * 180.0 / Pi, 2.0) << "N = " << n;
+  }
+}
