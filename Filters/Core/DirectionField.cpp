@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 namespace gs
@@ -37,6 +38,22 @@ struct DirectionFieldSolver::Factorization
   Eigen::SparseMatrix<double> Bfc; // free rows x constrained columns
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
   bool Ok = false;
+};
+
+struct DirectionFieldSolver::ConnectionFactorization
+{
+  std::vector<int> ConstrainedFaces; // key: the constrained faces in the order given
+  std::vector<int> EdgeOf;           // half-edge -> interior edge index, -1 on the boundary
+  std::vector<int> ParentHalfedge;   // dual tree: half-edge of the parent face crossing into f
+  std::vector<int> Depth;
+  std::vector<int> Order;            // faces in breadth-first order (roots first per component)
+  std::vector<std::vector<int>> RowVertices; // interior vertex or boundary loop rows
+  std::vector<std::vector<int>> Cycles; // homology generators (crossed half-edges)
+  std::vector<std::vector<int>> Paths;  // between consecutive constrained faces
+  Eigen::VectorXd InverseWeight;
+  Eigen::SparseMatrix<double> C;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
+  std::vector<double> ComponentEuler;
 };
 
 DirectionFieldSolver::DirectionFieldSolver(const TriangleMesh& mesh)
@@ -448,6 +465,413 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     const double x = i >= 0 ? u[2 * i] : cre[f];
     const double y = i >= 0 ? u[2 * i + 1] : cim[f];
     angles[f] = std::atan2(y, x) / n;
+  }
+  return true;
+}
+
+namespace
+{
+int Find(std::vector<int>& parent, int a)
+{
+  while (parent[a] != a)
+  {
+    parent[a] = parent[parent[a]];
+    a = parent[a];
+  }
+  return a;
+}
+} // namespace
+
+bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
+  std::string& error)
+{
+  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices(), nh = M.NumberOfHalfedges();
+  if (n != 1 && n != 2 && n != 4)
+  {
+    error = "symmetry must be 1, 2 or 4 (got " + std::to_string(n) + ")";
+    return false;
+  }
+  if (nf == 0)
+  {
+    error = "empty mesh";
+    return false;
+  }
+  std::vector<double> index(nv, 0.0);
+  for (const VertexSingularity& s : singularities)
+  {
+    if (s.Vertex < 0 || s.Vertex >= nv || !std::isfinite(s.Index))
+    {
+      error = "invalid singularity (vertex " + std::to_string(s.Vertex) + ")";
+      return false;
+    }
+    if (std::abs(s.Index * n - std::round(s.Index * n)) > 1e-6)
+    {
+      error = "singularity index " + std::to_string(s.Index) + " at vertex " +
+        std::to_string(s.Vertex) + " is not a multiple of 1/" + std::to_string(n);
+      return false;
+    }
+    index[s.Vertex] += std::round(s.Index * n) / n;
+  }
+  for (const FaceDirectionConstraint& c : constraints)
+  {
+    if (c.Face < 0 || c.Face >= nf || !IsFinite(c.Direction) ||
+      std::hypot(Dot(c.Direction, BasisX[c.Face]), Dot(c.Direction, BasisY[c.Face])) <= 0.0)
+    {
+      error = "invalid direction constraint (face " + std::to_string(c.Face) + ")";
+      return false;
+    }
+  }
+  std::vector<int> constrainedFaces;
+  for (const FaceDirectionConstraint& c : constraints)
+  {
+    constrainedFaces.push_back(c.Face);
+  }
+
+  if (!ConnectionCache || ConnectionCache->ConstrainedFaces != constrainedFaces)
+  {
+    auto cf = std::make_unique<ConnectionFactorization>();
+    cf->ConstrainedFaces = constrainedFaces;
+    // Interior edges.
+    cf->EdgeOf.assign(nh, -1);
+    int ne = 0;
+    std::vector<double> weight;
+    for (int h = 0; h < nh; ++h)
+    {
+      const int t = M.Twin(h);
+      if (t > h)
+      {
+        cf->EdgeOf[h] = cf->EdgeOf[t] = ne++;
+        weight.push_back(EdgeWeight[h]);
+      }
+    }
+    double meanW = 0.0;
+    for (double w : weight)
+    {
+      meanW += w;
+    }
+    meanW = ne > 0 ? meanW / ne : 1.0;
+    cf->InverseWeight.resize(ne);
+    for (int e = 0; e < ne; ++e)
+    {
+      cf->InverseWeight[e] = 1.0 / std::max(weight[e], 1e-9 * meanW);
+    }
+    // Primal spanning forest: boundary edges first (each loop minus one edge), then the rest.
+    std::vector<int> uf(nv);
+    for (int v = 0; v < nv; ++v)
+    {
+      uf[v] = v;
+    }
+    std::vector<char> inTree(nh, 0);
+    auto tryAdd = [&](int h) {
+      const int a = Find(uf, M.Origin(h)), b = Find(uf, M.Destination(h));
+      if (a != b)
+      {
+        uf[a] = b;
+        inTree[h] = 1;
+        if (M.Twin(h) >= 0)
+        {
+          inTree[M.Twin(h)] = 1;
+        }
+      }
+    };
+    for (int h = 0; h < nh; ++h)
+    {
+      if (M.Twin(h) < 0)
+      {
+        tryAdd(h);
+      }
+    }
+    for (int h = 0; h < nh; ++h)
+    {
+      if (M.Twin(h) > h)
+      {
+        tryAdd(h);
+      }
+    }
+    // Dual spanning forest avoiding the primal tree (breadth first).
+    cf->ParentHalfedge.assign(nf, -2);
+    cf->Depth.assign(nf, 0);
+    std::vector<char> inDual(nh, 0);
+    for (int root = 0; root < nf; ++root)
+    {
+      if (cf->ParentHalfedge[root] != -2)
+      {
+        continue;
+      }
+      cf->ParentHalfedge[root] = -1;
+      size_t head = cf->Order.size();
+      cf->Order.push_back(root);
+      while (head < cf->Order.size())
+      {
+        const int f = cf->Order[head++];
+        for (int c = 0; c < 3; ++c)
+        {
+          const int h = 3 * f + c, t = M.Twin(h);
+          if (t < 0 || inTree[h])
+          {
+            continue;
+          }
+          const int g = TriangleMesh::FaceOf(t);
+          if (cf->ParentHalfedge[g] != -2)
+          {
+            continue;
+          }
+          cf->ParentHalfedge[g] = h;
+          cf->Depth[g] = cf->Depth[f] + 1;
+          inDual[h] = inDual[t] = 1;
+          cf->Order.push_back(g);
+        }
+      }
+    }
+    auto pathBetween = [&](int a, int b) {
+      // Crossed half-edges from face a to face b along the dual tree.
+      std::vector<int> up, down;
+      while (cf->Depth[a] > cf->Depth[b])
+      {
+        up.push_back(M.Twin(cf->ParentHalfedge[a]));
+        a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
+      }
+      while (cf->Depth[b] > cf->Depth[a])
+      {
+        down.push_back(cf->ParentHalfedge[b]);
+        b = TriangleMesh::FaceOf(cf->ParentHalfedge[b]);
+      }
+      while (a != b)
+      {
+        up.push_back(M.Twin(cf->ParentHalfedge[a]));
+        a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
+        down.push_back(cf->ParentHalfedge[b]);
+        b = TriangleMesh::FaceOf(cf->ParentHalfedge[b]);
+      }
+      up.insert(up.end(), down.rbegin(), down.rend());
+      return up;
+    };
+    for (int h = 0; h < nh; ++h)
+    {
+      const int t = M.Twin(h);
+      if (t > h && !inTree[h] && !inDual[h])
+      {
+        std::vector<int> cycle{ h };
+        const std::vector<int> back = pathBetween(TriangleMesh::FaceOf(t), TriangleMesh::FaceOf(h));
+        cycle.insert(cycle.end(), back.begin(), back.end());
+        cf->Cycles.push_back(cycle);
+      }
+    }
+    for (size_t i = 1; i < constrainedFaces.size(); ++i)
+    {
+      const int a = constrainedFaces[i - 1], b = constrainedFaces[i];
+      if (a == b || M.FaceComponent(a) != M.FaceComponent(b))
+      {
+        cf->Paths.emplace_back();
+        continue;
+      }
+      std::vector<int> path;
+      for (int c = 0; c < 3; ++c)
+      {
+        const int t = M.Twin(3 * a + c);
+        if (t >= 0 && TriangleMesh::FaceOf(t) == b)
+        {
+          path = { 3 * a + c };
+        }
+      }
+      if (path.empty())
+      {
+        path = pathBetween(a, b);
+      }
+      cf->Paths.push_back(path);
+    }
+    // Rows: interior vertices and boundary loops (a loop's dual cycle is the union of its
+    // vertices' fans), all but the last of each component (they sum to zero).
+    const int ncomp = std::max(1, M.NumberOfComponents());
+    std::vector<std::pair<int, int>> candidates; // (vertex, -1) or (-1, loop)
+    std::vector<int> lastOfComponent(ncomp, -1);
+    for (int v = 0; v < nv; ++v)
+    {
+      if (!M.IsBoundaryVertex(v))
+      {
+        lastOfComponent[M.VertexComponent(v)] = static_cast<int>(candidates.size());
+        candidates.emplace_back(v, -1);
+      }
+    }
+    const auto& loops = M.BoundaryLoops();
+    for (int l = 0; l < static_cast<int>(loops.size()); ++l)
+    {
+      lastOfComponent[M.VertexComponent(loops[l][0])] = static_cast<int>(candidates.size());
+      candidates.emplace_back(-1, l);
+    }
+    std::vector<char> drop(candidates.size(), 0);
+    for (int c : lastOfComponent)
+    {
+      if (c >= 0)
+      {
+        drop[c] = 1;
+      }
+    }
+    std::vector<Eigen::Triplet<double>> trip;
+    int row = 0;
+    auto addCrossing = [&](int r, int h) {
+      const int e = cf->EdgeOf[h];
+      if (e >= 0)
+      {
+        trip.emplace_back(r, e, h < M.Twin(h) ? 1.0 : -1.0);
+      }
+    };
+    for (size_t i = 0; i < candidates.size(); ++i)
+    {
+      if (drop[i])
+      {
+        continue;
+      }
+      const std::vector<int> single{ candidates[i].first };
+      const std::vector<int>& vertices =
+        candidates[i].first >= 0 ? single : loops[candidates[i].second];
+      for (int v : vertices)
+      {
+        for (int h : M.OutgoingHalfedges(v))
+        {
+          addCrossing(row, TriangleMesh::Prev(h));
+        }
+      }
+      cf->RowVertices.push_back(vertices);
+      ++row;
+    }
+    for (const auto& cycle : cf->Cycles)
+    {
+      for (int h : cycle)
+      {
+        addCrossing(row, h);
+      }
+      ++row;
+    }
+    for (const auto& path : cf->Paths)
+    {
+      for (int h : path)
+      {
+        addCrossing(row, h);
+      }
+      ++row;
+    }
+    cf->C.resize(row, ne);
+    cf->C.setFromTriplets(trip.begin(), trip.end());
+    const Eigen::SparseMatrix<double> k =
+      cf->C * cf->InverseWeight.asDiagonal() * cf->C.transpose();
+    cf->Solver.compute(k);
+    if (cf->Solver.info() != Eigen::Success)
+    {
+      error = "factorization of the trivial-connection system failed";
+      return false;
+    }
+    cf->ComponentEuler.assign(ncomp, 0.0);
+    for (int v = 0; v < nv; ++v)
+    {
+      cf->ComponentEuler[M.VertexComponent(v)] += 1.0;
+    }
+    for (int f = 0; f < nf; ++f)
+    {
+      cf->ComponentEuler[M.FaceComponent(f)] += 1.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const int h = 3 * f + c;
+        cf->ComponentEuler[M.FaceComponent(f)] -= M.Twin(h) < 0 ? 1.0 : (M.Twin(h) > h ? 1.0 : 0.0);
+      }
+    }
+    ConnectionCache = std::move(cf);
+  }
+  ConnectionFactorization& cf = *ConnectionCache;
+
+  // Poincare-Hopf check per component.
+  std::vector<double> sum(cf.ComponentEuler.size(), 0.0);
+  for (int v = 0; v < nv; ++v)
+  {
+    sum[M.VertexComponent(v)] += index[v];
+  }
+  for (size_t c = 0; c < sum.size(); ++c)
+  {
+    if (std::abs(sum[c] - cf.ComponentEuler[c]) > 1e-6)
+    {
+      char buffer[256];
+      std::snprintf(buffer, sizeof(buffer),
+        "singularity indices sum to %g but must sum to the Euler characteristic %g%s "
+        "(boundary vertices count the field's turning against the boundary)",
+        sum[c], cf.ComponentEuler[c],
+        sum.size() > 1 ? (" of connected component " + std::to_string(c)).c_str() : "");
+      error = buffer;
+      return false;
+    }
+  }
+  // Right-hand side.
+  const int rows = static_cast<int>(cf.C.rows());
+  Eigen::VectorXd b(rows);
+  int row = 0;
+  for (const std::vector<int>& vertices : cf.RowVertices)
+  {
+    double rhs = 0.0;
+    for (int v : vertices)
+    {
+      const double defect = (M.IsBoundaryVertex(v) ? Pi : TwoPi) - M.TotalAngle(v);
+      rhs += TwoPi * index[v] - defect;
+    }
+    b[row++] = rhs;
+  }
+  const double quantum = TwoPi / n;
+  for (const auto& cycle : cf.Cycles)
+  {
+    double hol = 0.0;
+    for (int h : cycle)
+    {
+      hol += Transport[h];
+    }
+    b[row++] = quantum * std::round(hol / quantum) - hol;
+  }
+  for (size_t i = 0; i < cf.Paths.size(); ++i)
+  {
+    const FaceDirectionConstraint& a = constraints[i];
+    const FaceDirectionConstraint& c = constraints[i + 1];
+    double hol = 0.0;
+    for (int h : cf.Paths[i])
+    {
+      hol += Transport[h];
+    }
+    b[row++] = cf.Paths[i].empty()
+      ? 0.0
+      : WrapSymmetric(AngleInFace(c.Face, c.Direction) - AngleInFace(a.Face, a.Direction) - hol, n);
+  }
+  const Eigen::VectorXd lambda = cf.Solver.solve(b);
+  const Eigen::VectorXd x = cf.InverseWeight.asDiagonal() * (cf.C.transpose() * lambda);
+  const double residual = (cf.C * x - b).norm();
+  if (!x.allFinite() || residual > 1e-7 * (1.0 + b.norm()))
+  {
+    error = "the singularities and direction constraints are incompatible (a constraint crosses a "
+            "singularity or two constraints disagree): residual " + std::to_string(residual);
+    return false;
+  }
+  // Transport over the dual tree, then rotate each component onto its first constraint.
+  angles.assign(nf, 0.0);
+  for (int f : cf.Order)
+  {
+    const int h = cf.ParentHalfedge[f];
+    if (h < 0)
+    {
+      continue;
+    }
+    const int e = cf.EdgeOf[h];
+    angles[f] = angles[TriangleMesh::FaceOf(h)] + Transport[h] + (h < M.Twin(h) ? x[e] : -x[e]);
+  }
+  std::vector<char> rotated(cf.ComponentEuler.size(), 0);
+  std::vector<double> shift(cf.ComponentEuler.size(), 0.0);
+  for (const FaceDirectionConstraint& c : constraints)
+  {
+    const int comp = M.FaceComponent(c.Face);
+    if (!rotated[comp])
+    {
+      rotated[comp] = 1;
+      shift[comp] = AngleInFace(c.Face, c.Direction) - angles[c.Face];
+    }
+  }
+  for (int f = 0; f < nf; ++f)
+  {
+    angles[f] = WrapPi(angles[f] + shift[M.FaceComponent(f)]);
   }
   return true;
 }

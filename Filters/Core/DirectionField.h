@@ -31,6 +31,15 @@ struct FaceDirectionConstraint
   Vec3 Direction;
 };
 
+// A singularity placed by the user: `Index` is a multiple of 1/N. At a boundary vertex it adds to
+// the turning of the field relative to the boundary tangent along that vertex's boundary loop (1/4
+// at each corner of a rectangle makes the constant, boundary-aligned cross field).
+struct VertexSingularity
+{
+  int Vertex = -1;
+  double Index = 0.0;
+};
+
 class DirectionFieldSolver
 {
 public:
@@ -59,6 +68,21 @@ public:
     const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
     std::string& error);
 
+  // Crane, Desbrun, Schroder 2010 trivial connections: the smoothest (least Dirichlet energy)
+  // change of the Levi-Civita connection whose holonomy around every vertex gives exactly the
+  // prescribed indices (0 elsewhere), around every homology generator (tree-cotree) the multiple
+  // of 2 pi / N closest to the Levi-Civita holonomy, and around every boundary loop the turning
+  // of the field against the boundary tangent equals the sum of the indices given to the loop's
+  // vertices (0 by default: the field turns with the boundary). The field is
+  // then transported over a spanning tree of faces. Indices must sum to the Euler characteristic
+  // of each connected component (the error names the sum found and the sum required).
+  // Constraints (strokes) fix the relative holonomy between consecutive constrained faces.
+  // The factorization is kept while the constrained faces do not change: new singularities or
+  // new stroke directions re-solve with it.
+  bool SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
+    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
+    std::string& error);
+
   // Index (times N, an integer for interior vertices) of every vertex, as a real number.
   std::vector<double> VertexIndices(int n, const std::vector<double>& angles) const;
   // The index of every vertex rounded to a multiple of 1/N for interior vertices (boundary
@@ -80,6 +104,8 @@ private:
   std::vector<double> Transport;
   std::vector<double> EdgeWeight; // per half-edge (same on both twins)
   std::unique_ptr<Factorization> Cache;
+  struct ConnectionFactorization;
+  std::unique_ptr<ConnectionFactorization> ConnectionCache;
 };
 
 } // namespace gs

@@ -236,3 +236,191 @@ TEST(DirectionField, CurvatureAlignmentOnCylinder)
     EXPECT_LT(worst * 180.0 / Pi, 2.0) << "N = " << n;
   }
 }
+
+namespace
+{
+// The vertex closest to a direction from the origin.
+int ClosestVertex(const gs::TriangleMesh& m, const gs::Vec3& p)
+{
+  int best = 0;
+  for (int v = 1; v < m.NumberOfVertices(); ++v)
+  {
+    if (gs::Norm(m.Position(v) - p) < gs::Norm(m.Position(best) - p))
+    {
+      best = v;
+    }
+  }
+  return best;
+}
+
+void ExpectExactly(const gs::DirectionFieldSolver& solver, int n,
+  const std::vector<double>& angles, const std::vector<gs::VertexSingularity>& placed)
+{
+  const gs::TriangleMesh& m = solver.Mesh();
+  std::vector<double> expected(m.NumberOfVertices(), 0.0);
+  for (const auto& s : placed)
+  {
+    expected[s.Vertex] += s.Index;
+  }
+  ExpectIntegerIndices(solver, n, angles);
+  const std::vector<double> index = solver.VertexIndices(n, angles);
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    if (!m.IsBoundaryVertex(v))
+    {
+      EXPECT_NEAR(index[v], expected[v], 1e-8) << "N = " << n << " vertex " << v;
+    }
+  }
+  for (const auto& loop : m.BoundaryLoops())
+  {
+    double measured = 0.0, wanted = 0.0;
+    for (int v : loop)
+    {
+      measured += index[v];
+      wanted += expected[v];
+    }
+    EXPECT_NEAR(measured, wanted, 1e-8) << "boundary loop of N = " << n;
+  }
+}
+} // namespace
+
+TEST(DirectionField, PrescribedSingularitiesAppearExactlyWherePlaced)
+{
+  const gs::TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 11u, 0.05));
+  gs::DirectionFieldSolver solver(sphere);
+  std::string error;
+  std::vector<double> angles;
+  // Two +1 (a vector field), four +1/2 (a line field), eight +1/4 at the cube's corners.
+  const std::vector<gs::VertexSingularity> two{ { ClosestVertex(sphere, { 0, 0, 1 }), 1.0 },
+    { ClosestVertex(sphere, { 0, 0, -1 }), 1.0 } };
+  ASSERT_TRUE(solver.SolvePrescribed(1, two, {}, angles, error)) << error;
+  ExpectExactly(solver, 1, angles, two);
+  std::vector<gs::VertexSingularity> four, eight;
+  for (const gs::Vec3& p : { gs::Vec3(1, 0, 0), gs::Vec3(-1, 0, 0), gs::Vec3(0, 1, 0), gs::Vec3(0, -1, 0) })
+  {
+    four.push_back({ ClosestVertex(sphere, p), 0.5 });
+  }
+  ASSERT_TRUE(solver.SolvePrescribed(2, four, {}, angles, error)) << error;
+  ExpectExactly(solver, 2, angles, four);
+  for (int i = 0; i < 8; ++i)
+  {
+    const gs::Vec3 p((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1);
+    eight.push_back({ ClosestVertex(sphere, p / std::sqrt(3.0)), 0.25 });
+  }
+  ASSERT_TRUE(solver.SolvePrescribed(4, eight, {}, angles, error)) << error;
+  ExpectExactly(solver, 4, angles, eight);
+  // A +2 and a 0 + ... : one vertex carrying the whole characteristic.
+  const std::vector<gs::VertexSingularity> one{ { 5, 2.0 } };
+  ASSERT_TRUE(solver.SolvePrescribed(1, one, {}, angles, error)) << error;
+  ExpectExactly(solver, 1, angles, one);
+
+  // Wrong sums are refused with the sums in the message.
+  EXPECT_FALSE(solver.SolvePrescribed(1, { { 3, 1.0 } }, {}, angles, error));
+  EXPECT_NE(error.find("sum to 1"), std::string::npos) << error;
+  EXPECT_NE(error.find("Euler characteristic 2"), std::string::npos) << error;
+  EXPECT_FALSE(solver.SolvePrescribed(4, { { 3, 0.3 }, { 4, 1.7 } }, {}, angles, error));
+  EXPECT_NE(error.find("multiple of 1/4"), std::string::npos) << error;
+}
+
+TEST(DirectionField, PrescribedOnTorusGenus3AndDisc)
+{
+  const gs::TriangleMesh torus = gs_test::BuildMesh(gs::MakeTorus(1.0, 0.35, 40, 16));
+  gs::DirectionFieldSolver ts(torus);
+  std::vector<double> angles;
+  std::string error;
+  for (int n : { 1, 2, 4 })
+  {
+    ASSERT_TRUE(ts.SolvePrescribed(n, {}, {}, angles, error)) << error;
+    ExpectExactly(ts, n, angles, {});
+  }
+  // A +1/-1 pair on the torus.
+  const std::vector<gs::VertexSingularity> pair{ { 10, 1.0 }, { 300, -1.0 } };
+  ASSERT_TRUE(ts.SolvePrescribed(1, pair, {}, angles, error)) << error;
+  ExpectExactly(ts, 1, angles, pair);
+
+  const gs::TriangleMesh slab = gs_test::BuildMesh(HoledSlab(3));
+  gs::DirectionFieldSolver ss(slab);
+  std::vector<gs::VertexSingularity> saddles;
+  for (int i = 0; i < 4; ++i)
+  {
+    saddles.push_back({ ClosestVertex(slab, { 1.0 + 4.0 * i, 4.0, 1.0 }), -1.0 });
+  }
+  ASSERT_TRUE(ss.SolvePrescribed(1, saddles, {}, angles, error)) << error;
+  ExpectExactly(ss, 1, angles, saddles);
+
+  // Rectangle: a cross field turning by 1/4 at each corner is the constant grid-aligned field.
+  const gs::TriangleMesh disc = gs_test::BuildMesh(gs::MakePlanarGrid(12, 9, 1.2, 0.9));
+  gs::DirectionFieldSolver ds(disc);
+  std::vector<gs::VertexSingularity> corners;
+  for (const gs::Vec3& p : { gs::Vec3(0, 0, 0), gs::Vec3(1.2, 0, 0), gs::Vec3(1.2, 0.9, 0), gs::Vec3(0, 0.9, 0) })
+  {
+    corners.push_back({ ClosestVertex(disc, p), 0.25 });
+  }
+  ASSERT_TRUE(ds.SolvePrescribed(4, corners, {}, angles, error)) << error;
+  for (int f = 0; f < disc.NumberOfFaces(); ++f)
+  {
+    const gs::Vec3 d = ds.DirectionInFace(f, angles[f]);
+    EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(std::atan2(d.y, d.x), 4), 0.0, 1e-9);
+  }
+  const std::vector<double> index = ds.VertexIndices(4, angles);
+  for (int v = 0; v < disc.NumberOfVertices(); ++v)
+  {
+    EXPECT_NEAR(index[v], std::abs(disc.TotalAngle(v) - Pi / 2) < 1e-9 ? 0.25 : 0.0, 1e-9);
+  }
+  // Without the corners a boundary-aligned field needs a +1 inside.
+  EXPECT_FALSE(ds.SolvePrescribed(4, {}, {}, angles, error));
+  EXPECT_NE(error.find("Euler characteristic 1"), std::string::npos) << error;
+  const std::vector<gs::VertexSingularity> centre{ { ClosestVertex(disc, { 0.6, 0.45, 0 }), 1.0 } };
+  ASSERT_TRUE(ds.SolvePrescribed(1, centre, {}, angles, error)) << error;
+  ExpectExactly(ds, 1, angles, centre);
+}
+
+TEST(DirectionField, PrescribedWithStrokes)
+{
+  const gs::TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 11u, 0.05));
+  gs::DirectionFieldSolver solver(sphere);
+  const std::vector<gs::VertexSingularity> two{ { ClosestVertex(sphere, { 0, 0, 1 }), 1.0 },
+    { ClosestVertex(sphere, { 0, 0, -1 }), 1.0 } };
+  // A stroke along the equator (faces whose centroid is nearest to z = 0), eastward.
+  std::vector<gs::FaceDirectionConstraint> stroke;
+  for (int k = 0; k < 24; ++k)
+  {
+    const double a = 2 * Pi * k / 24.0;
+    const gs::Vec3 p(std::cos(a), std::sin(a), 0.0);
+    int best = 0;
+    double bestD = 1e9;
+    for (int f = 0; f < sphere.NumberOfFaces(); ++f)
+    {
+      const gs::Vec3 c = sphere.Interpolate(f, { 1.0 / 3, 1.0 / 3, 1.0 / 3 });
+      const double d = gs::Norm(c / gs::Norm(c) - p);
+      if (d < bestD)
+      {
+        bestD = d;
+        best = f;
+      }
+    }
+    stroke.push_back({ best, gs::Vec3(-std::sin(a), std::cos(a), 0.0) });
+  }
+  std::vector<double> angles;
+  std::string error;
+  for (int n : { 1, 4 })
+  {
+    const std::vector<gs::VertexSingularity> s = n == 1 ? two : std::vector<gs::VertexSingularity>{};
+    std::vector<gs::VertexSingularity> sing = s;
+    if (n == 4)
+    {
+      for (int i = 0; i < 8; ++i)
+      {
+        const gs::Vec3 p((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1);
+        sing.push_back({ ClosestVertex(sphere, p / std::sqrt(3.0)), 0.25 });
+      }
+    }
+    ASSERT_TRUE(solver.SolvePrescribed(n, sing, stroke, angles, error)) << error;
+    for (const auto& c : stroke)
+    {
+      const double dev = gs::DirectionFieldSolver::WrapSymmetric(angles[c.Face] - solver.AngleInFace(c.Face, c.Direction), n);
+      EXPECT_LT(std::abs(dev) * 180 / Pi, 1e-6) << "N = " << n << " face " << c.Face;
+    }
+    ExpectExactly(solver, n, angles, sing);
+  }
+}
