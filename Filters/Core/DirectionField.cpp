@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -874,6 +875,129 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
     angles[f] = WrapPi(angles[f] + shift[M.FaceComponent(f)]);
   }
   return true;
+}
+
+namespace
+{
+std::array<double, 3> BarycentricIn(const TriangleMesh& m, int f, const Vec3& p)
+{
+  const Vec3 a = m.Position(m.Face(f)[0]), b = m.Position(m.Face(f)[1]), c = m.Position(m.Face(f)[2]);
+  const Vec3 n = Cross(b - a, c - a);
+  const double nn = Dot(n, n);
+  if (!(nn > 0))
+  {
+    return { { 1.0 / 3, 1.0 / 3, 1.0 / 3 } };
+  }
+  const double wa = Dot(Cross(c - b, p - b), n) / nn;
+  const double wb = Dot(Cross(a - c, p - c), n) / nn;
+  return { { wa, wb, 1.0 - wa - wb } };
+}
+} // namespace
+
+Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double>& angles,
+  const SurfacePoint& start, double initialAngle, double length, const std::vector<double>* indices,
+  double maxTurn) const
+{
+  Streamline line;
+  const int nf = M.NumberOfFaces();
+  if (n < 1 || static_cast<int>(angles.size()) != nf || nf == 0 || !(length >= 0.0) ||
+    !std::isfinite(length))
+  {
+    line.Reason = Streamline::Stuck;
+    return line;
+  }
+  if (maxTurn < 0)
+  {
+    maxTurn = 0.9 * Pi / n;
+  }
+  int f = start.Face;
+  Vec3 x;
+  if (start.IsVertex())
+  {
+    f = TriangleMesh::FaceOf(M.VertexHalfedge(start.Vertex));
+    x = M.Position(start.Vertex);
+  }
+  else
+  {
+    x = M.Interpolate(f, start.Bary);
+  }
+  line.End = SurfacePoint::InFace(f, 0, 0, 0);
+  line.End.Bary = BarycentricIn(M, f, x);
+  auto singularFace = [&](int face) {
+    if (!indices)
+    {
+      return false;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (std::abs((*indices)[M.Face(face)[c]]) > 1e-9 && !M.IsBoundaryVertex(M.Face(face)[c]))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  if (singularFace(f))
+  {
+    line.Reason = Streamline::ReachedSingularity;
+    return line;
+  }
+  // Representative closest to the wanted angle.
+  auto closest = [&](int face, double wanted) {
+    return wanted + WrapSymmetric(angles[face] - wanted, n);
+  };
+  double a = closest(f, initialAngle);
+  Vec3 d = DirectionInFace(f, a);
+  double remaining = length;
+  int entry = -1;
+  const int maxSteps = 10 * nf + 1000;
+  for (int step = 0; step < maxSteps; ++step)
+  {
+    const FaceExit out = FindFaceExit(M, f, x, d, entry);
+    if (out.Edge < 0)
+    {
+      line.Reason = Streamline::Stuck;
+      break;
+    }
+    if (out.T >= remaining)
+    {
+      const Vec3 y = x + d * remaining;
+      line.Pieces.push_back({ f, x, y });
+      line.Length += remaining;
+      x = y;
+      line.Reason = Streamline::ReachedLength;
+      break;
+    }
+    const double s = std::min(1.0 - 1e-9, std::max(1e-9, out.S));
+    const Vec3 A = M.Position(M.Origin(out.Edge)), B = M.Position(M.Destination(out.Edge));
+    const Vec3 y = A + (B - A) * s;
+    line.Pieces.push_back({ f, x, y });
+    line.Length += out.T;
+    remaining -= out.T;
+    x = y;
+    const int t = M.Twin(out.Edge);
+    if (t < 0)
+    {
+      line.Reason = Streamline::ReachedBoundary;
+      break;
+    }
+    const int g = TriangleMesh::FaceOf(t);
+    // Incoming direction transported into g, then the field's closest representative.
+    const double incoming = a + Transport[out.Edge];
+    const double next = closest(g, incoming);
+    if (std::abs(next - incoming) > maxTurn || singularFace(g))
+    {
+      line.Reason = Streamline::ReachedSingularity;
+      break;
+    }
+    f = g;
+    a = next;
+    d = DirectionInFace(f, a);
+    entry = t;
+  }
+  line.End = SurfacePoint::InFace(f, 0, 0, 0);
+  line.End.Bary = BarycentricIn(M, f, x);
+  return line;
 }
 
 std::vector<double> DirectionFieldSolver::VertexIndices(int n, const std::vector<double>& angles) const

@@ -13,6 +13,8 @@
 // Euler characteristic (Poincare-Hopf) whatever the field.
 #pragma once
 
+#include "SurfaceCurve.h"
+#include "SurfacePoint.h"
 #include "TriangleMesh.h"
 #include "Vector.h"
 
@@ -38,6 +40,23 @@ struct VertexSingularity
 {
   int Vertex = -1;
   double Index = 0.0;
+};
+
+// A streamline of a direction field: straight inside each face (the field is constant per face),
+// crossing edges exactly.
+struct Streamline
+{
+  enum StopReason
+  {
+    ReachedLength,
+    ReachedBoundary,
+    ReachedSingularity, // entered a face touching a singular vertex, or the field turned abruptly
+    Stuck               // degenerate geometry
+  };
+  std::vector<CurvePiece> Pieces;
+  double Length = 0.0;
+  SurfacePoint End;
+  StopReason Reason = ReachedLength;
 };
 
 class DirectionFieldSolver
@@ -88,6 +107,16 @@ public:
   // The index of every vertex rounded to a multiple of 1/N for interior vertices (boundary
   // vertices keep their real value).
   std::vector<double> RoundedVertexIndices(int n, const std::vector<double>& angles) const;
+
+  // Follows the field from `start` (a face point, or a vertex: its first face) for a geodesic
+  // `length`, leaving along the field direction closest to `initialAngle` (in the start face's
+  // frame) and, in every next face, along the direction closest to the incoming one. Stops at the
+  // boundary, in faces touching a vertex with non-zero index in `indices` (optional, one per
+  // vertex), or where the field turns by more than `maxTurn` radians across an edge (default:
+  // 0.9 pi / N).
+  Streamline TraceStreamline(int n, const std::vector<double>& angles, const SurfacePoint& start,
+    double initialAngle, double length, const std::vector<double>* indices = nullptr,
+    double maxTurn = -1.0) const;
 
   // Smoothness energy sum_e w_e |u_g - r_e u_f|^2 / sum_f A_f with u = exp(i N angle).
   double Energy(int n, const std::vector<double>& angles) const;

@@ -424,3 +424,70 @@ TEST(DirectionField, PrescribedWithStrokes)
     ExpectExactly(solver, n, angles, sing);
   }
 }
+
+TEST(DirectionField, StreamlineTracer)
+{
+  // Constant field on a plane: a straight segment of exactly the asked length.
+  const gs::TriangleMesh plane = gs_test::BuildMesh(gs::MakePlanarGrid(20, 20, 1.0, 1.0));
+  gs::DirectionFieldSolver solver(plane);
+  const gs::Vec3 dir = gs::Vec3(1.0, 2.0, 0.0) / std::sqrt(5.0);
+  std::vector<double> angles;
+  std::string error;
+  ASSERT_TRUE(solver.SolveSmoothest(4, 0.0, { { 0, dir } }, angles, error)) << error;
+  const int f0 = 2 * (10 * 20 + 10);
+  const gs::SurfacePoint start = gs::SurfacePoint::InFace(f0, 0.2, 0.3, 0.5);
+  const gs::Vec3 p0 = plane.Interpolate(f0, start.Bary);
+  const double a0 = solver.AngleInFace(f0, dir);
+  for (double length : { 0.01, 0.17, 0.33 })
+  {
+    const gs::Streamline line = solver.TraceStreamline(4, angles, start, a0 + 0.1, length);
+    EXPECT_EQ(line.Reason, gs::Streamline::ReachedLength);
+    EXPECT_NEAR(line.Length, length, 1e-12);
+    const gs::Vec3 p1 = plane.Interpolate(line.End.Face, line.End.Bary);
+    EXPECT_NEAR(gs::Norm(p1 - (p0 + dir * length)), 0.0, 1e-9);
+    double sum = 0.0;
+    for (const gs::CurvePiece& piece : line.Pieces)
+    {
+      sum += gs::Norm(piece.B - piece.A);
+      EXPECT_LT(gs::Norm(gs::Cross(piece.A - p0, dir)), 1e-9);
+      EXPECT_LT(gs::Norm(gs::Cross(piece.B - p0, dir)), 1e-9);
+    }
+    EXPECT_NEAR(sum, length, 1e-9);
+    EXPECT_GT(line.Pieces.size(), length > 0.1 ? 3u : 0u);
+  }
+  // The other representatives of the cross: rotated by 90 degrees.
+  const gs::Streamline side = solver.TraceStreamline(4, angles, start, a0 + Pi / 2 - 0.2, 0.2);
+  const gs::Vec3 p2 = plane.Interpolate(side.End.Face, side.End.Bary);
+  EXPECT_NEAR(gs::Norm(p2 - (p0 + gs::Vec3(-dir.y, dir.x, 0.0) * 0.2)), 0.0, 1e-9);
+  // Too long: stops on the boundary, within the square.
+  const gs::Streamline out = solver.TraceStreamline(4, angles, start, a0, 10.0);
+  EXPECT_EQ(out.Reason, gs::Streamline::ReachedBoundary);
+  const gs::Vec3 pb = plane.Interpolate(out.End.Face, out.End.Bary);
+  EXPECT_NEAR(pb.y, 1.0, 1e-9); // slope 2 from (0.5, 0.5): leaves through y = 1
+  EXPECT_NEAR(out.Length, (1.0 - p0.y) / dir.y, 1e-9);
+
+  // Vector field on a sphere with sources at the poles: a streamline from the equator towards a
+  // pole stops at its singularity.
+  // A stroke on the equator pointing north makes the field meridional.
+  const gs::TriangleMesh sphere = gs_test::BuildMesh(gs::MakeIcosphere(1.0, 3));
+  gs::DirectionFieldSolver s2(sphere);
+  const int north = ClosestVertex(sphere, { 0, 0, 1 }), south = ClosestVertex(sphere, { 0, 0, -1 });
+  int fe = 0;
+  for (int f = 0; f < sphere.NumberOfFaces(); ++f)
+  {
+    if (std::abs(sphere.Interpolate(f, { 1.0 / 3, 1.0 / 3, 1.0 / 3 }).z) <
+      std::abs(sphere.Interpolate(fe, { 1.0 / 3, 1.0 / 3, 1.0 / 3 }).z))
+    {
+      fe = f;
+    }
+  }
+  const gs::Vec3 up = gs::Vec3(0, 0, 1);
+  ASSERT_TRUE(s2.SolvePrescribed(1, { { north, 1.0 }, { south, 1.0 } }, { { fe, up } }, angles, error)) << error;
+  const std::vector<double> index = s2.RoundedVertexIndices(1, angles);
+  const gs::Streamline pole = s2.TraceStreamline(1, angles, gs::SurfacePoint::InFace(fe, 1.0 / 3, 1.0 / 3, 1.0 / 3),
+    s2.AngleInFace(fe, up), 5.0, &index);
+  EXPECT_EQ(pole.Reason, gs::Streamline::ReachedSingularity);
+  EXPECT_LT(pole.Length, 2.0);
+  const gs::Vec3 pe = sphere.Interpolate(pole.End.Face, pole.End.Bary);
+  EXPECT_GT(std::abs(pe.z), 0.9);
+}
