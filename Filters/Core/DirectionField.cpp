@@ -51,6 +51,7 @@ struct DirectionFieldSolver::ConnectionFactorization
   std::vector<std::vector<int>> RowVertices; // interior vertex or boundary loop rows
   std::vector<std::vector<int>> Cycles; // homology generators (crossed half-edges)
   std::vector<std::vector<int>> Paths;  // between consecutive constrained faces
+  std::vector<std::pair<int, int>> PathEnds; // constraint indices joined by each path
   Eigen::VectorXd InverseWeight;
   Eigen::SparseMatrix<double> C;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
@@ -487,7 +488,7 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
   const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
   std::string& error)
 {
-  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices(), nh = M.NumberOfHalfedges();
+  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
   if (n != 1 && n != 2 && n != 4)
   {
     error = "symmetry must be 1, 2 or 4 (got " + std::to_string(n) + ")";
@@ -523,6 +524,27 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
       return false;
     }
   }
+  // A face constrained twice keeps its first constraint.
+  std::vector<FaceDirectionConstraint> unique;
+  {
+    std::vector<char> seen(nf, 0);
+    for (const FaceDirectionConstraint& c : constraints)
+    {
+      if (!seen[c.Face])
+      {
+        seen[c.Face] = 1;
+        unique.push_back(c);
+      }
+    }
+  }
+  return SolvePrescribedUnique(n, index, unique, angles, error);
+}
+
+bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double>& index,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
+  std::string& error)
+{
+  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices(), nh = M.NumberOfHalfedges();
   std::vector<int> constrainedFaces;
   for (const FaceDirectionConstraint& c : constraints)
   {
@@ -664,7 +686,6 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
       const int a = constrainedFaces[i - 1], b = constrainedFaces[i];
       if (a == b || M.FaceComponent(a) != M.FaceComponent(b))
       {
-        cf->Paths.emplace_back();
         continue;
       }
       std::vector<int> path;
@@ -681,6 +702,7 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
         path = pathBetween(a, b);
       }
       cf->Paths.push_back(path);
+      cf->PathEnds.emplace_back(static_cast<int>(i - 1), static_cast<int>(i));
     }
     // Rows: interior vertices and boundary loops (a loop's dual cycle is the union of its
     // vertices' fans), all but the last of each component (they sum to zero).
@@ -827,16 +849,14 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
   }
   for (size_t i = 0; i < cf.Paths.size(); ++i)
   {
-    const FaceDirectionConstraint& a = constraints[i];
-    const FaceDirectionConstraint& c = constraints[i + 1];
+    const FaceDirectionConstraint& a = constraints[cf.PathEnds[i].first];
+    const FaceDirectionConstraint& c = constraints[cf.PathEnds[i].second];
     double hol = 0.0;
     for (int h : cf.Paths[i])
     {
       hol += Transport[h];
     }
-    b[row++] = cf.Paths[i].empty()
-      ? 0.0
-      : WrapSymmetric(AngleInFace(c.Face, c.Direction) - AngleInFace(a.Face, a.Direction) - hol, n);
+    b[row++] = WrapSymmetric(AngleInFace(c.Face, c.Direction) - AngleInFace(a.Face, a.Direction) - hol, n);
   }
   const Eigen::VectorXd lambda = cf.Solver.solve(b);
   const Eigen::VectorXd x = cf.InverseWeight.asDiagonal() * (cf.C.transpose() * lambda);

@@ -95,7 +95,8 @@ public:
   // vertices (0 by default: the field turns with the boundary). The field is
   // then transported over a spanning tree of faces. Indices must sum to the Euler characteristic
   // of each connected component (the error names the sum found and the sum required).
-  // Constraints (strokes) fix the relative holonomy between consecutive constrained faces.
+  // Constraints (strokes) fix the relative holonomy between consecutive constrained faces (a face
+  // constrained twice keeps its first constraint).
   // The factorization is kept while the constrained faces do not change: new singularities or
   // new stroke directions re-solve with it.
   bool SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
@@ -126,6 +127,9 @@ public:
 
 private:
   struct Factorization;
+  bool SolvePrescribedUnique(int n, const std::vector<double>& index,
+    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
+    std::string& error);
   void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
 
   const TriangleMesh& M;
