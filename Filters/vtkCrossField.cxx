@@ -44,6 +44,8 @@ namespace
 {
 // Spacing of the 3D samples of a stroke before snapping, in mean edge lengths.
 constexpr double StrokeSnapSpacing = 0.25;
+// A face a stroke crosses over less than this many mean edge lengths is not constrained.
+constexpr double MinimumCrossedLength = 0.1;
 }
 
 //------------------------------------------------------------------------------
@@ -243,20 +245,65 @@ int vtkCrossField::RequestData(vtkInformation* vtkNotUsed(request),
                                              "surface: ignored.");
         continue;
       }
+      // The stroke's own segments in space: each crossed face takes the direction of the
+      // segment closest to the piece inside it, projected onto the face (the traced pieces
+      // bend where the path is re-aimed near vertices; their direction is not used).
+      std::vector<gs::Vec3> polyline;
+      for (vtkIdType k = 0; k < npts; ++k)
+      {
+        double x[3];
+        strokes->GetPoints()->GetPoint(pts[k], x);
+        polyline.emplace_back(x[0], x[1], x[2]);
+      }
+      auto segmentDirection = [&](const gs::Vec3& m) {
+        double best = std::numeric_limits<double>::infinity();
+        gs::Vec3 direction(0, 0, 0);
+        for (size_t k = 0; k + 1 < polyline.size(); ++k)
+        {
+          const gs::Vec3 a = polyline[k], ab = polyline[k + 1] - polyline[k];
+          const double l2 = gs::Dot(ab, ab);
+          if (!(l2 > 0))
+          {
+            continue;
+          }
+          const double t = std::min(1.0, std::max(0.0, gs::Dot(m - a, ab) / l2));
+          const double d = gs::Norm(a + ab * t - m);
+          if (d < best)
+          {
+            best = d;
+            direction = ab;
+          }
+        }
+        return direction;
+      };
+      // Faces crossed over less than this length are not constrained (a stroke through a vertex
+      // grazes the faces around it).
+      const double minimumLength = MinimumCrossedLength * mesh.MeanEdgeLength();
+      std::vector<std::pair<int, double>> crossed; // face, length inside, in stroke order
+      std::vector<gs::Vec3> middles;
       for (const gs::CurvePiece& piece : gs::TraceSurfaceCurve(mesh, curve))
       {
-        const gs::Vec3 d = piece.B - piece.A;
-        if (gs::Norm(d) <= 1e-12 * mesh.MeanEdgeLength())
+        const double l = gs::Norm(piece.B - piece.A);
+        if (!crossed.empty() && crossed.back().first == piece.Face)
+        {
+          crossed.back().second += l;
+          continue;
+        }
+        crossed.emplace_back(piece.Face, l);
+        middles.push_back((piece.A + piece.B) * 0.5);
+      }
+      for (size_t k = 0; k < crossed.size(); ++k)
+      {
+        if (crossed[k].second < minimumLength)
         {
           continue;
         }
-        if (!constraints.empty() && constraints.back().Face == piece.Face)
+        const gs::Vec3 d = segmentDirection(middles[k]);
+        const gs::Vec3 normal = mesh.FaceNormal(crossed[k].first);
+        const gs::Vec3 tangent = d - normal * gs::Dot(d, normal);
+        if (gs::Norm(tangent) > 1e-9 * gs::Norm(d))
         {
-          constraints.back().Direction = constraints.back().Direction + d; // same face: merge
-        }
-        else
-        {
-          constraints.push_back({ piece.Face, d });
+          constraints.push_back({ crossed[k].first, tangent });
         }
       }
     }

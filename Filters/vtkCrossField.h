@@ -24,7 +24,9 @@
  * with the point array "Index" (multiples of 1/N; several points on one vertex add up). Used in
  * the Prescribed singularities mode only.
  * Input port 2 ("Strokes", optional, vtkPolyData): polylines drawn on or near the surface; the
- * field follows each stroke's direction in every triangle it crosses (hard constraints).
+ * field follows each stroke's direction in every triangle it crosses over at least a tenth of
+ * the mean edge length (hard constraints; the direction is that of the stroke's closest segment,
+ * projected onto the triangle).
  *
  * Properties: Symmetry (1, 2 or 4; default 4), Mode (default SMOOTHEST), CurvatureAlignment
  * (weight >= 0, default 0).
