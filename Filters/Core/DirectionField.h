@@ -18,6 +18,8 @@
 #include "TriangleMesh.h"
 #include "Vector.h"
 
+#include <Eigen/Core>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -130,6 +132,7 @@ private:
   bool SolvePrescribedUnique(int n, const std::vector<double>& index,
     const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
     std::string& error);
+  Eigen::VectorXd SmallestEigenvector(const Factorization& cache, int nf) const;
   void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
 
   const TriangleMesh& M;
