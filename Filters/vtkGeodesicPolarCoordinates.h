@@ -113,7 +113,7 @@ public:
   ///@}
 
   ///@{
-  /// How theta is defined. Only GEODESIC_DIRECTION (0, the default) in this version.
+  /// How theta is defined: GEODESIC_DIRECTION (0, the default) or ISO_CURVE_ARC_LENGTH (1).
   vtkSetMacro(AngleMode, int);
   vtkGetMacro(AngleMode, int);
   void SetAngleModeToGeodesicDirection() { this->SetAngleMode(GEODESIC_DIRECTION); }
