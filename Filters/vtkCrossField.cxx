@@ -31,11 +31,8 @@ vtkStandardNewMacro(vtkCrossField);
 
 // The converted mesh and the direction-field solver (with its factorizations), kept while the
 // input mesh is unchanged (same object, same modification time).
-struct vtkCrossField::Cache
+struct vtkCrossField::Cache : vtkSurfaceMeshConverter::Cached
 {
-  vtkPolyData* Input = nullptr;
-  vtkMTimeType InputTime = 0;
-  vtkSurfaceMeshConverter::Result Mesh;
   std::unique_ptr<vtkSurfacePointLocator> Locator;  // refers to Mesh; on demand
   std::unique_ptr<gs::DirectionFieldSolver> Solver; // refers to Mesh.Build.Mesh
 };
@@ -143,22 +140,9 @@ int vtkCrossField::RequestData(vtkInformation* vtkNotUsed(request),
   }
 
   // 2. The core mesh and solver, kept while the input is unchanged.
-  if (!this->MeshCache || this->MeshCache->Input != input ||
-    this->MeshCache->InputTime != input->GetMTime())
+  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
+  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
   {
-    this->MeshCache.reset(new Cache);
-    this->MeshCache->Input = input;
-    this->MeshCache->InputTime = input->GetMTime();
-    this->MeshCache->Mesh = vtkSurfaceMeshConverter::Convert(input);
-  }
-  Cache& cache = *this->MeshCache;
-  for (const std::string& warning : cache.Mesh.Warnings)
-  {
-    vtkWarningMacro("Input mesh: " << warning);
-  }
-  if (!cache.Mesh.Ok)
-  {
-    vtkErrorMacro("Invalid input mesh: " << cache.Mesh.Error);
     return 1;
   }
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;

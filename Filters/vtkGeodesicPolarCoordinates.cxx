@@ -33,11 +33,8 @@ vtkStandardNewMacro(vtkGeodesicPolarCoordinates);
 // The converted mesh and what is derived from it, kept while the input mesh is unchanged (same
 // object, same modification time), so that changing only the source, the radius or the
 // reference direction does not convert the mesh again.
-struct vtkGeodesicPolarCoordinates::Cache
+struct vtkGeodesicPolarCoordinates::Cache : vtkSurfaceMeshConverter::Cached
 {
-  vtkPolyData* Input = nullptr;
-  vtkMTimeType InputTime = 0;
-  vtkSurfaceMeshConverter::Result Mesh;
   std::unique_ptr<vtkSurfacePointLocator> Locator;         // refers to Mesh; on demand
   std::unique_ptr<gs::GeodesicPolarCoordinates> Polar;      // refers to Mesh.Build.Mesh
   std::shared_ptr<const gs::SaddleVertexGraph> Graph;        // the graph Polar uses (K >= 1)
@@ -152,22 +149,9 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   }
 
   // 2. The core mesh, converted once while the input is unchanged.
-  if (!this->MeshCache || this->MeshCache->Input != input ||
-    this->MeshCache->InputTime != input->GetMTime())
+  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
+  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
   {
-    this->MeshCache.reset(new Cache);
-    this->MeshCache->Input = input;
-    this->MeshCache->InputTime = input->GetMTime();
-    this->MeshCache->Mesh = vtkSurfaceMeshConverter::Convert(input);
-  }
-  Cache& cache = *this->MeshCache;
-  for (const std::string& warning : cache.Mesh.Warnings)
-  {
-    vtkWarningMacro("Input mesh: " << warning);
-  }
-  if (!cache.Mesh.Ok)
-  {
-    vtkErrorMacro("Invalid input mesh: " << cache.Mesh.Error);
     return 1;
   }
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;

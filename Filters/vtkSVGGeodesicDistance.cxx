@@ -36,11 +36,8 @@ vtkStandardNewMacro(vtkSVGGeodesicDistance);
 // object, same modification time), so that changing only the sources or parameters does not
 // redo them. The saddle vertex graph itself lives in vtkSaddleVertexGraphCache (shared by the
 // whole process); this only holds on to the one in use and the solver over it.
-struct vtkSVGGeodesicDistance::Cache
+struct vtkSVGGeodesicDistance::Cache : vtkSurfaceMeshConverter::Cached
 {
-  vtkPolyData* Input = nullptr;
-  vtkMTimeType InputTime = 0;
-  vtkSurfaceMeshConverter::Result Mesh;
   std::unique_ptr<gs::ExactGeodesicSolver> Exact;   // refers to Mesh.Build.Mesh; on demand
   std::unique_ptr<vtkSurfacePointLocator> Locator;  // refers to Mesh; on demand
   bool HashValid = false;
@@ -149,22 +146,9 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   const bool useGraph = this->Solver != EXACT;
 
   // 1. The core mesh, converted once while the input is unchanged.
-  if (!this->MeshCache || this->MeshCache->Input != input ||
-    this->MeshCache->InputTime != input->GetMTime())
+  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
+  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
   {
-    this->MeshCache.reset(new Cache);
-    this->MeshCache->Input = input;
-    this->MeshCache->InputTime = input->GetMTime();
-    this->MeshCache->Mesh = vtkSurfaceMeshConverter::Convert(input);
-  }
-  Cache& cache = *this->MeshCache;
-  for (const std::string& warning : cache.Mesh.Warnings)
-  {
-    vtkWarningMacro("Input mesh: " << warning);
-  }
-  if (!cache.Mesh.Ok)
-  {
-    vtkErrorMacro("Invalid input mesh: " << cache.Mesh.Error);
     return 1;
   }
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;

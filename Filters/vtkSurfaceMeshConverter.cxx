@@ -6,6 +6,7 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSetGet.h>
 #include <vtkTriangleFilter.h>
 
 #include <array>
@@ -123,4 +124,28 @@ vtkSurfaceMeshConverter::Result vtkSurfaceMeshConverter::Convert(vtkPolyData* in
   }
   result.Ok = true;
   return result;
+}
+
+bool vtkSurfaceMeshConverter::IsCurrent(const Cached& cache, vtkPolyData* input)
+{
+  return cache.Input == input && input && cache.InputTime == input->GetMTime();
+}
+
+vtkMTimeType vtkSurfaceMeshConverter::InputTime(vtkPolyData* input)
+{
+  return input ? input->GetMTime() : 0;
+}
+
+bool vtkSurfaceMeshConverter::Report(const Result& result, vtkObject* algorithm)
+{
+  for (const std::string& warning : result.Warnings)
+  {
+    vtkWarningWithObjectMacro(algorithm, "Input mesh: " << warning);
+  }
+  if (!result.Ok)
+  {
+    vtkErrorWithObjectMacro(algorithm, "Invalid input mesh: " << result.Error);
+    return false;
+  }
+  return true;
 }

@@ -13,10 +13,14 @@
 #include "TriangleMesh.h"
 
 #include <vtkSmartPointer.h>
+#include <vtkType.h>
+
+#include <memory>
 
 #include <string>
 #include <vector>
 
+class vtkObject;
 class vtkPolyData;
 
 class vtkSurfaceMeshConverter
@@ -37,6 +41,38 @@ public:
 
   // Converts `input`; never throws on bad input (Result::Ok false, Result::Error set).
   static Result Convert(vtkPolyData* input);
+
+  // A conversion kept while its input is unchanged (same object, same modification time). Each
+  // filter's cache derives from it and adds what the filter builds on the mesh.
+  struct Cached
+  {
+    vtkPolyData* Input = nullptr;
+    vtkMTimeType InputTime = 0;
+    Result Mesh;
+  };
+
+  // The cache for `input` as it is now: the kept one, or a new conversion (a new C, so that
+  // everything derived from the old mesh is dropped with it).
+  template <class C>
+  static C& Update(std::unique_ptr<C>& cache, vtkPolyData* input)
+  {
+    if (!cache || !IsCurrent(*cache, input))
+    {
+      cache.reset(new C);
+      cache->Input = input;
+      cache->InputTime = InputTime(input);
+      cache->Mesh = Convert(input);
+    }
+    return *cache;
+  }
+
+  // Emits the conversion's warnings and, if it failed, its error through `algorithm` (as
+  // vtkWarningMacro / vtkErrorMacro would); true when the mesh is usable.
+  static bool Report(const Result& result, vtkObject* algorithm);
+
+private:
+  static bool IsCurrent(const Cached& cache, vtkPolyData* input);
+  static vtkMTimeType InputTime(vtkPolyData* input);
 };
 
 #endif
