@@ -1005,22 +1005,6 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
   return true;
 }
 
-namespace
-{
-std::array<double, 3> BarycentricIn(const TriangleMesh& m, int f, const Vec3& p)
-{
-  const Vec3 a = m.Position(m.Face(f)[0]), b = m.Position(m.Face(f)[1]), c = m.Position(m.Face(f)[2]);
-  const Vec3 n = Cross(b - a, c - a);
-  const double nn = Dot(n, n);
-  if (!(nn > 0))
-  {
-    return { { 1.0 / 3, 1.0 / 3, 1.0 / 3 } };
-  }
-  const double wa = Dot(Cross(c - b, p - b), n) / nn;
-  const double wb = Dot(Cross(a - c, p - c), n) / nn;
-  return { { wa, wb, 1.0 - wa - wb } };
-}
-} // namespace
 
 Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double>& angles,
   const SurfacePoint& start, double initialAngle, double length, const std::vector<double>* indices,
@@ -1050,7 +1034,7 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
     x = M.Interpolate(f, start.Bary);
   }
   line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = BarycentricIn(M, f, x);
+  line.End.Bary = M.ClampedBarycentric(f, x);
   auto singularFace = [&](int face) {
     if (!indices)
     {
@@ -1124,7 +1108,7 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
     entry = t;
   }
   line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = BarycentricIn(M, f, x);
+  line.End.Bary = M.ClampedBarycentric(f, x);
   return line;
 }
 

@@ -668,15 +668,8 @@ SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta
     return SurfacePoint();
   }
   const Vec3 x = at->A + (at->B - at->A) * t;
-  const auto& f = M.Face(at->Face);
-  const Vec3 P0 = M.Position(f[0]), P1 = M.Position(f[1]), P2 = M.Position(f[2]);
-  const Vec3 n = Cross(P1 - P0, P2 - P0);
-  const double n2 = Dot(n, n);
-  const double w0 = std::max(0.0, Dot(Cross(P1 - x, P2 - x), n) / n2);
-  const double w1 = std::max(0.0, Dot(Cross(P2 - x, P0 - x), n) / n2);
-  const double w2 = std::max(0.0, 1.0 - w0 - w1);
-  const double sum = w0 + w1 + w2;
-  const SurfacePoint foot = SurfacePoint::InFace(at->Face, w0 / sum, w1 / sum, w2 / sum);
+  SurfacePoint foot = SurfacePoint::InFace(at->Face, 0, 0, 0);
+  foot.Bary = M.ClampedBarycentric(at->Face, x);
   if (delta == 0.0)
   {
     return foot;
@@ -713,15 +706,9 @@ SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) c
     return M.Position(a) + (M.Position(b) - M.Position(a)) * std::min(1.0, std::max(0.0, t));
   };
   auto toSurface = [&](int f, const Vec3& x) {
-    const auto& t = M.Face(f);
-    const Vec3 P0 = M.Position(t[0]), P1 = M.Position(t[1]), P2 = M.Position(t[2]);
-    const Vec3 n = Cross(P1 - P0, P2 - P0);
-    const double n2 = Dot(n, n);
-    const double w0 = std::max(0.0, Dot(Cross(P1 - x, P2 - x), n) / n2);
-    const double w1 = std::max(0.0, Dot(Cross(P2 - x, P0 - x), n) / n2);
-    const double w2 = std::max(0.0, 1.0 - w0 - w1);
-    const double sum = w0 + w1 + w2;
-    return SurfacePoint::InFace(f, w0 / sum, w1 / sum, w2 / sum);
+    SurfacePoint p = SurfacePoint::InFace(f, 0, 0, 0);
+    p.Bary = M.ClampedBarycentric(f, x);
+    return p;
   };
   // 1. Where the reference geodesic reaches the level.
   const GeodesicShot ray = ShootGeodesic(M, Source, Reference, c * 1.01 + M.MeanEdgeLength());

@@ -29,19 +29,6 @@ Vec3 Unit(const Vec3& v)
   return l > 0.0 ? v / l : v;
 }
 
-// Barycentric coordinates of x (lying in face f up to rounding), clamped and normalized.
-std::array<double, 3> Barycentric(const TriangleMesh& m, int f, const Vec3& x)
-{
-  const auto& t = m.Face(f);
-  const Vec3 P0 = m.Position(t[0]), P1 = m.Position(t[1]), P2 = m.Position(t[2]);
-  const Vec3 n = Cross(P1 - P0, P2 - P0);
-  const double n2 = Dot(n, n);
-  const double u0 = Dot(Cross(P1 - x, P2 - x), n) / n2;
-  const double u1 = Dot(Cross(P2 - x, P0 - x), n) / n2;
-  const double w0 = std::max(0.0, u0), w1 = std::max(0.0, u1), w2 = std::max(0.0, 1.0 - u0 - u1);
-  const double sum = w0 + w1 + w2;
-  return { { w0 / sum, w1 / sum, w2 / sum } };
-}
 } // namespace
 
 double TangentAngle(const TriangleMesh& m, const SurfacePoint& at, const Vec3& direction)
@@ -141,7 +128,7 @@ GeodesicShot ShootGeodesic(const TriangleMesh& m, const SurfacePoint& from, doub
       shot.Pieces.push_back({ f, x, y });
       shot.Length += exit < 0 ? 0.0 : remaining;
       shot.End = SurfacePoint::InFace(f, 0, 0, 0);
-      shot.End.Bary = Barycentric(m, f, y);
+      shot.End.Bary = m.ClampedBarycentric(f, y);
       return shot;
     }
     // Cross the edge, off its end points (a vertex would leave the next face ambiguous).
@@ -156,7 +143,7 @@ GeodesicShot ShootGeodesic(const TriangleMesh& m, const SurfacePoint& from, doub
     {
       shot.ReachedBoundary = true;
       shot.End = SurfacePoint::InFace(f, 0, 0, 0);
-      shot.End.Bary = Barycentric(m, f, y);
+      shot.End.Bary = m.ClampedBarycentric(f, y);
       return shot;
     }
     // Unfold: turn the direction about the edge from this face's plane into the next one's.
@@ -171,7 +158,7 @@ GeodesicShot ShootGeodesic(const TriangleMesh& m, const SurfacePoint& from, doub
     entry = t;
   }
   shot.End = SurfacePoint::InFace(f, 0, 0, 0);
-  shot.End.Bary = Barycentric(m, f, x);
+  shot.End.Bary = m.ClampedBarycentric(f, x);
   return shot;
 }
 

@@ -161,21 +161,14 @@ std::vector<SurfacePoint> SampleCurvePieces(
   std::vector<SurfacePoint> samples;
   for (const CurvePiece& piece : pieces)
   {
-    const auto& t = M.Face(piece.Face);
-    const Vec3 P0 = M.Position(t[0]), P1 = M.Position(t[1]), P2 = M.Position(t[2]);
-    const Vec3 n = Cross(P1 - P0, P2 - P0);
-    const double n2 = Dot(n, n);
     const double length = Norm(piece.B - piece.A);
     const int steps = spacing > 0.0 ? std::max(1, static_cast<int>(std::ceil(length / spacing))) : 1;
     for (int i = 0; i <= steps; ++i)
     {
       const Vec3 x = piece.A + (piece.B - piece.A) * (static_cast<double>(i) / steps);
-      // Barycentric coordinates of x in the face (clamped: x lies in it up to rounding).
-      const double u0 = Dot(Cross(P1 - x, P2 - x), n) / n2;
-      const double u1 = Dot(Cross(P2 - x, P0 - x), n) / n2;
-      const double w0 = std::max(0.0, u0), w1 = std::max(0.0, u1), w2 = std::max(0.0, 1.0 - u0 - u1);
-      const double sum = w0 + w1 + w2;
-      samples.push_back(SurfacePoint::InFace(piece.Face, w0 / sum, w1 / sum, w2 / sum));
+      SurfacePoint sample = SurfacePoint::InFace(piece.Face, 0, 0, 0);
+      sample.Bary = M.ClampedBarycentric(piece.Face, x);
+      samples.push_back(sample);
       if (length == 0.0)
       {
         break;

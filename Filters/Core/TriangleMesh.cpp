@@ -81,6 +81,19 @@ Vec3 TriangleMesh::Interpolate(int f, const std::array<double, 3>& b) const
   return Positions[t[0]] * b[0] + Positions[t[1]] * b[1] + Positions[t[2]] * b[2];
 }
 
+std::array<double, 3> TriangleMesh::ClampedBarycentric(int f, const Vec3& x) const
+{
+  const auto& t = Faces[f];
+  const Vec3 P0 = Positions[t[0]], P1 = Positions[t[1]], P2 = Positions[t[2]];
+  const Vec3 n = Cross(P1 - P0, P2 - P0);
+  const double n2 = Dot(n, n);
+  const double u0 = Dot(Cross(P1 - x, P2 - x), n) / n2;
+  const double u1 = Dot(Cross(P2 - x, P0 - x), n) / n2;
+  const double w0 = std::max(0.0, u0), w1 = std::max(0.0, u1), w2 = std::max(0.0, 1.0 - u0 - u1);
+  const double sum = w0 + w1 + w2;
+  return { { w0 / sum, w1 / sum, w2 / sum } };
+}
+
 void TriangleMesh::ComputeDerivedData()
 {
   const int nf = NumberOfFaces();

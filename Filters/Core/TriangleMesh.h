@@ -90,6 +90,9 @@ public:
 
   // Surface point helpers.
   Vec3 Interpolate(int f, const std::array<double, 3>& bary) const;
+  // The inverse of Interpolate for a point lying in face f up to rounding: its barycentric
+  // coordinates, clamped to the face and normalized to sum 1.
+  std::array<double, 3> ClampedBarycentric(int f, const Vec3& x) const;
 
 private:
   friend class TriangleMeshBuilder;
