@@ -24,18 +24,6 @@ double Seconds(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-double IndexSum(const gs::DirectionFieldSolver& s, int n, const std::vector<double>& angles)
-{
-  const gs::TriangleMesh& m = s.Mesh();
-  const std::vector<double> raw = s.VertexIndices(n, angles);
-  double sum = 0.0;
-  for (int v = 0; v < m.NumberOfVertices(); ++v)
-  {
-    sum += m.IsBoundaryVertex(v) ? raw[v] : std::round(raw[v] * n) / n;
-  }
-  return sum;
-}
-
 std::vector<gs::VertexSingularity> Spread(const gs::TriangleMesh& m, int offset)
 {
   const int chi = m.EulerCharacteristic();
@@ -112,25 +100,25 @@ int main(int argc, char* argv[])
       auto t0 = Clock::now();
       const bool ok = solver.SolveSmoothest(4, 0.0, {}, angles, error);
       free = Seconds(t0);
-      bad += !ok || std::abs(IndexSum(solver, 4, angles) - chi) > 1e-6;
+      bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
     }
     {
       gs::DirectionFieldSolver solver(mesh);
       auto t0 = Clock::now();
       bool ok = solver.SolveSmoothest(4, 0.0, stroke, angles, error);
       smoothFirst = Seconds(t0);
-      bad += !ok || std::abs(IndexSum(solver, 4, angles) - chi) > 1e-6;
+      bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
       t0 = Clock::now();
       ok = solver.SolveSmoothest(4, 0.0, turned, angles, error);
       smoothRe = Seconds(t0);
-      bad += !ok || std::abs(IndexSum(solver, 4, angles) - chi) > 1e-6;
+      bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
     }
     {
       gs::DirectionFieldSolver solver(mesh);
       auto t0 = Clock::now();
       bool ok = solver.SolvePrescribed(4, Spread(mesh, 0), {}, angles, error);
       presFirst = Seconds(t0);
-      bad += !ok || std::abs(IndexSum(solver, 4, angles) - chi) > 1e-6;
+      bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
       if (!ok)
       {
         std::fprintf(stderr, "%s\n", error.c_str());
@@ -138,7 +126,7 @@ int main(int argc, char* argv[])
       t0 = Clock::now();
       ok = solver.SolvePrescribed(4, Spread(mesh, 17), {}, angles, error);
       presRe = Seconds(t0);
-      bad += !ok || std::abs(IndexSum(solver, 4, angles) - chi) > 1e-6;
+      bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
     }
     std::string name = argv[i];
     name = name.substr(name.find_last_of('/') + 1);

@@ -348,71 +348,15 @@ int vtkCrossField::RequestData(vtkInformation* vtkNotUsed(request),
   output->GetCellData()->AddArray(cellDirection);
   output->GetCellData()->SetActiveVectors("Direction");
 
-  // Vertex directions: area-weighted average of the N-th powers in each vertex's tangent plane.
   const int nv = mesh.NumberOfVertices();
-  std::vector<gs::Vec3> vertexDirection(nv, gs::Vec3(0, 0, 0));
-  for (int v = 0; v < nv; ++v)
-  {
-    const std::vector<int> out = mesh.OutgoingHalfedges(v);
-    gs::Vec3 normal(0, 0, 0);
-    for (int h : out)
-    {
-      normal += mesh.FaceNormal(h / 3) * mesh.FaceArea(h / 3);
-    }
-    const double ln = gs::Norm(normal);
-    if (!(ln > 0))
-    {
-      continue;
-    }
-    normal = normal / ln;
-    gs::Vec3 x = mesh.Position(mesh.Destination(out[0])) - mesh.Position(v);
-    x = x - normal * gs::Dot(x, normal);
-    const double lx = gs::Norm(x);
-    if (!(lx > 0))
-    {
-      continue;
-    }
-    x = x / lx;
-    const gs::Vec3 y = gs::Cross(normal, x);
-    double re = 0.0, im = 0.0, area = 0.0;
-    for (int h : out)
-    {
-      const int f = h / 3;
-      const gs::Vec3 d = solver.DirectionInFace(f, angles[f]);
-      const double a = std::atan2(gs::Dot(d, y), gs::Dot(d, x));
-      re += mesh.FaceArea(f) * std::cos(n * a);
-      im += mesh.FaceArea(f) * std::sin(n * a);
-      area += mesh.FaceArea(f);
-    }
-    if (std::hypot(re, im) > 1e-9 * area)
-    {
-      const double a = std::atan2(im, re) / n;
-      vertexDirection[v] = x * std::cos(a) + y * std::sin(a);
-    }
-  }
+  const std::vector<gs::Vec3> vertexDirection = solver.VertexDirections(n, angles);
   const std::vector<double> rawIndex = solver.VertexIndices(n, angles);
   std::vector<double> index(nv);
   for (int v = 0; v < nv; ++v)
   {
-    index[v] = std::round(rawIndex[v] * n) / n;
+    index[v] = std::round(rawIndex[v] * n) / n; // boundary vertices: their turning, rounded
   }
-  double sum = 0.0;
-  for (int v = 0; v < nv; ++v)
-  {
-    if (!mesh.IsBoundaryVertex(v))
-    {
-      sum += index[v];
-    }
-  }
-  for (const auto& loop : mesh.BoundaryLoops())
-  {
-    double turning = 0.0;
-    for (int v : loop)
-    {
-      turning += rawIndex[v];
-    }
-    sum += std::round(turning * n) / n;
-  }
+  const double sum = solver.IndexSum(n, angles);
 
   const vtkIdType numberOfPoints = output->GetNumberOfPoints();
   vtkNew<vtkDoubleArray> pointDirection;

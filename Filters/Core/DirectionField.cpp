@@ -118,13 +118,10 @@ double DirectionFieldSolver::WrapSymmetric(double a, int n)
   return a - 0.5 * period;
 }
 
-void DirectionFieldSolver::ComputeCurvatureTarget(
-  int n, std::vector<double>& re, std::vector<double>& im) const
+std::vector<Vec3> DirectionFieldSolver::VertexNormals() const
 {
-  const int nf = M.NumberOfFaces();
-  const int nv = M.NumberOfVertices();
-  std::vector<Vec3> vn(nv, Vec3(0, 0, 0));
-  for (int f = 0; f < nf; ++f)
+  std::vector<Vec3> vn(M.NumberOfVertices(), Vec3(0, 0, 0));
+  for (int f = 0; f < M.NumberOfFaces(); ++f)
   {
     const Vec3 fn = M.FaceNormal(f) * M.FaceArea(f);
     for (int c = 0; c < 3; ++c)
@@ -137,6 +134,78 @@ void DirectionFieldSolver::ComputeCurvatureTarget(
     const double l = Norm(v);
     v = l > 0 ? v / l : v;
   }
+  return vn;
+}
+
+std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vector<double>& angles) const
+{
+  const int nv = M.NumberOfVertices();
+  const std::vector<Vec3> normals = VertexNormals();
+  std::vector<Vec3> directions(nv, Vec3(0, 0, 0));
+  for (int v = 0; v < nv; ++v)
+  {
+    const Vec3 normal = normals[v];
+    if (!(Norm(normal) > 0))
+    {
+      continue;
+    }
+    const std::vector<int> out = M.OutgoingHalfedges(v);
+    Vec3 x = M.Position(M.Destination(out[0])) - M.Position(v);
+    x = x - normal * Dot(x, normal);
+    const double lx = Norm(x);
+    if (!(lx > 0))
+    {
+      continue;
+    }
+    x = x / lx;
+    const Vec3 y = Cross(normal, x);
+    double re = 0.0, im = 0.0, area = 0.0;
+    for (int h : out)
+    {
+      const int f = TriangleMesh::FaceOf(h);
+      const Vec3 d = DirectionInFace(f, angles[f]);
+      const double a = std::atan2(Dot(d, y), Dot(d, x));
+      re += M.FaceArea(f) * std::cos(n * a);
+      im += M.FaceArea(f) * std::sin(n * a);
+      area += M.FaceArea(f);
+    }
+    if (std::hypot(re, im) > 1e-9 * area)
+    {
+      const double a = std::atan2(im, re) / n;
+      directions[v] = x * std::cos(a) + y * std::sin(a);
+    }
+  }
+  return directions;
+}
+
+double DirectionFieldSolver::IndexSum(int n, const std::vector<double>& angles) const
+{
+  const std::vector<double> raw = VertexIndices(n, angles);
+  double sum = 0.0;
+  for (int v = 0; v < M.NumberOfVertices(); ++v)
+  {
+    if (!M.IsBoundaryVertex(v))
+    {
+      sum += std::round(raw[v] * n) / n;
+    }
+  }
+  for (const auto& loop : M.BoundaryLoops())
+  {
+    double turning = 0.0;
+    for (int v : loop)
+    {
+      turning += raw[v];
+    }
+    sum += std::round(turning * n) / n;
+  }
+  return sum;
+}
+
+void DirectionFieldSolver::ComputeCurvatureTarget(
+  int n, std::vector<double>& re, std::vector<double>& im) const
+{
+  const int nf = M.NumberOfFaces();
+  const std::vector<Vec3> vn = VertexNormals();
   re.assign(nf, 0.0);
   im.assign(nf, 0.0);
   double total = 0.0, area = 0.0;

@@ -121,6 +121,15 @@ public:
     double initialAngle, double length, const std::vector<double>* indices = nullptr,
     double maxTurn = -1.0) const;
 
+  // One direction per vertex: the area-weighted average of the N-th powers of the adjacent
+  // faces' directions, taken in the vertex's tangent plane (normal: area-weighted face normals),
+  // back to a unit vector; zero where they cancel (at singularities).
+  std::vector<Vec3> VertexDirections(int n, const std::vector<double>& angles) const;
+
+  // Interior indices rounded to multiples of 1/N plus, for every boundary loop, its turning
+  // (the sum of its vertices' indices) rounded to a multiple of 1/N: the Euler characteristic.
+  double IndexSum(int n, const std::vector<double>& angles) const;
+
   // Smoothness energy sum_e w_e |u_g - r_e u_f|^2 / sum_f A_f with u = exp(i N angle).
   double Energy(int n, const std::vector<double>& angles) const;
 
@@ -133,6 +142,7 @@ private:
     const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
     std::string& error);
   Eigen::VectorXd SmallestEigenvector(const Factorization& cache, int nf) const;
+  std::vector<Vec3> VertexNormals() const;
   void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
 
   const TriangleMesh& M;

@@ -119,6 +119,7 @@ TEST(DirectionField, PoincareHopfOnClosedMeshes)
       ExpectIntegerIndices(solver, n, angles);
       const std::vector<double> index = solver.RoundedVertexIndices(n, angles);
       EXPECT_NEAR(Sum(index), m->EulerCharacteristic(), 1e-9) << "N = " << n;
+      EXPECT_NEAR(solver.IndexSum(n, angles), m->EulerCharacteristic(), 1e-9) << "N = " << n;
       // The smoothest field has no singularity of index beyond one quantum (generic case).
       for (int v = 0; v < m->NumberOfVertices(); ++v)
       {
@@ -154,6 +155,14 @@ TEST(DirectionField, FlatDiscIsConstantAndBoundaryConventionHolds)
     const std::vector<double> index = solver.RoundedVertexIndices(n, angles);
     EXPECT_EQ(CountSingular(disc, index), 0);
     EXPECT_NEAR(Sum(index), 1.0, 1e-9); // boundary loop: the tangent turns once
+    EXPECT_NEAR(solver.IndexSum(n, angles), 1.0, 1e-9);
+    // Vertex directions of a constant field: that field, unit, at every vertex.
+    for (const gs::Vec3& d : solver.VertexDirections(n, angles))
+    {
+      EXPECT_NEAR(gs::Norm(d), 1.0, 1e-9);
+      const double a = std::atan2(gs::Cross(d0, d).z, gs::Dot(d0, d));
+      EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(a, n), 0.0, 1e-6);
+    }
   }
 }
 
