@@ -270,24 +270,11 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   std::shared_ptr<const gs::SaddleVertexGraph> graph;
   if (this->K >= 1)
   {
-    if (!cache.HashValid)
-    {
-      cache.Hash = gs::SaddleVertexGraph::HashMesh(mesh);
-      cache.HashValid = true;
-    }
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::Get(
-      mesh, cache.Hash, this->K, std::string(), [this](double fraction) {
-        this->UpdateProgress(0.3 + 0.4 * fraction);
-        return !this->CheckAbort();
-      });
-    if (found.Aborted)
-    {
-      return 1;
-    }
+    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
+      this, mesh, cache.Hash, cache.HashValid, this->K, std::string(), 0.3, 0.4);
     if (!found.Graph)
     {
-      vtkErrorMacro("Saddle vertex graph: " << found.Error);
-      return 1;
+      return 1; // aborted, or the error is reported
     }
     graph = found.Graph;
   }

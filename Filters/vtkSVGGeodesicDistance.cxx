@@ -253,29 +253,11 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkSaddleVertexGraphCache::Origin graphOrigin = vtkSaddleVertexGraphCache::Origin::Memory;
   if (useGraph)
   {
-    if (!cache.HashValid)
-    {
-      cache.Hash = gs::SaddleVertexGraph::HashMesh(mesh);
-      cache.HashValid = true;
-    }
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::Get(mesh,
-      cache.Hash, this->K, this->CacheFileName, [this](double fraction) {
-        this->UpdateProgress(0.1 + 0.7 * fraction);
-        return !this->CheckAbort();
-      });
-    for (const std::string& warning : found.Warnings)
-    {
-      vtkWarningMacro("Saddle vertex graph (CacheFileName " << this->CacheFileName
-                                                           << "): " << warning);
-    }
-    if (found.Aborted)
-    {
-      return 1;
-    }
+    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
+      this, mesh, cache.Hash, cache.HashValid, this->K, this->CacheFileName, 0.1, 0.7);
     if (!found.Graph)
     {
-      vtkErrorMacro("Saddle vertex graph: " << found.Error);
-      return 1;
+      return 1; // aborted, or the error is reported
     }
     graphOrigin = found.From;
     if (found.Graph != cache.Graph || !cache.SVG)

@@ -1,5 +1,8 @@
 #include "vtkSaddleVertexGraphCache.h"
 
+#include <vtkAlgorithm.h>
+#include <vtkSetGet.h>
+
 #include <algorithm>
 #include <deque>
 #include <filesystem>
@@ -236,4 +239,29 @@ std::size_t vtkSaddleVertexGraphCache::NumberOfGraphs()
   Store& store = TheStore();
   std::lock_guard<std::mutex> lock(store.Mutex);
   return store.Recent.size();
+}
+
+vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::GetFor(vtkAlgorithm* algorithm,
+  const gs::TriangleMesh& mesh, std::uint64_t& hash, bool& hashValid, int k,
+  const std::string& fileName, double progressStart, double progressSpan)
+{
+  if (!hashValid)
+  {
+    hash = gs::SaddleVertexGraph::HashMesh(mesh);
+    hashValid = true;
+  }
+  Result found = Get(mesh, hash, k, fileName, [=](double fraction) {
+    algorithm->UpdateProgress(progressStart + progressSpan * fraction);
+    return !algorithm->CheckAbort();
+  });
+  for (const std::string& warning : found.Warnings)
+  {
+    vtkWarningWithObjectMacro(algorithm,
+      "Saddle vertex graph (CacheFileName " << fileName << "): " << warning);
+  }
+  if (!found.Graph && !found.Aborted)
+  {
+    vtkErrorWithObjectMacro(algorithm, "Saddle vertex graph: " << found.Error);
+  }
+  return found;
 }
