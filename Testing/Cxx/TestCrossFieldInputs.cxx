@@ -7,6 +7,8 @@
 //  - Warnings: Singularities in the Smoothest mode, CurvatureAlignment with N = 1, quads.
 #include "vtkCrossField.h"
 
+#include "FilterTestSupport.h"
+
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -28,35 +30,15 @@
 #include <string>
 #include <vector>
 
+using gs_test::Check;
+using gs_test::Failures;
+using gs_test::Mentions;
+using gs_test::MessageRecorder;
+
 namespace
 {
-int Failures = 0;
-void Check(bool condition, const std::string& test, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED " << test << ": " << what << "\n";
-    ++Failures;
-  }
-}
 
-class MessageRecorder : public vtkCommand
-{
-public:
-  static MessageRecorder* New() { return new MessageRecorder; }
-  void Execute(vtkObject*, unsigned long event, void* callData) override
-  {
-    const std::string text = callData ? static_cast<const char*>(callData) : "";
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings).push_back(text);
-  }
-  std::vector<std::string> Errors, Warnings;
-};
 
-bool Mentions(const std::vector<std::string>& messages, const std::string& keyword)
-{
-  return std::any_of(messages.begin(), messages.end(),
-    [&](const std::string& m) { return m.find(keyword) != std::string::npos; });
-}
 
 vtkSmartPointer<vtkPolyData> Sphere()
 {

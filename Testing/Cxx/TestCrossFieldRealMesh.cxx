@@ -5,7 +5,7 @@
 // singularities marked.
 #include "vtkCrossField.h"
 
-#include "MeshIO.h"
+#include "FilterTestSupport.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -48,32 +48,6 @@ void Check(bool ok, const std::string& what)
   }
 }
 
-vtkSmartPointer<vtkPolyData> Load(const std::string& file)
-{
-  gs::TriangleSoup soup;
-  std::string error;
-  if (!gs::ReadMesh(file, soup, error))
-  {
-    std::cerr << error << "\n";
-    return nullptr;
-  }
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (const gs::Vec3& p : soup.Points)
-  {
-    points->InsertNextPoint(p.x, p.y, p.z);
-  }
-  vtkNew<vtkCellArray> triangles;
-  for (const auto& t : soup.Triangles)
-  {
-    const vtkIdType ids[3] = { t[0], t[1], t[2] };
-    triangles->InsertNextCell(3, ids);
-  }
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->SetPoints(points);
-  mesh->SetPolys(triangles);
-  return mesh;
-}
 
 double FieldValue(vtkPolyData* output, const char* name)
 {
@@ -109,7 +83,7 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkPolyData> shownField;
   for (size_t m = 0; m < meshFiles.size(); ++m)
   {
-    vtkSmartPointer<vtkPolyData> mesh = Load(meshFiles[m]);
+    vtkSmartPointer<vtkPolyData> mesh = gs_test::ReadPolyData(meshFiles[m]);
     if (!mesh)
     {
       return 1;

@@ -12,6 +12,8 @@
 //  - The converted mesh is cached while the input is unchanged; abort gives an empty output.
 #include "vtkGeodesicPolarCoordinates.h"
 
+#include "FilterTestSupport.h"
+
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
@@ -34,41 +36,19 @@
 #include <string>
 #include <vector>
 
+using gs_test::Check;
+using gs_test::Failures;
+using gs_test::Mentions;
+using gs_test::MessageRecorder;
+
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 constexpr double Tolerance = 1e-9;
 
-int Failures = 0;
 
-void Check(bool condition, const std::string& test, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED " << test << ": " << what << "\n";
-    ++Failures;
-  }
-}
 
-// Records the error and warning messages an object emits.
-class MessageRecorder : public vtkCommand
-{
-public:
-  static MessageRecorder* New() { return new MessageRecorder; }
-  void Execute(vtkObject*, unsigned long event, void* callData) override
-  {
-    const std::string text = callData ? static_cast<const char*>(callData) : "";
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings).push_back(text);
-  }
-  std::vector<std::string> Errors;
-  std::vector<std::string> Warnings;
-};
 
-bool Mentions(const std::vector<std::string>& messages, const std::string& keyword)
-{
-  return std::any_of(messages.begin(), messages.end(),
-    [&](const std::string& m) { return m.find(keyword) != std::string::npos; });
-}
 
 struct Parameters
 {

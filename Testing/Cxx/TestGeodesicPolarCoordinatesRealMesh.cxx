@@ -5,7 +5,7 @@
 #include "vtkGeodesicPolarCoordinates.h"
 #include "vtkSVGGeodesicDistance.h"
 
-#include "MeshIO.h"
+#include "FilterTestSupport.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -67,28 +67,11 @@ int main(int argc, char* argv[])
       meshFile = argv[i + 1];
     }
   }
-  gs::TriangleSoup soup;
-  std::string error;
-  if (!gs::ReadMesh(meshFile, soup, error))
+  vtkSmartPointer<vtkPolyData> mesh = gs_test::ReadPolyData(meshFile);
+  if (!mesh)
   {
-    std::cerr << error << "\n";
     return 1;
   }
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (const gs::Vec3& p : soup.Points)
-  {
-    points->InsertNextPoint(p.x, p.y, p.z);
-  }
-  vtkNew<vtkCellArray> triangles;
-  for (const auto& t : soup.Triangles)
-  {
-    const vtkIdType ids[3] = { t[0], t[1], t[2] };
-    triangles->InsertNextCell(3, ids);
-  }
-  vtkNew<vtkPolyData> mesh;
-  mesh->SetPoints(points);
-  mesh->SetPolys(triangles);
 
   // A source on the mannequin's chest, a disc of about a tenth of the model.
   const vtkIdType source = 4000;

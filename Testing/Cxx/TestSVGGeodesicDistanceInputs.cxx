@@ -5,6 +5,8 @@
 // result is exact too).
 #include "vtkSVGGeodesicDistance.h"
 
+#include "FilterTestSupport.h"
+
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
@@ -26,21 +28,13 @@
 #include <string>
 #include <vector>
 
+using gs_test::Check;
+using gs_test::Failures;
+using gs_test::Mentions;
+using gs_test::MessageRecorder;
+
 namespace
 {
-// Records the error and warning messages an object emits.
-class MessageRecorder : public vtkCommand
-{
-public:
-  static MessageRecorder* New() { return new MessageRecorder; }
-  void Execute(vtkObject*, unsigned long event, void* callData) override
-  {
-    const std::string text = callData ? static_cast<const char*>(callData) : "";
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings).push_back(text);
-  }
-  std::vector<std::string> Errors;
-  std::vector<std::string> Warnings;
-};
 
 struct RunResult
 {
@@ -129,16 +123,7 @@ vtkSmartPointer<vtkPolyData> MakeSquare(int n, bool triangulate)
   return mesh;
 }
 
-int Failures = 0;
 
-void Check(bool condition, const std::string& test, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED " << test << ": " << what << "\n";
-    ++Failures;
-  }
-}
 
 // A malformed input: an error mentioning `keyword`, an empty output, with every solver.
 void ExpectRejected(const std::string& name, vtkPolyData* mesh, const std::vector<vtkIdType>& ids,

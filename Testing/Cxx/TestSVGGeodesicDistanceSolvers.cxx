@@ -10,6 +10,8 @@
 //
 // Usage: TestSVGGeodesicDistanceSolvers --data <Data dir> --temp <writable dir>
 #include "vtkSVGGeodesicDistance.h"
+
+#include "FilterTestSupport.h"
 #include "vtkSaddleVertexGraphCache.h"
 
 #include <vtkAlgorithm.h>
@@ -38,34 +40,17 @@
 #include <string>
 #include <vector>
 
+using gs_test::Check;
+using gs_test::Failures;
+using gs_test::Mentions;
+using gs_test::MessageRecorder;
+
 namespace
 {
 std::string DataDir = "Data";
 std::string TempDir = ".";
-int Failures = 0;
 
-void Check(bool condition, const std::string& test, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED " << test << ": " << what << "\n";
-    ++Failures;
-  }
-}
 
-// Records the error and warning messages an object emits.
-class MessageRecorder : public vtkCommand
-{
-public:
-  static MessageRecorder* New() { return new MessageRecorder; }
-  void Execute(vtkObject*, unsigned long event, void* callData) override
-  {
-    const std::string text = callData ? static_cast<const char*>(callData) : "";
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings).push_back(text);
-  }
-  std::vector<std::string> Errors;
-  std::vector<std::string> Warnings;
-};
 
 // Sets AbortExecute at the first progress report inside the graph build (0.1 .. 0.8).
 class AbortDuringBuild : public vtkCommand
@@ -369,17 +354,6 @@ bool FileExists(const std::string& path)
   return static_cast<bool>(in);
 }
 
-bool Mentions(const std::vector<std::string>& messages, const std::string& word)
-{
-  for (const std::string& m : messages)
-  {
-    if (m.find(word) != std::string::npos)
-    {
-      return true;
-    }
-  }
-  return false;
-}
 
 void TestGraphCache()
 {
