@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <random>
 
 namespace gs
@@ -18,6 +17,16 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 constexpr double TwoPi = 2.0 * Pi;
+
+bool ValidSymmetry(int n, std::string& error)
+{
+  if (n != 1 && n != 2 && n != 4)
+  {
+    error = "symmetry must be 1, 2 or 4 (got " + std::to_string(n) + ")";
+    return false;
+  }
+  return true;
+}
 
 double WrapPi(double a)
 {
@@ -40,7 +49,6 @@ struct DirectionFieldSolver::Factorization
   Eigen::SparseMatrix<double> Bfc; // free rows x constrained columns
   Eigen::SparseMatrix<double> Bff; // free rows x free columns (the factorized matrix)
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
-  bool Ok = false;
 };
 
 struct DirectionFieldSolver::ConnectionFactorization
@@ -316,10 +324,6 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
     {
       ritz += basis[i] * y[i];
     }
-    if (std::getenv("GS_DEBUG_ITERATIONS"))
-    {
-      std::fprintf(stderr, "ritz %d: %.15g\n", it, value);
-    }
     if (it > 1 && std::abs(value - previous) <= 1e-10 * std::abs(value))
     {
       break;
@@ -340,9 +344,8 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   std::string& error)
 {
   const int nf = M.NumberOfFaces();
-  if (n != 1 && n != 2 && n != 4)
+  if (!ValidSymmetry(n, error))
   {
-    error = "symmetry must be 1, 2 or 4 (got " + std::to_string(n) + ")";
     return false;
   }
   if (!(alignment >= 0.0) || !std::isfinite(alignment))
@@ -496,13 +499,8 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     {
       Cache->Solver.compute(bff);
       Cache->Bff = bff;
-      Cache->Ok = Cache->Solver.info() == Eigen::Success;
     }
-    else
-    {
-      Cache->Ok = true;
-    }
-    if (!Cache->Ok)
+    if (nfree > 0 && Cache->Solver.info() != Eigen::Success)
     {
       Cache.reset();
       error = "factorization of the connection Laplacian failed";
@@ -620,10 +618,6 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
           }
         }
         u = next;
-        if (std::getenv("GS_DEBUG_ITERATIONS"))
-        {
-          std::fprintf(stderr, "inverse iteration %d: quotient %.12g\n", it, quotient);
-        }
         if (it > 2 && std::abs(quotient - previousQuotient) <= 1e-6 * std::abs(quotient))
         {
           break;
@@ -666,9 +660,8 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
   std::string& error)
 {
   const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
-  if (n != 1 && n != 2 && n != 4)
+  if (!ValidSymmetry(n, error))
   {
-    error = "symmetry must be 1, 2 or 4 (got " + std::to_string(n) + ")";
     return false;
   }
   if (nf == 0)
