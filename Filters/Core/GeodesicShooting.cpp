@@ -23,12 +23,6 @@ Vec3 InFaceDirection(const TriangleMesh& m, int f, const Vec3& zero, double a)
   return zero * std::cos(a) + Cross(n, zero) * std::sin(a);
 }
 
-Vec3 Unit(const Vec3& v)
-{
-  const double l = Norm(v);
-  return l > 0.0 ? v / l : v;
-}
-
 } // namespace
 
 double TangentAngle(const TriangleMesh& m, const SurfacePoint& at, const Vec3& direction)

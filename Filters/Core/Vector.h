@@ -45,6 +45,12 @@ inline Vec3 Cross(const Vec3& a, const Vec3& b)
   return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
 }
 inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
+/// v / |v| (v itself when it is zero).
+inline Vec3 Unit(const Vec3& v)
+{
+  const double l = Norm(v);
+  return l > 0.0 ? v / l : v;
+}
 inline bool IsFinite(const Vec3& a)
 {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);

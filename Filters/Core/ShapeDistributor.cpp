@@ -1,0 +1,1217 @@
+#include "ShapeDistributor.h"
+
+#include "DirectionField.h"
+#include "GeodesicPolarCoordinates.h"
+#include "GeodesicShooting.h"
+#include "SaddleVertexGraph.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gs
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+constexpr double TwoPi = 2.0 * Pi;
+
+std::uint64_t Mix(std::uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+// Counter-based generator: the stream of (seed, kind, round, index) is independent of threads.
+struct Random
+{
+  std::uint64_t State;
+  Random(std::uint64_t seed, std::uint64_t kind, std::uint64_t round, std::uint64_t index)
+    : State(Mix(Mix(Mix(seed ^ Mix(kind)) ^ round) ^ index))
+  {
+  }
+  double Uniform()
+  {
+    State = Mix(State);
+    return static_cast<double>(State >> 11) * (1.0 / 9007199254740992.0);
+  }
+};
+
+Vec3 Rotate(const Vec3& t, const Vec3& n, double angle)
+{
+  return t * std::cos(angle) + Cross(n, t) * std::sin(angle);
+}
+
+int ThreadCount(int requested)
+{
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+int ThreadId()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+struct ChartEntry
+{
+  int V;
+  float X, Y;
+};
+
+// Log-map coordinates of the vertices about one part centre (x axis: the part's axis), sorted by
+// vertex.
+struct Chart
+{
+  std::vector<ChartEntry> Entries;
+  const ChartEntry* Find(int v) const
+  {
+    auto it = std::lower_bound(Entries.begin(), Entries.end(), v,
+      [](const ChartEntry& e, int value) { return e.V < value; });
+    return it != Entries.end() && it->V == v ? &*it : nullptr;
+  }
+};
+
+void SortUnique(std::vector<int>& v)
+{
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+} // namespace
+
+struct ShapeDistributor::Impl
+{
+  const TriangleMesh& M;
+  const SaddleVertexGraph* G;
+
+  SafeDistanceTables T;
+  ShapeDistributionOptions O;
+  bool CircleMode = false;
+  std::vector<Vec3> FaceDirection; // unit, in the face plane; zero: none
+  std::vector<double> Density;     // per vertex (empty: 1)
+  std::vector<double> FaceCdf;     // cumulative face weights
+  double MaxEdge = 0.0;
+  double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
+  std::vector<double> ClassCdf;
+  std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
+
+  std::unique_ptr<DirectionFieldSolver> Field;
+  std::vector<double> FieldAngles;
+  std::vector<std::unique_ptr<GeodesicPolarCoordinates>> Engines;
+
+  struct Record
+  {
+    PlacedShape S;
+    std::vector<Chart> Charts; // one per part (empty before the chart step)
+    bool Valid = false;
+    bool Rejected = false;
+    std::vector<int> Conflicts; // higher-priority candidates of the round it conflicts with
+  };
+  std::vector<Record> Accepted;
+  std::vector<PlacedShape> Placed;
+  std::vector<std::vector<int>> CoverIndex;  // vertex -> accepted shapes whose chart holds it
+  std::vector<std::vector<int>> CentreIndex; // vertex -> accepted shapes with a part centre in a face of it
+
+  Impl(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
+    : M(mesh)
+    , G(graph)
+  {
+  }
+
+  double PartRadius(int part) const
+  {
+    return CircleMode ? T.Classes[part].Radius : T.Parts[part].Radius;
+  }
+
+  double SafeDistance(int a, int b, double alphaA, double alphaB) const
+  {
+    if (CircleMode)
+    {
+      return T.Classes[a].Radius + T.Classes[b].Radius;
+    }
+    return T.Lookup(a, b, alphaA, alphaB);
+  }
+
+  double ChartRadius(const PlacedShape& s, const PlacedPart& p) const
+  {
+    return (PartRadius(p.Part) + RMax) * O.ShapeSize * s.Scale * (1.0 + O.SafetyMargin) + MaxEdge;
+  }
+
+  double DensityAt(const SurfacePoint& p) const
+  {
+    if (Density.empty())
+    {
+      return 1.0;
+    }
+    const auto& f = M.Face(p.Face);
+    return p.Bary[0] * Density[f[0]] + p.Bary[1] * Density[f[1]] + p.Bary[2] * Density[f[2]];
+  }
+
+  // Point at arc length u along curve pieces (clamped), with the unit tangent there.
+  static bool PointOnCurve(const TriangleMesh& m, const std::vector<CurvePiece>& curve, double u,
+    int& face, Vec3& x, Vec3& tangent)
+  {
+    double walked = 0.0;
+    const CurvePiece* last = nullptr;
+    for (const CurvePiece& piece : curve)
+    {
+      const double len = Norm(piece.B - piece.A);
+      if (len <= 0.0)
+      {
+        continue;
+      }
+      last = &piece;
+      if (walked + len >= u)
+      {
+        const double t = std::max(0.0, (u - walked) / len);
+        face = piece.Face;
+        x = piece.A + (piece.B - piece.A) * t;
+        tangent = (piece.B - piece.A) * (1.0 / len);
+        return true;
+      }
+      walked += len;
+    }
+    if (!last)
+    {
+      return false;
+    }
+    (void)m;
+    face = last->Face;
+    x = last->B;
+    tangent = Unit(last->B - last->A);
+    return true;
+  }
+
+  // From curve point (face, x) with tangent t: `across` to the left (negative: right) along the
+  // perpendicular geodesic. Returns the end and the transported tangent.
+  bool Across(int face, const Vec3& x, const Vec3& t, double across, SurfacePoint& end,
+    Vec3& endTangent, bool* boundary = nullptr) const
+  {
+    end = SurfacePoint::InFace(face, 0, 0, 0);
+    end.Bary = M.ClampedBarycentric(face, x);
+    endTangent = t;
+    if (std::abs(across) <= 0.0)
+    {
+      return true;
+    }
+    const double side = across > 0.0 ? 1.0 : -1.0;
+    const double angle = TangentAngle(M, end, t);
+    if (!std::isfinite(angle))
+    {
+      return false;
+    }
+    const GeodesicShot shot = ShootGeodesic(M, end, angle + side * 0.5 * Pi, std::abs(across));
+    if (boundary)
+    {
+      *boundary = shot.ReachedBoundary;
+    }
+    end = shot.End;
+    Vec3 dir = Unit(Rotate(t, M.FaceNormal(face), side * 0.5 * Pi));
+    for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
+    {
+      if (Norm(it->B - it->A) > 0.0)
+      {
+        dir = Unit(it->B - it->A);
+        break;
+      }
+    }
+    const Vec3 n = M.FaceNormal(end.Face);
+    endTangent = Unit(Rotate(dir, n, -side * 0.5 * Pi));
+    return true;
+  }
+
+  // Builds a candidate's geometry at `centre` (a face point) for class `cls`: the direction,
+  // the curve of a long class and the parts. False when it does not fit (curve too short).
+  bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s) const
+  {
+    s = PlacedShape();
+    s.ClassId = cls;
+    s.Centre = centre;
+    s.Scale = DensityAt(centre);
+    if (!(s.Scale > 0.0) || !std::isfinite(s.Scale))
+    {
+      return false;
+    }
+    const int f = centre.Face;
+    s.Position = M.Interpolate(f, centre.Bary);
+    s.Normal = M.FaceNormal(f);
+    Vec3 dir = FaceDirection[f];
+    const double spin = rng.Uniform();
+    if (!(Norm(dir) > 0.0))
+    {
+      const auto& v = M.Face(f);
+      dir = Rotate(Unit(M.Position(v[1]) - M.Position(v[0])), s.Normal, TwoPi * spin);
+    }
+    const SafeDistanceClass& c = T.Classes[cls];
+    const double scale = O.ShapeSize * s.Scale;
+    if (c.Parts.size() <= 1)
+    {
+      s.Direction = dir;
+    }
+    else
+    {
+      // The major axis follows the field: trace the streamline both ways.
+      const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
+      s.Direction = Unit(Rotate(dir, s.Normal, -phiM));
+      const int n = O.Symmetry == 1 ? 2 : O.Symmetry;
+      const double a0 = Field->AngleInFace(f, dir);
+      const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
+      const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
+      const Streamline behind = Field->TraceStreamline(n, FieldAngles, centre, a0 + Pi, backward);
+      if (ahead.Length < forward * (1.0 - 1e-9) || behind.Length < backward * (1.0 - 1e-9))
+      {
+        return false;
+      }
+      for (auto it = behind.Pieces.rbegin(); it != behind.Pieces.rend(); ++it)
+      {
+        s.Curve.push_back(CurvePiece{ it->Face, it->B, it->A });
+      }
+      s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
+      s.CurveCentre = behind.Length;
+    }
+    if (CircleMode || c.Parts.size() <= 1)
+    {
+      PlacedPart p;
+      p.Part = CircleMode ? cls : c.Parts[0];
+      p.Centre = centre;
+      p.Position = s.Position;
+      p.Axis = s.Direction;
+      s.Parts.push_back(p);
+      return true;
+    }
+    const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
+    for (int part : c.Parts)
+    {
+      const Vec2& pc = T.Parts[part].Centre;
+      const double along = Dot(pc, c.MajorAxis) * scale;
+      const double across = Cross(c.MajorAxis, pc) * scale;
+      int face = -1;
+      Vec3 x, tangent;
+      if (!PointOnCurve(M, s.Curve, s.CurveCentre + along, face, x, tangent))
+      {
+        return false;
+      }
+      PlacedPart p;
+      p.Part = part;
+      Vec3 endTangent;
+      bool boundary = false;
+      if (!Across(face, x, tangent, across, p.Centre, endTangent, &boundary) || boundary)
+      {
+        return false;
+      }
+      p.Position = M.Interpolate(p.Centre.Face, p.Centre.Bary);
+      p.Axis = Unit(Rotate(endTangent, M.FaceNormal(p.Centre.Face), -phiM));
+      s.Parts.push_back(p);
+    }
+    return true;
+  }
+
+  SurfacePoint RandomPoint(Random& rng) const
+  {
+    const double u = rng.Uniform() * FaceCdf.back();
+    int f = static_cast<int>(std::upper_bound(FaceCdf.begin(), FaceCdf.end(), u) - FaceCdf.begin());
+    f = std::min(f, M.NumberOfFaces() - 1);
+    while (f > 0 && FaceCdf[f] == FaceCdf[f - 1])
+    {
+      --f; // never a zero-weight face
+    }
+    double a = rng.Uniform(), b = rng.Uniform();
+    if (a + b > 1.0)
+    {
+      a = 1.0 - a;
+      b = 1.0 - b;
+    }
+    return SurfacePoint::InFace(f, 1.0 - a - b, a, b);
+  }
+
+  int RandomClass(Random& rng) const
+  {
+    const double u = rng.Uniform() * ClassCdf.back();
+    int k = static_cast<int>(std::upper_bound(ClassCdf.begin(), ClassCdf.end(), u) - ClassCdf.begin());
+    k = std::min(k, static_cast<int>(ClassCdf.size()) - 1);
+    while (k > 0 && ClassCdf[k] == ClassCdf[k - 1])
+    {
+      --k;
+    }
+    return k;
+  }
+
+  void ComputeCharts(Record& r, GeodesicPolarCoordinates& engine) const
+  {
+    r.Charts.assign(r.S.Parts.size(), Chart());
+    for (std::size_t k = 0; k < r.S.Parts.size(); ++k)
+    {
+      const PlacedPart& p = r.S.Parts[k];
+      const double reference = TangentAngle(M, p.Centre, p.Axis);
+      if (!std::isfinite(reference) ||
+        !engine.Compute(p.Centre, ChartRadius(r.S, p), reference))
+      {
+        continue; // an empty chart: this part is evaluated from the other side only
+      }
+      Chart& c = r.Charts[k];
+      c.Entries.reserve(engine.Inside().size());
+      for (int v : engine.Inside())
+      {
+        const double rho = engine.Rho(v), theta = engine.Theta(v);
+        c.Entries.push_back(ChartEntry{ v, static_cast<float>(rho * std::cos(theta)),
+          static_cast<float>(rho * std::sin(theta)) });
+      }
+      std::sort(c.Entries.begin(), c.Entries.end(),
+        [](const ChartEntry& a, const ChartEntry& b) { return a.V < b.V; });
+    }
+  }
+
+  // Does shape Y conflict with shape X, judged in X's charts?
+  bool ConflictInCharts(const Record& X, const Record& Y) const
+  {
+    const double fmax = std::max(X.S.Scale, Y.S.Scale);
+    const double unit = O.ShapeSize * fmax * (1.0 + O.SafetyMargin);
+    for (std::size_t i = 0; i < X.S.Parts.size() && i < X.Charts.size(); ++i)
+    {
+      const Chart& chart = X.Charts[i];
+      const int pa = X.S.Parts[i].Part;
+      for (const PlacedPart& py : Y.S.Parts)
+      {
+        const int g = py.Centre.Face;
+        const auto& corners = M.Face(g);
+        const ChartEntry* e[3];
+        bool all = true;
+        for (int k = 0; k < 3 && all; ++k)
+        {
+          e[k] = chart.Find(corners[k]);
+          all = e[k] != nullptr;
+        }
+        if (!all)
+        {
+          continue; // farther than the chart radius: no conflict possible
+        }
+        Vec2 P[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          P[k] = Vec2{ e[k]->X, e[k]->Y };
+        }
+        const Vec2 q = P[0] * py.Centre.Bary[0] + P[1] * py.Centre.Bary[1] + P[2] * py.Centre.Bary[2];
+        const double d = Norm(q);
+        if (d >= (PartRadius(pa) + PartRadius(py.Part)) * unit)
+        {
+          continue;
+        }
+        if (CircleMode)
+        {
+          return true;
+        }
+        // Angles: A's axis is the chart's x axis; the arrival direction at Y's centre is the
+        // chart's radial direction pulled back into face g.
+        const double alphaA = d > 0.0 ? -std::atan2(q.y, q.x) : 0.0;
+        const Vec3 x0 = M.Position(corners[0]);
+        const Vec3 e1 = M.Position(corners[1]) - x0, e2 = M.Position(corners[2]) - x0;
+        const Vec2 E1 = P[1] - P[0], E2 = P[2] - P[0];
+        const double det = Cross(E1, E2);
+        Vec3 t;
+        if (d > 0.0 && std::abs(det) > 1e-12 * (Dot(E1, E1) + Dot(E2, E2)))
+        {
+          const Vec2 u = q * (1.0 / d);
+          const double a = Cross(u, E2) / det, b = Cross(E1, u) / det;
+          t = e1 * a + e2 * b;
+        }
+        else
+        {
+          t = py.Position - X.S.Parts[i].Position;
+        }
+        const Vec3 n = M.FaceNormal(g);
+        t = t - n * Dot(n, t);
+        double alphaB = 0.0;
+        if (Norm(t) > 0.0)
+        {
+          alphaB = std::atan2(Dot(n, Cross(t, py.Axis)), Dot(t, py.Axis));
+        }
+        if (d < SafeDistance(pa, py.Part, alphaA, alphaB) * unit)
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // Chart vertices of a record (all parts), sorted, unique.
+  static std::vector<int> ChartVertices(const Record& r)
+  {
+    std::vector<int> vs;
+    for (const Chart& c : r.Charts)
+    {
+      for (const ChartEntry& e : c.Entries)
+      {
+        vs.push_back(e.V);
+      }
+    }
+    SortUnique(vs);
+    return vs;
+  }
+
+  std::vector<int> CentreCorners(const Record& r) const
+  {
+    std::vector<int> vs;
+    for (const PlacedPart& p : r.S.Parts)
+    {
+      for (int v : M.Face(p.Centre.Face))
+      {
+        vs.push_back(v);
+      }
+    }
+    SortUnique(vs);
+    return vs;
+  }
+
+  // Checks against accepted shapes whose charts judge the pair (f_X >= f_C: the older decides
+  // ties). Needs no chart of the candidate.
+  bool CheapConflict(const Record& c, std::vector<int>& scratch) const
+  {
+    scratch.clear();
+    for (int v : CentreCorners(c))
+    {
+      scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+    }
+    SortUnique(scratch);
+    for (int x : scratch)
+    {
+      const Record& X = Accepted[x];
+      if (X.S.Scale >= c.S.Scale && ConflictInCharts(X, c))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // Checks against accepted shapes with a smaller density factor, in the candidate's charts.
+  bool FullConflict(const Record& c, std::vector<int>& scratch) const
+  {
+    scratch.clear();
+    for (int v : ChartVertices(c))
+    {
+      scratch.insert(scratch.end(), CentreIndex[v].begin(), CentreIndex[v].end());
+    }
+    SortUnique(scratch);
+    for (int y : scratch)
+    {
+      const Record& Y = Accepted[y];
+      if (Y.S.Scale < c.S.Scale && ConflictInCharts(c, Y))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void Commit(Record&& r)
+  {
+    const int id = static_cast<int>(Accepted.size());
+    for (int v : ChartVertices(r))
+    {
+      CoverIndex[v].push_back(id);
+    }
+    for (int v : CentreCorners(r))
+    {
+      CentreIndex[v].push_back(id);
+    }
+    r.Conflicts.clear();
+    r.Conflicts.shrink_to_fit();
+    Placed.push_back(r.S);
+    Accepted.push_back(std::move(r));
+  }
+
+  GeodesicPolarCoordinates& Engine()
+  {
+    return *Engines[ThreadId()];
+  }
+
+  void EnsureEngines(int threads)
+  {
+    while (static_cast<int>(Engines.size()) < threads)
+    {
+      Engines.emplace_back(new GeodesicPolarCoordinates(M, G));
+    }
+  }
+
+  std::string Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
+    const std::vector<double>& vertexDensity, const ShapeDistributionOptions& options);
+  void Generate(std::vector<Record>& batch, int round, bool greedy, const std::vector<int>& front,
+    std::vector<double>& greedyDistance) const;
+};
+
+std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
+  const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
+  const ShapeDistributionOptions& options)
+{
+  T = tables;
+  O = options;
+  CircleMode = O.Mode == DistributionMode::CircumcirclePoissonDisk;
+  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
+  if (nf == 0)
+  {
+    return "the mesh has no faces";
+  }
+  if (T.Classes.empty() || T.Parts.empty())
+  {
+    return "the tables hold no shape class";
+  }
+  const std::size_t ka = static_cast<std::size_t>(std::max(T.AngleBins, 0));
+  if (T.AngleBins < 1 || T.Values.size() != T.Parts.size() * T.Parts.size() * ka * ka)
+  {
+    return "the tables are inconsistent (" + std::to_string(T.Values.size()) +
+      " values for " + std::to_string(T.Parts.size()) + " parts and " +
+      std::to_string(T.AngleBins) + " angle bins)";
+  }
+  for (const SafeDistanceClass& c : T.Classes)
+  {
+    if (c.Parts.empty() || !(c.Radius > 0.0) || !std::isfinite(c.Radius))
+    {
+      return "class '" + c.Name + "' has no part or no valid radius";
+    }
+  }
+  for (double v : T.Values)
+  {
+    if (!std::isfinite(v) || v < 0.0)
+    {
+      return "the tables hold a negative or non-finite safe distance";
+    }
+  }
+  if (!(O.ShapeSize > 0.0) || !std::isfinite(O.ShapeSize))
+  {
+    return "ShapeSize must be a positive finite number (it is " + std::to_string(O.ShapeSize) + ")";
+  }
+  if (O.ShapeSize * 1e7 < M.MeanEdgeLength())
+  {
+    return "ShapeSize " + std::to_string(O.ShapeSize) +
+      " is absurdly small for this mesh (mean edge length " + std::to_string(M.MeanEdgeLength()) +
+      "): it would take more than 1e14 shapes";
+  }
+  if (O.Symmetry != 1 && O.Symmetry != 2 && O.Symmetry != 4)
+  {
+    return "the direction field's symmetry must be 1, 2 or 4 (it is " + std::to_string(O.Symmetry) + ")";
+  }
+  if (O.MaximumShapes < 0 || O.MaximalFailures < 0 || O.GreedyDirections < 1 ||
+    O.GreedyDirections > 1024 || !(O.SafetyMargin >= 0.0) || O.SafetyMargin > 10.0)
+  {
+    return "invalid MaximumShapes, MaximalFailures, GreedyDirections (1..1024) or SafetyMargin (0..10)";
+  }
+  // Class weights.
+  std::vector<double> w = O.ClassWeights;
+  if (w.empty())
+  {
+    w.assign(T.Classes.size(), 1.0);
+  }
+  if (w.size() != T.Classes.size())
+  {
+    return "ClassWeights has " + std::to_string(w.size()) + " values for " +
+      std::to_string(T.Classes.size()) + " classes";
+  }
+  ClassCdf.clear();
+  double sum = 0.0;
+  for (double x : w)
+  {
+    if (!(x >= 0.0) || !std::isfinite(x))
+    {
+      return "ClassWeights must be non-negative finite numbers";
+    }
+    sum += x;
+    ClassCdf.push_back(sum);
+  }
+  if (!(sum > 0.0))
+  {
+    return "ClassWeights are all zero";
+  }
+  // Directions.
+  if (static_cast<int>(faceDirections.size()) != nf)
+  {
+    return "one direction per face is needed (" + std::to_string(faceDirections.size()) +
+      " given for " + std::to_string(nf) + " faces)";
+  }
+  FaceDirection.assign(nf, Vec3{ 0, 0, 0 });
+  for (int f = 0; f < nf; ++f)
+  {
+    const Vec3& d = faceDirections[f];
+    if (!IsFinite(d))
+    {
+      continue;
+    }
+    const Vec3 n = M.FaceNormal(f);
+    const Vec3 t = d - n * Dot(n, d);
+    if (Norm(t) > 1e-12 * Norm(d) && Norm(t) > 0.0)
+    {
+      FaceDirection[f] = Unit(t);
+    }
+  }
+  // Density and the face weights.
+  if (!vertexDensity.empty() && static_cast<int>(vertexDensity.size()) != nv)
+  {
+    return "one density factor per vertex is needed (" + std::to_string(vertexDensity.size()) +
+      " given for " + std::to_string(nv) + " vertices)";
+  }
+  Density = vertexDensity;
+  FaceCdf.assign(nf, 0.0);
+  double total = 0.0;
+  double minimumScale = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < nf; ++f)
+  {
+    double fm = 1.0;
+    bool ok = true;
+    if (!Density.empty())
+    {
+      fm = 0.0;
+      for (int v : M.Face(f))
+      {
+        ok = ok && Density[v] > 0.0 && std::isfinite(Density[v]);
+        fm += Density[v] / 3.0;
+      }
+    }
+    if (ok)
+    {
+      total += M.FaceArea(f) / (fm * fm);
+      minimumScale = std::min(minimumScale, fm);
+    }
+    FaceCdf[f] = total;
+  }
+  if (!(total > 0.0))
+  {
+    return "no face has a positive density factor at all its corners";
+  }
+  double area = 0.0;
+  for (int f = 0; f < nf; ++f)
+  {
+    area += M.FaceArea(f);
+  }
+  {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      smallest = std::min(smallest, c.Radius);
+    }
+    const double r = O.ShapeSize * minimumScale * smallest;
+    if (area / (r * r) > 1e9)
+    {
+      return "ShapeSize (times the smallest density factor) is too small for this mesh: more than "
+             "1e9 shapes would fit";
+    }
+  }
+  MaxEdge = 0.0;
+  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+  {
+    MaxEdge = std::max(MaxEdge, M.EdgeLength(h));
+  }
+  RMax = 0.0;
+  if (CircleMode)
+  {
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      RMax = std::max(RMax, c.Radius);
+    }
+  }
+  else
+  {
+    for (const SafeDistancePart& p : T.Parts)
+    {
+      RMax = std::max(RMax, p.Radius);
+    }
+  }
+  // Long classes: their extent along the major axis, and the field's angles for streamlines.
+  ClassExtentMin.assign(T.Classes.size(), 0.0);
+  ClassExtentMax.assign(T.Classes.size(), 0.0);
+  bool anyLong = false;
+  for (std::size_t k = 0; k < T.Classes.size(); ++k)
+  {
+    const SafeDistanceClass& c = T.Classes[k];
+    if (c.Parts.size() <= 1)
+    {
+      continue;
+    }
+    anyLong = true;
+    double lo = 0.0, hi = 0.0;
+    for (const auto& ring : c.Outline.Rings)
+    {
+      for (const Vec2& p : ring)
+      {
+        lo = std::min(lo, Dot(p, c.MajorAxis));
+        hi = std::max(hi, Dot(p, c.MajorAxis));
+      }
+    }
+    for (int part : c.Parts)
+    {
+      const double a = Dot(T.Parts[part].Centre, c.MajorAxis);
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+    }
+    ClassExtentMin[k] = lo;
+    ClassExtentMax[k] = hi;
+  }
+  if (anyLong)
+  {
+    if (!Field)
+    {
+      Field.reset(new DirectionFieldSolver(M));
+    }
+    FieldAngles.assign(nf, 0.0);
+    for (int f = 0; f < nf; ++f)
+    {
+      FieldAngles[f] = Norm(FaceDirection[f]) > 0.0 ? Field->AngleInFace(f, FaceDirection[f]) : 0.0;
+    }
+  }
+  Accepted.clear();
+  Placed.clear();
+  CoverIndex.assign(nv, {});
+  CentreIndex.assign(nv, {});
+  return std::string();
+}
+
+void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round, bool greedy,
+  const std::vector<int>& front, std::vector<double>& greedyDistance) const
+{
+  const int n = static_cast<int>(batch.size());
+  const int directions = O.GreedyDirections;
+#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(O.NumberOfThreads))
+  for (int i = 0; i < n; ++i)
+  {
+    Record& r = batch[i];
+    Random rng(O.Seed, greedy ? 2 : 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+    SurfacePoint centre;
+    int cls = RandomClass(rng);
+    greedyDistance[i] = 0.0;
+    if (greedy)
+    {
+      const PlacedShape& parent = Accepted[front[i / directions]].S;
+      const double beta = TwoPi * ((i % directions) + rng.Uniform()) / directions;
+      const double scale = O.ShapeSize * parent.Scale * (1.0 + O.SafetyMargin);
+      const SafeDistanceClass& pc = T.Classes[parent.ClassId];
+      const SafeDistanceClass& cc = T.Classes[cls];
+      double d;
+      if (!CircleMode && pc.Parts.size() == 1 && cc.Parts.size() == 1)
+      {
+        d = T.Lookup(pc.Parts[0], cc.Parts[0], -beta, -beta) * scale;
+      }
+      else
+      {
+        d = (CircleMode ? 1.0 : 0.75) * (pc.Radius + cc.Radius) * scale;
+      }
+      d = d * (1.0 + 1e-6) + 1e-9 * MaxEdge;
+      greedyDistance[i] = d;
+      const double a = TangentAngle(M, parent.Centre, parent.Direction);
+      if (!std::isfinite(a))
+      {
+        continue;
+      }
+      const GeodesicShot shot = ShootGeodesic(M, parent.Centre, a + beta, d);
+      if (shot.ReachedBoundary || shot.End.Face < 0 || FaceCdf[shot.End.Face] ==
+          (shot.End.Face > 0 ? FaceCdf[shot.End.Face - 1] : 0.0))
+      {
+        continue; // off the surface or in a region without density
+      }
+      centre = shot.End;
+    }
+    else
+    {
+      centre = RandomPoint(rng);
+    }
+    r.Valid = MakeShape(centre, cls, rng, r.S);
+  }
+}
+
+ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
+  : P(new Impl(mesh, graph && graph->NumberOfVertices() == mesh.NumberOfVertices() ? graph : nullptr))
+{
+}
+
+ShapeDistributor::~ShapeDistributor() = default;
+
+const std::vector<PlacedShape>& ShapeDistributor::Shapes() const
+{
+  return P->Placed;
+}
+
+ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
+  const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
+  const ShapeDistributionOptions& options, const std::function<bool(double)>& progress)
+{
+  const auto start = std::chrono::steady_clock::now();
+  ShapeDistributionResult result;
+  Impl& I = *P;
+  result.Error = I.Prepare(tables, faceDirections, vertexDensity, options);
+  if (!result.Error.empty())
+  {
+    I.Accepted.clear();
+    I.Placed.clear();
+    return result;
+  }
+  const ShapeDistributionOptions& O = I.O;
+  const int threads = ThreadCount(O.NumberOfThreads);
+  I.EnsureEngines(threads);
+  const long long failuresToStop = O.MaximalFailures > 0 ? O.MaximalFailures : 20000;
+  const bool greedyMode = O.Mode == DistributionMode::Greedy;
+  std::vector<int> front;
+  long long consecutive = 0;
+  int randomRounds = 0;
+  bool stop = false;
+  double reported = 0.0;
+  ShapeDistributionStatistics& stats = result.Statistics;
+  for (int round = 0; !stop; ++round)
+  {
+    const bool greedy = greedyMode && !front.empty();
+    int n;
+    if (greedy)
+    {
+      n = static_cast<int>(front.size()) * O.GreedyDirections;
+    }
+    else
+    {
+      n = 256 << std::min(randomRounds, 6);
+      ++randomRounds;
+    }
+    std::vector<Impl::Record> batch(n);
+    std::vector<double> greedyDistance(n, 0.0);
+    I.Generate(batch, round, greedy, front, greedyDistance);
+    stats.Candidates += n;
+    // Greedy: nearest proposals first (tighter packing), then by parent and direction.
+    std::vector<int> order(n);
+    for (int i = 0; i < n; ++i)
+    {
+      order[i] = i;
+    }
+    if (greedy)
+    {
+      std::stable_sort(order.begin(), order.end(),
+        [&](int a, int b) { return greedyDistance[a] < greedyDistance[b]; });
+      std::vector<Impl::Record> sorted(n);
+      for (int i = 0; i < n; ++i)
+      {
+        sorted[i] = std::move(batch[order[i]]);
+      }
+      batch.swap(sorted);
+    }
+    long long charts = 0;
+    // Cheap checks, then charts and the remaining checks for survivors.
+#pragma omp parallel num_threads(threads) reduction(+ : charts)
+    {
+      std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 16)
+      for (int i = 0; i < n; ++i)
+      {
+        Impl::Record& r = batch[i];
+        if (!r.Valid || I.CheapConflict(r, scratch))
+        {
+          r.Rejected = true;
+          continue;
+        }
+        I.ComputeCharts(r, I.Engine());
+        ++charts;
+        if (I.FullConflict(r, scratch))
+        {
+          r.Rejected = true;
+          r.Charts.clear();
+        }
+      }
+    }
+    stats.Charts += charts;
+    // Conflicts among the survivors of the round (each pair judged in the chart of the larger
+    // density factor; ties: the higher priority).
+    std::vector<std::pair<int, int>> cover, centres; // (vertex, candidate)
+    for (int i = 0; i < n; ++i)
+    {
+      if (batch[i].Rejected)
+      {
+        continue;
+      }
+      for (int v : Impl::ChartVertices(batch[i]))
+      {
+        cover.emplace_back(v, i);
+      }
+      for (int v : I.CentreCorners(batch[i]))
+      {
+        centres.emplace_back(v, i);
+      }
+    }
+    std::sort(cover.begin(), cover.end());
+    std::sort(centres.begin(), centres.end());
+    auto collect = [](const std::vector<std::pair<int, int>>& index, int v, int below,
+                     std::vector<int>& out) {
+      auto it = std::lower_bound(index.begin(), index.end(), std::make_pair(v, -1));
+      for (; it != index.end() && it->first == v && it->second < below; ++it)
+      {
+        out.push_back(it->second);
+      }
+    };
+#pragma omp parallel num_threads(threads)
+    {
+      std::vector<int> near;
+#pragma omp for schedule(dynamic, 16)
+      for (int i = 0; i < n; ++i)
+      {
+        Impl::Record& r = batch[i];
+        if (r.Rejected)
+        {
+          continue;
+        }
+        near.clear();
+        for (int v : I.CentreCorners(r))
+        {
+          collect(cover, v, i, near);
+        }
+        for (int v : Impl::ChartVertices(r))
+        {
+          collect(centres, v, i, near);
+        }
+        SortUnique(near);
+        for (int j : near)
+        {
+          const Impl::Record& other = batch[j];
+          const bool judgeInOther = other.S.Scale >= r.S.Scale;
+          if (judgeInOther ? I.ConflictInCharts(other, r) : I.ConflictInCharts(r, other))
+          {
+            r.Conflicts.push_back(j);
+          }
+        }
+      }
+    }
+    // Sequential acceptance in priority order.
+    std::vector<char> taken(n, 0);
+    std::vector<int> nextFront;
+    for (int i = 0; i < n && !stop; ++i)
+    {
+      Impl::Record& r = batch[i];
+      bool ok = !r.Rejected;
+      for (int j : r.Conflicts)
+      {
+        ok = ok && !taken[j];
+      }
+      if (!ok)
+      {
+        ++consecutive;
+        if (consecutive >= failuresToStop && !greedy)
+        {
+          stop = true;
+          stats.Maximal = true;
+        }
+        continue;
+      }
+      consecutive = 0;
+      taken[i] = 1;
+      nextFront.push_back(static_cast<int>(I.Accepted.size()));
+      I.Commit(std::move(r));
+      if (O.MaximumShapes > 0 && static_cast<int>(I.Accepted.size()) >= O.MaximumShapes)
+      {
+        stop = true;
+      }
+    }
+    if (greedyMode)
+    {
+      front.swap(nextFront);
+    }
+    stats.Rounds = round + 1;
+    double fraction = static_cast<double>(consecutive) / static_cast<double>(failuresToStop);
+    if (O.MaximumShapes > 0)
+    {
+      fraction = std::max(fraction, static_cast<double>(I.Accepted.size()) / O.MaximumShapes);
+    }
+    reported = std::max(reported, std::min(0.99, fraction));
+    if (progress && !progress(reported))
+    {
+      result.Error = "aborted";
+      I.Accepted.clear();
+      I.Placed.clear();
+      return result;
+    }
+  }
+  stats.ConsecutiveFailures = consecutive;
+  stats.Seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.Shapes = I.Placed;
+  result.Ok = true;
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return result;
+}
+
+double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
+{
+  Impl& I = *P;
+  if (probes <= 0 || I.FaceCdf.empty())
+  {
+    return 0.0;
+  }
+  const int threads = ThreadCount(I.O.NumberOfThreads);
+  I.EnsureEngines(threads);
+  long long fits = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : fits)
+  {
+    std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 64)
+    for (int i = 0; i < probes; ++i)
+    {
+      Random rng(seed, 3, 0, static_cast<std::uint64_t>(i));
+      Impl::Record r;
+      const int cls = I.RandomClass(rng);
+      const SurfacePoint centre = I.RandomPoint(rng);
+      if (!I.MakeShape(centre, cls, rng, r.S) || I.CheapConflict(r, scratch))
+      {
+        continue;
+      }
+      I.ComputeCharts(r, I.Engine());
+      if (!I.FullConflict(r, scratch))
+      {
+        ++fits;
+      }
+    }
+  }
+  return static_cast<double>(fits) / probes;
+}
+
+SurfacePoint ShapeDistributor::MapToSurface(int shape, const Vec2& p) const
+{
+  const Impl& I = *P;
+  const PlacedShape& s = I.Placed.at(shape);
+  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
+  const double scale = I.O.ShapeSize * s.Scale;
+  if (s.Curve.empty())
+  {
+    const double rho = Norm(p) * scale;
+    if (rho <= 0.0)
+    {
+      return s.Centre;
+    }
+    const double a = TangentAngle(I.M, s.Centre, s.Direction);
+    return ShootGeodesic(I.M, s.Centre, a + std::atan2(p.y, p.x), rho).End;
+  }
+  int face = -1;
+  Vec3 x, tangent;
+  Impl::PointOnCurve(I.M, s.Curve, s.CurveCentre + Dot(p, c.MajorAxis) * scale, face, x, tangent);
+  SurfacePoint end;
+  Vec3 endTangent;
+  if (!I.Across(face, x, tangent, Cross(c.MajorAxis, p) * scale, end, endTangent))
+  {
+    end = SurfacePoint::InFace(face, 0, 0, 0);
+    end.Bary = I.M.ClampedBarycentric(face, x);
+  }
+  return end;
+}
+
+ShapeDecal ShapeDistributor::Decal(int shape) const
+{
+  const Impl& I = *P;
+  ShapeDecal decal;
+  const PlacedShape& s = I.Placed.at(shape);
+  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
+  const double scale = I.O.ShapeSize * s.Scale;
+  const double reach = c.Radius * scale + I.MaxEdge;
+  // Class-frame coordinates (normalized) of the vertices near the shape.
+  std::vector<std::pair<int, Vec2>> local;
+  if (s.Curve.empty())
+  {
+    const Impl::Record& r = I.Accepted.at(shape);
+    if (r.Charts.empty())
+    {
+      return decal;
+    }
+    for (const ChartEntry& e : r.Charts[0].Entries)
+    {
+      const Vec2 q{ e.X, e.Y };
+      if (Norm(q) <= reach)
+      {
+        local.emplace_back(e.V, q * (1.0 / scale));
+      }
+    }
+  }
+  else
+  {
+    // Curve polar coordinates: offset and normalized arc length along the offset curves.
+    std::vector<SurfacePoint> curve;
+    for (const CurvePiece& piece : s.Curve)
+    {
+      for (const Vec3& x : { piece.A, piece.B })
+      {
+        SurfacePoint q = SurfacePoint::InFace(piece.Face, 0, 0, 0);
+        q.Bary = I.M.ClampedBarycentric(piece.Face, x);
+        curve.push_back(q);
+      }
+    }
+    GeodesicPolarCoordinates polar(I.M, I.G);
+    double across = 0.0;
+    for (const auto& ring : c.Outline.Rings)
+    {
+      for (const Vec2& p : ring)
+      {
+        across = std::max(across, std::abs(Cross(c.MajorAxis, p)));
+      }
+    }
+    if (!polar.ComputeCurve(curve, across * scale + I.MaxEdge))
+    {
+      return decal;
+    }
+    const double length = polar.CurveLength();
+    const Vec2 m = c.MajorAxis, perp{ -c.MajorAxis.y, c.MajorAxis.x };
+    for (int v : polar.Inside())
+    {
+      const double a = (polar.ArcLength(v) * length - s.CurveCentre) / scale;
+      const double b = polar.Offset(v) / scale;
+      if (std::isfinite(a) && std::isfinite(b))
+      {
+        local.emplace_back(v, m * a + perp * b);
+      }
+    }
+  }
+  std::sort(local.begin(), local.end(),
+    [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
+  auto find = [&](int v) -> const Vec2* {
+    auto it = std::lower_bound(local.begin(), local.end(), v,
+      [](const std::pair<int, Vec2>& e, int value) { return e.first < value; });
+    return it != local.end() && it->first == v ? &it->second : nullptr;
+  };
+  // Faces with all corners known, near the shape: one of them inside the square of the class.
+  std::vector<int> faces;
+  for (const auto& e : local)
+  {
+    for (int h : I.M.OutgoingHalfedges(e.first))
+    {
+      faces.push_back(h / 3);
+    }
+  }
+  SortUnique(faces);
+  for (int f : faces)
+  {
+    std::array<Vec2, 3> uv;
+    bool all = true, near = false;
+    for (int k = 0; k < 3 && all; ++k)
+    {
+      const Vec2* q = find(I.M.Face(f)[k]);
+      all = q != nullptr;
+      if (all)
+      {
+        uv[k] = Vec2{ 0.5 * (q->x / c.Radius + 1.0), 0.5 * (q->y / c.Radius + 1.0) };
+        near = near || (uv[k].x >= 0.0 && uv[k].x <= 1.0 && uv[k].y >= 0.0 && uv[k].y <= 1.0);
+      }
+    }
+    if (all && near)
+    {
+      decal.Faces.push_back(f);
+      decal.TextureCoordinates.push_back(uv);
+    }
+  }
+  return decal;
+}
+
+} // namespace gs

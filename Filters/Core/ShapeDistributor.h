@@ -1,0 +1,166 @@
+// Conflict-free, anisotropic, multi-class distribution of 2D shapes on a triangle mesh (Wang et
+// al. 2016, Section 4 and Algorithm 3).
+//
+// SHAPES. Classes and their parts come from minimum safe distance tables (SafeDistanceTable.h,
+// normalized units: class 0 has circumradius 1). A shape of class k placed at a surface point
+// with density factor f has circumradius ShapeSize * f * Classes[k].Radius. A short class (one
+// part) is centred on its sample and its +x axis is turned to the direction field. A long class
+// (split into parts) lies along a streamline of the field traced through the sample: its major
+// axis follows the curve, and every class-frame point (a along the major axis, b across it) is
+// drawn at arc length a from the sample along the curve, then b across it along the geodesic
+// leaving the curve perpendicularly (the curve's polar coordinates): long shapes bend with the
+// field. Each part sits at its own centre, with its own axis.
+//
+// CONFLICTS. Two parts conflict when the geodesic distance d of their centres is below the safe
+// distance of the table for the angles between each part's axis and the geodesic joining the
+// centres, times the larger of the two density factors (exact for equal factors; the
+// Circumcircle mode uses the sum of the class circumradii instead of the tables). Distances and
+// angles come from geodesic polar coordinates (the log map) about every part centre, computed
+// once per candidate that survives the cheap checks: exact in the centre's K-disk and
+// near-exact beyond (saddle vertex graph), or exact everywhere without a graph. A pair is
+// evaluated in the chart of the shape with the larger density factor (ties: the older shape),
+// whose radius, (r_part + r_max) * ShapeSize * f + the longest edge, holds every centre it
+// could conflict with; the other centre's position is interpolated in its face from the chart
+// coordinates of the face's corners (exact on developable surfaces), and the arrival direction
+// there is the chart's radial direction pulled back into that face.
+//
+// ALGORITHM. Rounds of candidates (dart throwing: faces drawn with probability area / f^2, a
+// uniform point in the face, a class by ClassWeights) with priorities = their order in the
+// round. A candidate is accepted iff it conflicts with no accepted shape and no accepted
+// higher-priority candidate of its round: the result equals sequential dart throwing in
+// priority order, whatever the number of threads (candidates and their charts are computed in
+// parallel, the final acceptance pass walks the conflict lists in order). Candidates come from
+// a counter-based random generator keyed by (Seed, round, index).
+// Greedy mode grows fronts: every newly accepted shape proposes GreedyDirections candidates
+// around itself at the table's safe distance for each direction (gap filling, tight packing);
+// when no front is left, random candidates seed new fronts.
+// Termination: MaximumShapes reached, or MaximalFailures consecutive candidates (in priority
+// order) rejected: a shape then fits in only about 1 / MaximalFailures of random probes
+// (ProbeFitFraction measures it).
+#pragma once
+
+#include "SafeDistanceTable.h"
+#include "SurfaceCurve.h"
+#include "SurfacePoint.h"
+#include "TriangleMesh.h"
+#include "Vector.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs
+{
+
+class SaddleVertexGraph;
+
+enum class DistributionMode
+{
+  Random = 0,
+  Greedy = 1,
+  CircumcirclePoissonDisk = 2
+};
+
+struct ShapeDistributionOptions
+{
+  double ShapeSize = 1.0;           ///< circumradius of class 0 at density 1 (world units)
+  std::vector<double> ClassWeights; ///< relative frequencies (empty: all equal)
+  DistributionMode Mode = DistributionMode::Random;
+  std::uint64_t Seed = 0;
+  int MaximumShapes = 0;    ///< 0: until maximal
+  int NumberOfThreads = 0;  ///< 0: all
+  int Symmetry = 1;         ///< N of the direction field (1, 2, 4): streamlines of long shapes
+  int MaximalFailures = 0;  ///< consecutive failures that end the run; 0: 20000
+  int GreedyDirections = 16;
+  double SafetyMargin = 0.0; ///< relative enlargement of every safe distance
+};
+
+/// One part of a placed shape (a short shape has one).
+struct PlacedPart
+{
+  int Part = 0;        ///< index into SafeDistanceTables::Parts (the class circle in Circumcircle mode)
+  SurfacePoint Centre; ///< a face point
+  Vec3 Position;
+  Vec3 Axis;           ///< unit tangent in Centre's face: the part's (class) +x axis
+};
+
+struct PlacedShape
+{
+  int ClassId = 0;
+  double Scale = 1.0;  ///< density factor f at the centre
+  SurfacePoint Centre; ///< the sample (face point)
+  Vec3 Position;
+  Vec3 Direction; ///< unit tangent: the class +x axis at the centre
+  Vec3 Normal;    ///< face normal at the centre
+  std::vector<PlacedPart> Parts;
+  /// Long shapes: the streamline carrying the major axis (pieces in order) and the arc length
+  /// of the centre along it. Empty for short shapes.
+  std::vector<CurvePiece> Curve;
+  double CurveCentre = 0.0;
+};
+
+struct ShapeDistributionStatistics
+{
+  long long Candidates = 0;       ///< candidates drawn
+  long long Charts = 0;           ///< polar charts computed (candidates past the cheap checks)
+  int Rounds = 0;
+  long long ConsecutiveFailures = 0; ///< at termination
+  bool Maximal = false;          ///< ended by the failure count (not MaximumShapes)
+  double Seconds = 0.0;
+};
+
+struct ShapeDistributionResult
+{
+  bool Ok = false;
+  std::string Error;
+  std::vector<PlacedShape> Shapes;
+  ShapeDistributionStatistics Statistics;
+};
+
+/// A decal: the mesh faces a shape covers, with texture coordinates per face corner mapping the
+/// square around the class circle onto [0, 1]^2 (the convention of MSDT Source's silhouettes:
+/// class point r (2 u - 1, 2 v - 1)).
+struct ShapeDecal
+{
+  std::vector<int> Faces;
+  std::vector<std::array<Vec2, 3>> TextureCoordinates;
+};
+
+class ShapeDistributor
+{
+public:
+  /// The mesh (and the graph, optional: without it the charts use the exact solver) must outlive
+  /// the distributor. The graph must be built for this mesh.
+  explicit ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph = nullptr);
+  ~ShapeDistributor();
+
+  /// `faceDirections`: one tangent vector per face (zero or non-finite: no direction there, the
+  /// shape gets a random orientation). `vertexDensity`: empty (f = 1) or one factor per vertex;
+  /// faces touching a vertex whose factor is not a positive finite number get no shape.
+  /// `progress` (optional) receives values in [0, 1]; returning false aborts.
+  ShapeDistributionResult Run(const SafeDistanceTables& tables,
+    const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
+    const ShapeDistributionOptions& options,
+    const std::function<bool(double)>& progress = nullptr);
+
+  /// After Run: the fraction of `probes` random candidates (drawn like the run's, with
+  /// field-aligned orientation) that would fit among the placed shapes.
+  double ProbeFitFraction(int probes, std::uint64_t seed);
+
+  /// After Run: the surface point of class-frame point p (normalized units) of placed shape s,
+  /// through the polar coordinates of its centre (short shapes) or of its curve (long shapes).
+  SurfacePoint MapToSurface(int shape, const Vec2& p) const;
+  /// After Run: the faces covered by shape s with texture coordinates.
+  ShapeDecal Decal(int shape) const;
+
+  const std::vector<PlacedShape>& Shapes() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+
+} // namespace gs

@@ -1,0 +1,363 @@
+// Shape distribution: conflict-freeness against an independent overlap test, determinism across
+// thread counts, modes, density, multiple classes, long shapes, maximality, bad input.
+#include "DistributionChecks.h"
+#include "TestMeshes.h"
+
+#include "MeshGenerators.h"
+#include "SaddleVertexGraph.h"
+#include "SafeDistanceTable.h"
+#include "ShapeDistributor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+using namespace gs;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+std::vector<Vec2> Star(double outer, double inner)
+{
+  std::vector<Vec2> ring;
+  for (int k = 0; k < 10; ++k)
+  {
+    const double a = Pi / 2 + Pi * k / 5;
+    const double r = k % 2 == 0 ? outer : inner;
+    ring.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  return ring;
+}
+
+std::vector<Vec2> Rectangle(double w, double h)
+{
+  return { { -w / 2, -h / 2 }, { w / 2, -h / 2 }, { w / 2, h / 2 }, { -w / 2, h / 2 } };
+}
+
+SafeDistanceTables Tables(const std::vector<std::vector<Vec2>>& classes, int bins = 32)
+{
+  std::vector<SafeDistanceInput> in;
+  for (std::size_t k = 0; k < classes.size(); ++k)
+  {
+    in.push_back({ "class" + std::to_string(k), ShapeFromPolygons({ classes[k] }) });
+  }
+  SafeDistanceOptions o;
+  o.AngleBins = bins;
+  o.DistanceSteps = 64;
+  o.Rows = 512;
+  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r.Tables;
+}
+
+struct Plane
+{
+  TriangleMesh Mesh;
+  std::vector<Vec3> Directions;
+};
+
+Plane MakePlane(int n, double size, Vec3 direction = { 1.0, 0.0, 0.0 })
+{
+  Plane p;
+  p.Mesh = gs_test::BuildMesh(MakePlanarGrid(n, n, size, size));
+  p.Directions.assign(p.Mesh.NumberOfFaces(), direction);
+  return p;
+}
+
+ShapeDistributionResult Distribute(ShapeDistributor& d, const Plane& p, const SafeDistanceTables& t,
+  ShapeDistributionOptions o, const std::vector<double>& density = {})
+{
+  ShapeDistributionResult r = d.Run(t, p.Directions, density, o);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r;
+}
+} // namespace
+
+TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
+{
+  const Plane plane = MakePlane(40, 10.0);
+  const SafeDistanceTables t = Tables({ Star(1.0, 0.4) }, 64);
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.5;
+  o.Seed = 7;
+  o.MaximalFailures = 4000;
+  std::map<DistributionMode, double> counts;
+  for (DistributionMode mode : { DistributionMode::CircumcirclePoissonDisk,
+         DistributionMode::Random, DistributionMode::Greedy })
+  {
+    o.Mode = mode;
+    ShapeDistributor d(plane.Mesh);
+    const ShapeDistributionResult r = Distribute(d, plane, t, o);
+    int pairs = 0;
+    EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize, &pairs), 0)
+      << "mode " << static_cast<int>(mode);
+    if (mode != DistributionMode::CircumcirclePoissonDisk)
+      EXPECT_GT(pairs, static_cast<int>(r.Shapes.size())) << "the oracle saw close pairs";
+    // Without a direction field: random orientations, still conflict-free.
+    Plane free = plane;
+    for (Vec3& v : free.Directions)
+      v = Vec3{ 0, 0, 0 };
+    ShapeDistributor unoriented(plane.Mesh);
+    EXPECT_EQ(gs_test::CountPlanarOverlaps(
+                plane.Mesh, t, Distribute(unoriented, free, t, o).Shapes, o.ShapeSize),
+      0);
+    EXPECT_TRUE(r.Statistics.Maximal);
+    counts[mode] = static_cast<double>(r.Shapes.size());
+    // Maximal: few random probes still fit.
+    EXPECT_LT(d.ProbeFitFraction(2000, 99), 0.01) << "mode " << static_cast<int>(mode);
+    for (const PlacedShape& s : r.Shapes)
+    {
+      EXPECT_NEAR(s.Direction.x, 1.0, 1e-9);
+      EXPECT_EQ(s.Parts.size(), 1u);
+    }
+  }
+  const double circles = counts[DistributionMode::CircumcirclePoissonDisk];
+  EXPECT_GT(circles, 50);
+  // Circles of radius 0.5 never closer than 1: a circle packing bound on the 10 x 10 square.
+  EXPECT_LT(circles, (10.5 * 10.5) / (2.0 * std::sqrt(3.0) * 0.25));
+  // Two of these stars (inner radius 0.4) never come closer than 1.4 r (tip in notch): at most
+  // (2 / 1.4)^2 = 2x the circles in a perfect packing; random dart throwing reaches 1.4x here
+  // (the benchmark measures it over 20 seeds and thinner stars).
+  EXPECT_GT(counts[DistributionMode::Random] / circles, 1.25);
+  EXPECT_GT(counts[DistributionMode::Greedy], counts[DistributionMode::Random]);
+}
+
+TEST(ShapeDistributor, SameResultForAnyThreadCount)
+{
+  const Plane plane = MakePlane(30, 8.0, Vec3{ 1.0, 1.0, 0.0 });
+  const SafeDistanceTables t = Tables({ Star(1.0, 0.4), Rectangle(1.0, 0.5) });
+  for (DistributionMode mode : { DistributionMode::Random, DistributionMode::Greedy })
+  {
+    std::vector<std::vector<PlacedShape>> results;
+    for (int threads : { 1, 2, 3 })
+    {
+      ShapeDistributionOptions o;
+      o.ShapeSize = 0.45;
+      o.Seed = 3;
+      o.Mode = mode;
+      o.NumberOfThreads = threads;
+      o.MaximalFailures = 2000;
+      ShapeDistributor d(plane.Mesh);
+      results.push_back(Distribute(d, plane, t, o).Shapes);
+    }
+    for (std::size_t k = 1; k < results.size(); ++k)
+    {
+      ASSERT_EQ(results[k].size(), results[0].size());
+      for (std::size_t i = 0; i < results[0].size(); ++i)
+      {
+        EXPECT_EQ(results[k][i].ClassId, results[0][i].ClassId);
+        EXPECT_EQ(results[k][i].Position.x, results[0][i].Position.x);
+        EXPECT_EQ(results[k][i].Position.y, results[0][i].Position.y);
+      }
+    }
+    // A different seed gives a different layout.
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.45;
+    o.Seed = 4;
+    o.Mode = mode;
+    o.MaximalFailures = 2000;
+    ShapeDistributor d(plane.Mesh);
+    const auto other = Distribute(d, plane, t, o).Shapes;
+    EXPECT_TRUE(other.size() != results[0].size() || other[0].Position.x != results[0][0].Position.x);
+  }
+}
+
+TEST(ShapeDistributor, MultipleClassesFollowTheirWeightsWithoutConflicts)
+{
+  const Plane plane = MakePlane(40, 12.0, Vec3{ 0.0, 1.0, 0.0 });
+  // A big star, a small star (half the radius), a square.
+  const SafeDistanceTables t = Tables({ Star(1.0, 0.4), Star(0.5, 0.2), Rectangle(0.8, 0.8) });
+  ASSERT_NEAR(t.Classes[1].Radius, 0.5, 1e-9);
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.5;
+  o.Seed = 11;
+  o.ClassWeights = { 1.0, 3.0, 0.0 };
+  o.MaximumShapes = 150;
+  ShapeDistributor d(plane.Mesh);
+  const ShapeDistributionResult r = Distribute(d, plane, t, o);
+  ASSERT_EQ(r.Shapes.size(), 150u);
+  EXPECT_FALSE(r.Statistics.Maximal);
+  int perClass[3] = { 0, 0, 0 };
+  for (const PlacedShape& s : r.Shapes)
+    ++perClass[s.ClassId];
+  EXPECT_EQ(perClass[2], 0);
+  // Weights 1:3 among draws; before saturation the accepted ratio follows them.
+  EXPECT_GT(perClass[1], 2 * perClass[0]);
+  EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize), 0);
+  // Until maximal: still no conflict between classes.
+  o.MaximumShapes = 0;
+  o.MaximalFailures = 3000;
+  o.ClassWeights = { 1.0, 1.0, 1.0 };
+  const ShapeDistributionResult full = Distribute(d, plane, t, o);
+  EXPECT_GT(full.Shapes.size(), 150u);
+  EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, full.Shapes, o.ShapeSize), 0);
+}
+
+TEST(ShapeDistributor, DensityScalesShapesAndCounts)
+{
+  // f = 0.5 on the left third, 1 on the right third (a linear ramp between): four times as many
+  // shapes per unit area on the left, each half the size.
+  const Plane plane = MakePlane(60, 12.0);
+  const SafeDistanceTables t = Tables({ Star(1.0, 0.4) });
+  std::vector<double> density(plane.Mesh.NumberOfVertices());
+  for (int v = 0; v < plane.Mesh.NumberOfVertices(); ++v)
+  {
+    const double x = plane.Mesh.Position(v).x;
+    density[v] = x < 4.0 ? 0.5 : (x > 8.0 ? 1.0 : 0.5 + 0.5 * (x - 4.0) / 4.0);
+  }
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.4;
+  o.Seed = 5;
+  o.MaximalFailures = 4000;
+  ShapeDistributor d(plane.Mesh);
+  const ShapeDistributionResult r = Distribute(d, plane, t, o, density);
+  EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize), 0);
+  int left = 0, right = 0;
+  for (const PlacedShape& s : r.Shapes)
+  {
+    const double x = s.Position.x;
+    if (x > 0.5 && x < 3.5)
+      ++left;
+    if (x > 8.5 && x < 11.5)
+      ++right;
+    EXPECT_NEAR(s.Scale, x < 4.0 ? 0.5 : (x > 8.0 ? 1.0 : 0.5 + 0.5 * (x - 4.0) / 4.0), 1e-9);
+  }
+  ASSERT_GT(right, 10);
+  EXPECT_NEAR(static_cast<double>(left) / right, 4.0, 0.8);
+  // A zero factor masks a region.
+  for (int v = 0; v < plane.Mesh.NumberOfVertices(); ++v)
+    density[v] = plane.Mesh.Position(v).x < 6.0 ? 0.0 : 1.0;
+  const ShapeDistributionResult masked = Distribute(d, plane, t, o, density);
+  ASSERT_FALSE(masked.Shapes.empty());
+  for (const PlacedShape& s : masked.Shapes)
+    EXPECT_GT(s.Position.x, 6.0 - 1e-9);
+}
+
+TEST(ShapeDistributor, LongShapesFollowTheFieldInParts)
+{
+  const Plane plane = MakePlane(48, 12.0, Vec3{ 1.0, 0.0, 0.0 });
+  // A 4:1 bar: split into parts along its major axis.
+  const SafeDistanceTables t = Tables({ Rectangle(4.0, 1.0) });
+  ASSERT_GT(t.Classes[0].Parts.size(), 1u);
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.8;
+  o.Seed = 2;
+  o.MaximalFailures = 3000;
+  ShapeDistributor d(plane.Mesh);
+  const ShapeDistributionResult r = Distribute(d, plane, t, o);
+  ASSERT_GT(r.Shapes.size(), 10u);
+  EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize), 0);
+  double reach = 0.0; // the bar's half length (normalized)
+  for (const Vec2& p : t.Classes[0].Outline.Rings[0])
+    reach = std::max(reach, p.x);
+  const double halfLength = reach * o.ShapeSize;
+  for (const PlacedShape& s : r.Shapes)
+  {
+    ASSERT_EQ(s.Parts.size(), t.Classes[0].Parts.size());
+    ASSERT_FALSE(s.Curve.empty());
+    // Parts on the straight streamline, the whole bar inside the square.
+    for (const PlacedPart& p : s.Parts)
+      EXPECT_NEAR(p.Position.y, s.Position.y, 1e-9);
+    EXPECT_GT(s.Position.x, halfLength - 1e-6);
+    EXPECT_LT(s.Position.x, 12.0 - halfLength + 1e-6);
+    // The outline maps along the curve: the bar's end lands at its half length.
+    const SurfacePoint end = d.MapToSurface(static_cast<int>(&s - r.Shapes.data()),
+      Vec2{ reach, 0.0 });
+    const Vec3 x = plane.Mesh.Interpolate(end.Face, end.Bary);
+    EXPECT_NEAR(x.x - s.Position.x, halfLength, 1e-6);
+  }
+}
+
+TEST(ShapeDistributor, CurvedSurfaceWithGraphAndDecals)
+{
+  // A sphere of radius 1 with shapes of radius 0.12: conflicts judged in SVG polar charts.
+  const TriangleMesh sphere = gs_test::BuildMesh(MakeIcosphere(1.0, 4));
+  SaddleVertexGraph graph;
+  SaddleVertexGraphOptions go;
+  go.K = 50;
+  std::string error;
+  ASSERT_TRUE(graph.Build(sphere, go, nullptr, error)) << error;
+  std::vector<Vec3> directions(sphere.NumberOfFaces());
+  for (int f = 0; f < sphere.NumberOfFaces(); ++f)
+  {
+    const auto& c = sphere.Face(f);
+    const Vec3 x = (sphere.Position(c[0]) + sphere.Position(c[1]) + sphere.Position(c[2])) / 3.0;
+    directions[f] = Cross(Vec3{ 0, 0, 1 }, x); // along the parallels
+  }
+  const SafeDistanceTables t = Tables({ Star(1.0, 0.4) });
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.12;
+  o.Seed = 1;
+  o.MaximalFailures = 2000;
+  ShapeDistributor d(sphere, &graph);
+  const ShapeDistributionResult r = d.Run(t, directions, {}, o);
+  ASSERT_TRUE(r.Ok) << r.Error;
+  ASSERT_GT(r.Shapes.size(), 100u);
+  // Every pair of centres keeps at least the smallest safe distance of the table (Euclidean
+  // distance is a lower bound of the geodesic one: allow its 0.2% curvature gap).
+  double smallest = 1e300;
+  for (double v : t.Values)
+    smallest = std::min(smallest, v);
+  for (std::size_t a = 0; a < r.Shapes.size(); ++a)
+    for (std::size_t b = a + 1; b < r.Shapes.size(); ++b)
+      EXPECT_GT(Norm(r.Shapes[a].Position - r.Shapes[b].Position), smallest * o.ShapeSize * 0.99);
+  // Decals: faces around each shape with texture coordinates centred on the shape.
+  const ShapeDecal decal = d.Decal(0);
+  ASSERT_GT(decal.Faces.size(), 3u);
+  bool centreCovered = false;
+  for (std::size_t k = 0; k < decal.Faces.size(); ++k)
+  {
+    if (decal.Faces[k] == r.Shapes[0].Centre.Face)
+    {
+      centreCovered = true;
+      Vec2 uv{ 0, 0 };
+      for (int c = 0; c < 3; ++c)
+        uv = uv + decal.TextureCoordinates[k][c] * r.Shapes[0].Centre.Bary[c];
+      EXPECT_NEAR(uv.x, 0.5, 1e-3);
+      EXPECT_NEAR(uv.y, 0.5, 1e-3);
+    }
+  }
+  EXPECT_TRUE(centreCovered);
+}
+
+TEST(ShapeDistributor, BadInputGetsClearErrors)
+{
+  const Plane plane = MakePlane(4, 1.0);
+  const SafeDistanceTables t = Tables({ Star(1.0, 0.4) });
+  ShapeDistributor d(plane.Mesh);
+  ShapeDistributionOptions o;
+  o.ShapeSize = -1.0;
+  auto r = d.Run(t, plane.Directions, {}, o);
+  EXPECT_FALSE(r.Ok);
+  EXPECT_NE(r.Error.find("ShapeSize"), std::string::npos);
+  o.ShapeSize = 1e-12;
+  r = d.Run(t, plane.Directions, {}, o);
+  EXPECT_FALSE(r.Ok);
+  o.ShapeSize = 0.2;
+  r = d.Run(t, std::vector<Vec3>(3), {}, o);
+  EXPECT_FALSE(r.Ok);
+  EXPECT_NE(r.Error.find("direction"), std::string::npos);
+  r = d.Run(t, plane.Directions, std::vector<double>(plane.Mesh.NumberOfVertices(), -1.0), o);
+  EXPECT_FALSE(r.Ok);
+  EXPECT_NE(r.Error.find("density"), std::string::npos);
+  o.ClassWeights = { 1.0, 2.0 };
+  r = d.Run(t, plane.Directions, {}, o);
+  EXPECT_FALSE(r.Ok);
+  EXPECT_NE(r.Error.find("ClassWeights"), std::string::npos);
+  o.ClassWeights.clear();
+  r = d.Run(SafeDistanceTables(), plane.Directions, {}, o);
+  EXPECT_FALSE(r.Ok);
+  // A shape larger than the mesh: at most one fits; a NaN direction gets a random orientation.
+  o.ShapeSize = 5.0;
+  std::vector<Vec3> nan(plane.Directions.size(), Vec3{ NAN, 0, 0 });
+  r = d.Run(t, nan, {}, o);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  EXPECT_LE(r.Shapes.size(), 1u);
+  // Abort.
+  o.ShapeSize = 0.05;
+  r = d.Run(t, plane.Directions, {}, o, [](double) { return false; });
+  EXPECT_FALSE(r.Ok);
+  EXPECT_EQ(r.Error, "aborted");
+}
