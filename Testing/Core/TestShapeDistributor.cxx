@@ -94,7 +94,7 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
     EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize, &pairs), 0)
       << "mode " << static_cast<int>(mode);
     if (mode != DistributionMode::CircumcirclePoissonDisk)
-      EXPECT_GT(pairs, static_cast<int>(r.Shapes.size())) << "the oracle saw close pairs";
+      EXPECT_GT(pairs, static_cast<int>(r.Shapes.size()) / 2) << "the oracle saw close pairs";
     // Without a direction field: random orientations, still conflict-free.
     Plane free = plane;
     for (Vec3& v : free.Directions)
