@@ -386,6 +386,10 @@ int vtkCrossField::RequestData(vtkInformation* vtkNotUsed(request),
   euler->SetName("EulerCharacteristic");
   euler->InsertNextValue(mesh.EulerCharacteristic());
   output->GetFieldData()->AddArray(euler);
+  vtkNew<vtkIntArray> symmetry;
+  symmetry->SetName("Symmetry");
+  symmetry->InsertNextValue(n);
+  output->GetFieldData()->AddArray(symmetry);
   vtkNew<vtkDoubleArray> indexSum;
   indexSum->SetName("SingularityIndexSum");
   indexSum->InsertNextValue(sum);

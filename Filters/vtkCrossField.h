@@ -40,7 +40,7 @@
  *    multiple of 1/N; at boundary vertices the field's turning against the boundary, rounded to
  *    the nearest 1/N);
  *  - field data EulerCharacteristic and SingularityIndexSum (interior indices plus the turning
- *    of every boundary loop: equal by the Poincare-Hopf theorem).
+ *    of every boundary loop: equal by the Poincare-Hopf theorem), and Symmetry (N).
  *
  * The solver (and its factorization) is kept while the input mesh does not change: moving
  * singularities or changing stroke directions re-solves without factorizing again.

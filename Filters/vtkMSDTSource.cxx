@@ -462,6 +462,25 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
     partCentre->InsertNextTuple2(p.Centre.x, p.Centre.y);
     partRadius->InsertNextValue(p.Radius);
   }
+  // The class outlines (normalized units, class frame), so that a consumer of this port alone
+  // (Shape Distributor) can draw the shapes: ring r of class OutlineRingClass[r] holds points
+  // OutlineRingOffsets[r] .. OutlineRingOffsets[r + 1] - 1 of OutlinePoints.
+  auto outlinePoints = DoubleArray("OutlinePoints", 2);
+  auto ringOffsets = IntArray("OutlineRingOffsets");
+  auto ringClass = IntArray("OutlineRingClass");
+  for (std::size_t k = 0; k < T.Classes.size(); ++k)
+  {
+    for (const auto& ring : T.Classes[k].Outline.Rings)
+    {
+      ringOffsets->InsertNextValue(static_cast<int>(outlinePoints->GetNumberOfTuples()));
+      ringClass->InsertNextValue(static_cast<int>(k));
+      for (const gs::Vec2& q : ring)
+      {
+        outlinePoints->InsertNextTuple2(q.x, q.y);
+      }
+    }
+  }
+  ringOffsets->InsertNextValue(static_cast<int>(outlinePoints->GetNumberOfTuples()));
   auto pairA = IntArray("PairPartA");
   auto pairB = IntArray("PairPartB");
   auto pairStep = DoubleArray("PairDistanceStep", 1);
@@ -490,7 +509,7 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   };
   for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ className, classRadius,
          classCentre, classAspect, classAxis, classParts, partClass, partIndex, partCentre,
-         partRadius, pairA, pairB, pairStep })
+         partRadius, pairA, pairB, pairStep, outlinePoints, ringOffsets, ringClass })
   {
     fd->AddArray(a);
   }

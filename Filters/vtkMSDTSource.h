@@ -30,7 +30,9 @@
  * ClassAspectRatio, ClassMajorAxis, ClassNumberOfParts; PartClassId, PartIndex, PartCentre
  * (in the class frame: origin at the class circle centre, normalized units), PartRadius;
  * PairPartA, PairPartB, PairDistanceStep (per z slice); AngleBins, DistanceSteps,
- * RotationSamples, Scale (source units per normalized unit).
+ * RotationSamples, Scale (source units per normalized unit); the outlines as OutlinePoints
+ * (2 components, normalized class frame), OutlineRingOffsets (one per ring plus the end) and
+ * OutlineRingClass (one per ring): Shape Distributor needs only this port.
  * Output port 1 (vtkPolyData): the outlines as closed polylines, one cell per contour, in
  * normalized units with each class centred on its circle centre; cell array "ClassId".
  * Output port 2 (vtkImageData): the silhouettes, TextureSize x TextureSize, one unsigned char

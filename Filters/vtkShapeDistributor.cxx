@@ -1,0 +1,599 @@
+#include "vtkShapeDistributor.h"
+
+#include "vtkSaddleVertexGraphCache.h"
+#include "vtkSurfaceMeshConverter.h"
+
+#include "SafeDistanceTable.h"
+#include "ShapeDistributor.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkStringArray.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+vtkStandardNewMacro(vtkShapeDistributor);
+
+// The converted mesh, its hash and the distributor (per-thread geodesic engines), kept while the
+// input mesh is unchanged.
+struct vtkShapeDistributor::Cache : vtkSurfaceMeshConverter::Cached
+{
+  std::unique_ptr<gs::ShapeDistributor> Distributor; // refers to Mesh.Build.Mesh and Graph
+  std::shared_ptr<const gs::SaddleVertexGraph> Graph;
+  std::uint64_t Hash = 0;
+  bool HashValid = false;
+};
+
+namespace
+{
+// Fraction of ShapeSize by which decals and outlines are lifted along the face normals.
+constexpr double Lift = 0.002;
+
+vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
+{
+  vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  return a && a->GetNumberOfComponents() == components ? a : nullptr;
+}
+
+// MSDT Source's port 0 back into the core's tables. False with `error` when something is missing
+// or inconsistent.
+bool TablesFromImage(vtkImageData* image, gs::SafeDistanceTables& T, std::string& error)
+{
+  vtkFieldData* fd = image->GetFieldData();
+  vtkDataArray* values = image->GetPointData()->GetArray("SafeDistance");
+  vtkDataArray* bins = FieldArray(fd, "AngleBins", 1);
+  vtkDataArray* steps = FieldArray(fd, "DistanceSteps", 1);
+  vtkDataArray* scale = FieldArray(fd, "Scale", 1);
+  vtkDataArray* classRadius = FieldArray(fd, "ClassRadius", 1);
+  vtkDataArray* classAxis = FieldArray(fd, "ClassMajorAxis", 2);
+  vtkDataArray* classAspect = FieldArray(fd, "ClassAspectRatio", 1);
+  vtkDataArray* partClass = FieldArray(fd, "PartClassId", 1);
+  vtkDataArray* partIndex = FieldArray(fd, "PartIndex", 1);
+  vtkDataArray* partCentre = FieldArray(fd, "PartCentre", 2);
+  vtkDataArray* partRadius = FieldArray(fd, "PartRadius", 1);
+  vtkDataArray* outline = FieldArray(fd, "OutlinePoints", 2);
+  vtkDataArray* ringOffsets = FieldArray(fd, "OutlineRingOffsets", 1);
+  vtkDataArray* ringClass = FieldArray(fd, "OutlineRingClass", 1);
+  vtkStringArray* names = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray("ClassName") : nullptr);
+  if (!values || values->GetNumberOfComponents() != 1 || !bins || !steps || !scale ||
+    !classRadius || !classAxis || !partClass || !partIndex || !partCentre || !partRadius ||
+    !outline || !ringOffsets || !ringClass)
+  {
+    error = "the Table input is not the output of MSDT Source (port 0): it needs the point array "
+            "SafeDistance and the field data of the classes, parts and outlines";
+    return false;
+  }
+  T = gs::SafeDistanceTables();
+  T.AngleBins = static_cast<int>(bins->GetComponent(0, 0));
+  T.DistanceSteps = static_cast<int>(steps->GetComponent(0, 0));
+  T.Scale = scale->GetComponent(0, 0);
+  const vtkIdType nc = classRadius->GetNumberOfTuples(), np = partRadius->GetNumberOfTuples();
+  if (nc < 1 || np < nc || classAxis->GetNumberOfTuples() != nc || partClass->GetNumberOfTuples() != np ||
+    partCentre->GetNumberOfTuples() != np || partIndex->GetNumberOfTuples() != np || T.AngleBins < 1 ||
+    values->GetNumberOfTuples() != np * np * T.AngleBins * T.AngleBins)
+  {
+    error = "the Table input is inconsistent (numbers of classes, parts, angle bins and values "
+            "do not match)";
+    return false;
+  }
+  T.Classes.resize(nc);
+  for (vtkIdType k = 0; k < nc; ++k)
+  {
+    gs::SafeDistanceClass& c = T.Classes[k];
+    c.Name = names && k < names->GetNumberOfValues() ? names->GetValue(k) : "class " + std::to_string(k);
+    c.Radius = classRadius->GetComponent(k, 0);
+    c.MajorAxis = gs::Vec2{ classAxis->GetComponent(k, 0), classAxis->GetComponent(k, 1) };
+    c.AspectRatio = classAspect && k < classAspect->GetNumberOfTuples() ? classAspect->GetComponent(k, 0) : 1.0;
+  }
+  T.Parts.resize(np);
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    gs::SafeDistancePart& part = T.Parts[p];
+    part.ClassId = static_cast<int>(partClass->GetComponent(p, 0));
+    part.Index = static_cast<int>(partIndex->GetComponent(p, 0));
+    part.Centre = gs::Vec2{ partCentre->GetComponent(p, 0), partCentre->GetComponent(p, 1) };
+    part.Radius = partRadius->GetComponent(p, 0);
+    if (part.ClassId < 0 || part.ClassId >= nc)
+    {
+      error = "the Table input has a part of an unknown class";
+      return false;
+    }
+    T.Classes[part.ClassId].Parts.push_back(static_cast<int>(p));
+  }
+  const vtkIdType rings = ringClass->GetNumberOfTuples();
+  if (ringOffsets->GetNumberOfTuples() != rings + 1)
+  {
+    error = "the Table input's outline rings are inconsistent";
+    return false;
+  }
+  for (vtkIdType r = 0; r < rings; ++r)
+  {
+    const int k = static_cast<int>(ringClass->GetComponent(r, 0));
+    const vtkIdType from = static_cast<vtkIdType>(ringOffsets->GetComponent(r, 0));
+    const vtkIdType to = static_cast<vtkIdType>(ringOffsets->GetComponent(r + 1, 0));
+    if (k < 0 || k >= nc || from < 0 || to < from || to > outline->GetNumberOfTuples())
+    {
+      error = "the Table input's outline rings are inconsistent";
+      return false;
+    }
+    std::vector<gs::Vec2> ring;
+    for (vtkIdType i = from; i < to; ++i)
+    {
+      ring.emplace_back(outline->GetComponent(i, 0), outline->GetComponent(i, 1));
+    }
+    T.Classes[k].Outline.Rings.push_back(std::move(ring));
+  }
+  T.Values.resize(static_cast<std::size_t>(values->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    T.Values[static_cast<std::size_t>(i)] = values->GetComponent(i, 0);
+  }
+  return true;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkShapeDistributor::vtkShapeDistributor()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(3);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "Direction");
+}
+
+//------------------------------------------------------------------------------
+vtkShapeDistributor::~vtkShapeDistributor() = default;
+
+//------------------------------------------------------------------------------
+void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ShapeSize: " << this->ShapeSize << "\n";
+  os << indent << "Mode: " << this->Mode << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "MaximumShapes: " << this->MaximumShapes << "\n";
+  os << indent << "MaximalFailures: " << this->MaximalFailures << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "K: " << this->K << "\n";
+  os << indent << "CacheFileName: " << this->CacheFileName << "\n";
+}
+
+//------------------------------------------------------------------------------
+void vtkShapeDistributor::SetNumberOfClassWeights(int n)
+{
+  n = std::max(0, n);
+  if (static_cast<int>(this->ClassWeights.size()) != n)
+  {
+    this->ClassWeights.resize(n, 1.0);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkShapeDistributor::SetClassWeight(int i, double w)
+{
+  if (i < 0)
+  {
+    return;
+  }
+  if (i >= static_cast<int>(this->ClassWeights.size()))
+  {
+    this->ClassWeights.resize(i + 1, 1.0);
+  }
+  if (this->ClassWeights[i] != w)
+  {
+    this->ClassWeights[i] = w;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkShapeDistributor::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    return 1;
+  }
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    return 1;
+  }
+  return 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkShapeDistributor::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkImageData* tableImage = vtkImageData::GetData(inputVector[1], 0);
+  vtkPolyData* placements = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* decals = vtkPolyData::GetData(outputVector, 1);
+  vtkPolyData* outlines = vtkPolyData::GetData(outputVector, 2);
+  if (!placements || !decals || !outlines)
+  {
+    vtkErrorMacro("Missing outputs.");
+    return 0;
+  }
+  placements->Initialize();
+  decals->Initialize();
+  outlines->Initialize();
+  if (!input || !tableImage)
+  {
+    vtkErrorMacro("Shape Distributor needs a mesh (port 0) and the tables of MSDT Source "
+                  "(port 1, Table).");
+    return 1;
+  }
+  this->UpdateProgress(0.0);
+
+  // 1. Parameters and tables.
+  if (!(this->ShapeSize > 0.0) || !std::isfinite(this->ShapeSize))
+  {
+    vtkErrorMacro("ShapeSize must be a positive finite number (it is " << this->ShapeSize << ").");
+    return 1;
+  }
+  if (this->Mode != RANDOM && this->Mode != GREEDY && this->Mode != CIRCUMCIRCLE_POISSON_DISK)
+  {
+    vtkErrorMacro("Unknown Mode " << this->Mode
+                                  << ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk).");
+    return 1;
+  }
+  if (this->K < 0 || this->MaximumShapes < 0 || this->NumberOfThreads < 0 ||
+    this->MaximalFailures < 0)
+  {
+    vtkErrorMacro("K, MaximumShapes, MaximalFailures and NumberOfThreads must be >= 0.");
+    return 1;
+  }
+  gs::SafeDistanceTables tables;
+  std::string error;
+  if (!TablesFromImage(tableImage, tables, error))
+  {
+    vtkErrorMacro("" << error << ".");
+    return 1;
+  }
+
+  // 2. Mesh (kept while unchanged).
+  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
+  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
+  {
+    return 1;
+  }
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  vtkPolyData* surface = cache.Mesh.Surface;
+  const vtkIdType firstPolygon = surface->GetNumberOfVerts() + surface->GetNumberOfLines();
+  const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
+
+  // 3. Direction (per face) and density (per vertex), read on the converted surface (which
+  // carries the input's arrays through a triangulation).
+  vtkInformation* directionInfo = this->GetInputArrayInformation(0);
+  const char* directionName = directionInfo && directionInfo->Has(vtkDataObject::FIELD_NAME())
+    ? directionInfo->Get(vtkDataObject::FIELD_NAME())
+    : nullptr;
+  const int directionAssociation = directionInfo && directionInfo->Has(vtkDataObject::FIELD_ASSOCIATION())
+    ? directionInfo->Get(vtkDataObject::FIELD_ASSOCIATION())
+    : vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  if (!directionName || !*directionName)
+  {
+    vtkErrorMacro("No DirectionArray given (a cell or point array of tangent vectors, such as "
+                  "Cross Field's Direction).");
+    return 1;
+  }
+  std::vector<gs::Vec3> directions(nf, gs::Vec3{ 0, 0, 0 });
+  {
+    const bool onPoints = directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    vtkDataArray* a = onPoints ? surface->GetPointData()->GetArray(directionName)
+                               : surface->GetCellData()->GetArray(directionName);
+    if (!a || a->GetNumberOfComponents() != 3)
+    {
+      vtkErrorMacro("The DirectionArray \"" << directionName << "\" is missing from the input's "
+                    << (onPoints ? "point" : "cell") << " data or does not have 3 components.");
+      return 1;
+    }
+    if (onPoints)
+    {
+      // Per face: the corners' vectors summed after aligning each with the first (N-symmetric).
+      std::vector<gs::Vec3> atVertex(nv, gs::Vec3{ 0, 0, 0 });
+      for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+      {
+        const int v = i < static_cast<vtkIdType>(pointToVertex.size()) ? pointToVertex[i] : -1;
+        if (v >= 0)
+        {
+          double x[3];
+          a->GetTuple(i, x);
+          atVertex[v] = gs::Vec3{ x[0], x[1], x[2] };
+        }
+      }
+      for (int f = 0; f < nf; ++f)
+      {
+        const auto& c = mesh.Face(f);
+        const gs::Vec3 first = atVertex[c[0]];
+        gs::Vec3 sum = first;
+        for (int k = 1; k < 3; ++k)
+        {
+          const gs::Vec3 d = atVertex[c[k]];
+          sum = sum + (gs::Dot(d, first) < 0.0 ? d * -1.0 : d);
+        }
+        directions[f] = sum;
+      }
+    }
+    else
+    {
+      for (int f = 0; f < nf; ++f)
+      {
+        double x[3];
+        a->GetTuple(firstPolygon + f, x);
+        directions[f] = gs::Vec3{ x[0], x[1], x[2] };
+      }
+    }
+  }
+  std::vector<double> density;
+  vtkInformation* densityInfo = this->GetInputArrayInformation(1);
+  const char* densityName = densityInfo && densityInfo->Has(vtkDataObject::FIELD_NAME())
+    ? densityInfo->Get(vtkDataObject::FIELD_NAME())
+    : nullptr;
+  if (densityName && *densityName && std::string(densityName) != "None")
+  {
+    vtkDataArray* a = surface->GetPointData()->GetArray(densityName);
+    if (!a || a->GetNumberOfComponents() != 1)
+    {
+      vtkErrorMacro("The DensityArray \"" << densityName
+                                          << "\" is missing from the input's point data or is "
+                                             "not a scalar array.");
+      return 1;
+    }
+    density.assign(nv, std::numeric_limits<double>::quiet_NaN());
+    for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+    {
+      const int v = i < static_cast<vtkIdType>(pointToVertex.size()) ? pointToVertex[i] : -1;
+      if (v >= 0)
+      {
+        density[v] = a->GetComponent(i, 0);
+      }
+    }
+  }
+  int symmetry = 1;
+  if (vtkDataArray* s = FieldArray(input->GetFieldData(), "Symmetry", 1))
+  {
+    symmetry = static_cast<int>(s->GetComponent(0, 0));
+    if (symmetry != 1 && symmetry != 2 && symmetry != 4)
+    {
+      vtkWarningMacro("The input's field data Symmetry is " << symmetry
+                                                           << " (not 1, 2 or 4): 1 is used.");
+      symmetry = 1;
+    }
+  }
+  this->UpdateProgress(0.05);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 4. Saddle vertex graph (shared, cached) and the distributor.
+  std::shared_ptr<const gs::SaddleVertexGraph> graph;
+  if (this->K >= 1)
+  {
+    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
+      this, mesh, cache.Hash, cache.HashValid, this->K, this->CacheFileName, 0.05, 0.35);
+    if (!found.Graph)
+    {
+      return 1; // aborted, or the error is reported
+    }
+    graph = found.Graph;
+  }
+  if (!cache.Distributor || graph != cache.Graph)
+  {
+    cache.Distributor.reset();
+    cache.Graph = graph;
+    cache.Distributor.reset(new gs::ShapeDistributor(mesh, cache.Graph.get()));
+  }
+  gs::ShapeDistributor& distributor = *cache.Distributor;
+
+  // 5. Distribution.
+  gs::ShapeDistributionOptions options;
+  options.ShapeSize = this->ShapeSize;
+  options.ClassWeights = this->ClassWeights;
+  options.Mode = static_cast<gs::DistributionMode>(this->Mode);
+  options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
+  options.MaximumShapes = this->MaximumShapes;
+  options.MaximalFailures = this->MaximalFailures;
+  options.NumberOfThreads = this->NumberOfThreads;
+  options.Symmetry = symmetry;
+  const gs::ShapeDistributionResult result =
+    distributor.Run(tables, directions, density, options, [this](double p) {
+      this->UpdateProgress(0.4 + 0.45 * p);
+      return !this->CheckAbort();
+    });
+  if (!result.Ok)
+  {
+    if (result.Error != "aborted")
+    {
+      vtkErrorMacro("Shape distribution: " << result.Error << ".");
+    }
+    return 1;
+  }
+  const std::vector<gs::PlacedShape>& shapes = result.Shapes;
+  const int ns = static_cast<int>(shapes.size());
+
+  // 6. Placements.
+  {
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    vtkNew<vtkCellArray> verts;
+    vtkNew<vtkIntArray> classId;
+    classId->SetName("ClassId");
+    vtkNew<vtkDoubleArray> scale;
+    scale->SetName("Scale");
+    vtkNew<vtkDoubleArray> direction;
+    direction->SetName("Direction");
+    direction->SetNumberOfComponents(3);
+    vtkNew<vtkDoubleArray> normal;
+    normal->SetName("Normal");
+    normal->SetNumberOfComponents(3);
+    vtkNew<vtkIdTypeArray> faceId;
+    faceId->SetName("FaceId");
+    for (const gs::PlacedShape& s : shapes)
+    {
+      const vtkIdType id = points->InsertNextPoint(s.Position.x, s.Position.y, s.Position.z);
+      verts->InsertNextCell(1, &id);
+      classId->InsertNextValue(s.ClassId);
+      scale->InsertNextValue(s.Scale);
+      direction->InsertNextTuple3(s.Direction.x, s.Direction.y, s.Direction.z);
+      normal->InsertNextTuple3(s.Normal.x, s.Normal.y, s.Normal.z);
+      faceId->InsertNextValue(firstPolygon + s.Centre.Face);
+    }
+    placements->SetPoints(points);
+    placements->SetVerts(verts);
+    placements->GetPointData()->AddArray(classId);
+    placements->GetPointData()->AddArray(scale);
+    placements->GetPointData()->AddArray(direction);
+    placements->GetPointData()->AddArray(normal);
+    placements->GetPointData()->AddArray(faceId);
+    placements->GetPointData()->SetActiveScalars("ClassId");
+    placements->GetPointData()->SetActiveVectors("Direction");
+    vtkFieldData* fd = placements->GetFieldData();
+    auto single = [fd](const char* name, double value) {
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(name);
+      a->InsertNextValue(value);
+      fd->AddArray(a);
+    };
+    single("NumberOfCandidates", static_cast<double>(result.Statistics.Candidates));
+    single("NumberOfCharts", static_cast<double>(result.Statistics.Charts));
+    single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
+    single("Seconds", result.Statistics.Seconds);
+  }
+  this->UpdateProgress(0.87);
+  if (this->CheckAbort())
+  {
+    placements->Initialize();
+    return 1;
+  }
+
+  // 7. Decals and outlines, computed per shape in parallel, assembled in order.
+  const double lift = Lift * this->ShapeSize;
+  std::vector<gs::ShapeDecal> decalOf(ns);
+  std::vector<std::vector<std::vector<gs::Vec3>>> outlineOf(ns);
+  const double mean = mesh.MeanEdgeLength();
+#ifdef _OPENMP
+  const int threads = this->NumberOfThreads > 0 ? this->NumberOfThreads : omp_get_max_threads();
+#endif
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+  for (int s = 0; s < ns; ++s)
+  {
+    decalOf[s] = distributor.Decal(s);
+    const gs::PlacedShape& shape = shapes[s];
+    const gs::SafeDistanceClass& c = tables.Classes[shape.ClassId];
+    const double unit = this->ShapeSize * shape.Scale;
+    const double spacing = 0.5 * mean / unit; // normalized units
+    for (const auto& ring : c.Outline.Rings)
+    {
+      std::vector<gs::Vec3> line;
+      for (std::size_t k = 0; k < ring.size(); ++k)
+      {
+        const gs::Vec2 a = ring[k], b = ring[(k + 1) % ring.size()];
+        const int pieces = std::max(1, std::min(1000, static_cast<int>(std::ceil(gs::Norm(b - a) / spacing))));
+        for (int j = 0; j < pieces; ++j)
+        {
+          const gs::SurfacePoint q = distributor.MapToSurface(s, a + (b - a) * (static_cast<double>(j) / pieces));
+          line.push_back(mesh.Interpolate(q.Face, q.Bary) + mesh.FaceNormal(q.Face) * lift);
+        }
+      }
+      outlineOf[s].push_back(std::move(line));
+    }
+  }
+  {
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    vtkNew<vtkCellArray> polys;
+    vtkNew<vtkFloatArray> tcoords;
+    tcoords->SetName("TextureCoordinates");
+    tcoords->SetNumberOfComponents(2);
+    vtkNew<vtkIntArray> shapeId, classId;
+    shapeId->SetName("ShapeId");
+    classId->SetName("ClassId");
+    for (int s = 0; s < ns; ++s)
+    {
+      const gs::ShapeDecal& d = decalOf[s];
+      for (std::size_t k = 0; k < d.Faces.size(); ++k)
+      {
+        const int f = d.Faces[k];
+        const gs::Vec3 n = mesh.FaceNormal(f) * lift;
+        vtkIdType ids[3];
+        for (int j = 0; j < 3; ++j)
+        {
+          const gs::Vec3 x = mesh.Position(mesh.Face(f)[j]) + n;
+          ids[j] = points->InsertNextPoint(x.x, x.y, x.z);
+          tcoords->InsertNextTuple2(d.TextureCoordinates[k][j].x, d.TextureCoordinates[k][j].y);
+        }
+        polys->InsertNextCell(3, ids);
+        shapeId->InsertNextValue(s);
+        classId->InsertNextValue(shapes[s].ClassId);
+      }
+    }
+    decals->SetPoints(points);
+    decals->SetPolys(polys);
+    decals->GetPointData()->SetTCoords(tcoords);
+    decals->GetCellData()->AddArray(shapeId);
+    decals->GetCellData()->AddArray(classId);
+  }
+  {
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    vtkNew<vtkCellArray> lines;
+    vtkNew<vtkIntArray> shapeId, classId;
+    shapeId->SetName("ShapeId");
+    classId->SetName("ClassId");
+    for (int s = 0; s < ns; ++s)
+    {
+      for (const auto& ring : outlineOf[s])
+      {
+        if (ring.size() < 2)
+        {
+          continue;
+        }
+        std::vector<vtkIdType> ids;
+        for (const gs::Vec3& x : ring)
+        {
+          ids.push_back(points->InsertNextPoint(x.x, x.y, x.z));
+        }
+        ids.push_back(ids.front());
+        lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+        shapeId->InsertNextValue(s);
+        classId->InsertNextValue(shapes[s].ClassId);
+      }
+    }
+    outlines->SetPoints(points);
+    outlines->SetLines(lines);
+    outlines->GetCellData()->AddArray(shapeId);
+    outlines->GetCellData()->AddArray(classId);
+    outlines->GetCellData()->SetActiveScalars("ClassId");
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}

@@ -1,0 +1,162 @@
+/**
+ * @class vtkShapeDistributor
+ * @brief Conflict-free, anisotropic, multi-class distribution of 2D shapes on a triangle mesh.
+ *
+ * A thin wrapper over gs::ShapeDistributor (Filters/Core/ShapeDistributor.h; Wang et al. 2016,
+ * Section 4 and Algorithm 3): parallel dart throwing whose candidates are oriented by a direction
+ * field, scaled by a density field and accepted only when no placed shape and no higher-priority
+ * candidate conflicts with them, conflicts being read from minimum safe distance tables (MSDT
+ * Source) at the geodesic distance and relative angles of the two shapes (geodesic polar
+ * coordinates about each shape's centre: saddle vertex graph with K > 0, exact geodesics with
+ * K = 0). Long shapes (classes split into parts by MSDT Source) lie along a streamline of the
+ * field and bend with it.
+ *
+ * Input port 0 ("Input", vtkPolyData): the surface (polygons triangulated, as in the other
+ * filters) with a direction array (DirectionArray: a cell array of tangent vectors such as
+ * Cross Field's Direction, or a point array, averaged per triangle; its field data "Symmetry"
+ * (N) says how streamlines may turn it, 1 by default) and an optional density array
+ * (DensityArray: point scalars f, a shape at factor f is f times its base size; points with
+ * f <= 0 get no shape).
+ * Input port 1 ("Table", vtkImageData): the tables of MSDT Source (port 0).
+ *
+ * Output port 0 ("Placements"): one vertex per shape at its centre; point arrays ClassId,
+ * Scale, Direction (the shape's +x axis), Normal, FaceId (input cell). Field data:
+ * NumberOfCandidates, NumberOfCharts, Maximal (1 when ended by the failure count), Seconds.
+ * Output port 1 ("Decals"): per shape, copies of the triangles it covers with texture
+ * coordinates ("TextureCoordinates") mapping the square around its class circle onto [0, 1]^2
+ * (the convention of MSDT Source's Silhouettes image); cell arrays ShapeId and ClassId.
+ * Output port 2 ("Outlines"): each shape's contours drawn on the surface (through the polar
+ * coordinates of its centre, or of its curve for long shapes) as closed polylines; cell arrays
+ * ShapeId and ClassId. Decals and outlines are lifted off the surface by 0.2% of ShapeSize
+ * along the face normals so that they render over the mesh.
+ *
+ * The mesh conversion and the saddle vertex graph are kept while the mesh is unchanged (and the
+ * graph is shared with the other filters and CacheFileName): changing the density, the
+ * direction field's values, the tables or any parameter re-runs only the distribution.
+ * Results are identical for any NumberOfThreads for a given Seed.
+ *
+ * Errors (vtkErrorMacro, empty outputs): a mesh the core rejects, missing or wrong-typed
+ * arrays, missing or inconsistent tables, ShapeSize <= 0 or absurdly small for the mesh,
+ * ClassWeights of the wrong length or all zero, unknown Mode, K < 0, negative MaximumShapes or
+ * NumberOfThreads. Progress is reported and the run can be aborted.
+ *
+ * Example (pvpython):
+ * @code
+ * msdt = MSDTSource(ShapeFileNames=["star.png"])
+ * field = CrossField(Input=mesh)
+ * shapes = ShapeDistributor(Input=field, Table=msdt, ShapeSize=0.05)
+ * @endcode
+ */
+#ifndef vtkShapeDistributor_h
+#define vtkShapeDistributor_h
+
+#include "GeodesicShapesFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory> // for std::unique_ptr
+#include <string> // for std::string
+#include <vector> // for std::vector
+
+class GEODESICSHAPESFILTERS_EXPORT vtkShapeDistributor : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkShapeDistributor* New();
+  vtkTypeMacro(vtkShapeDistributor, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Modes
+  {
+    RANDOM = 0,
+    GREEDY = 1,
+    CIRCUMCIRCLE_POISSON_DISK = 2
+  };
+
+  ///@{
+  /// Circumradius (world units) of the first class at density 1. Default 1.
+  vtkSetMacro(ShapeSize, double);
+  vtkGetMacro(ShapeSize, double);
+  ///@}
+
+  ///@{
+  /// Relative frequencies of the classes (empty: all equal).
+  void SetNumberOfClassWeights(int n);
+  void SetClassWeight(int i, double w);
+  void RemoveAllClassWeights() { this->ClassWeights.clear(); this->Modified(); }
+  int GetNumberOfClassWeights() const { return static_cast<int>(this->ClassWeights.size()); }
+  double GetClassWeight(int i) const { return this->ClassWeights[i]; }
+  ///@}
+
+  ///@{
+  /// RANDOM (dart throwing, default), GREEDY (fronts growing at the safe distance) or
+  /// CIRCUMCIRCLE_POISSON_DISK (the baseline: shapes as their circumcircles).
+  vtkSetMacro(Mode, int);
+  vtkGetMacro(Mode, int);
+  ///@}
+
+  ///@{
+  /// Random seed. Default 0.
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+  ///@{
+  /// Stop after this many shapes (0, default: until maximal).
+  vtkSetMacro(MaximumShapes, int);
+  vtkGetMacro(MaximumShapes, int);
+  ///@}
+
+  ///@{
+  /// Consecutive rejected candidates that end the run (default 20000): a shape then fits in
+  /// about 1 / MaximalFailures of random probes.
+  vtkSetMacro(MaximalFailures, int);
+  vtkGetMacro(MaximalFailures, int);
+  ///@}
+
+  ///@{
+  /// Threads (0, default: all cores). The result does not depend on it.
+  vtkSetMacro(NumberOfThreads, int);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /// Saddle vertex graph size (default 50); 0: exact geodesics for the polar charts.
+  vtkSetMacro(K, int);
+  vtkGetMacro(K, int);
+  ///@}
+
+  ///@{
+  /// Optional saddle vertex graph cache file (see vtkSVGGeodesicDistance).
+  vtkSetStdStringFromCharMacro(CacheFileName);
+  vtkGetCharFromStdStringMacro(CacheFileName);
+  ///@}
+
+  /// Connect the tables (MSDT Source port 0) to port 1.
+  void SetTableConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+
+protected:
+  vtkShapeDistributor();
+  ~vtkShapeDistributor() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  double ShapeSize = 1.0;
+  std::vector<double> ClassWeights;
+  int Mode = RANDOM;
+  int Seed = 0;
+  int MaximumShapes = 0;
+  int MaximalFailures = 20000;
+  int NumberOfThreads = 0;
+  int K = 50;
+  std::string CacheFileName;
+
+private:
+  vtkShapeDistributor(const vtkShapeDistributor&) = delete;
+  void operator=(const vtkShapeDistributor&) = delete;
+
+  struct Cache;
+  std::unique_ptr<Cache> MeshCache;
+};
+
+#endif
