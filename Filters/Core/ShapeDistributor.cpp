@@ -433,6 +433,13 @@ struct ShapeDistributor::Impl
         {
           t = py.Position - X.S.Parts[i].Position;
         }
+        // Intrinsic distortion of the chart at Y's centre: the tables need rigid planar copies.
+        const double stretch = std::max({ std::abs(Norm(E1) / Norm(e1) - 1.0),
+          std::abs(Norm(E2) / Norm(e2) - 1.0), std::abs(Norm(E2 - E1) / Norm(e2 - e1) - 1.0) });
+        if (!(stretch <= O.DistortionLimit))
+        {
+          return true; // d < r_A + r_B: the circumcircles overlap
+        }
         const Vec3 n = M.FaceNormal(g);
         t = t - n * Dot(n, t);
         double alphaB = 0.0;
@@ -607,9 +614,11 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     return "the direction field's symmetry must be 1, 2 or 4 (it is " + std::to_string(O.Symmetry) + ")";
   }
   if (O.MaximumShapes < 0 || O.MaximalFailures < 0 || O.GreedyDirections < 1 ||
-    O.GreedyDirections > 1024 || !(O.SafetyMargin >= 0.0) || O.SafetyMargin > 10.0)
+    O.GreedyDirections > 1024 || !(O.SafetyMargin >= 0.0) || O.SafetyMargin > 10.0 ||
+    !(O.DistortionLimit >= 0.0))
   {
-    return "invalid MaximumShapes, MaximalFailures, GreedyDirections (1..1024) or SafetyMargin (0..10)";
+    return "invalid MaximumShapes, MaximalFailures, GreedyDirections (1..1024), SafetyMargin "
+           "(0..10) or DistortionLimit (>= 0)";
   }
   // Class weights.
   std::vector<double> w = O.ClassWeights;

@@ -22,7 +22,9 @@
 // whose radius, (r_part + r_max) * ShapeSize * f + the longest edge, holds every centre it
 // could conflict with; the other centre's position is interpolated in its face from the chart
 // coordinates of the face's corners (exact on developable surfaces), and the arrival direction
-// there is the chart's radial direction pulled back into that face.
+// there is the chart's radial direction pulled back into that face. Where the chart is
+// distorted (Gaussian curvature at the scale of the shapes, see DistortionLimit) the pair is
+// judged by circumcircles instead: the tables assume rigid planar copies.
 //
 // ALGORITHM. Rounds of candidates (dart throwing: faces drawn with probability area / f^2, a
 // uniform point in the face, a class by ClassWeights) with priorities = their order in the
@@ -76,6 +78,11 @@ struct ShapeDistributionOptions
   int MaximalFailures = 0;  ///< consecutive failures that end the run; 0: 20000
   int GreedyDirections = 16;
   double SafetyMargin = 0.0; ///< relative enlargement of every safe distance
+  /// Curved regions: where the polar chart of one shape stretches the other's centre triangle
+  /// by more than this (relative edge length change, about |K| d^2 / 6 for Gaussian curvature K
+  /// at distance d), the rigid planar placement the tables assume no longer holds, and the pair
+  /// is judged by its circumcircles (d >= r_A + r_B: rigorous on any surface). 0: always.
+  double DistortionLimit = 0.01;
 };
 
 /// One part of a placed shape (a short shape has one).

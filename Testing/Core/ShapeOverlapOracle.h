@@ -229,6 +229,48 @@ public:
     return false;
   }
 
+  /// Does this region (local coordinates) overlap the even-odd region bounded by `rings`, given
+  /// in the same local coordinates (any shape, e.g. another region mapped through a chart)?
+  /// Proper boundary crossings, or a boundary piece of one inside the other.
+  bool OverlapsRings(const std::vector<std::vector<Vec2>>& rings) const
+  {
+    for (const auto& ring : rings)
+    {
+      for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+      {
+        const Vec2& a = ring[k];
+        const Vec2& b = ring[(k + 1) % n];
+        if (SegmentPointDistance(a, b, Vec2{ 0.0, 0.0 }) > this->Radius)
+          continue;
+        if (this->Crosses(a, b))
+          return true;
+      }
+    }
+    for (const auto& ring : rings)
+    {
+      if (!ring.empty() && gs::Norm(ring[0]) <= this->Radius && this->Contains(ring[0]))
+        return true;
+    }
+    for (const Vec2& seed : this->Seeds)
+    {
+      bool inside = false;
+      for (const auto& ring : rings)
+      {
+        for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+        {
+          const Vec2& a = ring[k];
+          const Vec2& b = ring[(k + 1) % n];
+          if ((a.y > seed.y) != (b.y > seed.y) &&
+            a.x + (seed.y - a.y) / (b.y - a.y) * (b.x - a.x) > seed.x)
+            inside = !inside;
+        }
+      }
+      if (inside)
+        return true;
+    }
+    return false;
+  }
+
   /// Even-odd point-in-region test (local coordinates).
   bool Contains(const Vec2& p) const
   {

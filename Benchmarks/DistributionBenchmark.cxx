@@ -1,0 +1,361 @@
+// Shape distribution benchmark: the figures of the ShapeDistributor issue, in one run.
+//
+//  1. Density against the circumcircle baseline (the paper's Fig. 9): a planar square, one
+//     shape class, field-aligned (constant field) and unoriented (no field), 20 seeds, Random /
+//     Greedy / Circumcircle Poisson disk: mean counts and ratios. Every layout is checked by the
+//     independent planar overlap test.
+//  2. Maximality: random probes that would still fit after a run.
+//  3. Density fidelity: a density ramp on the square; count x f^2 per unit area in strips.
+//  4. Real mesh (refined_elephant, subdivided once: ~355K faces): saddle vertex graph build,
+//     4 classes with 1 and 2 threads (identical results), counts at two resolutions of the
+//     same surface, overlaps by the chart-based surface test.
+//
+// Usage: DistributionBenchmark <refined_elephant.off> [shape images dir] [--quick]
+//   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
+//   openclipart; polygons are used when missing).
+#include "../Testing/Core/DistributionChecks.h"
+
+#include "MeshGenerators.h"
+#include "MeshIO.h"
+#include "SaddleVertexGraph.h"
+#include "SafeDistanceTable.h"
+#include "ShapeDistributor.h"
+#include "Silhouette.h"
+#include "TriangleMesh.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace gs;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+long long TotalShapes = 0, TotalOverlaps = 0, TotalPairs = 0;
+
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::vector<Vec2> Pentagram()
+{
+  // The regular {5/2} star's outline: inner radius / outer radius = 0.382.
+  std::vector<Vec2> ring;
+  const double inner = std::cos(2 * Pi / 5) / std::cos(Pi / 5);
+  for (int k = 0; k < 10; ++k)
+  {
+    const double a = Pi / 2 + Pi * k / 5, r = k % 2 == 0 ? 1.0 : inner;
+    ring.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  return ring;
+}
+
+// Scaled to circumradius 1, so that every class has the same size.
+bool ShapeFromImage(const std::string& file, Shape2D& shape)
+{
+  SilhouetteReadResult r = ReadSilhouetteImage(file);
+  if (!r.Ok)
+  {
+    return false;
+  }
+  shape = ShapeFromMask(r.Mask);
+  std::vector<Vec2> all;
+  for (const auto& ring : shape.Rings)
+    all.insert(all.end(), ring.begin(), ring.end());
+  const Circle c = SmallestEnclosingCircle(all);
+  for (auto& ring : shape.Rings)
+    for (Vec2& p : ring)
+      p = (p - c.Centre) * (1.0 / c.Radius);
+  return true;
+}
+
+SafeDistanceTables Tables(const std::vector<SafeDistanceInput>& in)
+{
+  SafeDistanceOptions o;
+  o.AngleBins = 64;
+  o.DistanceSteps = 64;
+  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
+  if (!r.Ok)
+  {
+    std::fprintf(stderr, "tables: %s\n", r.Error.c_str());
+    std::exit(1);
+  }
+  return r.Tables;
+}
+
+TriangleSoup Subdivide(const TriangleSoup& s)
+{
+  TriangleSoup out;
+  out.Points = s.Points;
+  std::map<std::pair<long long, long long>, long long> mid;
+  auto midpoint = [&](long long a, long long b) {
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    auto it = mid.find(key);
+    if (it != mid.end())
+      return it->second;
+    out.Points.push_back((s.Points[a] + s.Points[b]) * 0.5);
+    return mid[key] = static_cast<long long>(out.Points.size()) - 1;
+  };
+  for (const auto& t : s.Triangles)
+  {
+    const long long ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+    out.Triangles.push_back({ t[0], ab, ca });
+    out.Triangles.push_back({ ab, t[1], bc });
+    out.Triangles.push_back({ ca, bc, t[2] });
+    out.Triangles.push_back({ ab, bc, ca });
+  }
+  return out;
+}
+
+TriangleMesh Build(const TriangleSoup& s)
+{
+  MeshBuildResult r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
+  if (!r.Ok)
+  {
+    std::fprintf(stderr, "mesh: %s\n", r.Error.c_str());
+    std::exit(1);
+  }
+  return r.Mesh;
+}
+
+const char* ModeName(DistributionMode m)
+{
+  return m == DistributionMode::Random ? "Random" : m == DistributionMode::Greedy ? "Greedy" : "Circumcircle";
+}
+
+// Section 1 for one shape class.
+void Figure9(const std::string& name, const SafeDistanceInput& shape, int seeds)
+{
+  const TriangleMesh plane = Build(MakePlanarGrid(50, 50, 10.0, 10.0));
+  const SafeDistanceTables t = Tables({ shape });
+  for (bool aligned : { true, false })
+  {
+    std::vector<Vec3> dirs(plane.NumberOfFaces(), aligned ? Vec3{ 1, 0, 0 } : Vec3{ 0, 0, 0 });
+    std::map<DistributionMode, double> mean;
+    for (DistributionMode mode :
+      { DistributionMode::CircumcirclePoissonDisk, DistributionMode::Random, DistributionMode::Greedy })
+    {
+      double sum = 0.0;
+      for (int seed = 0; seed < seeds; ++seed)
+      {
+        ShapeDistributor d(plane);
+        ShapeDistributionOptions o;
+        o.ShapeSize = 0.5;
+        o.Mode = mode;
+        o.Seed = static_cast<std::uint64_t>(seed);
+        const ShapeDistributionResult r = d.Run(t, dirs, {}, o);
+        int pairs = 0;
+        const int overlaps = gs_test::CountPlanarOverlaps(plane, t, r.Shapes, o.ShapeSize, &pairs);
+        TotalShapes += static_cast<long long>(r.Shapes.size());
+        TotalOverlaps += overlaps;
+        TotalPairs += pairs;
+        sum += static_cast<double>(r.Shapes.size());
+        if (seed == 0 && aligned)
+        {
+          std::printf("    %-12s seed 0: %zu shapes, %lld candidates, %.3f s; probes that fit: %.4f%% of 1e5\n",
+            ModeName(mode), r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Seconds,
+            100.0 * d.ProbeFitFraction(100000, 12345));
+        }
+      }
+      mean[mode] = sum / seeds;
+    }
+    const double c = mean[DistributionMode::CircumcirclePoissonDisk];
+    std::printf("  %-10s %-9s | circumcircle %6.1f | random %6.1f (%.2fx) | greedy %6.1f (%.2fx)\n",
+      name.c_str(), aligned ? "aligned" : "unoriented", c, mean[DistributionMode::Random],
+      mean[DistributionMode::Random] / c, mean[DistributionMode::Greedy],
+      mean[DistributionMode::Greedy] / c);
+  }
+}
+
+void DensityFidelity(const SafeDistanceInput& shape, int seeds)
+{
+  // f = 0.5 + 0.5 x / 10 on the square [0, 10]^2: strips of width 2.
+  const TriangleMesh plane = Build(MakePlanarGrid(100, 100, 10.0, 10.0));
+  const SafeDistanceTables t = Tables({ shape });
+  std::vector<double> f(plane.NumberOfVertices());
+  for (int v = 0; v < plane.NumberOfVertices(); ++v)
+    f[v] = 0.5 + 0.05 * plane.Position(v).x;
+  std::vector<Vec3> dirs(plane.NumberOfFaces(), Vec3{ 1, 0, 0 });
+  double strips[5] = { 0, 0, 0, 0, 0 };
+  for (int seed = 0; seed < seeds; ++seed)
+  {
+    ShapeDistributor d(plane);
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.3;
+    o.Seed = static_cast<std::uint64_t>(seed);
+    const ShapeDistributionResult r = d.Run(t, dirs, f, o);
+    TotalShapes += static_cast<long long>(r.Shapes.size());
+    int pairs = 0;
+    TotalOverlaps += gs_test::CountPlanarOverlaps(plane, t, r.Shapes, o.ShapeSize, &pairs);
+    TotalPairs += pairs;
+    for (const PlacedShape& s : r.Shapes)
+    {
+      const int k = static_cast<int>(s.Position.x / 2.0);
+      // Stay one shape away from the square's sides (boundary effects).
+      if (k >= 0 && k < 5 && s.Position.y > 1.0 && s.Position.y < 9.0)
+        strips[k] += s.Scale * s.Scale; // count x f^2: constant if the count follows 1 / f^2
+    }
+  }
+  double mean = 0.0;
+  for (double s : strips)
+    mean += s / 5.0;
+  double worst = 0.0;
+  std::printf("  count x f^2 per strip (f from 0.5 to 1):");
+  for (double s : strips)
+  {
+    std::printf(" %.3f", s / mean);
+    worst = std::max(worst, std::abs(s / mean - 1.0));
+  }
+  std::printf("  -> largest deviation %.1f%% (bar: 10%%)\n", 100.0 * worst);
+}
+
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  bool quick = false, meshOnly = false, exactCharts = false;
+  double margin = -1.0, distortion = -1.0;
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--quick") == 0)
+      quick = true;
+    else if (std::strcmp(argv[i], "--exact-charts") == 0)
+      exactCharts = true;
+    else if (std::strcmp(argv[i], "--mesh-only") == 0)
+      meshOnly = true;
+    else if (std::strcmp(argv[i], "--distortion") == 0 && i + 1 < argc)
+      distortion = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--margin") == 0 && i + 1 < argc)
+      margin = std::atof(argv[++i]);
+    else
+      args.push_back(argv[i]);
+  }
+  const std::string images = args.size() > 1 ? args[1] : "";
+  std::vector<SafeDistanceInput> classes;
+  classes.push_back({ "pentagram", ShapeFromPolygons({ Pentagram() }) });
+  for (const char* name : { "star", "eagle", "fish", "bird" })
+  {
+    Shape2D s;
+    if (!images.empty() && ShapeFromImage(images + "/" + name + ".png", s))
+      classes.push_back({ name, s });
+    else
+      std::printf("(no %s image in '%s')\n", name, images.c_str());
+  }
+  const int seeds = quick ? 3 : 20;
+
+  if (!meshOnly)
+  {
+  std::printf("1. Density against circumcircle Poisson disk, 10 x 10 square, shape radius 0.5, %d seeds\n", seeds);
+  for (const SafeDistanceInput& c : classes)
+  {
+    if (c.Name == "pentagram" || c.Name == "star" || c.Name == "eagle")
+      Figure9(c.Name, c, seeds);
+  }
+  std::printf("2. Density fidelity (pentagram, %d seeds)\n", quick ? 2 : 8);
+  DensityFidelity(classes[0], quick ? 2 : 8);
+  }
+
+  if (!args.empty())
+  {
+    TriangleSoup soup;
+    std::string error;
+    if (!ReadMesh(args[0], soup, error))
+    {
+      std::fprintf(stderr, "%s: %s\n", args[0].c_str(), error.c_str());
+      return 1;
+    }
+    const TriangleMesh coarse = Build(soup);
+    const TriangleMesh fine = Build(Subdivide(soup));
+    std::vector<SafeDistanceInput> four(classes.begin(), classes.begin() + std::min<std::size_t>(4, classes.size()));
+    const SafeDistanceTables t = Tables(four);
+    std::printf("3. %s subdivided once: %d vertices, %d faces; %zu classes\n", args[0].c_str(),
+      fine.NumberOfVertices(), fine.NumberOfFaces(), four.size());
+    double shapeSize = 0.012 * fine.BoundingBoxDiagonal();
+    std::map<const TriangleMesh*, std::unique_ptr<SaddleVertexGraph>> graphs;
+    for (const TriangleMesh* m : { &coarse, &fine })
+    {
+      const double t0 = Now();
+      graphs[m].reset(new SaddleVertexGraph());
+      SaddleVertexGraphOptions go;
+      go.K = 50;
+      if (!graphs[m]->Build(*m, go, nullptr, error))
+      {
+        std::fprintf(stderr, "graph: %s\n", error.c_str());
+        return 1;
+      }
+      std::printf("  graph build (K = 50, 2 threads), %d faces: %.2f s\n", m->NumberOfFaces(), Now() - t0);
+    }
+    auto directionsOf = [](const TriangleMesh& m) {
+      // A smooth field: the projection of a fixed axis (singular where the axis is normal).
+      std::vector<Vec3> d(m.NumberOfFaces());
+      for (int f = 0; f < m.NumberOfFaces(); ++f)
+        d[f] = Vec3{ 0.3, 1.0, 0.2 };
+      return d;
+    };
+    std::vector<PlacedShape> reference;
+    double seconds[3] = { 0, 0, 0 };
+    for (int threads : { 1, 2 })
+    {
+      ShapeDistributor d(fine, exactCharts ? nullptr : graphs[&fine].get());
+      ShapeDistributionOptions o;
+      o.ShapeSize = shapeSize;
+      o.Seed = 1;
+      o.NumberOfThreads = threads;
+      if (margin >= 0.0)
+        o.SafetyMargin = margin;
+      if (distortion >= 0.0)
+        o.DistortionLimit = distortion;
+      const double t0 = Now();
+      const ShapeDistributionResult r = d.Run(t, directionsOf(fine), {}, o);
+      seconds[threads] = Now() - t0;
+      std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s\n", threads,
+        r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, seconds[threads]);
+      if (threads == 1)
+        reference = r.Shapes;
+      else
+      {
+        bool same = r.Shapes.size() == reference.size();
+        for (std::size_t i = 0; same && i < reference.size(); ++i)
+          same = r.Shapes[i].Position.x == reference[i].Position.x && r.Shapes[i].ClassId == reference[i].ClassId;
+        std::printf("  speed-up 2 threads / 1: %.2fx; identical result: %s\n", seconds[1] / seconds[2], same ? "yes" : "NO");
+        long long pairs = 0;
+        const double t1 = Now();
+        const int overlaps = gs_test::CountSurfaceOverlaps(fine, t, d, shapeSize, 0.02, &pairs);
+        std::printf("  surface overlap test (exact polar chart of one shape, the other's outline drawn on the surface): %d overlaps in %lld close pairs (%.1f s)\n",
+          overlaps, pairs, Now() - t1);
+        TotalShapes += static_cast<long long>(r.Shapes.size());
+        TotalOverlaps += overlaps;
+        TotalPairs += pairs;
+        std::printf("  probes that fit: %.4f%% of %d\n", 100.0 * d.ProbeFitFraction(quick ? 10000 : 100000, 777), quick ? 10000 : 100000);
+      }
+    }
+    // Resolution insensitivity: the same surface (midpoint subdivision keeps it exactly).
+    double counts[2] = { 0, 0 };
+    const int resolutionSeeds = quick ? 1 : 3;
+    for (int which = 0; which < 2; ++which)
+    {
+      const TriangleMesh& m = which == 0 ? coarse : fine;
+      for (int seed = 0; seed < resolutionSeeds; ++seed)
+      {
+        ShapeDistributor d(m, graphs[&m].get());
+        ShapeDistributionOptions o;
+        o.ShapeSize = shapeSize;
+        o.Seed = static_cast<std::uint64_t>(100 + seed);
+        counts[which] += static_cast<double>(d.Run(t, directionsOf(m), {}, o).Shapes.size()) / resolutionSeeds;
+      }
+    }
+    std::printf("  resolution: %.1f shapes on %d faces, %.1f on %d faces: %.1f%% apart (bar: 5%%)\n",
+      counts[0], coarse.NumberOfFaces(), counts[1], fine.NumberOfFaces(),
+      100.0 * std::abs(counts[1] - counts[0]) / counts[1]);
+  }
+  std::printf("Total: %lld shapes placed, %lld close pairs checked, %lld overlaps\n", TotalShapes,
+    TotalPairs, TotalOverlaps);
+  return TotalOverlaps == 0 ? 0 : 2;
+}
