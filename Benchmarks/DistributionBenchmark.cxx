@@ -219,13 +219,15 @@ void DensityFidelity(const SafeDistanceInput& shape, int seeds)
 
 int main(int argc, char* argv[])
 {
-  bool quick = false, meshOnly = false, exactCharts = false;
+  bool quick = false, meshOnly = false, exactCharts = false, speedOnly = false;
   double margin = -1.0, distortion = -1.0;
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i)
   {
     if (std::strcmp(argv[i], "--quick") == 0)
       quick = true;
+    else if (std::strcmp(argv[i], "--speed-only") == 0)
+      speedOnly = true;
     else if (std::strcmp(argv[i], "--exact-charts") == 0)
       exactCharts = true;
     else if (std::strcmp(argv[i], "--mesh-only") == 0)
@@ -281,6 +283,8 @@ int main(int argc, char* argv[])
     std::map<const TriangleMesh*, std::unique_ptr<SaddleVertexGraph>> graphs;
     for (const TriangleMesh* m : { &coarse, &fine })
     {
+      if (speedOnly && m == &coarse)
+        continue;
       const double t0 = Now();
       graphs[m].reset(new SaddleVertexGraph());
       SaddleVertexGraphOptions go;
@@ -303,6 +307,8 @@ int main(int argc, char* argv[])
     double seconds[3] = { 0, 0, 0 };
     for (int threads : { 1, 2 })
     {
+      if (speedOnly && threads == 1)
+        continue;
       ShapeDistributor d(fine, exactCharts ? nullptr : graphs[&fine].get());
       ShapeDistributionOptions o;
       o.ShapeSize = shapeSize;
@@ -315,8 +321,13 @@ int main(int argc, char* argv[])
       const double t0 = Now();
       const ShapeDistributionResult r = d.Run(t, directionsOf(fine), {}, o);
       seconds[threads] = Now() - t0;
-      std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s\n", threads,
-        r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, seconds[threads]);
+      std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s (candidates %.2f, "
+                  "checks and charts %.2f (charts %.2f s CPU), rounds %.2f)\n", threads,
+        r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, seconds[threads],
+        r.Statistics.GenerateSeconds, r.Statistics.CheckSeconds, r.Statistics.ChartCpuSeconds,
+        r.Statistics.RoundSeconds);
+      if (speedOnly)
+        return 0;
       if (threads == 1)
         reference = r.Shapes;
       else

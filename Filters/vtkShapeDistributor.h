@@ -106,7 +106,7 @@ public:
   ///@}
 
   ///@{
-  /// Consecutive rejected candidates that end the run (default 20000): a shape then fits in
+  /// Consecutive rejected candidates that end the run (default 10000; the chance that more than 0.1% of positions still fit is then e^-10): a shape then fits in
   /// about 1 / MaximalFailures of random probes.
   vtkSetMacro(MaximalFailures, int);
   vtkGetMacro(MaximalFailures, int);
@@ -146,7 +146,7 @@ protected:
   int Mode = RANDOM;
   int Seed = 0;
   int MaximumShapes = 0;
-  int MaximalFailures = 20000;
+  int MaximalFailures = 10000;
   int NumberOfThreads = 0;
   int K = 50;
   std::string CacheFileName;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <cstdlib>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -104,8 +105,15 @@ struct ShapeDistributor::Impl
   bool CircleMode = false;
   std::vector<Vec3> FaceDirection; // unit, in the face plane; zero: none
   std::vector<double> Density;     // per vertex (empty: 1)
-  std::vector<double> FaceCdf;     // cumulative face weights
+  std::vector<double> FaceCdf;     // cumulative face weights (live faces only)
+  std::vector<double> FaceWeight;  // area / f^2 (0: no density)
+  std::vector<double> AllCdf;      // cumulative face weights of all faces (probes)
+  std::vector<char> Dead;          // faces where no candidate can fit any more
+  int DeadSinceCdf = 0;            // faces killed since FaceCdf was built
+  std::vector<double> KillRadius;  // per part (normalized): see Commit
+  double MaxFaceDensity = 1.0;
   double MaxEdge = 0.0;
+  double ChartMargin = 0.0; // beyond the largest safe distance: two mean edge lengths
   double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
   std::vector<double> ClassCdf;
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
@@ -120,7 +128,6 @@ struct ShapeDistributor::Impl
     std::vector<Chart> Charts; // one per part (empty before the chart step)
     bool Valid = false;
     bool Rejected = false;
-    std::vector<int> Conflicts; // higher-priority candidates of the round it conflicts with
   };
   std::vector<Record> Accepted;
   std::vector<PlacedShape> Placed;
@@ -149,7 +156,8 @@ struct ShapeDistributor::Impl
 
   double ChartRadius(const PlacedShape& s, const PlacedPart& p) const
   {
-    return (PartRadius(p.Part) + RMax) * O.ShapeSize * s.Scale * (1.0 + O.SafetyMargin) + MaxEdge;
+    return (PartRadius(p.Part) + RMax) * O.ShapeSize * s.Scale * (1.0 + O.SafetyMargin) +
+      ChartMargin;
   }
 
   double DensityAt(const SurfacePoint& p) const
@@ -321,12 +329,13 @@ struct ShapeDistributor::Impl
     return true;
   }
 
-  SurfacePoint RandomPoint(Random& rng) const
+  SurfacePoint RandomPoint(Random& rng, bool live = true) const
   {
-    const double u = rng.Uniform() * FaceCdf.back();
-    int f = static_cast<int>(std::upper_bound(FaceCdf.begin(), FaceCdf.end(), u) - FaceCdf.begin());
+    const std::vector<double>& cdf = live ? FaceCdf : AllCdf;
+    const double u = rng.Uniform() * cdf.back();
+    int f = static_cast<int>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
     f = std::min(f, M.NumberOfFaces() - 1);
-    while (f > 0 && FaceCdf[f] == FaceCdf[f - 1])
+    while (f > 0 && cdf[f] == cdf[f - 1])
     {
       --f; // never a zero-weight face
     }
@@ -398,7 +407,19 @@ struct ShapeDistributor::Impl
         }
         if (!all)
         {
-          continue; // farther than the chart radius: no conflict possible
+          // A corner beyond the chart radius R: Y's centre is at least R minus the face's
+          // longest edge away (a point of a triangle is within its longest edge of every corner). Farther than any safe distance: no conflict; otherwise (a face
+          // with edges longer than the chart margin) judged conservatively.
+          double longest = 0.0;
+          for (int k = 0; k < 3; ++k)
+          {
+            longest = std::max(longest, Norm(M.Position(corners[(k + 1) % 3]) - M.Position(corners[k])));
+          }
+          if (ChartRadius(X.S, X.S.Parts[i]) - longest >= (PartRadius(pa) + PartRadius(py.Part)) * unit)
+          {
+            continue;
+          }
+          return true;
         }
         Vec2 P[3];
         for (int k = 0; k < 3; ++k)
@@ -526,8 +547,101 @@ struct ShapeDistributor::Impl
     return false;
   }
 
+  // Rebuilds the sampling distribution over the faces still alive.
+  void BuildCdf()
+  {
+    const int nf = M.NumberOfFaces();
+    FaceCdf.assign(nf, 0.0);
+    double total = 0.0;
+    for (int f = 0; f < nf; ++f)
+    {
+      total += Dead[f] ? 0.0 : FaceWeight[f];
+      FaceCdf[f] = total;
+    }
+    DeadSinceCdf = 0;
+  }
+
+  bool AnyLiveFace() const { return FaceCdf.back() > 0.0; }
+
+  // Faces where no candidate can fit any more: every candidate centred in them conflicts with
+  // part k of the new shape, because its distance from that part's centre is below the smallest
+  // safe distance against any part of any class, less the class's reach (its part centres'
+  // offsets from its sample). Sampling skips them: the run is the same dart throwing, without
+  // the candidates that would certainly fail.
+  void KillFaces(const Record& r)
+  {
+    for (std::size_t k = 0; k < r.Charts.size() && k < r.S.Parts.size(); ++k)
+    {
+      const double radius = KillRadius[r.S.Parts[k].Part] * O.ShapeSize * r.S.Scale -
+        KillReach * O.ShapeSize * MaxFaceDensity;
+      if (!(radius > 0.0))
+      {
+        continue;
+      }
+      const Chart& chart = r.Charts[k];
+      const float r2 = static_cast<float>(radius * radius);
+      auto inside = [&](int v) {
+        const ChartEntry* e = chart.Find(v);
+        return e && e->X * e->X + e->Y * e->Y < r2;
+      };
+      for (const ChartEntry& e : chart.Entries)
+      {
+        if (e.X * e.X + e.Y * e.Y >= r2)
+        {
+          continue;
+        }
+        for (int h : M.OutgoingHalfedges(e.V))
+        {
+          const int f = h / 3;
+          if (!Dead[f] && inside(M.Face(f)[0]) && inside(M.Face(f)[1]) && inside(M.Face(f)[2]))
+          {
+            Dead[f] = 1;
+            Killed.push_back(f);
+            ++DeadSinceCdf;
+          }
+        }
+      }
+    }
+  }
+  double KillReach = 0.0; // largest L1 offset of a part centre from its class sample (normalized)
+
+  // Takes back the last committed shape (index entries, killed faces) and returns it.
+  Record Uncommit()
+  {
+    const int id = static_cast<int>(Accepted.size()) - 1;
+    Record r = std::move(Accepted.back());
+    Accepted.pop_back();
+    Placed.pop_back();
+    for (int v : ChartVertices(r))
+    {
+      if (!CoverIndex[v].empty() && CoverIndex[v].back() == id)
+      {
+        CoverIndex[v].pop_back();
+      }
+    }
+    for (int v : CentreCorners(r))
+    {
+      if (!CentreIndex[v].empty() && CentreIndex[v].back() == id)
+      {
+        CentreIndex[v].pop_back();
+      }
+    }
+    for (std::size_t k = KilledBy[id]; k < Killed.size(); ++k)
+    {
+      Dead[Killed[k]] = 0;
+    }
+    Killed.resize(KilledBy[id]);
+    KilledBy.pop_back();
+    DeadSinceCdf += 1;
+    return r;
+  }
+  std::vector<int> Killed;          // faces killed, in order
+  std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
+
   void Commit(Record&& r)
   {
+    KilledBy.push_back(Killed.size());
+    KillFaces(r);
     const int id = static_cast<int>(Accepted.size());
     for (int v : ChartVertices(r))
     {
@@ -537,8 +651,6 @@ struct ShapeDistributor::Impl
     {
       CentreIndex[v].push_back(id);
     }
-    r.Conflicts.clear();
-    r.Conflicts.shrink_to_fit();
     Placed.push_back(r.S);
     Accepted.push_back(std::move(r));
   }
@@ -674,7 +786,9 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
       " given for " + std::to_string(nv) + " vertices)";
   }
   Density = vertexDensity;
-  FaceCdf.assign(nf, 0.0);
+  FaceWeight.assign(nf, 0.0);
+  AllCdf.assign(nf, 0.0);
+  MaxFaceDensity = 0.0;
   double total = 0.0;
   double minimumScale = std::numeric_limits<double>::infinity();
   for (int f = 0; f < nf; ++f)
@@ -692,11 +806,20 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     }
     if (ok)
     {
-      total += M.FaceArea(f) / (fm * fm);
+      FaceWeight[f] = M.FaceArea(f) / (fm * fm);
+      total += FaceWeight[f];
       minimumScale = std::min(minimumScale, fm);
+      for (int v : M.Face(f))
+      {
+        MaxFaceDensity = std::max(MaxFaceDensity, Density.empty() ? 1.0 : Density[v]);
+      }
     }
-    FaceCdf[f] = total;
+    AllCdf[f] = total;
   }
+  Dead.assign(nf, 0);
+  Killed.clear();
+  KilledBy.clear();
+  BuildCdf();
   if (!(total > 0.0))
   {
     return "no face has a positive density factor at all its corners";
@@ -724,6 +847,7 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   {
     MaxEdge = std::max(MaxEdge, M.EdgeLength(h));
   }
+  ChartMargin = 2.0 * M.MeanEdgeLength();
   RMax = 0.0;
   if (CircleMode)
   {
@@ -737,6 +861,51 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     for (const SafeDistancePart& p : T.Parts)
     {
       RMax = std::max(RMax, p.Radius);
+    }
+  }
+  // Dead faces: per part, the smallest safe distance against any part of a class that may be
+  // drawn (2% less, for the charts' approximations), and the largest reach of those classes.
+  {
+    const int np = CircleMode ? static_cast<int>(T.Classes.size()) : T.NumberOfParts();
+    KillRadius.assign(np, std::numeric_limits<double>::infinity());
+    KillReach = 0.0;
+    const std::size_t ka = static_cast<std::size_t>(T.AngleBins);
+    for (int x = 0; x < np; ++x)
+    {
+      for (std::size_t c = 0; c < T.Classes.size(); ++c)
+      {
+        if (!(w[c] > 0.0))
+        {
+          continue;
+        }
+        if (CircleMode)
+        {
+          KillRadius[x] = std::min(KillRadius[x], T.Classes[x].Radius + T.Classes[c].Radius);
+          continue;
+        }
+        for (int pc : T.Classes[c].Parts)
+        {
+          const double* table = &T.Values[(static_cast<std::size_t>(x) * T.Parts.size() + pc) * ka * ka];
+          KillRadius[x] = std::min(KillRadius[x], *std::min_element(table, table + ka * ka));
+        }
+      }
+      KillRadius[x] *= 0.98;
+    }
+    if (!CircleMode)
+    {
+      for (std::size_t c = 0; c < T.Classes.size(); ++c)
+      {
+        if (!(w[c] > 0.0) || T.Classes[c].Parts.size() <= 1)
+        {
+          continue;
+        }
+        for (int pc : T.Classes[c].Parts)
+        {
+          const Vec2& q = T.Parts[pc].Centre;
+          KillReach = std::max(KillReach,
+            std::abs(Dot(q, T.Classes[c].MajorAxis)) + std::abs(Cross(T.Classes[c].MajorAxis, q)));
+        }
+      }
     }
   }
   // Long classes: their extent along the major axis, and the field's angles for streamlines.
@@ -825,8 +994,8 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round, boo
         continue;
       }
       const GeodesicShot shot = ShootGeodesic(M, parent.Centre, a + beta, d);
-      if (shot.ReachedBoundary || shot.End.Face < 0 || FaceCdf[shot.End.Face] ==
-          (shot.End.Face > 0 ? FaceCdf[shot.End.Face - 1] : 0.0))
+      if (shot.ReachedBoundary || shot.End.Face < 0 || !(FaceWeight[shot.End.Face] > 0.0) ||
+        Dead[shot.End.Face])
       {
         continue; // off the surface or in a region without density
       }
@@ -869,7 +1038,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
   const ShapeDistributionOptions& O = I.O;
   const int threads = ThreadCount(O.NumberOfThreads);
   I.EnsureEngines(threads);
-  const long long failuresToStop = O.MaximalFailures > 0 ? O.MaximalFailures : 20000;
+  const long long failuresToStop = O.MaximalFailures > 0 ? O.MaximalFailures : 10000;
   const bool greedyMode = O.Mode == DistributionMode::Greedy;
   std::vector<int> front;
   long long consecutive = 0;
@@ -887,12 +1056,28 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
     }
     else
     {
-      n = 256 << std::min(randomRounds, 6);
+      if (I.DeadSinceCdf > 0)
+      {
+        I.BuildCdf();
+      }
+      if (!I.AnyLiveFace())
+      {
+        stats.Maximal = true; // no face left where a shape could fit
+        break;
+      }
+      n = 256 << std::min(randomRounds, 4); // up to 4096: little work past the last failure
       ++randomRounds;
     }
     std::vector<Impl::Record> batch(n);
     std::vector<double> greedyDistance(n, 0.0);
+    auto clock = std::chrono::steady_clock::now();
+    auto lap = [&clock](double& into) {
+      const auto now = std::chrono::steady_clock::now();
+      into += std::chrono::duration<double>(now - clock).count();
+      clock = now;
+    };
     I.Generate(batch, round, greedy, front, greedyDistance);
+    lap(stats.GenerateSeconds);
     stats.Candidates += n;
     // Greedy: nearest proposals first (tighter packing), then by parent and direction.
     std::vector<int> order(n);
@@ -912,123 +1097,217 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
       batch.swap(sorted);
     }
     long long charts = 0;
-    // Cheap checks, then charts and the remaining checks for survivors.
-#pragma omp parallel num_threads(threads) reduction(+ : charts)
-    {
-      std::vector<int> scratch;
-#pragma omp for schedule(dynamic, 16)
-      for (int i = 0; i < n; ++i)
-      {
-        Impl::Record& r = batch[i];
-        if (!r.Valid || I.CheapConflict(r, scratch))
-        {
-          r.Rejected = true;
-          continue;
-        }
-        I.ComputeCharts(r, I.Engine());
-        ++charts;
-        if (I.FullConflict(r, scratch))
-        {
-          r.Rejected = true;
-          r.Charts.clear();
-        }
-      }
-    }
-    stats.Charts += charts;
-    // Conflicts among the survivors of the round (each pair judged in the chart of the larger
-    // density factor; ties: the higher priority).
-    std::vector<std::pair<int, int>> cover, centres; // (vertex, candidate)
-    for (int i = 0; i < n; ++i)
-    {
-      if (batch[i].Rejected)
-      {
-        continue;
-      }
-      for (int v : Impl::ChartVertices(batch[i]))
-      {
-        cover.emplace_back(v, i);
-      }
-      for (int v : I.CentreCorners(batch[i]))
-      {
-        centres.emplace_back(v, i);
-      }
-    }
-    std::sort(cover.begin(), cover.end());
-    std::sort(centres.begin(), centres.end());
-    auto collect = [](const std::vector<std::pair<int, int>>& index, int v, int below,
-                     std::vector<int>& out) {
-      auto it = std::lower_bound(index.begin(), index.end(), std::make_pair(v, -1));
-      for (; it != index.end() && it->first == v && it->second < below; ++it)
-      {
-        out.push_back(it->second);
-      }
-    };
+    double chartSeconds = 0.0;
+    // (a) Cheap checks against the shapes of previous rounds (no chart needed).
 #pragma omp parallel num_threads(threads)
     {
-      std::vector<int> near;
-#pragma omp for schedule(dynamic, 16)
+      std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 64)
       for (int i = 0; i < n; ++i)
       {
         Impl::Record& r = batch[i];
-        if (r.Rejected)
+        r.Rejected = !r.Valid || I.CheapConflict(r, scratch);
+      }
+    }
+    // (b) Survivors that may conflict with each other: parts closer in space than the sum of
+    // their circumradii (the geodesic distance is never shorter). Each keeps its
+    // higher-priority neighbours.
+    std::vector<int> survivors;
+    for (int i = 0; i < n; ++i)
+    {
+      if (!batch[i].Rejected)
+      {
+        survivors.push_back(i);
+      }
+    }
+    std::vector<std::vector<int>> above(n);
+    {
+      const double cell = 2.0 * I.RMax * O.ShapeSize * I.MaxFaceDensity * (1.0 + O.SafetyMargin);
+      auto key = [cell](const Vec3& x) {
+        return std::array<long long, 3>{ static_cast<long long>(std::floor(x.x / cell)),
+          static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
+      };
+      std::vector<std::pair<std::array<long long, 3>, int>> grid; // (cell, candidate)
+      for (int i : survivors)
+      {
+        for (const PlacedPart& p : batch[i].S.Parts)
         {
-          continue;
+          grid.emplace_back(key(p.Position), i);
         }
-        near.clear();
-        for (int v : I.CentreCorners(r))
+      }
+      std::sort(grid.begin(), grid.end());
+      grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
+      for (std::size_t k = 0; k < survivors.size(); ++k)
+      {
+        const int i = survivors[k];
+        const Impl::Record& r = batch[i];
+        std::vector<int>& list = above[i];
+        for (const PlacedPart& p : r.S.Parts)
         {
-          collect(cover, v, i, near);
+          const std::array<long long, 3> c = key(p.Position);
+          for (long long dx = -1; dx <= 1; ++dx)
+            for (long long dy = -1; dy <= 1; ++dy)
+              for (long long dz = -1; dz <= 1; ++dz)
+              {
+                const std::array<long long, 3> q{ c[0] + dx, c[1] + dy, c[2] + dz };
+                auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, -1));
+                for (; it != grid.end() && it->first == q && it->second < i; ++it)
+                {
+                  const Impl::Record& o = batch[it->second];
+                  const double unit = O.ShapeSize * std::max(r.S.Scale, o.S.Scale) * (1.0 + O.SafetyMargin);
+                  for (const PlacedPart& op : o.S.Parts)
+                  {
+                    if (Norm(op.Position - p.Position) <=
+                      (I.PartRadius(p.Part) + I.PartRadius(op.Part)) * unit * (1.0 + 1e-9))
+                    {
+                      list.push_back(it->second);
+                      break;
+                    }
+                  }
+                }
+              }
         }
-        for (int v : Impl::ChartVertices(r))
+        SortUnique(list);
+      }
+    }
+    // (c) Waves: a survivor is decided once all its higher-priority neighbours are; it is then
+    // checked against every accepted shape (those of this round included) and, if free, gets
+    // its charts and is accepted. Candidates of one wave are never neighbours, so this is
+    // sequential dart throwing in priority order, with charts only for accepted shapes (and
+    // the rare ones a smaller neighbour rejects).
+    const int roundStart = static_cast<int>(I.Accepted.size());
+    std::vector<char> state(n, 2); // 0 undecided, 1 accepted, 2 rejected
+    for (int i : survivors)
+    {
+      state[i] = 0;
+    }
+    std::vector<int> acceptedAs(n, -1); // id in I.Accepted
+    std::vector<int> undecided = survivors, ready, waiting;
+    while (!undecided.empty())
+    {
+      ready.clear();
+      waiting.clear();
+      for (int i : undecided)
+      {
+        bool free = true;
+        for (int j : above[i])
         {
-          collect(centres, v, i, near);
+          free = free && state[j] != 0;
         }
-        SortUnique(near);
-        for (int j : near)
+        (free ? ready : waiting).push_back(i);
+      }
+      const int nr = static_cast<int>(ready.size());
+#pragma omp parallel num_threads(threads) reduction(+ : charts, chartSeconds)
+      {
+        std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 4)
+        for (int k = 0; k < nr; ++k)
         {
-          const Impl::Record& other = batch[j];
-          const bool judgeInOther = other.S.Scale >= r.S.Scale;
-          if (judgeInOther ? I.ConflictInCharts(other, r) : I.ConflictInCharts(r, other))
+          Impl::Record& r = batch[ready[k]];
+          bool recheck = false;
+          for (int j : above[ready[k]])
           {
-            r.Conflicts.push_back(j);
+            recheck = recheck || state[j] == 1;
+          }
+          if (recheck && I.CheapConflict(r, scratch))
+          {
+            r.Rejected = true;
+            continue;
+          }
+          const auto chartStart = std::chrono::steady_clock::now();
+          I.ComputeCharts(r, I.Engine());
+          chartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
+          ++charts;
+          if (I.FullConflict(r, scratch))
+          {
+            r.Rejected = true;
+            r.Charts.clear();
           }
         }
       }
-    }
-    // Sequential acceptance in priority order.
-    std::vector<char> taken(n, 0);
-    std::vector<int> nextFront;
-    for (int i = 0; i < n && !stop; ++i)
-    {
-      Impl::Record& r = batch[i];
-      bool ok = !r.Rejected;
-      for (int j : r.Conflicts)
+      for (int i : ready) // priority order
       {
-        ok = ok && !taken[j];
+        if (batch[i].Rejected)
+        {
+          state[i] = 2;
+          continue;
+        }
+        state[i] = 1;
+        acceptedAs[i] = static_cast<int>(I.Accepted.size());
+        I.Commit(std::move(batch[i]));
       }
-      if (!ok)
+      undecided.swap(waiting);
+    }
+    stats.Charts += charts;
+    stats.ChartCpuSeconds += chartSeconds;
+    lap(stats.CheckSeconds);
+    // (d) Priority order: consecutive failures and MaximumShapes may end the run inside the
+    // round; shapes after that point are taken back.
+    int cut = n;
+    int total = roundStart;
+    for (int i = 0; i < n; ++i)
+    {
+      if (state[i] != 1)
       {
         ++consecutive;
         if (consecutive >= failuresToStop && !greedy)
         {
           stop = true;
           stats.Maximal = true;
+          cut = i + 1;
+          break;
         }
         continue;
       }
       consecutive = 0;
-      taken[i] = 1;
-      nextFront.push_back(static_cast<int>(I.Accepted.size()));
-      I.Commit(std::move(r));
-      if (O.MaximumShapes > 0 && static_cast<int>(I.Accepted.size()) >= O.MaximumShapes)
+      ++total;
+      if (O.MaximumShapes > 0 && total >= O.MaximumShapes)
       {
         stop = true;
+        cut = i + 1;
+        break;
       }
+    }
+    bool takeBack = false;
+    for (int i = cut; i < n; ++i)
+    {
+      takeBack = takeBack || state[i] == 1;
+    }
+    std::vector<int> nextFront;
+    if (takeBack)
+    {
+      std::vector<std::pair<int, Impl::Record>> kept; // (priority, record)
+      while (static_cast<int>(I.Accepted.size()) > roundStart)
+      {
+        const int id = static_cast<int>(I.Accepted.size()) - 1;
+        int i = 0;
+        while (acceptedAs[i] != id)
+        {
+          ++i;
+        }
+        Impl::Record r = I.Uncommit();
+        if (i < cut)
+        {
+          kept.emplace_back(i, std::move(r));
+        }
+      }
+      std::sort(kept.begin(), kept.end(),
+        [](const std::pair<int, Impl::Record>& a, const std::pair<int, Impl::Record>& b) { return a.first < b.first; });
+      for (auto& k : kept)
+      {
+        I.Commit(std::move(k.second));
+      }
+    }
+    for (int id = roundStart; id < static_cast<int>(I.Accepted.size()); ++id)
+    {
+      nextFront.push_back(id);
     }
     if (greedyMode)
     {
       front.swap(nextFront);
     }
+    lap(stats.RoundSeconds);
     stats.Rounds = round + 1;
     double fraction = static_cast<double>(consecutive) / static_cast<double>(failuresToStop);
     if (O.MaximumShapes > 0)
@@ -1059,7 +1338,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
 double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
 {
   Impl& I = *P;
-  if (probes <= 0 || I.FaceCdf.empty())
+  if (probes <= 0 || I.AllCdf.empty())
   {
     return 0.0;
   }
@@ -1075,7 +1354,7 @@ double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
       Random rng(seed, 3, 0, static_cast<std::uint64_t>(i));
       Impl::Record r;
       const int cls = I.RandomClass(rng);
-      const SurfacePoint centre = I.RandomPoint(rng);
+      const SurfacePoint centre = I.RandomPoint(rng, false);
       if (!I.MakeShape(centre, cls, rng, r.S) || I.CheapConflict(r, scratch))
       {
         continue;

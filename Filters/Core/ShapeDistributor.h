@@ -75,7 +75,7 @@ struct ShapeDistributionOptions
   int MaximumShapes = 0;    ///< 0: until maximal
   int NumberOfThreads = 0;  ///< 0: all
   int Symmetry = 1;         ///< N of the direction field (1, 2, 4): streamlines of long shapes
-  int MaximalFailures = 0;  ///< consecutive failures that end the run; 0: 20000
+  int MaximalFailures = 0;  ///< consecutive failures that end the run; 0: 10000
   int GreedyDirections = 16;
   double SafetyMargin = 0.0; ///< relative enlargement of every safe distance
   /// Curved regions: where the polar chart of one shape stretches the other's centre triangle
@@ -117,6 +117,10 @@ struct ShapeDistributionStatistics
   long long ConsecutiveFailures = 0; ///< at termination
   bool Maximal = false;          ///< ended by the failure count (not MaximumShapes)
   double Seconds = 0.0;
+  /// Wall-clock seconds by phase: drawing candidates (positions, streamlines, parts), checks
+  /// against placed shapes (with the charts of the survivors), checks within rounds.
+  double GenerateSeconds = 0.0, CheckSeconds = 0.0, RoundSeconds = 0.0;
+  double ChartCpuSeconds = 0.0; ///< summed over threads: computing polar charts
 };
 
 struct ShapeDistributionResult

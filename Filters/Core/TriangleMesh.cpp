@@ -69,10 +69,7 @@ std::vector<int> TriangleMesh::OutgoingHalfedges(int v) const
 
 Vec3 TriangleMesh::FaceNormal(int f) const
 {
-  const auto& t = Faces[f];
-  Vec3 n = Cross(Positions[t[1]] - Positions[t[0]], Positions[t[2]] - Positions[t[0]]);
-  const double l = Norm(n);
-  return l > 0 ? n / l : Vec3(0, 0, 0);
+  return Normals[f];
 }
 
 Vec3 TriangleMesh::Interpolate(int f, const std::array<double, 3>& b) const
@@ -101,6 +98,7 @@ void TriangleMesh::ComputeDerivedData()
   Lengths.assign(3 * nf, 0.0);
   Angles.assign(3 * nf, 0.0);
   Areas.assign(nf, 0.0);
+  Normals.assign(nf, Vec3(0, 0, 0));
   double sum = 0.0;
   for (int f = 0; f < nf; ++f)
   {
@@ -114,7 +112,9 @@ void TriangleMesh::ComputeDerivedData()
       Angles[3 * f + k] = AngleBetween(b - a, c - a);
       sum += Lengths[3 * f + k];
     }
-    Areas[f] = 0.5 * Norm(Cross(Positions[t[1]] - Positions[t[0]], Positions[t[2]] - Positions[t[0]]));
+    const Vec3 n = Cross(Positions[t[1]] - Positions[t[0]], Positions[t[2]] - Positions[t[0]]);
+    Areas[f] = 0.5 * Norm(n);
+    Normals[f] = Areas[f] > 0 ? n / (2.0 * Areas[f]) : Vec3(0, 0, 0);
   }
   MeanEdge = nf > 0 ? sum / (3.0 * nf) : 0.0;
 

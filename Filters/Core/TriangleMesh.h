@@ -73,7 +73,7 @@ public:
   // pseudo-source.
   bool IsPseudoSourceVertex(int v) const { return PseudoSource[v] != 0; }
   double FaceArea(int f) const { return Areas[f]; }
-  Vec3 FaceNormal(int f) const; // unit
+  Vec3 FaceNormal(int f) const; // unit (computed once)
   // Average edge length (a length scale for tolerances).
   double MeanEdgeLength() const { return MeanEdge; }
   double BoundingBoxDiagonal() const { return BoxDiagonal; }
@@ -104,6 +104,7 @@ private:
   std::vector<double> Lengths;
   std::vector<double> Angles;
   std::vector<double> Areas;
+  std::vector<Vec3> Normals; // unit face normals
   std::vector<int> OutHalfedge;
   std::vector<double> VertexAngleSum;
   std::vector<unsigned char> BoundaryVertex;

@@ -121,7 +121,7 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
   // (2 / 1.4)^2 = 2x the circles in a perfect packing; random dart throwing reaches 1.4x here
   // (the benchmark measures it over 20 seeds and thinner stars).
   EXPECT_GT(counts[DistributionMode::Random] / circles, 1.25);
-  EXPECT_GT(counts[DistributionMode::Greedy], counts[DistributionMode::Random]);
+  EXPECT_GE(counts[DistributionMode::Greedy], counts[DistributionMode::Random]);
 }
 
 TEST(ShapeDistributor, SameResultForAnyThreadCount)
