@@ -37,6 +37,67 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 long long TotalShapes = 0, TotalOverlaps = 0, TotalPairs = 0;
+std::string SvgPrefix; // --svg: seed-0 layouts of the square as SVG files
+
+void WriteSvg(const std::string& file, const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes, double size)
+{
+  FILE* f = std::fopen(file.c_str(), "w");
+  if (!f)
+    return;
+  std::fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' viewBox='-0.5 -0.5 11 11' width='800' height='800'>\n");
+  std::fprintf(f, "<rect x='0' y='0' width='10' height='10' fill='none' stroke='gray' stroke-width='0.02'/>\n");
+  for (const PlacedShape& s : shapes)
+  {
+    const double a = std::atan2(s.Direction.y, s.Direction.x), k = size * s.Scale;
+    for (const auto& ring : t.Classes[s.ClassId].Outline.Rings)
+    {
+      std::fprintf(f, "<polygon fill='steelblue' stroke='black' stroke-width='0.01' points='");
+      for (const Vec2& p : ring)
+      {
+        const double x = s.Position.x + k * (std::cos(a) * p.x - std::sin(a) * p.y);
+        const double y = s.Position.y + k * (std::sin(a) * p.x + std::cos(a) * p.y);
+        std::fprintf(f, "%.4f,%.4f ", x, 10.0 - y);
+      }
+      std::fprintf(f, "'/>\n");
+    }
+  }
+  std::fprintf(f, "</svg>\n");
+  std::fclose(f);
+  // The same as a legacy VTK polydata (ParaView opens it).
+  FILE* g = std::fopen((file + ".vtk").c_str(), "w");
+  if (!g)
+    return;
+  std::vector<std::vector<Vec2>> polys;
+  for (const PlacedShape& s : shapes)
+  {
+    const double a = std::atan2(s.Direction.y, s.Direction.x), k = size * s.Scale;
+    for (const auto& ring : t.Classes[s.ClassId].Outline.Rings)
+    {
+      std::vector<Vec2> poly;
+      for (const Vec2& p : ring)
+        poly.push_back(Vec2{ s.Position.x + k * (std::cos(a) * p.x - std::sin(a) * p.y),
+          s.Position.y + k * (std::sin(a) * p.x + std::cos(a) * p.y) });
+      polys.push_back(poly);
+    }
+  }
+  std::size_t points = 0;
+  for (const auto& q : polys)
+    points += q.size();
+  std::fprintf(g, "# vtk DataFile Version 3.0\nlayout\nASCII\nDATASET POLYDATA\nPOINTS %zu double\n", points);
+  for (const auto& q : polys)
+    for (const Vec2& p : q)
+      std::fprintf(g, "%.6f %.6f 0\n", p.x, p.y);
+  std::fprintf(g, "POLYGONS %zu %zu\n", polys.size(), polys.size() + points);
+  std::size_t id = 0;
+  for (const auto& q : polys)
+  {
+    std::fprintf(g, "%zu", q.size());
+    for (std::size_t k = 0; k < q.size(); ++k)
+      std::fprintf(g, " %zu", id++);
+    std::fprintf(g, "\n");
+  }
+  std::fclose(g);
+}
 
 double Now()
 {
@@ -158,6 +219,8 @@ void Figure9(const std::string& name, const SafeDistanceInput& shape, int seeds)
         sum += static_cast<double>(r.Shapes.size());
         if (seed == 0 && aligned)
         {
+          if (!SvgPrefix.empty())
+            WriteSvg(SvgPrefix + "_" + name + "_" + ModeName(mode) + ".svg", t, r.Shapes, o.ShapeSize);
           std::printf("    %-12s seed 0: %zu shapes, %lld candidates, %.3f s; probes that fit: %.4f%% of 1e5\n",
             ModeName(mode), r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Seconds,
             100.0 * d.ProbeFitFraction(100000, 12345));
@@ -226,6 +289,8 @@ int main(int argc, char* argv[])
   {
     if (std::strcmp(argv[i], "--quick") == 0)
       quick = true;
+    else if (std::strcmp(argv[i], "--svg") == 0 && i + 1 < argc)
+      SvgPrefix = argv[++i];
     else if (std::strcmp(argv[i], "--speed-only") == 0)
       speedOnly = true;
     else if (std::strcmp(argv[i], "--exact-charts") == 0)

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <cstdlib>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -670,8 +669,17 @@ struct ShapeDistributor::Impl
 
   std::string Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
     const std::vector<double>& vertexDensity, const ShapeDistributionOptions& options);
-  void Generate(std::vector<Record>& batch, int round, bool greedy, const std::vector<int>& front,
-    std::vector<double>& greedyDistance) const;
+  void Generate(std::vector<Record>& batch, int round) const;
+  // Greedy: candidate centres around accepted shape `parentId`, touching it and one of its
+  // neighbours (or, alone, in GreedyDirections directions), the new shape assumed turned like
+  // the parent. Key: distance from the first shape (fronts fill outwards).
+  struct Proposal
+  {
+    SurfacePoint Centre;
+    int Class = 0;
+    double Key = 0.0;
+  };
+  std::vector<Proposal> Propose(int parentId, int round, int slot) const;
 };
 
 std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
@@ -957,56 +965,190 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   return std::string();
 }
 
-void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round, bool greedy,
-  const std::vector<int>& front, std::vector<double>& greedyDistance) const
+void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) const
 {
   const int n = static_cast<int>(batch.size());
-  const int directions = O.GreedyDirections;
 #pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(O.NumberOfThreads))
   for (int i = 0; i < n; ++i)
   {
-    Record& r = batch[i];
-    Random rng(O.Seed, greedy ? 2 : 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-    SurfacePoint centre;
-    int cls = RandomClass(rng);
-    greedyDistance[i] = 0.0;
-    if (greedy)
+    Random rng(O.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+    const int cls = RandomClass(rng);
+    const SurfacePoint centre = RandomPoint(rng);
+    batch[i].Valid = MakeShape(centre, cls, rng, batch[i].S);
+  }
+}
+
+std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
+  int parentId, int round, int slot) const
+{
+  std::vector<Proposal> out;
+  const Record& A = Accepted[parentId];
+  Random rng(O.Seed, 2, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(slot));
+  const int cls = RandomClass(rng);
+  const SafeDistanceClass& ac = T.Classes[A.S.ClassId];
+  const SafeDistanceClass& cc = T.Classes[cls];
+  const double unit = O.ShapeSize * A.S.Scale * (1.0 + O.SafetyMargin);
+  const double a0 = TangentAngle(M, A.S.Centre, A.S.Direction);
+  if (!std::isfinite(a0))
+  {
+    return out;
+  }
+  const bool tabled = !CircleMode && ac.Parts.size() == 1 && cc.Parts.size() == 1;
+  const int pa = CircleMode ? A.S.ClassId : ac.Parts[0];
+  const int pc = CircleMode ? cls : cc.Parts[0];
+  // Safe distance of the new shape (turned like A) in direction beta from A (A's frame).
+  auto reach = [&](double beta) {
+    return tabled ? T.Lookup(pa, pc, -beta, -beta) * unit
+                  : (CircleMode ? 1.0 : 0.75) * (ac.Radius + cc.Radius) * unit;
+  };
+  // Neighbours in A's chart: their centre and axis, as seen from A.
+  struct Near
+  {
+    Vec2 Q;
+    double Axis;
+    int Part;
+    double Unit;
+  };
+  std::vector<Near> near;
+  if (tabled || CircleMode)
+  {
+    std::vector<int> ids;
+    if (!A.Charts.empty())
     {
-      const PlacedShape& parent = Accepted[front[i / directions]].S;
-      const double beta = TwoPi * ((i % directions) + rng.Uniform()) / directions;
-      const double scale = O.ShapeSize * parent.Scale * (1.0 + O.SafetyMargin);
-      const SafeDistanceClass& pc = T.Classes[parent.ClassId];
-      const SafeDistanceClass& cc = T.Classes[cls];
-      double d;
-      if (!CircleMode && pc.Parts.size() == 1 && cc.Parts.size() == 1)
+      for (const ChartEntry& e : A.Charts[0].Entries)
       {
-        d = T.Lookup(pc.Parts[0], cc.Parts[0], -beta, -beta) * scale;
+        ids.insert(ids.end(), CentreIndex[e.V].begin(), CentreIndex[e.V].end());
       }
-      else
-      {
-        d = (CircleMode ? 1.0 : 0.75) * (pc.Radius + cc.Radius) * scale;
-      }
-      d = d * (1.0 + 1e-6) + 1e-9 * MaxEdge;
-      greedyDistance[i] = d;
-      const double a = TangentAngle(M, parent.Centre, parent.Direction);
-      if (!std::isfinite(a))
+    }
+    SortUnique(ids);
+    for (int id : ids)
+    {
+      if (id == parentId)
       {
         continue;
       }
-      const GeodesicShot shot = ShootGeodesic(M, parent.Centre, a + beta, d);
-      if (shot.ReachedBoundary || shot.End.Face < 0 || !(FaceWeight[shot.End.Face] > 0.0) ||
-        Dead[shot.End.Face])
+      const Record& B = Accepted[id];
+      if (B.S.Parts.size() != 1)
       {
-        continue; // off the surface or in a region without density
+        continue;
       }
-      centre = shot.End;
+      const PlacedPart& pb = B.S.Parts[0];
+      const auto& corners = M.Face(pb.Centre.Face);
+      const ChartEntry* e[3];
+      bool all = true;
+      for (int k = 0; k < 3 && all; ++k)
+      {
+        e[k] = A.Charts[0].Find(corners[k]);
+        all = e[k] != nullptr;
+      }
+      if (!all)
+      {
+        continue;
+      }
+      Vec2 P[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        P[k] = Vec2{ e[k]->X, e[k]->Y };
+      }
+      Near b;
+      b.Q = P[0] * pb.Centre.Bary[0] + P[1] * pb.Centre.Bary[1] + P[2] * pb.Centre.Bary[2];
+      // B's axis carried into the chart by the face's affine map.
+      const Vec3 x0 = M.Position(corners[0]);
+      const Vec3 e1 = M.Position(corners[1]) - x0, e2 = M.Position(corners[2]) - x0;
+      const double g11 = Dot(e1, e1), g12 = Dot(e1, e2), g22 = Dot(e2, e2);
+      const double det = g11 * g22 - g12 * g12;
+      if (!(det > 0.0))
+      {
+        continue;
+      }
+      const double r1 = Dot(pb.Axis, e1), r2 = Dot(pb.Axis, e2);
+      const double u = (g22 * r1 - g12 * r2) / det, v = (g11 * r2 - g12 * r1) / det;
+      const Vec2 axis = (P[1] - P[0]) * u + (P[2] - P[0]) * v;
+      b.Axis = std::atan2(axis.y, axis.x);
+      b.Part = pb.Part;
+      b.Unit = O.ShapeSize * std::max(B.S.Scale, A.S.Scale) * (1.0 + O.SafetyMargin);
+      if (Norm(b.Q) < (PartRadius(pa) + 2.0 * PartRadius(pc) + PartRadius(b.Part)) * b.Unit)
+      {
+        near.push_back(b);
+      }
     }
-    else
-    {
-      centre = RandomPoint(rng);
-    }
-    r.Valid = MakeShape(centre, cls, rng, r.S);
   }
+  // Clearance of a new shape at P (turned like A) from neighbour b: > 0 when free.
+  auto clearance = [&](const Vec2& P, const Near& b) {
+    const Vec2 w = P - b.Q;
+    const double dist = Norm(w), line = std::atan2(w.y, w.x);
+    const double safe = CircleMode ? (PartRadius(b.Part) + PartRadius(pc)) : T.Lookup(b.Part, pc, b.Axis - line, -line);
+    return dist - safe * b.Unit;
+  };
+  auto at = [&](double beta) { return Vec2{ std::cos(beta), std::sin(beta) } * reach(beta); };
+  auto freeOfAll = [&](double beta) {
+    const Vec2 P = at(beta);
+    for (const Near& b : near)
+    {
+      if (clearance(P, b) < 0.0)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  std::vector<double> betas;
+  if (near.empty())
+  {
+    const double offset = rng.Uniform();
+    for (int j = 0; j < O.GreedyDirections; ++j)
+    {
+      betas.push_back(TwoPi * (j + offset) / O.GreedyDirections);
+    }
+  }
+  else
+  {
+    // Touching A and a neighbour: where the clearance from that neighbour changes sign along
+    // A's contact curve (the side with clearance >= 0, refined by bisection).
+    const int samples = 4 * O.GreedyDirections;
+    for (const Near& b : near)
+    {
+      double previous = clearance(at(0.0), b);
+      for (int j = 1; j <= samples; ++j)
+      {
+        const double beta = TwoPi * j / samples;
+        const double now = clearance(at(beta), b);
+        if ((previous < 0.0) != (now < 0.0))
+        {
+          double lo = TwoPi * (j - 1) / samples, hi = beta; // lo: the previous sample
+          const bool loFree = previous >= 0.0;
+          for (int it = 0; it < 20; ++it)
+          {
+            const double mid = 0.5 * (lo + hi);
+            const bool midFree = clearance(at(mid), b) >= 0.0;
+            (midFree == loFree ? lo : hi) = mid;
+          }
+          const double free = loFree ? lo : hi;
+          if (freeOfAll(free))
+          {
+            betas.push_back(free);
+          }
+        }
+        previous = now;
+      }
+    }
+  }
+  for (double beta : betas)
+  {
+    const double d = reach(beta) * (1.0 + 1e-6) + 1e-9 * MaxEdge;
+    const GeodesicShot shot = ShootGeodesic(M, A.S.Centre, a0 + beta, d);
+    if (shot.ReachedBoundary || shot.End.Face < 0 || !(FaceWeight[shot.End.Face] > 0.0) ||
+      Dead[shot.End.Face])
+    {
+      continue; // off the surface or in a region without density
+    }
+    Proposal p;
+    p.Centre = shot.End;
+    p.Class = cls;
+    p.Key = Norm(M.Interpolate(p.Centre.Face, p.Centre.Bary) - Accepted[0].S.Position);
+    out.push_back(p);
+  }
+  return out;
 }
 
 ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
@@ -1049,10 +1191,38 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
   for (int round = 0; !stop; ++round)
   {
     const bool greedy = greedyMode && !front.empty();
+    auto clock = std::chrono::steady_clock::now();
+    auto lap = [&clock](double& into) {
+      const auto now = std::chrono::steady_clock::now();
+      into += std::chrono::duration<double>(now - clock).count();
+      clock = now;
+    };
+    std::vector<Impl::Record> batch;
     int n;
     if (greedy)
     {
-      n = static_cast<int>(front.size()) * O.GreedyDirections;
+      // Proposals of every front shape, nearest to the first shape first.
+      std::vector<std::vector<Impl::Proposal>> proposals(front.size());
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+      for (int k = 0; k < static_cast<int>(front.size()); ++k)
+      {
+        proposals[k] = I.Propose(front[k], round, k);
+      }
+      std::vector<Impl::Proposal> all;
+      for (const auto& p : proposals)
+      {
+        all.insert(all.end(), p.begin(), p.end());
+      }
+      std::stable_sort(all.begin(), all.end(),
+        [](const Impl::Proposal& a, const Impl::Proposal& b) { return a.Key < b.Key; });
+      n = static_cast<int>(all.size());
+      batch.resize(n);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+      for (int i = 0; i < n; ++i)
+      {
+        Random rng(O.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+        batch[i].Valid = I.MakeShape(all[i].Centre, all[i].Class, rng, batch[i].S);
+      }
     }
     else
     {
@@ -1065,37 +1235,14 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
         stats.Maximal = true; // no face left where a shape could fit
         break;
       }
-      n = 256 << std::min(randomRounds, 4); // up to 4096: little work past the last failure
+      // Up to 4096: little work past the last failure. Greedy seeds one shape per round.
+      n = greedyMode && randomRounds == 0 ? 1 : 256 << std::min(randomRounds, 4);
       ++randomRounds;
+      batch.resize(n);
+      I.Generate(batch, round);
     }
-    std::vector<Impl::Record> batch(n);
-    std::vector<double> greedyDistance(n, 0.0);
-    auto clock = std::chrono::steady_clock::now();
-    auto lap = [&clock](double& into) {
-      const auto now = std::chrono::steady_clock::now();
-      into += std::chrono::duration<double>(now - clock).count();
-      clock = now;
-    };
-    I.Generate(batch, round, greedy, front, greedyDistance);
     lap(stats.GenerateSeconds);
     stats.Candidates += n;
-    // Greedy: nearest proposals first (tighter packing), then by parent and direction.
-    std::vector<int> order(n);
-    for (int i = 0; i < n; ++i)
-    {
-      order[i] = i;
-    }
-    if (greedy)
-    {
-      std::stable_sort(order.begin(), order.end(),
-        [&](int a, int b) { return greedyDistance[a] < greedyDistance[b]; });
-      std::vector<Impl::Record> sorted(n);
-      for (int i = 0; i < n; ++i)
-      {
-        sorted[i] = std::move(batch[order[i]]);
-      }
-      batch.swap(sorted);
-    }
     long long charts = 0;
     double chartSeconds = 0.0;
     // (a) Cheap checks against the shapes of previous rounds (no chart needed).
@@ -1266,6 +1413,11 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
       {
         stop = true;
         cut = i + 1;
+        break;
+      }
+      if (greedyMode && !greedy)
+      {
+        cut = i + 1; // Greedy: one random seed, then its front grows
         break;
       }
     }

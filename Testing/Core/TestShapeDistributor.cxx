@@ -121,7 +121,8 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
   // (2 / 1.4)^2 = 2x the circles in a perfect packing; random dart throwing reaches 1.4x here
   // (the benchmark measures it over 20 seeds and thinner stars).
   EXPECT_GT(counts[DistributionMode::Random] / circles, 1.25);
-  EXPECT_GE(counts[DistributionMode::Greedy], counts[DistributionMode::Random]);
+  // Greedy fronts (every shape touching two placed ones) pack tighter than dart throwing.
+  EXPECT_GT(counts[DistributionMode::Greedy], 1.15 * counts[DistributionMode::Random]);
 }
 
 TEST(ShapeDistributor, SameResultForAnyThreadCount)
