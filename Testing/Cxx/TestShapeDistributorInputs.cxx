@@ -1,0 +1,372 @@
+// Shape Distributor as a filter: a working pipeline (MSDT Source from polygons + a plane with a
+// cell direction array), its outputs and arrays, and the bad-input matrix: missing or foreign
+// tables, missing / wrong-typed arrays, quads (triangulated with a warning), empty and
+// non-manifold meshes, NaN points, NaN / zero densities, absurd parameters, abort. Each bad case
+// gives a clear error (or warning) and empty outputs, never a crash.
+#include "vtkMSDTSource.h"
+#include "vtkShapeDistributor.h"
+
+#include "FilterTestSupport.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPlaneSource.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTriangleFilter.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <string>
+
+using gs_test::Check;
+using gs_test::Mentions;
+using gs_test::MessageRecorder;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+// A pentagram (class 0) and a 4:1 bar (class 1) as polygons for MSDT Source.
+vtkSmartPointer<vtkPolyData> Shapes()
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> classId;
+  classId->SetName("ClassId");
+  std::vector<vtkIdType> ids;
+  for (int k = 0; k < 10; ++k)
+  {
+    const double a = Pi / 2 + Pi * k / 5, r = k % 2 == 0 ? 1.0 : 0.382;
+    ids.push_back(points->InsertNextPoint(r * std::cos(a), r * std::sin(a), 0.0));
+  }
+  polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  classId->InsertNextValue(0);
+  ids.clear();
+  for (const auto& p : { std::array<double, 2>{ -2, -0.5 }, { 2, -0.5 }, { 2, 0.5 }, { -2, 0.5 } })
+  {
+    ids.push_back(points->InsertNextPoint(p[0], p[1], 0.0));
+  }
+  polys->InsertNextCell(4, ids.data());
+  classId->InsertNextValue(1);
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(points);
+  data->SetPolys(polys);
+  data->GetCellData()->AddArray(classId);
+  return data;
+}
+
+// The unit square, n x n quads split into triangles, with a constant cell array Direction and a
+// density ramp f = 0.6 + 0.4 x.
+vtkSmartPointer<vtkPolyData> Plane(int n, bool triangulate = true)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(0, 0, 0);
+  plane->SetPoint1(1, 0, 0);
+  plane->SetPoint2(0, 1, 0);
+  plane->SetResolution(n, n);
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  if (triangulate)
+  {
+    vtkNew<vtkTriangleFilter> tri;
+    tri->SetInputConnection(plane->GetOutputPort());
+    tri->Update();
+    data->DeepCopy(tri->GetOutput());
+  }
+  else
+  {
+    plane->Update();
+    data->DeepCopy(plane->GetOutput());
+  }
+  data->GetPointData()->Initialize();
+  vtkNew<vtkDoubleArray> direction;
+  direction->SetName("Direction");
+  direction->SetNumberOfComponents(3);
+  for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c)
+  {
+    direction->InsertNextTuple3(1.0, 0.0, 0.0);
+  }
+  data->GetCellData()->AddArray(direction);
+  vtkNew<vtkDoubleArray> density;
+  density->SetName("Density");
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+  {
+    density->InsertNextValue(0.6 + 0.4 * data->GetPoint(i)[0]);
+  }
+  data->GetPointData()->AddArray(density);
+  return data;
+}
+
+struct Run
+{
+  vtkNew<vtkShapeDistributor> Filter;
+  vtkNew<MessageRecorder> Messages;
+  Run(vtkDataObject* mesh, vtkAlgorithmOutput* tables)
+  {
+    this->Filter->SetInputDataObject(0, mesh);
+    if (tables)
+    {
+      this->Filter->SetInputConnection(1, tables);
+    }
+    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
+    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
+    this->Filter->SetShapeSize(0.06);
+    this->Filter->SetSeed(5);
+    this->Filter->SetMaximalFailures(3000);
+  }
+  vtkPolyData* Out(int port) { return vtkPolyData::SafeDownCast(this->Filter->GetOutputDataObject(port)); }
+  void Update() { this->Filter->Update(); }
+  bool Empty() { return Out(0)->GetNumberOfPoints() == 0 && Out(1)->GetNumberOfCells() == 0 && Out(2)->GetNumberOfCells() == 0; }
+};
+
+void ExpectError(Run& run, const std::string& test, const std::string& keyword)
+{
+  run.Update();
+  Check(!run.Messages->Errors.empty(), test, "no error reported");
+  Check(Mentions(run.Messages->Errors, keyword), test, "the error does not mention '" + keyword + "'");
+  Check(run.Empty(), test, "outputs should be empty");
+}
+} // namespace
+
+int main(int, char*[])
+{
+  vtkNew<vtkMSDTSource> msdt;
+  msdt->SetPolygonsData(Shapes());
+  msdt->SetAngleBins(32);
+  msdt->SetDistanceSteps(32);
+  msdt->Update();
+  vtkAlgorithmOutput* tables = msdt->GetOutputPort(0);
+
+  // 1. A working run: arrays, counts, both classes, density-scaled shapes.
+  {
+    auto mesh = Plane(30);
+    Run run(mesh, tables);
+    run.Filter->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Density");
+    run.Update();
+    Check(run.Messages->Errors.empty(), "pipeline", "unexpected error");
+    vtkPolyData* placed = run.Out(0);
+    const vtkIdType n = placed->GetNumberOfPoints();
+    Check(n > 50, "pipeline", "too few shapes: " + std::to_string(n));
+    for (const char* name : { "ClassId", "Scale", "Direction", "Normal", "FaceId" })
+    {
+      Check(placed->GetPointData()->GetArray(name) != nullptr, "pipeline", std::string("no point array ") + name);
+    }
+    Check(placed->GetNumberOfVerts() == n, "pipeline", "one vertex cell per shape");
+    vtkDataArray* cls = placed->GetPointData()->GetArray("ClassId");
+    vtkDataArray* scale = placed->GetPointData()->GetArray("Scale");
+    vtkDataArray* faceId = placed->GetPointData()->GetArray("FaceId");
+    bool both[2] = { false, false };
+    for (vtkIdType i = 0; cls && scale && faceId && i < n; ++i)
+    {
+      const int c = static_cast<int>(cls->GetTuple1(i));
+      both[c == 1] = true;
+      Check(std::abs(scale->GetTuple1(i) - (0.6 + 0.4 * placed->GetPoint(i)[0])) < 1e-9, "pipeline",
+        "Scale is not the density at the centre");
+      Check(faceId->GetTuple1(i) >= 0 && faceId->GetTuple1(i) < mesh->GetNumberOfCells(), "pipeline",
+        "FaceId out of range");
+    }
+    Check(both[0] && both[1], "pipeline", "both classes expected");
+    Check(placed->GetFieldData()->GetArray("Maximal") &&
+        placed->GetFieldData()->GetArray("Maximal")->GetTuple1(0) == 1.0,
+      "pipeline", "field data Maximal should be 1");
+    vtkPolyData* decals = run.Out(1);
+    Check(decals->GetNumberOfCells() > n, "pipeline", "decals too small");
+    Check(decals->GetPointData()->GetTCoords() != nullptr, "pipeline", "decals without texture coordinates");
+    Check(decals->GetCellData()->GetArray("ShapeId") && decals->GetCellData()->GetArray("ClassId"),
+      "pipeline", "decal cell arrays");
+    vtkPolyData* outlines = run.Out(2);
+    Check(outlines->GetNumberOfLines() >= n, "pipeline", "one outline per shape at least");
+    // Re-running with another density only: same mesh, no new conversion (no error either).
+    run.Filter->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "None");
+    run.Update();
+    Check(run.Out(0)->GetNumberOfPoints() > 0 && run.Messages->Errors.empty(), "pipeline", "no density");
+    // Modes and thread counts.
+    run.Filter->SetMode(vtkShapeDistributor::CIRCUMCIRCLE_POISSON_DISK);
+    run.Update();
+    const vtkIdType circles = run.Out(0)->GetNumberOfPoints();
+    run.Filter->SetMode(vtkShapeDistributor::GREEDY);
+    run.Update();
+    const vtkIdType greedy = run.Out(0)->GetNumberOfPoints();
+    Check(circles > 0 && greedy > circles, "modes", "greedy should beat circumcircles");
+    run.Filter->SetNumberOfThreads(1);
+    run.Update();
+    Check(run.Out(0)->GetNumberOfPoints() == greedy, "threads", "1 thread differs");
+    // A point direction array works as well.
+    vtkNew<vtkDoubleArray> pointDirection;
+    pointDirection->SetName("PointDirection");
+    pointDirection->SetNumberOfComponents(3);
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      pointDirection->InsertNextTuple3(0.0, 1.0, 0.0);
+    }
+    mesh->GetPointData()->AddArray(pointDirection);
+    mesh->Modified();
+    run.Filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "PointDirection");
+    run.Update();
+    vtkDataArray* dir = run.Out(0)->GetPointData()->GetArray("Direction");
+    Check(dir && dir->GetNumberOfTuples() > 0 && std::abs(dir->GetComponent(0, 1) - 1.0) < 1e-9,
+      "point directions", "the shapes should follow the point array");
+  }
+
+  // 2. Missing tables, foreign tables.
+  {
+    Run run(Plane(4), nullptr);
+    run.Filter->SetInputDataObject(1, nullptr);
+    run.Update();
+    Check(run.Empty(), "no tables", "outputs should be empty");
+  }
+  {
+    vtkNew<vtkImageData> foreign;
+    foreign->SetDimensions(4, 4, 1);
+    foreign->AllocateScalars(VTK_DOUBLE, 1);
+    Run run(Plane(4), nullptr);
+    run.Filter->SetInputDataObject(1, foreign);
+    ExpectError(run, "foreign tables", "MSDT Source");
+  }
+  // 3. Arrays.
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "Nope");
+    ExpectError(run, "missing direction", "DirectionArray");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Density");
+    ExpectError(run, "1-component direction", "3 components");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Nope");
+    ExpectError(run, "missing density", "DensityArray");
+  }
+  {
+    auto mesh = Plane(4);
+    vtkDataArray* f = mesh->GetPointData()->GetArray("Density");
+    for (vtkIdType i = 0; i < f->GetNumberOfTuples(); ++i)
+    {
+      f->SetTuple1(i, i % 2 ? std::numeric_limits<double>::quiet_NaN() : 0.0);
+    }
+    Run run(mesh, tables);
+    run.Filter->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Density");
+    ExpectError(run, "NaN and zero density", "density");
+  }
+  // 4. Meshes: quads (triangulated, warning), empty, NaN point, non-manifold edge.
+  {
+    Run run(Plane(10, false), tables);
+    run.Update();
+    Check(run.Out(0)->GetNumberOfPoints() > 0, "quads", "quads should be triangulated and used");
+    Check(!run.Messages->Warnings.empty(), "quads", "a warning about the triangulation expected");
+  }
+  {
+    vtkNew<vtkPolyData> empty;
+    Run run(empty, tables);
+    run.Update();
+    Check(!run.Messages->Errors.empty() && run.Empty(), "empty mesh", "error and empty outputs expected");
+  }
+  {
+    auto mesh = Plane(4);
+    mesh->GetPoints()->SetPoint(3, std::numeric_limits<double>::quiet_NaN(), 0, 0);
+    Run run(mesh, tables);
+    run.Update();
+    Check(!run.Messages->Errors.empty() && run.Empty(), "NaN point", "error and empty outputs expected");
+  }
+  {
+    // Three triangles on one edge.
+    vtkNew<vtkPoints> pts;
+    pts->InsertNextPoint(0, 0, 0);
+    pts->InsertNextPoint(1, 0, 0);
+    pts->InsertNextPoint(0.5, 1, 0);
+    pts->InsertNextPoint(0.5, -1, 0);
+    pts->InsertNextPoint(0.5, 0, 1);
+    vtkNew<vtkCellArray> tris;
+    for (vtkIdType c : { 2, 3, 4 })
+    {
+      const vtkIdType ids[3] = { 0, 1, c };
+      tris->InsertNextCell(3, ids);
+    }
+    vtkNew<vtkPolyData> mesh;
+    mesh->SetPoints(pts);
+    mesh->SetPolys(tris);
+    vtkNew<vtkDoubleArray> d;
+    d->SetName("Direction");
+    d->SetNumberOfComponents(3);
+    for (int c = 0; c < 3; ++c)
+      d->InsertNextTuple3(1, 0, 0);
+    mesh->GetCellData()->AddArray(d);
+    Run run(mesh, tables);
+    ExpectError(run, "non-manifold", "manifold");
+  }
+  // 5. Parameters.
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetShapeSize(-1.0);
+    ExpectError(run, "negative size", "ShapeSize");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetShapeSize(1e-12);
+    ExpectError(run, "tiny size", "ShapeSize");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetShapeSize(100.0); // far larger than the mesh: at most one shape
+    run.Update();
+    Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() <= 1, "huge size",
+      "at most one shape, no error");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetNumberOfClassWeights(3);
+    ExpectError(run, "class weights", "ClassWeights");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetClassWeight(0, 0.0);
+    run.Filter->SetClassWeight(1, 0.0);
+    ExpectError(run, "zero weights", "ClassWeights");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetMode(7);
+    ExpectError(run, "mode", "Mode");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetK(-3);
+    ExpectError(run, "negative K", "K");
+  }
+  {
+    Run run(Plane(8), tables);
+    run.Filter->SetK(0); // exact charts
+    run.Update();
+    Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() > 0, "K = 0", "exact charts should work");
+  }
+  // 6. Abort: empty outputs, no error.
+  {
+    Run run(Plane(30), tables);
+    run.Filter->SetShapeSize(0.02);
+    vtkNew<vtkCallbackCommand> abort;
+    abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    });
+    run.Filter->AddObserver(vtkCommand::ProgressEvent, abort);
+    run.Update();
+    Check(run.Out(0)->GetNumberOfPoints() == 0, "abort", "aborted run should give no shapes");
+  }
+  if (gs_test::Failures)
+  {
+    std::cerr << gs_test::Failures << " failure(s)\n";
+    return 1;
+  }
+  std::cout << "OK\n";
+  return 0;
+}
