@@ -244,7 +244,10 @@ struct ShapeDistributor::Impl
 
   // Builds a candidate's geometry at `centre` (a face point) for class `cls`: the direction,
   // the curve of a long class and the parts. False when it does not fit (curve too short).
-  bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s) const
+  // `prefer` (optional): of the field's N directions in the face, take the one closest to it
+  // (greedy fronts keep neighbours turned alike in cross fields); otherwise the face's own.
+  bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
+    const Vec3* prefer = nullptr) const
   {
     s = PlacedShape();
     s.ClassId = cls;
@@ -263,6 +266,22 @@ struct ShapeDistributor::Impl
     {
       const auto& v = M.Face(f);
       dir = Rotate(Unit(M.Position(v[1]) - M.Position(v[0])), s.Normal, TwoPi * spin);
+    }
+    else if (prefer && O.Symmetry > 1)
+    {
+      Vec3 best = dir;
+      double bestDot = -2.0;
+      for (int k = 0; k < O.Symmetry; ++k)
+      {
+        const Vec3 candidate = Rotate(dir, s.Normal, TwoPi * k / O.Symmetry);
+        const double d = Dot(candidate, *prefer);
+        if (d > bestDot)
+        {
+          bestDot = d;
+          best = candidate;
+        }
+      }
+      dir = Unit(best);
     }
     const SafeDistanceClass& c = T.Classes[cls];
     const double scale = O.ShapeSize * s.Scale;
@@ -678,6 +697,7 @@ struct ShapeDistributor::Impl
     SurfacePoint Centre;
     int Class = 0;
     double Key = 0.0;
+    Vec3 Prefer; // the parent's field direction
   };
   std::vector<Proposal> Propose(int parentId, int round, int slot) const;
 };
@@ -1145,6 +1165,12 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
     Proposal p;
     p.Centre = shot.End;
     p.Class = cls;
+    p.Prefer = FaceDirection[A.S.Centre.Face];
+    if (O.Symmetry > 1)
+    {
+      // The parent's own choice among the N directions (its class axis for short shapes).
+      p.Prefer = ac.Parts.size() <= 1 ? A.S.Direction : p.Prefer;
+    }
     p.Key = Norm(M.Interpolate(p.Centre.Face, p.Centre.Bary) - Accepted[0].S.Position);
     out.push_back(p);
   }
@@ -1221,7 +1247,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
       for (int i = 0; i < n; ++i)
       {
         Random rng(O.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-        batch[i].Valid = I.MakeShape(all[i].Centre, all[i].Class, rng, batch[i].S);
+        batch[i].Valid = I.MakeShape(all[i].Centre, all[i].Class, rng, batch[i].S, &all[i].Prefer);
       }
     }
     else
