@@ -387,10 +387,10 @@ int main(int argc, char* argv[])
       const ShapeDistributionResult r = d.Run(t, directionsOf(fine), {}, o);
       seconds[threads] = Now() - t0;
       std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s (candidates %.2f, "
-                  "checks and charts %.2f (charts %.2f s CPU), rounds %.2f)\n", threads,
+                  "checks and charts %.2f (charts %.2f s CPU), rounds %.2f, set-up %.2f)\n", threads,
         r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, seconds[threads],
         r.Statistics.GenerateSeconds, r.Statistics.CheckSeconds, r.Statistics.ChartCpuSeconds,
-        r.Statistics.RoundSeconds);
+        r.Statistics.RoundSeconds, r.Statistics.PrepareSeconds);
       if (speedOnly)
         return 0;
       if (threads == 1)

@@ -74,6 +74,7 @@ DirectionFieldSolver::DirectionFieldSolver(const TriangleMesh& mesh)
   const int nf = M.NumberOfFaces();
   BasisX.resize(nf);
   BasisY.resize(nf);
+#pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f)
   {
     const Vec3 n = M.FaceNormal(f);
@@ -85,6 +86,7 @@ DirectionFieldSolver::DirectionFieldSolver(const TriangleMesh& mesh)
   }
   Transport.assign(M.NumberOfHalfedges(), 0.0);
   EdgeWeight.assign(M.NumberOfHalfedges(), 0.0);
+#pragma omp parallel for schedule(static)
   for (int h = 0; h < M.NumberOfHalfedges(); ++h)
   {
     const int t = M.Twin(h);

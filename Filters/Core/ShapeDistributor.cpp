@@ -109,7 +109,10 @@ struct ShapeDistributor::Impl
   std::vector<double> AllCdf;      // cumulative face weights of all faces (probes)
   std::vector<char> Dead;          // faces where no candidate can fit any more
   int DeadSinceCdf = 0;            // faces killed since FaceCdf was built
-  std::vector<double> KillRadius;  // per part (normalized): see Commit
+  std::vector<double> KillRadius;  // per (part, class) (normalized): see KillFaces
+  std::vector<double> KillReach;   // per class (normalized): see KillFaces
+  std::vector<char> DeadFor;       // per (class, face): no candidate of that class fits there
+  int NumberOfClasses = 0;
   double MaxFaceDensity = 1.0;
   double MaxEdge = 0.0;
   double ChartMargin = 0.0; // beyond the largest safe distance: two mean edge lengths
@@ -588,40 +591,70 @@ struct ShapeDistributor::Impl
   // the candidates that would certainly fail.
   void KillFaces(const Record& r)
   {
+    const int nc = NumberOfClasses;
     for (std::size_t k = 0; k < r.Charts.size() && k < r.S.Parts.size(); ++k)
     {
-      const double radius = KillRadius[r.S.Parts[k].Part] * O.ShapeSize * r.S.Scale -
-        KillReach * O.ShapeSize * MaxFaceDensity;
-      if (!(radius > 0.0))
-      {
-        continue;
-      }
       const Chart& chart = r.Charts[k];
-      const float r2 = static_cast<float>(radius * radius);
-      auto inside = [&](int v) {
-        const ChartEntry* e = chart.Find(v);
-        return e && e->X * e->X + e->Y * e->Y < r2;
-      };
-      for (const ChartEntry& e : chart.Entries)
+      for (int c = 0; c < nc; ++c)
       {
-        if (e.X * e.X + e.Y * e.Y >= r2)
+        const double radius = KillRadius[static_cast<std::size_t>(r.S.Parts[k].Part) * nc + c] *
+            O.ShapeSize * r.S.Scale - KillReach[c] * O.ShapeSize * MaxFaceDensity;
+        if (!(radius > 0.0))
         {
           continue;
         }
-        for (int h : M.OutgoingHalfedges(e.V))
+        const float r2 = static_cast<float>(radius * radius);
+        Marked.clear();
+        for (const ChartEntry& e : chart.Entries)
         {
-          const int f = h / 3;
-          if (!Dead[f] && inside(M.Face(f)[0]) && inside(M.Face(f)[1]) && inside(M.Face(f)[2]))
+          if (e.X * e.X + e.Y * e.Y < r2)
           {
-            Dead[f] = 1;
-            Killed.push_back(f);
-            ++DeadSinceCdf;
+            Mark[e.V] = 1;
+            Marked.push_back(e.V);
           }
+        }
+        for (int v : Marked)
+        {
+          const int start = M.VertexHalfedge(v);
+          int h = start;
+          do
+          {
+            const int f = h / 3;
+            const auto& t = M.Face(f);
+            char& dead = DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f];
+            if (!dead && Mark[t[0]] && Mark[t[1]] && Mark[t[2]])
+            {
+              dead = 1;
+              Killed.emplace_back(c, f);
+              bool all = true;
+              for (int o = 0; o < nc && all; ++o)
+              {
+                all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
+                  DeadFor[static_cast<std::size_t>(o) * M.NumberOfFaces() + f];
+              }
+              if (all && !Dead[f])
+              {
+                Dead[f] = 1;
+                Killed.emplace_back(-1, f);
+                ++DeadSinceCdf;
+              }
+            }
+            h = M.RotateCCW(h);
+          } while (h >= 0 && h != start);
+        }
+        for (int v : Marked)
+        {
+          Mark[v] = 0;
         }
       }
     }
   }
-  double KillReach = 0.0; // largest L1 offset of a part centre from its class sample (normalized)
+  bool DeadForClass(int c, int f) const
+  {
+    return DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f] != 0;
+  }
+  std::vector<char> Mark; // per vertex, all 0 between uses
+  std::vector<int> Marked;
 
   // Takes back the last committed shape (index entries, killed faces) and returns it.
   Record Uncommit()
@@ -646,14 +679,21 @@ struct ShapeDistributor::Impl
     }
     for (std::size_t k = KilledBy[id]; k < Killed.size(); ++k)
     {
-      Dead[Killed[k]] = 0;
+      if (Killed[k].first < 0)
+      {
+        Dead[Killed[k].second] = 0;
+      }
+      else
+      {
+        DeadFor[static_cast<std::size_t>(Killed[k].first) * M.NumberOfFaces() + Killed[k].second] = 0;
+      }
     }
     Killed.resize(KilledBy[id]);
     KilledBy.pop_back();
     DeadSinceCdf += 1;
     return r;
   }
-  std::vector<int> Killed;          // faces killed, in order
+  std::vector<std::pair<int, int>> Killed; // (class or -1 for all, face) killed, in order
   std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
 
   void Commit(Record&& r)
@@ -680,9 +720,16 @@ struct ShapeDistributor::Impl
 
   void EnsureEngines(int threads)
   {
-    while (static_cast<int>(Engines.size()) < threads)
+    const int have = static_cast<int>(Engines.size());
+    if (have >= threads)
     {
-      Engines.emplace_back(new GeodesicPolarCoordinates(M, G));
+      return;
+    }
+    Engines.resize(threads);
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+    for (int t = have; t < threads; ++t)
+    {
+      Engines[t].reset(new GeodesicPolarCoordinates(M, G));
     }
   }
 
@@ -793,6 +840,7 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
       " given for " + std::to_string(nf) + " faces)";
   }
   FaceDirection.assign(nf, Vec3{ 0, 0, 0 });
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(O.NumberOfThreads))
   for (int f = 0; f < nf; ++f)
   {
     const Vec3& d = faceDirections[f];
@@ -845,6 +893,9 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     AllCdf[f] = total;
   }
   Dead.assign(nf, 0);
+  Mark.assign(nv, 0);
+  NumberOfClasses = static_cast<int>(T.Classes.size());
+  DeadFor.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
   Killed.clear();
   KilledBy.clear();
   BuildCdf();
@@ -871,9 +922,14 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     }
   }
   MaxEdge = 0.0;
-  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
   {
-    MaxEdge = std::max(MaxEdge, M.EdgeLength(h));
+    double longest = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : longest) num_threads(ThreadCount(O.NumberOfThreads))
+    for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+    {
+      longest = std::max(longest, M.EdgeLength(h));
+    }
+    MaxEdge = longest;
   }
   ChartMargin = 2.0 * M.MeanEdgeLength();
   RMax = 0.0;
@@ -891,48 +947,45 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
       RMax = std::max(RMax, p.Radius);
     }
   }
-  // Dead faces: per part, the smallest safe distance against any part of a class that may be
-  // drawn (2% less, for the charts' approximations), and the largest reach of those classes.
+  // Dead faces: per (part, class), the smallest safe distance of the part against any part of
+  // the class (2% less, for the charts' approximations); per class, its reach.
   {
     const int np = CircleMode ? static_cast<int>(T.Classes.size()) : T.NumberOfParts();
-    KillRadius.assign(np, std::numeric_limits<double>::infinity());
-    KillReach = 0.0;
+    const int nc = static_cast<int>(T.Classes.size());
+    KillRadius.assign(static_cast<std::size_t>(np) * nc, std::numeric_limits<double>::infinity());
+    KillReach.assign(nc, 0.0);
     const std::size_t ka = static_cast<std::size_t>(T.AngleBins);
     for (int x = 0; x < np; ++x)
     {
-      for (std::size_t c = 0; c < T.Classes.size(); ++c)
+      for (int c = 0; c < nc; ++c)
       {
-        if (!(w[c] > 0.0))
-        {
-          continue;
-        }
+        double& kill = KillRadius[static_cast<std::size_t>(x) * nc + c];
         if (CircleMode)
         {
-          KillRadius[x] = std::min(KillRadius[x], T.Classes[x].Radius + T.Classes[c].Radius);
-          continue;
+          kill = T.Classes[x].Radius + T.Classes[c].Radius;
         }
-        for (int pc : T.Classes[c].Parts)
+        else
         {
-          const double* table = &T.Values[(static_cast<std::size_t>(x) * T.Parts.size() + pc) * ka * ka];
-          KillRadius[x] = std::min(KillRadius[x], *std::min_element(table, table + ka * ka));
+          for (int pc : T.Classes[c].Parts)
+          {
+            const double* table = &T.Values[(static_cast<std::size_t>(x) * T.Parts.size() + pc) * ka * ka];
+            kill = std::min(kill, *std::min_element(table, table + ka * ka));
+          }
         }
+        kill *= 0.98;
       }
-      KillRadius[x] *= 0.98;
     }
-    if (!CircleMode)
+    for (int c = 0; c < nc && !CircleMode; ++c)
     {
-      for (std::size_t c = 0; c < T.Classes.size(); ++c)
+      if (T.Classes[c].Parts.size() <= 1)
       {
-        if (!(w[c] > 0.0) || T.Classes[c].Parts.size() <= 1)
-        {
-          continue;
-        }
-        for (int pc : T.Classes[c].Parts)
-        {
-          const Vec2& q = T.Parts[pc].Centre;
-          KillReach = std::max(KillReach,
-            std::abs(Dot(q, T.Classes[c].MajorAxis)) + std::abs(Cross(T.Classes[c].MajorAxis, q)));
-        }
+        continue;
+      }
+      for (int pc : T.Classes[c].Parts)
+      {
+        const Vec2& q = T.Parts[pc].Centre;
+        KillReach[c] = std::max(KillReach[c],
+          std::abs(Dot(q, T.Classes[c].MajorAxis)) + std::abs(Cross(T.Classes[c].MajorAxis, q)));
       }
     }
   }
@@ -994,7 +1047,8 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
     Random rng(O.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
     const int cls = RandomClass(rng);
     const SurfacePoint centre = RandomPoint(rng);
-    batch[i].Valid = MakeShape(centre, cls, rng, batch[i].S);
+    // A class that certainly cannot fit in this face: no need to build the shape.
+    batch[i].Valid = !DeadForClass(cls, centre.Face) && MakeShape(centre, cls, rng, batch[i].S);
   }
 }
 
@@ -1158,7 +1212,7 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
     const double d = reach(beta) * (1.0 + 1e-6) + 1e-9 * MaxEdge;
     const GeodesicShot shot = ShootGeodesic(M, A.S.Centre, a0 + beta, d);
     if (shot.ReachedBoundary || shot.End.Face < 0 || !(FaceWeight[shot.End.Face] > 0.0) ||
-      Dead[shot.End.Face])
+      DeadForClass(cls, shot.End.Face))
     {
       continue; // off the surface or in a region without density
     }
@@ -1206,6 +1260,8 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
   const ShapeDistributionOptions& O = I.O;
   const int threads = ThreadCount(O.NumberOfThreads);
   I.EnsureEngines(threads);
+  result.Statistics.PrepareSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long failuresToStop = O.MaximalFailures > 0 ? O.MaximalFailures : 10000;
   const bool greedyMode = O.Mode == DistributionMode::Greedy;
   std::vector<int> front;

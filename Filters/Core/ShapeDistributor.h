@@ -121,6 +121,7 @@ struct ShapeDistributionStatistics
   /// against placed shapes (with the charts of the survivors), checks within rounds.
   double GenerateSeconds = 0.0, CheckSeconds = 0.0, RoundSeconds = 0.0;
   double ChartCpuSeconds = 0.0; ///< summed over threads: computing polar charts
+  double PrepareSeconds = 0.0;  ///< checks, sampling weights, per-thread geodesic engines
 };
 
 struct ShapeDistributionResult
