@@ -278,6 +278,93 @@ void DensityFidelity(const SafeDistanceInput& shape, int seeds)
   std::printf("  -> largest deviation %.1f%% (bar: 10%%)\n", 100.0 * worst);
 }
 
+// Many shapes on a large square (all modes, pentagram, aligned): overlap checks at scale.
+void LargeSquare(const SafeDistanceInput& shape, int seeds)
+{
+  const TriangleMesh plane = Build(MakePlanarGrid(150, 150, 50.0, 50.0));
+  const SafeDistanceTables t = Tables({ shape });
+  std::vector<Vec3> dirs(plane.NumberOfFaces(), Vec3{ 1, 0, 0 });
+  for (DistributionMode mode :
+    { DistributionMode::CircumcirclePoissonDisk, DistributionMode::Random, DistributionMode::Greedy })
+  {
+    double sum = 0.0, seconds = 0.0;
+    int overlaps = 0, pairs = 0;
+    for (int seed = 0; seed < seeds; ++seed)
+    {
+      ShapeDistributor d(plane);
+      ShapeDistributionOptions o;
+      o.ShapeSize = 0.5;
+      o.Mode = mode;
+      o.Seed = static_cast<std::uint64_t>(1000 + seed);
+      const ShapeDistributionResult r = d.Run(t, dirs, {}, o);
+      int p = 0;
+      overlaps += gs_test::CountPlanarOverlaps(plane, t, r.Shapes, o.ShapeSize, &p);
+      pairs += p;
+      sum += static_cast<double>(r.Shapes.size());
+      seconds += r.Statistics.Seconds;
+    }
+    TotalShapes += static_cast<long long>(sum);
+    TotalOverlaps += overlaps;
+    TotalPairs += pairs;
+    std::printf("  %-12s %8.1f shapes per run, %.2f s per run, %d overlaps in %d close pairs\n",
+      ModeName(mode), sum / seeds, seconds / seeds, overlaps, pairs);
+  }
+}
+
+// A generated bumpy sphere (saddles everywhere): several classes, surface overlap test.
+void BumpySphere(const std::vector<SafeDistanceInput>& classes, int seeds)
+{
+  TriangleSoup soup = MakeIcosphere(1.0, 6);
+  for (Vec3& p : soup.Points)
+  {
+    // Smooth bumps: positive and negative curvature (saddles) at the scale of a few shapes.
+    p = p * (1.0 + 0.12 * std::sin(4.0 * p.x) * std::sin(4.0 * p.y) * std::sin(4.0 * p.z));
+  }
+  const TriangleMesh sphere = Build(soup);
+  SaddleVertexGraph graph;
+  SaddleVertexGraphOptions go;
+  std::string error;
+  graph.Build(sphere, go, nullptr, error);
+  const SafeDistanceTables t = Tables(classes);
+  std::vector<Vec3> dirs(sphere.NumberOfFaces());
+  for (int f = 0; f < sphere.NumberOfFaces(); ++f)
+  {
+    const auto& c = sphere.Face(f);
+    dirs[f] = Cross(Vec3{ 0.2, 0.1, 1.0 }, sphere.Position(c[0]) + sphere.Position(c[1]) + sphere.Position(c[2]));
+  }
+  long long shapes = 0, pairs = 0;
+  int overlaps = 0;
+  double seconds = 0.0;
+  for (int seed = 0; seed < seeds; ++seed)
+  {
+    ShapeDistributor d(sphere, getenv("GS_EXACT") ? nullptr : &graph);
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.08;
+    o.Mode = seed % 2 ? DistributionMode::Greedy : DistributionMode::Random;
+    if (getenv("GS_MARGIN"))
+      o.SafetyMargin = atof(getenv("GS_MARGIN"));
+    if (getenv("GS_HOLONOMY"))
+      o.HolonomyMargin = atof(getenv("GS_HOLONOMY"));
+    if (getenv("GS_DISTORTION"))
+      o.DistortionLimit = atof(getenv("GS_DISTORTION"));
+    o.Seed = static_cast<std::uint64_t>(seed);
+    const ShapeDistributionResult r = d.Run(t, dirs, {}, o);
+    long long p = 0;
+    overlaps += gs_test::CountSurfaceOverlaps(sphere, t, d, o.ShapeSize, 0.02, &p);
+    pairs += p;
+    shapes += static_cast<long long>(r.Shapes.size());
+    seconds += r.Statistics.Seconds;
+    if (getenv("GS_VERBOSE"))
+      std::printf("    seed %d: %zu shapes, %lld candidates, %lld charts, %.2f s (generate %.2f, checks %.2f, set-up %.2f)\n", seed, r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, r.Statistics.Seconds, r.Statistics.GenerateSeconds, r.Statistics.CheckSeconds, r.Statistics.PrepareSeconds);
+  }
+  TotalShapes += shapes;
+  TotalOverlaps += overlaps;
+  TotalPairs += pairs;
+  std::printf("  %d vertices, %zu classes, %d runs (Random and Greedy): %.1f shapes and %.2f s per run; surface overlap test: %d overlaps in %lld close pairs\n",
+    sphere.NumberOfVertices(), classes.size(), seeds, static_cast<double>(shapes) / seeds, seconds / seeds,
+    overlaps, pairs);
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -327,6 +414,10 @@ int main(int argc, char* argv[])
   }
   std::printf("2. Density fidelity (pentagram, %d seeds)\n", quick ? 2 : 8);
   DensityFidelity(classes[0], quick ? 2 : 8);
+  std::printf("3. Large square 50 x 50, pentagram radius 0.5, aligned, %d seeds per mode\n", quick ? 1 : 5);
+  LargeSquare(classes[0], quick ? 1 : 5);
+  std::printf("4. Bumpy sphere (r = 1 + 0.12 sin 4x sin 4y sin 4z, 40962 vertices), shape radius 0.08\n");
+  BumpySphere(std::vector<SafeDistanceInput>(classes.begin(), classes.begin() + std::min<std::size_t>(4, classes.size())), quick ? 2 : 10);
   }
 
   if (!args.empty())
@@ -342,7 +433,7 @@ int main(int argc, char* argv[])
     const TriangleMesh fine = Build(Subdivide(soup));
     std::vector<SafeDistanceInput> four(classes.begin(), classes.begin() + std::min<std::size_t>(4, classes.size()));
     const SafeDistanceTables t = Tables(four);
-    std::printf("3. %s subdivided once: %d vertices, %d faces; %zu classes\n", args[0].c_str(),
+    std::printf("5. %s subdivided once: %d vertices, %d faces; %zu classes\n", args[0].c_str(),
       fine.NumberOfVertices(), fine.NumberOfFaces(), four.size());
     double shapeSize = 0.012 * fine.BoundingBoxDiagonal();
     std::map<const TriangleMesh*, std::unique_ptr<SaddleVertexGraph>> graphs;

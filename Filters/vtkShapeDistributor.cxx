@@ -177,6 +177,8 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumShapes: " << this->MaximumShapes << "\n";
   os << indent << "MaximalFailures: " << this->MaximalFailures << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "DistortionLimit: " << this->DistortionLimit << "\n";
+  os << indent << "HolonomyMargin: " << this->HolonomyMargin << "\n";
   os << indent << "K: " << this->K << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
 }
@@ -261,6 +263,12 @@ int vtkShapeDistributor::RequestData(vtkInformation* vtkNotUsed(request),
   {
     vtkErrorMacro("Unknown Mode " << this->Mode
                                   << ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk).");
+    return 1;
+  }
+  if (!(this->DistortionLimit >= 0.0) || !(this->HolonomyMargin >= 0.0) ||
+    this->HolonomyMargin > 100.0)
+  {
+    vtkErrorMacro("DistortionLimit must be >= 0 and HolonomyMargin in [0, 100].");
     return 1;
   }
   if (this->K < 0 || this->MaximumShapes < 0 || this->NumberOfThreads < 0 ||
@@ -424,6 +432,8 @@ int vtkShapeDistributor::RequestData(vtkInformation* vtkNotUsed(request),
   options.MaximalFailures = this->MaximalFailures;
   options.NumberOfThreads = this->NumberOfThreads;
   options.Symmetry = symmetry;
+  options.DistortionLimit = this->DistortionLimit;
+  options.HolonomyMargin = this->HolonomyMargin;
   const gs::ShapeDistributionResult result =
     distributor.Run(tables, directions, density, options, [this](double p) {
       this->UpdateProgress(0.4 + 0.45 * p);

@@ -113,6 +113,18 @@ public:
   ///@}
 
   ///@{
+  /// Safety on curved and noisy surfaces (see gs::ShapeDistributionOptions): pairs whose chart
+  /// is stretched by more than DistortionLimit (default 0.01) are judged by circumcircles, and
+  /// safe distances grow by HolonomyMargin (default 1) times the turn a shape's outline can take
+  /// from the curvature it encloses with its neighbour. HolonomyMargin 0 packs tighter on noisy
+  /// meshes at the risk of small overlaps of the drawn outlines.
+  vtkSetMacro(DistortionLimit, double);
+  vtkGetMacro(DistortionLimit, double);
+  vtkSetMacro(HolonomyMargin, double);
+  vtkGetMacro(HolonomyMargin, double);
+  ///@}
+
+  ///@{
   /// Threads (0, default: all cores). The result does not depend on it.
   vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
@@ -148,6 +160,8 @@ protected:
   int MaximumShapes = 0;
   int MaximalFailures = 10000;
   int NumberOfThreads = 0;
+  double DistortionLimit = 0.01;
+  double HolonomyMargin = 1.0;
   int K = 50;
   std::string CacheFileName;
 

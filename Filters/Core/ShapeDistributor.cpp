@@ -79,6 +79,9 @@ struct ChartEntry
 struct Chart
 {
   std::vector<ChartEntry> Entries;
+  // Sum of |angle defect| of the chart's vertices over the chart's area: the density of
+  // absolute discrete Gaussian curvature around the centre.
+  float Roughness = 0.0f;
   const ChartEntry* Find(int v) const
   {
     auto it = std::lower_bound(Entries.begin(), Entries.end(), v,
@@ -116,6 +119,7 @@ struct ShapeDistributor::Impl
   double MaxFaceDensity = 1.0;
   double MaxEdge = 0.0;
   double ChartMargin = 0.0; // beyond the largest safe distance: two mean edge lengths
+  std::vector<double> Defect; // per vertex: |2 pi - angle sum| (interior vertices)
   double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
   std::vector<double> ClassCdf;
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
@@ -403,6 +407,13 @@ struct ShapeDistributor::Impl
       }
       std::sort(c.Entries.begin(), c.Entries.end(),
         [](const ChartEntry& a, const ChartEntry& b) { return a.V < b.V; });
+      double defects = 0.0;
+      for (const ChartEntry& e : c.Entries)
+      {
+        defects += Defect[e.V];
+      }
+      const double radius = ChartRadius(r.S, p);
+      c.Roughness = static_cast<float>(defects / (Pi * radius * radius));
     }
   }
 
@@ -489,7 +500,12 @@ struct ShapeDistributor::Impl
         {
           alphaB = std::atan2(Dot(n, Cross(t, py.Axis)), Dot(t, py.Axis));
         }
-        if (d < SafeDistance(pa, py.Part, alphaA, alphaB) * unit)
+        // Holonomy: Y's outline, drawn by Y's own exponential map, is turned in X's chart by at
+        // most the absolute curvature enclosed by X, Y and the outline point (area at most
+        // (d + r_Y) r_Y / 2): a displacement of up to that angle times r_Y.
+        const double rY = PartRadius(py.Part) * unit;
+        const double turn = O.HolonomyMargin * chart.Roughness * 0.5 * (d + rY) * rY;
+        if (d < SafeDistance(pa, py.Part, alphaA, alphaB) * unit + turn * rY)
         {
           return true;
         }
@@ -717,6 +733,7 @@ struct ShapeDistributor::Impl
   {
     return *Engines[ThreadId()];
   }
+  GeodesicPolarCoordinates& Engine0() { return *Engines[0]; } // outside parallel regions
 
   void EnsureEngines(int threads)
   {
@@ -802,10 +819,10 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   }
   if (O.MaximumShapes < 0 || O.MaximalFailures < 0 || O.GreedyDirections < 1 ||
     O.GreedyDirections > 1024 || !(O.SafetyMargin >= 0.0) || O.SafetyMargin > 10.0 ||
-    !(O.DistortionLimit >= 0.0))
+    !(O.DistortionLimit >= 0.0) || !(O.HolonomyMargin >= 0.0) || O.HolonomyMargin > 100.0)
   {
     return "invalid MaximumShapes, MaximalFailures, GreedyDirections (1..1024), SafetyMargin "
-           "(0..10) or DistortionLimit (>= 0)";
+           "(0..10), DistortionLimit (>= 0) or HolonomyMargin (0..100)";
   }
   // Class weights.
   std::vector<double> w = O.ClassWeights;
@@ -932,6 +949,14 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     MaxEdge = longest;
   }
   ChartMargin = 2.0 * M.MeanEdgeLength();
+  if (static_cast<int>(Defect.size()) != nv)
+  {
+    Defect.assign(nv, 0.0);
+    for (int v = 0; v < nv; ++v)
+    {
+      Defect[v] = M.IsBoundaryVertex(v) ? 0.0 : std::abs(TwoPi - M.TotalAngle(v));
+    }
+  }
   RMax = 0.0;
   if (CircleMode)
   {
@@ -1265,6 +1290,8 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
   const long long failuresToStop = O.MaximalFailures > 0 ? O.MaximalFailures : 10000;
   const bool greedyMode = O.Mode == DistributionMode::Greedy;
   std::vector<int> front;
+  bool seedsGrow = true;          // Greedy: random rounds plant one seed each
+  long long seeds = 0, grownSinceSeed = 0;
   long long consecutive = 0;
   int randomRounds = 0;
   bool stop = false;
@@ -1273,6 +1300,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
   for (int round = 0; !stop; ++round)
   {
     const bool greedy = greedyMode && !front.empty();
+    const bool seeding = greedyMode && !greedy && seedsGrow;
     auto clock = std::chrono::steady_clock::now();
     auto lap = [&clock](double& into) {
       const auto now = std::chrono::steady_clock::now();
@@ -1318,7 +1346,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
         break;
       }
       // Up to 4096: little work past the last failure. Greedy seeds one shape per round.
-      n = greedyMode && randomRounds == 0 ? 1 : 256 << std::min(randomRounds, 4);
+      n = seeding ? (randomRounds == 0 ? 1 : 256) : 256 << std::min(randomRounds, 4);
       ++randomRounds;
       batch.resize(n);
       I.Generate(batch, round);
@@ -1413,6 +1441,31 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
     }
     std::vector<int> acceptedAs(n, -1); // id in I.Accepted
     std::vector<int> undecided = survivors, ready, waiting;
+    if (seeding)
+    {
+      // Greedy seeds one shape per random round: the first survivor that fits, in order.
+      std::vector<int> scratch;
+      for (int i : survivors)
+      {
+        Impl::Record& r = batch[i];
+        I.ComputeCharts(r, I.Engine0());
+        ++charts;
+        if (I.FullConflict(r, scratch))
+        {
+          state[i] = 2;
+          continue;
+        }
+        state[i] = 1;
+        acceptedAs[i] = static_cast<int>(I.Accepted.size());
+        I.Commit(std::move(r));
+        break;
+      }
+      for (int i : survivors)
+      {
+        state[i] = state[i] == 0 ? 2 : state[i]; // after the seed: beyond the cut below
+      }
+      undecided.clear();
+    }
     while (!undecided.empty())
     {
       ready.clear();
@@ -1497,7 +1550,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
         cut = i + 1;
         break;
       }
-      if (greedyMode && !greedy)
+      if (seeding)
       {
         cut = i + 1; // Greedy: one random seed, then its front grows
         break;
@@ -1539,6 +1592,21 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
     }
     if (greedyMode)
     {
+      // A seed whose front cannot grow at all: the gaps left hold single shapes, which plain
+      // dart throwing fills (one seed per round would cost a whole round per gap).
+      if (greedy)
+      {
+        grownSinceSeed += static_cast<long long>(nextFront.size());
+      }
+      else if (seeding)
+      {
+        if (seeds > 0 && grownSinceSeed == 0)
+        {
+          seedsGrow = false;
+        }
+        ++seeds;
+        grownSinceSeed = 0;
+      }
       front.swap(nextFront);
     }
     lap(stats.RoundSeconds);

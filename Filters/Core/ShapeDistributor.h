@@ -83,6 +83,12 @@ struct ShapeDistributionOptions
   /// at distance d), the rigid planar placement the tables assume no longer holds, and the pair
   /// is judged by its circumcircles (d >= r_A + r_B: rigorous on any surface). 0: always.
   double DistortionLimit = 0.01;
+  /// Holonomy margin: a shape drawn by its own exponential map turns, in its neighbour's chart,
+  /// by up to the absolute discrete curvature (angle defects) it encloses with the neighbour;
+  /// the safe distance grows by that angle times the shape's radius (estimated from the density
+  /// of |angle defect| around the neighbour's centre), times this factor. 1: conflict-free on
+  /// noisy meshes too (at the cost of density there); 0: the tables alone.
+  double HolonomyMargin = 1.0;
 };
 
 /// One part of a placed shape (a short shape has one).
