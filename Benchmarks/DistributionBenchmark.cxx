@@ -414,8 +414,8 @@ int main(int argc, char* argv[])
   }
   std::printf("2. Density fidelity (pentagram, %d seeds)\n", quick ? 2 : 8);
   DensityFidelity(classes[0], quick ? 2 : 8);
-  std::printf("3. Large square 50 x 50, pentagram radius 0.5, aligned, %d seeds per mode\n", quick ? 1 : 5);
-  LargeSquare(classes[0], quick ? 1 : 5);
+  std::printf("3. Large square 50 x 50, pentagram radius 0.5, aligned, %d seeds per mode\n", quick ? 1 : 7);
+  LargeSquare(classes[0], quick ? 1 : 7);
   std::printf("4. Bumpy sphere (r = 1 + 0.12 sin 4x sin 4y sin 4z, 40962 vertices), shape radius 0.08\n");
   BumpySphere(std::vector<SafeDistanceInput>(classes.begin(), classes.begin() + std::min<std::size_t>(4, classes.size())), quick ? 2 : 10);
   }

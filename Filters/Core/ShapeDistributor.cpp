@@ -1739,7 +1739,15 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
         curve.push_back(q);
       }
     }
-    GeodesicPolarCoordinates polar(I.M, I.G);
+    // The calling thread's engine when it has one (the filter calls this from as many threads
+    // as the run used), else a new one.
+    const int thread = ThreadId();
+    std::unique_ptr<GeodesicPolarCoordinates> own;
+    if (thread >= static_cast<int>(P->Engines.size()) || !P->Engines[thread])
+    {
+      own.reset(new GeodesicPolarCoordinates(I.M, I.G));
+    }
+    GeodesicPolarCoordinates& polar = own ? *own : *P->Engines[thread];
     double across = 0.0;
     for (const auto& ring : c.Outline.Rings)
     {

@@ -171,7 +171,9 @@ public:
   /// After Run: the surface point of class-frame point p (normalized units) of placed shape s,
   /// through the polar coordinates of its centre (short shapes) or of its curve (long shapes).
   SurfacePoint MapToSurface(int shape, const Vec2& p) const;
-  /// After Run: the faces covered by shape s with texture coordinates.
+  /// After Run: the faces covered by shape s with texture coordinates. May be called from the
+  /// threads of an OpenMP loop with at most the run's NumberOfThreads threads (long shapes use
+  /// the calling thread's geodesic engine).
   ShapeDecal Decal(int shape) const;
 
   const std::vector<PlacedShape>& Shapes() const;
