@@ -134,6 +134,10 @@ struct ShapeDistributor::Impl
     std::vector<Chart> Charts; // one per part (empty before the chart step)
     bool Valid = false;
     bool Rejected = false;
+    // Prepared in parallel for the commit (see PrepareCommit).
+    bool Prepared = false;
+    std::vector<int> Cover, Centres;
+    std::vector<std::pair<int, int>> Kills; // (class, face)
   };
   std::vector<Record> Accepted;
   std::vector<PlacedShape> Placed;
@@ -605,8 +609,12 @@ struct ShapeDistributor::Impl
   // safe distance against any part of any class, less the class's reach (its part centres'
   // offsets from its sample). Sampling skips them: the run is the same dart throwing, without
   // the candidates that would certainly fail.
-  void KillFaces(const Record& r)
+  // The (class, face) pairs the shape kills (see above), whatever is dead already. `mark` is a
+  // per-vertex scratch array of zeros (left as found).
+  void CollectKills(const Record& r, std::vector<char>& mark, std::vector<int>& marked,
+    std::vector<std::pair<int, int>>& kills) const
   {
+    kills.clear();
     const int nc = NumberOfClasses;
     for (std::size_t k = 0; k < r.Charts.size() && k < r.S.Parts.size(); ++k)
     {
@@ -620,16 +628,16 @@ struct ShapeDistributor::Impl
           continue;
         }
         const float r2 = static_cast<float>(radius * radius);
-        Marked.clear();
+        marked.clear();
         for (const ChartEntry& e : chart.Entries)
         {
           if (e.X * e.X + e.Y * e.Y < r2)
           {
-            Mark[e.V] = 1;
-            Marked.push_back(e.V);
+            mark[e.V] = 1;
+            marked.push_back(e.V);
           }
         }
-        for (int v : Marked)
+        for (int v : marked)
         {
           const int start = M.VertexHalfedge(v);
           int h = start;
@@ -637,39 +645,69 @@ struct ShapeDistributor::Impl
           {
             const int f = h / 3;
             const auto& t = M.Face(f);
-            char& dead = DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f];
-            if (!dead && Mark[t[0]] && Mark[t[1]] && Mark[t[2]])
+            // Each face once: from its smallest marked corner.
+            if (mark[t[0]] && mark[t[1]] && mark[t[2]] && v == std::min({ t[0], t[1], t[2] }))
             {
-              dead = 1;
-              Killed.emplace_back(c, f);
-              bool all = true;
-              for (int o = 0; o < nc && all; ++o)
-              {
-                all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
-                  DeadFor[static_cast<std::size_t>(o) * M.NumberOfFaces() + f];
-              }
-              if (all && !Dead[f])
-              {
-                Dead[f] = 1;
-                Killed.emplace_back(-1, f);
-                ++DeadSinceCdf;
-              }
+              kills.emplace_back(c, f);
             }
             h = M.RotateCCW(h);
           } while (h >= 0 && h != start);
         }
-        for (int v : Marked)
+        for (int v : marked)
         {
-          Mark[v] = 0;
+          mark[v] = 0;
         }
       }
     }
+  }
+
+  void KillFaces(const Record& r)
+  {
+    std::vector<std::pair<int, int>> own;
+    if (!r.Prepared)
+    {
+      CollectKills(r, Mark, Marked, own);
+    }
+    const int nc = NumberOfClasses;
+    for (const auto& cf : r.Prepared ? r.Kills : own)
+    {
+      const int c = cf.first, f = cf.second;
+      char& dead = DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f];
+      if (dead)
+      {
+        continue;
+      }
+      dead = 1;
+      Killed.emplace_back(c, f);
+      bool all = true;
+      for (int o = 0; o < nc && all; ++o)
+      {
+        all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
+          DeadFor[static_cast<std::size_t>(o) * M.NumberOfFaces() + f];
+      }
+      if (all && !Dead[f])
+      {
+        Dead[f] = 1;
+        Killed.emplace_back(-1, f);
+        ++DeadSinceCdf;
+      }
+    }
+  }
+
+  // The commit's own work that needs no shared state, done in parallel before it.
+  void PrepareCommit(Record& r, std::vector<char>& mark, std::vector<int>& marked) const
+  {
+    r.Cover = ChartVertices(r);
+    r.Centres = CentreCorners(r);
+    CollectKills(r, mark, marked, r.Kills);
+    r.Prepared = true;
   }
   bool DeadForClass(int c, int f) const
   {
     return DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f] != 0;
   }
   std::vector<char> Mark; // per vertex, all 0 between uses
+  std::vector<std::vector<char>> Marks; // the same per thread (PrepareCommit)
   std::vector<int> Marked;
 
   // Takes back the last committed shape (index entries, killed faces) and returns it.
@@ -717,14 +755,20 @@ struct ShapeDistributor::Impl
     KilledBy.push_back(Killed.size());
     KillFaces(r);
     const int id = static_cast<int>(Accepted.size());
-    for (int v : ChartVertices(r))
+    for (int v : r.Prepared ? r.Cover : ChartVertices(r))
     {
       CoverIndex[v].push_back(id);
     }
-    for (int v : CentreCorners(r))
+    for (int v : r.Prepared ? r.Centres : CentreCorners(r))
     {
       CentreIndex[v].push_back(id);
     }
+    r.Cover.clear();
+    r.Cover.shrink_to_fit();
+    r.Centres.clear();
+    r.Kills.clear();
+    r.Kills.shrink_to_fit();
+    r.Prepared = false;
     Placed.push_back(r.S);
     Accepted.push_back(std::move(r));
   }
@@ -737,6 +781,18 @@ struct ShapeDistributor::Impl
 
   void EnsureEngines(int threads)
   {
+    const int nv = M.NumberOfVertices();
+    if (static_cast<int>(Marks.size()) < threads)
+    {
+      Marks.resize(threads);
+    }
+    for (auto& m : Marks)
+    {
+      if (static_cast<int>(m.size()) != nv)
+      {
+        m.assign(nv, 0);
+      }
+    }
     const int have = static_cast<int>(Engines.size());
     if (have >= threads)
     {
@@ -1482,7 +1538,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
       const int nr = static_cast<int>(ready.size());
 #pragma omp parallel num_threads(threads) reduction(+ : charts, chartSeconds)
       {
-        std::vector<int> scratch;
+        std::vector<int> scratch, marked;
 #pragma omp for schedule(dynamic, 4)
         for (int k = 0; k < nr; ++k)
         {
@@ -1505,7 +1561,9 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
           {
             r.Rejected = true;
             r.Charts.clear();
+            continue;
           }
+          I.PrepareCommit(r, I.Marks[ThreadId()], marked);
         }
       }
       for (int i : ready) // priority order
