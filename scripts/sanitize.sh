@@ -11,8 +11,9 @@ env -u DISPLAY cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
   -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_MODULE_LINKER_FLAGS="$flags"
 targets=(GeodesicShapesCoreTests TestCrossFieldInputs TestSVGGeodesicDistanceInputs
-  TestGeodesicPolarCoordinatesInputs TestMSDTSourceInputs TestSVGGeodesicDistanceSolvers)
+  TestGeodesicPolarCoordinatesInputs TestMSDTSourceInputs TestSVGGeodesicDistanceSolvers
+  TestShapeDistributorInputs)
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1
 cd "$build"
-ctest --output-on-failure -R "^(Core\.[A-Z][A-Za-z]*\.|GeodesicShapes\.Test(CrossField|SVGGeodesicDistance|GeodesicPolarCoordinates|MSDTSource)Inputs|GeodesicShapes\.TestSVGGeodesicDistanceSolvers)" -E "Against|Accuracy|Extract"
+ctest --output-on-failure -R "^(Core\.[A-Z][A-Za-z]*\.|GeodesicShapes\.Test(CrossField|SVGGeodesicDistance|GeodesicPolarCoordinates|MSDTSource|ShapeDistributor)Inputs|GeodesicShapes\.TestSVGGeodesicDistanceSolvers)" -E "Against|Accuracy|Extract"
