@@ -286,6 +286,18 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
   }
   if (polygons)
   {
+    // A surface connected by mistake (pvpython connects the active source to the first input
+    // of a new proxy): shape polygons lie in a plane of constant z.
+    double bounds[6];
+    polygons->GetBounds(bounds);
+    if (polygons->GetNumberOfPoints() > 0 &&
+      bounds[5] - bounds[4] > 1e-9 * std::max({ 1.0, bounds[1] - bounds[0], bounds[3] - bounds[2] }))
+    {
+      cache.Error = "Polygons input: the points are not in a plane of constant z (a surface "
+                    "mesh connected by mistake? In pvpython, MSDTSource(...) connects the active "
+                    "source: call SetActiveSource(None) first)";
+      return;
+    }
     std::string error;
     vtkIdType open = 0;
     if (!PolygonClasses(polygons, classes, error, open))
@@ -310,6 +322,18 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
   if (!parts.Ok)
   {
     cache.Error = "Safe distance tables: " + parts.Error + ".";
+    return;
+  }
+  // P^2 tables of AngleBins^2 values: refuse what would not fit in memory (before allocating).
+  const double values = static_cast<double>(parts.Tables.NumberOfParts()) *
+    parts.Tables.NumberOfParts() * this->AngleBins * this->AngleBins;
+  if (values * sizeof(double) > 2e9)
+  {
+    cache.Error = "Safe distance tables: " + std::to_string(classes.size()) + " classes (" +
+      std::to_string(parts.Tables.NumberOfParts()) + " parts) at " +
+      std::to_string(this->AngleBins) + " angle bins need " +
+      std::to_string(static_cast<long long>(values * sizeof(double) / 1e6)) +
+      " MB of tables (limit 2000 MB): use fewer shapes, parts or AngleBins";
     return;
   }
   cache.Ok = true;

@@ -67,10 +67,10 @@ cmake --build build -j2
 xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
 case "$mode" in
   demo)
-    "${xvfb[@]}" pvpython --force-offscreen-rendering Examples/geodesic_distance.py \
+    "${xvfb[@]}" pvpython --force-offscreen-rendering Examples/main_job.py \
       --plugin "$root/build/lib/paraview-5.11/plugins/GeodesicShapes/GeodesicShapes.so" \
-      --mesh "$root/Data/torus.ply" --output "$root/output"
-    echo "Results: $root/output/geodesic_distance.vtp and $root/output/geodesic_distance.png"
+      --output "$root/output"
+    echo "Results: $root/output/{surface,placements,decals,outlines}.vtp and $root/output/main_job.png"
     ;;
   test)
     # (A test that fails is run once more: a real failure fails twice.)
