@@ -10,7 +10,8 @@ along the equator) -> SVG Geodesic Distance from a brush point -> Calculator (de
 f = clamp(d / 0.9, 0.45, 1): shapes shrink near the brush) -> Shape Distributor with MSDT Source
 tables of the shapes (by default the four silhouettes of Data/shapes drawn by the project).
 Writes, in the output folder: surface.vtp (mesh, Direction, Density), placements.vtp,
-decals.vtp, outlines.vtp and main_job.png (the shapes textured on the surface).
+decals.vtp, outlines.vtp, main_job.png (the shapes textured on the surface) and main_job.pvsm
+(the pipeline as a ParaView state).
 --check: exit with an error unless the outputs exist and every class was placed.
 """
 import argparse
@@ -165,10 +166,15 @@ view.ResetCamera()
 Render(view)
 picture = os.path.join(args.output, "main_job.png")
 SaveScreenshot(picture, view, ImageResolution=[900, 800])
-print("Results in %s: surface.vtp, placements.vtp, decals.vtp, outlines.vtp, main_job.png" % args.output)
+# The pipeline as a ParaView state (File > Load State in the GUI; the data files it reads are
+# the mesh and shape images given here).
+SaveState(os.path.join(args.output, "main_job.pvsm"))
+print("Results in %s: surface.vtp, placements.vtp, decals.vtp, outlines.vtp, main_job.png, "
+      "main_job.pvsm" % args.output)
 
 if args.check:
-    problems = [f for f in ("surface.vtp", "placements.vtp", "decals.vtp", "outlines.vtp", "main_job.png")
+    problems = [f for f in ("surface.vtp", "placements.vtp", "decals.vtp", "outlines.vtp", "main_job.png",
+                            "main_job.pvsm")
                 if not os.path.getsize(os.path.join(args.output, f))]
     if problems or min(counts) == 0:
         sys.exit("main_job check failed: empty %s, counts %s" % (problems, counts))
