@@ -34,6 +34,7 @@ SetActiveSource(None)
 msdt = MSDTSource(ShapeFileNames=[args.shape])
 shapes = ShapeDistributor(Input=square, Table=msdt, ShapeSize=0.5)
 shapes.DirectionArray = ["CELLS", "Direction"]
+shapes.DensityArray = ["POINTS", "None"]
 
 means = {}
 for mode in ("Circumcircle Poisson disk", "Random", "Greedy"):

@@ -34,6 +34,7 @@ names = ("star", "gull", "leaf", "fish")
 msdt = MSDTSource(ShapeFileNames=[os.path.join(shapes_dir, n + ".png") for n in names])
 shapes = ShapeDistributor(Input=field, Table=msdt, ShapeSize=0.07, Seed=4, MaximumShapes=300)
 shapes.DirectionArray = ["CELLS", "Direction"]
+shapes.DensityArray = ["POINTS", "None"]
 shapes.ClassWeights = [1.0, 2.0, 3.0, 4.0]
 shapes.UpdatePipeline()
 classes = vtk_to_numpy(servermanager.Fetch(shapes, idx=0).GetPointData().GetArray("ClassId"))

@@ -37,6 +37,7 @@ for name, mesh in (("coarse", coarse), ("fine", fine)):
     field = CrossField(Input=mesh, Symmetry=1)
     shapes = ShapeDistributor(Input=field, Table=msdt, ShapeSize=args.size)
     shapes.DirectionArray = ["CELLS", "Direction"]
+    shapes.DensityArray = ["POINTS", "None"]
     total = 0
     for seed in range(args.seeds):
         shapes.Seed = seed

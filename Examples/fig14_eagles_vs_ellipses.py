@@ -105,6 +105,7 @@ for name, tables, size in (("ellipses", ellipse_tables, 0.5 * float(numpy.maximu
     SetActiveSource(square)  # (array defaults are taken from the active source at creation)
     shapes = ShapeDistributor(Input=square, Table=tables, ShapeSize=size)
     shapes.DirectionArray = ["CELLS", "Direction"]
+    shapes.DensityArray = ["POINTS", "None"]
     total = 0
     for seed in range(args.seeds):
         shapes.Seed = seed
