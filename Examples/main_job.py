@@ -40,6 +40,7 @@ parser.add_argument("--mode", default="Greedy",
 parser.add_argument("--seed", type=int, default=1)
 parser.add_argument("--output", default=os.path.join(root, "output"))
 parser.add_argument("--check", action="store_true")
+parser.add_argument("--quiet", action="store_true", help="no progress bars")
 args = parser.parse_args()
 
 for f in [args.plugin, args.mesh] + args.shapes:
@@ -50,6 +51,25 @@ if not (args.size > 0):
 LoadPlugin(args.plugin, remote=False, ns=globals())
 os.makedirs(args.output, exist_ok=True)
 start = time.time()
+
+
+def progress_bar(proxy, label):
+    """A text progress bar on stderr for a long filter (its VTK object's ProgressEvent)."""
+    if args.quiet:
+        return
+    algorithm = proxy.GetClientSideObject()
+    state = {"last": -1}
+
+    def report(caller, event):
+        done = int(40 * caller.GetProgress())
+        if done != state["last"]:
+            state["last"] = done
+            sys.stderr.write("\r%-22s [%s%s] %3d%%" % (label, "#" * done, " " * (40 - done),
+                                                       int(100 * caller.GetProgress())))
+            if done == 40:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+    algorithm.AddObserver("ProgressEvent", report)
 
 mesh = PLYReader(FileNames=[args.mesh])
 mesh.UpdatePipeline()
@@ -78,6 +98,7 @@ stroke = PolyLineSource(Points=sum(([centre[0] + radius * math.cos(t), centre[1]
                                      for t in [-0.6 + 0.1 * k for k in range(13)]), []))
 field = CrossField(Input=mesh, Singularities=poles, Strokes=stroke, Symmetry=1,
                    Mode="Prescribed singularities")
+progress_bar(field, "Cross Field")
 
 # 2. Density brush: geodesic distance from the mesh point nearest to the brush centre.
 field.UpdatePipeline()
@@ -85,6 +106,7 @@ points = vtk_to_numpy(servermanager.Fetch(field).GetPoints().GetData())
 brush = [centre[0], centre[1] - radius, centre[2]]
 nearest = int(numpy.argmin(((points - numpy.array(brush)) ** 2).sum(axis=1)))
 distance = SVGGeodesicDistance(Input=field, SourceVertexIds=[nearest])
+progress_bar(distance, "SVG Geodesic Distance")
 density = Calculator(Input=distance, ResultArrayName="Density",
                      Function="max(0.45, min(1.0, GeodesicDistance / %g))" % (0.9 * radius))
 
@@ -97,6 +119,8 @@ shapes = ShapeDistributor(Input=density, Table=msdt, ShapeSize=args.size, Mode=a
 shapes.DirectionArray = ["CELLS", "Direction"]
 shapes.DensityArray = ["POINTS", "Density"]
 shapes.ClassWeights = [1.0] * len(args.shapes)
+progress_bar(msdt, "MSDT Source")
+progress_bar(shapes, "Shape Distributor")
 shapes.UpdatePipeline()
 placed = servermanager.Fetch(shapes, idx=0)
 classes = vtk_to_numpy(placed.GetPointData().GetArray("ClassId")) if placed.GetNumberOfPoints() else []
