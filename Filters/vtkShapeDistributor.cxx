@@ -179,6 +179,7 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "DistortionLimit: " << this->DistortionLimit << "\n";
   os << indent << "HolonomyMargin: " << this->HolonomyMargin << "\n";
+  os << indent << "KeepInside: " << this->KeepInside << "\n";
   os << indent << "K: " << this->K << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
 }
@@ -434,6 +435,7 @@ int vtkShapeDistributor::RequestData(vtkInformation* vtkNotUsed(request),
   options.Symmetry = symmetry;
   options.DistortionLimit = this->DistortionLimit;
   options.HolonomyMargin = this->HolonomyMargin;
+  options.KeepInside = this->KeepInside;
   const gs::ShapeDistributionResult result =
     distributor.Run(tables, directions, density, options, [this](double p) {
       this->UpdateProgress(0.4 + 0.45 * p);

@@ -125,6 +125,14 @@ public:
   ///@}
 
   ///@{
+  /// Keep every shape's circle on the surface (no shape hangs over the mesh boundary).
+  /// Default off.
+  vtkSetMacro(KeepInside, bool);
+  vtkGetMacro(KeepInside, bool);
+  vtkBooleanMacro(KeepInside, bool);
+  ///@}
+
+  ///@{
   /// Threads (0, default: all cores). The result does not depend on it.
   vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
@@ -162,6 +170,7 @@ protected:
   int NumberOfThreads = 0;
   double DistortionLimit = 0.01;
   double HolonomyMargin = 1.0;
+  bool KeepInside = false;
   int K = 50;
   std::string CacheFileName;
 

@@ -569,8 +569,30 @@ struct ShapeDistributor::Impl
   }
 
   // Checks against accepted shapes with a smaller density factor, in the candidate's charts.
+  // KeepInside: a boundary vertex within a part's circle (plus half the longest edge).
+  bool TouchesBoundary(const Record& c) const
+  {
+    for (std::size_t k = 0; k < c.Charts.size() && k < c.S.Parts.size(); ++k)
+    {
+      const double reach = PartRadius(c.S.Parts[k].Part) * O.ShapeSize * c.S.Scale + 0.5 * MaxEdge;
+      const float r2 = static_cast<float>(reach * reach);
+      for (const ChartEntry& e : c.Charts[k].Entries)
+      {
+        if (e.X * e.X + e.Y * e.Y < r2 && M.IsBoundaryVertex(e.V))
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   bool FullConflict(const Record& c, std::vector<int>& scratch) const
   {
+    if (O.KeepInside && TouchesBoundary(c))
+    {
+      return true;
+    }
     scratch.clear();
     for (int v : ChartVertices(c))
     {

@@ -89,6 +89,10 @@ struct ShapeDistributionOptions
   /// of |angle defect| around the neighbour's centre), times this factor. 1: conflict-free on
   /// noisy meshes too (at the cost of density there); 0: the tables alone.
   double HolonomyMargin = 1.0;
+  /// Keep every shape's circle on the surface: a candidate is rejected when a boundary vertex
+  /// lies within its (part) circumradius plus half the longest edge. false: shapes near the
+  /// boundary may hang over it (their outlines stop there).
+  bool KeepInside = false;
 };
 
 /// One part of a placed shape (a short shape has one).

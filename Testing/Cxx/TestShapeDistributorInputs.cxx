@@ -200,6 +200,25 @@ int main(int, char*[])
     run.Filter->SetNumberOfThreads(1);
     run.Update();
     Check(run.Out(0)->GetNumberOfPoints() == greedy, "threads", "1 thread differs");
+    // KeepInside: every circle on the unit square (radius 0.06 at density 1; star is class 0).
+    run.Filter->SetMode(vtkShapeDistributor::RANDOM);
+    run.Filter->KeepInsideOn();
+    run.Update();
+    {
+      vtkPolyData* inside = run.Out(0);
+      vtkDataArray* sc = inside->GetPointData()->GetArray("Scale");
+      vtkDataArray* cl = inside->GetPointData()->GetArray("ClassId");
+      bool ok = inside->GetNumberOfPoints() > 0 && sc && cl;
+      for (vtkIdType i = 0; ok && i < inside->GetNumberOfPoints(); ++i)
+      {
+        const double* x = inside->GetPoint(i);
+        // The bar (class 1) has its own circumradius: check the star's only.
+        const double r = cl->GetTuple1(i) == 0 ? 0.06 * sc->GetTuple1(i) : 0.0;
+        ok = x[0] >= r - 1e-9 && x[0] <= 1 - r + 1e-9 && x[1] >= r - 1e-9 && x[1] <= 1 - r + 1e-9;
+      }
+      Check(ok, "KeepInside", "a star hangs over the square's side");
+    }
+    run.Filter->KeepInsideOff();
     // A point direction array works as well.
     vtkNew<vtkDoubleArray> pointDirection;
     pointDirection->SetName("PointDirection");
