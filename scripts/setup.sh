@@ -23,7 +23,7 @@ packages=(
   libopenmpi-dev libglew-dev libexpat1-dev liblzma-dev liblz4-dev libdouble-conversion-dev
   libjpeg-dev libtiff-dev libfreetype-dev zlib1g-dev
   libgtest-dev ninja-build libcgal-demo libcgal-dev libgmp-dev libmpfr-dev openclipart-png openclipart-svg libgl1-mesa-dri
-  cmake g++ pkg-config
+  cmake g++ pkg-config clang
 )
 
 missing=()

@@ -96,7 +96,9 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
         }
       }
     }
-    if (!(Graph.Distance(G.StencilTarget(arrival)) < Inf))
+    // No stencil neighbour reached (x was reached through a graph link from outside its
+    // stencil): nothing to unfold from.
+    if (arrival < 0 || !(Graph.Distance(G.StencilTarget(arrival)) < Inf))
     {
       continue;
     }

@@ -1,0 +1,79 @@
+// libFuzzer harness: random small meshes through the mesh core and the geodesic engines.
+// Bytes -> up to 24 points (coordinates from signed bytes, some repeated or degenerate) and up
+// to 40 triangles (indices modulo the point count, possibly out of range or repeated) ->
+// TriangleMeshBuilder (must reject bad input with a message, never crash) -> exact geodesics,
+// a saddle vertex graph (K = 6) and SVG distances, polar coordinates and a streamline.
+#include "DirectionField.h"
+#include "ExactGeodesic.h"
+#include "GeodesicPolarCoordinates.h"
+#include "MeshGenerators.h"
+#include "SVGGeodesicSolver.h"
+#include "SaddleVertexGraph.h"
+#include "TriangleMesh.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  if (size < 4)
+  {
+    return 0;
+  }
+  std::size_t at = 0;
+  auto next = [&]() -> std::uint8_t { return at < size ? data[at++] : 0; };
+  const int np = 3 + next() % 22;
+  const int nt = 1 + next() % 40;
+  std::vector<gs::Vec3> points;
+  for (int i = 0; i < np; ++i)
+  {
+    const double x = static_cast<std::int8_t>(next()), y = static_cast<std::int8_t>(next()),
+                 z = static_cast<std::int8_t>(next());
+    points.emplace_back(x / 16.0, y / 16.0, z / 64.0);
+  }
+  std::vector<std::array<long long, 3>> triangles;
+  for (int t = 0; t < nt && at + 3 <= size; ++t)
+  {
+    // Mostly valid indices, sometimes out of range.
+    auto index = [&]() -> long long {
+      const std::uint8_t b = next();
+      return b == 255 ? -1 : (b == 254 ? np + 5 : b % np);
+    };
+    triangles.push_back({ index(), index(), index() });
+  }
+  const gs::MeshBuildResult built = gs::TriangleMeshBuilder::Build(points, triangles);
+  if (!built.Ok)
+  {
+    return 0; // rejected with a message: fine
+  }
+  const gs::TriangleMesh& mesh = built.Mesh;
+  gs::ExactGeodesicSolver exact(mesh);
+  exact.Solve({ gs::SurfacePoint::AtVertex(0) }, gs::ExactGeodesicOptions());
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+  {
+    const double d = exact.Distance(v);
+    if (std::isnan(d))
+    {
+      __builtin_trap(); // distances are finite or +inf (unreached), never NaN
+    }
+  }
+  gs::SaddleVertexGraph graph;
+  gs::SaddleVertexGraphOptions options;
+  options.K = 6;
+  options.NumberOfThreads = 1;
+  std::string error;
+  if (graph.Build(mesh, options, nullptr, error))
+  {
+    gs::SVGGeodesicSolver svg(mesh, graph);
+    svg.Solve({ gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5) });
+    gs::GeodesicPolarCoordinates polar(mesh, &graph);
+    polar.Compute(gs::SurfacePoint::InFace(0, 1.0 / 3, 1.0 / 3, 1.0 / 3), 2.0, 0.0);
+  }
+  gs::DirectionFieldSolver field(mesh);
+  std::vector<double> angles(mesh.NumberOfFaces(), 0.3);
+  field.TraceStreamline(1, angles, gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5), 0.0, 3.0);
+  return 0;
+}
