@@ -104,17 +104,10 @@ double Now()
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// The regular {5/2} star's outline: inner radius / outer radius = 0.382.
 std::vector<Vec2> Pentagram()
 {
-  // The regular {5/2} star's outline: inner radius / outer radius = 0.382.
-  std::vector<Vec2> ring;
-  const double inner = std::cos(2 * Pi / 5) / std::cos(Pi / 5);
-  for (int k = 0; k < 10; ++k)
-  {
-    const double a = Pi / 2 + Pi * k / 5, r = k % 2 == 0 ? 1.0 : inner;
-    ring.emplace_back(r * std::cos(a), r * std::sin(a));
-  }
-  return ring;
+  return MakeStarPolygon(5, 1.0, std::cos(2 * Pi / 5) / std::cos(Pi / 5));
 }
 
 // Scaled to circumradius 1, so that every class has the same size.

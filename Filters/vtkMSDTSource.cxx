@@ -324,18 +324,6 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     cache.Error = "Safe distance tables: " + parts.Error + ".";
     return;
   }
-  // P^2 tables of AngleBins^2 values: refuse what would not fit in memory (before allocating).
-  const double values = static_cast<double>(parts.Tables.NumberOfParts()) *
-    parts.Tables.NumberOfParts() * this->AngleBins * this->AngleBins;
-  if (values * sizeof(double) > 2e9)
-  {
-    cache.Error = "Safe distance tables: " + std::to_string(classes.size()) + " classes (" +
-      std::to_string(parts.Tables.NumberOfParts()) + " parts) at " +
-      std::to_string(this->AngleBins) + " angle bins need " +
-      std::to_string(static_cast<long long>(values * sizeof(double) / 1e6)) +
-      " MB of tables (limit 2000 MB): use fewer shapes, parts or AngleBins";
-    return;
-  }
   cache.Ok = true;
   cache.Parts = std::move(parts.Tables);
 }
@@ -365,6 +353,14 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
   }
   const gs::SafeDistanceTables& T = this->Shapes->Parts;
   const int ka = this->AngleBins, P = T.NumberOfParts(), m = static_cast<int>(T.Classes.size());
+  // Tables that would not fit in memory are refused before any allocation (the core checks
+  // the same when it computes them).
+  const std::string tooLarge = gs::SafeDistanceTableSizeError(P, ka);
+  if (!tooLarge.empty())
+  {
+    vtkErrorMacro("Safe distance tables: " << m << " classes, " << tooLarge << ".");
+    return 1;
+  }
 
   // Port 0: ka x ka x P^2 tables.
   vtkInformation* info = outputVector->GetInformationObject(0);

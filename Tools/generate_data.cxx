@@ -24,18 +24,6 @@ gs::TriangleSoup BumpySphere()
   return s;
 }
 
-std::vector<gs::Vec2> Pentagram()
-{
-  const double pi = std::acos(-1.0);
-  std::vector<gs::Vec2> ring;
-  for (int k = 0; k < 10; ++k)
-  {
-    const double a = pi / 2 + pi * k / 5, r = k % 2 == 0 ? 1.0 : 0.382;
-    ring.emplace_back(r * std::cos(a), r * std::sin(a));
-  }
-  return ring;
-}
-
 // A gull in flight, wings spread along x.
 std::vector<gs::Vec2> Gull()
 {
@@ -86,7 +74,7 @@ int WriteShapes(const std::string& dir)
   {
     const char* Name;
     std::vector<gs::Vec2> Ring;
-  } shapes[] = { { "star.png", Pentagram() }, { "gull.png", Gull() }, { "leaf.png", Leaf() },
+  } shapes[] = { { "star.png", gs::MakeStarPolygon(5, 1.0, 0.382) }, { "gull.png", Gull() }, { "leaf.png", Leaf() },
     { "fish.png", Fish() } };
   int status = 0;
   for (const auto& shape : shapes)

@@ -19,8 +19,7 @@ Vec3 Rotate(const Vec3& v, const Vec3& k, double c, double s)
 // the unit in-plane direction `zero`.
 Vec3 InFaceDirection(const TriangleMesh& m, int f, const Vec3& zero, double a)
 {
-  const Vec3 n = m.FaceNormal(f);
-  return zero * std::cos(a) + Cross(n, zero) * std::sin(a);
+  return RotateTangent(zero, m.FaceNormal(f), a);
 }
 
 } // namespace

@@ -207,4 +207,17 @@ TriangleSoup MakeTorus(double majorRadius, double minorRadius, int n, int m)
   return s;
 }
 
+std::vector<Vec2> MakeStarPolygon(int points, double outer, double inner)
+{
+  const double pi = std::acos(-1.0);
+  std::vector<Vec2> ring;
+  for (int k = 0; k < 2 * points; ++k)
+  {
+    const double a = pi / 2 + pi * k / points;
+    const double r = k % 2 == 0 ? outer : inner;
+    ring.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  return ring;
+}
+
 } // namespace gs

@@ -33,4 +33,9 @@ TriangleSoup MakeIcosphere(double radius, int level);
 // Torus with major radius R and minor radius r, n x m quads split into triangles.
 TriangleSoup MakeTorus(double majorRadius, double minorRadius, int n, int m);
 
+// A star outline centred at the origin: 2 * points vertices, counter-clockwise, alternately at
+// `outer` (the first on +y) and `inner` distance. points = 5, inner / outer = 0.382: the
+// regular pentagram's outline.
+std::vector<Vec2> MakeStarPolygon(int points, double outer, double inner);
+
 } // namespace gs

@@ -381,6 +381,21 @@ SafeDistanceResult ComputeSafeDistanceParts(
 }
 
 //------------------------------------------------------------------------------
+std::string SafeDistanceTableSizeError(int parts, int angleBins)
+{
+  const double bytes =
+    static_cast<double>(parts) * parts * angleBins * angleBins * sizeof(double);
+  if (bytes <= MaximumSafeDistanceTableBytes)
+  {
+    return std::string();
+  }
+  return std::to_string(parts) + " parts at " + std::to_string(angleBins) + " angle bins need " +
+    std::to_string(static_cast<long long>(bytes / 1e6)) + " MB of tables (limit " +
+    std::to_string(static_cast<long long>(MaximumSafeDistanceTableBytes / 1e6)) +
+    " MB): use fewer shapes, parts or AngleBins";
+}
+
+//------------------------------------------------------------------------------
 SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
   const SafeDistanceOptions& options, const std::function<bool(double)>& progress)
 {
@@ -405,6 +420,11 @@ SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
     options.RotationSamples > 4096)
   {
     result.Error = "Rows must be in [2, 1048576] and RotationSamples in [0, 4096]";
+    return result;
+  }
+  result.Error = SafeDistanceTableSizeError(parts.NumberOfParts(), ka);
+  if (!result.Error.empty())
+  {
     return result;
   }
   auto report = [&](double value) { return !progress || progress(value); };

@@ -151,6 +151,13 @@ struct SafeDistanceResult
 SafeDistanceResult ComputeSafeDistanceParts(
   const std::vector<SafeDistanceInput>& shapes, const SafeDistanceOptions& options = {});
 
+/// Largest memory the P^2 tables may take: a request beyond it is refused before allocation.
+constexpr double MaximumSafeDistanceTableBytes = 2e9;
+
+/// Why tables of `parts` parts at `angleBins` bins would not be computed (their memory above
+/// MaximumSafeDistanceTableBytes), or an empty string.
+std::string SafeDistanceTableSizeError(int parts, int angleBins);
+
 /// Step 2: the P^2 tables of the classes and parts made by ComputeSafeDistanceParts (its
 /// MaximumAspectRatio is not looked at again). Progress and abort as below.
 SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,

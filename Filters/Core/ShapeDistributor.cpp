@@ -44,11 +44,6 @@ struct Random
   }
 };
 
-Vec3 Rotate(const Vec3& t, const Vec3& n, double angle)
-{
-  return t * std::cos(angle) + Cross(n, t) * std::sin(angle);
-}
-
 int ThreadCount(int requested)
 {
 #ifdef _OPENMP
@@ -239,7 +234,7 @@ struct ShapeDistributor::Impl
       *boundary = shot.ReachedBoundary;
     }
     end = shot.End;
-    Vec3 dir = Unit(Rotate(t, M.FaceNormal(face), side * 0.5 * Pi));
+    Vec3 dir = Unit(RotateTangent(t, M.FaceNormal(face), side * 0.5 * Pi));
     for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
     {
       if (Norm(it->B - it->A) > 0.0)
@@ -249,7 +244,7 @@ struct ShapeDistributor::Impl
       }
     }
     const Vec3 n = M.FaceNormal(end.Face);
-    endTangent = Unit(Rotate(dir, n, -side * 0.5 * Pi));
+    endTangent = Unit(RotateTangent(dir, n, -side * 0.5 * Pi));
     return true;
   }
 
@@ -276,7 +271,7 @@ struct ShapeDistributor::Impl
     if (!(Norm(dir) > 0.0))
     {
       const auto& v = M.Face(f);
-      dir = Rotate(Unit(M.Position(v[1]) - M.Position(v[0])), s.Normal, TwoPi * spin);
+      dir = RotateTangent(Unit(M.Position(v[1]) - M.Position(v[0])), s.Normal, TwoPi * spin);
     }
     else if (prefer && O.Symmetry > 1)
     {
@@ -284,7 +279,7 @@ struct ShapeDistributor::Impl
       double bestDot = -2.0;
       for (int k = 0; k < O.Symmetry; ++k)
       {
-        const Vec3 candidate = Rotate(dir, s.Normal, TwoPi * k / O.Symmetry);
+        const Vec3 candidate = RotateTangent(dir, s.Normal, TwoPi * k / O.Symmetry);
         const double d = Dot(candidate, *prefer);
         if (d > bestDot)
         {
@@ -304,7 +299,7 @@ struct ShapeDistributor::Impl
     {
       // The major axis follows the field: trace the streamline both ways.
       const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
-      s.Direction = Unit(Rotate(dir, s.Normal, -phiM));
+      s.Direction = Unit(RotateTangent(dir, s.Normal, -phiM));
       const int n = O.Symmetry == 1 ? 2 : O.Symmetry;
       const double a0 = Field->AngleInFace(f, dir);
       const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
@@ -352,7 +347,7 @@ struct ShapeDistributor::Impl
         return false;
       }
       p.Position = M.Interpolate(p.Centre.Face, p.Centre.Bary);
-      p.Axis = Unit(Rotate(endTangent, M.FaceNormal(p.Centre.Face), -phiM));
+      p.Axis = Unit(RotateTangent(endTangent, M.FaceNormal(p.Centre.Face), -phiM));
       s.Parts.push_back(p);
     }
     return true;
@@ -688,7 +683,7 @@ struct ShapeDistributor::Impl
     std::vector<std::pair<int, int>> own;
     if (!r.Prepared)
     {
-      CollectKills(r, Mark, Marked, own);
+      CollectKills(r, Marks[0], Marked, own); // (serial: the first thread's scratch)
     }
     const int nc = NumberOfClasses;
     for (const auto& cf : r.Prepared ? r.Kills : own)
@@ -728,8 +723,7 @@ struct ShapeDistributor::Impl
   {
     return DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f] != 0;
   }
-  std::vector<char> Mark; // per vertex, all 0 between uses
-  std::vector<std::vector<char>> Marks; // the same per thread (PrepareCommit)
+  std::vector<std::vector<char>> Marks; // per thread, per vertex, all 0 between uses
   std::vector<int> Marked;
 
   // Takes back the last committed shape (index entries, killed faces) and returns it.
@@ -988,7 +982,6 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     AllCdf[f] = total;
   }
   Dead.assign(nf, 0);
-  Mark.assign(nv, 0);
   NumberOfClasses = static_cast<int>(T.Classes.size());
   DeadFor.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
   Killed.clear();

@@ -51,6 +51,12 @@ inline Vec3 Unit(const Vec3& v)
   const double l = Norm(v);
   return l > 0.0 ? v / l : v;
 }
+/// The tangent t turned by `angle` counter-clockwise about the unit normal n (t perpendicular
+/// to n): t cos(angle) + (n x t) sin(angle).
+inline Vec3 RotateTangent(const Vec3& t, const Vec3& n, double angle)
+{
+  return t * std::cos(angle) + Cross(n, t) * std::sin(angle);
+}
 inline bool IsFinite(const Vec3& a)
 {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);

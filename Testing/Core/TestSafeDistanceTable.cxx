@@ -1,6 +1,7 @@
 // Minimum safe distance tables and silhouettes: analytic cases (disk, square), conservativeness
 // against an independent exact overlap test (ShapeOverlapOracle.h), tightness, image reading,
 // polygons, long-shape splitting, multi-class tables, determinism and errors.
+#include "MeshGenerators.h"
 #include "SafeDistanceTable.h"
 #include "ShapeOverlapOracle.h"
 #include "Silhouette.h"
@@ -42,13 +43,9 @@ std::vector<Vec2> RegularPolygon(int n, double radius, double phase = 0.0)
 
 std::vector<Vec2> StarPolygon(int points, double outer, double inner, Vec2 centre = {})
 {
-  std::vector<Vec2> ring;
-  for (int k = 0; k < 2 * points; ++k)
-  {
-    const double a = Pi / 2 + Pi * k / points;
-    const double r = k % 2 == 0 ? outer : inner;
-    ring.emplace_back(centre.x + r * std::cos(a), centre.y + r * std::sin(a));
-  }
+  std::vector<Vec2> ring = MakeStarPolygon(points, outer, inner);
+  for (Vec2& p : ring)
+    p = p + centre;
   return ring;
 }
 
@@ -641,4 +638,24 @@ TEST(SafeDistanceTable, AngleBinsWrap)
   EXPECT_EQ(SafeDistanceTables::AngleBin(-2 * Pi / 64, 64), 63);
   EXPECT_EQ(SafeDistanceTables::AngleBin(Pi, 64), 32);
   EXPECT_EQ(SafeDistanceTables::AngleBin(7 * 2 * Pi + 0.1, 64), 1);
+}
+
+TEST(SafeDistanceTable, TablesTooLargeForMemoryAreRefusedBeforeAllocation)
+{
+  EXPECT_TRUE(SafeDistanceTableSizeError(100, 64).empty()); // 328 MB
+  const std::string error = SafeDistanceTableSizeError(400, 128); // 21 GB
+  EXPECT_NE(error.find("MB of tables"), std::string::npos) << error;
+  // 400 classes: the parts are cheap, the values are refused with that message.
+  std::vector<SafeDistanceInput> classes;
+  for (int k = 0; k < 400; ++k)
+  {
+    classes.push_back({ "square", ShapeFromPolygons({ RegularPolygon(4, 1.0, Pi / 4) }) });
+  }
+  SafeDistanceOptions options;
+  options.AngleBins = 128;
+  const SafeDistanceResult parts = ComputeSafeDistanceParts(classes, options);
+  ASSERT_TRUE(parts.Ok) << parts.Error;
+  const SafeDistanceResult values = ComputeSafeDistanceValues(parts.Tables, options);
+  EXPECT_FALSE(values.Ok);
+  EXPECT_EQ(values.Error, error);
 }

@@ -17,18 +17,9 @@ using namespace gs;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
-
 std::vector<Vec2> Star(double outer, double inner)
 {
-  std::vector<Vec2> ring;
-  for (int k = 0; k < 10; ++k)
-  {
-    const double a = Pi / 2 + Pi * k / 5;
-    const double r = k % 2 == 0 ? outer : inner;
-    ring.emplace_back(r * std::cos(a), r * std::sin(a));
-  }
-  return ring;
+  return MakeStarPolygon(5, outer, inner);
 }
 
 std::vector<Vec2> Rectangle(double w, double h)

@@ -20,6 +20,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -40,9 +41,11 @@ int Failures = 0;
   } while (0)
 
 int Errors = 0;
-void CountError(vtkObject*, unsigned long, void*, void*)
+std::string LastError;
+void CountError(vtkObject*, unsigned long, void*, void* message)
 {
   ++Errors;
+  LastError = message ? static_cast<const char*>(message) : "";
 }
 
 int Warnings = 0;
@@ -283,7 +286,52 @@ int main(int argc, char* argv[])
     CHECK(Warnings == 0 && lines->GetOutlinesOutput()->GetNumberOfCells() == 2);
   }
 
-  // 4. Abort: empty output, no error.
+  // 4. Guards: a surface connected as polygons (not in a plane of constant z), and tables
+  // that would not fit in memory (refused before allocation).
+  {
+    vtkNew<vtkMSDTSource> guarded;
+    vtkNew<vtkCallbackCommand> onError;
+    onError->SetCallback(CountError);
+    guarded->AddObserver(vtkCommand::ErrorEvent, onError);
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkCellArray> cells;
+    const double corners[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+    for (const auto& c : corners)
+      pts->InsertNextPoint(c);
+    for (const auto& t : { std::array<vtkIdType, 3>{ 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } })
+      cells->InsertNextCell(3, t.data());
+    vtkNew<vtkPolyData> surface;
+    surface->SetPoints(pts);
+    surface->SetPolys(cells);
+    guarded->SetPolygonsData(surface);
+    CHECK(Run(guarded) >= 1);
+    CHECK(LastError.find("plane of constant z") != std::string::npos);
+    CHECK(guarded->GetTablesOutput()->GetNumberOfPoints() == 0);
+
+    // 400 small squares, one class each, at 128 angle bins: 400^2 x 128^2 doubles = 21 GB.
+    vtkNew<vtkPoints> squarePoints;
+    vtkNew<vtkCellArray> squares;
+    for (int k = 0; k < 400; ++k)
+    {
+      const double x = 3.0 * (k % 20), y = 3.0 * (k / 20);
+      vtkIdType ids[4];
+      ids[0] = squarePoints->InsertNextPoint(x, y, 0);
+      ids[1] = squarePoints->InsertNextPoint(x + 1, y, 0);
+      ids[2] = squarePoints->InsertNextPoint(x + 1, y + 1, 0);
+      ids[3] = squarePoints->InsertNextPoint(x, y + 1, 0);
+      squares->InsertNextCell(4, ids);
+    }
+    vtkNew<vtkPolyData> many;
+    many->SetPoints(squarePoints);
+    many->SetPolys(squares);
+    guarded->SetPolygonsData(many);
+    guarded->SetAngleBins(128);
+    CHECK(Run(guarded) >= 1);
+    CHECK(LastError.find("MB of tables") != std::string::npos);
+    CHECK(guarded->GetTablesOutput()->GetNumberOfPoints() == 0);
+  }
+
+  // 5. Abort: empty output, no error.
   vtkNew<vtkCallbackCommand> abort;
   abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
     static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);

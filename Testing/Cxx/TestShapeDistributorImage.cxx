@@ -14,6 +14,7 @@
 #include "vtkShapeDistributor.h"
 
 #include "FilterTestSupport.h"
+#include "MeshGenerators.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -48,17 +49,15 @@ using gs_test::Check;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 vtkSmartPointer<vtkPolyData> Pentagram()
 {
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> polys;
   std::vector<vtkIdType> ids;
-  for (int k = 0; k < 10; ++k)
+  for (const gs::Vec2& p : gs::MakeStarPolygon(5, 1.0, 0.382))
   {
-    const double a = Pi / 2 + Pi * k / 5, r = k % 2 == 0 ? 1.0 : 0.382;
-    ids.push_back(points->InsertNextPoint(r * std::cos(a), r * std::sin(a), 0.0));
+    ids.push_back(points->InsertNextPoint(p.x, p.y, 0.0));
   }
   polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
   auto data = vtkSmartPointer<vtkPolyData>::New();

@@ -7,6 +7,7 @@
 #include "vtkShapeDistributor.h"
 
 #include "FilterTestSupport.h"
+#include "MeshGenerators.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
@@ -34,7 +35,6 @@ using gs_test::MessageRecorder;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 // A pentagram (class 0) and a 4:1 bar (class 1) as polygons for MSDT Source.
 vtkSmartPointer<vtkPolyData> Shapes()
@@ -44,10 +44,9 @@ vtkSmartPointer<vtkPolyData> Shapes()
   vtkNew<vtkIntArray> classId;
   classId->SetName("ClassId");
   std::vector<vtkIdType> ids;
-  for (int k = 0; k < 10; ++k)
+  for (const gs::Vec2& p : gs::MakeStarPolygon(5, 1.0, 0.382))
   {
-    const double a = Pi / 2 + Pi * k / 5, r = k % 2 == 0 ? 1.0 : 0.382;
-    ids.push_back(points->InsertNextPoint(r * std::cos(a), r * std::sin(a), 0.0));
+    ids.push_back(points->InsertNextPoint(p.x, p.y, 0.0));
   }
   polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
   classId->InsertNextValue(0);
