@@ -90,6 +90,15 @@ def fetch(proxy, port):
     return servermanager.Fetch(proxy, idx=port)
 
 
+# Defaults as a user gets them on an up-to-date input: no density, the field's Direction.
+density.UpdatePipeline()
+SetActiveSource(density)
+fresh = ShapeDistributor(Input=density, Table=msdt)
+check(fresh.DensityArray[1] == "None", "DensityArray should default to None, got %s" % fresh.DensityArray)
+check(fresh.DirectionArray[1] == "Direction",
+      "DirectionArray should default to Direction, got %s" % fresh.DirectionArray)
+Delete(fresh)
+
 shapes = ShapeDistributor(Input=density, Table=msdt, ShapeSize=0.07, Seed=3)
 shapes.DirectionArray = ["CELLS", "Direction"]
 shapes.DensityArray = ["POINTS", "Density"]
