@@ -1,5 +1,6 @@
 #include "vtkCrossField.h"
 
+#include "vtkDistributedSurface.h"
 #include "vtkSurfaceMeshConverter.h"
 #include "vtkSurfacePointLocator.h"
 
@@ -105,6 +106,27 @@ int vtkCrossField::RequestData(vtkInformation* vtkNotUsed(request),
     vtkErrorMacro("Missing input or output mesh.");
     return 0;
   }
+  // Under MPI: the whole surface on process 0, the results back to each process's piece.
+  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
+  if (distributed)
+  {
+    vtkSmartPointer<vtkPolyData> whole = distributed.GatherSurface(input);
+    vtkSmartPointer<vtkPointSet> allSingularities = distributed.GatherAuxiliary(singularities);
+    vtkSmartPointer<vtkPointSet> allStrokes = distributed.GatherAuxiliary(strokes);
+    vtkNew<vtkPolyData> result;
+    if (distributed.IsRoot())
+    {
+      this->Execute(whole, allSingularities, vtkPolyData::SafeDownCast(allStrokes), result);
+    }
+    distributed.ScatterSurface(result, output);
+    return 1;
+  }
+  return this->Execute(input, singularities, strokes, output);
+}
+
+//------------------------------------------------------------------------------
+int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPolyData* strokes, vtkPolyData* output)
+{
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
 

@@ -1,5 +1,7 @@
 #include "vtkMSDTSource.h"
 
+#include "vtkDistributedSurface.h"
+
 #include "SafeDistanceTable.h"
 #include "Silhouette.h"
 
@@ -401,6 +403,13 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   tables->Initialize();
   outlines->Initialize();
   silhouettes->Initialize();
+  // Under MPI the tables are computed once, on process 0 (its polygon input, if any, is read
+  // there): the other processes output empty pieces (Shape Distributor takes process 0's).
+  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
+  if (distributed && !distributed.IsRoot())
+  {
+    return 1;
+  }
   this->UpdateProgress(0.0);
 
   // Errors were reported by RequestInformation (same parameters, same cached shapes).

@@ -1,6 +1,7 @@
 #include "vtkSVGGeodesicDistance.h"
 
 #include "vtkSaddleVertexGraphCache.h"
+#include "vtkDistributedSurface.h"
 #include "vtkSurfaceMeshConverter.h"
 #include "vtkSurfacePointLocator.h"
 
@@ -129,6 +130,26 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
     vtkErrorMacro("Missing input or output mesh.");
     return 0;
   }
+  // Under MPI: the whole surface on process 0, the results back to each process's piece.
+  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
+  if (distributed)
+  {
+    vtkSmartPointer<vtkPolyData> whole = distributed.GatherSurface(input);
+    vtkSmartPointer<vtkPointSet> allSources = distributed.GatherAuxiliary(sources);
+    vtkNew<vtkPolyData> result;
+    if (distributed.IsRoot())
+    {
+      this->Execute(whole, allSources, result);
+    }
+    distributed.ScatterSurface(result, output);
+    return 1;
+  }
+  return this->Execute(input, sources, output);
+}
+
+//------------------------------------------------------------------------------
+int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vtkPolyData* output)
+{
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
 

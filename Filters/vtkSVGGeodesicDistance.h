@@ -157,6 +157,10 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  // RequestData's work on the whole surface (the input itself, or under MPI the gathered
+  // surface on process 0).
+  int Execute(vtkPolyData* input, vtkPointSet* sources, vtkPolyData* output);
+
 
 private:
   vtkSVGGeodesicDistance(const vtkSVGGeodesicDistance&) = delete;

@@ -1,6 +1,7 @@
 #include "vtkShapeDistributor.h"
 
 #include "vtkSaddleVertexGraphCache.h"
+#include "vtkDistributedSurface.h"
 #include "vtkSurfaceMeshConverter.h"
 
 #include "SafeDistanceTable.h"
@@ -246,6 +247,27 @@ int vtkShapeDistributor::RequestData(vtkInformation* vtkNotUsed(request),
   placements->Initialize();
   decals->Initialize();
   outlines->Initialize();
+
+  // Under MPI: the whole surface and the tables on process 0, which outputs every shape (the
+  // other processes output empty placements, decals and outlines).
+  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
+  if (distributed)
+  {
+    vtkSmartPointer<vtkPolyData> whole = distributed.GatherSurface(input);
+    vtkSmartPointer<vtkDataObject> tables = distributed.GatherFirstNonEmpty(tableImage);
+    if (distributed.IsRoot())
+    {
+      this->Execute(whole, vtkImageData::SafeDownCast(tables), placements, decals, outlines);
+    }
+    return 1;
+  }
+  return this->Execute(input, tableImage, placements, decals, outlines);
+}
+
+//------------------------------------------------------------------------------
+int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
+  vtkPolyData* placements, vtkPolyData* decals, vtkPolyData* outlines)
+{
   if (!input || !tableImage)
   {
     vtkErrorMacro("Shape Distributor needs a mesh (port 0) and the tables of MSDT Source "

@@ -57,6 +57,8 @@
 #include <string> // for std::string
 #include <vector> // for std::vector
 
+class vtkImageData;
+
 class GEODESICSHAPESFILTERS_EXPORT vtkShapeDistributor : public vtkPolyDataAlgorithm
 {
 public:
@@ -160,6 +162,10 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  // RequestData's work on the whole surface (the input itself, or under MPI the gathered
+  // surface on process 0); the outputs are empty on entry.
+  int Execute(vtkPolyData* input, vtkImageData* tables, vtkPolyData* placements,
+    vtkPolyData* decals, vtkPolyData* outlines);
 
   double ShapeSize = 1.0;
   std::vector<double> ClassWeights;

@@ -20,7 +20,7 @@ packages=(
   qtbase5-dev libqt5svg5-dev qttools5-dev libqt5opengl5-dev qtxmlpatterns5-dev-tools
   libutfcpp-dev libhdf5-mpi-dev libboost-dev libtheora-dev libavformat-dev libavcodec-dev
   libavutil-dev libswscale-dev libgl2ps-dev libpng-dev libnetcdf-dev libgdal-dev libx11-dev
-  libopenmpi-dev libglew-dev libexpat1-dev liblzma-dev liblz4-dev libdouble-conversion-dev
+  libopenmpi-dev openmpi-bin libglew-dev libexpat1-dev liblzma-dev liblz4-dev libdouble-conversion-dev
   libjpeg-dev libtiff-dev libfreetype-dev zlib1g-dev
   libgtest-dev ninja-build libcgal-demo libcgal-dev libgmp-dev libmpfr-dev openclipart-png openclipart-svg libgl1-mesa-dri
   cmake g++ pkg-config clang

@@ -1,0 +1,406 @@
+"""Distributed execution: every filter of the Fig. 1 pipeline gives the serial result under
+`mpiexec -n 2 pvbatch --symmetric` and through a 2-process pvserver.
+
+Pipeline (as Examples/main_job.py): Cross Field (Prescribed singularities at the poles, a stroke
+along the equator) -> SVG Geodesic Distance (brush at a vertex id) -> Calculator (Density) ->
+Shape Distributor (MSDT Source tables of the four bundled shapes, Greedy), plus Geodesic Polar
+Coordinates from a Source point.
+
+Driver (pvpython TestMPI.py --plugin P --data D --work W): splits the bundled bumpy sphere into
+two pieces along a plane (a .pvtp of two .vtp, with global point and cell ids), then runs
+  1. serial: pvbatch on the original mesh (the reference),
+  2. mpi:    mpiexec -n 2 pvbatch --symmetric on the pieces (each process writes its outputs),
+  3. server: pvpython connected to mpiexec -n 2 pvserver, on the pieces (outputs fetched),
+  4. mpi-noids: the pieces without global ids, against pvbatch reading the same pieces serially
+     (the reassembled surface is then the serial reader's: piece 0, then piece 1),
+and compares point and cell arrays (matched by coordinates) and the placed shapes.
+"""
+import argparse
+import glob
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--data", required=True)
+parser.add_argument("--work", required=True)
+parser.add_argument("--run", help="one run: write its outputs into this folder")
+parser.add_argument("--mesh", help="run: the input mesh (.ply or .pvtp)")
+parser.add_argument("--connect", help="run: host:port of a pvserver")
+parser.add_argument("--brush", type=int, default=-1, help="run: brush vertex id")
+parser.add_argument("--pvbatch", default="pvbatch")
+parser.add_argument("--mpiexec", default="mpiexec")
+parser.add_argument("--pvserver", default="pvserver")
+parser.add_argument("--pvpython", default="pvpython")
+args = parser.parse_args()
+
+SHAPES = ["star.png", "gull.png", "leaf.png", "fish.png"]
+TIMEOUT = 600
+
+
+def mpi_env():
+    # pvpython initialised MPI as a singleton: its OpenMPI/PMIx variables would make the
+    # children believe they are part of this job.
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("OMPI_", "PMIX_", "ORTE_", "OPAL_"))}
+    env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
+    env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
+    env["OMPI_MCA_rmaps_base_oversubscribe"] = "1"
+    # The process that waits for process 0 yields its core instead of polling.
+    env["OMPI_MCA_mpi_yield_when_idle"] = "1"
+    return env
+
+
+# ---------------------------------------------------------------------------------------------
+def run_pipeline():
+    """One run of the pipeline: in pvbatch (serial or each MPI process) or connected to pvserver."""
+    from paraview.simple import (Calculator, Connect, LoadPlugin, PLYReader, PointSource,
+                                 PolyLineSource, ProgrammableSource, SetActiveSource,
+                                 XMLPartitionedPolydataReader)
+    from paraview import servermanager
+    import vtk
+
+    rank = 0
+    if args.connect:
+        host, port = args.connect.split(":")
+        Connect(host, int(port))
+        LoadPlugin(args.plugin, remote=True, ns=globals())
+    else:
+        rank = vtk.vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
+    LoadPlugin(args.plugin, remote=False, ns=globals())
+    CrossField, SVGGeodesicDistance, GeodesicPolarCoordinates, MSDTSource, ShapeDistributor = (
+        globals()[n] for n in ("CrossField", "SVGGeodesicDistance", "GeodesicPolarCoordinates",
+                               "MSDTSource", "ShapeDistributor"))
+    os.makedirs(args.run, exist_ok=True)
+
+    if args.mesh.endswith(".pvtp"):
+        mesh = XMLPartitionedPolydataReader(FileName=[args.mesh])
+    else:
+        mesh = PLYReader(FileNames=[args.mesh])
+    # The bumpy sphere: centre 0, radius about 1 (fixed here: no data information is needed).
+    poles = ProgrammableSource(OutputDataSetType="vtkPolyData")
+    poles.Script = """
+import vtk
+pts = vtk.vtkPoints()
+pts.InsertNextPoint(0.0, 0.0, 1.3)
+pts.InsertNextPoint(0.0, 0.0, -1.3)
+idx = vtk.vtkDoubleArray()
+idx.SetName("Index")
+idx.InsertNextValue(1.0)
+idx.InsertNextValue(1.0)
+out = self.GetPolyDataOutput()
+out.SetPoints(pts)
+out.GetPointData().AddArray(idx)
+"""
+    import math
+    stroke = PolyLineSource(Points=sum(([math.cos(t), math.sin(t), 0.25 * math.sin(2 * t)]
+                                        for t in [-0.6 + 0.1 * k for k in range(13)]), []))
+    field = CrossField(Input=mesh, Singularities=poles, Strokes=stroke, Symmetry=1,
+                       Mode="Prescribed singularities")
+    distance = SVGGeodesicDistance(Input=field, SourceVertexIds=[args.brush])
+    density = Calculator(Input=distance, ResultArrayName="Density",
+                         Function="max(0.45, min(1.0, GeodesicDistance / 0.9))")
+    polar = GeodesicPolarCoordinates(Input=density, Radius=0.8)
+    polar.Source = PointSource(Center=[0.0, 0.0, 1.0], NumberOfPoints=1, Radius=0.0)
+    SetActiveSource(None)
+    msdt = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", s) for s in SHAPES],
+                      AngleBins=48, DistanceSteps=48, TextureSize=64)
+    shapes = ShapeDistributor(Input=density, Table=msdt, ShapeSize=0.12, Mode="Greedy", Seed=3)
+    shapes.DirectionArray = ["CELLS", "Direction"]
+    shapes.DensityArray = ["POINTS", "Density"]
+    shapes.ClassWeights = [1.0] * len(SHAPES)
+
+    outputs = [("polar", polar, 0), ("placements", shapes, 0), ("outlines", shapes, 2)]
+    for name, proxy, port in outputs:
+        proxy.UpdatePipeline()
+        if args.connect:
+            data = servermanager.Fetch(proxy, idx=port)  # every process's piece, appended
+        else:
+            data = proxy.GetClientSideObject().GetOutputDataObject(port)  # this process's piece
+        if data.GetNumberOfPoints() == 0:
+            continue  # an empty piece (the shapes live on process 0)
+        writer = vtk.vtkXMLPolyDataWriter()
+        writer.SetDataModeToBinary()  # inline base64: Debian's expat rejects raw appended data
+        writer.SetFileName(os.path.join(args.run, "%s_%d.vtp" % (name, rank)))
+        writer.SetInputData(data)
+        writer.Write()
+    print("run %s: rank %d wrote its outputs" % (args.run, rank))
+
+
+# ---------------------------------------------------------------------------------------------
+def read(path):
+    import vtk
+    reader = vtk.vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def pieces(folder, name):
+    return [read(f) for f in sorted(glob.glob(os.path.join(folder, name + "_*.vtp")))]
+
+
+def split_mesh(mesh_file, folder, ids):
+    """Two pieces of the mesh (cells by the sign of x + 0.3 y: not contiguous in id order), each
+    with its used points (shared ones repeated), global ids when `ids`, as a .pvtp."""
+    import vtk
+    from paraview.vtk.util.numpy_support import numpy_to_vtk
+    import numpy
+    reader = vtk.vtkPLYReader()
+    reader.SetFileName(mesh_file)
+    reader.Update()
+    whole = reader.GetOutput()
+    os.makedirs(folder, exist_ok=True)
+    names = []
+    for part in range(2):
+        piece = vtk.vtkPolyData()
+        points = vtk.vtkPoints()
+        points.SetDataTypeToDouble()
+        polys = vtk.vtkCellArray()
+        point_map = {}
+        gpids, gcids = [], []
+        for c in range(whole.GetNumberOfCells()):
+            cell = whole.GetCell(c)
+            centre = [sum(cell.GetPoints().GetPoint(k)[j] for k in range(3)) / 3 for j in range(3)]
+            if (centre[0] + 0.3 * centre[1] >= 0.0) != (part == 0):
+                continue
+            ids_ = []
+            for k in range(3):
+                p = cell.GetPointId(k)
+                if p not in point_map:
+                    point_map[p] = points.InsertNextPoint(whole.GetPoint(p))
+                    gpids.append(p)
+                ids_.append(point_map[p])
+            polys.InsertNextCell(3, ids_)
+            gcids.append(c)
+        piece.SetPoints(points)
+        piece.SetPolys(polys)
+        if ids:
+            a = numpy_to_vtk(numpy.array(gpids, dtype=numpy.int64), deep=True, array_type=vtk.VTK_ID_TYPE)
+            a.SetName("GlobalPointIds")
+            piece.GetPointData().SetGlobalIds(a)
+            b = numpy_to_vtk(numpy.array(gcids, dtype=numpy.int64), deep=True, array_type=vtk.VTK_ID_TYPE)
+            b.SetName("GlobalCellIds")
+            piece.GetCellData().SetGlobalIds(b)
+        name = "piece_%d.vtp" % part
+        writer = vtk.vtkXMLPolyDataWriter()
+        writer.SetDataModeToBinary()
+        writer.SetFileName(os.path.join(folder, name))
+        writer.SetInputData(piece)
+        writer.Write()
+        names.append(name)
+    pvtp = os.path.join(folder, "mesh.pvtp")
+    with open(pvtp, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="1.0" '
+                'byte_order="LittleEndian" header_type="UInt64">\n<PPolyData GhostLevel="0">\n')
+        if ids:
+            f.write('<PPointData GlobalIds="GlobalPointIds"><PDataArray type="Int64" '
+                    'Name="GlobalPointIds"/></PPointData>\n')
+            f.write('<PCellData GlobalIds="GlobalCellIds"><PDataArray type="Int64" '
+                    'Name="GlobalCellIds"/></PCellData>\n')
+        f.write('<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n')
+        for n in names:
+            f.write('<Piece Source="%s"/>\n' % n)
+        f.write('</PPolyData>\n</VTKFile>\n')
+    return pvtp
+
+
+def input_pieces(pvtp):
+    """Cells of each piece of a .pvtp: what each process's output piece must hold."""
+    folder = os.path.dirname(pvtp)
+    return [read(os.path.join(folder, "piece_%d.vtp" % k)).GetNumberOfCells() for k in range(2)]
+
+
+def key_point(x):
+    return tuple(round(v, 12) for v in x)
+
+
+def compare(reference, candidate, label, expected_pieces=None):
+    """Point and cell arrays of the polar output, then placements and outlines."""
+    import numpy
+    from paraview.vtk.util.numpy_support import vtk_to_numpy
+    failures = []
+    ref = pieces(reference, "polar")
+    got = pieces(candidate, "polar")
+    if expected_pieces is not None:
+        sizes = [p.GetNumberOfCells() for p in got]
+        if sizes != expected_pieces:
+            failures.append("%s: pieces of %s cells, expected each process's input piece %s" % (
+                label, sizes, expected_pieces))
+    ref_points, got_points = {}, {}
+    for pieces_, table in ((ref, ref_points), (got, got_points)):
+        for data in pieces_:
+            pd = data.GetPointData()
+            for i in range(data.GetNumberOfPoints()):
+                values = []
+                for name in ("GeodesicDistance", "Density", "PolarRadius", "PolarAngle"):
+                    array = pd.GetArray(name)
+                    values.append(array.GetTuple1(i) if array else float("inf"))
+                k = key_point(data.GetPoint(i))
+                if k in table and not numpy.allclose(table[k], values, rtol=0, atol=1e-9,
+                                                     equal_nan=True):
+                    failures.append("%s: a point shared by two pieces has two values" % label)
+                table[k] = values
+    if set(ref_points) != set(got_points):
+        failures.append("%s: %d points, serial %d" % (label, len(got_points), len(ref_points)))
+    worst = 0.0
+    for k, values in ref_points.items():
+        if k in got_points:
+            a, b = numpy.array(values), numpy.array(got_points[k])
+            both = numpy.isfinite(a) & numpy.isfinite(b)
+            if (numpy.isfinite(a) != numpy.isfinite(b)).any():
+                failures.append("%s: NaN pattern differs at %s" % (label, k))
+                break
+            if both.any():
+                worst = max(worst, float(numpy.abs(a[both] - b[both]).max()))
+    if worst > 1e-9:
+        failures.append("%s: point arrays differ by %.3g" % (label, worst))
+
+    def cells(pieces_):
+        table = {}
+        for data in pieces_:
+            direction = data.GetCellData().GetArray("Direction")
+            if data.GetNumberOfCells() and direction is None:
+                failures.append("%s: no Direction cell array" % label)
+                return table
+            for c in range(data.GetNumberOfCells()):
+                ids = data.GetCell(c).GetPointIds()
+                k = tuple(sorted(key_point(data.GetPoint(ids.GetId(j))) for j in range(3)))
+                table[k] = direction.GetTuple3(c)
+        return table
+    ref_cells, got_cells = cells(ref), cells(got)
+    if set(ref_cells) != set(got_cells):
+        failures.append("%s: %d cells, serial %d" % (label, len(got_cells), len(ref_cells)))
+    else:
+        d = max(max(abs(a - b) for a, b in zip(ref_cells[k], got_cells[k])) for k in ref_cells)
+        if d > 1e-9:
+            failures.append("%s: Direction differs by %.3g" % (label, d))
+
+    for name, arrays in (("placements", ("ClassId", "Scale", "Direction", "FaceId")),
+                         ("outlines", ("ShapeId", "ClassId"))):
+        ref_d = [p for p in pieces(reference, name) if p.GetNumberOfPoints()]
+        got_d = [p for p in pieces(candidate, name) if p.GetNumberOfPoints()]
+        if len(ref_d) != 1 or len(got_d) != 1:
+            failures.append("%s: %s on %d processes (expected all on process 0)" % (label, name, len(got_d)))
+            continue
+        a, b = ref_d[0], got_d[0]
+        if (a.GetNumberOfPoints(), a.GetNumberOfCells()) != (b.GetNumberOfPoints(), b.GetNumberOfCells()):
+            failures.append("%s: %s has %d points / %d cells, serial %d / %d" % (
+                label, name, b.GetNumberOfPoints(), b.GetNumberOfCells(), a.GetNumberOfPoints(),
+                a.GetNumberOfCells()))
+            continue
+        pa = vtk_to_numpy(a.GetPoints().GetData())
+        pb = vtk_to_numpy(b.GetPoints().GetData())
+        if abs(pa - pb).max() > 1e-9:
+            failures.append("%s: %s points differ by %.3g" % (label, name, abs(pa - pb).max()))
+        for array in arrays:
+            attributes_a = a.GetPointData() if name == "placements" else a.GetCellData()
+            attributes_b = b.GetPointData() if name == "placements" else b.GetCellData()
+            va = vtk_to_numpy(attributes_a.GetArray(array)).astype(float)
+            vb = vtk_to_numpy(attributes_b.GetArray(array)).astype(float)
+            if abs(va - vb).max() > 1e-9:
+                failures.append("%s: %s %s differs" % (label, name, array))
+    placed = [p for p in pieces(reference, "placements") if p.GetNumberOfPoints()]
+    n_shapes = placed[0].GetNumberOfPoints() if placed else 0
+    if n_shapes < 50:
+        failures.append("%s: only %d shapes in the serial run" % (label, n_shapes))
+    print("%s: %d points, %d cells, %d shapes compared with the serial run; %s" % (
+        label, len(ref_points), len(ref_cells), n_shapes, "identical" if not failures else "DIFFERENT"))
+    return failures
+
+
+def free_port():
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return port
+
+
+def driver():
+    import vtk
+    work = args.work
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    mesh = os.path.join(args.data, "bumpy_sphere.ply")
+    with_ids = split_mesh(mesh, os.path.join(work, "pieces"), True)
+    without_ids = split_mesh(mesh, os.path.join(work, "pieces_noids"), False)
+    # The brush vertex: the one nearest (0, -1, 0), a serial vertex id.
+    reader = vtk.vtkPLYReader()
+    reader.SetFileName(mesh)
+    reader.Update()
+    locator = vtk.vtkPointLocator()
+    locator.SetDataSet(reader.GetOutput())
+    brush = locator.FindClosestPoint(0.0, -1.0, 0.0)
+    me = os.path.abspath(__file__)
+    common = ["--plugin", args.plugin, "--data", args.data, "--work", work, "--brush", str(brush)]
+    env = mpi_env()
+    mpi = [args.mpiexec, "-n", "2"]
+
+    def run(command, label):
+        start = time.time()
+        result = subprocess.run(command, env=env, timeout=TIMEOUT, stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, universal_newlines=True)
+        print("%s: %.1f s" % (label, time.time() - start))
+        if result.returncode != 0 or "ERR|" in result.stdout:
+            print(result.stdout)
+            sys.exit("%s failed (exit %d)" % (label, result.returncode))
+
+    failures = []
+    folders = {k: os.path.join(work, k) for k in ("serial", "mpi", "server", "serial-noids", "mpi-noids")}
+    run([args.pvbatch, me] + common + ["--run", folders["serial"], "--mesh", mesh], "serial pvbatch")
+    run(mpi + [args.pvbatch, "--symmetric", me] + common + ["--run", folders["mpi"], "--mesh", with_ids],
+        "mpiexec -n 2 pvbatch --symmetric")
+    failures += compare(folders["serial"], folders["mpi"], "pvbatch, 2 processes, global ids",
+                        input_pieces(with_ids))
+
+    # pvserver with 2 processes, a pvpython client.
+    port = free_port()
+    server = subprocess.Popen(mpi + [args.pvserver, "--server-port=%d" % port], env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              universal_newlines=True)
+    try:
+        deadline = time.time() + 120
+        ready = False
+        while time.time() < deadline:
+            line = server.stdout.readline()
+            if not line:
+                break
+            if "Accepting connection" in line:
+                ready = True
+                break
+        if not ready:
+            sys.exit("pvserver did not start")
+        run([args.pvpython, me] + common + ["--run", folders["server"], "--mesh", with_ids,
+                                         "--connect", "localhost:%d" % port], "pvserver, 2 processes")
+    finally:
+        server.terminate()
+        try:
+            server.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            server.kill()
+    failures += compare(folders["serial"], folders["server"], "pvserver, 2 processes, global ids")
+
+    # Without global ids: the reassembled surface is the serial reader's (piece 0 then piece 1).
+    run([args.pvbatch, me] + common + ["--run", folders["serial-noids"], "--mesh", without_ids],
+        "serial pvbatch, pieces without ids")
+    run(mpi + [args.pvbatch, "--symmetric", me] + common + ["--run", folders["mpi-noids"], "--mesh",
+                                                           without_ids],
+        "mpiexec -n 2 pvbatch --symmetric, pieces without ids")
+    failures += compare(folders["serial-noids"], folders["mpi-noids"], "pvbatch, 2 processes, no ids",
+                        input_pieces(without_ids))
+
+    if failures:
+        print("\n".join(failures))
+        sys.exit(1)
+    print("TestMPI passed")
+
+
+if args.run:
+    run_pipeline()
+else:
+    driver()
