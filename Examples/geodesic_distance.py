@@ -12,6 +12,9 @@ import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
+# Inline base64 (zlib) XML: ParaView 5.11 on Debian 12 cannot read back the raw appended
+# data it writes by default (its libexpat rejects the binary bytes).
+VTP = dict(DataMode="Binary", CompressorType="ZLib")
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -47,7 +50,7 @@ if args.solver != "Exact":
         field.GetArray("SVGMeanDegree").GetValue(0), field.GetArray("SVGBuildSeconds").GetValue(0)))
 
 vtp = os.path.join(args.output, "geodesic_distance.vtp")
-SaveData(vtp, proxy=geodesic)
+SaveData(vtp, proxy=geodesic, **VTP)
 
 step = high / args.isolines
 isolines = Contour(Input=geodesic, ContourBy=["POINTS", "GeodesicDistance"],

@@ -12,6 +12,9 @@ import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
+# Inline base64 (zlib) XML: ParaView 5.11 on Debian 12 cannot read back the raw appended
+# data it writes by default (its libexpat rejects the binary bytes).
+VTP = dict(DataMode="Binary", CompressorType="ZLib")
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -43,7 +46,7 @@ geodesic.UpdatePipeline()
 low, high = geodesic.PointData["GeodesicDistance"].GetRange()
 print("%s: %s distance from a closed curve in [%g, %g]" % (
     os.path.basename(args.mesh), args.solver, low, high))
-SaveData(os.path.join(args.output, "geodesic_distance_from_curve.vtp"), proxy=geodesic)
+SaveData(os.path.join(args.output, "geodesic_distance_from_curve.vtp"), proxy=geodesic, **VTP)
 
 view = CreateRenderView()
 view.ViewSize = [1000, 700]

@@ -22,6 +22,9 @@ import time
 
 import numpy
 from paraview.simple import *  # noqa: F401,F403
+# Inline base64 (zlib) XML: ParaView 5.11 on Debian 12 cannot read back the raw appended
+# data it writes by default (its libexpat rejects the binary bytes).
+VTP = dict(DataMode="Binary", CompressorType="ZLib")
 from paraview import servermanager
 from paraview.vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
@@ -132,10 +135,10 @@ print("%d shapes (%s) on %s in %.1f s" % (placed.GetNumberOfPoints(), ", ".join(
     os.path.basename(args.mesh), time.time() - start))
 
 # 4. Data files.
-SaveData(os.path.join(args.output, "surface.vtp"), proxy=density)
-SaveData(os.path.join(args.output, "placements.vtp"), proxy=OutputPort(shapes, 0))
-SaveData(os.path.join(args.output, "decals.vtp"), proxy=OutputPort(shapes, 1))
-SaveData(os.path.join(args.output, "outlines.vtp"), proxy=OutputPort(shapes, 2))
+SaveData(os.path.join(args.output, "surface.vtp"), proxy=density, **VTP)
+SaveData(os.path.join(args.output, "placements.vtp"), proxy=OutputPort(shapes, 0), **VTP)
+SaveData(os.path.join(args.output, "decals.vtp"), proxy=OutputPort(shapes, 1), **VTP)
+SaveData(os.path.join(args.output, "outlines.vtp"), proxy=OutputPort(shapes, 2), **VTP)
 
 # 5. Picture: the surface coloured by density, each class's decals textured with its
 # silhouette (a cut-out: fragments outside the silhouette are discarded).
@@ -200,6 +203,15 @@ if args.check:
     problems = [f for f in ("surface.vtp", "placements.vtp", "decals.vtp", "outlines.vtp", "main_job.png",
                             "main_job.pvsm")
                 if not os.path.getsize(os.path.join(args.output, f))]
+    # The data files read back (numbers of points as written).
+    written = {"surface.vtp": density, "placements.vtp": OutputPort(shapes, 0),
+               "decals.vtp": OutputPort(shapes, 1), "outlines.vtp": OutputPort(shapes, 2)}
+    for f, proxy in written.items():
+        back = XMLPolyDataReader(FileName=[os.path.join(args.output, f)])
+        back.UpdatePipeline()
+        if (back.GetDataInformation().GetNumberOfPoints() !=
+                proxy.GetDataInformation().GetNumberOfPoints()):
+            problems.append(f + " (unreadable)")
     if problems or min(counts) == 0:
         sys.exit("main_job check failed: empty %s, counts %s" % (problems, counts))
     print("check passed")

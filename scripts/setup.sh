@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up GeodesicShapes on a fresh Debian 12 machine (run as root from anywhere):
-#   bash scripts/setup.sh demo   install, build, run the main job -> output/geodesic_distance.{vtp,png}
+#   bash scripts/setup.sh demo   install, build, run the main job -> output/ (data files, main_job.png)
 #   bash scripts/setup.sh test   install, build, run the whole test suite (ctest)
 set -euo pipefail
 
