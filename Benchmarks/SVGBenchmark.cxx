@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <cstdlib>
 #include <random>
 #include <sstream>
@@ -29,6 +31,24 @@ namespace
 double Now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+} // namespace
+
+namespace
+{
+// A "Vm...:" line of /proc/self/status in bytes (0 when unavailable).
+double StatusBytes(const char* key)
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind(key, 0) == 0)
+    {
+      return 1024.0 * std::atof(line.c_str() + std::strlen(key));
+    }
+  }
+  return 0.0;
 }
 } // namespace
 
@@ -71,9 +91,11 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "no mesh given (try --help)\n");
     return 2;
   }
-  std::printf("%-24s %7s %4s %8s %9s %10s %10s %10s %10s %10s %10s %10s %8s %8s %8s %10s %10s\n",
+  std::printf("%-24s %7s %4s %8s %9s %10s %10s %10s %10s %10s %10s %10s %8s %8s %8s %10s %10s "
+              "%8s %8s %8s\n",
     "mesh", "verts", "K", "edges/v", "build_s", "us/v/core", "graph_err", "graph_max", "svg_err",
-    "svg_max", "pt_err", "exact_s", "lc_ms", "dij_ms", "svg_ms", "exact/svg", "dij/lc");
+    "svg_max", "pt_err", "exact_s", "lc_ms", "dij_ms", "svg_ms", "exact/svg", "dij/lc", "kept_B/v",
+    "peak_B/v", "est_B/v");
   for (const std::string& path : files)
   {
     TriangleSoup soup;
@@ -124,11 +146,17 @@ int main(int argc, char** argv)
       SaddleVertexGraphOptions opt;
       opt.K = k;
       opt.NumberOfThreads = threads;
+      // Peak memory of the build: the process's peak resident size is reset first (Linux).
+      std::ofstream("/proc/self/clear_refs") << "5";
+      const double rssBefore = StatusBytes("VmRSS:");
       if (!g.Build(m, opt, nullptr, error))
       {
         std::fprintf(stderr, "%s: %s\n", name.c_str(), error.c_str());
         continue;
       }
+      const double peakPerVertex = (StatusBytes("VmHWM:") - rssBefore) / nv;
+      const double keptPerVertex = static_cast<double>(g.MemoryBytes()) / nv;
+      const double estimatePerVertex = SaddleVertexGraph::EstimatedBuildBytes(nv, k) / nv;
 #ifdef _OPENMP
       const int cores = threads > 0 ? threads : omp_get_max_threads();
 #else
@@ -202,11 +230,11 @@ int main(int argc, char** argv)
       }
       lc /= numSources;
       dij /= numSources;
-      std::printf("%-24s %7d %4d %8.1f %9.2f %10.1f %10.2e %10.2e %10.2e %10.2e %10.2e %10.4f %8.2f %8.2f %8.2f %10.1f %10.2f\n",
+      std::printf("%-24s %7d %4d %8.1f %9.2f %10.1f %10.2e %10.2e %10.2e %10.2e %10.2e %10.4f %8.2f %8.2f %8.2f %10.1f %10.2f %8.0f %8.0f %8.0f\n",
         name.c_str(), nv, g.GetK(), g.MeanDegree(), g.BuildSeconds(),
         1e6 * g.BuildSeconds() * cores / nv, meanErr / count, maxErr, refinedErr / refinedCount,
         refinedMax, pointErr / pointCount, exactTime, 1e3 * lc, 1e3 * dij, 1e3 * refined,
-        exactTime / refined, dij / lc);
+        exactTime / refined, dij / lc, keptPerVertex, peakPerVertex, estimatePerVertex);
       std::fflush(stdout);
     }
   }
@@ -215,6 +243,8 @@ int main(int argc, char** argv)
               "the exact solver; svg_err/max: the same with unfolding refinement (the filter's "
               "result); pt_err: mean error from face-point sources; exact_s: exact solve; "
               "lc/dij_ms: label-correcting / Dijkstra solve on the graph; svg_ms: full solve with "
-              "refinement.\n");
+              "refinement; kept_B/v: graph bytes per vertex; peak_B/v: peak resident memory added by "
+              "the build per vertex (VmHWM, reset before); est_B/v: the build's estimate, checked "
+              "against the available memory before allocating.\n");
   return failed ? 1 : 0;
 }

@@ -48,6 +48,14 @@ public:
   int GetK() const { return K; }
   double BuildSeconds() const { return Seconds; }
   std::size_t MemoryBytes() const;
+
+  // Peak memory (bytes) that Build is expected to add for K on `numberOfVertices` vertices: an
+  // upper estimate from the peaks SVGBenchmark measures (README, "Memory"). Build refuses a
+  // request whose estimate exceeds 80% of AvailableMemoryBytes(), before allocating.
+  static double EstimatedBuildBytes(int numberOfVertices, int k);
+  // Memory the system can give now: MemAvailable of /proc/meminfo, else free physical pages;
+  // 0 when unknown (no check). GS_AVAILABLE_MEMORY (bytes) overrides it, for tests.
+  static double AvailableMemoryBytes();
   void Clear();
 
   // Neighbours of v: Targets[Begin(v) .. End(v)) with Weights.

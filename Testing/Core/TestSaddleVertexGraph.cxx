@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -105,6 +107,36 @@ TEST(SaddleVertexGraph, RejectsBadK)
   o.K = 1000000; // clamped to the vertex count
   EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
   EXPECT_EQ(g.GetK(), m.NumberOfVertices());
+}
+
+TEST(SaddleVertexGraph, RefusesWhatMemoryCannotHold)
+{
+  // The estimate grows linearly with K and the vertex count, and covers what the build keeps.
+  EXPECT_NEAR(SaddleVertexGraph::EstimatedBuildBytes(1000, 100),
+    2.0 * SaddleVertexGraph::EstimatedBuildBytes(500, 100), 1e-6);
+  EXPECT_GT(SaddleVertexGraph::EstimatedBuildBytes(1000, 200),
+    1.8 * SaddleVertexGraph::EstimatedBuildBytes(1000, 100));
+  EXPECT_EQ(SaddleVertexGraph::EstimatedBuildBytes(10, 1000000),
+    SaddleVertexGraph::EstimatedBuildBytes(10, 10)); // K is clamped as Build clamps it
+  const TriangleMesh m = Bumpy(2, 1);
+  SaddleVertexGraph g;
+  std::string error;
+  SaddleVertexGraphOptions o;
+  o.K = 50;
+  ASSERT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_LT(static_cast<double>(g.MemoryBytes()),
+    SaddleVertexGraph::EstimatedBuildBytes(m.NumberOfVertices(), 50));
+  EXPECT_GT(SaddleVertexGraph::AvailableMemoryBytes(), 0.0); // Linux: /proc/meminfo
+
+  // A machine with 1 MiB to spare: refused before allocating, with the figures and the remedy.
+  const double needed = SaddleVertexGraph::EstimatedBuildBytes(m.NumberOfVertices(), 50);
+  ASSERT_GT(needed, 0.8 * 1048576.0);
+  setenv("GS_AVAILABLE_MEMORY", "1048576", 1);
+  EXPECT_FALSE(g.Build(m, o, nullptr, error));
+  unsetenv("GS_AVAILABLE_MEMORY");
+  EXPECT_TRUE(g.Empty());
+  EXPECT_NE(error.find("MiB available; lower K"), std::string::npos) << error;
+  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
 }
 
 TEST(SaddleVertexGraph, ProgressCanAbort)
