@@ -284,6 +284,14 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
       cache.Error = "Shape " + std::to_string(classes.size()) + ": " + read.Error + ".";
       return;
     }
+    if (read.ReductionFactor > 1)
+    {
+      vtkWarningMacro("Shape " << classes.size() << ": image '" << file << "' is "
+                               << read.ImageWidth << " x " << read.ImageHeight
+                               << " pixels; read reduced by " << read.ReductionFactor
+                               << " (at most " << gs::MaximumSilhouetteImageSide
+                               << " pixels on a side).");
+    }
     classes.push_back({ file, gs::ShapeFromMask(read.Mask) });
   }
   if (polygons)

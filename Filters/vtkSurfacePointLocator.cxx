@@ -18,13 +18,15 @@ vtkSurfacePointLocator::vtkSurfacePointLocator(const vtkSurfaceMeshConverter::Re
 {
   this->Locator->SetDataSet(mesh.Triangles);
   this->Locator->BuildLocator();
+  this->MaximumDistance = MaximumDistanceFraction * mesh.Triangles->GetLength();
 }
 
 //------------------------------------------------------------------------------
 vtkSurfacePointLocator::~vtkSurfacePointLocator() = default;
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePointLocator::Snap(const double x[3], gs::SurfacePoint& point, std::string& error)
+bool vtkSurfacePointLocator::Snap(
+  const double x[3], gs::SurfacePoint& point, std::string& error, bool anyDistance)
 {
   if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
   {
@@ -40,6 +42,13 @@ bool vtkSurfacePointLocator::Snap(const double x[3], gs::SurfacePoint& point, st
   if (cellId < 0 || cellId >= mesh.NumberOfFaces())
   {
     error = "could not be snapped to the surface";
+    return false;
+  }
+  if (!anyDistance && std::sqrt(dist2) > this->MaximumDistance)
+  {
+    error = "it lies " + std::to_string(std::sqrt(dist2)) +
+      " from the surface, more than a quarter of the mesh's bounding box diagonal (" +
+      std::to_string(this->MaximumDistance) + "): check its coordinates";
     return false;
   }
   // Barycentric coordinates in the triangle's point order, then matched to the core face's
@@ -81,10 +90,12 @@ bool vtkSurfacePointLocator::SnapPolyline(vtkPoints* points, vtkIdType n, const 
   // At most this many samples per segment (a segment far longer than the mesh).
   constexpr vtkIdType MaximumSamplesPerSegment = 1 << 20;
   curve.clear();
-  auto add = [&](const double x[3], vtkIdType pointId) {
+  // The polyline's own points must be near the surface; the samples between them (a chord of a
+  // curved surface) may be farther.
+  auto add = [&](const double x[3], vtkIdType pointId, bool sample) {
     gs::SurfacePoint p;
     std::string reason;
-    if (!this->Snap(x, p, reason))
+    if (!this->Snap(x, p, reason, sample))
     {
       error = "point " + std::to_string(pointId) + ": " + reason;
       return false;
@@ -105,7 +116,7 @@ bool vtkSurfacePointLocator::SnapPolyline(vtkPoints* points, vtkIdType n, const 
     }
     double a[3];
     points->GetPoint(ids[i], a);
-    if (!add(a, ids[i]))
+    if (!add(a, ids[i], false))
     {
       return false;
     }
@@ -128,7 +139,7 @@ bool vtkSurfacePointLocator::SnapPolyline(vtkPoints* points, vtkIdType n, const 
       const double t = static_cast<double>(s) / static_cast<double>(steps);
       const double x[3] = { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]),
         a[2] + t * (b[2] - a[2]) };
-      if (!add(x, ids[i]))
+      if (!add(x, ids[i], true))
       {
         return false;
       }

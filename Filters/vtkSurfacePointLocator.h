@@ -31,8 +31,12 @@ public:
 
   // The closest surface point to x (on a vertex, an edge or inside a face; always returned as a
   // face point with barycentric coordinates in the core face's corner order). False, with the
-  // reason in `error`, for non-finite coordinates or when x cannot be snapped.
-  bool Snap(const double x[3], gs::SurfacePoint& point, std::string& error);
+  // reason in `error`, for non-finite coordinates, when x cannot be snapped, or (unless
+  // `anyDistance`) when x is farther from the surface than MaximumDistanceFraction of the mesh's
+  // bounding box diagonal (a point in the wrong units or frame, not a point on this surface).
+  bool Snap(const double x[3], gs::SurfacePoint& point, std::string& error,
+    bool anyDistance = false);
+  static constexpr double MaximumDistanceFraction = 0.25;
 
   // A polyline of `points` (ids[0 .. n)) as a curve on the surface: each segment is sampled at
   // most `spacing` apart in space and every sample snapped (consecutive duplicates dropped), so
@@ -48,6 +52,7 @@ private:
   const vtkSurfaceMeshConverter::Result& Mesh;
   vtkSmartPointer<vtkStaticCellLocator> Locator;
   vtkSmartPointer<vtkGenericCell> Cell; // scratch cell for the queries
+  double MaximumDistance = 0.0;          // MaximumDistanceFraction x the bounding box diagonal
 };
 
 #endif

@@ -293,7 +293,9 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
   const int maxBasis = 40;
   for (int it = 0; it < maxBasis; ++it)
   {
-    // M-orthonormalise v against the basis (twice, for stability).
+    // M-orthonormalise v against the basis (twice, for stability). What is left is compared
+    // with v's own M-norm: v's scale follows the mesh's (areas), never an absolute threshold.
+    const double before = std::sqrt(v.dot(mass.cwiseProduct(v)));
     for (int pass = 0; pass < 2; ++pass)
     {
       for (const Eigen::VectorXd& b : basis)
@@ -302,7 +304,7 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
       }
     }
     const double norm = std::sqrt(v.dot(mass.cwiseProduct(v)));
-    if (!(norm > 1e-12 * std::sqrt(area)) || !std::isfinite(norm))
+    if (!(norm > 1e-12 * before) || !std::isfinite(norm))
     {
       break; // the space is invariant: the Ritz vector is exact
     }

@@ -88,16 +88,64 @@ SilhouetteReadResult ReadSilhouetteImage(
     result.Error = "image '" + fileName + "' is empty";
     return result;
   }
-  std::vector<float> pixels(
-    static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+  // Large images: a box reduction by an integer factor, read a strip of `factor` rows at a time.
+  const int longest = std::max(spec.width, spec.height);
+  const int factor = (longest + MaximumSilhouetteImageSide - 1) / MaximumSilhouetteImageSide;
+  const int width = (spec.width + factor - 1) / factor;
+  const int height = (spec.height + factor - 1) / factor;
+  const int channels = spec.nchannels;
+  std::vector<float> pixels(static_cast<std::size_t>(width) * height * channels, 0.0f);
+  if (factor == 1)
   {
-    result.Error = "cannot read the pixels of '" + fileName + "': " + input->geterror();
-    return result;
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    {
+      result.Error = "cannot read the pixels of '" + fileName + "': " + input->geterror();
+      return result;
+    }
+  }
+  else
+  {
+    std::vector<float> strip(static_cast<std::size_t>(spec.width) * factor * channels);
+    for (int row = 0; row < height; ++row)
+    {
+      const int y0 = spec.y + row * factor;
+      const int y1 = std::min(y0 + factor, spec.y + spec.height);
+      if (!input->read_scanlines(
+            0, 0, y0, y1, 0, 0, channels, OIIO::TypeDesc::FLOAT, strip.data()))
+      {
+        result.Error = "cannot read the pixels of '" + fileName + "': " + input->geterror();
+        return result;
+      }
+      const int rows = y1 - y0;
+      float* out = &pixels[static_cast<std::size_t>(row) * width * channels];
+      for (int r = 0; r < rows; ++r)
+      {
+        const float* in = &strip[static_cast<std::size_t>(r) * spec.width * channels];
+        for (int x = 0; x < spec.width; ++x)
+        {
+          float* o = out + static_cast<std::size_t>(x / factor) * channels;
+          for (int c = 0; c < channels; ++c)
+          {
+            o[c] += in[static_cast<std::size_t>(x) * channels + c];
+          }
+        }
+      }
+      for (int x = 0; x < width; ++x)
+      {
+        const int columns = std::min(factor, spec.width - x * factor);
+        const float scale = 1.0f / static_cast<float>(rows * columns);
+        for (int c = 0; c < channels; ++c)
+        {
+          out[static_cast<std::size_t>(x) * channels + c] *= scale;
+        }
+      }
+    }
   }
   input->close();
-  result = MakeSilhouette(
-    pixels.data(), spec.width, spec.height, spec.nchannels, spec.alpha_channel, thresholds);
+  result = MakeSilhouette(pixels.data(), width, height, channels, spec.alpha_channel, thresholds);
+  result.ReductionFactor = factor;
+  result.ImageWidth = spec.width;
+  result.ImageHeight = spec.height;
   if (!result.Ok)
   {
     result.Error = "image '" + fileName + "': " + result.Error;

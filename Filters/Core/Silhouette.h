@@ -46,7 +46,17 @@ struct SilhouetteReadResult
   std::string Error; // when !Ok: why (unreadable, empty image, no inside pixel, all inside)
   SilhouetteMask Mask;
   bool FromAlpha = false; // the alpha channel was used (else the luminance)
+  // Images larger than MaximumSilhouetteImageSide on a side are reduced while reading by this
+  // integer factor (each output pixel the mean of a factor x factor block); 1 otherwise.
+  int ReductionFactor = 1;
+  int ImageWidth = 0, ImageHeight = 0; // the file's size
 };
+
+/// Longest side, in pixels, of the images thresholded at full size: larger ones (up to any size
+/// OpenImageIO reads) are box-reduced while reading, a strip of rows at a time, so that a
+/// 16K x 16K image needs about 100 MB instead of 4 GB. The silhouette's outline is traced at
+/// this resolution, finer than the tables (AngleBins) and textures (TextureSize) use.
+constexpr int MaximumSilhouetteImageSide = 4096;
 
 /// Reads an image with OpenImageIO (PNG, JPEG, TIFF, EXR, ... whatever it reads) and thresholds
 /// it. Fails (with a message) on unreadable or empty images, and on images whose silhouette is
