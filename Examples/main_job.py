@@ -33,11 +33,15 @@ shapes_dir = os.path.join(root, "Data", "shapes")
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("--plugin", default=os.path.join(
     root, "build", "lib", "paraview-5.11", "plugins", "GeodesicShapes", "GeodesicShapes.so"))
-parser.add_argument("--mesh", default=os.path.join(root, "Data", "bumpy_sphere.ply"))
-parser.add_argument("--shapes", nargs="+", default=[
+parser.add_argument("--mesh", default=os.path.join(root, "Data", "bumpy_sphere.ply"),
+                    help="surface mesh in any format ParaView reads (PLY, OBJ, STL, VTP, ...)")
+parser.add_argument("--shapes", nargs="+", metavar="IMAGE", help="shape silhouettes (PNG with "
+                    "alpha, or dark on light), one class each (default: the four of Data/shapes)",
+                    default=[
     os.path.join(shapes_dir, n) for n in ("star.png", "gull.png", "leaf.png", "fish.png")])
-parser.add_argument("--size", type=float, default=0.09,
-                    help="circumradius of the first shape at density 1 (world units)")
+parser.add_argument("--size", type=float, default=None,
+                    help="circumradius of the shapes at density 1 in world units (default: 0.09 "
+                         "times the mesh's half extent)")
 parser.add_argument("--mode", default="Greedy",
                     choices=["Random", "Greedy", "Circumcircle Poisson disk"])
 parser.add_argument("--seed", type=int, default=1)
@@ -49,8 +53,8 @@ args = parser.parse_args()
 for f in [args.plugin, args.mesh] + args.shapes:
     if not os.path.exists(f):
         sys.exit("main_job: cannot read %s" % f)
-if not (args.size > 0):
-    sys.exit("main_job: --size must be positive")
+if args.size is not None and not (args.size > 0 and math.isfinite(args.size)):
+    sys.exit("main_job: --size must be a positive number")
 LoadPlugin(args.plugin, remote=False, ns=globals())
 os.makedirs(args.output, exist_ok=True)
 start = time.time()
@@ -74,14 +78,50 @@ def progress_bar(proxy, label):
             sys.stderr.flush()
     algorithm.AddObserver("ProgressEvent", report)
 
-mesh = PLYReader(FileNames=[args.mesh])
+# Any surface format ParaView reads (PLY, OBJ, STL, VTP, VTK, VTU, ...), as triangles.
+try:
+    reader = OpenDataFile(args.mesh)
+except RuntimeError:
+    reader = None
+if reader is None:
+    sys.exit("main_job: cannot read %s: an unknown format or a corrupt file (ParaView reads PLY, "
+             "OBJ, STL, VTP, VTK, VTU, ...)" % args.mesh)
+mesh = Triangulate(Input=ExtractSurface(Input=reader))
 mesh.UpdatePipeline()
+if mesh.GetDataInformation().GetNumberOfCells() == 0:
+    sys.exit("main_job: %s holds no surface (no polygons could be read)" % args.mesh)
 bounds = mesh.GetDataInformation().GetBounds()
 radius = 0.5 * max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
 centre = [0.5 * (bounds[2 * k] + bounds[2 * k + 1]) for k in range(3)]
+if args.size is None:
+    args.size = 0.09 * radius
 
 # 1. Direction field: a vector field (N = 1) turning about the poles (two +1 singularities,
 # the Euler characteristic of a sphere is 2) and following a stroke drawn along the equator.
+# On the user's own mesh: a point of the design that is not near the surface moves to the
+# nearest mesh vertex, and a surface that is not a sphere (Euler characteristic V - E + F other
+# than 2) gets the smoothest field following the stroke (singularities placed automatically).
+surface_data = servermanager.Fetch(mesh)
+vertices = vtk_to_numpy(surface_data.GetPoints().GetData()).astype(float)
+edges = set()
+for c in range(surface_data.GetNumberOfCells()):
+    ids = surface_data.GetCell(c).GetPointIds()
+    n_ids = ids.GetNumberOfIds()
+    for k in range(n_ids):
+        a, b = ids.GetId(k), ids.GetId((k + 1) % n_ids)
+        edges.add((min(a, b), max(a, b)))
+used = {p for e in edges for p in e}
+euler = len(used) - len(edges) + surface_data.GetNumberOfCells()
+
+
+def on_surface(point):
+    d = ((vertices - numpy.array(point)) ** 2).sum(axis=1)
+    nearest = int(numpy.argmin(d))
+    return list(point) if math.sqrt(d[nearest]) <= 0.25 * radius else vertices[nearest].tolist()
+
+
+top = on_surface([centre[0], centre[1], centre[2] + 1.2 * radius])
+bottom = on_surface([centre[0], centre[1], centre[2] - 1.2 * radius])
 poles = ProgrammableSource(OutputDataSetType="vtkPolyData")
 poles.Script = """
 import vtk
@@ -95,12 +135,18 @@ idx.InsertNextValue(1.0)
 out = self.GetPolyDataOutput()
 out.SetPoints(pts)
 out.GetPointData().AddArray(idx)
-""" % (centre[0], centre[1], centre[2] + 1.2 * radius, centre[0], centre[1], centre[2] - 1.2 * radius)
-stroke = PolyLineSource(Points=sum(([centre[0] + radius * math.cos(t), centre[1] + radius * math.sin(t),
-                                      centre[2] + 0.25 * radius * math.sin(2 * t)]
-                                     for t in [-0.6 + 0.1 * k for k in range(13)]), []))
-field = CrossField(Input=mesh, Singularities=poles, Strokes=stroke, Symmetry=1,
-                   Mode="Prescribed singularities")
+""" % tuple(top + bottom)
+stroke = PolyLineSource(Points=sum((on_surface([centre[0] + radius * math.cos(t),
+                                                centre[1] + radius * math.sin(t),
+                                                centre[2] + 0.25 * radius * math.sin(2 * t)])
+                                    for t in [-0.6 + 0.1 * k for k in range(13)]), []))
+if euler == 2:
+    field = CrossField(Input=mesh, Singularities=poles, Strokes=stroke, Symmetry=1,
+                       Mode="Prescribed singularities")
+else:
+    print("main_job: %s has Euler characteristic %d (not a sphere): smoothest field along the "
+          "stroke" % (os.path.basename(args.mesh), euler))
+    field = CrossField(Input=mesh, Strokes=stroke, Symmetry=1, Mode="Smoothest")
 progress_bar(field, "Cross Field")
 
 # 2. Density brush: geodesic distance from the mesh point nearest to the brush centre.
