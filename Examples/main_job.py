@@ -103,15 +103,10 @@ if args.size is None:
 # than 2) gets the smoothest field following the stroke (singularities placed automatically).
 surface_data = servermanager.Fetch(mesh)
 vertices = vtk_to_numpy(surface_data.GetPoints().GetData()).astype(float)
-edges = set()
-for c in range(surface_data.GetNumberOfCells()):
-    ids = surface_data.GetCell(c).GetPointIds()
-    n_ids = ids.GetNumberOfIds()
-    for k in range(n_ids):
-        a, b = ids.GetId(k), ids.GetId((k + 1) % n_ids)
-        edges.add((min(a, b), max(a, b)))
-used = {p for e in edges for p in e}
-euler = len(used) - len(edges) + surface_data.GetNumberOfCells()
+triangles = vtk_to_numpy(surface_data.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+edges = numpy.sort(numpy.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]],
+                                      triangles[:, [2, 0]]]), axis=1)
+euler = (len(numpy.unique(triangles)) - len(numpy.unique(edges, axis=0)) + len(triangles))
 
 
 def on_surface(point):

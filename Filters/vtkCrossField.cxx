@@ -110,15 +110,10 @@ int vtkCrossField::RequestData(vtkInformation* vtkNotUsed(request),
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   if (distributed)
   {
-    vtkSmartPointer<vtkPolyData> whole = distributed.GatherSurface(input);
-    vtkSmartPointer<vtkPointSet> allSingularities = distributed.GatherAuxiliary(singularities);
-    vtkSmartPointer<vtkPointSet> allStrokes = distributed.GatherAuxiliary(strokes);
-    vtkNew<vtkPolyData> result;
-    if (distributed.IsRoot())
-    {
-      this->Execute(whole, allSingularities, vtkPolyData::SafeDownCast(allStrokes), result);
-    }
-    distributed.ScatterSurface(result, output);
+    distributed.ExecuteOnWhole(input, { singularities, strokes }, output,
+      [this](vtkPolyData* whole, const auto& gathered, vtkPolyData* result) {
+        this->Execute(whole, gathered[0], vtkPolyData::SafeDownCast(gathered[1]), result);
+      });
     return 1;
   }
   return this->Execute(input, singularities, strokes, output);

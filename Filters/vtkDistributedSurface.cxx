@@ -141,6 +141,36 @@ vtkSmartPointer<vtkPolyData> Assemble(const std::vector<vtkPolyData*>& pieces,
   return out;
 }
 
+// Every cell of `pieces`, piece after piece.
+std::vector<CellSource> AllCells(const std::vector<vtkPolyData*>& pieces)
+{
+  std::vector<CellSource> cells;
+  for (size_t j = 0; j < pieces.size(); ++j)
+  {
+    for (vtkIdType c = 0; c < pieces[j]->GetNumberOfCells(); ++c)
+    {
+      cells.push_back({ static_cast<int>(j), c });
+    }
+  }
+  return cells;
+}
+
+// Every point of `pieces`, piece after piece (shared points repeated), and the point map.
+void AllPoints(const std::vector<vtkPolyData*>& pieces,
+  std::vector<std::pair<int, vtkIdType>>& points, std::vector<std::vector<vtkIdType>>& map)
+{
+  points.clear();
+  map.assign(pieces.size(), {});
+  for (size_t j = 0; j < pieces.size(); ++j)
+  {
+    for (vtkIdType i = 0; i < pieces[j]->GetNumberOfPoints(); ++i)
+    {
+      map[j].push_back(static_cast<vtkIdType>(points.size()));
+      points.emplace_back(static_cast<int>(j), i);
+    }
+  }
+}
+
 // The non-ghost cells of `piece` with their origin arrays, ghost arrays removed.
 vtkSmartPointer<vtkPolyData> PrepareForGather(vtkPolyData* piece, int rank)
 {
@@ -183,14 +213,9 @@ vtkSmartPointer<vtkPolyData> PrepareForGather(vtkPolyData* piece, int rank)
   {
     cells.push_back({ 0, c });
   }
-  std::vector<std::pair<int, vtkIdType>> points(static_cast<size_t>(piece->GetNumberOfPoints()));
-  std::vector<std::vector<vtkIdType>> map(1);
-  map[0].resize(points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-  {
-    points[i] = { 0, static_cast<vtkIdType>(i) };
-    map[0][i] = static_cast<vtkIdType>(i);
-  }
+  std::vector<std::pair<int, vtkIdType>> points;
+  std::vector<std::vector<vtkIdType>> map;
+  AllPoints({ tagged.Get() }, points, map);
   return Assemble({ tagged.Get() }, cells, points, map);
 }
 
@@ -315,14 +340,7 @@ vtkSmartPointer<vtkPolyData> vtkDistributedSurface::GatherSurface(vtkPolyData* p
   }
 
   // Cells: in global id order, each id once; otherwise in rank order.
-  std::vector<CellSource> cells;
-  for (int j = 0; j < n; ++j)
-  {
-    for (vtkIdType c = 0; c < pieces[static_cast<size_t>(j)]->GetNumberOfCells(); ++c)
-    {
-      cells.push_back({ j, c });
-    }
-  }
+  std::vector<CellSource> cells = AllCells(pieces);
   if (cellIds)
   {
     std::vector<std::pair<vtkIdType, size_t>> keys(cells.size());
@@ -374,15 +392,7 @@ vtkSmartPointer<vtkPolyData> vtkDistributedSurface::GatherSurface(vtkPolyData* p
   }
   else
   {
-    for (int j = 0; j < n; ++j)
-    {
-      vtkPolyData* p = pieces[static_cast<size_t>(j)];
-      for (vtkIdType i = 0; i < p->GetNumberOfPoints(); ++i)
-      {
-        map[static_cast<size_t>(j)].push_back(static_cast<vtkIdType>(points.size()));
-        points.emplace_back(j, i);
-      }
-    }
+    AllPoints(pieces, points, map);
   }
   return Assemble(pieces, cells, points, map);
 }
@@ -456,6 +466,25 @@ void vtkDistributedSurface::ScatterSurface(vtkPolyData* whole, vtkPolyData* piec
 }
 
 //------------------------------------------------------------------------------
+void vtkDistributedSurface::ExecuteOnWhole(vtkPolyData* piece,
+  std::initializer_list<vtkPointSet*> auxiliaries, vtkPolyData* output,
+  const SurfaceExecute& execute) const
+{
+  vtkSmartPointer<vtkPolyData> whole = this->GatherSurface(piece);
+  std::vector<vtkSmartPointer<vtkPointSet>> gathered;
+  for (vtkPointSet* auxiliary : auxiliaries)
+  {
+    gathered.push_back(this->GatherAuxiliary(auxiliary));
+  }
+  vtkNew<vtkPolyData> result;
+  if (this->IsRoot())
+  {
+    execute(whole, gathered, result);
+  }
+  this->ScatterSurface(result, output);
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkPointSet> vtkDistributedSurface::GatherAuxiliary(vtkPointSet* piece) const
 {
   vtkSmartPointer<vtkPointSet> mine = piece;
@@ -512,24 +541,14 @@ vtkSmartPointer<vtkPointSet> vtkDistributedSurface::GatherAuxiliary(vtkPointSet*
   if (allPolyData)
   {
     std::vector<vtkPolyData*> polys;
-    std::vector<CellSource> cells;
-    std::vector<std::pair<int, vtkIdType>> points;
-    std::vector<std::vector<vtkIdType>> map(pieces.size());
-    for (size_t j = 0; j < pieces.size(); ++j)
+    for (auto& p : pieces)
     {
-      vtkPolyData* p = vtkPolyData::SafeDownCast(pieces[j]);
-      polys.push_back(p);
-      for (vtkIdType c = 0; c < p->GetNumberOfCells(); ++c)
-      {
-        cells.push_back({ static_cast<int>(j), c });
-      }
-      for (vtkIdType i = 0; i < p->GetNumberOfPoints(); ++i)
-      {
-        map[j].push_back(static_cast<vtkIdType>(points.size()));
-        points.emplace_back(static_cast<int>(j), i);
-      }
+      polys.push_back(vtkPolyData::SafeDownCast(p));
     }
-    return Assemble(polys, cells, points, map);
+    std::vector<std::pair<int, vtkIdType>> points;
+    std::vector<std::vector<vtkIdType>> map;
+    AllPoints(polys, points, map);
+    return Assemble(polys, AllCells(polys), points, map);
   }
   auto all = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkNew<vtkPoints> points;

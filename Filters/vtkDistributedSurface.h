@@ -30,6 +30,10 @@
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 
+#include <functional>
+#include <initializer_list>
+#include <vector>
+
 class vtkDataObject;
 class vtkInformation;
 class vtkMultiProcessController;
@@ -59,6 +63,15 @@ public:
   // been triangulated: the origin arrays follow the cells); every process gets its cells in
   // `piece`. A result without origin arrays (an error) gives every process an empty piece.
   void ScatterSurface(vtkPolyData* whole, vtkPolyData* piece) const;
+
+  // Collective: the whole protocol of a filter whose output is its input surface with arrays.
+  // Gathers `piece` and each of `auxiliaries` (GatherAuxiliary), calls `execute(whole surface,
+  // gathered auxiliaries in the same order, result)` on process 0, and scatters the result into
+  // `output` (ScatterSurface).
+  using SurfaceExecute = std::function<void(
+    vtkPolyData*, const std::vector<vtkSmartPointer<vtkPointSet>>&, vtkPolyData*)>;
+  void ExecuteOnWhole(vtkPolyData* piece, std::initializer_list<vtkPointSet*> auxiliaries,
+    vtkPolyData* output, const SurfaceExecute& execute) const;
 
   // Collective. On process 0 the pieces of an optional point set appended in rank order (a
   // single non-empty piece is passed as it is; nullptr when process 0's input is missing, as the

@@ -113,14 +113,10 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   if (distributed)
   {
-    vtkSmartPointer<vtkPolyData> whole = distributed.GatherSurface(input);
-    vtkSmartPointer<vtkPointSet> allSources = distributed.GatherAuxiliary(source);
-    vtkNew<vtkPolyData> result;
-    if (distributed.IsRoot())
-    {
-      this->Execute(whole, allSources, result);
-    }
-    distributed.ScatterSurface(result, output);
+    distributed.ExecuteOnWhole(input, { source }, output,
+      [this](vtkPolyData* whole, const auto& gathered, vtkPolyData* result) {
+        this->Execute(whole, gathered[0], result);
+      });
     return 1;
   }
   return this->Execute(input, source, output);

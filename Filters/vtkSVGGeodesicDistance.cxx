@@ -134,14 +134,10 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   if (distributed)
   {
-    vtkSmartPointer<vtkPolyData> whole = distributed.GatherSurface(input);
-    vtkSmartPointer<vtkPointSet> allSources = distributed.GatherAuxiliary(sources);
-    vtkNew<vtkPolyData> result;
-    if (distributed.IsRoot())
-    {
-      this->Execute(whole, allSources, result);
-    }
-    distributed.ScatterSurface(result, output);
+    distributed.ExecuteOnWhole(input, { sources }, output,
+      [this](vtkPolyData* whole, const auto& gathered, vtkPolyData* result) {
+        this->Execute(whole, gathered[0], result);
+      });
     return 1;
   }
   return this->Execute(input, sources, output);

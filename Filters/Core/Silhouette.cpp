@@ -88,48 +88,40 @@ SilhouetteReadResult ReadSilhouetteImage(
     result.Error = "image '" + fileName + "' is empty";
     return result;
   }
-  // Large images: a box reduction by an integer factor, read a strip of `factor` rows at a time.
+  // Read a strip of `factor` rows at a time; large images are box-reduced by that integer
+  // factor on the way (factor 1: the rows as they are).
   const int longest = std::max(spec.width, spec.height);
   const int factor = (longest + MaximumSilhouetteImageSide - 1) / MaximumSilhouetteImageSide;
   const int width = (spec.width + factor - 1) / factor;
   const int height = (spec.height + factor - 1) / factor;
   const int channels = spec.nchannels;
   std::vector<float> pixels(static_cast<std::size_t>(width) * height * channels, 0.0f);
-  if (factor == 1)
+  std::vector<float> strip(static_cast<std::size_t>(spec.width) * factor * channels);
+  for (int row = 0; row < height; ++row)
   {
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    const int y0 = spec.y + row * factor;
+    const int y1 = std::min(y0 + factor, spec.y + spec.height);
+    if (!input->read_scanlines(0, 0, y0, y1, 0, 0, channels, OIIO::TypeDesc::FLOAT, strip.data()))
     {
       result.Error = "cannot read the pixels of '" + fileName + "': " + input->geterror();
       return result;
     }
-  }
-  else
-  {
-    std::vector<float> strip(static_cast<std::size_t>(spec.width) * factor * channels);
-    for (int row = 0; row < height; ++row)
+    const int rows = y1 - y0;
+    float* out = &pixels[static_cast<std::size_t>(row) * width * channels];
+    for (int r = 0; r < rows; ++r)
     {
-      const int y0 = spec.y + row * factor;
-      const int y1 = std::min(y0 + factor, spec.y + spec.height);
-      if (!input->read_scanlines(
-            0, 0, y0, y1, 0, 0, channels, OIIO::TypeDesc::FLOAT, strip.data()))
+      const float* in = &strip[static_cast<std::size_t>(r) * spec.width * channels];
+      for (int x = 0; x < spec.width; ++x)
       {
-        result.Error = "cannot read the pixels of '" + fileName + "': " + input->geterror();
-        return result;
-      }
-      const int rows = y1 - y0;
-      float* out = &pixels[static_cast<std::size_t>(row) * width * channels];
-      for (int r = 0; r < rows; ++r)
-      {
-        const float* in = &strip[static_cast<std::size_t>(r) * spec.width * channels];
-        for (int x = 0; x < spec.width; ++x)
+        float* o = out + static_cast<std::size_t>(x / factor) * channels;
+        for (int c = 0; c < channels; ++c)
         {
-          float* o = out + static_cast<std::size_t>(x / factor) * channels;
-          for (int c = 0; c < channels; ++c)
-          {
-            o[c] += in[static_cast<std::size_t>(x) * channels + c];
-          }
+          o[c] += in[static_cast<std::size_t>(x) * channels + c];
         }
       }
+    }
+    if (factor > 1)
+    {
       for (int x = 0; x < width; ++x)
       {
         const int columns = std::min(factor, spec.width - x * factor);
