@@ -11,6 +11,7 @@
 
 #include "TriangleMesh.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -76,6 +77,40 @@ public:
   double StencilY(std::int64_t e) const { return StencilXY[2 * e + 1]; }
   double StencilWrapX(int v) const { return WrapXY[2 * v]; }
   double StencilWrapY(int v) const { return WrapXY[2 * v + 1]; }
+  // For the link e from u to Target(e): u's position in Target(e)'s stencil (an offset from
+  // StencilBegin(Target(e))), or -1 when u is not in it. Derived at build and load time, so
+  // that a solve can tell each vertex where its predecessor lies in its stencil.
+  int LinkStencilIndex(std::int64_t e) const { return LinkStencil[e]; }
+  // Memory hints for sweeps that visit vertices in an order known in advance (each vertex's
+  // stencil is a random access otherwise): first the offsets (and the link's stencil index), a
+  // few vertices later the entries.
+  void PrefetchStencilOffsets(int v, std::int64_t link = -1) const
+  {
+    Prefetch(&StencilOffsets[v]);
+    if (link >= 0)
+    {
+      Prefetch(&LinkStencil[link]);
+    }
+  }
+  // Entries index - 8 .. index + 8 of v's stencil (all of it when index < 0).
+  void PrefetchStencil(int v, int index = -1) const
+  {
+    const std::int64_t first = StencilOffsets[v], last = StencilOffsets[v + 1];
+    const std::int64_t b = index >= 0 ? std::max(first, first + index - 8) : first;
+    const std::int64_t e = index >= 0 ? std::min(last, first + index + 9) : last;
+    for (std::int64_t i = b; i < e; i += 16)
+    {
+      Prefetch(&StencilTargets[i]);
+    }
+    for (std::int64_t i = b; i < e; i += 8)
+    {
+      Prefetch(&StencilR[i]);
+    }
+    for (std::int64_t i = 2 * b; i < 2 * e; i += 8)
+    {
+      Prefetch(&StencilXY[i]);
+    }
+  }
 
   // A hash of the mesh geometry and connectivity (positions bit for bit, faces).
   static std::uint64_t HashMesh(const TriangleMesh& mesh);
@@ -94,6 +129,17 @@ public:
   }
 
 private:
+  static void Prefetch(const void* p)
+  {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    // (An asm statement: GCC deletes loops holding nothing but __builtin_prefetch.)
+    asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#elif defined(__GNUC__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+  }
   std::vector<std::int64_t> Offsets;
   std::vector<int> Targets;
   std::vector<double> Weights;
@@ -102,6 +148,8 @@ private:
   std::vector<double> StencilR;
   std::vector<double> StencilXY;
   std::vector<double> WrapXY;
+  std::vector<int> LinkStencil;
+  void IndexLinksInStencils();
   int K = 0;
   double Seconds = 0.0;
 };
@@ -129,7 +177,15 @@ public:
   const std::vector<int>& Reached() const { return Touched; }
   std::int64_t Relaxations() const { return NumRelaxations; }
   // The vertex whose link gave v its distance (-1 for seeds and unreached vertices).
-  int Predecessor(int v) const { return Pred[v]; }
+  int Predecessor(int v) const { return Pred[v].Vertex; }
+  // The link (adjacency entry of the predecessor) that gave v its distance, or -1.
+  std::int64_t PredecessorLink(int v) const { return Pred[v].Link; }
+  void PrefetchPredecessor(int v) const
+  {
+#if defined(__GNUC__)
+    __builtin_prefetch(&Pred[v]);
+#endif
+  }
   // Refinement passes may lower a reached vertex's distance.
   void Lower(int v, double d) { Dist[v] = d; }
 
@@ -139,7 +195,12 @@ private:
 
   const SaddleVertexGraph& G;
   std::vector<double> Dist;
-  std::vector<int> Pred;
+  struct Predecessor_
+  {
+    std::int64_t Link;
+    int Vertex;
+  };
+  std::vector<Predecessor_> Pred;
   std::vector<unsigned char> InQueue;
   std::vector<int> Touched;
   std::vector<int> Ring; // circular deque for the label-correcting queue

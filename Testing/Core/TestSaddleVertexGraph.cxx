@@ -61,6 +61,29 @@ std::string TempPath(const char* name)
 {
   return std::string(::testing::TempDir()) + name;
 }
+// Every stencil entry (u in x's stencil) is found through the link u -> x, and no other link
+// claims a stencil place.
+void ExpectLinksIndexStencils(const SaddleVertexGraph& g)
+{
+  std::int64_t indexed = 0, entries = 0;
+  for (int u = 0; u < g.NumberOfVertices(); ++u)
+  {
+    for (std::int64_t e = g.Begin(u); e < g.End(u); ++e)
+    {
+      const int i = g.LinkStencilIndex(e);
+      if (i >= 0)
+      {
+        ++indexed;
+        const int x = g.Target(e);
+        ASSERT_LT(g.StencilBegin(x) + i, g.StencilEnd(x));
+        EXPECT_EQ(g.StencilTarget(g.StencilBegin(x) + i), u);
+      }
+    }
+    entries += g.StencilEnd(u) - g.StencilBegin(u);
+  }
+  EXPECT_EQ(indexed, entries);
+  EXPECT_GT(entries, 0);
+}
 } // namespace
 
 TEST(SaddleVertexGraph, SymmetricSortedAndDeterministic)
@@ -93,6 +116,7 @@ TEST(SaddleVertexGraph, SymmetricSortedAndDeterministic)
     }
   }
   EXPECT_TRUE(BuildGraph(m, 50, 1) == BuildGraph(m, 50, 2));
+  ExpectLinksIndexStencils(g);
 }
 
 TEST(SaddleVertexGraph, RejectsBadK)
@@ -160,7 +184,25 @@ TEST(SaddleVertexGraph, LabelCorrectingEqualsDijkstra)
     a.Solve({ { s, 0.0 } }, GraphAlgorithm::LabelCorrecting);
     b.Solve({ { s, 0.0 } }, GraphAlgorithm::Dijkstra);
     for (int v = 0; v < m.NumberOfVertices(); ++v)
+    {
       EXPECT_NEAR(a.Distance(v), b.Distance(v), 1e-12);
+      // The predecessor link ends at v, starts at the predecessor and gives v its distance.
+      for (const GraphDistanceSolver* solver : { &a, &b })
+      {
+        const std::int64_t link = solver->PredecessorLink(v);
+        if (v == s)
+        {
+          EXPECT_EQ(link, -1);
+          continue;
+        }
+        ASSERT_GE(link, 0);
+        const int p = solver->Predecessor(v);
+        EXPECT_GE(link, g.Begin(p));
+        EXPECT_LT(link, g.End(p));
+        EXPECT_EQ(g.Target(link), v);
+        EXPECT_NEAR(solver->Distance(p) + g.Weight(link), solver->Distance(v), 1e-12);
+      }
+    }
   }
   // Multi-source with offsets, and a maximum distance.
   a.Solve({ { 3, 0.2 }, { 400, 0.0 } }, GraphAlgorithm::LabelCorrecting, 0.7);
@@ -377,6 +419,7 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
   SaddleVertexGraph loaded;
   ASSERT_TRUE(loaded.Load(path, hash, 20, error)) << error;
   EXPECT_TRUE(loaded == g);
+  ExpectLinksIndexStencils(loaded);
   EXPECT_EQ(loaded.BuildSeconds(), g.BuildSeconds());
   EXPECT_FALSE(loaded.Load(path, hash + 1, 20, error));
   EXPECT_NE(error.find("another mesh"), std::string::npos) << error;
