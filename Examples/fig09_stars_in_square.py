@@ -5,8 +5,8 @@ A 10 x 10 square (100 x 100 quads, triangulated), a constant direction field (a 
 by a Calculator), the project's star (Data/shapes/star.png) with circumradius 0.5. Prints the
 mean count of each mode over the seeds and the ratios to the circumcircle baseline; writes
 fig09_greedy.png (the Greedy layout). --check: exit with an error unless Random places at least
-1.3x and Greedy at least 1.8x as many stars as the baseline (this project's figures, see the
-README: 1.44x and 1.96x for a pentagram over 20 seeds).
+1.3x and Greedy at least 2.2x as many stars as the baseline (this project's figures, see the
+README; here 1.51x and 2.38x over 3 seeds).
 """
 import argparse
 import os
@@ -67,6 +67,6 @@ Render(view)
 SaveScreenshot(os.path.join(args.output, "fig09_greedy.png"), view)
 
 if args.check:
-    if not (means["Random"] >= 1.3 * base and means["Greedy"] >= 1.8 * base):
+    if not (means["Random"] >= 1.3 * base and means["Greedy"] >= 2.2 * base):
         sys.exit("fig09 check failed")
     print("check passed")

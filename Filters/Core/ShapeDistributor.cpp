@@ -118,6 +118,10 @@ struct ShapeDistributor::Impl
   double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
   std::vector<double> ClassCdf;
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
+  // Greedy: per single-part class, the densest lattice of copies turned alike that the tables
+  // admit (six neighbour vectors in the shape's frame, normalized units); empty: none.
+  std::vector<std::vector<Vec2>> ClassLattice;
+  void ComputeLattices();
 
   std::unique_ptr<DirectionFieldSolver> Field;
   std::vector<double> FieldAngles;
@@ -896,6 +900,7 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     return "invalid MaximumShapes, MaximalFailures, GreedyDirections (1..1024), SafetyMargin "
            "(0..10), DistortionLimit (>= 0) or HolonomyMargin (0..100)";
   }
+  ComputeLattices();
   // Class weights.
   std::vector<double> w = O.ClassWeights;
   if (w.empty())
@@ -1148,6 +1153,88 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
   }
 }
 
+void ShapeDistributor::Impl::ComputeLattices()
+{
+  // For copies of one part turned alike, the tables give the smallest admissible offset in
+  // each direction beta (of the line from one centre to the other, in the shape's frame):
+  // D(beta) = max(T(-beta, -beta), T(-beta - pi, -beta - pi)) (the pair seen from either
+  // shape). A lattice {i u + j v} is admissible when every lattice vector w is at least
+  // D(angle(w)) long; the densest one has basis vectors on the boundary |w| = D: searched over
+  // pairs of boundary samples, smallest cell area first. Greedy then proposes the lattice
+  // neighbours of each placed shape, so that a cluster grows as one crystal instead of grains
+  // of two-contact growth that leave gaps where they meet.
+  ClassLattice.assign(T.Classes.size(), {});
+  if (O.Mode != DistributionMode::Greedy || CircleMode)
+  {
+    return;
+  }
+  for (std::size_t c = 0; c < T.Classes.size(); ++c)
+  {
+    if (T.Classes[c].Parts.size() != 1)
+    {
+      continue;
+    }
+    const int p = T.Classes[c].Parts[0];
+    auto D = [&](double beta) {
+      return std::max(T.Lookup(p, p, -beta, -beta), T.Lookup(p, p, -beta - Pi, -beta - Pi));
+    };
+    const double cap = 2.0 * T.Parts[p].Radius; // no table value exceeds r_A + r_B
+    auto admissible = [&](const Vec2& u, const Vec2& v, int range) {
+      for (int i = -range; i <= range; ++i)
+      {
+        for (int j = 0; j <= range; ++j)
+        {
+          if ((j == 0 && i <= 0))
+          {
+            continue; // w and -w: one of them, and not 0
+          }
+          const Vec2 w = u * i + v * j;
+          const double len = Norm(w);
+          if (len < cap && len < D(std::atan2(w.y, w.x)) * (1.0 - 1e-12))
+          {
+            return false;
+          }
+        }
+      }
+      return true;
+    };
+    const int n = std::min(1024, std::max(256, 4 * T.AngleBins));
+    std::vector<Vec2> boundary(n);
+    for (int k = 0; k < n; ++k)
+    {
+      const double beta = Pi * k / n; // half a turn: -w is in the lattice too
+      boundary[k] = Vec2{ std::cos(beta), std::sin(beta) } * (D(beta) * (1.0 + 1e-9));
+    }
+    double bestArea = std::numeric_limits<double>::infinity();
+    Vec2 bu, bv;
+    for (int a = 0; a < n; ++a)
+    {
+      for (int b = 0; b < n; ++b)
+      {
+        // v anywhere in the open half turn after u (as v or -v).
+        for (const double sign : { 1.0, -1.0 })
+        {
+          const Vec2 u = boundary[a], v = boundary[b] * sign;
+          const double area = Cross(u, v);
+          if (!(area > 1e-12 * cap * cap) || area >= bestArea || !admissible(u, v, 4))
+          {
+            continue;
+          }
+          bestArea = area;
+          bu = u;
+          bv = v;
+        }
+      }
+    }
+    if (!(bestArea < std::numeric_limits<double>::infinity()) || !admissible(bu, bv, 8))
+    {
+      continue;
+    }
+    const Vec2 w = Norm(bu - bv) < Norm(bu + bv) ? bu - bv : bu + bv;
+    ClassLattice[c] = { bu, bv, w, bu * -1.0, bv * -1.0, w * -1.0 };
+  }
+}
+
 std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
   int parentId, int round, int slot) const
 {
@@ -1262,8 +1349,26 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
     }
     return true;
   };
-  std::vector<double> betas;
-  if (near.empty())
+  std::vector<double> betas, lengths; // lengths: 0 = on A's contact curve (reach)
+  if (cls == A.S.ClassId && !ClassLattice[cls].empty())
+  {
+    // The lattice neighbours of A that no placed neighbour already rules out.
+    for (const Vec2& w : ClassLattice[cls])
+    {
+      const Vec2 P = w * unit;
+      bool free = true;
+      for (const Near& b : near)
+      {
+        free = free && clearance(P, b) >= -1e-9 * unit;
+      }
+      if (free)
+      {
+        betas.push_back(std::atan2(w.y, w.x));
+        lengths.push_back(Norm(w) * unit);
+      }
+    }
+  }
+  else if (near.empty())
   {
     const double offset = rng.Uniform();
     for (int j = 0; j < O.GreedyDirections; ++j)
@@ -1303,9 +1408,10 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
       }
     }
   }
-  for (double beta : betas)
+  for (std::size_t k = 0; k < betas.size(); ++k)
   {
-    const double d = reach(beta) * (1.0 + 1e-6) + 1e-9 * MaxEdge;
+    const double beta = betas[k];
+    const double d = (k < lengths.size() ? lengths[k] : reach(beta)) * (1.0 + 1e-6) + 1e-9 * MaxEdge;
     const GeodesicShot shot = ShootGeodesic(M, A.S.Centre, a0 + beta, d);
     if (shot.ReachedBoundary || shot.End.Face < 0 || !(FaceWeight[shot.End.Face] > 0.0) ||
       DeadForClass(cls, shot.End.Face))

@@ -112,8 +112,11 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
   // (2 / 1.4)^2 = 2x the circles in a perfect packing; random dart throwing reaches 1.4x here
   // (the benchmark measures it over 20 seeds and thinner stars).
   EXPECT_GT(counts[DistributionMode::Random] / circles, 1.25);
-  // Greedy fronts (every shape touching two placed ones) pack tighter than dart throwing.
-  EXPECT_GT(counts[DistributionMode::Greedy], 1.15 * counts[DistributionMode::Random]);
+  // Greedy (a crystal of the densest lattice the tables admit) packs much tighter than dart
+  // throwing: 2.36x the circles over 20 seeds in DistributionBenchmark, 1.96x before the
+  // lattice proposals (two-contact fronts alone).
+  EXPECT_GT(counts[DistributionMode::Greedy], 1.4 * counts[DistributionMode::Random]);
+  EXPECT_GT(counts[DistributionMode::Greedy] / circles, 2.15);
 }
 
 TEST(ShapeDistributor, SameResultForAnyThreadCount)
