@@ -6,7 +6,7 @@ by a Calculator), the project's star (Data/shapes/star.png) with circumradius 0.
 mean count of each mode over the seeds and the ratios to the circumcircle baseline; writes
 fig09_greedy.png (the Greedy layout). --check: exit with an error unless Random places at least
 1.3x and Greedy at least 2.2x as many stars as the baseline (this project's figures, see the
-README; here 1.51x and 2.38x over 3 seeds).
+README; here 1.51x and 2.37x over 3 seeds).
 """
 import argparse
 import os

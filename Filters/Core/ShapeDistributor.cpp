@@ -1175,8 +1175,15 @@ void ShapeDistributor::Impl::ComputeLattices()
       continue;
     }
     const int p = T.Classes[c].Parts[0];
+    // (Within 2e-3 rad of beta too: a lattice vector on a bin boundary must not depend on the
+    // last bits of the angle the conflict check will compute.)
     auto D = [&](double beta) {
-      return std::max(T.Lookup(p, p, -beta, -beta), T.Lookup(p, p, -beta - Pi, -beta - Pi));
+      double d = 0.0;
+      for (const double b : { beta - 2e-3, beta + 2e-3 })
+      {
+        d = std::max({ d, T.Lookup(p, p, -b, -b), T.Lookup(p, p, -b - Pi, -b - Pi) });
+      }
+      return d;
     };
     const double cap = 2.0 * T.Parts[p].Radius; // no table value exceeds r_A + r_B
     auto admissible = [&](const Vec2& u, const Vec2& v, int range) {
@@ -1202,7 +1209,7 @@ void ShapeDistributor::Impl::ComputeLattices()
     std::vector<Vec2> boundary(n);
     for (int k = 0; k < n; ++k)
     {
-      const double beta = Pi * k / n; // half a turn: -w is in the lattice too
+      const double beta = Pi * (k + 0.5) / n; // half a turn: -w is in the lattice too
       boundary[k] = Vec2{ std::cos(beta), std::sin(beta) } * (D(beta) * (1.0 + 1e-9));
     }
     double bestArea = std::numeric_limits<double>::infinity();
