@@ -211,6 +211,14 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
       vtkErrorMacro("The Source curve has fewer than two distinct points on the surface.");
       return 1;
     }
+    // Curve coordinates are (u, delta) from exact geodesics: say so when a setting is ignored.
+    const bool referenceSet = this->ReferenceDirection[0] != 0.0 ||
+      this->ReferenceDirection[1] != 0.0 || this->ReferenceDirection[2] != 0.0;
+    if (referenceSet || this->AngleMode != GEODESIC_DIRECTION || this->K > 0)
+    {
+      vtkWarningMacro("Curve source: ReferenceDirection, AngleMode and K apply to point sources "
+                      "only and are ignored (offset and arc length from exact geodesics).");
+    }
   }
   else if (source)
   {

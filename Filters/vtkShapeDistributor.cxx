@@ -335,6 +335,14 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
                   "Cross Field's Direction).");
     return 1;
   }
+  if (directionAssociation != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    directionAssociation != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    vtkErrorMacro("The DirectionArray \"" << directionName
+                                          << "\" must be a point or cell array (association "
+                                          << directionAssociation << ").");
+    return 1;
+  }
   std::vector<gs::Vec3> directions(nf, gs::Vec3{ 0, 0, 0 });
   {
     const bool onPoints = directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS;

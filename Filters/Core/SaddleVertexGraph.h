@@ -195,12 +195,12 @@ private:
 
   const SaddleVertexGraph& G;
   std::vector<double> Dist;
-  struct Predecessor_
+  struct PredLink
   {
-    std::int64_t Link;
+    std::int64_t Link; // the predecessor's adjacency entry that reached v
     int Vertex;
   };
-  std::vector<Predecessor_> Pred;
+  std::vector<PredLink> Pred;
   std::vector<unsigned char> InQueue;
   std::vector<int> Touched;
   std::vector<int> Ring; // circular deque for the label-correcting queue

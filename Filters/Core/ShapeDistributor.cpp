@@ -1179,7 +1179,7 @@ void ShapeDistributor::Impl::ComputeLattices()
     // last bits of the angle the conflict check will compute.)
     auto D = [&](double beta) {
       double d = 0.0;
-      for (const double b : { beta - 2e-3, beta + 2e-3 })
+      for (const double b : { beta - 2e-3, beta, beta + 2e-3 })
       {
         d = std::max({ d, T.Lookup(p, p, -b, -b), T.Lookup(p, p, -b - Pi, -b - Pi) });
       }
@@ -1205,7 +1205,8 @@ void ShapeDistributor::Impl::ComputeLattices()
       }
       return true;
     };
-    const int n = std::min(1024, std::max(256, 4 * T.AngleBins));
+    // Boundary samples: four per angle bin, 256 to 512 (the search is quadratic in them).
+    const int n = std::min(512, std::max(256, 4 * T.AngleBins));
     std::vector<Vec2> boundary(n);
     for (int k = 0; k < n; ++k)
     {

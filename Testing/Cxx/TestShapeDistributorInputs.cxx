@@ -263,6 +263,11 @@ int main(int, char*[])
   }
   {
     Run run(Plane(4), tables);
+    run.Filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_NONE, "Direction");
+    ExpectError(run, "field-data direction", "point or cell array");
+  }
+  {
+    Run run(Plane(4), tables);
     run.Filter->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Nope");
     ExpectError(run, "missing density", "DensityArray");
   }
