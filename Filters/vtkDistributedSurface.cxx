@@ -1,5 +1,6 @@
 #include "vtkDistributedSurface.h"
 
+#include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -9,6 +10,7 @@
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
+#include <vtkInformationVector.h>
 #include <vtkIntArray.h>
 #include <vtkMultiProcessController.h>
 #include <vtkNew.h>
@@ -467,7 +469,7 @@ void vtkDistributedSurface::ScatterSurface(vtkPolyData* whole, vtkPolyData* piec
 
 //------------------------------------------------------------------------------
 void vtkDistributedSurface::ExecuteOnWhole(vtkPolyData* piece,
-  std::initializer_list<vtkPointSet*> auxiliaries, vtkPolyData* output,
+  const std::vector<vtkPointSet*>& auxiliaries, vtkPolyData* output,
   const SurfaceExecute& execute) const
 {
   vtkSmartPointer<vtkPolyData> whole = this->GatherSurface(piece);
@@ -482,6 +484,39 @@ void vtkDistributedSurface::ExecuteOnWhole(vtkPolyData* piece,
     execute(whole, gathered, result);
   }
   this->ScatterSurface(result, output);
+}
+
+//------------------------------------------------------------------------------
+int vtkDistributedSurface::RequestData(vtkAlgorithm* self, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector, const FilterExecute& execute)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  std::vector<vtkPointSet*> auxiliaries;
+  for (int port = 1; port < self->GetNumberOfInputPorts(); ++port)
+  {
+    auxiliaries.push_back(inputVector[port]->GetNumberOfInformationObjects() > 0
+        ? vtkPointSet::GetData(inputVector[port], 0)
+        : nullptr);
+  }
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (!input || !output)
+  {
+    vtkErrorWithObjectMacro(self, "Missing input or output mesh.");
+    return 0;
+  }
+  // Under MPI: the whole surface on process 0, the results back to each process's piece.
+  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
+  if (distributed)
+  {
+    distributed.ExecuteOnWhole(input, auxiliaries, output,
+      [&execute](vtkPolyData* whole, const std::vector<vtkSmartPointer<vtkPointSet>>& gathered,
+        vtkPolyData* result) {
+        std::vector<vtkPointSet*> raw(gathered.begin(), gathered.end());
+        execute(whole, raw, result);
+      });
+    return 1;
+  }
+  return execute(input, auxiliaries, output);
 }
 
 //------------------------------------------------------------------------------

@@ -34,8 +34,10 @@
 #include <initializer_list>
 #include <vector>
 
+class vtkAlgorithm;
 class vtkDataObject;
 class vtkInformation;
+class vtkInformationVector;
 class vtkMultiProcessController;
 class vtkPointSet;
 class vtkPolyData;
@@ -70,8 +72,18 @@ public:
   // `output` (ScatterSurface).
   using SurfaceExecute = std::function<void(
     vtkPolyData*, const std::vector<vtkSmartPointer<vtkPointSet>>&, vtkPolyData*)>;
-  void ExecuteOnWhole(vtkPolyData* piece, std::initializer_list<vtkPointSet*> auxiliaries,
+  void ExecuteOnWhole(vtkPolyData* piece, const std::vector<vtkPointSet*>& auxiliaries,
     vtkPolyData* output, const SurfaceExecute& execute) const;
+
+  // The RequestData of a mesh filter whose port 0 is the surface and whose other ports are
+  // optional auxiliary point sets: fetches them (nullptr when not connected) and returns
+  // `execute(surface, auxiliaries in port order, output)` in a serial run; under MPI runs it on
+  // the whole surface on process 0 (ExecuteOnWhole) and returns 1. A missing surface or output
+  // is an error of `self` (returns 0).
+  using FilterExecute =
+    std::function<int(vtkPolyData*, const std::vector<vtkPointSet*>&, vtkPolyData*)>;
+  static int RequestData(vtkAlgorithm* self, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector, const FilterExecute& execute);
 
   // Collective. On process 0 the pieces of an optional point set appended in rank order (a
   // single non-empty piece is passed as it is; nullptr when process 0's input is missing, as the

@@ -120,27 +120,10 @@ int vtkSVGGeodesicDistance::FillInputPortInformation(int port, vtkInformation* i
 int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
-  vtkPointSet* sources =
-    inputVector[1]->GetNumberOfInformationObjects() > 0 ? vtkPointSet::GetData(inputVector[1], 0)
-                                                        : nullptr;
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (!input || !output)
-  {
-    vtkErrorMacro("Missing input or output mesh.");
-    return 0;
-  }
-  // Under MPI: the whole surface on process 0, the results back to each process's piece.
-  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
-  if (distributed)
-  {
-    distributed.ExecuteOnWhole(input, { sources }, output,
-      [this](vtkPolyData* whole, const auto& gathered, vtkPolyData* result) {
-        this->Execute(whole, gathered[0], result);
-      });
-    return 1;
-  }
-  return this->Execute(input, sources, output);
+  return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
+    [this](vtkPolyData* input, const std::vector<vtkPointSet*>& auxiliaries, vtkPolyData* output) {
+      return this->Execute(input, auxiliaries[0], output);
+    });
 }
 
 //------------------------------------------------------------------------------
