@@ -50,7 +50,10 @@ fi
 if [[ "$mode" == "test" ]]; then
   display_number=87
   while [[ -e "/tmp/.X${display_number}-lock" ]]; do display_number=$((display_number + 1)); done
-  Xvfb ":${display_number}" -screen 0 1280x1024x24 -nolisten tcp >/dev/null 2>&1 &
+  # -noreset: by default an X server resets when its last client leaves, and a test that
+  # connects during the reset (slower while other tests load the cores) dies with "bad X server
+  # connection"; the rendering tests run one at a time, so each ends with the last client.
+  Xvfb ":${display_number}" -screen 0 1280x1024x24 -nolisten tcp -noreset >/dev/null 2>&1 &
   xvfb_pid=$!
   trap 'kill "$xvfb_pid" 2>/dev/null || true' EXIT
   export DISPLAY=":${display_number}"
