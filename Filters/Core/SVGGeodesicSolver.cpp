@@ -63,15 +63,12 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
   };
   constexpr std::size_t ahead = 6;
   const std::size_t count = Order.size();
+  for (std::size_t k = 0; k < std::min(count, ahead); ++k)
+  {
+    G.PrefetchStencil(Order[k].second, predIndex(Order[k].second));
+  }
   for (std::size_t i = 0; i < count; ++i)
   {
-    if (i == 0)
-    {
-      for (std::size_t k = 0; k < std::min(count, ahead); ++k)
-      {
-        G.PrefetchStencil(Order[k].second, predIndex(Order[k].second));
-      }
-    }
     if (i + 3 * ahead < count)
     {
       Graph.PrefetchPredecessor(Order[i + 3 * ahead].second);
@@ -149,12 +146,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     {
       ++hi;
     }
-    // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too. First
-    // gathered (with a graph relaxation through their end points' refined distances), then
-    // unfolded in one branch-free loop.
-    Unfold& u = Buffers;
-    u.Reserve(static_cast<std::size_t>(hi - lo + 2));
-    std::size_t pairs = 0;
+    // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too.
     for (std::int64_t k = lo - 1; k <= hi; ++k)
     {
       if (!closed && (a + k < 0 || a + k + 1 > n - 1))
@@ -191,79 +183,58 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       {
         continue;
       }
-      u.E1[pairs] = e1;
-      u.E2[pairs] = e2;
-      u.P1x[pairs] = G.StencilX(e1);
-      u.P1y[pairs] = G.StencilY(e1);
-      u.P2x[pairs] = wraps ? G.StencilWrapX(x) : G.StencilX(e2);
-      u.P2y[pairs] = wraps ? G.StencilWrapY(x) : G.StencilY(e2);
-      u.D1[pairs] = d1;
-      u.D2[pairs] = d2;
-      ++pairs;
-    }
-    for (std::size_t j = 0; j < pairs; ++j)
-    {
-      const double p1x = u.P1x[j], p1y = u.P1y[j], p2x = u.P2x[j], p2y = u.P2y[j];
-      const double d1 = u.D1[j], d2 = u.D2[j];
+      const double p1x = G.StencilX(e1), p1y = G.StencilY(e1);
+      const double p2x = wraps ? G.StencilWrapX(x) : G.StencilX(e2);
+      const double p2y = wraps ? G.StencilWrapY(x) : G.StencilY(e2);
       // The two directions must span an angle strictly between 0 and pi (counter-clockwise
       // from p1 to p2); vertices in the same direction form no triangle.
       const double cross = p1x * p2y - p1y * p2x;
-      const bool spans =
-        cross > 1e-12 * (std::abs(p1x) + std::abs(p1y)) * (std::abs(p2x) + std::abs(p2y));
+      if (!(cross > 1e-12 * (std::abs(p1x) + std::abs(p1y)) * (std::abs(p2x) + std::abs(p2y))))
+      {
+        continue;
+      }
       const double ex = p2x - p1x, ey = p2y - p1y;
-      const double L2 = ex * ex + ey * ey;
-      const double invL = 1.0 / std::sqrt(L2);
-      const double ux = ex * invL, uy = ey * invL;
+      const double L = std::sqrt(ex * ex + ey * ey);
+      const double ux = ex / L, uy = ey / L;
       // Away from x (the origin): x is to the left of p1 -> p2, so the source is to the right.
       const double nx = uy, ny = -ux;
-      const double along = (d1 * d1 - d2 * d2 + L2) * (0.5 * invL);
+      const double along = (d1 * d1 - d2 * d2 + L * L) / (2.0 * L);
       const double h2 = d1 * d1 - along * along;
-      const double h = std::sqrt(std::max(h2, 0.0));
+      if (h2 < 0.0)
+      {
+        continue;
+      }
+      const double h = std::sqrt(h2);
       const double sx = p1x + ux * along + nx * h, sy = p1y + uy * along + ny * h;
-      // The segment from the unfolded source to x crosses p1 p2 (between its end points):
-      // t = num / den in [0, 1] (tested without dividing). Candidates are kept squared.
+      // The segment from the unfolded source to x crosses p1 p2 (between its end points).
       const double qx = -sx, qy = -sy;
       const double den = ex * qy - ey * qx;
-      const double num = (sx - p1x) * qy - (sy - p1y) * qx;
-      const double sn = den < 0.0 ? -num : num, sd = std::abs(den);
-      // (Bitwise: no branch to mispredict.)
-      const bool valid = spans & (h2 >= 0.0) & (sd > 0.0) & (sn >= -1e-9 * sd) &
-        (sn <= (1.0 + 1e-9) * sd);
-      u.Candidate[j] = valid ? sx * sx + sy * sy : Inf;
-      u.Num[j] = num;
-      u.Den[j] = den;
-      u.Sx[j] = sx;
-      u.Sy[j] = sy;
-    }
-    double best2 = Inf;
-    for (std::size_t j = 0; j < pairs; ++j)
-    {
-      best2 = std::min(best2, u.Candidate[j]);
-    }
-    if (best2 < best * best)
-    {
-      best = std::sqrt(best2);
-    }
-    for (std::size_t j = 0; angles && j < pairs; ++j)
-    {
-      const double candidate = std::sqrt(u.Candidate[j]);
-      const double t = u.Num[j] / u.Den[j];
-      if (candidate < unfolded)
+      if (den == 0.0)
+      {
+        continue;
+      }
+      const double t = ((sx - p1x) * qy - (sy - p1y) * qx) / den;
+      if (t < -1e-9 || t > 1.0 + 1e-9)
+      {
+        continue;
+      }
+      const double candidate = std::sqrt(sx * sx + sy * sy);
+      best = std::min(best, candidate);
+      if (angles && candidate < unfolded)
       {
         // Interpolated along u1 u2 where the unfolded geodesic crosses it.
-        const double a1 = Angle[G.StencilTarget(u.E1[j])], a2 = Angle[G.StencilTarget(u.E2[j])];
+        const double a1 = Angle[G.StencilTarget(e1)], a2 = Angle[G.StencilTarget(e2)];
         if (std::isfinite(a1) && std::isfinite(a2))
         {
           // In the development, the angle at the unfolded source from u_i's direction to x's is
           // the difference of their departure angles: exact on developable surfaces. The two
           // estimates are blended by where the geodesic crosses u1 u2.
-          const double sx = u.Sx[j], sy = u.Sy[j], qx = -sx, qy = -sy;
           auto turn = [&](double px, double py) {
             const double tx = px - sx, ty = py - sy;
             return std::atan2(tx * qy - ty * qx, tx * qx + ty * qy);
           };
           const double w = std::min(1.0, std::max(0.0, t));
-          const double b1 = a1 + turn(u.P1x[j], u.P1y[j]), b2 = a2 + turn(u.P2x[j], u.P2y[j]);
+          const double b1 = a1 + turn(p1x, p1y), b2 = a2 + turn(p2x, p2y);
           double d = b2 - b1;
           d -= AnglePeriod * std::round(d / AnglePeriod);
           unfolded = candidate;

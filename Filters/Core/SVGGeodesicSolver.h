@@ -101,28 +101,6 @@ private:
   std::vector<int> AngleSet;        // vertices whose Angle is set
   double AnglePeriod = 0.0;         // full turn of the source's tangent angles
   std::vector<std::pair<double, int>> Order;
-  // Refine's per-vertex scratch: the stencil pairs to unfold (structure of arrays, so that the
-  // unfolding loop has no branches) and their results (squared candidate distances, the crossing parameter t = Num / Den); sized once for the largest stencil.
-  struct Unfold
-  {
-    std::vector<std::int64_t> E1, E2;
-    std::vector<double> P1x, P1y, P2x, P2y, D1, D2, Candidate, Num, Den, Sx, Sy;
-    void Reserve(std::size_t n)
-    {
-      if (E1.size() < n)
-      {
-        for (auto* v : { &E1, &E2 })
-        {
-          v->resize(n);
-        }
-        for (auto* v : { &P1x, &P1y, &P2x, &P2y, &D1, &D2, &Candidate, &Num, &Den, &Sx, &Sy })
-        {
-          v->resize(n);
-        }
-      }
-    }
-  };
-  Unfold Buffers;
 };
 
 } // namespace gs
