@@ -20,6 +20,19 @@
 namespace gs
 {
 
+// A memory hint: load the cache line holding p (no effect on results).
+inline void Prefetch(const void* p)
+{
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  // (An asm statement: GCC deletes loops holding nothing but __builtin_prefetch.)
+  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#elif defined(__GNUC__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 // Called with the fraction done (0..1) from the calling thread; returning false aborts.
 using ProgressCallback = std::function<bool(double)>;
 
@@ -129,17 +142,6 @@ public:
   }
 
 private:
-  static void Prefetch(const void* p)
-  {
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-    // (An asm statement: GCC deletes loops holding nothing but __builtin_prefetch.)
-    asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
-#elif defined(__GNUC__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-  }
   std::vector<std::int64_t> Offsets;
   std::vector<int> Targets;
   std::vector<double> Weights;
@@ -180,12 +182,7 @@ public:
   int Predecessor(int v) const { return Pred[v].Vertex; }
   // The link (adjacency entry of the predecessor) that gave v its distance, or -1.
   std::int64_t PredecessorLink(int v) const { return Pred[v].Link; }
-  void PrefetchPredecessor(int v) const
-  {
-#if defined(__GNUC__)
-    __builtin_prefetch(&Pred[v]);
-#endif
-  }
+  void PrefetchPredecessor(int v) const { Prefetch(&Pred[v]); }
   // Refinement passes may lower a reached vertex's distance.
   void Lower(int v, double d) { Dist[v] = d; }
 
