@@ -4,6 +4,7 @@
 
 #include "MeshIO.h"
 
+#include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkNew.h>
@@ -44,6 +45,17 @@ public:
   std::vector<std::string> Errors;
   std::vector<std::string> Warnings;
 };
+
+// Updates `algorithm` with its error and warning messages recorded in `recorder` (the
+// observers are removed again).
+inline void UpdateRecording(vtkAlgorithm* algorithm, MessageRecorder* recorder)
+{
+  const unsigned long e = algorithm->AddObserver(vtkCommand::ErrorEvent, recorder);
+  const unsigned long w = algorithm->AddObserver(vtkCommand::WarningEvent, recorder);
+  algorithm->Update();
+  algorithm->RemoveObserver(e);
+  algorithm->RemoveObserver(w);
+}
 
 // Whether one of `messages` contains `keyword`.
 inline bool Mentions(const std::vector<std::string>& messages, const std::string& keyword)

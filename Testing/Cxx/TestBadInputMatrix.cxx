@@ -213,12 +213,8 @@ struct Outcome
 Outcome Execute(vtkAlgorithm* filter, int port = 0)
 {
   vtkNew<MessageRecorder> recorder;
-  const unsigned long e = filter->AddObserver(vtkCommand::ErrorEvent, recorder);
-  const unsigned long w = filter->AddObserver(vtkCommand::WarningEvent, recorder);
   filter->Modified();
-  filter->Update();
-  filter->RemoveObserver(e);
-  filter->RemoveObserver(w);
+  UpdateRecording(filter, recorder);
   Outcome r;
   r.Output = vtkSmartPointer<vtkPolyData>::New();
   if (vtkPolyData* out = vtkPolyData::SafeDownCast(filter->GetOutputDataObject(port)))

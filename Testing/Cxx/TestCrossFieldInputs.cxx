@@ -34,6 +34,7 @@ using gs_test::Check;
 using gs_test::Failures;
 using gs_test::Mentions;
 using gs_test::MessageRecorder;
+using gs_test::UpdateRecording;
 
 namespace
 {
@@ -81,12 +82,8 @@ struct Run
 Run Execute(vtkCrossField* filter)
 {
   vtkNew<MessageRecorder> recorder;
-  const unsigned long e = filter->AddObserver(vtkCommand::ErrorEvent, recorder);
-  const unsigned long w = filter->AddObserver(vtkCommand::WarningEvent, recorder);
   filter->Modified();
-  filter->Update();
-  filter->RemoveObserver(e);
-  filter->RemoveObserver(w);
+  UpdateRecording(filter, recorder);
   Run r;
   r.Empty = filter->GetOutput()->GetNumberOfCells() == 0;
   r.Errors = recorder->Errors;

@@ -44,6 +44,7 @@ using gs_test::Check;
 using gs_test::Failures;
 using gs_test::Mentions;
 using gs_test::MessageRecorder;
+using gs_test::UpdateRecording;
 
 namespace
 {
@@ -106,18 +107,14 @@ struct Run
 Run Execute(vtkSVGGeodesicDistance* filter)
 {
   vtkNew<MessageRecorder> recorder;
-  const unsigned long e = filter->AddObserver(vtkCommand::ErrorEvent, recorder);
-  const unsigned long w = filter->AddObserver(vtkCommand::WarningEvent, recorder);
   const auto t0 = std::chrono::steady_clock::now();
-  filter->Update();
+  UpdateRecording(filter, recorder);
   Run r;
   r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.Output = vtkSmartPointer<vtkPolyData>::New();
   r.Output->DeepCopy(filter->GetOutput());
   r.Errors = recorder->Errors;
   r.Warnings = recorder->Warnings;
-  filter->RemoveObserver(e);
-  filter->RemoveObserver(w);
   return r;
 }
 
