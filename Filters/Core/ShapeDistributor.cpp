@@ -1191,7 +1191,7 @@ void ShapeDistributor::Impl::ComputeLattices()
       {
         for (int j = 0; j <= range; ++j)
         {
-          if ((j == 0 && i <= 0))
+          if (j == 0 && i <= 0)
           {
             continue; // w and -w: one of them, and not 0
           }

@@ -117,6 +117,14 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
   // lattice proposals (two-contact fronts alone).
   EXPECT_GT(counts[DistributionMode::Greedy], 1.4 * counts[DistributionMode::Random]);
   EXPECT_GT(counts[DistributionMode::Greedy] / circles, 2.15);
+  // Finer tables are tighter, so the lattice is at least as dense. (With 128 bins the lattice
+  // vectors once fell exactly on bin boundaries and the conflict check refused them: 1.7x.)
+  const SafeDistanceTables fine = Tables({ Star(1.0, 0.4) }, 128);
+  o.Mode = DistributionMode::Greedy;
+  ShapeDistributor greedy(plane.Mesh);
+  const ShapeDistributionResult r = Distribute(greedy, plane, fine, o);
+  EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, fine, r.Shapes, o.ShapeSize), 0);
+  EXPECT_GE(static_cast<double>(r.Shapes.size()), 0.98 * counts[DistributionMode::Greedy]);
 }
 
 TEST(ShapeDistributor, SameResultForAnyThreadCount)

@@ -507,6 +507,20 @@ void TestCurveSource(vtkPolyData* grid)
   Check(worstDecal < 1e-12, test, "DecalCoordinates differ from (u, delta / size + 0.5)");
   std::cout << test << ": " << beside << " points beside the curve, offset error " << worstOffset
             << ", arc length error " << worstArc << "\n";
+  Check(!Mentions(r.Warnings, "Curve source"), test, "warning with the default settings");
+  // Settings that apply to point sources only are ignored, with a warning, and change nothing.
+  p.AngleMode = vtkGeodesicPolarCoordinates::ISO_CURVE_ARC_LENGTH;
+  p.K = 20;
+  const RunResult ignored = Run(grid, p);
+  Check(Mentions(ignored.Warnings, "Curve source"), test, "no warning for AngleMode and K");
+  vtkDoubleArray* offset2 = ignored.Array("Offset");
+  bool same = offset2 && offset2->GetNumberOfTuples() == offset->GetNumberOfTuples();
+  for (vtkIdType i = 0; same && i < offset->GetNumberOfTuples(); ++i)
+  {
+    const double u = offset->GetValue(i), v = offset2->GetValue(i);
+    same = (std::isnan(u) && std::isnan(v)) || u == v;
+  }
+  Check(same, test, "AngleMode or K changed a curve source's Offset");
 }
 
 // Iso-curve arc length on the plane: the polar angle within the 0.1 degree (inside the
