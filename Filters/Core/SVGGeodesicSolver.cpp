@@ -193,32 +193,46 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       {
         continue;
       }
+      // Unnormalised (one division and one square root per pair: with the segment's length L,
+      // alongL = along * L and hL = h * L, where `along` and h place the source from p1 along
+      // and across p1 -> p2).
       const double ex = p2x - p1x, ey = p2y - p1y;
-      const double L = std::sqrt(ex * ex + ey * ey);
-      const double ux = ex / L, uy = ey / L;
-      // Away from x (the origin): x is to the left of p1 -> p2, so the source is to the right.
-      const double nx = uy, ny = -ux;
-      const double along = (d1 * d1 - d2 * d2 + L * L) / (2.0 * L);
-      const double h2 = d1 * d1 - along * along;
-      if (h2 < 0.0)
+      const double L2 = ex * ex + ey * ey;
+      const double alongL = 0.5 * (d1 * d1 - d2 * d2 + L2);
+      const double h2L2 = d1 * d1 * L2 - alongL * alongL;
+      if (h2L2 < 0.0)
       {
         continue;
       }
-      const double h = std::sqrt(h2);
-      const double sx = p1x + ux * along + nx * h, sy = p1y + uy * along + ny * h;
-      // The segment from the unfolded source to x crosses p1 p2 (between its end points).
+      const double hL = std::sqrt(h2L2);
+      // Away from x (the origin): x is to the left of p1 -> p2, so the source is to the right,
+      // along (ey, -ex).
+      const double inv = 1.0 / L2;
+      const double sx = p1x + (ex * alongL + ey * hL) * inv;
+      const double sy = p1y + (ey * alongL - ex * hL) * inv;
+      // The segment from the unfolded source to x crosses p1 p2 (between its end points): its
+      // parameter t = num / den on p1 p2 lies in [0, 1], tested without dividing.
       const double qx = -sx, qy = -sy;
       const double den = ex * qy - ey * qx;
       if (den == 0.0)
       {
         continue;
       }
-      const double t = ((sx - p1x) * qy - (sy - p1y) * qx) / den;
-      if (t < -1e-9 || t > 1.0 + 1e-9)
+      const double num = (sx - p1x) * qy - (sy - p1y) * qx;
+      const double sign = den > 0.0 ? 1.0 : -1.0;
+      const double sn = sign * num, sd = sign * den;
+      if (sn < -1e-9 * sd || sn > (1.0 + 1e-9) * sd)
       {
         continue;
       }
-      const double candidate = std::sqrt(sx * sx + sy * sy);
+      // Only a shorter candidate matters (its angle included).
+      const double s2 = sx * sx + sy * sy;
+      if (!(s2 < best * best) && !(angles && s2 < unfolded * unfolded))
+      {
+        continue;
+      }
+      const double t = num / den;
+      const double candidate = std::sqrt(s2);
       best = std::min(best, candidate);
       if (angles && candidate < unfolded)
       {

@@ -77,6 +77,21 @@ public:
   std::int64_t End(int v) const { return Offsets[v + 1]; }
   int Target(std::int64_t e) const { return Targets[e]; }
   double Weight(std::int64_t e) const { return Weights[e]; }
+  // Memory hints for solvers that know which vertex they will scan next (a queue): first the
+  // offsets, then (once they are cached) the whole adjacency.
+  void PrefetchOffsets(int v) const { Prefetch(&Offsets[v]); }
+  void PrefetchAdjacency(int v) const
+  {
+    const std::int64_t first = Offsets[v], last = Offsets[v + 1];
+    for (std::int64_t i = first; i < last; i += 16)
+    {
+      Prefetch(&Targets[i]);
+    }
+    for (std::int64_t i = first; i < last; i += 8)
+    {
+      Prefetch(&Weights[i]);
+    }
+  }
 
   // The polar stencil of v: the vertices of v's own K-disk reached by direct geodesics, sorted by
   // the angle at which their geodesic leaves v (the log map), with their exact distance and
