@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace gs
@@ -21,6 +23,46 @@ double PointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
   double t = l2 > 0.0 ? Dot(p - a, ab) / l2 : 0.0;
   t = std::min(1.0, std::max(0.0, t));
   return Norm(p - (a + ab * t));
+}
+// An order-preserving 32-bit key of a distance (>= 0): the bits of its nearest float. Vertices
+// closer than a float's precision (6e-8 relative) may swap places in the sweep, which only uses
+// the order to visit a vertex's cone neighbours first (they are a stencil edge closer).
+std::uint32_t SortKey(double d)
+{
+  const float f = static_cast<float>(std::max(0.0, d));
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  return bits;
+}
+
+// Stable LSD radix sort by key, 11 bits per pass (3x faster than std::sort on the 26K-vertex
+// sweeps; the stable order keeps ties deterministic).
+void RadixSort(std::vector<std::pair<std::uint32_t, int>>& a, std::vector<std::pair<std::uint32_t, int>>& scratch)
+{
+  constexpr int digitBits = 11;
+  constexpr std::uint32_t mask = (1u << digitBits) - 1u;
+  scratch.resize(a.size());
+  std::size_t count[mask + 1];
+  for (int shift = 0; shift < 32; shift += digitBits)
+  {
+    std::fill(count, count + mask + 1, 0);
+    for (const auto& x : a)
+    {
+      ++count[(x.first >> shift) & mask];
+    }
+    std::size_t sum = 0;
+    for (std::size_t& c : count)
+    {
+      const std::size_t n = c;
+      c = sum;
+      sum += n;
+    }
+    for (const auto& x : a)
+    {
+      scratch[count[(x.first >> shift) & mask]++] = x;
+    }
+    a.swap(scratch);
+  }
 }
 } // namespace
 
@@ -50,10 +92,9 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
   Order.reserve(reached.size());
   for (int v : reached)
   {
-    Order.push_back({ Graph.Distance(v), v });
+    Order.push_back({ SortKey(Graph.Distance(v)), v });
   }
-  std::sort(Order.begin(), Order.end(),
-    [](const std::pair<double, int>& a, const std::pair<double, int>& b) { return a < b; });
+  RadixSort(Order, OrderScratch);
   // The sweep's order is random in memory: the stencils of the vertices a few steps ahead are
   // prefetched, first the offsets and the predecessor's place in the stencil, then the entries
   // about it (a third of the sweep's time on 26K-vertex meshes).
