@@ -2,7 +2,7 @@
 // prefactored once, then solved from each new source), both measured against the exact solver
 // in the same run, on the same welded mesh and sources.
 //
-//   HeatMethodComparison mesh.off|mesh.ply [...] [--sources N] [--k K]
+//   HeatMethodComparison mesh.off|mesh.ply [...] [--sources N] [--k K] [--rounds R]
 #include "ExactGeodesic.h"
 #include "MeshIO.h"
 #include "SVGGeodesicSolver.h"
@@ -13,7 +13,10 @@
 #include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -47,42 +50,62 @@ struct Errors
   double Mean() const { return Count ? Sum / Count : 0.0; }
 };
 
-template <typename Mode>
-void RunHeat(const char* label, CgalMesh& cm, const std::vector<CgalMesh::Vertex_index>& vi,
-  const std::vector<int>& sources, const std::vector<std::vector<double>>& ref, double svgSolve,
-  double svgMean)
+double Median(std::vector<double> v)
 {
-  const double t0 = Now();
-  CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<CgalMesh, Mode> heat(cm);
-  auto distance = cm.add_property_map<CgalMesh::Vertex_index, double>("v:heat", 0.0).first;
-  // The first solve includes the factorization.
-  heat.add_source(vi[sources[0]]);
-  heat.estimate_geodesic_distances(distance);
-  const double setup = Now() - t0;
-  Errors err;
-  double solve = 0;
-  for (std::size_t i = 0; i < sources.size(); ++i)
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// One solver under comparison: Solve(i) computes the field from sources[i] into Distance(v).
+struct Method
+{
+  std::string Label;
+  std::function<void(std::size_t)> Solve;
+  std::function<double(int)> Distance;
+  double Setup = 0.0;
+  Errors Err;
+  std::vector<double> Times;
+};
+
+template <typename Mode>
+struct Heat
+{
+  CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<CgalMesh, Mode> Solver;
+  CgalMesh::Property_map<CgalMesh::Vertex_index, double> Distance;
+  Heat(CgalMesh& cm, const std::string& name)
+    : Solver(cm)
   {
-    heat.clear_sources();
-    heat.add_source(vi[sources[i]]);
-    const double t1 = Now();
-    heat.estimate_geodesic_distances(distance);
-    solve += Now() - t1;
-    for (std::size_t v = 0; v < vi.size(); ++v)
-      err.Add(distance[vi[v]], ref[i][v]);
+    Distance = cm.add_property_map<CgalMesh::Vertex_index, double>(name, 0.0).first;
   }
-  solve /= sources.size();
-  std::printf("  CGAL heat method (%s): setup %.3f s, solve %.2f ms, mean error %.2e, max %.2e | "
-              "error ratio heat/SVG %.1f, time ratio heat/SVG %.2f\n",
-    label, setup, 1e3 * solve, err.Mean(), err.Max, err.Mean() / svgMean, solve / svgSolve);
-  cm.remove_property_map(distance);
+};
+
+template <typename Mode>
+Method MakeHeat(const char* label, const char* name, CgalMesh& cm,
+  const std::vector<CgalMesh::Vertex_index>& vi, const std::vector<int>& sources)
+{
+  Method m;
+  m.Label = std::string("CGAL heat method (") + label + ")";
+  const double t0 = Now();
+  auto heat = std::make_shared<Heat<Mode>>(cm, name);
+  // The first solve includes the factorization.
+  heat->Solver.add_source(vi[sources[0]]);
+  heat->Solver.estimate_geodesic_distances(heat->Distance);
+  m.Setup = Now() - t0;
+  m.Solve = [heat, &vi, &sources](std::size_t i) {
+    heat->Solver.clear_sources();
+    heat->Solver.add_source(vi[sources[i]]);
+    heat->Solver.estimate_geodesic_distances(heat->Distance);
+  };
+  m.Distance = [heat, &vi](int v) { return heat->Distance[vi[v]]; };
+  return m;
 }
 } // namespace
 
 int main(int argc, char** argv)
 {
   std::vector<std::string> files;
-  int numSources = 5, k = 50;
+  int numSources = 5, k = 50, rounds = 5;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -90,9 +113,11 @@ int main(int argc, char** argv)
       numSources = std::max(1, std::atoi(argv[++i]));
     else if (a == "--k" && i + 1 < argc)
       k = std::atoi(argv[++i]);
+    else if (a == "--rounds" && i + 1 < argc)
+      rounds = std::max(1, std::atoi(argv[++i]));
     else if (a == "--help" || a == "-h")
     {
-      std::printf("usage: %s mesh [...] [--sources N] [--k K]\n", argv[0]);
+      std::printf("usage: %s mesh [...] [--sources N] [--k K] [--rounds R]\n", argv[0]);
       return 0;
     }
     else
@@ -134,23 +159,6 @@ int main(int argc, char** argv)
       continue;
     }
     gs::SVGGeodesicSolver svg(m, graph);
-    Errors svgErr;
-    double svgSolve = 0;
-    for (std::size_t i = 0; i < sources.size(); ++i)
-    {
-      const double t0 = Now();
-      svg.Solve({ gs::SurfacePoint::AtVertex(sources[i]) });
-      svgSolve += Now() - t0;
-      for (int v = 0; v < nv; ++v)
-        svgErr.Add(svg.Distance(v), ref[i][v]);
-    }
-    svgSolve /= sources.size();
-    const std::string name = path.substr(path.find_last_of('/') + 1);
-    std::printf("%s (%d vertices, %zu sources):\n  SVG K=%d: build %.2f s, solve %.2f ms, mean error "
-                "%.2e, max %.2e\n",
-      name.c_str(), nv, sources.size(), graph.GetK(), graph.BuildSeconds(), 1e3 * svgSolve,
-      svgErr.Mean(), svgErr.Max);
-
     CgalMesh cm;
     std::vector<CgalMesh::Vertex_index> vi(nv);
     for (int v = 0; v < nv; ++v)
@@ -163,9 +171,57 @@ int main(int argc, char** argv)
       const auto& t = m.Face(f);
       cm.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
     }
-    RunHeat<CGAL::Heat_method_3::Direct>("direct", cm, vi, sources, ref, svgSolve, svgErr.Mean());
-    RunHeat<CGAL::Heat_method_3::Intrinsic_Delaunay>(
-      "intrinsic Delaunay", cm, vi, sources, ref, svgSolve, svgErr.Mean());
+    std::vector<Method> methods;
+    {
+      Method ours;
+      ours.Label = "SVG K=" + std::to_string(graph.GetK());
+      ours.Setup = graph.BuildSeconds();
+      ours.Solve = [&](std::size_t i) { svg.Solve({ gs::SurfacePoint::AtVertex(sources[i]) }); };
+      ours.Distance = [&](int v) { return svg.Distance(v); };
+      methods.push_back(std::move(ours));
+    }
+    methods.push_back(MakeHeat<CGAL::Heat_method_3::Direct>("direct", "v:heat", cm, vi, sources));
+    methods.push_back(MakeHeat<CGAL::Heat_method_3::Intrinsic_Delaunay>(
+      "intrinsic Delaunay", "v:heat_idt", cm, vi, sources));
+    // Timing: every method solves every source once untimed (warm caches, errors), then
+    // `rounds` timed rounds alternate between the methods source by source, so that a change of
+    // load on the machine falls on all of them; each method's figure is its median solve.
+    for (std::size_t i = 0; i < sources.size(); ++i)
+    {
+      for (Method& me : methods)
+      {
+        me.Solve(i);
+        for (int v = 0; v < nv; ++v)
+          me.Err.Add(me.Distance(v), ref[i][v]);
+      }
+    }
+    for (int round = 0; round < rounds; ++round)
+    {
+      for (std::size_t i = 0; i < sources.size(); ++i)
+      {
+        for (Method& me : methods)
+        {
+          const double t0 = Now();
+          me.Solve(i);
+          me.Times.push_back(Now() - t0);
+        }
+      }
+    }
+    const std::string name = path.substr(path.find_last_of('/') + 1);
+    std::printf("%s (%d vertices, %zu sources, %d timed rounds):\n", name.c_str(), nv,
+      sources.size(), rounds);
+    const double svgSolve = Median(methods[0].Times), svgMean = methods[0].Err.Mean();
+    for (const Method& me : methods)
+    {
+      const double solve = Median(me.Times);
+      std::printf("  %s: setup %.3f s, solve %.2f ms (median; min %.2f), mean error %.2e, max %.2e",
+        me.Label.c_str(), me.Setup, 1e3 * solve,
+        1e3 * *std::min_element(me.Times.begin(), me.Times.end()), me.Err.Mean(), me.Err.Max);
+      if (&me != &methods[0])
+        std::printf(" | error ratio heat/SVG %.1f, time ratio heat/SVG %.2f", me.Err.Mean() / svgMean,
+          solve / svgSolve);
+      std::printf("\n");
+    }
     std::fflush(stdout);
   }
   return 0;
