@@ -188,6 +188,27 @@ void Figure9(const std::string& name, const SafeDistanceInput& shape, int seeds)
 {
   const TriangleMesh plane = Build(MakePlanarGrid(50, 50, 10.0, 10.0));
   const SafeDistanceTables t = Tables({ shape });
+  if (t.NumberOfParts() == 1)
+  {
+    // What geometry allows dart throwing (random sequential addition): it jams at a number
+    // density of about c / (excluded area), with c = 2.19 for disks and 2.25 for aligned squares
+    // (jamming coverages 0.547 and 0.562), so Random / circumcircle is about the ratio of the
+    // excluded areas. Two copies turned alike exclude the region within D(beta) of each other,
+    // D(beta) = the table's distance for the line at angle beta (seen from either copy), and
+    // circumcircles the disk of radius 2r.
+    const double r = t.Parts[0].Radius;
+    const int n = 4096;
+    double area = 0.0;
+    for (int k = 0; k < n; ++k)
+    {
+      const double beta = 2.0 * M_PI * (k + 0.5) / n;
+      const double d = std::max(t.Lookup(0, 0, -beta, -beta), t.Lookup(0, 0, -beta - M_PI, -beta - M_PI));
+      area += 0.5 * d * d * (2.0 * M_PI / n);
+    }
+    std::printf("  %-10s aligned: excluded area %.2f r^2 (circumcircles %.2f r^2): dart throwing jams "
+                "near %.2fx the circumcircle count\n",
+      name.c_str(), area / (r * r), 4.0 * M_PI, 4.0 * M_PI * r * r / area);
+  }
   for (bool aligned : { true, false })
   {
     std::vector<Vec3> dirs(plane.NumberOfFaces(), aligned ? Vec3{ 1, 0, 0 } : Vec3{ 0, 0, 0 });
