@@ -7,10 +7,12 @@
 //  2. Maximality: random probes that would still fit after a run.
 //  3. Density fidelity: a density ramp on the square; count x f^2 per unit area in strips.
 //  4. Real mesh (refined_elephant, subdivided once: ~355K faces): saddle vertex graph build,
-//     4 classes with 1 and 2 threads (identical results), counts at two resolutions of the
-//     same surface, overlaps by the chart-based surface test.
+//     4 classes with 1 and 2 threads (identical results; --speed-rounds R alternating runs of
+//     each, median times, default 3), counts at two resolutions of the same surface, overlaps
+//     by the chart-based surface test.
 //
 // Usage: DistributionBenchmark <refined_elephant.off> [shape images dir] [--quick]
+//   [--mesh-only (section 4 only)] [--speed-only (its speed figures only)] [--speed-rounds R]
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
 //   openclipart; polygons are used when missing).
 #include "../Testing/Core/DistributionChecks.h"
@@ -23,6 +25,7 @@
 #include "Silhouette.h"
 #include "TriangleMesh.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -176,6 +179,12 @@ TriangleMesh Build(const TriangleSoup& s)
     std::exit(1);
   }
   return r.Mesh;
+}
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 
 const char* ModeName(DistributionMode m)
@@ -384,6 +393,7 @@ void BumpySphere(const std::vector<SafeDistanceInput>& classes, int seeds)
 int main(int argc, char* argv[])
 {
   bool quick = false, meshOnly = false, exactCharts = false, speedOnly = false;
+  int speedRounds = 3;
   double margin = -1.0, distortion = -1.0;
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i)
@@ -400,6 +410,8 @@ int main(int argc, char* argv[])
       meshOnly = true;
     else if (std::strcmp(argv[i], "--distortion") == 0 && i + 1 < argc)
       distortion = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--speed-rounds") == 0 && i + 1 < argc)
+      speedRounds = std::max(1, std::atoi(argv[++i]));
     else if (std::strcmp(argv[i], "--margin") == 0 && i + 1 < argc)
       margin = std::atof(argv[++i]);
     else
@@ -473,8 +485,6 @@ int main(int argc, char* argv[])
         d[f] = Vec3{ 0.3, 1.0, 0.2 };
       return d;
     };
-    std::vector<PlacedShape> reference;
-    double seconds[3] = { 0, 0, 0 };
     // Cold: a new distributor (per-mesh set-up: per-thread geodesic engines, field frames).
     {
       ShapeDistributor cold(fine, exactCharts ? nullptr : graphs[&fine].get());
@@ -494,46 +504,53 @@ int main(int argc, char* argv[])
       o.MaximumShapes = 1;
       d.Run(t, directionsOf(fine), {}, o);
     }
-    for (int threads : { 1, 2 })
+    // Speed: rounds alternating 1 and 2 threads (so that load changes on the machine fall on
+    // both), median times; the checks below use the last run of each.
+    ShapeDistributionResult results[3];
+    std::vector<double> times[3];
+    for (int round = 0; round < speedRounds; ++round)
     {
-      if (speedOnly && threads == 1)
-        continue;
-      ShapeDistributionOptions o;
-      o.ShapeSize = shapeSize;
-      o.Seed = 1;
-      o.NumberOfThreads = threads;
-      if (margin >= 0.0)
-        o.SafetyMargin = margin;
-      if (distortion >= 0.0)
-        o.DistortionLimit = distortion;
-      const double t0 = Now();
-      const ShapeDistributionResult r = d.Run(t, directionsOf(fine), {}, o);
-      seconds[threads] = Now() - t0;
-      std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s (candidates %.2f, "
-                  "checks and charts %.2f (charts %.2f s CPU), rounds %.2f, set-up %.2f)\n", threads,
-        r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, seconds[threads],
-        r.Statistics.GenerateSeconds, r.Statistics.CheckSeconds, r.Statistics.ChartCpuSeconds,
-        r.Statistics.RoundSeconds, r.Statistics.PrepareSeconds);
-      if (speedOnly)
-        return 0;
-      if (threads == 1)
-        reference = r.Shapes;
-      else
+      for (int threads : { 1, 2 })
       {
-        bool same = r.Shapes.size() == reference.size();
-        for (std::size_t i = 0; same && i < reference.size(); ++i)
-          same = r.Shapes[i].Position.x == reference[i].Position.x && r.Shapes[i].ClassId == reference[i].ClassId;
-        std::printf("  speed-up 2 threads / 1: %.2fx; identical result: %s\n", seconds[1] / seconds[2], same ? "yes" : "NO");
-        long long pairs = 0;
-        const double t1 = Now();
-        const int overlaps = gs_test::CountSurfaceOverlaps(fine, t, d, shapeSize, 0.02, &pairs);
-        std::printf("  surface overlap test (exact polar chart of one shape, the other's outline drawn on the surface): %d overlaps in %lld close pairs (%.1f s)\n",
-          overlaps, pairs, Now() - t1);
-        TotalShapes += static_cast<long long>(r.Shapes.size());
-        TotalOverlaps += overlaps;
-        TotalPairs += pairs;
-        std::printf("  probes that fit: %.4f%% of %d\n", 100.0 * d.ProbeFitFraction(quick ? 10000 : 100000, 777), quick ? 10000 : 100000);
+        ShapeDistributionOptions o;
+        o.ShapeSize = shapeSize;
+        o.Seed = 1;
+        o.NumberOfThreads = threads;
+        if (margin >= 0.0)
+          o.SafetyMargin = margin;
+        if (distortion >= 0.0)
+          o.DistortionLimit = distortion;
+        const double t0 = Now();
+        results[threads] = d.Run(t, directionsOf(fine), {}, o);
+        times[threads].push_back(Now() - t0);
+        const ShapeDistributionResult& r = results[threads];
+        std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s (candidates %.2f, "
+                    "checks and charts %.2f (charts %.2f s CPU), rounds %.2f, set-up %.2f)\n", threads,
+          r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, times[threads].back(),
+          r.Statistics.GenerateSeconds, r.Statistics.CheckSeconds, r.Statistics.ChartCpuSeconds,
+          r.Statistics.RoundSeconds, r.Statistics.PrepareSeconds);
       }
+    }
+    const double t1s = Median(times[1]), t2s = Median(times[2]);
+    const std::vector<PlacedShape>& reference = results[1].Shapes;
+    const ShapeDistributionResult& r = results[2];
+    bool same = r.Shapes.size() == reference.size();
+    for (std::size_t i = 0; same && i < reference.size(); ++i)
+      same = r.Shapes[i].Position.x == reference[i].Position.x && r.Shapes[i].ClassId == reference[i].ClassId;
+    std::printf("  median of %d: 1 thread %.2f s, 2 threads %.2f s: speed-up %.2fx; identical result: %s\n",
+      speedRounds, t1s, t2s, t1s / t2s, same ? "yes" : "NO");
+    if (speedOnly)
+      return same ? 0 : 2;
+    {
+      long long pairs = 0;
+      const double t1 = Now();
+      const int overlaps = gs_test::CountSurfaceOverlaps(fine, t, d, shapeSize, 0.02, &pairs);
+      std::printf("  surface overlap test (exact polar chart of one shape, the other's outline drawn on the surface): %d overlaps in %lld close pairs (%.1f s)\n",
+        overlaps, pairs, Now() - t1);
+      TotalShapes += static_cast<long long>(r.Shapes.size());
+      TotalOverlaps += overlaps;
+      TotalPairs += pairs;
+      std::printf("  probes that fit: %.4f%% of %d\n", 100.0 * d.ProbeFitFraction(quick ? 10000 : 100000, 777), quick ? 10000 : 100000);
     }
     // Resolution insensitivity: the same surface (midpoint subdivision keeps it exactly).
     double counts[2] = { 0, 0 };
