@@ -1,6 +1,7 @@
 #include "SaddleVertexGraph.h"
 
 #include "ExactGeodesic.h"
+#include "Hash.h"
 
 #include <algorithm>
 #include <atomic>
@@ -23,29 +24,6 @@ namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
 constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '3' };
-
-// FNV-1a, 64 bits.
-struct Hasher
-{
-  std::uint64_t H = 1469598103934665603ull;
-  void Add(const void* data, std::size_t n)
-  {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      H ^= p[i];
-      H *= 1099511628211ull;
-    }
-  }
-  template <typename T>
-  void AddVector(const std::vector<T>& v)
-  {
-    if (!v.empty())
-    {
-      Add(v.data(), v.size() * sizeof(T));
-    }
-  }
-};
 
 // Build memory per vertex and per unit of K (bytes), above the peaks SVGBenchmark measured on
 // armadillo, refined_elephant and mannequin-devil: 4.9-5.0 KB per vertex at K = 50, 9.2-10.1 KB

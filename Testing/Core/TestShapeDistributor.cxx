@@ -127,6 +127,39 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
   EXPECT_GE(static_cast<double>(r.Shapes.size()), 0.98 * counts[DistributionMode::Greedy]);
 }
 
+TEST(ShapeDistributor, GreedyLatticesFollowTheTablesAcrossRuns)
+{
+  // A distributor keeps the lattices it found, by a hash of each part's table: re-running with
+  // other tables must not reuse them (a stale lattice would change the layout), and going back
+  // to the first tables gives the first layout again.
+  const Plane plane = MakePlane(24, 6.0);
+  const SafeDistanceTables stars = Tables({ Star(1.0, 0.4) }, 32);
+  const SafeDistanceTables thin = Tables({ Star(1.0, 0.3) }, 32);
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.5;
+  o.Seed = 5;
+  o.Mode = DistributionMode::Greedy;
+  o.MaximalFailures = 1000;
+  auto same = [](const std::vector<PlacedShape>& a, const std::vector<PlacedShape>& b) {
+    if (a.size() != b.size())
+      return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a[i].Position.x != b[i].Position.x || a[i].Position.y != b[i].Position.y)
+        return false;
+    return true;
+  };
+  ShapeDistributor reused(plane.Mesh);
+  const std::vector<PlacedShape> first = Distribute(reused, plane, stars, o).Shapes;
+  const std::vector<PlacedShape> second = Distribute(reused, plane, thin, o).Shapes;
+  ShapeDistributor fresh(plane.Mesh);
+  const std::vector<PlacedShape> thinFresh = Distribute(fresh, plane, thin, o).Shapes;
+  EXPECT_TRUE(same(second, thinFresh)) << second.size() << " vs " << thinFresh.size();
+  EXPECT_FALSE(same(first, second)) << "the two stars should pack differently";
+  EXPECT_GT(second.size(), first.size()) << "thinner stars pack tighter";
+  EXPECT_TRUE(same(Distribute(reused, plane, stars, o).Shapes, first));
+  EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, thin, second, o.ShapeSize), 0);
+}
+
 TEST(ShapeDistributor, SameResultForAnyThreadCount)
 {
   const Plane plane = MakePlane(30, 8.0, Vec3{ 1.0, 1.0, 0.0 });
