@@ -1,5 +1,5 @@
-// Shared by the filter tests: failure counting, the messages a filter emits, and real meshes
-// (OFF/PLY read by the core) as vtkPolyData.
+// Shared by the filter tests: failure counting, the messages a filter emits, the unit square and
+// real meshes (OFF/PLY read by the core) as vtkPolyData.
 #pragma once
 
 #include "MeshIO.h"
@@ -8,9 +8,12 @@
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkNew.h>
+#include <vtkPlaneSource.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkTriangleFilter.h>
 
 #include <algorithm>
 #include <iostream>
@@ -62,6 +65,36 @@ inline bool Mentions(const std::vector<std::string>& messages, const std::string
 {
   return std::any_of(messages.begin(), messages.end(),
     [&](const std::string& m) { return m.find(keyword) != std::string::npos; });
+}
+
+// The unit square [0, 1]^2 as n x n quads (vtkPlaneSource), optionally triangulated, without
+// point data (the source's normals and texture coordinates dropped); double or float points.
+inline vtkSmartPointer<vtkPolyData> UnitSquare(int n, bool triangulate, bool doublePoints = false)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(0.0, 0.0, 0.0);
+  plane->SetPoint1(1.0, 0.0, 0.0);
+  plane->SetPoint2(0.0, 1.0, 0.0);
+  plane->SetResolution(n, n);
+  if (doublePoints)
+  {
+    plane->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  if (triangulate)
+  {
+    vtkNew<vtkTriangleFilter> triangles;
+    triangles->SetInputConnection(plane->GetOutputPort());
+    triangles->Update();
+    mesh->DeepCopy(triangles->GetOutput());
+  }
+  else
+  {
+    plane->Update();
+    mesh->DeepCopy(plane->GetOutput());
+  }
+  mesh->GetPointData()->Initialize();
+  return mesh;
 }
 
 // A mesh file read by the core (gs::ReadMesh) as triangles with double points; null (and the

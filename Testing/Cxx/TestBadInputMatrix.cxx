@@ -17,11 +17,9 @@
 #include <vtkDoubleArray.h>
 #include <vtkImageData.h>
 #include <vtkPNGWriter.h>
-#include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkRegularPolygonSource.h>
 #include <vtkSphereSource.h>
-#include <vtkTriangleFilter.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <OpenImageIO/imageio.h>
@@ -76,31 +74,6 @@ vtkSmartPointer<vtkPolyData> WithTriangle(vtkPolyData* mesh, vtkIdType a, vtkIdT
   out->DeepCopy(mesh);
   const vtkIdType ids[3] = { a, b, c };
   out->GetPolys()->InsertNextCell(3, ids);
-  return out;
-}
-
-vtkSmartPointer<vtkPolyData> Plane(int n, bool triangles)
-{
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetResolution(n, n);
-  plane->SetOrigin(0, 0, 0);
-  plane->SetPoint1(1, 0, 0);
-  plane->SetPoint2(0, 1, 0);
-  plane->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  if (triangles)
-  {
-    vtkNew<vtkTriangleFilter> t;
-    t->SetInputConnection(plane->GetOutputPort());
-    t->Update();
-    out->DeepCopy(t->GetOutput());
-  }
-  else
-  {
-    plane->Update();
-    out->DeepCopy(plane->GetOutput());
-  }
-  out->GetPointData()->Initialize();
   return out;
 }
 
@@ -320,7 +293,7 @@ int main(int argc, char* argv[])
     lines->SetLines(polyline);
     cases.push_back({ "lines only", lines, Expect::Error, "" });
   }
-  cases.push_back({ "quads", Plane(12, false), Expect::Works, "" });
+  cases.push_back({ "quads", gs_test::UnitSquare(12, false, true), Expect::Works, "" });
   {
     vtkNew<vtkRegularPolygonSource> polygon;
     polygon->SetNumberOfSides(24);

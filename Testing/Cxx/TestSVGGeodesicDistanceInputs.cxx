@@ -11,12 +11,10 @@
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
-#include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-#include <vtkTriangleFilter.h>
 
 #include <array>
 #include <cctype>
@@ -97,33 +95,6 @@ vtkSmartPointer<vtkPolyData> MakeMesh(
   mesh->SetPolys(polys);
   return mesh;
 }
-
-// Unit square [0, 1]^2 split into n x n quads (vtkPlaneSource), optionally triangulated.
-vtkSmartPointer<vtkPolyData> MakeSquare(int n, bool triangulate)
-{
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(0.0, 0.0, 0.0);
-  plane->SetPoint1(1.0, 0.0, 0.0);
-  plane->SetPoint2(0.0, 1.0, 0.0);
-  plane->SetResolution(n, n);
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(plane->GetOutputPort());
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  if (triangulate)
-  {
-    triangles->Update();
-    mesh->DeepCopy(triangles->GetOutput());
-  }
-  else
-  {
-    plane->Update();
-    mesh->DeepCopy(plane->GetOutput());
-  }
-  mesh->GetPointData()->Initialize(); // drop normals and texture coordinates
-  return mesh;
-}
-
-
 
 // A malformed input: an error mentioning `keyword`, an empty output, with every solver.
 void ExpectRejected(const std::string& name, vtkPolyData* mesh, const std::vector<vtkIdType>& ids,
@@ -234,13 +205,13 @@ void TestInfiniteCoordinate()
 
 void TestMissingSource()
 {
-  auto mesh = MakeSquare(4, true);
+  auto mesh = gs_test::UnitSquare(4, true);
   ExpectRejected("MissingSource", mesh, {}, "no source");
 }
 
 void TestOutOfRangeSource()
 {
-  auto mesh = MakeSquare(4, true);
+  auto mesh = gs_test::UnitSquare(4, true);
   ExpectRejected("OutOfRangeSource", mesh, { 25 }, "out of range");
   ExpectRejected("NegativeSource", mesh, { -1 }, "out of range");
 }
@@ -281,7 +252,7 @@ void TestUnreferencedPoints()
 void TestQuads()
 {
   const std::string test = "Quads";
-  auto quads = MakeSquare(8, false);
+  auto quads = gs_test::UnitSquare(8, false);
   const RunResult r = Run(quads, { 0 });
   Check(r.Errors.empty(), test, "unexpected error");
   Check(!r.Warnings.empty(), test, "no warning about the triangulation");
@@ -305,7 +276,7 @@ void TestSplitVertices()
 {
   // OBJ-style soup: every triangle has its own copies of its corners.
   const std::string test = "SplitVertices";
-  auto shared = MakeSquare(6, true);
+  auto shared = gs_test::UnitSquare(6, true);
   vtkNew<vtkPoints> soupPoints;
   soupPoints->SetDataTypeToDouble();
   vtkNew<vtkCellArray> soupTriangles;
@@ -361,7 +332,7 @@ void TestSourcePoints()
 {
   // Source points snapped to the surface: one inside a triangle, one slightly above the plane.
   const std::string test = "SourcePoints";
-  auto mesh = MakeSquare(10, true);
+  auto mesh = gs_test::UnitSquare(10, true);
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
   pts->InsertNextPoint(0.23, 0.41, 0.0);
@@ -390,7 +361,7 @@ void TestSourcePoints()
 
 void TestEmptySourcePoints()
 {
-  auto mesh = MakeSquare(4, true);
+  auto mesh = gs_test::UnitSquare(4, true);
   vtkNew<vtkPolyData> sources;
   vtkNew<vtkPoints> none;
   sources->SetPoints(none);
@@ -402,7 +373,7 @@ void TestEmptySourcePoints()
 void TestMaximumDistance()
 {
   const std::string test = "MaximumDistance";
-  auto mesh = MakeSquare(10, true);
+  auto mesh = gs_test::UnitSquare(10, true);
   const double limit = 0.5;
   const RunResult r = Run(mesh, { 0 }, nullptr, limit);
   Check(r.Errors.empty(), test, "unexpected error");

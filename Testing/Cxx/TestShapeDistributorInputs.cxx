@@ -18,11 +18,9 @@
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
-#include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkTriangleFilter.h>
 
 #include <cmath>
 #include <iostream>
@@ -68,25 +66,7 @@ vtkSmartPointer<vtkPolyData> Shapes()
 // density ramp f = 0.6 + 0.4 x.
 vtkSmartPointer<vtkPolyData> Plane(int n, bool triangulate = true)
 {
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(0, 0, 0);
-  plane->SetPoint1(1, 0, 0);
-  plane->SetPoint2(0, 1, 0);
-  plane->SetResolution(n, n);
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  if (triangulate)
-  {
-    vtkNew<vtkTriangleFilter> tri;
-    tri->SetInputConnection(plane->GetOutputPort());
-    tri->Update();
-    data->DeepCopy(tri->GetOutput());
-  }
-  else
-  {
-    plane->Update();
-    data->DeepCopy(plane->GetOutput());
-  }
-  data->GetPointData()->Initialize();
+  vtkSmartPointer<vtkPolyData> data = gs_test::UnitSquare(n, triangulate);
   vtkNew<vtkDoubleArray> direction;
   direction->SetName("Direction");
   direction->SetNumberOfComponents(3);
