@@ -16,6 +16,7 @@
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
 //   openclipart; polygons are used when missing).
 #include "../Testing/Core/DistributionChecks.h"
+#include "BenchmarkSupport.h"
 
 #include "MeshGenerators.h"
 #include "MeshIO.h"
@@ -35,6 +36,8 @@
 #include <vector>
 
 using namespace gs;
+using gs_bench::Median;
+using gs_bench::Now;
 
 namespace
 {
@@ -100,11 +103,6 @@ void WriteSvg(const std::string& file, const SafeDistanceTables& t, const std::v
     std::fprintf(g, "\n");
   }
   std::fclose(g);
-}
-
-double Now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // The regular {5/2} star's outline: inner radius / outer radius = 0.382.
@@ -179,12 +177,6 @@ TriangleMesh Build(const TriangleSoup& s)
     std::exit(1);
   }
   return r.Mesh;
-}
-
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 
 const char* ModeName(DistributionMode m)

@@ -3,6 +3,7 @@
 // in the same run, on the same welded mesh and sources.
 //
 //   HeatMethodComparison mesh.off|mesh.ply [...] [--sources N] [--k K] [--rounds R]
+#include "BenchmarkSupport.h"
 #include "ExactGeodesic.h"
 #include "MeshIO.h"
 #include "SVGGeodesicSolver.h"
@@ -25,14 +26,11 @@
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using CgalMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using gs_bench::Median;
+using gs_bench::Now;
 
 namespace
 {
-double Now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 struct Errors
 {
   double Sum = 0, Max = 0;
@@ -49,13 +47,6 @@ struct Errors
   }
   double Mean() const { return Count ? Sum / Count : 0.0; }
 };
-
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
 
 // One solver under comparison: Solve(i) computes the field from sources[i] into Distance(v).
 struct Method

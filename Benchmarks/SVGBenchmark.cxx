@@ -3,6 +3,7 @@
 // label-correcting and Dijkstra graph solvers against the exact solver, in the same run.
 //
 //   SVGBenchmark mesh.off|mesh.ply [...] [--k 50,100,200] [--sources N] [--threads T]
+#include "BenchmarkSupport.h"
 #include "ExactGeodesic.h"
 #include "MeshIO.h"
 #include "SVGGeodesicSolver.h"
@@ -25,14 +26,7 @@
 #endif
 
 using namespace gs;
-
-namespace
-{
-double Now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-} // namespace
+using gs_bench::Now;
 
 namespace
 {
