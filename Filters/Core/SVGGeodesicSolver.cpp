@@ -234,9 +234,9 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       {
         continue;
       }
-      // Unnormalised (one division and one square root per pair: with the segment's length L,
-      // alongL = along * L and hL = h * L, where `along` and h place the source from p1 along
-      // and across p1 -> p2).
+      // Unnormalised (one division and one square root per pair, one more of each only for a
+      // shorter candidate): with the segment's length L, alongL = along * L and hL = h * L,
+      // where `along` and h place the source from p1 along and across p1 -> p2.
       const double ex = p2x - p1x, ey = p2y - p1y;
       const double L2 = ex * ex + ey * ey;
       const double alongL = 0.5 * (d1 * d1 - d2 * d2 + L2);

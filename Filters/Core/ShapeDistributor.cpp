@@ -1385,7 +1385,9 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
     }
     return true;
   };
-  std::vector<double> betas, lengths; // lengths: 0 = on A's contact curve (reach)
+  // lengths: the lattice vectors' lengths; empty: each proposal lies on A's contact curve
+  // (reach(beta)).
+  std::vector<double> betas, lengths;
   if (cls == A.S.ClassId && !ClassLattice[cls].empty())
   {
     // The lattice neighbours of A that no placed neighbour already rules out.
