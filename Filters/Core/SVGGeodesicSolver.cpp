@@ -64,6 +64,51 @@ void RadixSort(std::vector<std::pair<std::uint32_t, int>>& a, std::vector<std::p
     a.swap(scratch);
   }
 }
+
+// The geodesic triangle (x, p1, p2) laid out in x's tangent plane (x at the origin, p1 -> p2
+// counter-clockwise), with the source unfolded across the segment p1 p2 from its distances d1,
+// d2: the source S = (Sx, Sy) lies on the far side of p1 p2 from x, and the segment from S to x
+// crosses p1 p2 at the parameter T = Num / Den. Valid when the directions span an angle strictly
+// between 0 and pi, the distances form a triangle with p1 p2, and the crossing lies on the
+// segment; computed without branches (the pairs' outcomes are unpredictable), with one division
+// and one square root. Its distance to x is sqrt(S2).
+struct Unfolding
+{
+  double Sx, Sy, S2, Num, Den;
+  bool Valid;
+};
+
+inline Unfolding UnfoldAcross(double p1x, double p1y, double p2x, double p2y, double d1, double d2)
+{
+  // The two directions must span an angle strictly between 0 and pi; vertices in the same
+  // direction form no triangle.
+  const double cross = p1x * p2y - p1y * p2x;
+  const bool spans = cross > 1e-12 * (std::abs(p1x) + std::abs(p1y)) * (std::abs(p2x) + std::abs(p2y));
+  // Unnormalised: with the segment's length L, alongL = along * L and hL = h * L, where `along`
+  // and h place the source from p1 along and across p1 -> p2.
+  const double ex = p2x - p1x, ey = p2y - p1y;
+  const double L2 = ex * ex + ey * ey;
+  const double alongL = 0.5 * (d1 * d1 - d2 * d2 + L2);
+  const double h2L2 = d1 * d1 * L2 - alongL * alongL;
+  const bool triangle = h2L2 >= 0.0;
+  const double hL = std::sqrt(triangle ? h2L2 : 0.0);
+  // Away from x (the origin): x is to the left of p1 -> p2, so the source is to the right,
+  // along (ey, -ex).
+  const double inv = 1.0 / (spans ? L2 : 1.0);
+  Unfolding u;
+  u.Sx = p1x + (ex * alongL + ey * hL) * inv;
+  u.Sy = p1y + (ey * alongL - ex * hL) * inv;
+  u.S2 = u.Sx * u.Sx + u.Sy * u.Sy;
+  // The segment from S to x crosses p1 p2 between its end points: T in [0, 1], tested without
+  // dividing.
+  const double qx = -u.Sx, qy = -u.Sy;
+  u.Den = ex * qy - ey * qx;
+  u.Num = (u.Sx - p1x) * qy - (u.Sy - p1y) * qx;
+  const double sn = u.Den > 0.0 ? u.Num : -u.Num, sd = u.Den > 0.0 ? u.Den : -u.Den;
+  // (NaN distances, from unreached vertices, fail these comparisons.)
+  u.Valid = spans && triangle && sd > 0.0 && sn >= -1e-9 * sd && sn <= (1.0 + 1e-9) * sd;
+  return u;
+}
 } // namespace
 
 SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVertexGraph& graph)
@@ -188,6 +233,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       ++hi;
     }
     // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too.
+    double relaxed = Inf, nearest2 = Inf; // without angles: the minima over the pairs
     for (std::int64_t k = lo - 1; k <= hi; ++k)
     {
       if (!closed && (a + k < 0 || a + k + 1 > n - 1))
@@ -205,9 +251,21 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       const double d1 = Graph.Distance(G.StencilTarget(e1));
       const double d2 = Graph.Distance(G.StencilTarget(e2));
       // Graph relaxation with the (refined) distances of the cone's stencil vertices.
+      const double c1 = d1 + G.StencilDistance(e1), c2 = d2 + G.StencilDistance(e2);
+      const double p1x = G.StencilX(e1), p1y = G.StencilY(e1);
+      const double p2x = wraps ? G.StencilWrapX(x) : G.StencilX(e2);
+      const double p2y = wraps ? G.StencilWrapY(x) : G.StencilY(e2);
+      const Unfolding u = UnfoldAcross(p1x, p1y, p2x, p2y, d1, d2);
+      if (!angles)
+      {
+        // Distances only: minima without branches.
+        relaxed = std::min(relaxed, std::min(c1, c2));
+        nearest2 = std::min(nearest2, u.Valid ? u.S2 : Inf);
+        continue;
+      }
       for (const std::int64_t e : { e1, e2 })
       {
-        const double c = Graph.Distance(G.StencilTarget(e)) + G.StencilDistance(e);
+        const double c = e == e1 ? c1 : c2;
         if (unfold && c < best)
         {
           best = c;
@@ -215,67 +273,25 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
         }
         // A neighbour whose angle is known stands in when the predecessor's is not (the
         // source itself has none).
-        if (angles && !std::isfinite(bestAngle) && std::isfinite(Angle[G.StencilTarget(e)]))
+        if (!std::isfinite(bestAngle) && std::isfinite(Angle[G.StencilTarget(e)]))
         {
           bestAngle = Angle[G.StencilTarget(e)];
         }
       }
-      if (!(d1 < Inf) || !(d2 < Inf))
-      {
-        continue;
-      }
-      const double p1x = G.StencilX(e1), p1y = G.StencilY(e1);
-      const double p2x = wraps ? G.StencilWrapX(x) : G.StencilX(e2);
-      const double p2y = wraps ? G.StencilWrapY(x) : G.StencilY(e2);
-      // The two directions must span an angle strictly between 0 and pi (counter-clockwise
-      // from p1 to p2); vertices in the same direction form no triangle.
-      const double cross = p1x * p2y - p1y * p2x;
-      if (!(cross > 1e-12 * (std::abs(p1x) + std::abs(p1y)) * (std::abs(p2x) + std::abs(p2y))))
-      {
-        continue;
-      }
-      // Unnormalised (one division and one square root per pair, one more of each only for a
-      // shorter candidate): with the segment's length L, alongL = along * L and hL = h * L,
-      // where `along` and h place the source from p1 along and across p1 -> p2.
-      const double ex = p2x - p1x, ey = p2y - p1y;
-      const double L2 = ex * ex + ey * ey;
-      const double alongL = 0.5 * (d1 * d1 - d2 * d2 + L2);
-      const double h2L2 = d1 * d1 * L2 - alongL * alongL;
-      if (h2L2 < 0.0)
-      {
-        continue;
-      }
-      const double hL = std::sqrt(h2L2);
-      // Away from x (the origin): x is to the left of p1 -> p2, so the source is to the right,
-      // along (ey, -ex).
-      const double inv = 1.0 / L2;
-      const double sx = p1x + (ex * alongL + ey * hL) * inv;
-      const double sy = p1y + (ey * alongL - ex * hL) * inv;
-      // The segment from the unfolded source to x crosses p1 p2 (between its end points): its
-      // parameter t = num / den on p1 p2 lies in [0, 1], tested without dividing.
-      const double qx = -sx, qy = -sy;
-      const double den = ex * qy - ey * qx;
-      if (den == 0.0)
-      {
-        continue;
-      }
-      const double num = (sx - p1x) * qy - (sy - p1y) * qx;
-      const double sign = den > 0.0 ? 1.0 : -1.0;
-      const double sn = sign * num, sd = sign * den;
-      if (sn < -1e-9 * sd || sn > (1.0 + 1e-9) * sd)
-      {
-        continue;
-      }
       // Only a shorter candidate matters (its angle included).
-      const double s2 = sx * sx + sy * sy;
-      if (!(s2 < best * best) && !(angles && s2 < unfolded * unfolded))
+      const double s2 = u.S2;
+      if (!u.Valid || (!(s2 < best * best) && !(s2 < unfolded * unfolded)))
       {
         continue;
       }
+      const double sx = u.Sx, sy = u.Sy, qx = -sx, qy = -sy, num = u.Num, den = u.Den;
       const double t = num / den;
       const double candidate = std::sqrt(s2);
-      best = std::min(best, candidate);
-      if (angles && candidate < unfolded)
+      if (unfold)
+      {
+        best = std::min(best, candidate);
+      }
+      if (candidate < unfolded)
       {
         // Interpolated along u1 u2 where the unfolded geodesic crosses it.
         const double a1 = Angle[G.StencilTarget(e1)], a2 = Angle[G.StencilTarget(e2)];
@@ -296,6 +312,10 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
           unfoldedAngle = b1 + w * d;
         }
       }
+    }
+    if (unfold && !angles)
+    {
+      best = std::min(best, std::min(relaxed, std::sqrt(nearest2)));
     }
     // The unfolded geodesic's angle when it is (one of) the shortest. Otherwise the source is
     // placed in x's tangent plane from x's distance and that of the cone neighbour with a known

@@ -486,3 +486,30 @@ TEST(SaddleVertexGraph, UnfoldingRefinementOnDevelopableSurfaces)
     }
   }
 }
+
+TEST(SaddleVertexGraph, AnglesWithoutRefinementKeepGraphDistances)
+{
+  // Departure angles are interpolated across the unfolded geodesic triangles; with refinement
+  // off, that unfolding must not lower the distances (on a plane it would: graph paths are
+  // polylines there, the unfolding is exact). The angles themselves still come out.
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(30, 20, 3.0, 2.0));
+  const SaddleVertexGraph g = BuildGraph(m, 50);
+  SVGGeodesicSolver svg(m, g);
+  for (const SurfacePoint& s : { SurfacePoint::AtVertex(77), SurfacePoint::InFace(400, 0.2, 0.3, 0.5) })
+  {
+    SVGSolveOptions plain, withAngles;
+    plain.Refine = false;
+    withAngles.Refine = false;
+    withAngles.Angles = true;
+    ASSERT_TRUE(svg.Solve({ s }, plain));
+    const std::vector<double> expected = svg.Distances();
+    ASSERT_TRUE(svg.Solve({ s }, withAngles));
+    int angles = 0;
+    for (int v = 0; v < m.NumberOfVertices(); ++v)
+    {
+      EXPECT_EQ(svg.Distance(v), expected[v]) << v;
+      angles += std::isfinite(svg.DepartureAngle(v)) ? 1 : 0;
+    }
+    EXPECT_GT(angles, m.NumberOfVertices() - 2);
+  }
+}
