@@ -119,6 +119,15 @@ SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVerte
 {
   Exact.assign(M.NumberOfVertices(), 0);
   Angle.assign(M.NumberOfVertices(), NaN);
+  // Per node (the sweep's numbering): whether the vertex's stencil closes into a full fan.
+  if (G.NumberOfVertices() == M.NumberOfVertices())
+  {
+    Interior.resize(M.NumberOfVertices());
+    for (int n = 0; n < M.NumberOfVertices(); ++n)
+    {
+      Interior[n] = !M.IsBoundaryVertex(G.Vertex(n));
+    }
+  }
 }
 
 void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
@@ -210,7 +219,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     // Unfold only the geodesic triangles around that direction (within a wide margin of the
     // graph's angular error): the straddling pair is among them.
     const std::int64_t n = end - begin;
-    const bool closed = !M.IsBoundaryVertex(x);
+    const bool closed = Interior[x] != 0;
     const double ax = G.StencilX(arrival), ay = G.StencilY(arrival);
     // Within the cone: dot >= cos * |a| |e|, without a square root.
     const double ar2 = ax * ax + ay * ay, cone2 = ConeCosine * ConeCosine;
@@ -411,7 +420,7 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
     }
     for (int v : Local.FinalVertices())
     {
-      seeds.emplace_back(v, Local.Distance(v));
+      seeds.emplace_back(G.Node(v), Local.Distance(v));
     }
   }
   // Corners of faces holding a piece: the exact in-face distance to the piece.
@@ -420,7 +429,7 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
     const auto& t = M.Face(p.Face);
     for (int k = 0; k < 3; ++k)
     {
-      seeds.emplace_back(t[k], PointSegmentDistance(M.Position(t[k]), p.A, p.B));
+      seeds.emplace_back(G.Node(t[k]), PointSegmentDistance(M.Position(t[k]), p.A, p.B));
     }
   }
   Graph.Solve(seeds, options.Algorithm, options.MaximumDistance);
@@ -431,11 +440,11 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
     // The exact local solve's vertices need no refinement, and their angles are exact.
     for (int v : Local.FinalVertices())
     {
-      Exact[v] = !exactSources.empty();
+      Exact[G.Node(v)] = !exactSources.empty();
       if (angles)
       {
-        Angle[v] = Local.DepartureAngle(v);
-        AngleSet.push_back(v);
+        Angle[G.Node(v)] = Local.DepartureAngle(v);
+        AngleSet.push_back(G.Node(v));
       }
     }
     if (angles)
@@ -446,7 +455,7 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
     Refine(options.MaximumDistance, options.Refine, angles);
     for (int v : Local.FinalVertices())
     {
-      Exact[v] = 0;
+      Exact[G.Node(v)] = 0;
     }
   }
   return true;
@@ -481,7 +490,7 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
     }
     if (s.IsVertex())
     {
-      vertexSeeds.emplace_back(s.Vertex, 0.0);
+      vertexSeeds.emplace_back(G.Node(s.Vertex), 0.0);
     }
     else
     {
@@ -511,7 +520,7 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
   // Vertex sources join the exact local solve so that its truncation sees all sources.
   for (const auto& v : vertexSeeds)
   {
-    facePoints.push_back(SurfacePoint::AtVertex(v.first));
+    facePoints.push_back(SurfacePoint::AtVertex(G.Vertex(v.first)));
   }
   const int k = std::max(G.GetK(), 1);
   return SolveFromPieces(facePoints, k * static_cast<int>(facePoints.size()), options);
@@ -568,11 +577,11 @@ double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
   }
   if (q.IsVertex())
   {
-    return Graph.Distance(q.Vertex);
+    return Distance(q.Vertex);
   }
   const auto& t = M.Face(q.Face);
-  double best = UnfoldedDistance(M, q.Face, q.Bary,
-    { { Graph.Distance(t[0]), Graph.Distance(t[1]), Graph.Distance(t[2]) } });
+  double best =
+    UnfoldedDistance(M, q.Face, q.Bary, { { Distance(t[0]), Distance(t[1]), Distance(t[2]) } });
   // Sources in the same face: the straight segment inside the face.
   auto it = std::lower_bound(Pieces.begin(), Pieces.end(), q.Face,
     [](const Piece& p, int f) { return p.Face < f; });
@@ -585,6 +594,29 @@ double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
     }
   }
   return best;
+}
+
+std::vector<double> SVGGeodesicSolver::Distances() const
+{
+  std::vector<double> d(M.NumberOfVertices(), Inf);
+  if (G.NumberOfVertices() == M.NumberOfVertices())
+  {
+    for (int n = 0; n < M.NumberOfVertices(); ++n)
+    {
+      d[G.Vertex(n)] = Graph.Distance(n);
+    }
+  }
+  return d;
+}
+
+const std::vector<int>& SVGGeodesicSolver::Reached() const
+{
+  ReachedVertices.clear();
+  for (int n : Graph.Reached())
+  {
+    ReachedVertices.push_back(G.Vertex(n));
+  }
+  return ReachedVertices;
 }
 
 double SVGGeodesicSolver::Distance(const SurfacePoint& a, const SurfacePoint& b)

@@ -60,14 +60,15 @@ public:
   // Spacing of the samples seeding the exact solve near a curve, in mean edge lengths.
   static constexpr double CurveSampleSpacing = 0.125;
 
-  double Distance(int v) const { return Graph.Distance(v); }
+  double Distance(int v) const { return Graph.Distance(G.Node(v)); }
   // With SVGSolveOptions::Angles: the departure angle at the source of v's geodesic, in the
   // convention of ExactGeodesicSolver::DepartureAngle (modulo the source's angle sum); NaN for
   // the source itself, unreached vertices, or when not computed.
-  double DepartureAngle(int v) const { return Angle[v]; }
-  std::vector<double> Distances() const { return Graph.Distances(); }
+  double DepartureAngle(int v) const { return Angle[G.Node(v)]; }
+  // Distances of all vertices (infinite where unreached), by mesh vertex.
+  std::vector<double> Distances() const;
   // Vertices reached by the last solve (unordered).
-  const std::vector<int>& Reached() const { return Graph.Reached(); }
+  const std::vector<int>& Reached() const;
   // Distance of any surface point from the last solve's sources.
   double DistanceAt(const SurfacePoint& q) const;
 
@@ -97,9 +98,12 @@ private:
   ExactGeodesicSolver Local;
   GraphDistanceSolver Graph;
   std::vector<Piece> Pieces; // sorted by face
-  std::vector<unsigned char> Exact; // seeds with exact distances (left alone by Refine)
-  std::vector<double> Angle;        // departure angles (Angles option)
-  std::vector<int> AngleSet;        // vertices whose Angle is set
+  // Per graph node (SaddleVertexGraph::Node), like the graph solver's arrays:
+  std::vector<unsigned char> Exact;    // seeds with exact distances (left alone by Refine)
+  std::vector<unsigned char> Interior; // not a boundary vertex (its stencil is a closed fan)
+  std::vector<double> Angle;           // departure angles (Angles option)
+  std::vector<int> AngleSet;           // nodes whose Angle is set
+  mutable std::vector<int> ReachedVertices;
   double AnglePeriod = 0.0;         // full turn of the source's tangent angles
   // The sweep's order: reached vertices sorted by distance (radix sort on 32-bit keys).
   std::vector<std::pair<std::uint32_t, int>> Order, OrderScratch;

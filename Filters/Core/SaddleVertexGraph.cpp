@@ -23,13 +23,25 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
-constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '3' };
+constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '4' };
 
 // Build memory per vertex and per unit of K (bytes), above the peaks SVGBenchmark measured on
 // armadillo, refined_elephant and mannequin-devil: 4.9-5.0 KB per vertex at K = 50, 9.2-10.1 KB
 // at K = 100, 16.7-18.8 KB at K = 200 (about 95 bytes per unit of K).
 constexpr double PER_VERTEX_BYTES = 1024.0;
 constexpr double PER_LINK_BYTES = 100.0;
+
+// The bits of a 21-bit integer spread to every third bit (for 63-bit Z-order keys).
+std::uint64_t SpreadBits(std::uint64_t v)
+{
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
 } // namespace
 
 double SaddleVertexGraph::AvailableMemoryBytes()
@@ -72,7 +84,7 @@ std::size_t SaddleVertexGraph::MemoryBytes() const
   return (Offsets.size() + StencilOffsets.size()) * sizeof(std::int64_t) +
     (Targets.size() + StencilTargets.size()) * sizeof(int) +
     (Weights.size() + StencilR.size() + StencilXY.size() + WrapXY.size()) * sizeof(double) +
-    LinkStencil.size() * sizeof(int);
+    (LinkStencil.size() + NodeOf.size() + VertexOf.size()) * sizeof(int);
 }
 
 void SaddleVertexGraph::Clear()
@@ -86,6 +98,8 @@ void SaddleVertexGraph::Clear()
   StencilXY.clear();
   WrapXY.clear();
   LinkStencil.clear();
+  NodeOf.clear();
+  VertexOf.clear();
   K = 0;
 }
 
@@ -288,6 +302,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
       Weights[Offsets[v] + i] = raw[count[v] + i].second;
     }
   }
+  Renumber(mesh);
   IndexLinksInStencils();
   if (progress && !progress(1.0))
   {
@@ -298,6 +313,83 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   K = k;
   Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
+}
+
+void SaddleVertexGraph::Renumber(const TriangleMesh& mesh)
+{
+  // Nodes in Z-order of the vertex positions (ties by vertex index): vertices close on the
+  // surface get close nodes, so that a solve's wavefront touches few cache lines and pages of
+  // the per-node arrays. Built in mesh order, the arrays are permuted here and every link and
+  // stencil target is mapped to its node; adjacencies are sorted by target node again.
+  const int nv = NumberOfVertices();
+  Vec3 lo = mesh.Position(0), hi = lo;
+  for (int v = 1; v < nv; ++v)
+  {
+    const Vec3& p = mesh.Position(v);
+    lo = { std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z) };
+    hi = { std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z) };
+  }
+  const double extent = std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
+  const double scale = extent > 0.0 ? 2097151.0 / extent : 0.0;
+  std::vector<std::pair<std::uint64_t, int>> keys(nv);
+  for (int v = 0; v < nv; ++v)
+  {
+    const Vec3& p = mesh.Position(v);
+    auto cell = [scale](double t) { return static_cast<std::uint64_t>(std::min(2097151.0, std::max(0.0, t * scale))); };
+    keys[v] = { SpreadBits(cell(p.x - lo.x)) | SpreadBits(cell(p.y - lo.y)) << 1 | SpreadBits(cell(p.z - lo.z)) << 2, v };
+  }
+  std::sort(keys.begin(), keys.end());
+  VertexOf.resize(nv);
+  NodeOf.resize(nv);
+  for (int n = 0; n < nv; ++n)
+  {
+    VertexOf[n] = keys[n].second;
+    NodeOf[keys[n].second] = n;
+  }
+  std::vector<std::int64_t> offsets(nv + 1, 0), stencilOffsets(nv + 1, 0);
+  for (int n = 0; n < nv; ++n)
+  {
+    const int v = VertexOf[n];
+    offsets[n + 1] = offsets[n] + (Offsets[v + 1] - Offsets[v]);
+    stencilOffsets[n + 1] = stencilOffsets[n] + (StencilOffsets[v + 1] - StencilOffsets[v]);
+  }
+  std::vector<int> targets(Targets.size()), stencilTargets(StencilTargets.size());
+  std::vector<double> weights(Weights.size()), stencilR(StencilR.size()), stencilXY(StencilXY.size()),
+    wrapXY(WrapXY.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int n = 0; n < nv; ++n)
+  {
+    const int v = VertexOf[n];
+    std::vector<std::pair<int, double>> links;
+    links.reserve(static_cast<std::size_t>(Offsets[v + 1] - Offsets[v]));
+    for (std::int64_t e = Offsets[v]; e < Offsets[v + 1]; ++e)
+    {
+      links.emplace_back(NodeOf[Targets[e]], Weights[e]);
+    }
+    std::sort(links.begin(), links.end());
+    for (std::size_t i = 0; i < links.size(); ++i)
+    {
+      targets[offsets[n] + i] = links[i].first;
+      weights[offsets[n] + i] = links[i].second;
+    }
+    for (std::int64_t e = StencilOffsets[v], f = stencilOffsets[n]; e < StencilOffsets[v + 1]; ++e, ++f)
+    {
+      stencilTargets[f] = NodeOf[StencilTargets[e]];
+      stencilR[f] = StencilR[e];
+      stencilXY[2 * f] = StencilXY[2 * e];
+      stencilXY[2 * f + 1] = StencilXY[2 * e + 1];
+    }
+    wrapXY[2 * n] = WrapXY[2 * v];
+    wrapXY[2 * n + 1] = WrapXY[2 * v + 1];
+  }
+  Offsets.swap(offsets);
+  Targets.swap(targets);
+  Weights.swap(weights);
+  StencilOffsets.swap(stencilOffsets);
+  StencilTargets.swap(stencilTargets);
+  StencilR.swap(stencilR);
+  StencilXY.swap(stencilXY);
+  WrapXY.swap(wrapXY);
 }
 
 void SaddleVertexGraph::IndexLinksInStencils()
@@ -350,6 +442,7 @@ bool SaddleVertexGraph::Save(
   sum.AddVector(StencilR);
   sum.AddVector(StencilXY);
   sum.AddVector(WrapXY);
+  sum.AddVector(VertexOf);
   out.write(Magic, sizeof(Magic));
   out.write(reinterpret_cast<const char*>(&meshHash), sizeof(meshHash));
   out.write(reinterpret_cast<const char*>(&k), sizeof(k));
@@ -365,6 +458,7 @@ bool SaddleVertexGraph::Save(
   out.write(reinterpret_cast<const char*>(StencilR.data()), StencilR.size() * sizeof(double));
   out.write(reinterpret_cast<const char*>(StencilXY.data()), StencilXY.size() * sizeof(double));
   out.write(reinterpret_cast<const char*>(WrapXY.data()), WrapXY.size() * sizeof(double));
+  out.write(reinterpret_cast<const char*>(VertexOf.data()), VertexOf.size() * sizeof(int));
   out.write(reinterpret_cast<const char*>(&sum.H), sizeof(sum.H));
   if (!out)
   {
@@ -399,7 +493,10 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   in.read(reinterpret_cast<char*>(&ne), sizeof(ne));
   if (!in || std::memcmp(magic, Magic, sizeof(Magic)) != 0)
   {
-    error = path + " is not a saddle vertex graph cache file";
+    // (Format 004 added the node order; earlier files are rebuilt.)
+    error = in && std::memcmp(magic, Magic, 5) == 0
+      ? path + " is a saddle vertex graph cache file of another format version"
+      : path + " is not a saddle vertex graph cache file";
     return false;
   }
   if (hash != meshHash)
@@ -431,7 +528,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   in.read(reinterpret_cast<char*>(weights.data()), weights.size() * sizeof(double));
   in.read(reinterpret_cast<char*>(&ns), sizeof(ns));
   if (!in || ns < 0 || ns > (1LL << 40) ||
-    fileSize != linksEnd + 8 + (nv + 1) * 8 + ns * (4 + 8 + 16) + 16 * nv + 8)
+    fileSize != linksEnd + 8 + (nv + 1) * 8 + ns * (4 + 8 + 16) + 16 * nv + 4 * nv + 8)
   {
     error = path + " is truncated or corrupt (size does not match its header)";
     return false;
@@ -439,12 +536,14 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   std::vector<std::int64_t> stencilOffsets(nv + 1);
   std::vector<int> stencilTargets(ns);
   std::vector<double> stencilR(ns), stencilXY(2 * ns), wrapXY(2 * nv);
+  std::vector<int> vertexOf(nv);
   std::uint64_t stored = 0;
   in.read(reinterpret_cast<char*>(stencilOffsets.data()), stencilOffsets.size() * sizeof(std::int64_t));
   in.read(reinterpret_cast<char*>(stencilTargets.data()), stencilTargets.size() * sizeof(int));
   in.read(reinterpret_cast<char*>(stencilR.data()), stencilR.size() * sizeof(double));
   in.read(reinterpret_cast<char*>(stencilXY.data()), stencilXY.size() * sizeof(double));
   in.read(reinterpret_cast<char*>(wrapXY.data()), wrapXY.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(vertexOf.data()), vertexOf.size() * sizeof(int));
   in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
   if (!in)
   {
@@ -466,6 +565,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   sum.AddVector(stencilR);
   sum.AddVector(stencilXY);
   sum.AddVector(wrapXY);
+  sum.AddVector(vertexOf);
   if (sum.H != stored)
   {
     error = path + " is corrupt (checksum mismatch)";
@@ -511,6 +611,18 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
       return false;
     }
   }
+  // The node order must be a permutation of the vertices.
+  std::vector<int> nodeOf(nv, -1);
+  for (std::int64_t n = 0; n < nv; ++n)
+  {
+    const int v = vertexOf[n];
+    if (v < 0 || v >= nv || nodeOf[v] >= 0)
+    {
+      error = path + " is corrupt (bad node order)";
+      return false;
+    }
+    nodeOf[v] = static_cast<int>(n);
+  }
   Offsets = std::move(offsets);
   Targets = std::move(targets);
   Weights = std::move(weights);
@@ -519,6 +631,8 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   StencilR = std::move(stencilR);
   StencilXY = std::move(stencilXY);
   WrapXY = std::move(wrapXY);
+  VertexOf = std::move(vertexOf);
+  NodeOf = std::move(nodeOf);
   IndexLinksInStencils();
   K = fileK;
   Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;

@@ -72,7 +72,15 @@ public:
   static double AvailableMemoryBytes();
   void Clear();
 
-  // Neighbours of v: Targets[Begin(v) .. End(v)) with Weights.
+  // The graph's nodes are the mesh vertices renumbered for memory locality (Z-order of their
+  // positions: a solve's wavefront then touches neighbouring entries of the per-node arrays).
+  // Everything below (adjacency, stencils) and GraphDistanceSolver work on nodes: Node(v) is
+  // mesh vertex v's node, Vertex(n) node n's mesh vertex. SVGGeodesicSolver speaks mesh
+  // vertices.
+  int Node(int vertex) const { return NodeOf[vertex]; }
+  int Vertex(int node) const { return VertexOf[node]; }
+
+  // Neighbours of node v: Targets[Begin(v) .. End(v)) with Weights, sorted by target node.
   std::int64_t Begin(int v) const { return Offsets[v]; }
   std::int64_t End(int v) const { return Offsets[v + 1]; }
   int Target(std::int64_t e) const { return Targets[e]; }
@@ -153,7 +161,8 @@ public:
   {
     return Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights &&
       StencilOffsets == o.StencilOffsets && StencilTargets == o.StencilTargets &&
-      StencilR == o.StencilR && StencilXY == o.StencilXY && WrapXY == o.WrapXY;
+      StencilR == o.StencilR && StencilXY == o.StencilXY && WrapXY == o.WrapXY &&
+      VertexOf == o.VertexOf;
   }
 
 private:
@@ -166,6 +175,8 @@ private:
   std::vector<double> StencilXY;
   std::vector<double> WrapXY;
   std::vector<int> LinkStencil;
+  std::vector<int> NodeOf, VertexOf;
+  void Renumber(const TriangleMesh& mesh);
   void IndexLinksInStencils();
   int K = 0;
   double Seconds = 0.0;
@@ -177,23 +188,23 @@ enum class GraphAlgorithm
   Dijkstra         // binary heap
 };
 
-// Single- or multi-source shortest paths on a saddle vertex graph. Reusable: a solve resets only
-// what the previous one touched.
+// Single- or multi-source shortest paths on a saddle vertex graph, between its nodes
+// (SaddleVertexGraph::Node). Reusable: a solve resets only what the previous one touched.
 class GraphDistanceSolver
 {
 public:
   explicit GraphDistanceSolver(const SaddleVertexGraph& graph);
 
-  // Seeds are (vertex, initial distance). Vertices farther than maxDistance (> 0) stay
+  // Seeds are (node, initial distance). Nodes farther than maxDistance (> 0) stay
   // unreached (infinite); maxDistance <= 0 means unlimited.
   void Solve(const std::vector<std::pair<int, double>>& seeds, GraphAlgorithm algorithm,
     double maxDistance = 0.0);
   double Distance(int v) const { return Dist[v]; }
   const std::vector<double>& Distances() const { return Dist; }
-  // Vertices reached by the last solve (unordered).
+  // Nodes reached by the last solve (unordered).
   const std::vector<int>& Reached() const { return Touched; }
   std::int64_t Relaxations() const { return NumRelaxations; }
-  // The vertex whose link gave v its distance (-1 for seeds and unreached vertices).
+  // The node whose link gave v its distance (-1 for seeds and unreached vertices).
   int Predecessor(int v) const { return Pred[v].Vertex; }
   // The link (adjacency entry of the predecessor) that gave v its distance, or -1.
   std::int64_t PredecessorLink(int v) const { return Pred[v].Link; }

@@ -1,4 +1,5 @@
 #include "ExactGeodesic.h"
+#include "Hash.h"
 #include "GeodesicUnfolding.h"
 #include "MeshGenerators.h"
 #include "SVGGeodesicSolver.h"
@@ -8,10 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <random>
 
@@ -112,7 +115,7 @@ TEST(SaddleVertexGraph, SymmetricSortedAndDeterministic)
       }
       EXPECT_TRUE(found);
       // A link is never shorter than the straight 3D chord.
-      EXPECT_GE(g.Weight(e), Norm(m.Position(v) - m.Position(w)) * (1 - 1e-12));
+      EXPECT_GE(g.Weight(e), Norm(m.Position(g.Vertex(v)) - m.Position(g.Vertex(w))) * (1 - 1e-12));
     }
   }
   EXPECT_TRUE(BuildGraph(m, 50, 1) == BuildGraph(m, 50, 2));
@@ -450,13 +453,104 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
   EXPECT_NE(error.find("corrupt"), std::string::npos) << error;
   writeFile(bytes.substr(0, bytes.size() - 100));
   EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  // A file of the previous format (no node order) is recognised as such.
+  std::string previous = bytes;
+  previous[7] = '3';
+  writeFile(previous);
+  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_NE(error.find("another format version"), std::string::npos) << error;
   writeFile("not a graph at all");
   EXPECT_FALSE(loaded.Load(path, hash, 20, error));
   writeFile("");
   EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  // A forged file with a valid checksum whose node order is not a permutation (the last node
+  // repeats the first's vertex): rejected by the structural checks, not read out of range.
+  {
+    std::string forged = bytes;
+    const std::size_t nodeOrder = forged.size() - 8 - 4 * m.NumberOfVertices();
+    std::memcpy(&forged[forged.size() - 12], &forged[nodeOrder], 4);
+    gs::Hasher sum;
+    sum.Add(forged.data() + 8, forged.size() - 16);
+    std::memcpy(&forged[forged.size() - 8], &sum.H, 8);
+    writeFile(forged);
+    EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+    EXPECT_NE(error.find("node order"), std::string::npos) << error;
+    EXPECT_TRUE(loaded.Empty());
+  }
   writeFile(bytes);
   EXPECT_TRUE(loaded.Load(path, hash, 20, error)) << error;
   std::remove(path.c_str());
+}
+
+TEST(SaddleVertexGraph, NodesAreTheVerticesInSpatialOrder)
+{
+  // Node and Vertex are inverse permutations; every mesh edge is a link between its end
+  // points' nodes with the edge's length; and the order is local: a mesh edge joins nodes much
+  // closer in index than the vertices of a shuffled mesh (whose order is random).
+  TriangleSoup soup = MakeIcosphere(1.0, 4);
+  std::vector<int> shuffle(soup.Points.size());
+  for (std::size_t i = 0; i < shuffle.size(); ++i)
+  {
+    shuffle[i] = static_cast<int>(i);
+  }
+  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(5));
+  TriangleSoup shuffled = soup;
+  for (std::size_t i = 0; i < shuffle.size(); ++i)
+  {
+    shuffled.Points[shuffle[i]] = soup.Points[i];
+  }
+  for (auto& t : shuffled.Triangles)
+  {
+    for (auto& v : t)
+    {
+      v = shuffle[v];
+    }
+  }
+  const TriangleMesh m = BuildMesh(shuffled);
+  const SaddleVertexGraph g = BuildGraph(m, 20);
+  const int nv = m.NumberOfVertices();
+  std::vector<int> seen(nv, 0);
+  for (int v = 0; v < nv; ++v)
+  {
+    ASSERT_GE(g.Node(v), 0);
+    ASSERT_LT(g.Node(v), nv);
+    EXPECT_EQ(g.Vertex(g.Node(v)), v);
+    ++seen[g.Node(v)];
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), nv);
+  double vertexGap = 0.0, nodeGap = 0.0;
+  for (int h = 0; h < m.NumberOfHalfedges(); ++h)
+  {
+    const int a = m.Origin(h), b = m.Destination(h);
+    const int na = g.Node(a), nb = g.Node(b);
+    bool found = false;
+    for (std::int64_t e = g.Begin(na); e < g.End(na); ++e)
+    {
+      if (g.Target(e) == nb)
+      {
+        found = true;
+        EXPECT_NEAR(g.Weight(e), m.EdgeLength(h), 1e-12);
+      }
+    }
+    EXPECT_TRUE(found) << a << " " << b;
+    vertexGap += std::abs(a - b);
+    nodeGap += std::abs(na - nb);
+  }
+  EXPECT_LT(nodeGap, 0.25 * vertexGap);
+  // Solves speak mesh vertices whatever the order: the shuffled sphere gives the unshuffled
+  // one's distances.
+  const TriangleMesh plain = BuildMesh(soup);
+  const SaddleVertexGraph gp = BuildGraph(plain, 20);
+  SVGGeodesicSolver a(plain, gp), b(m, g);
+  ASSERT_TRUE(a.Solve({ SurfacePoint::AtVertex(7) }));
+  ASSERT_TRUE(b.Solve({ SurfacePoint::AtVertex(shuffle[7]) }));
+  const std::vector<double> da = a.Distances(), db = b.Distances();
+  for (int v = 0; v < nv; ++v)
+  {
+    EXPECT_NEAR(da[v], db[shuffle[v]], 1e-9 * (1.0 + da[v]));
+    EXPECT_EQ(b.Distance(shuffle[v]), db[shuffle[v]]);
+  }
+  EXPECT_EQ(b.Reached().size(), static_cast<std::size_t>(nv));
 }
 
 TEST(SaddleVertexGraph, UnfoldingRefinementOnDevelopableSurfaces)
