@@ -166,6 +166,7 @@ public:
   }
 
 private:
+  friend class GraphDistanceSolver; // its scan reads the adjacency arrays directly
   std::vector<std::int64_t> Offsets;
   std::vector<int> Targets;
   std::vector<double> Weights;
