@@ -106,7 +106,8 @@ inline Unfolding UnfoldAcross(double p1x, double p1y, double p2x, double p2y, do
   u.Num = (u.Sx - p1x) * qy - (u.Sy - p1y) * qx;
   const double sn = u.Den > 0.0 ? u.Num : -u.Num, sd = u.Den > 0.0 ? u.Den : -u.Den;
   // (NaN distances, from unreached vertices, fail these comparisons.)
-  u.Valid = spans && triangle && sd > 0.0 && sn >= -1e-9 * sd && sn <= (1.0 + 1e-9) * sd;
+  // (Bitwise &: with &&, the compiler branches on each outcome.)
+  u.Valid = spans & triangle & (sd > 0.0) & (sn >= -1e-9 * sd) & (sn <= (1.0 + 1e-9) * sd);
   return u;
 }
 } // namespace
