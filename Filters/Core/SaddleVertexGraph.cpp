@@ -194,19 +194,23 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     return false;
   }
 
+  // Nodes: the vertices in Z-order (see OrderNodes); everything below is laid out by node.
+  OrderNodes(mesh);
+
   // Polar stencils: each vertex's own direct neighbours sorted by departure angle.
   StencilOffsets.assign(nv + 1, 0);
-  for (int v = 0; v < nv; ++v)
+  for (int n = 0; n < nv; ++n)
   {
-    StencilOffsets[v + 1] = StencilOffsets[v] + static_cast<std::int64_t>(direct[v].size());
+    StencilOffsets[n + 1] = StencilOffsets[n] + static_cast<std::int64_t>(direct[VertexOf[n]].size());
   }
   StencilTargets.resize(StencilOffsets[nv]);
   StencilR.resize(StencilOffsets[nv]);
   StencilXY.resize(2 * StencilOffsets[nv]);
   WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
-  for (int v = 0; v < nv; ++v)
+  for (int n = 0; n < nv; ++n)
   {
+    const int v = VertexOf[n];
     std::vector<int> order(direct[v].size());
     for (std::size_t i = 0; i < order.size(); ++i)
     {
@@ -217,17 +221,17 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     });
     for (std::size_t i = 0; i < order.size(); ++i)
     {
-      const std::int64_t e = StencilOffsets[v] + static_cast<std::int64_t>(i);
+      const std::int64_t e = StencilOffsets[n] + static_cast<std::int64_t>(i);
       const double r = direct[v][order[i]].second, a = angles[v][order[i]];
-      StencilTargets[e] = direct[v][order[i]].first;
+      StencilTargets[e] = NodeOf[direct[v][order[i]].first];
       StencilR[e] = r;
       StencilXY[2 * e] = r * std::cos(a);
       StencilXY[2 * e + 1] = r * std::sin(a);
       if (i == 0)
       {
         const double wrapped = a + mesh.TotalAngle(v);
-        WrapXY[2 * v] = r * std::cos(wrapped);
-        WrapXY[2 * v + 1] = r * std::sin(wrapped);
+        WrapXY[2 * n] = r * std::cos(wrapped);
+        WrapXY[2 * n + 1] = r * std::sin(wrapped);
       }
     }
     std::vector<double>().swap(angles[v]);
@@ -238,43 +242,45 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   std::vector<std::int64_t> count(nv + 1, 0);
   for (int s = 0; s < nv; ++s)
   {
-    count[s + 1] += static_cast<std::int64_t>(direct[s].size());
+    count[NodeOf[s] + 1] += static_cast<std::int64_t>(direct[s].size());
     for (const auto& e : direct[s])
     {
-      count[e.first + 1]++;
+      count[NodeOf[e.first] + 1]++;
     }
   }
   for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
   {
-    count[mesh.Origin(h) + 1]++;
-    count[mesh.Destination(h) + 1]++;
+    count[NodeOf[mesh.Origin(h)] + 1]++;
+    count[NodeOf[mesh.Destination(h)] + 1]++;
   }
-  for (int v = 0; v < nv; ++v)
+  for (int n = 0; n < nv; ++n)
   {
-    count[v + 1] += count[v];
+    count[n + 1] += count[n];
   }
   std::vector<std::pair<int, double>> raw(static_cast<std::size_t>(count[nv]));
   std::vector<std::int64_t> fill(count.begin(), count.end() - 1);
   for (int s = 0; s < nv; ++s)
   {
+    const int ns = NodeOf[s];
     for (const auto& e : direct[s])
     {
-      raw[fill[s]++] = e;
-      raw[fill[e.first]++] = { s, e.second };
+      const int nt = NodeOf[e.first];
+      raw[fill[ns]++] = { nt, e.second };
+      raw[fill[nt]++] = { ns, e.second };
     }
     std::vector<std::pair<int, double>>().swap(direct[s]);
   }
   for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
   {
-    const int a = mesh.Origin(h), b = mesh.Destination(h);
+    const int a = NodeOf[mesh.Origin(h)], b = NodeOf[mesh.Destination(h)];
     raw[fill[a]++] = { b, mesh.EdgeLength(h) };
     raw[fill[b]++] = { a, mesh.EdgeLength(h) };
   }
   std::vector<std::int64_t> kept(nv + 1, 0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
-  for (int v = 0; v < nv; ++v)
+  for (int n = 0; n < nv; ++n)
   {
-    auto first = raw.begin() + count[v], last = raw.begin() + count[v + 1];
+    auto first = raw.begin() + count[n], last = raw.begin() + count[n + 1];
     std::sort(first, last);
     // Sorted by (target, weight): the first of each run is the smallest weight.
     auto out = first;
@@ -285,24 +291,24 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
         *out++ = *it;
       }
     }
-    kept[v + 1] = out - first;
+    kept[n + 1] = out - first;
   }
   Offsets.assign(nv + 1, 0);
-  for (int v = 0; v < nv; ++v)
+  for (int n = 0; n < nv; ++n)
   {
-    Offsets[v + 1] = Offsets[v] + kept[v + 1];
+    Offsets[n + 1] = Offsets[n] + kept[n + 1];
   }
   Targets.resize(Offsets[nv]);
   Weights.resize(Offsets[nv]);
-  for (int v = 0; v < nv; ++v)
+  for (int n = 0; n < nv; ++n)
   {
-    for (std::int64_t i = 0; i < kept[v + 1]; ++i)
+    for (std::int64_t i = 0; i < kept[n + 1]; ++i)
     {
-      Targets[Offsets[v] + i] = raw[count[v] + i].first;
-      Weights[Offsets[v] + i] = raw[count[v] + i].second;
+      Targets[Offsets[n] + i] = raw[count[n] + i].first;
+      Weights[Offsets[n] + i] = raw[count[n] + i].second;
     }
   }
-  Renumber(mesh);
+  std::vector<std::pair<int, double>>().swap(raw); // before the link index adds its array
   IndexLinksInStencils();
   if (progress && !progress(1.0))
   {
@@ -315,13 +321,12 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   return true;
 }
 
-void SaddleVertexGraph::Renumber(const TriangleMesh& mesh)
+void SaddleVertexGraph::OrderNodes(const TriangleMesh& mesh)
 {
   // Nodes in Z-order of the vertex positions (ties by vertex index): vertices close on the
   // surface get close nodes, so that a solve's wavefront touches few cache lines and pages of
-  // the per-node arrays. Built in mesh order, the arrays are permuted here and every link and
-  // stencil target is mapped to its node; adjacencies are sorted by target node again.
-  const int nv = NumberOfVertices();
+  // the per-node arrays (a mesh's own order may be anything, e.g. random).
+  const int nv = mesh.NumberOfVertices();
   Vec3 lo = mesh.Position(0), hi = lo;
   for (int v = 1; v < nv; ++v)
   {
@@ -331,12 +336,16 @@ void SaddleVertexGraph::Renumber(const TriangleMesh& mesh)
   }
   const double extent = std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
   const double scale = extent > 0.0 ? 2097151.0 / extent : 0.0;
+  auto cell = [scale](double t) {
+    return static_cast<std::uint64_t>(std::min(2097151.0, std::max(0.0, t * scale)));
+  };
   std::vector<std::pair<std::uint64_t, int>> keys(nv);
   for (int v = 0; v < nv; ++v)
   {
     const Vec3& p = mesh.Position(v);
-    auto cell = [scale](double t) { return static_cast<std::uint64_t>(std::min(2097151.0, std::max(0.0, t * scale))); };
-    keys[v] = { SpreadBits(cell(p.x - lo.x)) | SpreadBits(cell(p.y - lo.y)) << 1 | SpreadBits(cell(p.z - lo.z)) << 2, v };
+    keys[v] = { SpreadBits(cell(p.x - lo.x)) | SpreadBits(cell(p.y - lo.y)) << 1 |
+        SpreadBits(cell(p.z - lo.z)) << 2,
+      v };
   }
   std::sort(keys.begin(), keys.end());
   VertexOf.resize(nv);
@@ -346,50 +355,6 @@ void SaddleVertexGraph::Renumber(const TriangleMesh& mesh)
     VertexOf[n] = keys[n].second;
     NodeOf[keys[n].second] = n;
   }
-  std::vector<std::int64_t> offsets(nv + 1, 0), stencilOffsets(nv + 1, 0);
-  for (int n = 0; n < nv; ++n)
-  {
-    const int v = VertexOf[n];
-    offsets[n + 1] = offsets[n] + (Offsets[v + 1] - Offsets[v]);
-    stencilOffsets[n + 1] = stencilOffsets[n] + (StencilOffsets[v + 1] - StencilOffsets[v]);
-  }
-  std::vector<int> targets(Targets.size()), stencilTargets(StencilTargets.size());
-  std::vector<double> weights(Weights.size()), stencilR(StencilR.size()), stencilXY(StencilXY.size()),
-    wrapXY(WrapXY.size());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int n = 0; n < nv; ++n)
-  {
-    const int v = VertexOf[n];
-    std::vector<std::pair<int, double>> links;
-    links.reserve(static_cast<std::size_t>(Offsets[v + 1] - Offsets[v]));
-    for (std::int64_t e = Offsets[v]; e < Offsets[v + 1]; ++e)
-    {
-      links.emplace_back(NodeOf[Targets[e]], Weights[e]);
-    }
-    std::sort(links.begin(), links.end());
-    for (std::size_t i = 0; i < links.size(); ++i)
-    {
-      targets[offsets[n] + i] = links[i].first;
-      weights[offsets[n] + i] = links[i].second;
-    }
-    for (std::int64_t e = StencilOffsets[v], f = stencilOffsets[n]; e < StencilOffsets[v + 1]; ++e, ++f)
-    {
-      stencilTargets[f] = NodeOf[StencilTargets[e]];
-      stencilR[f] = StencilR[e];
-      stencilXY[2 * f] = StencilXY[2 * e];
-      stencilXY[2 * f + 1] = StencilXY[2 * e + 1];
-    }
-    wrapXY[2 * n] = WrapXY[2 * v];
-    wrapXY[2 * n + 1] = WrapXY[2 * v + 1];
-  }
-  Offsets.swap(offsets);
-  Targets.swap(targets);
-  Weights.swap(weights);
-  StencilOffsets.swap(stencilOffsets);
-  StencilTargets.swap(stencilTargets);
-  StencilR.swap(stencilR);
-  StencilXY.swap(stencilXY);
-  WrapXY.swap(wrapXY);
 }
 
 void SaddleVertexGraph::IndexLinksInStencils()

@@ -177,7 +177,7 @@ private:
   std::vector<double> WrapXY;
   std::vector<int> LinkStencil;
   std::vector<int> NodeOf, VertexOf;
-  void Renumber(const TriangleMesh& mesh);
+  void OrderNodes(const TriangleMesh& mesh);
   void IndexLinksInStencils();
   int K = 0;
   double Seconds = 0.0;
