@@ -8,6 +8,10 @@
 #include <cstring>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace gs
 {
 
@@ -109,6 +113,74 @@ inline Unfolding UnfoldAcross(double p1x, double p1y, double p2x, double p2y, do
   // (Bitwise &: with &&, the compiler branches on each outcome.)
   u.Valid = spans & triangle & (sd > 0.0) & (sn >= -1e-9 * sd) & (sn <= (1.0 + 1e-9) * sd);
   return u;
+}
+
+// The nearest valid unfolding's squared distance (infinite when none) over `count` stencil pairs
+// given as arrays: UnfoldAcross's arithmetic, operation for operation (the same result to the
+// bit), two pairs at a time where SSE2 is available (the pairs' arithmetic was a third of the
+// sweep on small meshes).
+struct PairBatch
+{
+  static constexpr int Capacity = 32;
+  double P1x[Capacity], P1y[Capacity], P2x[Capacity], P2y[Capacity], D1[Capacity], D2[Capacity];
+  int Count = 0;
+};
+
+double NearestUnfolding2(const PairBatch& b)
+{
+  double nearest2 = Inf;
+  int i = 0;
+#if defined(__SSE2__)
+  const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), half = _mm_set1_pd(0.5);
+  const __m128d signMask = _mm_set1_pd(-0.0), inf = _mm_set1_pd(Inf);
+  const __m128d spanTol = _mm_set1_pd(1e-12), lowTol = _mm_set1_pd(-1e-9), highTol = _mm_set1_pd(1.0 + 1e-9);
+  __m128d best = inf;
+  auto abs = [&](__m128d v) { return _mm_andnot_pd(signMask, v); };
+  auto select = [](__m128d mask, __m128d a, __m128d b) {
+    return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
+  };
+  for (; i + 2 <= b.Count; i += 2)
+  {
+    const __m128d p1x = _mm_loadu_pd(b.P1x + i), p1y = _mm_loadu_pd(b.P1y + i);
+    const __m128d p2x = _mm_loadu_pd(b.P2x + i), p2y = _mm_loadu_pd(b.P2y + i);
+    const __m128d d1 = _mm_loadu_pd(b.D1 + i), d2 = _mm_loadu_pd(b.D2 + i);
+    const __m128d cross = _mm_sub_pd(_mm_mul_pd(p1x, p2y), _mm_mul_pd(p1y, p2x));
+    const __m128d spans = _mm_cmpgt_pd(cross,
+      _mm_mul_pd(_mm_mul_pd(spanTol, _mm_add_pd(abs(p1x), abs(p1y))), _mm_add_pd(abs(p2x), abs(p2y))));
+    const __m128d ex = _mm_sub_pd(p2x, p1x), ey = _mm_sub_pd(p2y, p1y);
+    const __m128d L2 = _mm_add_pd(_mm_mul_pd(ex, ex), _mm_mul_pd(ey, ey));
+    const __m128d alongL =
+      _mm_mul_pd(half, _mm_add_pd(_mm_sub_pd(_mm_mul_pd(d1, d1), _mm_mul_pd(d2, d2)), L2));
+    const __m128d h2L2 = _mm_sub_pd(_mm_mul_pd(_mm_mul_pd(d1, d1), L2), _mm_mul_pd(alongL, alongL));
+    const __m128d triangle = _mm_cmpge_pd(h2L2, zero);
+    const __m128d hL = _mm_sqrt_pd(_mm_and_pd(triangle, h2L2));
+    const __m128d inv = _mm_div_pd(one, select(spans, L2, one));
+    const __m128d sx =
+      _mm_add_pd(p1x, _mm_mul_pd(_mm_add_pd(_mm_mul_pd(ex, alongL), _mm_mul_pd(ey, hL)), inv));
+    const __m128d sy =
+      _mm_add_pd(p1y, _mm_mul_pd(_mm_sub_pd(_mm_mul_pd(ey, alongL), _mm_mul_pd(ex, hL)), inv));
+    const __m128d s2 = _mm_add_pd(_mm_mul_pd(sx, sx), _mm_mul_pd(sy, sy));
+    const __m128d qx = _mm_xor_pd(sx, signMask), qy = _mm_xor_pd(sy, signMask);
+    const __m128d den = _mm_sub_pd(_mm_mul_pd(ex, qy), _mm_mul_pd(ey, qx));
+    const __m128d num =
+      _mm_sub_pd(_mm_mul_pd(_mm_sub_pd(sx, p1x), qy), _mm_mul_pd(_mm_sub_pd(sy, p1y), qx));
+    const __m128d positive = _mm_cmpgt_pd(den, zero);
+    const __m128d sn = select(positive, num, _mm_xor_pd(num, signMask));
+    const __m128d sd = select(positive, den, _mm_xor_pd(den, signMask));
+    const __m128d valid = _mm_and_pd(_mm_and_pd(_mm_and_pd(spans, triangle), _mm_cmpgt_pd(sd, zero)),
+      _mm_and_pd(_mm_cmpge_pd(sn, _mm_mul_pd(lowTol, sd)), _mm_cmple_pd(sn, _mm_mul_pd(highTol, sd))));
+    best = _mm_min_pd(best, select(valid, s2, inf));
+  }
+  double lanes[2];
+  _mm_storeu_pd(lanes, best);
+  nearest2 = std::min(lanes[0], lanes[1]);
+#endif
+  for (; i < b.Count; ++i)
+  {
+    const Unfolding u = UnfoldAcross(b.P1x[i], b.P1y[i], b.P2x[i], b.P2y[i], b.D1[i], b.D2[i]);
+    nearest2 = std::min(nearest2, u.Valid ? u.S2 : Inf);
+  }
+  return nearest2;
 }
 } // namespace
 
@@ -244,6 +316,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     }
     // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too.
     double relaxed = Inf, nearest2 = Inf; // without angles: the minima over the pairs
+    PairBatch Batch;
     for (std::int64_t k = lo - 1; k <= hi; ++k)
     {
       if (!closed && (a + k < 0 || a + k + 1 > n - 1))
@@ -265,14 +338,25 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       const double p1x = G.StencilX(e1), p1y = G.StencilY(e1);
       const double p2x = wraps ? G.StencilWrapX(x) : G.StencilX(e2);
       const double p2y = wraps ? G.StencilWrapY(x) : G.StencilY(e2);
-      const Unfolding u = UnfoldAcross(p1x, p1y, p2x, p2y, d1, d2);
       if (!angles)
       {
-        // Distances only: minima without branches.
+        // Distances only: the pairs are collected and unfolded together (NearestUnfolding2).
         relaxed = std::min(relaxed, std::min(c1, c2));
-        nearest2 = std::min(nearest2, u.Valid ? u.S2 : Inf);
+        if (Batch.Count == PairBatch::Capacity)
+        {
+          nearest2 = std::min(nearest2, NearestUnfolding2(Batch));
+          Batch.Count = 0;
+        }
+        const int j = Batch.Count++;
+        Batch.P1x[j] = p1x;
+        Batch.P1y[j] = p1y;
+        Batch.P2x[j] = p2x;
+        Batch.P2y[j] = p2y;
+        Batch.D1[j] = d1;
+        Batch.D2[j] = d2;
         continue;
       }
+      const Unfolding u = UnfoldAcross(p1x, p1y, p2x, p2y, d1, d2);
       for (const std::int64_t e : { e1, e2 })
       {
         const double c = e == e1 ? c1 : c2;
@@ -325,6 +409,8 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     }
     if (unfold && !angles)
     {
+      nearest2 = std::min(nearest2, NearestUnfolding2(Batch));
+      Batch.Count = 0;
       best = std::min(best, std::min(relaxed, std::sqrt(nearest2)));
     }
     // The unfolded geodesic's angle when it is (one of) the shortest. Otherwise the source is
