@@ -13,6 +13,10 @@
 #include <limits>
 #include <unistd.h>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -708,13 +712,15 @@ void GraphDistanceSolver::SolveLabelCorrecting(double limit)
       sum = 0.0; // no drift accumulates across emptyings
     }
     const double du = dist[u];
-    for (std::int64_t e = offsets[u], end = offsets[u + 1]; e < end; ++e)
-    {
+    const std::int64_t first = offsets[u], end = offsets[u + 1];
+    // Most links relax nothing: with SSE2, two links are tested at once and only those that
+    // improve go through the (scalar) update below.
+    auto relax = [&](std::int64_t e) {
       const int v = targets[e];
       const double nd = du + weights[e];
       if (!(nd < dist[v]) || !(nd <= limit))
       {
-        continue;
+        return;
       }
       ++relaxations;
       if (dist[v] == Inf)
@@ -726,7 +732,7 @@ void GraphDistanceSolver::SolveLabelCorrecting(double limit)
       {
         sum += nd - dist[v];
         dist[v] = nd;
-        continue;
+        return;
       }
       dist[v] = nd;
       inQueue[v] = 1;
@@ -741,6 +747,28 @@ void GraphDistanceSolver::SolveLabelCorrecting(double limit)
         ring[wrap(head + size)] = v;
       }
       ++size;
+    };
+    std::int64_t e = first;
+#if defined(__SSE2__)
+    const __m128d du2 = _mm_set1_pd(du);
+    for (; e + 2 <= end; e += 2)
+    {
+      const __m128d nd = _mm_add_pd(du2, _mm_loadu_pd(weights + e));
+      const __m128d old = _mm_set_pd(dist[targets[e + 1]], dist[targets[e]]);
+      const int better = _mm_movemask_pd(_mm_cmplt_pd(nd, old));
+      if (better & 1)
+      {
+        relax(e);
+      }
+      if (better & 2)
+      {
+        relax(e + 1);
+      }
+    }
+#endif
+    for (; e < end; ++e)
+    {
+      relax(e);
     }
   }
   NumRelaxations += relaxations;
