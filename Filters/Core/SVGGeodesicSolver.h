@@ -67,7 +67,8 @@ public:
   double DepartureAngle(int v) const { return Angle[G.Node(v)]; }
   // Distances of all vertices (infinite where unreached), by mesh vertex.
   std::vector<double> Distances() const;
-  // Vertices reached by the last solve (unordered).
+  // Mesh vertices reached by the last solve (unordered; translated from the graph's nodes by
+  // each call, into a buffer the next call reuses).
   const std::vector<int>& Reached() const;
   // Distance of any surface point from the last solve's sources.
   double DistanceAt(const SurfacePoint& q) const;
@@ -103,9 +104,9 @@ private:
   std::vector<unsigned char> Interior; // not a boundary vertex (its stencil is a closed fan)
   std::vector<double> Angle;           // departure angles (Angles option)
   std::vector<int> AngleSet;           // nodes whose Angle is set
-  mutable std::vector<int> ReachedVertices;
-  double AnglePeriod = 0.0;         // full turn of the source's tangent angles
-  // The sweep's order: reached vertices sorted by distance (radix sort on 32-bit keys).
+  mutable std::vector<int> ReachedVertices; // Reached()'s buffer
+  double AnglePeriod = 0.0; // full turn of the source's tangent angles
+  // The sweep's order: reached nodes sorted by distance (radix sort on 32-bit keys).
   std::vector<std::pair<std::uint32_t, int>> Order, OrderScratch;
 };
 
