@@ -151,6 +151,8 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     return false;
   }
 
+  // Nodes: the vertices in Z-order (see OrderNodes).
+  OrderNodes(mesh);
   std::vector<std::vector<std::pair<int, double>>> direct(nv);
   std::vector<std::vector<double>> angles(nv);
   std::atomic<int> done(0);
@@ -162,13 +164,16 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     ExactGeodesicOptions opt;
     opt.MaximumFinalVertices = k;
     int masterCount = 0;
+    // Sources in node order: consecutive solves then cover overlapping neighbourhoods, whose
+    // mesh data and solver state the previous solve left in the cache.
 #pragma omp for schedule(dynamic, 64)
-    for (int s = 0; s < nv; ++s)
+    for (int node = 0; node < nv; ++node)
     {
       if (aborted.load(std::memory_order_relaxed))
       {
         continue;
       }
+      const int s = VertexOf[node];
       solver.Solve(s, opt);
       auto& out = direct[s];
       for (int v : solver.FinalVertices())
@@ -198,8 +203,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     return false;
   }
 
-  // Nodes: the vertices in Z-order (see OrderNodes); everything below is laid out by node.
-  OrderNodes(mesh);
+  // Everything below is laid out by node (the vertices in Z-order, see OrderNodes).
 
   // Polar stencils: each vertex's own direct neighbours sorted by departure angle.
   StencilOffsets.assign(nv + 1, 0);
