@@ -335,13 +335,8 @@ void SaddleVertexGraph::OrderNodes(const TriangleMesh& mesh)
   // surface get close nodes, so that a solve's wavefront touches few cache lines and pages of
   // the per-node arrays (a mesh's own order may be anything, e.g. random).
   const int nv = mesh.NumberOfVertices();
-  Vec3 lo = mesh.Position(0), hi = lo;
-  for (int v = 1; v < nv; ++v)
-  {
-    const Vec3& p = mesh.Position(v);
-    lo = { std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z) };
-    hi = { std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z) };
-  }
+  const Vec3& lo = mesh.BoundingBoxMin();
+  const Vec3& hi = mesh.BoundingBoxMax();
   const double extent = std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
   const double scale = extent > 0.0 ? 2097151.0 / extent : 0.0;
   auto cell = [scale](double t) {

@@ -124,6 +124,8 @@ void TriangleMesh::ComputeDerivedData()
     lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
     hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
   }
+  BoxMin = lo;
+  BoxMax = hi;
   BoxDiagonal = Norm(hi - lo);
 
   VertexAngleSum.assign(nv, 0.0);

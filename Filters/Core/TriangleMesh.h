@@ -77,6 +77,9 @@ public:
   // Average edge length (a length scale for tolerances).
   double MeanEdgeLength() const { return MeanEdge; }
   double BoundingBoxDiagonal() const { return BoxDiagonal; }
+  // Corners of the axis-aligned bounding box of the positions.
+  const Vec3& BoundingBoxMin() const { return BoxMin; }
+  const Vec3& BoundingBoxMax() const { return BoxMax; }
 
   // Boundary loops as vertex cycles following the boundary half-edges' direction.
   const std::vector<std::vector<int>>& BoundaryLoops() const { return Loops; }
@@ -117,6 +120,7 @@ private:
   int TotalGenus = 0;
   double MeanEdge = 0.0;
   double BoxDiagonal = 0.0;
+  Vec3 BoxMin, BoxMax;
 };
 
 // The result of building a mesh from caller data.
