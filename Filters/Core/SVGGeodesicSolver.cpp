@@ -115,8 +115,8 @@ inline Unfolding UnfoldAcross(double p1x, double p1y, double p2x, double p2y, do
   return u;
 }
 
-// The nearest valid unfolding's squared distance (infinite when none) over `count` stencil pairs
-// given as arrays: UnfoldAcross's arithmetic, operation for operation (the same result to the
+// The nearest valid unfolding's squared distance (infinite when none) over a batch of stencil
+// pairs: UnfoldAcross's arithmetic, operation for operation (the same result to the
 // bit), two pairs at a time where SSE2 is available (the pairs' arithmetic was a third of the
 // sweep on small meshes).
 struct PairBatch
@@ -316,7 +316,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     }
     // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too.
     double relaxed = Inf, nearest2 = Inf; // without angles: the minima over the pairs
-    PairBatch Batch;
+    PairBatch batch;
     for (std::int64_t k = lo - 1; k <= hi; ++k)
     {
       if (!closed && (a + k < 0 || a + k + 1 > n - 1))
@@ -342,18 +342,18 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       {
         // Distances only: the pairs are collected and unfolded together (NearestUnfolding2).
         relaxed = std::min(relaxed, std::min(c1, c2));
-        if (Batch.Count == PairBatch::Capacity)
+        if (batch.Count == PairBatch::Capacity)
         {
-          nearest2 = std::min(nearest2, NearestUnfolding2(Batch));
-          Batch.Count = 0;
+          nearest2 = std::min(nearest2, NearestUnfolding2(batch));
+          batch.Count = 0;
         }
-        const int j = Batch.Count++;
-        Batch.P1x[j] = p1x;
-        Batch.P1y[j] = p1y;
-        Batch.P2x[j] = p2x;
-        Batch.P2y[j] = p2y;
-        Batch.D1[j] = d1;
-        Batch.D2[j] = d2;
+        const int j = batch.Count++;
+        batch.P1x[j] = p1x;
+        batch.P1y[j] = p1y;
+        batch.P2x[j] = p2x;
+        batch.P2y[j] = p2y;
+        batch.D1[j] = d1;
+        batch.D2[j] = d2;
         continue;
       }
       const Unfolding u = UnfoldAcross(p1x, p1y, p2x, p2y, d1, d2);
@@ -409,8 +409,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     }
     if (unfold && !angles)
     {
-      nearest2 = std::min(nearest2, NearestUnfolding2(Batch));
-      Batch.Count = 0;
+      nearest2 = std::min(nearest2, NearestUnfolding2(batch));
       best = std::min(best, std::min(relaxed, std::sqrt(nearest2)));
     }
     // The unfolded geodesic's angle when it is (one of) the shortest. Otherwise the source is

@@ -39,7 +39,8 @@ struct SVGSolveOptions
 class SVGGeodesicSolver
 {
 public:
-  // The mesh and the graph (built for this mesh) must outlive the solver.
+  // The mesh and the graph (built or loaded for this mesh before the solver is made: the solver
+  // sizes its arrays and derives per-node data from it) must outlive the solver.
   SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVertexGraph& graph);
 
   // Distances from the sources to every vertex. False when a source is invalid.
