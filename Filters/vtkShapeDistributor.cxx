@@ -540,8 +540,8 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   // 7. Decals and outlines, computed per shape in parallel, assembled in order.
   const double lift = Lift * this->ShapeSize;
   std::vector<gs::ShapeDecal> decalOf(ns);
-  std::vector<std::vector<std::vector<gs::Vec3>>> outlineOf(ns);
-  const double mean = mesh.MeanEdgeLength();
+  std::vector<std::vector<gs::OutlinePiece>> outlineOf(ns);
+  const double spacing = 0.5 * mesh.MeanEdgeLength(); // between outline points
 #ifdef _OPENMP
   const int threads = this->NumberOfThreads > 0 ? this->NumberOfThreads : omp_get_max_threads();
 #endif
@@ -549,25 +549,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   for (int s = 0; s < ns; ++s)
   {
     decalOf[s] = distributor.Decal(s);
-    const gs::PlacedShape& shape = shapes[s];
-    const gs::SafeDistanceClass& c = tables.Classes[shape.ClassId];
-    const double unit = this->ShapeSize * shape.Scale;
-    const double spacing = 0.5 * mean / unit; // normalized units
-    for (const auto& ring : c.Outline.Rings)
-    {
-      std::vector<gs::Vec3> line;
-      for (std::size_t k = 0; k < ring.size(); ++k)
-      {
-        const gs::Vec2 a = ring[k], b = ring[(k + 1) % ring.size()];
-        const int pieces = std::max(1, std::min(1000, static_cast<int>(std::ceil(gs::Norm(b - a) / spacing))));
-        for (int j = 0; j < pieces; ++j)
-        {
-          const gs::SurfacePoint q = distributor.MapToSurface(s, a + (b - a) * (static_cast<double>(j) / pieces));
-          line.push_back(mesh.Interpolate(q.Face, q.Bary) + mesh.FaceNormal(q.Face) * lift);
-        }
-      }
-      outlineOf[s].push_back(std::move(line));
-    }
+    outlineOf[s] = distributor.Outline(s, spacing);
   }
   {
     vtkNew<vtkPoints> points;
@@ -613,18 +595,22 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     classId->SetName("ClassId");
     for (int s = 0; s < ns; ++s)
     {
-      for (const auto& ring : outlineOf[s])
+      for (const gs::OutlinePiece& piece : outlineOf[s])
       {
-        if (ring.size() < 2)
+        if (piece.Points.size() < 2)
         {
           continue;
         }
         std::vector<vtkIdType> ids;
-        for (const gs::Vec3& x : ring)
+        for (const gs::SurfacePoint& q : piece.Points)
         {
+          const gs::Vec3 x = mesh.Interpolate(q.Face, q.Bary) + mesh.FaceNormal(q.Face) * lift;
           ids.push_back(points->InsertNextPoint(x.x, x.y, x.z));
         }
-        ids.push_back(ids.front());
+        if (piece.Closed)
+        {
+          ids.push_back(ids.front());
+        }
         lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
         shapeId->InsertNextValue(s);
         classId->InsertNextValue(shapes[s].ClassId);

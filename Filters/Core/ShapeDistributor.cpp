@@ -1892,31 +1892,69 @@ double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
 
 SurfacePoint ShapeDistributor::MapToSurface(int shape, const Vec2& p) const
 {
+  return Map(shape, p).End;
+}
+
+MappedPoint ShapeDistributor::Map(int shape, const Vec2& p) const
+{
   const Impl& I = *P;
   const PlacedShape& s = I.Placed.at(shape);
   const SafeDistanceClass& c = I.T.Classes[s.ClassId];
   const double scale = I.O.ShapeSize * s.Scale;
+  MappedPoint m;
   if (s.Curve.empty())
   {
     const double rho = Norm(p) * scale;
     if (rho <= 0.0)
     {
-      return s.Centre;
+      m.End = s.Centre;
+      return m;
     }
     const double a = TangentAngle(I.M, s.Centre, s.Direction);
-    return ShootGeodesic(I.M, s.Centre, a + std::atan2(p.y, p.x), rho).End;
+    const GeodesicShot shot = ShootGeodesic(I.M, s.Centre, a + std::atan2(p.y, p.x), rho);
+    m.End = shot.End;
+    m.Reached = !shot.ReachedBoundary;
+    m.Reach = m.Reached ? 1.0 : std::min(1.0, shot.Length / rho);
+    return m;
   }
   int face = -1;
   Vec3 x, tangent;
   Impl::PointOnCurve(I.M, s.Curve, s.CurveCentre + Dot(p, c.MajorAxis) * scale, face, x, tangent);
-  SurfacePoint end;
   Vec3 endTangent;
-  if (!I.Across(face, x, tangent, Cross(c.MajorAxis, p) * scale, end, endTangent))
+  bool boundary = false;
+  if (!I.Across(face, x, tangent, Cross(c.MajorAxis, p) * scale, m.End, endTangent, &boundary))
   {
-    end = SurfacePoint::InFace(face, 0, 0, 0);
-    end.Bary = I.M.ClampedBarycentric(face, x);
+    m.End = SurfacePoint::InFace(face, 0, 0, 0);
+    m.End.Bary = I.M.ClampedBarycentric(face, x);
+    m.Reached = false;
+    m.Reach = 0.0;
   }
-  return end;
+  else if (boundary)
+  {
+    m.Reached = false;
+    m.Reach = 0.0;
+  }
+  return m;
+}
+
+std::vector<OutlinePiece> ShapeDistributor::Outline(int shape, double spacing) const
+{
+  const Impl& I = *P;
+  const PlacedShape& s = I.Placed.at(shape);
+  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
+  const double unit = I.O.ShapeSize * s.Scale;
+  if (!(spacing > 0.0) || !(unit > 0.0))
+  {
+    return {};
+  }
+  // No more samples than 1000 per unit of the class radius on an edge.
+  const double normalized = std::max(spacing / unit, 1e-3 * c.Radius);
+  const auto map = [this, shape](const Vec2& p) { return Map(shape, p); };
+  if (s.Curve.empty())
+  {
+    return DrawRadialOutline(c.Outline.Rings, normalized, c.Radius, map);
+  }
+  return DrawOutlinePieces(c.Outline.Rings, normalized, map);
 }
 
 ShapeDecal ShapeDistributor::Decal(int shape) const

@@ -42,6 +42,7 @@
 #pragma once
 
 #include "SafeDistanceTable.h"
+#include "ShapeOutline.h"
 #include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
@@ -175,6 +176,13 @@ public:
   /// After Run: the surface point of class-frame point p (normalized units) of placed shape s,
   /// through the polar coordinates of its centre (short shapes) or of its curve (long shapes).
   SurfacePoint MapToSurface(int shape, const Vec2& p) const;
+  /// The same map, telling whether the point was reached or the map stopped at the mesh
+  /// boundary (MappedPoint::End is then where it stopped).
+  MappedPoint Map(int shape, const Vec2& p) const;
+  /// After Run: shape s's outline as drawn on the surface (ShapeOutline.h): its class outline
+  /// sampled at most `spacing` apart (world units, > 0), cut where it leaves the surface (short
+  /// shapes: closed along the mesh boundary; long shapes: open pieces). Thread-safe.
+  std::vector<OutlinePiece> Outline(int shape, double spacing) const;
   /// After Run: the faces covered by shape s with texture coordinates. May be called from the
   /// threads of an OpenMP loop with at most the run's NumberOfThreads threads (long shapes use
   /// the calling thread's geodesic engine).

@@ -181,4 +181,93 @@ inline int CountSurfaceOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDist
   return overlaps;
 }
 
+/// Area common to two even-odd polygon sets in the plane, by scanlines: on each of `rows` rows
+/// across the common bounding box, the exact intervals of both sets at the row's centre line,
+/// intersected. (Shared boundary pieces, such as two outlines cut along the same mesh boundary,
+/// add nothing.)
+inline double CommonArea(const std::vector<std::vector<gs::Vec2>>& a,
+  const std::vector<std::vector<gs::Vec2>>& b, int rows)
+{
+  auto box = [](const std::vector<std::vector<gs::Vec2>>& rings, double* lo, double* hi) {
+    lo[0] = lo[1] = 1e300;
+    hi[0] = hi[1] = -1e300;
+    for (const auto& ring : rings)
+      for (const gs::Vec2& p : ring)
+      {
+        lo[0] = std::min(lo[0], p.x);
+        lo[1] = std::min(lo[1], p.y);
+        hi[0] = std::max(hi[0], p.x);
+        hi[1] = std::max(hi[1], p.y);
+      }
+  };
+  double loA[2], hiA[2], loB[2], hiB[2];
+  box(a, loA, hiA);
+  box(b, loB, hiB);
+  const double y0 = std::max(loA[1], loB[1]), y1 = std::min(hiA[1], hiB[1]);
+  if (!(y1 > y0) || std::max(loA[0], loB[0]) >= std::min(hiA[0], hiB[0]))
+    return 0.0;
+  auto crossings = [](const std::vector<std::vector<gs::Vec2>>& rings, double y) {
+    std::vector<double> xs;
+    for (const auto& ring : rings)
+      for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+      {
+        const gs::Vec2& p = ring[k];
+        const gs::Vec2& q = ring[(k + 1) % n];
+        if ((p.y > y) != (q.y > y))
+          xs.push_back(p.x + (q.x - p.x) * (y - p.y) / (q.y - p.y));
+      }
+    std::sort(xs.begin(), xs.end());
+    return xs;
+  };
+  const double h = (y1 - y0) / rows;
+  double area = 0.0;
+  for (int r = 0; r < rows; ++r)
+  {
+    const double y = y0 + (r + 0.5) * h;
+    const std::vector<double> xa = crossings(a, y), xb = crossings(b, y);
+    for (std::size_t i = 0; i + 1 < xa.size(); i += 2)
+      for (std::size_t j = 0; j + 1 < xb.size(); j += 2)
+        area += std::max(0.0, std::min(xa[i + 1], xb[j + 1]) - std::max(xa[i], xb[j])) * h;
+  }
+  return area;
+}
+
+/// Planar meshes (z = 0): pairs of shapes whose drawn outlines (the polygons `drawn[s]`, world
+/// x and y) share more than `fraction` of the smaller shape's circle area, by CommonArea.
+inline int CountDrawnOverlaps(const std::vector<gs::PlacedShape>& shapes,
+  const std::vector<std::vector<std::vector<gs::Vec2>>>& drawn, const std::vector<double>& radius,
+  double fraction = 1e-5)
+{
+  int overlaps = 0;
+  for (std::size_t a = 0; a < shapes.size(); ++a)
+    for (std::size_t b = a + 1; b < shapes.size(); ++b)
+    {
+      if (gs::Norm(shapes[a].Position - shapes[b].Position) >= radius[a] + radius[b])
+        continue;
+      const double r = std::min(radius[a], radius[b]);
+      if (CommonArea(drawn[a], drawn[b], 400) > fraction * 3.14159265358979 * r * r)
+        ++overlaps;
+    }
+  return overlaps;
+}
+
+/// The drawn outlines of every shape as polygons in the plane z = 0 (ShapeDistributor::Outline).
+inline std::vector<std::vector<std::vector<gs::Vec2>>> DrawnPlanarOutlines(
+  const gs::TriangleMesh& mesh, const gs::ShapeDistributor& distributor, double spacing)
+{
+  std::vector<std::vector<std::vector<gs::Vec2>>> drawn(distributor.Shapes().size());
+  for (std::size_t s = 0; s < drawn.size(); ++s)
+    for (const gs::OutlinePiece& piece : distributor.Outline(static_cast<int>(s), spacing))
+    {
+      std::vector<gs::Vec2> ring;
+      for (const gs::SurfacePoint& q : piece.Points)
+      {
+        const gs::Vec3 x = mesh.Interpolate(q.Face, q.Bary);
+        ring.push_back(gs::Vec2{ x.x, x.y });
+      }
+      drawn[s].push_back(std::move(ring));
+    }
+  return drawn;
+}
+
 } // namespace gs_test

@@ -1,0 +1,212 @@
+// Shapes hanging over the mesh boundary (KeepInside off, the default) must not overlap either:
+// the case of issue 17 (a jittered planar square with a boundary, two concave classes, a
+// turning field and a density gradient), judged by the shapes' drawn silhouettes.
+#include "DistributionChecks.h"
+#include "TestMeshes.h"
+
+#include "MeshGenerators.h"
+#include "SaddleVertexGraph.h"
+#include "SafeDistanceTable.h"
+#include "ShapeDistributor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace gs;
+
+namespace
+{
+// [-1, 1]^2 as an n x n grid of vertices, interior vertices jittered by up to `jitter` of the
+// spacing, boundary vertices jittered along the boundary only (the square stays convex).
+TriangleMesh JitteredSquare(int n, double jitter, unsigned seed)
+{
+  TriangleSoup s = MakePlanarGrid(n - 1, n - 1, 2.0, 2.0);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  const double h = 2.0 / (n - 1);
+  double lo[2] = { 1e300, 1e300 };
+  for (const Vec3& p : s.Points)
+  {
+    lo[0] = std::min(lo[0], p.x);
+    lo[1] = std::min(lo[1], p.y);
+  }
+  for (Vec3& p : s.Points)
+  {
+    p.x += -1.0 - lo[0];
+    p.y += -1.0 - lo[1];
+    const bool bx = std::abs(std::abs(p.x) - 1.0) < 1e-9, by = std::abs(std::abs(p.y) - 1.0) < 1e-9;
+    const double dx = u(rng) * h, dy = u(rng) * h;
+    if (!bx && !by)
+      p = p + Vec3{ dx, dy, 0.0 };
+    else if (!bx || !by)
+      p = p + (bx ? Vec3{ 0.0, dy, 0.0 } : Vec3{ dx, 0.0, 0.0 }); // along the side
+  }
+  return gs_test::BuildMesh(s);
+}
+
+// A regular 5-point star and an L tile whose circle centre lies in its notch (not star-shaped
+// about its centre): rays from the centre to the far arms cross the notch.
+SafeDistanceTables StarAndTile(int bins)
+{
+  std::vector<SafeDistanceInput> in;
+  in.push_back({ "star", ShapeFromPolygons({ MakeStarPolygon(5, 1.0, 0.382) }) });
+  const std::vector<Vec2> tile{ { -1.0, -1.0 }, { 1.0, -1.0 }, { 1.0, -0.4 }, { -0.4, -0.4 },
+    { -0.4, 1.0 }, { -1.0, 1.0 } };
+  in.push_back({ "tile", ShapeFromPolygons({ tile }) });
+  SafeDistanceOptions o;
+  o.AngleBins = bins;
+  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r.Tables;
+}
+
+// The class outline of shape s placed rigidly in the plane (its circle centre at the shape's
+// position, its +x axis along the shape's direction).
+std::vector<std::vector<Vec2>> RigidOutline(const SafeDistanceTables& t, const PlacedShape& s, double shapeSize)
+{
+  const double unit = shapeSize * s.Scale;
+  const double c = s.Direction.x, n = s.Direction.y;
+  std::vector<std::vector<Vec2>> rings = t.Classes[s.ClassId].Outline.Rings;
+  for (auto& ring : rings)
+    for (Vec2& p : ring)
+      p = Vec2{ s.Position.x + unit * (c * p.x - n * p.y), s.Position.y + unit * (n * p.x + c * p.y) };
+  return rings;
+}
+} // namespace
+
+// Issue 17: with KeepInside off (the default) shapes hang over the boundary. Their outlines used
+// to be drawn by mapping every outline point to the end of its ray from the centre, clamped at
+// the boundary: where a shape is not star-shaped about its centre (the L tile), the chords between
+// clamped points cut across its notch, where the tables rightly let a neighbour in, and the drawn
+// outlines overlapped (the oracle below finds such pairs in that drawing). Outlines are now cut
+// along the boundary (ShapeOutline.h): each drawn region must be the rigid shape within the square
+// (equal areas) and no two may share area.
+// DrawRadialOutline against exact areas on a synthetic map: the plane cut by the line x = cut
+// (rays stop there), for an L tile not star-shaped about its centre and a ring with a hole
+// (rings given in any orientation), with the centre before the cut line or on it.
+TEST(ShapeDistributorBoundary, RadialOutlineIsTheRegionWithinTheReach)
+{
+  const std::vector<Vec2> tile{ { -1.0, -1.0 }, { 1.0, -1.0 }, { 1.0, -0.4 }, { -0.4, -0.4 },
+    { -0.4, 1.0 }, { -1.0, 1.0 } };
+  std::vector<Vec2> outer, hole;
+  for (int k = 0; k < 64; ++k)
+  {
+    const double a = 6.283185307179586 * k / 64;
+    outer.push_back(Vec2{ std::cos(a), std::sin(a) });
+    hole.push_back(Vec2{ 0.5 * std::cos(a), 0.5 * std::sin(a) }); // counter-clockwise too
+  }
+  for (const auto& rings : { std::vector<std::vector<Vec2>>{ tile }, std::vector<std::vector<Vec2>>{ outer, hole } })
+  {
+    for (double cut : { 0.7, 0.2, 0.0 })
+    {
+      const auto map = [cut](const Vec2& p) {
+        MappedPoint m;
+        m.Reached = p.x <= cut;
+        // A ray from the origin stops at the line (the origin itself is on or before it).
+        m.Reach = m.Reached ? 1.0 : std::max(0.0, cut / p.x);
+        const Vec2 q = p * m.Reach;
+        m.End = SurfacePoint::InFace(0, q.x, q.y, 0.0);
+        return m;
+      };
+      const auto pieces = DrawRadialOutline(rings, 0.05, std::sqrt(2.0), map);
+      std::vector<std::vector<Vec2>> drawn;
+      for (const OutlinePiece& piece : pieces)
+      {
+        EXPECT_TRUE(piece.Closed);
+        std::vector<Vec2> ring;
+        for (const SurfacePoint& q : piece.Points)
+          ring.push_back(Vec2{ q.Bary[0], q.Bary[1] });
+        drawn.push_back(ring);
+      }
+      const std::vector<std::vector<Vec2>> half{ { { -5.0, -5.0 }, { cut, -5.0 }, { cut, 5.0 }, { -5.0, 5.0 } } };
+      const double expected = gs_test::CommonArea(rings, half, 4000);
+      EXPECT_NEAR(gs_test::CommonArea(drawn, drawn, 4000), expected, 1e-3) << "cut " << cut;
+      EXPECT_GT(expected, 0.5);
+    }
+  }
+}
+
+TEST(ShapeDistributorBoundary, ShapesOverTheBoundaryAreDrawnCutAndDoNotOverlap)
+{
+  const TriangleMesh mesh = JitteredSquare(101, 0.3, 5);
+  SaddleVertexGraph graph;
+  std::string error;
+  ASSERT_TRUE(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  const SafeDistanceTables t = StarAndTile(64);
+  std::vector<Vec3> directions(mesh.NumberOfFaces());
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+  {
+    Vec3 d{ 0, 0, 0 };
+    for (int v : mesh.Face(f))
+      d = d + Vec3{ std::cos(2.5 * mesh.Position(v).x), std::sin(2.5 * mesh.Position(v).x), 0.0 };
+    directions[f] = d;
+  }
+  std::vector<double> density(mesh.NumberOfVertices());
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+    density[v] = 0.6 + 0.2 * (mesh.Position(v).y + 1.0);
+  const std::vector<std::vector<Vec2>> square{ { { -1.0, -1.0 }, { 1.0, -1.0 }, { 1.0, 1.0 }, { -1.0, 1.0 } } };
+  const double spacing = 0.5 * mesh.MeanEdgeLength();
+  int clampedOverlaps = 0, cutShapes = 0;
+  struct Case
+  {
+    DistributionMode Mode;
+    std::uint64_t Seed;
+    bool KeepInside;
+  };
+  for (const Case& c : { Case{ DistributionMode::Random, 1, false }, Case{ DistributionMode::Random, 2, false },
+         Case{ DistributionMode::Greedy, 2, false }, Case{ DistributionMode::Greedy, 3, false },
+         Case{ DistributionMode::Random, 2, true } })
+  {
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.06;
+    o.Mode = c.Mode;
+    o.Seed = c.Seed;
+    o.KeepInside = c.KeepInside;
+    ShapeDistributor d(mesh, &graph);
+    const ShapeDistributionResult r = d.Run(t, directions, density, o);
+    ASSERT_TRUE(r.Ok) << r.Error;
+    ASSERT_GT(r.Shapes.size(), 300u);
+    const std::string name = "mode " + std::to_string(static_cast<int>(c.Mode)) + " seed " +
+      std::to_string(c.Seed) + (c.KeepInside ? " KeepInside" : "");
+    EXPECT_EQ(gs_test::CountPlanarOverlaps(mesh, t, r.Shapes, o.ShapeSize), 0) << name;
+    const auto drawn = gs_test::DrawnPlanarOutlines(mesh, d, spacing);
+    std::vector<double> radius;
+    std::vector<std::vector<std::vector<Vec2>>> clamped(r.Shapes.size());
+    for (std::size_t s = 0; s < r.Shapes.size(); ++s)
+    {
+      const PlacedShape& shape = r.Shapes[s];
+      const double unit = o.ShapeSize * shape.Scale;
+      radius.push_back(t.Classes[shape.ClassId].Radius * unit * (1.0 + 1e-9));
+      // Drawn = the rigid shape within the square (the plane's exponential map is rigid).
+      const auto rigid = RigidOutline(t, shape, o.ShapeSize);
+      const double full = gs_test::CommonArea(rigid, rigid, 2000);
+      const double inside = gs_test::CommonArea(rigid, square, 2000);
+      const double area = gs_test::CommonArea(drawn[s], drawn[s], 2000);
+      EXPECT_NEAR(area, inside, 2e-3 * full) << name << ", shape " << s;
+      cutShapes += inside < 0.999 * full ? 1 : 0;
+      // The former drawing: every outline point at its clamped ray end.
+      for (const auto& ring : t.Classes[shape.ClassId].Outline.Rings)
+      {
+        std::vector<Vec2> line;
+        for (std::size_t k = 0; k < ring.size(); ++k)
+        {
+          const Vec2 a = ring[k], b = ring[(k + 1) % ring.size()];
+          const int pieces = std::max(1, static_cast<int>(std::ceil(Norm(b - a) / (spacing / unit))));
+          for (int j = 0; j < pieces; ++j)
+          {
+            const SurfacePoint q = d.MapToSurface(static_cast<int>(s), a + (b - a) * (static_cast<double>(j) / pieces));
+            const Vec3 x = mesh.Interpolate(q.Face, q.Bary);
+            line.push_back(Vec2{ x.x, x.y });
+          }
+        }
+        clamped[s].push_back(line);
+      }
+    }
+    EXPECT_EQ(gs_test::CountDrawnOverlaps(r.Shapes, drawn, radius), 0) << name;
+    clampedOverlaps += gs_test::CountDrawnOverlaps(r.Shapes, clamped, radius);
+  }
+  EXPECT_GT(cutShapes, 100) << "shapes hang over the boundary";
+  EXPECT_GE(clampedOverlaps, 2) << "the oracle finds the former drawing's overlaps";
+}
