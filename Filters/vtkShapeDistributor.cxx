@@ -4,6 +4,7 @@
 #include "vtkDistributedSurface.h"
 #include "vtkSurfaceMeshConverter.h"
 
+#include "OverlapCheck.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
 
@@ -181,6 +182,7 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DistortionLimit: " << this->DistortionLimit << "\n";
   os << indent << "HolonomyMargin: " << this->HolonomyMargin << "\n";
   os << indent << "KeepInside: " << this->KeepInside << "\n";
+  os << indent << "VerifyOverlaps: " << this->VerifyOverlaps << "\n";
   os << indent << "K: " << this->K << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
 }
@@ -550,6 +552,38 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   {
     decalOf[s] = distributor.Decal(s);
     outlineOf[s] = distributor.Outline(s, spacing);
+  }
+  if (this->VerifyOverlaps)
+  {
+    gs::OverlapCheckOptions check;
+    check.NumberOfThreads = this->NumberOfThreads;
+    const gs::OverlapCheckResult found = gs::CheckOverlaps(distributor, outlineOf, check);
+    vtkNew<vtkIntArray> overlaps;
+    overlaps->SetName("Overlaps");
+    for (int s = 0; s < ns; ++s)
+    {
+      overlaps->InsertNextValue(found.Overlaps[s]);
+    }
+    placements->GetPointData()->AddArray(overlaps);
+    vtkNew<vtkDoubleArray> pairs, seconds;
+    pairs->SetName("OverlappingPairs");
+    pairs->InsertNextValue(static_cast<double>(found.Pairs.size()));
+    seconds->SetName("OverlapCheckSeconds");
+    seconds->InsertNextValue(found.Seconds);
+    placements->GetFieldData()->AddArray(pairs);
+    placements->GetFieldData()->AddArray(seconds);
+    if (!found.Pairs.empty())
+    {
+      vtkWarningMacro("VerifyOverlaps: " << found.Pairs.size() << " pair(s) of shapes overlap "
+                                         << "(first: shapes " << found.Pairs[0].first << " and "
+                                         << found.Pairs[0].second
+                                         << "); see the Overlaps array of Placements.");
+    }
+    if (found.UncheckedPairs > 0)
+    {
+      vtkWarningMacro("VerifyOverlaps: " << found.UncheckedPairs
+                                         << " close pair(s) of two long shapes are not checked.");
+    }
   }
   {
     vtkNew<vtkPoints> points;

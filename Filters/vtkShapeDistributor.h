@@ -21,12 +21,16 @@
  *
  * Output port 0 ("Placements"): one vertex per shape at its centre; point arrays ClassId,
  * Scale, Direction (the shape's +x axis), Normal, FaceId (input cell). Field data:
- * NumberOfCandidates, NumberOfCharts, Maximal (1 when ended by the failure count), Seconds.
+ * NumberOfCandidates, NumberOfCharts, Maximal (1 when ended by the failure count), Seconds;
+ * with VerifyOverlaps, the point array Overlaps and field data OverlappingPairs and
+ * OverlapCheckSeconds.
  * Output port 1 ("Decals"): per shape, copies of the triangles it covers with texture
  * coordinates ("TextureCoordinates") mapping the square around its class circle onto [0, 1]^2
  * (the convention of MSDT Source's Silhouettes image); cell arrays ShapeId and ClassId.
  * Output port 2 ("Outlines"): each shape's contours drawn on the surface (through the polar
- * coordinates of its centre, or of its curve for long shapes) as closed polylines; cell arrays
+ * coordinates of its centre, or of its curve for long shapes) as closed polylines (a shape over
+ * the mesh boundary: its outline within the surface closed along the boundary; a long shape
+ * over the boundary: the open pieces on the surface); cell arrays
  * ShapeId and ClassId. Decals and outlines are lifted off the surface by 0.2% of ShapeSize
  * along the face normals so that they render over the mesh.
  *
@@ -135,6 +139,18 @@ public:
   ///@}
 
   ///@{
+  /// Check the finished result for overlaps independently of the tables (gs::CheckOverlaps: the
+  /// drawn outlines of neighbouring shapes, each carried into the other's polar chart and tested
+  /// against its silhouette, deeper than 0.5% of the smaller circumradius). Adds the point array
+  /// Overlaps (per shape, how many others it overlaps) and the field data OverlappingPairs and
+  /// OverlapCheckSeconds to Placements, with a warning naming the count when it is not zero.
+  /// Default off.
+  vtkSetMacro(VerifyOverlaps, bool);
+  vtkGetMacro(VerifyOverlaps, bool);
+  vtkBooleanMacro(VerifyOverlaps, bool);
+  ///@}
+
+  ///@{
   /// Threads (0, default: all cores). The result does not depend on it.
   vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
@@ -177,6 +193,7 @@ protected:
   double DistortionLimit = 0.01;
   double HolonomyMargin = 1.0;
   bool KeepInside = false;
+  bool VerifyOverlaps = false;
   int K = 50;
   std::string CacheFileName;
 

@@ -1483,6 +1483,55 @@ const std::vector<PlacedShape>& ShapeDistributor::Shapes() const
   return P->Placed;
 }
 
+const SafeDistanceTables& ShapeDistributor::Tables() const
+{
+  return P->T;
+}
+
+const ShapeDistributionOptions& ShapeDistributor::Options() const
+{
+  return P->O;
+}
+
+bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const
+{
+  const Impl& I = *P;
+  const Impl::Record& r = I.Accepted.at(shape);
+  if (!r.S.Curve.empty() || r.Charts.empty() || r.Charts[0].Entries.empty())
+  {
+    return false;
+  }
+  const Chart& chart = r.Charts[0];
+  const double inverse = 1.0 / (I.O.ShapeSize * r.S.Scale);
+  if (x.IsVertex())
+  {
+    const ChartEntry* e = chart.Find(x.Vertex);
+    if (!e)
+    {
+      return false;
+    }
+    p = Vec2{ e->X * inverse, e->Y * inverse };
+    return true;
+  }
+  if (x.Face < 0 || x.Face >= I.M.NumberOfFaces())
+  {
+    return false;
+  }
+  const auto& corners = I.M.Face(x.Face);
+  Vec2 q{ 0.0, 0.0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const ChartEntry* e = chart.Find(corners[k]);
+    if (!e)
+    {
+      return false;
+    }
+    q = q + Vec2{ e->X, e->Y } * x.Bary[k];
+  }
+  p = q * inverse;
+  return true;
+}
+
 ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
   const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
   const ShapeDistributionOptions& options, const std::function<bool(double)>& progress)

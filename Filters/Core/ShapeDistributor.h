@@ -189,6 +189,14 @@ public:
   ShapeDecal Decal(int shape) const;
 
   const std::vector<PlacedShape>& Shapes() const;
+  /// The tables and options of the last Run.
+  const SafeDistanceTables& Tables() const;
+  const ShapeDistributionOptions& Options() const;
+  /// After Run: the class-frame point (normalized units) of surface point x as seen by short
+  /// shape s: x's coordinates in the polar chart of s's centre (the log map, the inverse of
+  /// MapToSurface), interpolated in x's face. False for long shapes and points beyond the chart
+  /// (farther from the centre than the shape's circle).
+  bool ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const;
 
 private:
   struct Impl;

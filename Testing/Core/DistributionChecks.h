@@ -24,7 +24,8 @@ namespace gs_test
 
 /// Number of overlapping pairs among shapes placed on a planar mesh (any plane orientation).
 inline int CountPlanarOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDistanceTables& tables,
-  const std::vector<gs::PlacedShape>& shapes, double shapeSize, int* pairsChecked = nullptr)
+  const std::vector<gs::PlacedShape>& shapes, double shapeSize, int* pairsChecked = nullptr,
+  std::vector<std::pair<int, int>>* overlapping = nullptr)
 {
   std::vector<std::unique_ptr<OverlapOracle>> oracles;
   std::vector<double> radius;
@@ -69,7 +70,11 @@ inline int CountPlanarOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDista
       // Class +x axes: a long shape's Direction is its class axis too.
       const double alphaA = angleTo(u, A.Direction), alphaB = angleTo(u, B.Direction);
       if (oracles[order[ia]]->Overlaps(alphaA, *oracles[order[ib]], alphaB, d))
+      {
         ++overlaps;
+        if (overlapping)
+          overlapping->emplace_back(std::min(order[ia], order[ib]), std::max(order[ia], order[ib]));
+      }
     }
   }
   if (pairsChecked)
@@ -236,7 +241,7 @@ inline double CommonArea(const std::vector<std::vector<gs::Vec2>>& a,
 /// x and y) share more than `fraction` of the smaller shape's circle area, by CommonArea.
 inline int CountDrawnOverlaps(const std::vector<gs::PlacedShape>& shapes,
   const std::vector<std::vector<std::vector<gs::Vec2>>>& drawn, const std::vector<double>& radius,
-  double fraction = 1e-5)
+  double fraction = 1e-5, std::vector<std::pair<int, int>>* overlapping = nullptr)
 {
   int overlaps = 0;
   for (std::size_t a = 0; a < shapes.size(); ++a)
@@ -246,7 +251,11 @@ inline int CountDrawnOverlaps(const std::vector<gs::PlacedShape>& shapes,
         continue;
       const double r = std::min(radius[a], radius[b]);
       if (CommonArea(drawn[a], drawn[b], 400) > fraction * 3.14159265358979 * r * r)
+      {
         ++overlaps;
+        if (overlapping)
+          overlapping->emplace_back(static_cast<int>(a), static_cast<int>(b));
+      }
     }
   return overlaps;
 }

@@ -124,17 +124,6 @@ if n > 0:
     check(placed.GetFieldData().GetArray("Maximal").GetValue(0) == 1.0, "not maximal")
 
 # Outlines: one or more closed polylines per shape; pairwise no crossing, no containment.
-outlines = fetch(shapes, 2)
-check(outlines.GetNumberOfCells() >= n, "fewer outline rings than shapes")
-sid = vtk_to_numpy(outlines.GetCellData().GetArray("ShapeId"))
-opts = vtk_to_numpy(outlines.GetPoints().GetData()).astype(float)[:, :2]
-offsets = vtk_to_numpy(outlines.GetLines().GetOffsetsArray())
-conn = vtk_to_numpy(outlines.GetLines().GetConnectivityArray())
-rings = {}
-for c in range(outlines.GetNumberOfCells()):
-    rings.setdefault(int(sid[c]), []).append(opts[conn[offsets[c]:offsets[c + 1]]])
-
-
 def segments_cross(a, b):
     """Any proper crossing between the segments of closed polylines a and b (N x 2 arrays)."""
     p, p2 = a[:-1], a[1:]
@@ -150,29 +139,89 @@ def segments_cross(a, b):
     return bool(numpy.any((numpy.abs(d) > 1e-15) & (t > eps) & (t < 1 - eps) & (u > eps) & (u < 1 - eps)))
 
 
-overlaps = 0
-close = 0
-ids = sorted(rings)
-centres = {i: numpy.vstack(rings[i]).mean(axis=0) for i in ids}
-reach = {i: numpy.max(numpy.linalg.norm(numpy.vstack(rings[i]) - centres[i], axis=1)) for i in ids}
-for ia, a in enumerate(ids):
-    for b in ids[ia + 1:]:
-        if numpy.linalg.norm(centres[a] - centres[b]) > reach[a] + reach[b]:
-            continue
-        close += 1
-        hit = any(segments_cross(ra, rb) for ra in rings[a] for rb in rings[b])
-        if not hit:
-            # containment: a vertex of one inside the other (even-odd over all its rings)
-            for (u, v) in ((a, b), (b, a)):
-                p = rings[u][0][0]
-                inside = False
-                for ring in rings[v]:
-                    inside ^= bool(inside_polygon(numpy.array([p[0]]), numpy.array([p[1]]), ring[:-1])[0])
-                hit = hit or inside
-        overlaps += hit
+def outline_overlaps(outlines):
+    """(close pairs, overlapping pairs) of the shapes' drawn outlines (planar, z = 0)."""
+    sid = vtk_to_numpy(outlines.GetCellData().GetArray("ShapeId"))
+    opts = vtk_to_numpy(outlines.GetPoints().GetData()).astype(float)[:, :2]
+    offsets = vtk_to_numpy(outlines.GetLines().GetOffsetsArray())
+    conn = vtk_to_numpy(outlines.GetLines().GetConnectivityArray())
+    rings = {}
+    for c in range(outlines.GetNumberOfCells()):
+        rings.setdefault(int(sid[c]), []).append(opts[conn[offsets[c]:offsets[c + 1]]])
+    overlaps = 0
+    close = 0
+    ids = sorted(rings)
+    centres = {i: numpy.vstack(rings[i]).mean(axis=0) for i in ids}
+    reach = {i: numpy.max(numpy.linalg.norm(numpy.vstack(rings[i]) - centres[i], axis=1)) for i in ids}
+    for ia, a in enumerate(ids):
+        for b in ids[ia + 1:]:
+            if numpy.linalg.norm(centres[a] - centres[b]) > reach[a] + reach[b]:
+                continue
+            close += 1
+            # (a loop, not any(): paraview.simple's star import may shadow the builtin)
+            hit = False
+            for ra in rings[a]:
+                for rb in rings[b]:
+                    hit = hit or bool(segments_cross(ra, rb))
+            if not hit:
+                # containment: a vertex of one inside the other (even-odd over all its rings)
+                for (u, v) in ((a, b), (b, a)):
+                    p = rings[u][0][0]
+                    inside = False
+                    for ring in rings[v]:
+                        inside ^= bool(inside_polygon(numpy.array([p[0]]), numpy.array([p[1]]), ring[:-1])[0])
+                    hit = hit or inside
+            overlaps += int(hit)
+    return close, overlaps
+
+
+outlines = fetch(shapes, 2)
+check(outlines.GetNumberOfCells() >= n, "fewer outline rings than shapes")
+close, overlaps = outline_overlaps(outlines)
 print("outline pairs checked", close, "overlaps", overlaps)
 check(close > n / 2, "the overlap check saw too few close pairs (%d)" % close)
 check(overlaps == 0, "%d overlapping shape pairs" % overlaps)
+
+# VerifyOverlaps: nothing on this result; on deliberately overlapping shapes (stars placed with
+# tables shrunk to 75%), the pairs the outline test above finds.
+shapes.VerifyOverlaps = 1
+verified = fetch(shapes, 0)
+check(verified.GetNumberOfPoints() == n, "VerifyOverlaps changed the placements")
+pairs_array = verified.GetFieldData().GetArray("OverlappingPairs")
+per_shape = verified.GetPointData().GetArray("Overlaps")
+check(pairs_array is not None and per_shape is not None, "VerifyOverlaps arrays missing")
+if pairs_array is not None and per_shape is not None:
+    check(pairs_array.GetValue(0) == 0, "VerifyOverlaps reports %g pairs" % pairs_array.GetValue(0))
+    check(vtk_to_numpy(per_shape).max() == 0, "VerifyOverlaps: shapes marked overlapping")
+    print("overlap check seconds", verified.GetFieldData().GetArray("OverlapCheckSeconds").GetValue(0),
+          "distribution seconds", verified.GetFieldData().GetArray("Seconds").GetValue(0))
+shrunk = ProgrammableFilter(Input=msdt, OutputDataSetType="vtkImageData")
+shrunk.Script = """
+out = self.GetOutput()
+out.DeepCopy(self.GetInput())
+values = out.GetPointData().GetArray("SafeDistance")
+for k in range(values.GetNumberOfTuples()):
+    values.SetValue(k, 0.75 * values.GetValue(k))
+"""
+crowded = ShapeDistributor(Input=density, Table=shrunk, ShapeSize=0.07, Seed=3)
+crowded.DirectionArray = ["CELLS", "Direction"]
+crowded.DensityArray = ["POINTS", "Density"]
+crowded.ClassWeights = [1.0, 0.0]
+crowded.VerifyOverlaps = 1
+crowded.UpdatePipeline()
+crowd = fetch(crowded, 0)
+_, expected = outline_overlaps(fetch(crowded, 2))
+found = crowd.GetFieldData().GetArray("OverlappingPairs")
+print("deliberate overlaps: outline test", expected, "VerifyOverlaps", found.GetValue(0) if found else None)
+check(expected > 10, "shrunk tables should make overlapping stars (%d)" % expected)
+if found is not None:
+    check(0.9 * expected <= found.GetValue(0) <= expected,
+          "VerifyOverlaps found %g of %d overlapping pairs" % (found.GetValue(0), expected))
+    marked = vtk_to_numpy(crowd.GetPointData().GetArray("Overlaps"))
+    check(marked.sum() == 2 * found.GetValue(0), "Overlaps per shape do not add up to twice the pairs")
+Delete(crowded)
+Delete(shrunk)
+shapes.VerifyOverlaps = 0
 
 decals = fetch(shapes, 1)
 check(decals.GetNumberOfCells() > n, "decals too small")

@@ -1,0 +1,267 @@
+#include "OverlapCheck.h"
+
+#include "SafeDistanceTable.h"
+#include "ShapeDistributor.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gs
+{
+namespace
+{
+double SegmentDistance(const Vec2& a, const Vec2& b, const Vec2& p)
+{
+  const Vec2 ab = b - a;
+  const double l2 = Dot(ab, ab);
+  const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(p - a, ab) / l2)) : 0.0;
+  return Norm(a + ab * t - p);
+}
+} // namespace
+
+ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double radius, double maximumDepth)
+  : R(radius * (1.0 + 1e-9))
+{
+  for (const auto& ring : rings)
+  {
+    for (std::size_t k = 0, n = ring.size(); k < n && n >= 3; ++k)
+    {
+      A.push_back(ring[k]);
+      B.push_back(ring[(k + 1) % n]);
+    }
+  }
+  Cells = std::max(8, std::min(128, static_cast<int>(2.0 * std::sqrt(static_cast<double>(A.size())))));
+  CellSize = 2.0 * R / Cells;
+  Rows.assign(Cells, {});
+  Near.assign(static_cast<std::size_t>(Cells) * Cells, {});
+  State.assign(static_cast<std::size_t>(Cells) * Cells, 0);
+  const double reach = 0.5 * std::sqrt(2.0) * CellSize + std::max(0.0, maximumDepth);
+  for (int e = 0; e < static_cast<int>(A.size()); ++e)
+  {
+    const int y0 = CellOf(std::min(A[e].y, B[e].y)), y1 = CellOf(std::max(A[e].y, B[e].y));
+    for (int y = y0; y <= y1; ++y)
+    {
+      Rows[y].push_back(e);
+    }
+    // Cells whose centre is within `reach` of the edge.
+    const int x0 = CellOf(std::min(A[e].x, B[e].x) - reach), x1 = CellOf(std::max(A[e].x, B[e].x) + reach);
+    const int z0 = CellOf(std::min(A[e].y, B[e].y) - reach), z1 = CellOf(std::max(A[e].y, B[e].y) + reach);
+    for (int y = z0; y <= z1; ++y)
+    {
+      for (int x = x0; x <= x1; ++x)
+      {
+        const Vec2 centre{ -R + (x + 0.5) * CellSize, -R + (y + 0.5) * CellSize };
+        if (SegmentDistance(A[e], B[e], centre) <= reach)
+        {
+          Near[static_cast<std::size_t>(y) * Cells + x].push_back(e);
+        }
+      }
+    }
+  }
+  for (int y = 0; y < Cells; ++y)
+  {
+    for (int x = 0; x < Cells; ++x)
+    {
+      const std::size_t c = static_cast<std::size_t>(y) * Cells + x;
+      if (Near[c].empty())
+      {
+        const Vec2 centre{ -R + (x + 0.5) * CellSize, -R + (y + 0.5) * CellSize };
+        State[c] = Inside(centre) ? 2 : 1;
+      }
+    }
+  }
+}
+
+int ClassRegion::CellOf(double v) const
+{
+  const double c = std::floor((v + R) / CellSize);
+  return static_cast<int>(std::min(static_cast<double>(Cells - 1), std::max(0.0, c)));
+}
+
+bool ClassRegion::Inside(const Vec2& p) const
+{
+  if (!(std::abs(p.x) < R && std::abs(p.y) < R))
+  {
+    return false;
+  }
+  bool in = false;
+  for (int e : Rows[CellOf(p.y)])
+  {
+    const Vec2& a = A[e];
+    const Vec2& b = B[e];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (b.x - a.x) * (p.y - a.y) / (b.y - a.y))
+    {
+      in = !in;
+    }
+  }
+  return in;
+}
+
+bool ClassRegion::DeeplyInside(const Vec2& p, double depth) const
+{
+  if (!(std::abs(p.x) < R && std::abs(p.y) < R))
+  {
+    return false;
+  }
+  const std::size_t c = static_cast<std::size_t>(CellOf(p.y)) * Cells + CellOf(p.x);
+  if (State[c] != 0)
+  {
+    return State[c] == 2; // the whole cell is farther than the largest depth from the outline
+  }
+  for (int e : Near[c])
+  {
+    if (SegmentDistance(A[e], B[e], p) <= depth)
+    {
+      return false;
+    }
+  }
+  return Inside(p);
+}
+
+OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
+  const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options)
+{
+  const auto start = std::chrono::steady_clock::now();
+  OverlapCheckResult result;
+  const std::vector<PlacedShape>& shapes = distributor.Shapes();
+  const SafeDistanceTables& tables = distributor.Tables();
+  const double size = distributor.Options().ShapeSize;
+  const int n = static_cast<int>(shapes.size());
+  result.Overlaps.assign(n, 0);
+  if (n == 0 || static_cast<int>(outlines.size()) != n)
+  {
+    return result;
+  }
+  const double tolerance = std::max(0.0, options.Tolerance);
+  std::vector<ClassRegion> regions;
+  for (const SafeDistanceClass& c : tables.Classes)
+  {
+    regions.emplace_back(c.Outline.Rings, c.Radius, tolerance * c.Radius);
+  }
+  // Circumradius of every shape (world units), and candidate pairs from a grid of cells as
+  // wide as the largest circle diameter.
+  std::vector<double> radius(n);
+  double rmax = 0.0;
+  for (int s = 0; s < n; ++s)
+  {
+    radius[s] = tables.Classes[shapes[s].ClassId].Radius * size * shapes[s].Scale;
+    rmax = std::max(rmax, radius[s]);
+  }
+  const double cell = 2.0 * rmax;
+  auto key = [cell](const Vec3& x) {
+    return std::array<long long, 3>{ static_cast<long long>(std::floor(x.x / cell)),
+      static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
+  };
+  std::vector<std::pair<std::array<long long, 3>, int>> grid;
+  for (int s = 0; s < n; ++s)
+  {
+    grid.emplace_back(key(shapes[s].Position), s);
+  }
+  std::sort(grid.begin(), grid.end());
+  std::vector<std::vector<int>> overlapsOf(n); // per shape: overlapping shapes of higher index
+  long long examined = 0, unchecked = 0;
+  // Does the drawn outline of `b` reach deeper than the tolerance into `a`'s silhouette?
+  auto enters = [&](int a, int b, double depth) {
+    const ClassRegion& region = regions[shapes[a].ClassId];
+    const double step = depth; // samples along B's outline, normalized units of A
+    for (const OutlinePiece& piece : outlines[b])
+    {
+      const std::size_t m = piece.Points.size();
+      std::vector<Vec2> local(m);
+      std::vector<char> known(m);
+      for (std::size_t k = 0; k < m; ++k)
+      {
+        known[k] = distributor.ClassPoint(a, piece.Points[k], local[k]) ? 1 : 0;
+      }
+      const std::size_t segments = piece.Closed ? m : (m > 0 ? m - 1 : 0);
+      for (std::size_t k = 0; k < segments; ++k)
+      {
+        const std::size_t next = (k + 1) % m;
+        if (!known[k] || !known[next])
+        {
+          // A point beyond A's chart is farther than A's circle: only the known end can be
+          // inside.
+          if (known[k] && region.DeeplyInside(local[k], depth))
+          {
+            return true;
+          }
+          continue;
+        }
+        const Vec2 p = local[k], q = local[next];
+        if (SegmentDistance(p, q, Vec2{ 0.0, 0.0 }) >= region.Radius())
+        {
+          continue;
+        }
+        const int pieces = std::max(1, std::min(100000, static_cast<int>(std::ceil(Norm(q - p) / step))));
+        for (int j = 0; j < pieces; ++j)
+        {
+          if (region.DeeplyInside(p + (q - p) * (static_cast<double>(j) / pieces), depth))
+          {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  };
+#ifdef _OPENMP
+  const int threads = options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
+#endif
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) reduction(+ : examined, unchecked)
+  for (int a = 0; a < n; ++a)
+  {
+    const std::array<long long, 3> c = key(shapes[a].Position);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz)
+        {
+          const std::array<long long, 3> q{ c[0] + dx, c[1] + dy, c[2] + dz };
+          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, a + 1));
+          for (; it != grid.end() && it->first == q; ++it)
+          {
+            const int b = it->second;
+            if (Norm(shapes[b].Position - shapes[a].Position) >= radius[a] + radius[b])
+            {
+              continue;
+            }
+            ++examined;
+            const bool longA = !shapes[a].Curve.empty(), longB = !shapes[b].Curve.empty();
+            if (longA && longB)
+            {
+              ++unchecked;
+              continue;
+            }
+            const double depth = tolerance * std::min(radius[a], radius[b]);
+            const bool overlap =
+              (!longA && enters(a, b, depth / (size * shapes[a].Scale))) ||
+              (!longB && enters(b, a, depth / (size * shapes[b].Scale)));
+            if (overlap)
+            {
+              overlapsOf[a].push_back(b);
+            }
+          }
+        }
+  }
+  for (int a = 0; a < n; ++a)
+  {
+    std::sort(overlapsOf[a].begin(), overlapsOf[a].end());
+    for (int b : overlapsOf[a])
+    {
+      result.Pairs.emplace_back(a, b);
+      ++result.Overlaps[a];
+      ++result.Overlaps[b];
+    }
+  }
+  result.PairsExamined = examined;
+  result.UncheckedPairs = unchecked;
+  result.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+} // namespace gs

@@ -1,0 +1,74 @@
+// An overlap check of a finished distribution that does not use the safe distance tables: the
+// shapes are judged by their outlines as drawn on the surface (ShapeDistributor::Outline, each
+// outline point the end of a geodesic shot from its own shape's centre or curve).
+//
+// For every pair of shapes whose centres are closer in space than the sum of their
+// circumradii (the geodesic distance is never shorter), the drawn outline of one shape B is
+// carried into the class frame of the other, A, through A's geodesic polar chart (the log map of
+// its centre, the inverse of the map that draws A), and sampled along its polyline every
+// Tolerance; the pair overlaps when a sample lies inside A's silhouette deeper than Tolerance
+// (distance to A's class outline), or the same with A and B exchanged. Crossing outlines, one
+// shape inside the other and slivers of any length thicker than about 2 Tolerance are found;
+// shapes that touch are not overlaps. The check needs A's chart, so it is made from short
+// shapes' side: a pair of a long and a short shape is checked one way (the long outline in the
+// short shape's frame), a pair of two long shapes is not checked (counted in UncheckedPairs).
+#pragma once
+
+#include "ShapeOutline.h"
+#include "Vector.h"
+
+#include <utility>
+#include <vector>
+
+namespace gs
+{
+
+class ShapeDistributor;
+struct SafeDistanceTables;
+
+struct OverlapCheckOptions
+{
+  /// Depth that counts as an overlap, relative to the smaller circumradius of the pair.
+  double Tolerance = 0.005;
+  int NumberOfThreads = 0; ///< 0: all
+};
+
+struct OverlapCheckResult
+{
+  std::vector<std::pair<int, int>> Pairs; ///< overlapping shapes (first < second), sorted
+  std::vector<int> Overlaps;              ///< per shape: the number of shapes it overlaps
+  long long PairsExamined = 0;            ///< pairs closer than their circumradii
+  long long UncheckedPairs = 0;           ///< of those, pairs of two long shapes
+  double Seconds = 0.0;
+};
+
+/// Checks the shapes of `distributor` (after its Run) against their drawn outlines
+/// (`outlines[s]`: ShapeDistributor::Outline of shape s). Deterministic: the same pairs whatever
+/// the number of threads.
+OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
+  const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options = {});
+
+/// A class silhouette (even-odd rings, normalized class frame) with a grid for point queries.
+class ClassRegion
+{
+public:
+  /// `radius`: every ring point lies within it; `maximumDepth`: the largest depth that
+  /// DeeplyInside will be asked for (cells farther than that from the outline answer at once).
+  ClassRegion(const std::vector<std::vector<Vec2>>& rings, double radius, double maximumDepth);
+  /// Inside the region, and farther than `depth` (<= maximumDepth) from its outline.
+  bool DeeplyInside(const Vec2& p, double depth) const;
+  /// Even-odd point-in-region test.
+  bool Inside(const Vec2& p) const;
+  double Radius() const { return R; }
+
+private:
+  int CellOf(double v) const;
+  double R = 0.0, CellSize = 1.0;
+  int Cells = 1;
+  std::vector<Vec2> A, B;                 // edges
+  std::vector<std::vector<int>> Rows;     // per row of cells: edges spanning it in y
+  std::vector<std::vector<int>> Near;     // per cell: edges within the cell's reach
+  std::vector<char> State;                // per cell: 0 mixed, 1 all outside, 2 all deep inside
+};
+
+} // namespace gs

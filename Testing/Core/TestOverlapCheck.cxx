@@ -1,0 +1,149 @@
+// The overlap check users can run (OverlapCheck.h): no overlap reported for conflict-free
+// distributions, on a plane and on a curved mesh, and the overlaps of deliberately overlapping
+// distributions (tables shrunk by 20%) found as the independent oracles find them.
+#include "DistributionChecks.h"
+#include "TestMeshes.h"
+
+#include "MeshGenerators.h"
+#include "OverlapCheck.h"
+#include "SaddleVertexGraph.h"
+#include "SafeDistanceTable.h"
+#include "ShapeDistributor.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace gs;
+
+namespace
+{
+SafeDistanceTables StarAndTile()
+{
+  std::vector<SafeDistanceInput> in;
+  in.push_back({ "star", ShapeFromPolygons({ MakeStarPolygon(5, 1.0, 0.382) }) });
+  const std::vector<Vec2> tile{ { -1.0, -1.0 }, { 1.0, -1.0 }, { 1.0, -0.4 }, { -0.4, -0.4 },
+    { -0.4, 1.0 }, { -1.0, 1.0 } };
+  in.push_back({ "tile", ShapeFromPolygons({ tile }) });
+  SafeDistanceOptions o;
+  o.AngleBins = 32;
+  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r.Tables;
+}
+
+SafeDistanceTables Shrunk(SafeDistanceTables t, double factor)
+{
+  for (double& v : t.Values)
+    v *= factor;
+  return t;
+}
+
+std::vector<std::vector<OutlinePiece>> Outlines(const ShapeDistributor& d, double spacing)
+{
+  std::vector<std::vector<OutlinePiece>> out(d.Shapes().size());
+  for (std::size_t s = 0; s < out.size(); ++s)
+    out[s] = d.Outline(static_cast<int>(s), spacing);
+  return out;
+}
+} // namespace
+
+TEST(OverlapCheck, FindsThePlanarOraclesOverlapsAndNoOther)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(MakePlanarGrid(40, 40, 10.0, 10.0));
+  std::vector<Vec3> directions(mesh.NumberOfFaces());
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+  {
+    const auto& c = mesh.Face(f);
+    const double x = (mesh.Position(c[0]).x + mesh.Position(c[1]).x + mesh.Position(c[2]).x) / 3.0;
+    directions[f] = Vec3{ std::cos(0.5 * x), std::sin(0.5 * x), 0.0 };
+  }
+  const SafeDistanceTables t = StarAndTile();
+  const double spacing = 0.5 * mesh.MeanEdgeLength();
+  for (double factor : { 1.0, 0.8 })
+  {
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.5;
+    o.Seed = 4;
+    o.MaximalFailures = 2000;
+    ShapeDistributor d(mesh);
+    const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
+    ASSERT_TRUE(r.Ok) << r.Error;
+    // The oracle: drawn outlines (cut at the square's sides) sharing area.
+    std::vector<double> radius;
+    for (const PlacedShape& s : r.Shapes)
+      radius.push_back(t.Classes[s.ClassId].Radius * o.ShapeSize * s.Scale * (1.0 + 1e-9));
+    std::vector<std::pair<int, int>> expected;
+    gs_test::CountDrawnOverlaps(
+      r.Shapes, gs_test::DrawnPlanarOutlines(mesh, d, spacing), radius, 1e-5, &expected);
+    const auto outlines = Outlines(d, spacing);
+    OverlapCheckOptions co;
+    co.NumberOfThreads = 2;
+    const OverlapCheckResult found = CheckOverlaps(d, outlines, co);
+    co.NumberOfThreads = 1;
+    EXPECT_EQ(CheckOverlaps(d, outlines, co).Pairs, found.Pairs) << "any thread count";
+    EXPECT_GT(found.PairsExamined, static_cast<long long>(r.Shapes.size()) / 2);
+    EXPECT_EQ(found.UncheckedPairs, 0);
+    if (factor == 1.0)
+    {
+      EXPECT_TRUE(expected.empty());
+      EXPECT_TRUE(found.Pairs.empty()) << found.Pairs.size() << " false overlaps";
+      continue;
+    }
+    // Every pair found is a real overlap, and nearly all real overlaps are found (the check
+    // ignores overlaps shallower than its tolerance).
+    ASSERT_GT(expected.size(), 30u);
+    for (const auto& p : found.Pairs)
+      EXPECT_TRUE(std::binary_search(expected.begin(), expected.end(), p)) << p.first << " " << p.second;
+    EXPECT_GE(found.Pairs.size(), 0.9 * expected.size());
+    int counted = 0;
+    for (int c : found.Overlaps)
+      counted += c;
+    EXPECT_EQ(counted, 2 * static_cast<int>(found.Pairs.size()));
+  }
+}
+
+TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(4, 3, 0.01));
+  SaddleVertexGraph graph;
+  std::string error;
+  ASSERT_TRUE(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  std::vector<Vec3> directions(mesh.NumberOfFaces());
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+  {
+    const auto& c = mesh.Face(f);
+    const Vec3 x = (mesh.Position(c[0]) + mesh.Position(c[1]) + mesh.Position(c[2])) / 3.0;
+    directions[f] = Cross(Vec3{ 0.3, 0.2, 1.0 }, x);
+  }
+  const SafeDistanceTables t = StarAndTile();
+  const double spacing = 0.5 * mesh.MeanEdgeLength();
+  for (double factor : { 1.0, 0.8 })
+  {
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.1;
+    o.Seed = 2;
+    o.MaximalFailures = 2000;
+    if (factor != 1.0)
+    {
+      // The tables everywhere (no circumcircles where charts stretch, no holonomy margin).
+      o.DistortionLimit = 1e9;
+      o.HolonomyMargin = 0.0;
+    }
+    ShapeDistributor d(mesh, &graph);
+    const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
+    ASSERT_TRUE(r.Ok) << r.Error;
+    const OverlapCheckResult found = CheckOverlaps(d, Outlines(d, spacing));
+    const int oracle = gs_test::CountSurfaceOverlaps(mesh, t, d, o.ShapeSize, 0.02);
+    if (factor == 1.0)
+    {
+      EXPECT_EQ(oracle, 0);
+      EXPECT_TRUE(found.Pairs.empty()) << found.Pairs.size() << " false overlaps";
+      continue;
+    }
+    ASSERT_GT(oracle, 30);
+    EXPECT_GE(found.Pairs.size(), 0.9 * oracle);
+    EXPECT_LE(found.Pairs.size(), static_cast<std::size_t>(oracle));
+  }
+}
