@@ -26,6 +26,7 @@
 #include <vtkStringArray.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -277,6 +278,14 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     return 1;
   }
   this->UpdateProgress(0.0);
+  // Wall time of each phase, reported as the field data PhaseSeconds of Placements.
+  std::vector<std::pair<const char*, double>> phases;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&phases, &clock](const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    phases.emplace_back(name, std::chrono::duration<double>(now - clock).count());
+    clock = now;
+  };
 
   // 1. Parameters and tables.
   if (!(this->ShapeSize > 0.0) || !std::isfinite(this->ShapeSize))
@@ -434,6 +443,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   {
     return 1;
   }
+  lap("Input");
 
   // 4. Saddle vertex graph (shared, cached) and the distributor.
   std::shared_ptr<const gs::SaddleVertexGraph> graph;
@@ -454,6 +464,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     cache.Distributor.reset(new gs::ShapeDistributor(mesh, cache.Graph.get()));
   }
   gs::ShapeDistributor& distributor = *cache.Distributor;
+  lap("Graph");
 
   // 5. Distribution.
   gs::ShapeDistributionOptions options;
@@ -483,6 +494,14 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
   const std::vector<gs::PlacedShape>& shapes = result.Shapes;
   const int ns = static_cast<int>(shapes.size());
+  lap("Distribution");
+  {
+    const gs::ShapeDistributionStatistics& st = result.Statistics;
+    phases.emplace_back("SetUp", st.PrepareSeconds);
+    phases.emplace_back("Candidates", st.GenerateSeconds);
+    phases.emplace_back("ChecksAndCharts", st.CheckSeconds);
+    phases.emplace_back("Rounds", st.RoundSeconds);
+  }
 
   // 6. Placements.
   {
@@ -551,8 +570,14 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   for (int s = 0; s < ns; ++s)
   {
     decalOf[s] = distributor.Decal(s);
+  }
+  lap("Decals");
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+  for (int s = 0; s < ns; ++s)
+  {
     outlineOf[s] = distributor.Outline(s, spacing);
   }
+  lap("Outlines");
   if (this->VerifyOverlaps)
   {
     gs::OverlapCheckOptions check;
@@ -584,6 +609,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
       vtkWarningMacro("VerifyOverlaps: " << found.UncheckedPairs
                                          << " close pair(s) of two long shapes are not checked.");
     }
+    lap("VerifyOverlaps");
   }
   {
     vtkNew<vtkPoints> points;
@@ -655,6 +681,20 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     outlines->GetCellData()->AddArray(shapeId);
     outlines->GetCellData()->AddArray(classId);
     outlines->GetCellData()->SetActiveScalars("ClassId");
+  }
+  lap("Assembly");
+  {
+    // (SetUp .. Rounds split Distribution.)
+    vtkNew<vtkDoubleArray> split;
+    split->SetName("PhaseSeconds");
+    split->SetNumberOfComponents(static_cast<int>(phases.size()));
+    split->SetNumberOfTuples(1);
+    for (std::size_t k = 0; k < phases.size(); ++k)
+    {
+      split->SetComponentName(static_cast<vtkIdType>(k), phases[k].first);
+      split->SetComponent(0, static_cast<int>(k), phases[k].second);
+    }
+    placements->GetFieldData()->AddArray(split);
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -260,6 +260,280 @@ struct ShapeDistributor::Impl
     return true;
   }
 
+  // The map of a long shape (the one its outline and its parts use): class point p -> the point
+  // at arc length CurveCentre + <p, m> scale along its curve, then <p, perp> scale across it
+  // along the perpendicular geodesic (m: the class's major axis). This inverts it for the
+  // vertices near the shape: the map is sampled on a grid of (along, across) nodes finer than
+  // half an edge (one geodesic shot per column and side), and each vertex takes the class
+  // point of the grid triangle nearest to it (the affine extension of that triangle beyond the
+  // grid's border). Appends (vertex, class point) pairs, normalized class units.
+  void CurveShapeVertices(const PlacedShape& s, const SafeDistanceClass& c,
+    std::vector<std::pair<int, Vec2>>& local) const
+  {
+    const double scale = O.ShapeSize * s.Scale;
+    double length = 0.0;
+    for (const CurvePiece& piece : s.Curve)
+    {
+      length += Norm(piece.B - piece.A);
+    }
+    double across = 0.0;
+    for (const auto& ring : c.Outline.Rings)
+    {
+      for (const Vec2& p : ring)
+      {
+        across = std::max(across, std::abs(Cross(c.MajorAxis, p)));
+      }
+    }
+    across *= scale;
+    if (!(length > 0.0) || !(scale > 0.0))
+    {
+      return;
+    }
+    // Margin beyond the silhouette's extent (two mean edges): a face with a corner in the shape
+    // has its others within about an edge; a longer edge reaches into the affine extension.
+    const double margin = std::min(2.0 * M.MeanEdgeLength(), c.Radius * scale);
+    const double h0 = std::min(0.5 * M.MeanEdgeLength(), c.Radius * scale / 16.0);
+    const int columns = std::max(2, std::min(1024, static_cast<int>(std::ceil((length + 2.0 * margin) / h0)) + 1));
+    const int half = std::max(1, std::min(256, static_cast<int>(std::ceil((across + margin) / h0))));
+    const int rows = 2 * half + 1;
+    const double du = (length + 2.0 * margin) / (columns - 1), db = (across + margin) / half;
+    const Vec2 m = c.MajorAxis, perp{ -c.MajorAxis.y, c.MajorAxis.x };
+    struct Node
+    {
+      bool Valid = false;
+      SurfacePoint At;
+      Vec3 X;
+      Vec2 P;
+    };
+    std::vector<Node> nodes(static_cast<std::size_t>(columns) * rows);
+    auto walk = [](const GeodesicShot& shot, double d, SurfacePoint& at, const TriangleMesh& mesh) {
+      double walked = 0.0;
+      for (const CurvePiece& piece : shot.Pieces)
+      {
+        const double len = Norm(piece.B - piece.A);
+        if (walked + len >= d && len > 0.0)
+        {
+          at = SurfacePoint::InFace(piece.Face, 0, 0, 0);
+          at.Bary = mesh.ClampedBarycentric(piece.Face, piece.A + (piece.B - piece.A) * ((d - walked) / len));
+          return true;
+        }
+        walked += len;
+      }
+      return false;
+    };
+    for (int i = 0; i < columns; ++i)
+    {
+      const double u = -margin + du * i;
+      int face = -1;
+      Vec3 x, tangent;
+      SurfacePoint foot;
+      if (u >= 0.0 && u <= length)
+      {
+        if (!PointOnCurve(M, s.Curve, u, face, x, tangent))
+        {
+          continue;
+        }
+        foot = SurfacePoint::InFace(face, 0, 0, 0);
+        foot.Bary = M.ClampedBarycentric(face, x);
+      }
+      else
+      {
+        // Beyond an end: the geodesic continuing the curve's end.
+        const bool after = u > length;
+        if (!PointOnCurve(M, s.Curve, after ? length : 0.0, face, x, tangent))
+        {
+          continue;
+        }
+        SurfacePoint end = SurfacePoint::InFace(face, 0, 0, 0);
+        end.Bary = M.ClampedBarycentric(face, x);
+        const double angle = TangentAngle(M, end, after ? tangent : tangent * -1.0);
+        if (!std::isfinite(angle))
+        {
+          continue;
+        }
+        const double beyond = after ? u - length : -u;
+        const GeodesicShot shot = ShootGeodesic(M, end, angle, beyond);
+        if (shot.ReachedBoundary || shot.Pieces.empty())
+        {
+          continue;
+        }
+        foot = shot.End;
+        Vec3 dir = after ? tangent : tangent * -1.0;
+        for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
+        {
+          if (Norm(it->B - it->A) > 0.0)
+          {
+            dir = Unit(it->B - it->A);
+            break;
+          }
+        }
+        tangent = after ? dir : dir * -1.0;
+        face = foot.Face;
+      }
+      const double a = (u - s.CurveCentre) / scale;
+      const int centreRow = half;
+      Node& mid = nodes[static_cast<std::size_t>(i) * rows + centreRow];
+      mid.Valid = true;
+      mid.At = foot;
+      mid.X = M.Interpolate(foot.Face, foot.Bary);
+      mid.P = m * a;
+      const double angle = TangentAngle(M, foot, tangent);
+      if (!std::isfinite(angle))
+      {
+        continue;
+      }
+      for (const double side : { 1.0, -1.0 })
+      {
+        const GeodesicShot shot = ShootGeodesic(M, foot, angle + side * 0.5 * Pi, across + margin);
+        for (int j = 1; j <= half; ++j)
+        {
+          Node& node = nodes[static_cast<std::size_t>(i) * rows + centreRow + (side > 0.0 ? j : -j)];
+          if (!walk(shot, db * j * (1.0 - 1e-12), node.At, M))
+          {
+            break;
+          }
+          node.Valid = true;
+          node.X = M.Interpolate(node.At.Face, node.At.Bary);
+          node.P = m * a + perp * (side * db * j / scale);
+        }
+      }
+    }
+    // The vertices of the nodes' faces and their neighbours, each with a node to start from;
+    // the nearest node by descent over the grid (the map is smooth at the grid's scale).
+    // (Each vertex once: marks per thread, stamped per call.)
+    thread_local std::vector<unsigned> mark;
+    thread_local unsigned stamp = 0;
+    if (mark.size() != static_cast<std::size_t>(M.NumberOfVertices()) || stamp == ~0u)
+    {
+      mark.assign(M.NumberOfVertices(), 0u);
+      stamp = 0;
+    }
+    ++stamp;
+    std::vector<std::pair<int, int>> seeds; // (vertex, node)
+    for (int k = 0; k < static_cast<int>(nodes.size()); ++k)
+    {
+      if (nodes[k].Valid)
+      {
+        for (int v : M.Face(nodes[k].At.Face))
+        {
+          if (mark[v] != stamp)
+          {
+            mark[v] = stamp;
+            seeds.emplace_back(v, k);
+          }
+        }
+      }
+    }
+    for (std::size_t k = 0, n = seeds.size(); k < n; ++k)
+    {
+      for (int he : M.OutgoingHalfedges(seeds[k].first))
+      {
+        for (int w : M.Face(he / 3))
+        {
+          if (mark[w] != stamp)
+          {
+            mark[w] = stamp;
+            seeds.emplace_back(w, seeds[k].second);
+          }
+        }
+      }
+    }
+    local.reserve(local.size() + seeds.size());
+    for (const auto& seed : seeds)
+    {
+      const int v = seed.first;
+      const Vec3 X = M.Position(v);
+      int nearest = seed.second;
+      double best = Norm(nodes[nearest].X - X);
+      for (bool moved = true; moved;)
+      {
+        moved = false;
+        const int i0 = nearest / rows, j0 = nearest % rows;
+        for (int di = -1; di <= 1; ++di)
+        {
+          for (int dj = -1; dj <= 1; ++dj)
+          {
+            const int i1 = i0 + di, j1 = j0 + dj;
+            if (i1 < 0 || j1 < 0 || i1 >= columns || j1 >= rows || !nodes[i1 * rows + j1].Valid)
+            {
+              continue;
+            }
+            const double d = Norm(nodes[i1 * rows + j1].X - X);
+            if (d < best)
+            {
+              best = d;
+              nearest = i1 * rows + j1;
+              moved = true;
+            }
+          }
+        }
+      }
+      // The grid triangles around the nearest node: the nearest of them, its affine map.
+      const int ni = nearest / rows, nj = nearest % rows;
+      double bestDistance = std::numeric_limits<double>::infinity();
+      Vec2 bestPoint;
+      for (int ci = ni - 1; ci <= ni; ++ci)
+      {
+        for (int cj = nj - 1; cj <= nj; ++cj)
+        {
+          if (ci < 0 || cj < 0 || ci + 1 >= columns || cj + 1 >= rows)
+          {
+            continue;
+          }
+          const int q00 = ci * rows + cj, q10 = (ci + 1) * rows + cj, q11 = (ci + 1) * rows + cj + 1,
+                    q01 = ci * rows + cj + 1;
+          for (const std::array<int, 3>& t : { std::array<int, 3>{ q00, q10, q11 }, std::array<int, 3>{ q00, q11, q01 } })
+          {
+            const Node &A = nodes[t[0]], &B = nodes[t[1]], &C = nodes[t[2]];
+            if (!A.Valid || !B.Valid || !C.Valid)
+            {
+              continue;
+            }
+            double lambda[3] = { 0.0, 0.0, 0.0 };
+            const double d = TriangleDistance(A.X, B.X, C.X, X, lambda);
+            if (d < bestDistance)
+            {
+              bestDistance = d;
+              bestPoint = A.P * lambda[0] + B.P * lambda[1] + C.P * lambda[2];
+            }
+          }
+        }
+      }
+      if (std::isfinite(bestDistance))
+      {
+        local.emplace_back(v, bestPoint);
+      }
+    }
+  }
+
+  // Distance from x to triangle abc, and the barycentric coordinates of x's projection onto
+  // the triangle's plane (not clamped: the affine extension outside). Infinite when degenerate.
+  static double TriangleDistance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& x, double lambda[3])
+  {
+    const Vec3 e0 = b - a, e1 = c - a, n = Cross(e0, e1);
+    const double area2 = Dot(n, n);
+    if (!(area2 > 0.0))
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    const Vec3 w = x - a;
+    lambda[1] = Dot(Cross(w, e1), n) / area2;
+    lambda[2] = Dot(Cross(e0, w), n) / area2;
+    lambda[0] = 1.0 - lambda[1] - lambda[2];
+    if (lambda[0] >= 0.0 && lambda[1] >= 0.0 && lambda[2] >= 0.0)
+    {
+      return std::abs(Dot(w, n)) / std::sqrt(area2);
+    }
+    // Outside: the distance to the nearest edge.
+    auto segment = [&x](const Vec3& p, const Vec3& q) {
+      const Vec3 pq = q - p;
+      const double l2 = Dot(pq, pq);
+      const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(x - p, pq) / l2)) : 0.0;
+      return Norm(p + pq * t - x);
+    };
+    return std::min(segment(a, b), std::min(segment(b, c), segment(c, a)));
+  }
+
   // Builds a candidate's geometry at `centre` (a face point) for class `cls`: the direction,
   // the curve of a long class and the parts. False when it does not fit (curve too short).
   // `prefer` (optional): of the field's N directions in the face, take the one closest to it
@@ -2034,49 +2308,7 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
   }
   else
   {
-    // Curve polar coordinates: offset and normalized arc length along the offset curves.
-    std::vector<SurfacePoint> curve;
-    for (const CurvePiece& piece : s.Curve)
-    {
-      for (const Vec3& x : { piece.A, piece.B })
-      {
-        SurfacePoint q = SurfacePoint::InFace(piece.Face, 0, 0, 0);
-        q.Bary = I.M.ClampedBarycentric(piece.Face, x);
-        curve.push_back(q);
-      }
-    }
-    // The calling thread's engine when it has one (the filter calls this from as many threads
-    // as the run used), else a new one.
-    const int thread = ThreadId();
-    std::unique_ptr<GeodesicPolarCoordinates> own;
-    if (thread >= static_cast<int>(P->Engines.size()) || !P->Engines[thread])
-    {
-      own.reset(new GeodesicPolarCoordinates(I.M, I.G));
-    }
-    GeodesicPolarCoordinates& polar = own ? *own : *P->Engines[thread];
-    double across = 0.0;
-    for (const auto& ring : c.Outline.Rings)
-    {
-      for (const Vec2& p : ring)
-      {
-        across = std::max(across, std::abs(Cross(c.MajorAxis, p)));
-      }
-    }
-    if (!polar.ComputeCurve(curve, across * scale + I.MaxEdge))
-    {
-      return decal;
-    }
-    const double length = polar.CurveLength();
-    const Vec2 m = c.MajorAxis, perp{ -c.MajorAxis.y, c.MajorAxis.x };
-    for (int v : polar.Inside())
-    {
-      const double a = (polar.ArcLength(v) * length - s.CurveCentre) / scale;
-      const double b = polar.Offset(v) / scale;
-      if (std::isfinite(a) && std::isfinite(b))
-      {
-        local.emplace_back(v, m * a + perp * b);
-      }
-    }
+    I.CurveShapeVertices(s, c, local);
   }
   std::sort(local.begin(), local.end(),
     [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
@@ -2085,16 +2317,21 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
       [](const std::pair<int, Vec2>& e, int value) { return e.first < value; });
     return it != local.end() && it->first == v ? &it->second : nullptr;
   };
-  // Faces with all corners known, near the shape: one of them inside the square of the class.
+  // Faces with all corners known, near the shape: one of them inside the square of the class
+  // (each face visited once, from its corner of smallest index).
   std::vector<int> faces;
   for (const auto& e : local)
   {
     for (int h : I.M.OutgoingHalfedges(e.first))
     {
-      faces.push_back(h / 3);
+      const auto& corners = I.M.Face(h / 3);
+      if (e.first == std::min(corners[0], std::min(corners[1], corners[2])))
+      {
+        faces.push_back(h / 3);
+      }
     }
   }
-  SortUnique(faces);
+  std::sort(faces.begin(), faces.end());
   for (int f : faces)
   {
     std::array<Vec2, 3> uv;
