@@ -12,14 +12,18 @@
 //     by the chart-based surface test.
 //
 // Usage: DistributionBenchmark <refined_elephant.off> [shape images dir] [--quick]
+//   or: DistributionBenchmark <mesh.off> --scale --image a.png [--image b.png ...] [--cache graph.svg]
+//       [--size 0.01] [--greedy] [--speed-rounds R] (see AtScale)
 //   [--mesh-only (section 4 only)] [--speed-only (its speed figures only)] [--speed-rounds R]
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
 //   openclipart; polygons are used when missing).
 #include "../Testing/Core/DistributionChecks.h"
 #include "BenchmarkSupport.h"
 
+#include "Hash.h"
 #include "MeshGenerators.h"
 #include "MeshIO.h"
+#include "OverlapCheck.h"
 #include "SaddleVertexGraph.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
@@ -382,15 +386,152 @@ void BumpySphere(const std::vector<SafeDistanceInput>& classes, int seeds)
 
 } // namespace
 
+// --scale: the Shape Distributor at scale as the filter runs it (issue 17): a mesh subdivided once,
+// the given shape images (each scaled to circumradius 1), ShapeSize `size` times the bounding-box
+// diagonal, a constant direction; the graph from `cache` (built and saved when missing);
+// `runs` re-runs with new seeds alternating 1 and 2 threads; per phase: distribution (set-up,
+// candidates, checks and charts, rounds), decals, outlines and the overlap check (VerifyOverlaps).
+int AtScale(const std::string& meshPath, const std::vector<std::string>& images, const std::string& cache,
+  int runs, double size, DistributionMode mode)
+{
+  TriangleSoup soup;
+  std::string error;
+  if (!ReadMesh(meshPath, soup, error))
+  {
+    std::fprintf(stderr, "%s: %s\n", meshPath.c_str(), error.c_str());
+    return 1;
+  }
+  const TriangleMesh mesh = Build(Subdivide(soup));
+  std::vector<SafeDistanceInput> classes;
+  for (const std::string& file : images)
+  {
+    Shape2D shape;
+    if (!ShapeFromImage(file, shape))
+    {
+      std::fprintf(stderr, "cannot read %s\n", file.c_str());
+      return 1;
+    }
+    classes.push_back({ file, shape });
+  }
+  const SafeDistanceTables t = Tables(classes);
+  int longClasses = 0;
+  for (const SafeDistanceClass& c : t.Classes)
+    longClasses += c.Parts.size() > 1 ? 1 : 0;
+  std::printf("At scale: %s subdivided once: %d vertices, %d faces; %zu classes (%d long), ShapeSize %.3g of "
+              "the diagonal, %s\n", meshPath.c_str(), mesh.NumberOfVertices(), mesh.NumberOfFaces(),
+    classes.size(), longClasses, size, ModeName(mode));
+  Hasher h;
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+    h.AddValue(mesh.Position(v));
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+    h.AddValue(mesh.Face(f));
+  SaddleVertexGraph graph;
+  if (cache.empty() || !graph.Load(cache, h.H, 50, error))
+  {
+    const double t0 = Now();
+    SaddleVertexGraphOptions go;
+    go.K = 50;
+    if (!graph.Build(mesh, go, nullptr, error))
+    {
+      std::fprintf(stderr, "graph: %s\n", error.c_str());
+      return 1;
+    }
+    std::printf("  graph build (K = 50, 2 threads): %.2f s\n", Now() - t0);
+    if (!cache.empty() && !graph.Save(cache, h.H, error))
+      std::fprintf(stderr, "graph cache: %s\n", error.c_str());
+  }
+  const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
+  ShapeDistributor d(mesh, &graph);
+  std::map<int, std::vector<double>> total, phase[8];
+  std::map<int, std::vector<std::size_t>> counts;
+  const char* names[8] = { "set-up", "candidates", "checks and charts", "rounds", "decals", "outlines",
+    "overlap check", "all" };
+  for (int run = 0; run <= runs; ++run)
+  {
+    for (int threads : { 1, 2 })
+    {
+      ShapeDistributionOptions o;
+      o.ShapeSize = size * mesh.BoundingBoxDiagonal();
+      o.Seed = static_cast<std::uint64_t>(10 + run);
+      o.NumberOfThreads = threads;
+      o.Mode = mode;
+      const double t0 = Now();
+      const ShapeDistributionResult r = d.Run(t, directions, {}, o);
+      const double t1 = Now();
+      const int n = static_cast<int>(r.Shapes.size());
+      std::vector<ShapeDecal> decals(n);
+      std::vector<std::vector<OutlinePiece>> outlines(n);
+      const double spacing = 0.5 * mesh.MeanEdgeLength();
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+      for (int s = 0; s < n; ++s)
+        decals[s] = d.Decal(s);
+      const double t2 = Now();
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+      for (int s = 0; s < n; ++s)
+        outlines[s] = d.Outline(s, spacing);
+      const double t3 = Now();
+      OverlapCheckOptions co;
+      co.NumberOfThreads = threads;
+      const OverlapCheckResult check = CheckOverlaps(d, outlines, co);
+      const double t4 = Now();
+      const ShapeDistributionStatistics& st = r.Statistics;
+      const double values[8] = { st.PrepareSeconds, st.GenerateSeconds, st.CheckSeconds, st.RoundSeconds,
+        t2 - t1, t3 - t2, t4 - t3, t3 - t0 };
+      std::printf("  seed %d, %d thread(s): %d shapes, %lld candidates, %lld charts; distribution %.2f s, "
+                  "with decals and outlines %.2f s (%.0f shapes/s); overlap check %.3f s (%zu pairs, %lld "
+                  "examined, %lld unchecked)%s\n", 10 + run, threads, n, st.Candidates, st.Charts, t1 - t0,
+        t3 - t0, n / (t3 - t0), t4 - t3, check.Pairs.size(), check.PairsExamined, check.UncheckedPairs,
+        run == 0 ? " (warm-up)" : "");
+      for (std::size_t k = 0; k < check.Pairs.size() && k < 4 && threads == 1; ++k)
+      {
+        const PlacedShape &a = r.Shapes[check.Pairs[k].first], &b = r.Shapes[check.Pairs[k].second];
+        std::printf("    overlap: shapes %d (class %d%s) and %d (class %d%s), centres %.4f apart (radius %.4f)\n",
+          check.Pairs[k].first, a.ClassId, a.Curve.empty() ? "" : ", long", check.Pairs[k].second, b.ClassId,
+          b.Curve.empty() ? "" : ", long", Norm(a.Position - b.Position), o.ShapeSize);
+      }
+      if (run == 0)
+        continue; // the first run of each thread count: per-thread engines, lattices
+      for (int k = 0; k < 8; ++k)
+        phase[k][threads].push_back(values[k]);
+      counts[threads].push_back(r.Shapes.size());
+    }
+  }
+  for (int threads : { 1, 2 })
+  {
+    std::printf("  median of %d, %d thread(s):", runs, threads);
+    for (int k = 0; k < 8; ++k)
+      std::printf(" %s %.3f s%s", names[k], Median(phase[k][threads]), k < 7 ? "," : "\n");
+  }
+  const double one = Median(phase[7][1]), two = Median(phase[7][2]);
+  std::printf("  2 threads: %.2fx one; overlap check / distribution with outputs: %.1f%%; same shapes for 1 "
+              "and 2 threads: %s\n", one / two, 100.0 * Median(phase[6][2]) / two,
+    counts[1] == counts[2] ? "yes" : "NO");
+  return counts[1] == counts[2] ? 0 : 2;
+}
+
 int main(int argc, char* argv[])
 {
   bool quick = false, meshOnly = false, exactCharts = false, speedOnly = false;
   int speedRounds = 3;
   double margin = -1.0, distortion = -1.0;
-  std::vector<std::string> args;
+  std::vector<std::string> args, scaleImages;
+  std::string scaleCache;
+  double scaleSize = 0.01;
+  bool scale = false;
+  DistributionMode scaleMode = DistributionMode::Random;
   for (int i = 1; i < argc; ++i)
   {
-    if (std::strcmp(argv[i], "--quick") == 0)
+    if (std::strcmp(argv[i], "--scale") == 0)
+      scale = true;
+    else if (std::strcmp(argv[i], "--cache") == 0 && i + 1 < argc)
+      scaleCache = argv[++i];
+    else if (std::strcmp(argv[i], "--size") == 0 && i + 1 < argc)
+      scaleSize = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--greedy") == 0)
+      scaleMode = DistributionMode::Greedy;
+    else if (std::strcmp(argv[i], "--image") == 0 && i + 1 < argc)
+      scaleImages.push_back(argv[++i]);
+    else if (std::strcmp(argv[i], "--quick") == 0)
       quick = true;
     else if (std::strcmp(argv[i], "--svg") == 0 && i + 1 < argc)
       SvgPrefix = argv[++i];
@@ -409,6 +550,8 @@ int main(int argc, char* argv[])
     else
       args.push_back(argv[i]);
   }
+  if (scale && !args.empty())
+    return AtScale(args[0], scaleImages, scaleCache, speedRounds, scaleSize, scaleMode);
   const std::string images = args.size() > 1 ? args[1] : "";
   std::vector<SafeDistanceInput> classes;
   classes.push_back({ "pentagram", ShapeFromPolygons({ Pentagram() }) });

@@ -124,6 +124,44 @@ bool ClassRegion::DeeplyInside(const Vec2& p, double depth) const
   return Inside(p);
 }
 
+bool ClassRegion::Within(const Vec2& p, double distance) const
+{
+  if (!(std::abs(p.x) < R + distance && std::abs(p.y) < R + distance))
+  {
+    return false;
+  }
+  const bool inGrid = std::abs(p.x) < R && std::abs(p.y) < R;
+  const std::size_t c = static_cast<std::size_t>(CellOf(p.y)) * Cells + CellOf(p.x);
+  if (inGrid && State[c] != 0)
+  {
+    return State[c] == 2; // farther than the largest depth from the outline: inside or not
+  }
+  if (inGrid && Inside(p))
+  {
+    return true;
+  }
+  // Outside: an edge within `distance` (those near the cell; beyond the grid, all of them).
+  if (inGrid)
+  {
+    for (int e : Near[c])
+    {
+      if (SegmentDistance(A[e], B[e], p) <= distance)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+  for (std::size_t e = 0; e < A.size(); ++e)
+  {
+    if (SegmentDistance(A[e], B[e], p) <= distance)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
   const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options)
 {

@@ -59,6 +59,9 @@ public:
   bool DeeplyInside(const Vec2& p, double depth) const;
   /// Even-odd point-in-region test.
   bool Inside(const Vec2& p) const;
+  /// Inside the region dilated by `distance` (0 <= distance <= maximumDepth): inside, or within
+  /// `distance` of its outline.
+  bool Within(const Vec2& p, double distance) const;
   double Radius() const { return R; }
 
 private:

@@ -4,6 +4,7 @@
 #include "GeodesicPolarCoordinates.h"
 #include "GeodesicShooting.h"
 #include "Hash.h"
+#include "OverlapCheck.h"
 #include "SaddleVertexGraph.h"
 
 #include <algorithm>
@@ -120,6 +121,12 @@ struct ShapeDistributor::Impl
   double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
   std::vector<double> ClassCdf;
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
+  // Per class: its silhouette for point queries, and the clearance of its centre (the distance
+  // from the class origin, the point a candidate is centred at, to the outline; -1 when the
+  // origin is outside the silhouette). See CentreCovered.
+  std::vector<ClassRegion> Regions;
+  std::vector<double> Clearance;
+  double MaxClearance = 0.0; // the regions' reach for Within
   // Greedy: per single-part class, the densest lattice of copies turned alike that the tables
   // admit (six neighbour vectors in the shape's frame, normalized units); empty: none.
   std::vector<std::vector<Vec2>> ClassLattice;
@@ -828,6 +835,69 @@ struct ShapeDistributor::Impl
     return vs;
   }
 
+  // A candidate of class `cls` centred at `centre` (density factor `scale`) certainly overlaps
+  // an accepted shape: its centre, inside its own silhouette with clearance rho (see
+  // Clearance), lies within 0.9 rho of an accepted part's silhouette, read in that part's chart
+  // within the part's circle (a 2% margin for the chart). The full check would reject it too
+  // (the tables keep silhouettes apart); this one needs no curve, so long candidates skip
+  // tracing their streamlines where the surface is taken.
+  bool CentreCovered(const SurfacePoint& centre, int cls, double scale, std::vector<int>& scratch) const
+  {
+    if (CircleMode || Clearance[cls] < 0.0)
+    {
+      return false;
+    }
+    const auto& corners = M.Face(centre.Face);
+    scratch.clear();
+    for (int v : corners)
+    {
+      scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+    }
+    SortUnique(scratch);
+    const Vec3 position = M.Interpolate(centre.Face, centre.Bary);
+    for (int x : scratch)
+    {
+      const Record& X = Accepted[x];
+      const double unit = O.ShapeSize * X.S.Scale;
+      const ClassRegion& region = Regions[X.S.ClassId];
+      for (std::size_t i = 0; i < X.S.Parts.size() && i < X.Charts.size(); ++i)
+      {
+        const int pa = X.S.Parts[i].Part;
+        if (Norm(X.S.Parts[i].Position - position) > PartRadius(pa) * unit)
+        {
+          continue; // beyond the part's circle (the geodesic distance is never shorter)
+        }
+        const double margin = 0.02 * PartRadius(pa);
+        const double dilation = 0.9 * Clearance[cls] * scale / X.S.Scale - margin;
+        const Chart& chart = X.Charts[i];
+        const ChartEntry* e[3];
+        bool all = true;
+        for (int k = 0; k < 3 && all; ++k)
+        {
+          e[k] = chart.Find(corners[k]);
+          all = e[k] != nullptr;
+        }
+        if (!all)
+        {
+          continue;
+        }
+        const Vec2 q = (Vec2{ e[0]->X, e[0]->Y } * centre.Bary[0] + Vec2{ e[1]->X, e[1]->Y } * centre.Bary[1] +
+                         Vec2{ e[2]->X, e[2]->Y } * centre.Bary[2]) *
+          (1.0 / unit);
+        if (Norm(q) > PartRadius(pa))
+        {
+          continue;
+        }
+        const Vec2 p = T.Parts[pa].Centre + q;
+        if (dilation >= 0.0 ? region.Within(p, std::min(dilation, MaxClearance)) : region.DeeplyInside(p, -dilation))
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   // Checks against accepted shapes whose charts judge the pair (f_X >= f_C: the older decides
   // ties). Needs no chart of the candidate.
   bool CheapConflict(const Record& c, std::vector<int>& scratch) const
@@ -1402,6 +1472,39 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     ClassExtentMin[k] = lo;
     ClassExtentMax[k] = hi;
   }
+  Regions.clear();
+  Clearance.assign(T.Classes.size(), -1.0);
+  {
+    double largest = 0.0;
+    std::vector<double> clearance(T.Classes.size(), -1.0);
+    for (std::size_t k = 0; k < T.Classes.size(); ++k)
+    {
+      const SafeDistanceClass& c = T.Classes[k];
+      ClassRegion probe(c.Outline.Rings, c.Radius, 0.0);
+      if (probe.Inside(Vec2{ 0.0, 0.0 }))
+      {
+        double d = std::numeric_limits<double>::infinity();
+        for (const auto& ring : c.Outline.Rings)
+        {
+          for (std::size_t i = 0, n = ring.size(); i < n; ++i)
+          {
+            const Vec2 a = ring[i], ab = ring[(i + 1) % n] - ring[i];
+            const double l2 = Dot(ab, ab);
+            const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, -Dot(a, ab) / l2)) : 0.0;
+            d = std::min(d, Norm(a + ab * t));
+          }
+        }
+        clearance[k] = d;
+        largest = std::max(largest, d);
+      }
+    }
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      Regions.emplace_back(c.Outline.Rings, c.Radius, largest);
+    }
+    Clearance = clearance;
+    MaxClearance = largest;
+  }
   if (anyLong)
   {
     if (!Field)
@@ -1424,14 +1527,21 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
 void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) const
 {
   const int n = static_cast<int>(batch.size());
-#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(O.NumberOfThreads))
-  for (int i = 0; i < n; ++i)
+#pragma omp parallel num_threads(ThreadCount(O.NumberOfThreads))
   {
-    Random rng(O.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-    const int cls = RandomClass(rng);
-    const SurfacePoint centre = RandomPoint(rng);
-    // A class that certainly cannot fit in this face: no need to build the shape.
-    batch[i].Valid = !DeadForClass(cls, centre.Face) && MakeShape(centre, cls, rng, batch[i].S);
+    std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 64)
+    for (int i = 0; i < n; ++i)
+    {
+      Random rng(O.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+      const int cls = RandomClass(rng);
+      const SurfacePoint centre = RandomPoint(rng);
+      // A class that certainly cannot fit in this face, or (long classes, whose shapes cost a
+      // streamline) at this centre: no need to build the shape.
+      batch[i].Valid = !DeadForClass(cls, centre.Face) &&
+        !(T.Classes[cls].Parts.size() > 1 && CentreCovered(centre, cls, DensityAt(centre), scratch)) &&
+        MakeShape(centre, cls, rng, batch[i].S);
+    }
   }
 }
 
