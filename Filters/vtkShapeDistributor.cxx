@@ -23,6 +23,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 
 #include <algorithm>
@@ -319,6 +320,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     return 1;
   }
 
+  lap("Tables");
   // 2. Mesh (kept while unchanged).
   Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
   if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
@@ -331,6 +333,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   const vtkIdType firstPolygon = surface->GetNumberOfVerts() + surface->GetNumberOfLines();
   const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
 
+  lap("Mesh");
   // 3. Direction (per face) and density (per vertex), read on the converted surface (which
   // carries the input's arrays through a triangulation).
   vtkInformation* directionInfo = this->GetInputArrayInformation(0);
@@ -611,35 +614,67 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     }
     lap("VerifyOverlaps");
   }
+  // Decals and outlines written straight into arrays sized beforehand (per shape, its first
+  // face and point), in parallel.
+  auto idArray = [](vtkIdType n) {
+    vtkNew<vtkIdTypeArray> a;
+    a->SetNumberOfValues(n);
+    return vtkSmartPointer<vtkIdTypeArray>(a.GetPointer());
+  };
   {
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    vtkNew<vtkCellArray> polys;
+    std::vector<vtkIdType> first(ns + 1, 0);
+    for (int s = 0; s < ns; ++s)
+    {
+      first[s + 1] = first[s] + static_cast<vtkIdType>(decalOf[s].Faces.size());
+    }
+    const vtkIdType nd = first[ns];
+    vtkNew<vtkDoubleArray> xyz;
+    xyz->SetNumberOfComponents(3);
+    xyz->SetNumberOfTuples(3 * nd);
     vtkNew<vtkFloatArray> tcoords;
     tcoords->SetName("TextureCoordinates");
     tcoords->SetNumberOfComponents(2);
+    tcoords->SetNumberOfTuples(3 * nd);
     vtkNew<vtkIntArray> shapeId, classId;
     shapeId->SetName("ShapeId");
     classId->SetName("ClassId");
+    shapeId->SetNumberOfValues(nd);
+    classId->SetNumberOfValues(nd);
+    vtkSmartPointer<vtkIdTypeArray> offsets = idArray(nd + 1), connectivity = idArray(3 * nd);
+    double* x = xyz->GetPointer(0);
+    float* t = tcoords->GetPointer(0);
+    vtkIdType* o = offsets->GetPointer(0);
+    vtkIdType* c = connectivity->GetPointer(0);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
     for (int s = 0; s < ns; ++s)
     {
       const gs::ShapeDecal& d = decalOf[s];
       for (std::size_t k = 0; k < d.Faces.size(); ++k)
       {
+        const vtkIdType cell = first[s] + static_cast<vtkIdType>(k);
         const int f = d.Faces[k];
         const gs::Vec3 n = mesh.FaceNormal(f) * lift;
-        vtkIdType ids[3];
         for (int j = 0; j < 3; ++j)
         {
-          const gs::Vec3 x = mesh.Position(mesh.Face(f)[j]) + n;
-          ids[j] = points->InsertNextPoint(x.x, x.y, x.z);
-          tcoords->InsertNextTuple2(d.TextureCoordinates[k][j].x, d.TextureCoordinates[k][j].y);
+          const gs::Vec3 p = mesh.Position(mesh.Face(f)[j]) + n;
+          const vtkIdType id = 3 * cell + j;
+          x[3 * id] = p.x;
+          x[3 * id + 1] = p.y;
+          x[3 * id + 2] = p.z;
+          t[2 * id] = static_cast<float>(d.TextureCoordinates[k][j].x);
+          t[2 * id + 1] = static_cast<float>(d.TextureCoordinates[k][j].y);
+          c[id] = id;
         }
-        polys->InsertNextCell(3, ids);
-        shapeId->InsertNextValue(s);
-        classId->InsertNextValue(shapes[s].ClassId);
+        o[cell] = 3 * cell;
+        shapeId->SetValue(cell, s);
+        classId->SetValue(cell, shapes[s].ClassId);
       }
     }
+    o[nd] = 3 * nd;
+    vtkNew<vtkPoints> points;
+    points->SetData(xyz);
+    vtkNew<vtkCellArray> polys;
+    polys->SetData(offsets, connectivity);
     decals->SetPoints(points);
     decals->SetPolys(polys);
     decals->GetPointData()->SetTCoords(tcoords);
@@ -647,35 +682,71 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     decals->GetCellData()->AddArray(classId);
   }
   {
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    vtkNew<vtkCellArray> lines;
+    // Per shape: its first line and point; a closed piece repeats its first point id.
+    std::vector<vtkIdType> firstLine(ns + 1, 0), firstPoint(ns + 1, 0), firstId(ns + 1, 0);
+    for (int s = 0; s < ns; ++s)
+    {
+      vtkIdType lines = 0, points = 0, ids = 0;
+      for (const gs::OutlinePiece& piece : outlineOf[s])
+      {
+        if (piece.Points.size() >= 2)
+        {
+          ++lines;
+          points += static_cast<vtkIdType>(piece.Points.size());
+          ids += static_cast<vtkIdType>(piece.Points.size()) + (piece.Closed ? 1 : 0);
+        }
+      }
+      firstLine[s + 1] = firstLine[s] + lines;
+      firstPoint[s + 1] = firstPoint[s] + points;
+      firstId[s + 1] = firstId[s] + ids;
+    }
+    const vtkIdType nl = firstLine[ns], np = firstPoint[ns], ni = firstId[ns];
+    vtkNew<vtkDoubleArray> xyz;
+    xyz->SetNumberOfComponents(3);
+    xyz->SetNumberOfTuples(np);
     vtkNew<vtkIntArray> shapeId, classId;
     shapeId->SetName("ShapeId");
     classId->SetName("ClassId");
+    shapeId->SetNumberOfValues(nl);
+    classId->SetNumberOfValues(nl);
+    vtkSmartPointer<vtkIdTypeArray> offsets = idArray(nl + 1), connectivity = idArray(ni);
+    double* x = xyz->GetPointer(0);
+    vtkIdType* o = offsets->GetPointer(0);
+    vtkIdType* c = connectivity->GetPointer(0);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
     for (int s = 0; s < ns; ++s)
     {
+      vtkIdType line = firstLine[s], point = firstPoint[s], id = firstId[s];
       for (const gs::OutlinePiece& piece : outlineOf[s])
       {
         if (piece.Points.size() < 2)
         {
           continue;
         }
-        std::vector<vtkIdType> ids;
+        o[line] = id;
+        shapeId->SetValue(line, s);
+        classId->SetValue(line, shapes[s].ClassId);
+        ++line;
+        const vtkIdType start = point;
         for (const gs::SurfacePoint& q : piece.Points)
         {
-          const gs::Vec3 x = mesh.Interpolate(q.Face, q.Bary) + mesh.FaceNormal(q.Face) * lift;
-          ids.push_back(points->InsertNextPoint(x.x, x.y, x.z));
+          const gs::Vec3 p = mesh.Interpolate(q.Face, q.Bary) + mesh.FaceNormal(q.Face) * lift;
+          x[3 * point] = p.x;
+          x[3 * point + 1] = p.y;
+          x[3 * point + 2] = p.z;
+          c[id++] = point++;
         }
         if (piece.Closed)
         {
-          ids.push_back(ids.front());
+          c[id++] = start;
         }
-        lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-        shapeId->InsertNextValue(s);
-        classId->InsertNextValue(shapes[s].ClassId);
       }
     }
+    o[nl] = ni;
+    vtkNew<vtkPoints> points;
+    points->SetData(xyz);
+    vtkNew<vtkCellArray> lines;
+    lines->SetData(offsets, connectivity);
     outlines->SetPoints(points);
     outlines->SetLines(lines);
     outlines->GetCellData()->AddArray(shapeId);

@@ -15,6 +15,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 
+#include <cstdint>
 #include <memory>
 
 #include <string>
@@ -37,17 +38,24 @@ public:
     vtkSmartPointer<vtkPolyData> Triangles;
     // The core mesh plus the maps input point <-> mesh vertex.
     gs::MeshBuildResult Build;
+    // Surface is the input's triangulation (not a shallow copy of the input).
+    bool Triangulated = false;
   };
 
   // Converts `input`; never throws on bad input (Result::Ok false, Result::Error set).
   static Result Convert(vtkPolyData* input);
 
-  // A conversion kept while its input is unchanged (same object, same modification time). Each
-  // filter's cache derives from it and adds what the filter builds on the mesh.
+  // A conversion kept while its input's points and cells are unchanged (same object, same
+  // modification times); when only its arrays changed, Surface takes the new ones (a
+  // triangulated input is converted again). Each filter's cache derives from it and adds what
+  // the filter builds on the mesh (from points and cells only).
   struct Cached
   {
     vtkPolyData* Input = nullptr;
-    vtkMTimeType InputTime = 0;
+    vtkMTimeType GeometryTime = 0;
+    vtkMTimeType AttributeTime = 0;
+    vtkMTimeType ObjectTime = 0;    // the data object's own (Modified() after editing in place)
+    std::uint64_t ContentHash = 0;  // of the points and cells, checked when ObjectTime moved
     Result Mesh;
   };
 
@@ -56,12 +64,29 @@ public:
   template <class C>
   static C& Update(std::unique_ptr<C>& cache, vtkPolyData* input)
   {
-    if (!cache || !IsCurrent(*cache, input))
+    bool same = cache && cache->Input == input && input && cache->GeometryTime == GeometryTime(input);
+    if (same && cache->ObjectTime != input->vtkObject::GetMTime())
+    {
+      // Modified as a whole (an upstream filter ran again, or points edited in place): the
+      // same mesh when its points and cells hash the same.
+      same = cache->ContentHash == ContentHash(input);
+      cache->ObjectTime = input->vtkObject::GetMTime();
+    }
+    if (same && cache->AttributeTime != AttributeTime(input) && !cache->Mesh.Triangulated)
+    {
+      TakeAttributes(cache->Mesh, input);
+      cache->AttributeTime = AttributeTime(input);
+    }
+    else if (!same || cache->AttributeTime != AttributeTime(input))
     {
       cache.reset(new C);
       cache->Input = input;
-      cache->InputTime = InputTime(input);
       cache->Mesh = Convert(input);
+      // (After the conversion: reading the input may build its cells, which modifies it.)
+      cache->GeometryTime = GeometryTime(input);
+      cache->AttributeTime = AttributeTime(input);
+      cache->ObjectTime = input ? input->vtkObject::GetMTime() : 0;
+      cache->ContentHash = ContentHash(input);
     }
     return *cache;
   }
@@ -71,8 +96,12 @@ public:
   static bool Report(const Result& result, vtkObject* algorithm);
 
 private:
-  static bool IsCurrent(const Cached& cache, vtkPolyData* input);
-  static vtkMTimeType InputTime(vtkPolyData* input);
+  // Modification times of the points and cells, and of the point, cell and field data. (Not
+  // the data object's own time, which includes its information, touched by pipeline requests.)
+  static vtkMTimeType GeometryTime(vtkPolyData* input);
+  static vtkMTimeType AttributeTime(vtkPolyData* input);
+  static void TakeAttributes(Result& mesh, vtkPolyData* input);
+  static std::uint64_t ContentHash(vtkPolyData* input);
 };
 
 #endif

@@ -394,7 +394,8 @@ void TestBadInputs(vtkPolyData* grid)
 }
 
 // Quads (triangulated with a warning): the triangulation is converted once while the input is
-// unchanged; modifying the input converts it again. Abort: empty output.
+// unchanged (also through Modified() alone); editing it in place converts it again. Abort: empty
+// output.
 void TestCacheAndAbort()
 {
   const std::string test = "Cache";
@@ -422,9 +423,21 @@ void TestCacheAndAbort()
   Check(filter->GetOutput()->GetPolys() == first, test, "mesh converted again");
   Check(filter->GetOutput()->GetPointData()->GetArray("PolarAngle")->GetTuple1(40) == 0.0, test,
     "new source not used");
+  // Modified() alone (an upstream filter that ran again with the same mesh): kept; a point moved
+  // in place, then Modified() on the data set only: converted again.
   quads->Modified();
   filter->Update();
-  Check(filter->GetOutput()->GetPolys() != first, test, "modified input not converted again");
+  Check(filter->GetOutput()->GetPolys() == first, test, "unchanged mesh converted again after Modified()");
+  double x[3];
+  quads->GetPoints()->GetPoint(60, x);
+  x[2] = 0.01;
+  quads->GetPoints()->GetData()->SetTuple(60, x); // (no Modified() on the points)
+  quads->Modified();
+  filter->Update();
+  Check(filter->GetOutput()->GetPolys() != first, test, "mesh edited in place not converted again");
+  double moved[3];
+  filter->GetOutput()->GetPoint(60, moved);
+  Check(std::abs(moved[2] - 0.01) < 1e-6, test, "the edited point is not in the output");
   Check(recorder->Errors.empty(), test, "unexpected error");
 
   std::ostringstream printed;
