@@ -462,10 +462,18 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       std::vector<ShapeDecal> decals(n);
       std::vector<std::vector<OutlinePiece>> outlines(n);
       const double spacing = 0.5 * mesh.MeanEdgeLength();
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+      double longSeconds = 0.0;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) reduction(+ : longSeconds)
       for (int s = 0; s < n; ++s)
+      {
+        const double start = Now();
         decals[s] = d.Decal(s);
+        if (!r.Shapes[s].Curve.empty())
+          longSeconds += Now() - start;
+      }
       const double t2 = Now();
+      if (threads == 1)
+        std::printf("    decals: %.3f s CPU for long shapes, %.3f s for short ones\n", longSeconds, t2 - t1 - longSeconds);
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
       for (int s = 0; s < n; ++s)
         outlines[s] = d.Outline(s, spacing);

@@ -299,7 +299,7 @@ struct ShapeDistributor::Impl
     // Margin beyond the silhouette's extent (two mean edges): a face with a corner in the shape
     // has its others within about an edge; a longer edge reaches into the affine extension.
     const double margin = std::min(2.0 * M.MeanEdgeLength(), c.Radius * scale);
-    const double h0 = std::min(0.5 * M.MeanEdgeLength(), c.Radius * scale / 16.0);
+    const double h0 = std::min(M.MeanEdgeLength(), c.Radius * scale / 12.0);
     const int columns = std::max(2, std::min(1024, static_cast<int>(std::ceil((length + 2.0 * margin) / h0)) + 1));
     const int half = std::max(1, std::min(256, static_cast<int>(std::ceil((across + margin) / h0))));
     const int rows = 2 * half + 1;
