@@ -34,6 +34,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <string>
@@ -493,9 +494,47 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       for (std::size_t k = 0; k < check.Pairs.size() && k < 4 && threads == 1; ++k)
       {
         const PlacedShape &a = r.Shapes[check.Pairs[k].first], &b = r.Shapes[check.Pairs[k].second];
-        std::printf("    overlap: shapes %d (class %d%s) and %d (class %d%s), centres %.4f apart (radius %.4f)\n",
+        // Depth: the deepest point of the long (or second) outline inside the short shape.
+        const int sa = a.Curve.empty() ? check.Pairs[k].first : check.Pairs[k].second;
+        const int sb = sa == check.Pairs[k].first ? check.Pairs[k].second : check.Pairs[k].first;
+        double depth = 0.0;
+        const auto& rings = t.Classes[r.Shapes[sa].ClassId].Outline.Rings;
+        ClassRegion region(rings, t.Classes[r.Shapes[sa].ClassId].Radius, 0.0);
+        for (const OutlinePiece& piece : outlines[sb])
+          for (const SurfacePoint& q : piece.Points)
+          {
+            Vec2 p;
+            if (!d.ClassPoint(sa, q, p) || !region.Inside(p))
+              continue;
+            double best = 1e300;
+            for (const auto& ring : rings)
+              for (std::size_t i = 0; i < ring.size(); ++i)
+              {
+                const Vec2 u = ring[i], ab = ring[(i + 1) % ring.size()] - u;
+                const double l2 = Dot(ab, ab);
+                const double tt = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(p - u, ab) / l2)) : 0.0;
+                best = std::min(best, Norm(u + ab * tt - p));
+              }
+            if (best > depth)
+            {
+              depth = best;
+              if (std::getenv("GS_DEBUG_DEPTH"))
+              {
+                const Vec3 X = mesh.Interpolate(q.Face, q.Bary);
+                std::printf("      deepest so far %.3f at class point of %d (%.3f %.3f); parts of %d:", best, sa, p.x, p.y, sb);
+                for (const PlacedPart& part : r.Shapes[sb].Parts)
+                  std::printf(" [part %d r %.3f: %.4f from the point, %.4f from %d's centre]", part.Part,
+                    t.Parts[part.Part].Radius * o.ShapeSize * r.Shapes[sb].Scale, Norm(part.Position - X),
+                    Norm(part.Position - r.Shapes[sa].Position), sa);
+                std::printf("\n");
+              }
+            }
+          }
+        std::printf("    overlap: shapes %d (class %d%s) and %d (class %d%s), centres %.4f apart (radius %.4f): "
+                    "the outline of %d reaches %.2f%% of the radius into %d\n",
           check.Pairs[k].first, a.ClassId, a.Curve.empty() ? "" : ", long", check.Pairs[k].second, b.ClassId,
-          b.Curve.empty() ? "" : ", long", Norm(a.Position - b.Position), o.ShapeSize);
+          b.Curve.empty() ? "" : ", long", Norm(a.Position - b.Position), o.ShapeSize, sb,
+          100.0 * depth / t.Classes[r.Shapes[sa].ClassId].Radius, sa);
       }
       if (run == 0)
         continue; // the first run of each thread count: per-thread engines, lattices
