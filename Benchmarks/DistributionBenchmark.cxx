@@ -13,7 +13,9 @@
 //
 // Usage: DistributionBenchmark <refined_elephant.off> [shape images dir] [--quick]
 //   or: DistributionBenchmark <mesh.off> --scale --image a.png [--image b.png ...] [--cache graph.svg]
-//       [--size 0.01] [--greedy] [--speed-rounds R] (see AtScale)
+//       [--size 0.01] [--greedy] [--speed-rounds R] (see AtScale; environment: GS_DISTORTION_LIMIT
+//       sets DistortionLimit, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
+//       shape's drawn map departs from its rigid parts)
 //   [--mesh-only (section 4 only)] [--speed-only (its speed figures only)] [--speed-rounds R]
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
 //   openclipart; polygons are used when missing).
@@ -22,6 +24,7 @@
 
 #include "Hash.h"
 #include "MeshGenerators.h"
+#include "GeodesicShooting.h"
 #include "MeshIO.h"
 #include "OverlapCheck.h"
 #include "SaddleVertexGraph.h"
@@ -456,6 +459,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       o.Seed = static_cast<std::uint64_t>(10 + run);
       o.NumberOfThreads = threads;
       o.Mode = mode;
+      if (const char* limit = std::getenv("GS_DISTORTION_LIMIT"))
+        o.DistortionLimit = std::atof(limit); // (0: every close pair judged by circumcircles)
       const double t0 = Now();
       const ShapeDistributionResult r = d.Run(t, directions, {}, o);
       const double t1 = Now();
@@ -530,6 +535,33 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
               }
             }
           }
+        if (std::getenv("GS_DEBUG_DEPTH"))
+        {
+          // The long shape's drawn map against each rigid part, at its outline points in the part's circle.
+          const int L = r.Shapes[check.Pairs[k].first].Curve.empty() ? check.Pairs[k].second : check.Pairs[k].first;
+          const PlacedShape& ls = r.Shapes[L];
+          const double unit = o.ShapeSize * ls.Scale;
+          for (const PlacedPart& part : ls.Parts)
+          {
+            const Vec2 pc = t.Parts[part.Part].Centre;
+            const double R = t.Parts[part.Part].Radius;
+            const double ref = TangentAngle(mesh, part.Centre, part.Axis);
+            double worst = 0.0;
+            int count = 0;
+            for (const auto& ring : t.Classes[ls.ClassId].Outline.Rings)
+              for (const Vec2& p : ring)
+              {
+                const Vec2 q = p - pc;
+                if (Norm(q) > R)
+                  continue;
+                const MappedPoint drawn = d.Map(L, p);
+                const GeodesicShot rigid = ShootGeodesic(mesh, part.Centre, ref + std::atan2(q.y, q.x), Norm(q) * unit);
+                worst = std::max(worst, Norm(mesh.Interpolate(drawn.End.Face, drawn.End.Bary) - mesh.Interpolate(rigid.End.Face, rigid.End.Bary)));
+                ++count;
+              }
+            std::printf("      part %d of %d: drawn vs rigid at %d outline points: max %.5f (%.1f%% of the part radius)\n", part.Part, L, count, worst, 100.0 * worst / (R * unit));
+          }
+        }
         std::printf("    overlap: shapes %d (class %d%s) and %d (class %d%s), centres %.4f apart (radius %.4f): "
                     "the outline of %d reaches %.2f%% of the radius into %d\n",
           check.Pairs[k].first, a.ClassId, a.Curve.empty() ? "" : ", long", check.Pairs[k].second, b.ClassId,
