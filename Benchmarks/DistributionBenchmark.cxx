@@ -560,6 +560,39 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
                 ++count;
               }
             std::printf("      part %d of %d: drawn vs rigid at %d outline points: max %.5f (%.1f%% of the part radius)\n", part.Part, L, count, worst, 100.0 * worst / (R * unit));
+            // In the short shape's chart: the part's rigid copy (placed as the conflict test places
+            // it) against the drawn long shape, and whether the rigid copy overlaps the short one.
+            const int S = L == check.Pairs[k].first ? check.Pairs[k].second : check.Pairs[k].first;
+            const double sunit = o.ShapeSize * r.Shapes[S].Scale;
+            Vec2 qc;
+            if (!d.ClassPoint(S, part.Centre, qc))
+              continue;
+            const GeodesicShot step = ShootGeodesic(mesh, part.Centre, ref, 0.05 * R * unit);
+            Vec2 qa;
+            if (!d.ClassPoint(S, step.End, qa))
+              continue;
+            const double axis = std::atan2(qa.y - qc.y, qa.x - qc.x);
+            const ClassRegion region(t.Classes[r.Shapes[S].ClassId].Outline.Rings, t.Classes[r.Shapes[S].ClassId].Radius, 0.0);
+            double gap = 0.0;
+            int rigidInside = 0, drawnInside = 0;
+            for (const auto& ring : t.Classes[ls.ClassId].Outline.Rings)
+              for (const Vec2& p : ring)
+              {
+                const Vec2 q = p - pc;
+                if (Norm(q) > R)
+                  continue;
+                const Vec2 rigid = qc + Vec2{ std::cos(axis) * q.x - std::sin(axis) * q.y, std::sin(axis) * q.x + std::cos(axis) * q.y } * (unit / sunit);
+                Vec2 drawn;
+                if (!d.ClassPoint(S, d.Map(L, p).End, drawn))
+                  continue;
+                gap = std::max(gap, Norm(rigid - drawn));
+                rigidInside += region.Inside(rigid) ? 1 : 0;
+                drawnInside += region.Inside(drawn) ? 1 : 0;
+              }
+            const double phi = std::atan2(qc.y, qc.x);
+            std::printf("        in %d's chart: centre (%.4f %.4f), d %.4f, axis %.3f, alphaA %.3f alphaB %.3f, table %.4f; rigid vs drawn max %.4f; points inside: rigid %d, drawn %d\n",
+              S, qc.x, qc.y, Norm(qc), axis, -phi, axis - phi,
+              t.Lookup(t.Classes[r.Shapes[S].ClassId].Parts[0], part.Part, -phi, axis - phi), gap, rigidInside, drawnInside);
           }
         }
         std::printf("    overlap: shapes %d (class %d%s) and %d (class %d%s), centres %.4f apart (radius %.4f): "
