@@ -14,7 +14,7 @@
 // Usage: DistributionBenchmark <refined_elephant.off> [shape images dir] [--quick]
 //   or: DistributionBenchmark <mesh.off> --scale --image a.png [--image b.png ...] [--cache graph.svg]
 //       [--size 0.01] [--greedy] [--speed-rounds R] (see AtScale; environment: GS_DISTORTION_LIMIT
-//       sets DistortionLimit, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
+//       sets DistortionLimit, GS_DRAWN_CHECK=0 turns the drawn check off, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
 //       shape's drawn map departs from its rigid parts)
 //   [--mesh-only (section 4 only)] [--speed-only (its speed figures only)] [--speed-rounds R]
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
@@ -459,6 +459,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       o.Seed = static_cast<std::uint64_t>(10 + run);
       o.NumberOfThreads = threads;
       o.Mode = mode;
+      if (const char* drawn = std::getenv("GS_DRAWN_CHECK"))
+        o.DrawnCheck = std::atoi(drawn) != 0;
       if (const char* limit = std::getenv("GS_DISTORTION_LIMIT"))
         o.DistortionLimit = std::atof(limit); // (0: every close pair judged by circumcircles)
       const double t0 = Now();

@@ -184,6 +184,7 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DistortionLimit: " << this->DistortionLimit << "\n";
   os << indent << "HolonomyMargin: " << this->HolonomyMargin << "\n";
   os << indent << "KeepInside: " << this->KeepInside << "\n";
+  os << indent << "DrawnCheck: " << this->DrawnCheck << "\n";
   os << indent << "VerifyOverlaps: " << this->VerifyOverlaps << "\n";
   os << indent << "K: " << this->K << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
@@ -482,6 +483,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   options.DistortionLimit = this->DistortionLimit;
   options.HolonomyMargin = this->HolonomyMargin;
   options.KeepInside = this->KeepInside;
+  options.DrawnCheck = this->DrawnCheck;
   const gs::ShapeDistributionResult result =
     distributor.Run(tables, directions, density, options, [this](double p) {
       this->UpdateProgress(0.4 + 0.45 * p);

@@ -139,6 +139,16 @@ public:
   ///@}
 
   ///@{
+  /// After the tables accept a shape, check its outline as drawn against its neighbours'
+  /// (gs::ShapeDistributionOptions::DrawnCheck): the tables assume rigid planar copies, which
+  /// long shapes bending with their curve on curved meshes are not. Default on; off: the
+  /// tables alone (about 5% faster).
+  vtkSetMacro(DrawnCheck, bool);
+  vtkGetMacro(DrawnCheck, bool);
+  vtkBooleanMacro(DrawnCheck, bool);
+  ///@}
+
+  ///@{
   /// Check the finished result for overlaps independently of the tables (gs::CheckOverlaps: the
   /// drawn outlines of neighbouring shapes, each carried into the other's polar chart and tested
   /// against its silhouette, deeper than 0.5% of the smaller circumradius). Adds the point array
@@ -193,6 +203,7 @@ protected:
   double DistortionLimit = 0.01;
   double HolonomyMargin = 1.0;
   bool KeepInside = false;
+  bool DrawnCheck = true;
   bool VerifyOverlaps = false;
   int K = 50;
   std::string CacheFileName;

@@ -162,6 +162,52 @@ bool ClassRegion::Within(const Vec2& p, double distance) const
   return false;
 }
 
+bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& pieces,
+  const std::function<bool(const SurfacePoint&, Vec2&)>& toClass, double depth)
+{
+  const double step = depth; // samples along the outline
+  std::vector<Vec2> local;
+  std::vector<char> known;
+  for (const OutlinePiece& piece : pieces)
+  {
+    const std::size_t m = piece.Points.size();
+    local.assign(m, Vec2{ 0.0, 0.0 });
+    known.assign(m, 0);
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      known[k] = toClass(piece.Points[k], local[k]) ? 1 : 0;
+    }
+    const std::size_t segments = piece.Closed ? m : (m > 0 ? m - 1 : 0);
+    for (std::size_t k = 0; k < segments; ++k)
+    {
+      const std::size_t next = (k + 1) % m;
+      if (!known[k] || !known[next])
+      {
+        // A point beyond the chart is farther than the circle: only the known end can be inside.
+        if (known[k] && region.DeeplyInside(local[k], depth))
+        {
+          return true;
+        }
+        continue;
+      }
+      const Vec2 p = local[k], q = local[next];
+      if (SegmentDistance(p, q, Vec2{ 0.0, 0.0 }) >= region.Radius())
+      {
+        continue;
+      }
+      const int n = std::max(1, std::min(100000, static_cast<int>(std::ceil(Norm(q - p) / step))));
+      for (int j = 0; j < n; ++j)
+      {
+        if (region.DeeplyInside(p + (q - p) * (static_cast<double>(j) / n), depth))
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
 OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
   const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options)
 {
@@ -206,47 +252,8 @@ OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
   long long examined = 0, unchecked = 0;
   // Does the drawn outline of `b` reach deeper than the tolerance into `a`'s silhouette?
   auto enters = [&](int a, int b, double depth) {
-    const ClassRegion& region = regions[shapes[a].ClassId];
-    const double step = depth; // samples along B's outline, normalized units of A
-    for (const OutlinePiece& piece : outlines[b])
-    {
-      const std::size_t m = piece.Points.size();
-      std::vector<Vec2> local(m);
-      std::vector<char> known(m);
-      for (std::size_t k = 0; k < m; ++k)
-      {
-        known[k] = distributor.ClassPoint(a, piece.Points[k], local[k]) ? 1 : 0;
-      }
-      const std::size_t segments = piece.Closed ? m : (m > 0 ? m - 1 : 0);
-      for (std::size_t k = 0; k < segments; ++k)
-      {
-        const std::size_t next = (k + 1) % m;
-        if (!known[k] || !known[next])
-        {
-          // A point beyond A's chart is farther than A's circle: only the known end can be
-          // inside.
-          if (known[k] && region.DeeplyInside(local[k], depth))
-          {
-            return true;
-          }
-          continue;
-        }
-        const Vec2 p = local[k], q = local[next];
-        if (SegmentDistance(p, q, Vec2{ 0.0, 0.0 }) >= region.Radius())
-        {
-          continue;
-        }
-        const int pieces = std::max(1, std::min(100000, static_cast<int>(std::ceil(Norm(q - p) / step))));
-        for (int j = 0; j < pieces; ++j)
-        {
-          if (region.DeeplyInside(p + (q - p) * (static_cast<double>(j) / pieces), depth))
-          {
-            return true;
-          }
-        }
-      }
-    }
-    return false;
+    return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
+      [&distributor, a](const SurfacePoint& x, Vec2& p) { return distributor.ClassPoint(a, x, p); }, depth);
   };
 #ifdef _OPENMP
   const int threads = options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();

@@ -17,6 +17,7 @@
 #include "ShapeOutline.h"
 #include "Vector.h"
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -41,6 +42,14 @@ struct OverlapCheckResult
   long long UncheckedPairs = 0;           ///< of those, pairs of two long shapes
   double Seconds = 0.0;
 };
+
+class ClassRegion;
+
+/// Does the drawn outline `pieces` reach deeper than `depth` (class units) into `region`?
+/// `toClass` carries a surface point into the region's class frame (false: beyond the frame's
+/// chart, so farther than its circle). The outline is sampled along its polyline every `depth`.
+bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& pieces,
+  const std::function<bool(const SurfacePoint&, Vec2&)>& toClass, double depth);
 
 /// Checks the shapes of `distributor` (after its Run) against their drawn outlines
 /// (`outlines[s]`: ShapeDistributor::Outline of shape s). Deterministic: the same pairs whatever

@@ -152,7 +152,18 @@ struct ShapeDistributor::Impl
     bool Prepared = false;
     std::vector<int> Cover, Centres;
     std::vector<std::pair<int, int>> Kills; // (class, face)
+    // The outline as drawn (Outline, OutlineSpacing), once the tables accept the shape.
+    std::vector<OutlinePiece> Drawn;
+    bool HasDrawn = false;
   };
+  // The shape model (one map for outlines, decals and the drawn check; see the public Map,
+  // Outline, ClassPoint).
+  MappedPoint MapShape(const PlacedShape& s, const Vec2& p) const;
+  std::vector<OutlinePiece> OutlineOf(const PlacedShape& s, double spacing) const;
+  bool ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const;
+  // Between outline points: half a mean edge (what the filter draws).
+  double OutlineSpacing() const { return 0.5 * M.MeanEdgeLength(); }
+
   std::vector<Record> Accepted;
   std::vector<PlacedShape> Placed;
   std::vector<std::vector<int>> CoverIndex;  // vertex -> accepted shapes whose chart holds it
@@ -898,6 +909,67 @@ struct ShapeDistributor::Impl
     return false;
   }
 
+  // The drawn check, after the tables accepted the candidate (its charts computed): its outline
+  // as drawn (kept in the record) against every accepted neighbour's, as VerifyOverlaps judges
+  // them: a conflict when one reaches into the other's silhouette deeper than a quarter of
+  // VerifyOverlaps' tolerance (0.125% of the smaller circumradius), read in the chart of the
+  // short one of the two (two long shapes: the tables alone). The tables assume rigid planar
+  // copies; this catches where the drawn shapes are not (a long shape's part bending with its
+  // curve, a chart that is no isometry across the neighbour's circle).
+  bool DrawnConflict(Record& c, std::vector<int>& scratch) const
+  {
+    if (CircleMode || !O.DrawnCheck)
+    {
+      return false;
+    }
+    if (!c.HasDrawn)
+    {
+      c.Drawn = OutlineOf(c.S, OutlineSpacing());
+      c.HasDrawn = true;
+    }
+    scratch.clear();
+    for (int v : CentreCorners(c))
+    {
+      scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+    }
+    for (const Chart& chart : c.Charts)
+    {
+      for (const ChartEntry& e : chart.Entries)
+      {
+        scratch.insert(scratch.end(), CentreIndex[e.V].begin(), CentreIndex[e.V].end());
+      }
+    }
+    SortUnique(scratch);
+    const bool shortC = c.S.Curve.empty() && !c.Charts.empty() && !c.Charts[0].Entries.empty();
+    const double unitC = O.ShapeSize * c.S.Scale;
+    const double radiusC = T.Classes[c.S.ClassId].Radius * unitC;
+    for (int x : scratch)
+    {
+      const Record& X = Accepted[x];
+      const double unitX = O.ShapeSize * X.S.Scale;
+      const double radiusX = T.Classes[X.S.ClassId].Radius * unitX;
+      if (Norm(X.S.Position - c.S.Position) >= radiusX + radiusC)
+      {
+        continue; // the geodesic distance is never shorter
+      }
+      const bool shortX = X.S.Curve.empty() && !X.Charts.empty() && !X.Charts[0].Entries.empty();
+      const double depth = 0.00125 * std::min(radiusX, radiusC);
+      if (shortX &&
+        OutlineEnters(Regions[X.S.ClassId], c.Drawn,
+          [this, &X](const SurfacePoint& q, Vec2& p) { return ClassPointOf(X, q, p); }, depth / unitX))
+      {
+        return true;
+      }
+      if (shortC && X.HasDrawn &&
+        OutlineEnters(Regions[c.S.ClassId], X.Drawn,
+          [this, &c](const SurfacePoint& q, Vec2& p) { return ClassPointOf(c, q, p); }, depth / unitC))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
   // Checks against accepted shapes whose charts judge the pair (f_X >= f_C: the older decides
   // ties). Needs no chart of the candidate.
   bool CheapConflict(const Record& c, std::vector<int>& scratch) const
@@ -1500,7 +1572,7 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
     }
     for (const SafeDistanceClass& c : T.Classes)
     {
-      Regions.emplace_back(c.Outline.Rings, c.Radius, largest);
+      Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
     }
     Clearance = clearance;
     MaxClearance = largest;
@@ -1855,32 +1927,9 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
   return out;
 }
 
-ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
-  : P(new Impl(mesh, graph && graph->NumberOfVertices() == mesh.NumberOfVertices() ? graph : nullptr))
+bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const
 {
-}
-
-ShapeDistributor::~ShapeDistributor() = default;
-
-const std::vector<PlacedShape>& ShapeDistributor::Shapes() const
-{
-  return P->Placed;
-}
-
-const SafeDistanceTables& ShapeDistributor::Tables() const
-{
-  return P->T;
-}
-
-const ShapeDistributionOptions& ShapeDistributor::Options() const
-{
-  return P->O;
-}
-
-bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const
-{
-  const Impl& I = *P;
-  const Impl::Record& r = I.Accepted.at(shape);
+  const Impl& I = *this;
   if (!r.S.Curve.empty() || r.Charts.empty() || r.Charts[0].Entries.empty())
   {
     return false;
@@ -1914,6 +1963,93 @@ bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) con
   }
   p = q * inverse;
   return true;
+}
+
+MappedPoint ShapeDistributor::Impl::MapShape(const PlacedShape& s, const Vec2& p) const
+{
+  const Impl& I = *this;
+  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
+  const double scale = I.O.ShapeSize * s.Scale;
+  MappedPoint m;
+  if (s.Curve.empty())
+  {
+    const double rho = Norm(p) * scale;
+    if (rho <= 0.0)
+    {
+      m.End = s.Centre;
+      return m;
+    }
+    const double a = TangentAngle(I.M, s.Centre, s.Direction);
+    const GeodesicShot shot = ShootGeodesic(I.M, s.Centre, a + std::atan2(p.y, p.x), rho);
+    m.End = shot.End;
+    m.Reached = !shot.ReachedBoundary;
+    m.Reach = m.Reached ? 1.0 : std::min(1.0, shot.Length / rho);
+    return m;
+  }
+  int face = -1;
+  Vec3 x, tangent;
+  Impl::PointOnCurve(I.M, s.Curve, s.CurveCentre + Dot(p, c.MajorAxis) * scale, face, x, tangent);
+  Vec3 endTangent;
+  bool boundary = false;
+  if (!I.Across(face, x, tangent, Cross(c.MajorAxis, p) * scale, m.End, endTangent, &boundary))
+  {
+    m.End = SurfacePoint::InFace(face, 0, 0, 0);
+    m.End.Bary = I.M.ClampedBarycentric(face, x);
+    m.Reached = false;
+    m.Reach = 0.0;
+  }
+  else if (boundary)
+  {
+    m.Reached = false;
+    m.Reach = 0.0;
+  }
+  return m;
+}
+
+std::vector<OutlinePiece> ShapeDistributor::Impl::OutlineOf(const PlacedShape& s, double spacing) const
+{
+  const Impl& I = *this;
+  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
+  const double unit = I.O.ShapeSize * s.Scale;
+  if (!(spacing > 0.0) || !(unit > 0.0))
+  {
+    return {};
+  }
+  // No more samples than 1000 per unit of the class radius on an edge.
+  const double normalized = std::max(spacing / unit, 1e-3 * c.Radius);
+  const auto map = [this, &s](const Vec2& p) { return MapShape(s, p); };
+  if (s.Curve.empty())
+  {
+    return DrawRadialOutline(c.Outline.Rings, normalized, c.Radius, map);
+  }
+  return DrawOutlinePieces(c.Outline.Rings, normalized, map);
+}
+
+ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
+  : P(new Impl(mesh, graph && graph->NumberOfVertices() == mesh.NumberOfVertices() ? graph : nullptr))
+{
+}
+
+ShapeDistributor::~ShapeDistributor() = default;
+
+const std::vector<PlacedShape>& ShapeDistributor::Shapes() const
+{
+  return P->Placed;
+}
+
+const SafeDistanceTables& ShapeDistributor::Tables() const
+{
+  return P->T;
+}
+
+const ShapeDistributionOptions& ShapeDistributor::Options() const
+{
+  return P->O;
+}
+
+bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const
+{
+  return P->ClassPointOf(P->Accepted.at(shape), x, p);
 }
 
 ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
@@ -2098,7 +2234,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
         Impl::Record& r = batch[i];
         I.ComputeCharts(r, I.Engine0());
         ++charts;
-        if (I.FullConflict(r, scratch))
+        if (I.FullConflict(r, scratch) || I.DrawnConflict(r, scratch))
         {
           state[i] = 2;
           continue;
@@ -2151,7 +2287,7 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
           I.ComputeCharts(r, I.Engine());
           chartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
           ++charts;
-          if (I.FullConflict(r, scratch))
+          if (I.FullConflict(r, scratch) || I.DrawnConflict(r, scratch))
           {
             r.Rejected = true;
             r.Charts.clear();
@@ -2314,7 +2450,7 @@ double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
         continue;
       }
       I.ComputeCharts(r, I.Engine());
-      if (!I.FullConflict(r, scratch))
+      if (!I.FullConflict(r, scratch) && !I.DrawnConflict(r, scratch))
       {
         ++fits;
       }
@@ -2330,64 +2466,17 @@ SurfacePoint ShapeDistributor::MapToSurface(int shape, const Vec2& p) const
 
 MappedPoint ShapeDistributor::Map(int shape, const Vec2& p) const
 {
-  const Impl& I = *P;
-  const PlacedShape& s = I.Placed.at(shape);
-  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
-  const double scale = I.O.ShapeSize * s.Scale;
-  MappedPoint m;
-  if (s.Curve.empty())
-  {
-    const double rho = Norm(p) * scale;
-    if (rho <= 0.0)
-    {
-      m.End = s.Centre;
-      return m;
-    }
-    const double a = TangentAngle(I.M, s.Centre, s.Direction);
-    const GeodesicShot shot = ShootGeodesic(I.M, s.Centre, a + std::atan2(p.y, p.x), rho);
-    m.End = shot.End;
-    m.Reached = !shot.ReachedBoundary;
-    m.Reach = m.Reached ? 1.0 : std::min(1.0, shot.Length / rho);
-    return m;
-  }
-  int face = -1;
-  Vec3 x, tangent;
-  Impl::PointOnCurve(I.M, s.Curve, s.CurveCentre + Dot(p, c.MajorAxis) * scale, face, x, tangent);
-  Vec3 endTangent;
-  bool boundary = false;
-  if (!I.Across(face, x, tangent, Cross(c.MajorAxis, p) * scale, m.End, endTangent, &boundary))
-  {
-    m.End = SurfacePoint::InFace(face, 0, 0, 0);
-    m.End.Bary = I.M.ClampedBarycentric(face, x);
-    m.Reached = false;
-    m.Reach = 0.0;
-  }
-  else if (boundary)
-  {
-    m.Reached = false;
-    m.Reach = 0.0;
-  }
-  return m;
+  return P->MapShape(P->Placed.at(shape), p);
 }
 
 std::vector<OutlinePiece> ShapeDistributor::Outline(int shape, double spacing) const
 {
-  const Impl& I = *P;
-  const PlacedShape& s = I.Placed.at(shape);
-  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
-  const double unit = I.O.ShapeSize * s.Scale;
-  if (!(spacing > 0.0) || !(unit > 0.0))
+  const Impl::Record& r = P->Accepted.at(shape);
+  if (r.HasDrawn && spacing == P->OutlineSpacing())
   {
-    return {};
+    return r.Drawn; // drawn when the shape was checked
   }
-  // No more samples than 1000 per unit of the class radius on an edge.
-  const double normalized = std::max(spacing / unit, 1e-3 * c.Radius);
-  const auto map = [this, shape](const Vec2& p) { return Map(shape, p); };
-  if (s.Curve.empty())
-  {
-    return DrawRadialOutline(c.Outline.Rings, normalized, c.Radius, map);
-  }
-  return DrawOutlinePieces(c.Outline.Rings, normalized, map);
+  return P->OutlineOf(P->Placed.at(shape), spacing);
 }
 
 ShapeDecal ShapeDistributor::Decal(int shape) const

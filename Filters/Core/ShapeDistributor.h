@@ -94,6 +94,12 @@ struct ShapeDistributionOptions
   /// lies within its (part) circumradius plus half the longest edge. false: shapes near the
   /// boundary may hang over it (their outlines stop there).
   bool KeepInside = false;
+  /// After the tables accept a shape, its outline as drawn is checked against its accepted
+  /// neighbours' (a point of one inside the other by more than 0.125% of the smaller
+  /// circumradius, read in the short shape's chart; two long shapes: the tables alone): the
+  /// tables assume rigid planar copies, which a long shape bending with its curve, or a chart
+  /// that is no isometry across a neighbour, are not. false: the tables alone.
+  bool DrawnCheck = true;
 };
 
 /// One part of a placed shape (a short shape has one).

@@ -89,7 +89,9 @@ inline int CountPlanarOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDista
 /// (ShapeDistributor::MapToSurface: the exponential map of its own centre, edges subdivided to
 /// `spacing` in normalized units), is carried into that chart and intersected with the
 /// silhouette (crossings and containment). Pairs whose centres are at least r_A + r_B apart
-/// geodesically (exact distance) cannot overlap and are not mapped. Long shapes are skipped. Returns the overlapping
+/// geodesically (exact distance) cannot overlap and are not mapped. A long shape is checked
+/// against its short neighbours (its outline, drawn along its curve, in their charts); pairs of
+/// two long shapes are skipped. Returns the overlapping
 /// pairs; `pairsChecked` gets the number of pairs examined.
 inline int CountSurfaceOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDistanceTables& tables,
   const gs::ShapeDistributor& distributor, double shapeSize, double spacing,
@@ -136,7 +138,8 @@ inline int CountSurfaceOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDist
       for (int b : near)
       {
         const gs::PlacedShape& B = shapes[b];
-        if (b < a || !B.Curve.empty())
+        // (A long B is checked from its short neighbours' side; two long shapes are not.)
+        if ((b < a && B.Curve.empty()) || b == a)
           continue;
         const double rb = tables.Classes[B.ClassId].Radius * shapeSize * B.Scale;
         if (gs::Norm(B.Position - A.Position) >= ra + rb)

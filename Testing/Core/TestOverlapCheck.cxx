@@ -1,19 +1,23 @@
 // The overlap check users can run (OverlapCheck.h): no overlap reported for conflict-free
 // distributions, on a plane and on a curved mesh, and the overlaps of deliberately overlapping
-// distributions (tables shrunk by 20%) found as the independent oracles find them.
+// distributions (tables shrunk by 20%, the drawn check off) found as the independent oracles
+// find them. The drawn check (the same test, made as each shape is placed) against the oracle.
 #include "DistributionChecks.h"
 #include "TestMeshes.h"
 
 #include "MeshGenerators.h"
+#include "MeshIO.h"
 #include "OverlapCheck.h"
 #include "SaddleVertexGraph.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
+#include "Silhouette.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 using namespace gs;
 
@@ -67,6 +71,7 @@ TEST(OverlapCheck, FindsThePlanarOraclesOverlapsAndNoOther)
     o.ShapeSize = 0.5;
     o.Seed = 4;
     o.MaximalFailures = 2000;
+    o.DrawnCheck = factor == 1.0; // shrunk tables: the tables alone decide (and fail)
     ShapeDistributor d(mesh);
     const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
     ASSERT_TRUE(r.Ok) << r.Error;
@@ -130,6 +135,7 @@ TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
       // The tables everywhere (no circumcircles where charts stretch, no holonomy margin).
       o.DistortionLimit = 1e9;
       o.HolonomyMargin = 0.0;
+      o.DrawnCheck = false;
     }
     ShapeDistributor d(mesh, &graph);
     const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
@@ -146,4 +152,84 @@ TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
     EXPECT_GE(found.Pairs.size(), 0.9 * oracle);
     EXPECT_LE(found.Pairs.size(), static_cast<std::size_t>(oracle));
   }
+}
+
+// The drawn check (ShapeDistributionOptions::DrawnCheck), on the bundled bumpy sphere
+// subdivided once with the bundled silhouettes (a star and three long shapes, each scaled to
+// circumradius 1), a constant direction projected on the surface, ShapeSize 3% of the diagonal:
+// the tables alone (rigid planar parts) let long shapes bending with their curves overlap a star
+// now and then, as the exact-chart surface oracle finds; with the check none does, and the count
+// of shapes stays within 1%.
+TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
+{
+  TriangleSoup soup;
+  std::string error;
+  ASSERT_TRUE(ReadMesh(std::string(GS_TEST_DATA_DIR) + "/bumpy_sphere.ply", soup, error)) << error;
+  // Midpoint subdivision (the same surface, four times the faces).
+  TriangleSoup fine;
+  fine.Points = soup.Points;
+  std::map<std::pair<long long, long long>, long long> middle;
+  auto midpoint = [&](long long a, long long b) {
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    auto it = middle.find(key);
+    if (it != middle.end())
+      return it->second;
+    fine.Points.push_back((soup.Points[a] + soup.Points[b]) * 0.5);
+    return middle[key] = static_cast<long long>(fine.Points.size()) - 1;
+  };
+  for (const auto& t : soup.Triangles)
+  {
+    const long long ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+    fine.Triangles.push_back({ t[0], ab, ca });
+    fine.Triangles.push_back({ ab, t[1], bc });
+    fine.Triangles.push_back({ ca, bc, t[2] });
+    fine.Triangles.push_back({ ab, bc, ca });
+  }
+  const TriangleMesh mesh = gs_test::BuildMesh(fine);
+  SaddleVertexGraph graph;
+  ASSERT_TRUE(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  std::vector<SafeDistanceInput> in;
+  for (const char* name : { "star", "gull", "leaf", "fish" })
+  {
+    SilhouetteReadResult image = ReadSilhouetteImage(std::string(GS_TEST_DATA_DIR) + "/shapes/" + name + ".png");
+    ASSERT_TRUE(image.Ok) << name;
+    Shape2D shape = ShapeFromMask(image.Mask);
+    std::vector<Vec2> all;
+    for (const auto& ring : shape.Rings)
+      all.insert(all.end(), ring.begin(), ring.end());
+    const Circle c = SmallestEnclosingCircle(all);
+    for (auto& ring : shape.Rings)
+      for (Vec2& p : ring)
+        p = (p - c.Centre) * (1.0 / c.Radius);
+    in.push_back({ name, shape });
+  }
+  SafeDistanceOptions so;
+  so.AngleBins = 64;
+  so.DistanceSteps = 64;
+  SafeDistanceResult tables = ComputeSafeDistanceTables(in, so);
+  ASSERT_TRUE(tables.Ok) << tables.Error;
+  const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
+  int oracleWithout = 0, oracleWith = 0;
+  std::size_t shapesWithout = 0, shapesWith = 0;
+  for (std::uint64_t seed : { 10, 12 })
+  {
+    for (const bool drawn : { false, true })
+    {
+      ShapeDistributionOptions o;
+      o.ShapeSize = 0.03 * mesh.BoundingBoxDiagonal();
+      o.Seed = seed;
+      o.DrawnCheck = drawn;
+      ShapeDistributor d(mesh, &graph);
+      const ShapeDistributionResult r = d.Run(tables.Tables, directions, {}, o);
+      ASSERT_TRUE(r.Ok) << r.Error;
+      const int oracle = gs_test::CountSurfaceOverlaps(mesh, tables.Tables, d, o.ShapeSize, 0.02);
+      (drawn ? oracleWith : oracleWithout) += oracle;
+      (drawn ? shapesWith : shapesWithout) += r.Shapes.size();
+    }
+  }
+  std::printf("tables alone: %zu shapes, %d overlapping pairs; with the drawn check: %zu shapes, %d\n",
+    shapesWithout, oracleWithout, shapesWith, oracleWith);
+  EXPECT_GT(oracleWithout, 0);
+  EXPECT_EQ(oracleWith, 0);
+  EXPECT_GT(static_cast<double>(shapesWith), 0.99 * static_cast<double>(shapesWithout));
 }

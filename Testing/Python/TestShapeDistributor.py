@@ -207,6 +207,7 @@ crowded = ShapeDistributor(Input=density, Table=shrunk, ShapeSize=0.07, Seed=3)
 crowded.DirectionArray = ["CELLS", "Direction"]
 crowded.DensityArray = ["POINTS", "Density"]
 crowded.ClassWeights = [1.0, 0.0]
+crowded.DrawnCheck = 0  # the shrunk tables alone decide
 crowded.VerifyOverlaps = 1
 crowded.UpdatePipeline()
 crowd = fetch(crowded, 0)
