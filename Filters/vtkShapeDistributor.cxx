@@ -609,11 +609,6 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
                                          << found.Pairs[0].second
                                          << "); see the Overlaps array of Placements.");
     }
-    if (found.UncheckedPairs > 0)
-    {
-      vtkWarningMacro("VerifyOverlaps: " << found.UncheckedPairs
-                                         << " close pair(s) of two long shapes are not checked.");
-    }
     lap("VerifyOverlaps");
   }
   // Decals and outlines written straight into arrays sized beforehand (per shape, its first

@@ -4,14 +4,14 @@
 //
 // For every pair of shapes whose centres are closer in space than the sum of their
 // circumradii (the geodesic distance is never shorter), the drawn outline of one shape B is
-// carried into the class frame of the other, A, through A's geodesic polar chart (the log map of
-// its centre, the inverse of the map that draws A), and sampled along its polyline every
-// Tolerance; the pair overlaps when a sample lies inside A's silhouette deeper than Tolerance
-// (distance to A's class outline), or the same with A and B exchanged. Crossing outlines, one
-// shape inside the other and slivers of any length thicker than about 2 Tolerance are found;
-// shapes that touch are not overlaps. The check needs A's chart, so it is made from short
-// shapes' side: a pair of a long and a short shape is checked one way (the long outline in the
-// short shape's frame), a pair of two long shapes is not checked (counted in UncheckedPairs).
+// carried into the class frame of the other, A, through the inverse of the map that draws A (a
+// short shape: its geodesic polar chart, the log map of its centre; a long shape: its drawing
+// map along its curve sampled on a grid and inverted, ShapeDistributor::Frame), and sampled
+// along its polyline every Tolerance; the pair overlaps when a sample lies inside A's
+// silhouette deeper than Tolerance (distance to A's class outline), or the same with A and B
+// exchanged. Crossing outlines, one shape inside the other and slivers of any length thicker
+// than about 2 Tolerance are found; shapes that touch are not overlaps. Every pair is checked,
+// long or short.
 #pragma once
 
 #include "ShapeOutline.h"
@@ -39,7 +39,6 @@ struct OverlapCheckResult
   std::vector<std::pair<int, int>> Pairs; ///< overlapping shapes (first < second), sorted
   std::vector<int> Overlaps;              ///< per shape: the number of shapes it overlaps
   long long PairsExamined = 0;            ///< pairs closer than their circumradii
-  long long UncheckedPairs = 0;           ///< of those, pairs of two long shapes
   double Seconds = 0.0;
 };
 

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -88,6 +89,34 @@ struct Chart
   }
 };
 
+// Distance from x to triangle abc, and the barycentric coordinates of x's projection onto
+// the triangle's plane (not clamped: the affine extension outside). Infinite when degenerate.
+double TriangleDistance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& x, double lambda[3])
+{
+  const Vec3 e0 = b - a, e1 = c - a, n = Cross(e0, e1);
+  const double area2 = Dot(n, n);
+  if (!(area2 > 0.0))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  const Vec3 w = x - a;
+  lambda[1] = Dot(Cross(w, e1), n) / area2;
+  lambda[2] = Dot(Cross(e0, w), n) / area2;
+  lambda[0] = 1.0 - lambda[1] - lambda[2];
+  if (lambda[0] >= 0.0 && lambda[1] >= 0.0 && lambda[2] >= 0.0)
+  {
+    return std::abs(Dot(w, n)) / std::sqrt(area2);
+  }
+  // Outside: the distance to the nearest edge.
+  auto segment = [&x](const Vec3& p, const Vec3& q) {
+    const Vec3 pq = q - p;
+    const double l2 = Dot(pq, pq);
+    const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(x - p, pq) / l2)) : 0.0;
+    return Norm(p + pq * t - x);
+  };
+  return std::min(segment(a, b), std::min(segment(b, c), segment(c, a)));
+}
+
 void SortUnique(std::vector<int>& v)
 {
   std::sort(v.begin(), v.end());
@@ -155,6 +184,8 @@ struct ShapeDistributor::Impl
     // The outline as drawn (Outline, OutlineSpacing), once the tables accept the shape.
     std::vector<OutlinePiece> Drawn;
     bool HasDrawn = false;
+    // Long shapes: the inverse of the drawing map (for the drawn check against long neighbours).
+    std::shared_ptr<const CurveGrid> Frame;
   };
   // The shape model (one map for outlines, decals and the drawn check; see the public Map,
   // Outline, ClassPoint).
@@ -280,14 +311,13 @@ struct ShapeDistributor::Impl
 
   // The map of a long shape (the one its outline and its parts use): class point p -> the point
   // at arc length CurveCentre + <p, m> scale along its curve, then <p, perp> scale across it
-  // along the perpendicular geodesic (m: the class's major axis). This inverts it for the
-  // vertices near the shape: the map is sampled on a grid of (along, across) nodes finer than
-  // half an edge (one geodesic shot per column and side), and each vertex takes the class
-  // point of the grid triangle nearest to it (the affine extension of that triangle beyond the
-  // grid's border). Appends (vertex, class point) pairs, normalized class units.
-  void CurveShapeVertices(const PlacedShape& s, const SafeDistanceClass& c,
-    std::vector<std::pair<int, Vec2>>& local) const
+  // along the perpendicular geodesic (m: the class's major axis), sampled on a grid of (along,
+  // across) nodes finer than an edge (one geodesic shot per column and side), covering the
+  // silhouette's extent and two mean edges more. CurveGrid::Locate inverts it.
+  CurveGrid BuildCurveGrid(const PlacedShape& s, const SafeDistanceClass& c) const
   {
+    CurveGrid grid;
+    grid.Mesh = &M;
     const double scale = O.ShapeSize * s.Scale;
     double length = 0.0;
     for (const CurvePiece& piece : s.Curve)
@@ -305,7 +335,7 @@ struct ShapeDistributor::Impl
     across *= scale;
     if (!(length > 0.0) || !(scale > 0.0))
     {
-      return;
+      return grid;
     }
     // Margin beyond the silhouette's extent (two mean edges): a face with a corner in the shape
     // has its others within about an edge; a longer edge reaches into the affine extension.
@@ -316,14 +346,11 @@ struct ShapeDistributor::Impl
     const int rows = 2 * half + 1;
     const double du = (length + 2.0 * margin) / (columns - 1), db = (across + margin) / half;
     const Vec2 m = c.MajorAxis, perp{ -c.MajorAxis.y, c.MajorAxis.x };
-    struct Node
-    {
-      bool Valid = false;
-      SurfacePoint At;
-      Vec3 X;
-      Vec2 P;
-    };
-    std::vector<Node> nodes(static_cast<std::size_t>(columns) * rows);
+    grid.Columns = columns;
+    grid.Rows = rows;
+    grid.Step = std::max(du, db);
+    grid.Nodes.assign(static_cast<std::size_t>(columns) * rows, CurveGrid::Node());
+    std::vector<CurveGrid::Node>& nodes = grid.Nodes;
     auto walk = [](const GeodesicShot& shot, double d, SurfacePoint& at, const TriangleMesh& mesh) {
       double walked = 0.0;
       for (const CurvePiece& piece : shot.Pieces)
@@ -390,7 +417,7 @@ struct ShapeDistributor::Impl
       }
       const double a = (u - s.CurveCentre) / scale;
       const int centreRow = half;
-      Node& mid = nodes[static_cast<std::size_t>(i) * rows + centreRow];
+      CurveGrid::Node& mid = nodes[static_cast<std::size_t>(i) * rows + centreRow];
       mid.Valid = true;
       mid.At = foot;
       mid.X = M.Interpolate(foot.Face, foot.Bary);
@@ -405,7 +432,7 @@ struct ShapeDistributor::Impl
         const GeodesicShot shot = ShootGeodesic(M, foot, angle + side * 0.5 * Pi, across + margin);
         for (int j = 1; j <= half; ++j)
         {
-          Node& node = nodes[static_cast<std::size_t>(i) * rows + centreRow + (side > 0.0 ? j : -j)];
+          CurveGrid::Node& node = nodes[static_cast<std::size_t>(i) * rows + centreRow + (side > 0.0 ? j : -j)];
           if (!walk(shot, db * j * (1.0 - 1e-12), node.At, M))
           {
             break;
@@ -416,6 +443,15 @@ struct ShapeDistributor::Impl
         }
       }
     }
+    return grid;
+  }
+
+  // The class points (normalized) of the vertices near a long shape: the vertices of the grid
+  // nodes' faces and their neighbours, each located from a node of that face. Appends
+  // (vertex, class point) pairs.
+  void CurveShapeVertices(const CurveGrid& grid, std::vector<std::pair<int, Vec2>>& local) const
+  {
+    const std::vector<CurveGrid::Node>& nodes = grid.Nodes;
     // The vertices of the nodes' faces and their neighbours, each with a node to start from;
     // the nearest node by descent over the grid (the map is smooth at the grid's scale).
     // (Each vertex once: marks per thread, stamped per call.)
@@ -460,97 +496,14 @@ struct ShapeDistributor::Impl
     for (const auto& seed : seeds)
     {
       const int v = seed.first;
-      const Vec3 X = M.Position(v);
-      int nearest = seed.second;
-      double best = Norm(nodes[nearest].X - X);
-      for (bool moved = true; moved;)
+      Vec2 point;
+      if (grid.Locate(M.Position(v), seed.second, point, nullptr))
       {
-        moved = false;
-        const int i0 = nearest / rows, j0 = nearest % rows;
-        for (int di = -1; di <= 1; ++di)
-        {
-          for (int dj = -1; dj <= 1; ++dj)
-          {
-            const int i1 = i0 + di, j1 = j0 + dj;
-            if (i1 < 0 || j1 < 0 || i1 >= columns || j1 >= rows || !nodes[i1 * rows + j1].Valid)
-            {
-              continue;
-            }
-            const double d = Norm(nodes[i1 * rows + j1].X - X);
-            if (d < best)
-            {
-              best = d;
-              nearest = i1 * rows + j1;
-              moved = true;
-            }
-          }
-        }
-      }
-      // The grid triangles around the nearest node: the nearest of them, its affine map.
-      const int ni = nearest / rows, nj = nearest % rows;
-      double bestDistance = std::numeric_limits<double>::infinity();
-      Vec2 bestPoint;
-      for (int ci = ni - 1; ci <= ni; ++ci)
-      {
-        for (int cj = nj - 1; cj <= nj; ++cj)
-        {
-          if (ci < 0 || cj < 0 || ci + 1 >= columns || cj + 1 >= rows)
-          {
-            continue;
-          }
-          const int q00 = ci * rows + cj, q10 = (ci + 1) * rows + cj, q11 = (ci + 1) * rows + cj + 1,
-                    q01 = ci * rows + cj + 1;
-          for (const std::array<int, 3>& t : { std::array<int, 3>{ q00, q10, q11 }, std::array<int, 3>{ q00, q11, q01 } })
-          {
-            const Node &A = nodes[t[0]], &B = nodes[t[1]], &C = nodes[t[2]];
-            if (!A.Valid || !B.Valid || !C.Valid)
-            {
-              continue;
-            }
-            double lambda[3] = { 0.0, 0.0, 0.0 };
-            const double d = TriangleDistance(A.X, B.X, C.X, X, lambda);
-            if (d < bestDistance)
-            {
-              bestDistance = d;
-              bestPoint = A.P * lambda[0] + B.P * lambda[1] + C.P * lambda[2];
-            }
-          }
-        }
-      }
-      if (std::isfinite(bestDistance))
-      {
-        local.emplace_back(v, bestPoint);
+        local.emplace_back(v, point);
       }
     }
   }
 
-  // Distance from x to triangle abc, and the barycentric coordinates of x's projection onto
-  // the triangle's plane (not clamped: the affine extension outside). Infinite when degenerate.
-  static double TriangleDistance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& x, double lambda[3])
-  {
-    const Vec3 e0 = b - a, e1 = c - a, n = Cross(e0, e1);
-    const double area2 = Dot(n, n);
-    if (!(area2 > 0.0))
-    {
-      return std::numeric_limits<double>::infinity();
-    }
-    const Vec3 w = x - a;
-    lambda[1] = Dot(Cross(w, e1), n) / area2;
-    lambda[2] = Dot(Cross(e0, w), n) / area2;
-    lambda[0] = 1.0 - lambda[1] - lambda[2];
-    if (lambda[0] >= 0.0 && lambda[1] >= 0.0 && lambda[2] >= 0.0)
-    {
-      return std::abs(Dot(w, n)) / std::sqrt(area2);
-    }
-    // Outside: the distance to the nearest edge.
-    auto segment = [&x](const Vec3& p, const Vec3& q) {
-      const Vec3 pq = q - p;
-      const double l2 = Dot(pq, pq);
-      const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(x - p, pq) / l2)) : 0.0;
-      return Norm(p + pq * t - x);
-    };
-    return std::min(segment(a, b), std::min(segment(b, c), segment(c, a)));
-  }
 
   // Builds a candidate's geometry at `centre` (a face point) for class `cls`: the direction,
   // the curve of a long class and the parts. False when it does not fit (curve too short).
@@ -927,6 +880,12 @@ struct ShapeDistributor::Impl
       c.Drawn = OutlineOf(c.S, OutlineSpacing());
       c.HasDrawn = true;
     }
+    if (!c.S.Curve.empty() && !c.Frame)
+    {
+      std::shared_ptr<CurveGrid> frame = std::make_shared<CurveGrid>(BuildCurveGrid(c.S, T.Classes[c.S.ClassId]));
+      frame->Index();
+      c.Frame = frame;
+    }
     scratch.clear();
     for (int v : CentreCorners(c))
     {
@@ -954,15 +913,39 @@ struct ShapeDistributor::Impl
       }
       const bool shortX = X.S.Curve.empty() && !X.Charts.empty() && !X.Charts[0].Entries.empty();
       const double depth = 0.00125 * std::min(radiusX, radiusC);
+      // (Outline points farther in space than sqrt(2) circumradii from a shape's centre are
+      // outside it: its outline is drawn along paths of length |along| + |across| at most.)
+      auto near = [this](const Record& R, double radius) {
+        const Vec3 centre = R.S.Position;
+        const double reach = 1.4143 * radius + M.MeanEdgeLength();
+        return [this, centre, reach](const SurfacePoint& q) {
+          return Norm((q.IsVertex() ? M.Position(q.Vertex) : M.Interpolate(q.Face, q.Bary)) - centre) <= reach;
+        };
+      };
+      const auto nearX = near(X, radiusX), nearC = near(c, radiusC);
       if (shortX &&
         OutlineEnters(Regions[X.S.ClassId], c.Drawn,
           [this, &X](const SurfacePoint& q, Vec2& p) { return ClassPointOf(X, q, p); }, depth / unitX))
       {
         return true;
       }
+      if (!shortX && X.Frame && !shortC &&
+        OutlineEnters(Regions[X.S.ClassId], c.Drawn,
+          [&X, &nearX](const SurfacePoint& q, Vec2& p) { return nearX(q) && X.Frame->ClassPoint(q, p); },
+          depth / unitX))
+      {
+        return true;
+      }
       if (shortC && X.HasDrawn &&
         OutlineEnters(Regions[c.S.ClassId], X.Drawn,
           [this, &c](const SurfacePoint& q, Vec2& p) { return ClassPointOf(c, q, p); }, depth / unitC))
+      {
+        return true;
+      }
+      if (!shortC && c.Frame && !shortX && X.HasDrawn &&
+        OutlineEnters(Regions[c.S.ClassId], X.Drawn,
+          [&c, &nearC](const SurfacePoint& q, Vec2& p) { return nearC(q) && c.Frame->ClassPoint(q, p); },
+          depth / unitC))
       {
         return true;
       }
@@ -2025,6 +2008,186 @@ std::vector<OutlinePiece> ShapeDistributor::Impl::OutlineOf(const PlacedShape& s
   return DrawOutlinePieces(c.Outline.Rings, normalized, map);
 }
 
+bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance) const
+{
+  if (start < 0 || start >= static_cast<int>(Nodes.size()) || !Nodes[start].Valid)
+  {
+    return false;
+  }
+  int nearest = start;
+  auto distance2 = [&X](const Vec3& y) {
+    const Vec3 d = y - X;
+    return Dot(d, d);
+  };
+  double best = distance2(Nodes[nearest].X);
+  for (bool moved = true; moved;)
+  {
+    moved = false;
+    const int i0 = nearest / Rows, j0 = nearest % Rows;
+    for (int di = -1; di <= 1; ++di)
+    {
+      for (int dj = -1; dj <= 1; ++dj)
+      {
+        const int i1 = i0 + di, j1 = j0 + dj;
+        if (i1 < 0 || j1 < 0 || i1 >= Columns || j1 >= Rows || !Nodes[i1 * Rows + j1].Valid)
+        {
+          continue;
+        }
+        const double d = distance2(Nodes[i1 * Rows + j1].X);
+        if (d < best)
+        {
+          best = d;
+          nearest = i1 * Rows + j1;
+          moved = true;
+        }
+      }
+    }
+  }
+  // The grid triangles around the nearest node: the nearest of them, its affine map.
+  const int ni = nearest / Rows, nj = nearest % Rows;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (int ci = ni - 1; ci <= ni; ++ci)
+  {
+    for (int cj = nj - 1; cj <= nj; ++cj)
+    {
+      if (ci < 0 || cj < 0 || ci + 1 >= Columns || cj + 1 >= Rows)
+      {
+        continue;
+      }
+      const int q00 = ci * Rows + cj, q10 = (ci + 1) * Rows + cj, q11 = (ci + 1) * Rows + cj + 1,
+                q01 = ci * Rows + cj + 1;
+      for (const std::array<int, 3>& t : { std::array<int, 3>{ q00, q10, q11 }, std::array<int, 3>{ q00, q11, q01 } })
+      {
+        const Node &A = Nodes[t[0]], &B = Nodes[t[1]], &C = Nodes[t[2]];
+        if (!A.Valid || !B.Valid || !C.Valid)
+        {
+          continue;
+        }
+        double lambda[3] = { 0.0, 0.0, 0.0 };
+        const double d = TriangleDistance(A.X, B.X, C.X, X, lambda);
+        if (d < bestDistance)
+        {
+          bestDistance = d;
+          p = A.P * lambda[0] + B.P * lambda[1] + C.P * lambda[2];
+        }
+      }
+    }
+  }
+  if (distance)
+  {
+    *distance = bestDistance;
+  }
+  return std::isfinite(bestDistance);
+}
+
+void CurveGrid::Index()
+{
+  CellSize = std::max(2.0 * Step, 1e-300);
+  CellStart.clear();
+  CellNodes.clear();
+  Vec3 lo{ 1e300, 1e300, 1e300 }, hi{ -1e300, -1e300, -1e300 };
+  bool any = false;
+  for (const Node& n : Nodes)
+  {
+    if (n.Valid)
+    {
+      any = true;
+      lo = Vec3{ std::min(lo.x, n.X.x), std::min(lo.y, n.X.y), std::min(lo.z, n.X.z) };
+      hi = Vec3{ std::max(hi.x, n.X.x), std::max(hi.y, n.X.y), std::max(hi.z, n.X.z) };
+    }
+  }
+  if (!any)
+  {
+    Dims = { { 0, 0, 0 } };
+    return;
+  }
+  const double extent = std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
+  CellSize = std::max(CellSize, extent / 100.0); // at most 101^3 cells
+  Origin = lo;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double e = k == 0 ? hi.x - lo.x : k == 1 ? hi.y - lo.y : hi.z - lo.z;
+    Dims[k] = static_cast<int>(std::floor(e / CellSize)) + 1;
+  }
+  const std::size_t cells = static_cast<std::size_t>(Dims[0]) * Dims[1] * Dims[2];
+  CellStart.assign(cells + 1, 0);
+  auto cellOf = [this](const Vec3& x) {
+    const int i = std::min(Dims[0] - 1, static_cast<int>((x.x - Origin.x) / CellSize));
+    const int j = std::min(Dims[1] - 1, static_cast<int>((x.y - Origin.y) / CellSize));
+    const int k = std::min(Dims[2] - 1, static_cast<int>((x.z - Origin.z) / CellSize));
+    return (static_cast<std::size_t>(k) * Dims[1] + j) * Dims[0] + i;
+  };
+  for (const Node& n : Nodes)
+  {
+    if (n.Valid)
+    {
+      ++CellStart[cellOf(n.X) + 1];
+    }
+  }
+  for (std::size_t c = 0; c < cells; ++c)
+  {
+    CellStart[c + 1] += CellStart[c];
+  }
+  CellNodes.assign(CellStart[cells], 0);
+  std::vector<int> fill(CellStart.begin(), CellStart.end() - 1);
+  for (int k = 0; k < static_cast<int>(Nodes.size()); ++k)
+  {
+    if (Nodes[k].Valid)
+    {
+      CellNodes[fill[cellOf(Nodes[k].X)]++] = k;
+    }
+  }
+}
+
+bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p) const
+{
+  if (!Mesh || CellStart.empty())
+  {
+    return false;
+  }
+  const Vec3 X = x.IsVertex() ? Mesh->Position(x.Vertex) : Mesh->Interpolate(x.Face, x.Bary);
+  const int ci = static_cast<int>(std::floor((X.x - Origin.x) / CellSize));
+  const int cj = static_cast<int>(std::floor((X.y - Origin.y) / CellSize));
+  const int ck = static_cast<int>(std::floor((X.z - Origin.z) / CellSize));
+  if (ci < -1 || cj < -1 || ck < -1 || ci > Dims[0] || cj > Dims[1] || ck > Dims[2])
+  {
+    return false; // farther than a cell from every node
+  }
+  int start = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = std::max(0, ck - 1); k <= std::min(Dims[2] - 1, ck + 1); ++k)
+    for (int j = std::max(0, cj - 1); j <= std::min(Dims[1] - 1, cj + 1); ++j)
+      for (int i = std::max(0, ci - 1); i <= std::min(Dims[0] - 1, ci + 1); ++i)
+      {
+        const std::size_t c = (static_cast<std::size_t>(k) * Dims[1] + j) * Dims[0] + i;
+        for (int q = CellStart[c]; q < CellStart[c + 1]; ++q)
+        {
+          const Vec3 d = Nodes[CellNodes[q]].X - X;
+          const double d2 = Dot(d, d);
+          if (d2 < best)
+          {
+            best = d2;
+            start = CellNodes[q];
+          }
+        }
+      }
+  double distance = 0.0;
+  return start >= 0 && Locate(X, start, p, &distance) && distance <= 0.5 * Step;
+}
+
+CurveGrid ShapeDistributor::Frame(int shape) const
+{
+  const Impl& I = *P;
+  const PlacedShape& s = I.Placed.at(shape);
+  if (s.Curve.empty())
+  {
+    return CurveGrid();
+  }
+  CurveGrid grid = I.BuildCurveGrid(s, I.T.Classes[s.ClassId]);
+  grid.Index();
+  return grid;
+}
+
 ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
   : P(new Impl(mesh, graph && graph->NumberOfVertices() == mesh.NumberOfVertices() ? graph : nullptr))
 {
@@ -2035,6 +2198,11 @@ ShapeDistributor::~ShapeDistributor() = default;
 const std::vector<PlacedShape>& ShapeDistributor::Shapes() const
 {
   return P->Placed;
+}
+
+const TriangleMesh& ShapeDistributor::Mesh() const
+{
+  return P->M;
 }
 
 const SafeDistanceTables& ShapeDistributor::Tables() const
@@ -2507,7 +2675,16 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
   }
   else
   {
-    I.CurveShapeVertices(s, c, local);
+    // (The grid the drawn check built, or a new one.)
+    const Impl::Record& r = I.Accepted.at(shape);
+    if (r.Frame)
+    {
+      I.CurveShapeVertices(*r.Frame, local);
+    }
+    else
+    {
+      I.CurveShapeVertices(I.BuildCurveGrid(s, c), local);
+    }
   }
   std::sort(local.begin(), local.end(),
     [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });

@@ -96,9 +96,10 @@ struct ShapeDistributionOptions
   bool KeepInside = false;
   /// After the tables accept a shape, its outline as drawn is checked against its accepted
   /// neighbours' (a point of one inside the other by more than 0.125% of the smaller
-  /// circumradius, read in the short shape's chart; two long shapes: the tables alone): the
-  /// tables assume rigid planar copies, which a long shape bending with its curve, or a chart
-  /// that is no isometry across a neighbour, are not. false: the tables alone.
+  /// circumradius, read through the inverse of the other's drawing map: a short shape's chart, a
+  /// long shape's CurveGrid): the tables assume rigid planar copies, which a long shape bending
+  /// with its curve, or a chart that is no isometry across a neighbour, are not. false: the
+  /// tables alone.
   bool DrawnCheck = true;
 };
 
@@ -158,6 +159,40 @@ struct ShapeDecal
   std::vector<std::array<Vec2, 3>> TextureCoordinates;
 };
 
+/// A long shape's drawing map (arc length along its curve, then across along the perpendicular
+/// geodesic) sampled on a grid of (along, across) nodes, and its inverse near the shape.
+struct CurveGrid
+{
+  struct Node
+  {
+    bool Valid = false;
+    SurfacePoint At;
+    Vec3 X; ///< position
+    Vec2 P; ///< class point (normalized units)
+  };
+  const TriangleMesh* Mesh = nullptr;
+  int Columns = 0, Rows = 0;
+  double Step = 0.0; ///< the larger grid spacing (world units)
+  std::vector<Node> Nodes; ///< column-major: node (i, j) is Nodes[i * Rows + j]
+
+  /// The class point of position X, the nearest node searched from node `start` by descent
+  /// over the grid: the affine map of the grid triangle nearest X (extended beyond the grid's
+  /// border). `distance` (optional): X's distance to that triangle. False without valid nodes.
+  bool Locate(const Vec3& X, int start, Vec2& p, double* distance) const;
+  /// Indexes the nodes by position (needed by ClassPoint).
+  void Index();
+  /// The class point of a surface point near the shape; false when it lies farther than half a
+  /// grid step from the grid (beyond the shape and its margin, or on another sheet nearby).
+  bool ClassPoint(const SurfacePoint& x, Vec2& p) const;
+
+private:
+  // Valid nodes by cells of twice the grid step over the nodes' bounding box.
+  double CellSize = 1.0;
+  Vec3 Origin;
+  std::array<int, 3> Dims{ { 0, 0, 0 } };
+  std::vector<int> CellStart, CellNodes;
+};
+
 class ShapeDistributor
 {
 public:
@@ -197,12 +232,15 @@ public:
   const std::vector<PlacedShape>& Shapes() const;
   /// The tables and options of the last Run.
   const SafeDistanceTables& Tables() const;
+  const TriangleMesh& Mesh() const;
   const ShapeDistributionOptions& Options() const;
   /// After Run: the class-frame point (normalized units) of surface point x as seen by short
   /// shape s: x's coordinates in the polar chart of s's centre (the log map, the inverse of
   /// MapToSurface), interpolated in x's face. False for long shapes and points beyond the chart
   /// (farther from the centre than the shape's circle).
   bool ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const;
+  /// A long shape's drawing map and its inverse near it (Index()ed); empty for a short shape.
+  CurveGrid Frame(int shape) const;
 
 private:
   struct Impl;
