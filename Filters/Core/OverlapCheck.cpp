@@ -21,7 +21,8 @@ double SegmentDistance(const Vec2& a, const Vec2& b, const Vec2& p)
   const Vec2 ab = b - a;
   const double l2 = Dot(ab, ab);
   const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(p - a, ab) / l2)) : 0.0;
-  return Norm(a + ab * t - p);
+  const Vec2 d = a + ab * t - p;
+  return std::sqrt(Dot(d, d)); // (not Norm: std::hypot is several times slower, and this is the hot loop)
 }
 } // namespace
 
@@ -195,7 +196,8 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
       {
         continue;
       }
-      const int n = std::max(1, std::min(100000, static_cast<int>(std::ceil(Norm(q - p) / step))));
+      const Vec2 pq = q - p;
+      const int n = std::max(1, std::min(100000, static_cast<int>(std::ceil(std::sqrt(Dot(pq, pq)) / step))));
       for (int j = 0; j < n; ++j)
       {
         if (region.DeeplyInside(p + (q - p) * (static_cast<double>(j) / n), depth))
@@ -251,7 +253,7 @@ OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
   std::vector<std::vector<int>> overlapsOf(n); // per shape: overlapping shapes of higher index
   long long examined = 0;
   // Long shapes: the inverse of their drawing map near them.
-  std::vector<CurveGrid> frames(n);
+  std::vector<std::shared_ptr<const CurveGrid>> frames(n);
 #ifdef _OPENMP
   const int threads = options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
 #endif
@@ -275,9 +277,11 @@ OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
     };
     if (!shapes[a].Curve.empty())
     {
-      const CurveGrid& frame = frames[a];
+      const CurveGrid& frame = *frames[a];
+      int hint = -1;
       return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
-        [&frame, &near](const SurfacePoint& x, Vec2& p) { return near(x) && frame.ClassPoint(x, p); }, depth);
+        [&frame, &near, &hint](const SurfacePoint& x, Vec2& p) { return near(x) && frame.ClassPoint(x, p, &hint); },
+        depth);
     }
     return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
       [&distributor, a, &near](const SurfacePoint& x, Vec2& p) { return near(x) && distributor.ClassPoint(a, x, p); },

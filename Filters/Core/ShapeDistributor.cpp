@@ -929,9 +929,10 @@ struct ShapeDistributor::Impl
       {
         return true;
       }
+      int hint = -1;
       if (!shortX && X.Frame && !shortC &&
         OutlineEnters(Regions[X.S.ClassId], c.Drawn,
-          [&X, &nearX](const SurfacePoint& q, Vec2& p) { return nearX(q) && X.Frame->ClassPoint(q, p); },
+          [&X, &nearX, &hint](const SurfacePoint& q, Vec2& p) { return nearX(q) && X.Frame->ClassPoint(q, p, &hint); },
           depth / unitX))
       {
         return true;
@@ -942,9 +943,10 @@ struct ShapeDistributor::Impl
       {
         return true;
       }
+      hint = -1;
       if (!shortC && c.Frame && !shortX && X.HasDrawn &&
         OutlineEnters(Regions[c.S.ClassId], X.Drawn,
-          [&c, &nearC](const SurfacePoint& q, Vec2& p) { return nearC(q) && c.Frame->ClassPoint(q, p); },
+          [&c, &nearC, &hint](const SurfacePoint& q, Vec2& p) { return nearC(q) && c.Frame->ClassPoint(q, p, &hint); },
           depth / unitC))
       {
         return true;
@@ -2008,7 +2010,7 @@ std::vector<OutlinePiece> ShapeDistributor::Impl::OutlineOf(const PlacedShape& s
   return DrawOutlinePieces(c.Outline.Rings, normalized, map);
 }
 
-bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance) const
+bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance, int* nearestNode) const
 {
   if (start < 0 || start >= static_cast<int>(Nodes.size()) || !Nodes[start].Valid)
   {
@@ -2044,6 +2046,10 @@ bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance) cons
     }
   }
   // The grid triangles around the nearest node: the nearest of them, its affine map.
+  if (nearestNode)
+  {
+    *nearestNode = nearest;
+  }
   const int ni = nearest / Rows, nj = nearest % Rows;
   double bestDistance = std::numeric_limits<double>::infinity();
   for (int ci = ni - 1; ci <= ni; ++ci)
@@ -2139,13 +2145,22 @@ void CurveGrid::Index()
   }
 }
 
-bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p) const
+bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p, int* hint) const
 {
   if (!Mesh || CellStart.empty())
   {
     return false;
   }
   const Vec3 X = x.IsVertex() ? Mesh->Position(x.Vertex) : Mesh->Interpolate(x.Face, x.Bary);
+  if (hint && *hint >= 0 && *hint < static_cast<int>(Nodes.size()))
+  {
+    // From the previous point's node: the descent finds the nearest node when it is near.
+    double distance = 0.0;
+    if (Locate(X, *hint, p, &distance, hint) && distance <= 0.5 * Step)
+    {
+      return true;
+    }
+  }
   const int ci = static_cast<int>(std::floor((X.x - Origin.x) / CellSize));
   const int cj = static_cast<int>(std::floor((X.y - Origin.y) / CellSize));
   const int ck = static_cast<int>(std::floor((X.z - Origin.z) / CellSize));
@@ -2172,19 +2187,28 @@ bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p) const
         }
       }
   double distance = 0.0;
-  return start >= 0 && Locate(X, start, p, &distance) && distance <= 0.5 * Step;
+  const bool found = start >= 0 && Locate(X, start, p, &distance, hint) && distance <= 0.5 * Step;
+  if (hint && !found)
+  {
+    *hint = -1;
+  }
+  return found;
 }
 
-CurveGrid ShapeDistributor::Frame(int shape) const
+std::shared_ptr<const CurveGrid> ShapeDistributor::Frame(int shape) const
 {
   const Impl& I = *P;
   const PlacedShape& s = I.Placed.at(shape);
   if (s.Curve.empty())
   {
-    return CurveGrid();
+    return nullptr;
   }
-  CurveGrid grid = I.BuildCurveGrid(s, I.T.Classes[s.ClassId]);
-  grid.Index();
+  if (I.Accepted.at(shape).Frame)
+  {
+    return I.Accepted.at(shape).Frame;
+  }
+  auto grid = std::make_shared<CurveGrid>(I.BuildCurveGrid(s, I.T.Classes[s.ClassId]));
+  grid->Index();
   return grid;
 }
 

@@ -178,12 +178,14 @@ struct CurveGrid
   /// The class point of position X, the nearest node searched from node `start` by descent
   /// over the grid: the affine map of the grid triangle nearest X (extended beyond the grid's
   /// border). `distance` (optional): X's distance to that triangle. False without valid nodes.
-  bool Locate(const Vec3& X, int start, Vec2& p, double* distance) const;
+  bool Locate(const Vec3& X, int start, Vec2& p, double* distance, int* nearest = nullptr) const;
   /// Indexes the nodes by position (needed by ClassPoint).
   void Index();
   /// The class point of a surface point near the shape; false when it lies farther than half a
   /// grid step from the grid (beyond the shape and its margin, or on another sheet nearby).
-  bool ClassPoint(const SurfacePoint& x, Vec2& p) const;
+  /// `hint` (optional, in and out): a node to start from (the previous point's, for points
+  /// along a curve); -1: none.
+  bool ClassPoint(const SurfacePoint& x, Vec2& p, int* hint = nullptr) const;
 
 private:
   // Valid nodes by cells of twice the grid step over the nodes' bounding box.
@@ -239,8 +241,9 @@ public:
   /// MapToSurface), interpolated in x's face. False for long shapes and points beyond the chart
   /// (farther from the centre than the shape's circle).
   bool ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const;
-  /// A long shape's drawing map and its inverse near it (Index()ed); empty for a short shape.
-  CurveGrid Frame(int shape) const;
+  /// A long shape's drawing map and its inverse near it (Index()ed; the one the drawn check
+  /// built, or a new one); null for a short shape.
+  std::shared_ptr<const CurveGrid> Frame(int shape) const;
 
 private:
   struct Impl;
