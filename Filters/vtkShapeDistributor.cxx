@@ -341,15 +341,42 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   const char* directionName = directionInfo && directionInfo->Has(vtkDataObject::FIELD_NAME())
     ? directionInfo->Get(vtkDataObject::FIELD_NAME())
     : nullptr;
-  const int directionAssociation = directionInfo && directionInfo->Has(vtkDataObject::FIELD_ASSOCIATION())
+  int directionAssociation = directionInfo && directionInfo->Has(vtkDataObject::FIELD_ASSOCIATION())
     ? directionInfo->Get(vtkDataObject::FIELD_ASSOCIATION())
     : vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  if (!directionName || !*directionName)
+  // Unset (ParaView leaves "0" or nothing when the input's arrays were not known when the
+  // filter was made): the cell array Direction (Cross Field's), its point array, then the active
+  // vectors (cells, then points). The choice is the field data DirectionArrayUsed of Placements.
+  std::string directionChoice;
+  if (!directionName || !*directionName || std::string(directionName) == "0" ||
+    std::string(directionName) == "None")
   {
-    vtkErrorMacro("No DirectionArray given (a cell or point array of tangent vectors, such as "
-                  "Cross Field's Direction).");
-    return 1;
+    auto vectors3 = [](vtkDataArray* a) { return a && a->GetNumberOfComponents() == 3 ? a : nullptr; };
+    const std::pair<vtkDataArray*, int> found[] = {
+      { vectors3(surface->GetCellData()->GetArray("Direction")), vtkDataObject::FIELD_ASSOCIATION_CELLS },
+      { vectors3(surface->GetPointData()->GetArray("Direction")), vtkDataObject::FIELD_ASSOCIATION_POINTS },
+      { vectors3(surface->GetCellData()->GetVectors()), vtkDataObject::FIELD_ASSOCIATION_CELLS },
+      { vectors3(surface->GetPointData()->GetVectors()), vtkDataObject::FIELD_ASSOCIATION_POINTS },
+    };
+    directionName = nullptr;
+    for (const auto& f : found)
+    {
+      if (f.first && f.first->GetName() && *f.first->GetName())
+      {
+        directionName = f.first->GetName();
+        directionAssociation = f.second;
+        break;
+      }
+    }
+    if (!directionName)
+    {
+      vtkErrorMacro("No DirectionArray given and the input has none to use: no cell or point "
+                    "array Direction and no active 3-component vectors. Run Cross Field first, or "
+                    "set DirectionArray to a cell or point array of tangent vectors.");
+      return 1;
+    }
   }
+  directionChoice = std::string(directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS ? "POINTS " : "CELLS ") + directionName;
   if (directionAssociation != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
     directionAssociation != vtkDataObject::FIELD_ASSOCIATION_CELLS)
   {
@@ -555,6 +582,10 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     single("NumberOfCharts", static_cast<double>(result.Statistics.Charts));
     single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
     single("Seconds", result.Statistics.Seconds);
+    vtkNew<vtkStringArray> used;
+    used->SetName("DirectionArrayUsed");
+    used->InsertNextValue(directionChoice);
+    fd->AddArray(used);
   }
   this->UpdateProgress(0.87);
   if (this->CheckAbort())

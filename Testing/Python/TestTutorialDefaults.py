@@ -1,0 +1,67 @@
+"""pvpython test: a new user's first pipeline typed with the defaults (issue: the DirectionArray
+default left unresolved as [None, '0'] when the inputs were not updated before the distributor
+was made, and the run failed with 0 shapes).
+
+Exactly as a user types it: no UpdatePipeline before making the distributor, no arrays set. The
+distributor must place shapes, say which direction array it used (field data
+DirectionArrayUsed: Cross Field's cell array Direction), and an input without any direction
+must give a clear error and no shapes.
+
+Usage: pvpython TestTutorialDefaults.py --plugin <GeodesicShapes.so> --data <Data dir>
+"""
+import argparse
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--data", required=True)
+args = parser.parse_args()
+LoadPlugin(args.plugin, remote=False, ns=globals())
+
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAILED:", message)
+
+
+mesh = PLYReader(FileNames=[os.path.join(args.data, "bumpy_sphere.ply")])
+field = CrossField(Input=mesh)
+field.Symmetry = 1
+SetActiveSource(None)
+tables = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", "star.png")])
+shapes = ShapeDistributor(Input=field, Table=tables, ShapeSize=0.08)
+print("DirectionArray as made:", list(shapes.DirectionArray))
+shapes.UpdatePipeline()
+placements = shapes.GetClientSideObject().GetOutputDataObject(0)
+n = placements.GetNumberOfPoints()
+used = placements.GetFieldData().GetAbstractArray("DirectionArrayUsed")
+print("shapes:", n, "direction used:", used.GetValue(0) if used else None)
+check(n > 100, "the tutorial as typed placed %d shapes" % n)
+check(used is not None and used.GetValue(0) == "CELLS Direction",
+      "DirectionArrayUsed is %s" % (used.GetValue(0) if used else None))
+
+# The same in the order a GUI user clicks: the distributor made from the active source.
+SetActiveSource(field)
+shapes2 = ShapeDistributor(Table=tables, ShapeSize=0.08)
+shapes2.UpdatePipeline()
+n2 = shapes2.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
+check(n2 == n, "made from the active source: %d shapes, typed: %d" % (n2, n))
+
+# No direction anywhere: a clear error, no shapes.
+plain = PLYReader(FileNames=[os.path.join(args.data, "bumpy_sphere.ply")])
+bare = ShapeDistributor(Input=plain, Table=tables, ShapeSize=0.08)
+bare.UpdatePipeline()
+check(bare.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() == 0,
+      "a mesh without directions gave shapes")
+
+if failures:
+    print("%d failure(s)" % len(failures))
+    sys.exit(1)
+print("OK")
