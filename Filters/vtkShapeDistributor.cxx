@@ -497,7 +497,19 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   gs::ShapeDistributor& distributor = *cache.Distributor;
   lap("Graph");
 
-  // 5. Distribution.
+  // 5. Distribution (a warning first when it will be long: a tiny ShapeSize, or density
+  // factors near 0, multiply the shapes by 1 / f^2).
+  {
+    const double expected = gs::ShapeDistributor::ExpectedCount(mesh, tables, density, this->ShapeSize);
+    if (expected > 250000.0 && (this->MaximumShapes == 0 || this->MaximumShapes > 250000))
+    {
+      vtkWarningMacro("About " << static_cast<long long>(expected)
+                               << " shapes are expected (ShapeSize " << this->ShapeSize
+                               << " times the density factors): the run may take minutes and "
+                                  "gigabytes. A larger ShapeSize, density factors away from 0 or "
+                                  "MaximumShapes keep it short; it can be aborted.");
+    }
+  }
   gs::ShapeDistributionOptions options;
   options.ShapeSize = this->ShapeSize;
   options.ClassWeights = this->ClassWeights;

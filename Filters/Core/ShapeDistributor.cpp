@@ -2212,6 +2212,36 @@ std::shared_ptr<const CurveGrid> ShapeDistributor::Frame(int shape) const
   return grid;
 }
 
+double ShapeDistributor::ExpectedCount(const TriangleMesh& mesh, const SafeDistanceTables& tables,
+  const std::vector<double>& vertexDensity, double shapeSize)
+{
+  if (tables.Classes.empty() || !(shapeSize > 0.0))
+  {
+    return 0.0;
+  }
+  double radius = 0.0;
+  for (const SafeDistanceClass& c : tables.Classes)
+  {
+    radius += c.Radius / static_cast<double>(tables.Classes.size());
+  }
+  double weight = 0.0;
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+  {
+    double factor = 1.0;
+    if (vertexDensity.size() == static_cast<std::size_t>(mesh.NumberOfVertices()))
+    {
+      const auto& c = mesh.Face(f);
+      factor = std::min({ vertexDensity[c[0]], vertexDensity[c[1]], vertexDensity[c[2]] });
+    }
+    if (factor > 0.0 && std::isfinite(factor))
+    {
+      weight += mesh.FaceArea(f) / (factor * factor);
+    }
+  }
+  const double r = shapeSize * radius;
+  return 0.5 * weight / (Pi * r * r);
+}
+
 ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
   : P(new Impl(mesh, graph && graph->NumberOfVertices() == mesh.NumberOfVertices() ? graph : nullptr))
 {

@@ -207,6 +207,13 @@ public:
   /// shape gets a random orientation). `vertexDensity`: empty (f = 1) or one factor per vertex;
   /// faces touching a vertex whose factor is not a positive finite number get no shape.
   /// `progress` (optional) receives values in [0, 1]; returning false aborts.
+  /// The order of magnitude of the number of shapes a run places (dart throwing covers about
+  /// half the surface with the shapes' circles): the sum over the faces carrying shapes of
+  /// area / (pi (ShapeSize f r)^2) / 2, r the classes' mean circumradius, f the smallest
+  /// density factor of the face's corners. Cheap; for warnings before long runs.
+  static double ExpectedCount(const TriangleMesh& mesh, const SafeDistanceTables& tables,
+    const std::vector<double>& vertexDensity, double shapeSize);
+
   ShapeDistributionResult Run(const SafeDistanceTables& tables,
     const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
     const ShapeDistributionOptions& options,

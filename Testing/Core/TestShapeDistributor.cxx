@@ -427,3 +427,27 @@ TEST(ShapeDistributor, KeepInsideKeepsCirclesOnTheSurface)
   // because they would hang over; still, a full run leaves few gaps.
   EXPECT_LT(inside.Shapes.size(), loose.Shapes.size());
 }
+
+TEST(ShapeDistributor, ExpectedCountIsTheOrderOfMagnitude)
+{
+  // The estimate the filter warns with before long runs: within a factor 2 of Random's count,
+  // and four times as many shapes at half the density factor.
+  const Plane plane = MakePlane(48, 12.0);
+  const SafeDistanceTables t = Tables({ Star(1.0, 0.4) });
+  for (const double f : { 1.0, 0.5 })
+  {
+    const std::vector<double> density(plane.Mesh.NumberOfVertices(), f);
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.6;
+    o.Seed = 5;
+    o.MaximalFailures = 2000;
+    ShapeDistributor d(plane.Mesh);
+    const ShapeDistributionResult r = Distribute(d, plane, t, o, density);
+    const double expected = ShapeDistributor::ExpectedCount(plane.Mesh, t, density, o.ShapeSize);
+    std::printf("density %.1f: %zu shapes, expected %.0f\n", f, r.Shapes.size(), expected);
+    EXPECT_GT(static_cast<double>(r.Shapes.size()), 0.5 * expected);
+    EXPECT_LT(static_cast<double>(r.Shapes.size()), 2.0 * expected);
+  }
+  EXPECT_NEAR(ShapeDistributor::ExpectedCount(plane.Mesh, t, {}, 0.3),
+    4.0 * ShapeDistributor::ExpectedCount(plane.Mesh, t, {}, 0.6), 1e-6);
+}
