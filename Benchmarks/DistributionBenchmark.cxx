@@ -467,6 +467,14 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       const ShapeDistributionResult r = d.Run(t, directions, {}, o);
       const double t1 = Now();
       const int n = static_cast<int>(r.Shapes.size());
+      Hasher placements; // (for refactors: the same placements bit for bit)
+      for (const PlacedShape& shape : r.Shapes)
+      {
+        placements.AddValue(shape.Position);
+        placements.AddValue(shape.Direction);
+        placements.AddValue(shape.ClassId);
+      }
+      std::printf("    placements hash %016llx\n", static_cast<unsigned long long>(placements.H));
       std::vector<ShapeDecal> decals(n);
       std::vector<std::vector<OutlinePiece>> outlines(n);
       const double spacing = 0.5 * mesh.MeanEdgeLength();

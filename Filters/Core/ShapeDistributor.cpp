@@ -192,6 +192,9 @@ struct ShapeDistributor::Impl
   MappedPoint MapShape(const PlacedShape& s, const Vec2& p) const;
   std::vector<OutlinePiece> OutlineOf(const PlacedShape& s, double spacing) const;
   bool ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const;
+  // A surface point in a chart (divided by `unit`): a vertex's entry, or a face point's corners
+  // interpolated; false when a corner is not in the chart.
+  bool ChartPoint(const Chart& chart, const SurfacePoint& x, double unit, Vec2& p) const;
   // Between outline points: half a mean edge (what the filter draws).
   double OutlineSpacing() const { return 0.5 * M.MeanEdgeLength(); }
 
@@ -833,21 +836,11 @@ struct ShapeDistributor::Impl
         }
         const double margin = 0.02 * PartRadius(pa);
         const double dilation = 0.9 * Clearance[cls] * scale / X.S.Scale - margin;
-        const Chart& chart = X.Charts[i];
-        const ChartEntry* e[3];
-        bool all = true;
-        for (int k = 0; k < 3 && all; ++k)
-        {
-          e[k] = chart.Find(corners[k]);
-          all = e[k] != nullptr;
-        }
-        if (!all)
+        Vec2 q;
+        if (!ChartPoint(X.Charts[i], centre, unit, q))
         {
           continue;
         }
-        const Vec2 q = (Vec2{ e[0]->X, e[0]->Y } * centre.Bary[0] + Vec2{ e[1]->X, e[1]->Y } * centre.Bary[1] +
-                         Vec2{ e[2]->X, e[2]->Y } * centre.Bary[2]) *
-          (1.0 / unit);
         if (Norm(q) > PartRadius(pa))
         {
           continue;
@@ -1914,13 +1907,16 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
 
 bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const
 {
-  const Impl& I = *this;
   if (!r.S.Curve.empty() || r.Charts.empty() || r.Charts[0].Entries.empty())
   {
     return false;
   }
-  const Chart& chart = r.Charts[0];
-  const double inverse = 1.0 / (I.O.ShapeSize * r.S.Scale);
+  return ChartPoint(r.Charts[0], x, O.ShapeSize * r.S.Scale, p);
+}
+
+bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& x, double unit, Vec2& p) const
+{
+  const double inverse = 1.0 / unit;
   if (x.IsVertex())
   {
     const ChartEntry* e = chart.Find(x.Vertex);
@@ -1931,11 +1927,11 @@ bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x
     p = Vec2{ e->X * inverse, e->Y * inverse };
     return true;
   }
-  if (x.Face < 0 || x.Face >= I.M.NumberOfFaces())
+  if (x.Face < 0 || x.Face >= M.NumberOfFaces())
   {
     return false;
   }
-  const auto& corners = I.M.Face(x.Face);
+  const auto& corners = M.Face(x.Face);
   Vec2 q{ 0.0, 0.0 };
   for (int k = 0; k < 3; ++k)
   {
