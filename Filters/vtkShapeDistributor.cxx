@@ -610,7 +610,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   const double lift = Lift * this->ShapeSize;
   std::vector<gs::ShapeDecal> decalOf(ns);
   std::vector<std::vector<gs::OutlinePiece>> outlineOf(ns);
-  const double spacing = 0.5 * mesh.MeanEdgeLength(); // between outline points
+  const double spacing = distributor.OutlineSpacing(); // the drawn check's outlines, kept
 #ifdef _OPENMP
   const int threads = this->NumberOfThreads > 0 ? this->NumberOfThreads : omp_get_max_threads();
 #endif

@@ -2191,6 +2191,11 @@ bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p, int* hint) const
   return found;
 }
 
+double ShapeDistributor::OutlineSpacing() const
+{
+  return P->OutlineSpacing();
+}
+
 std::shared_ptr<const CurveGrid> ShapeDistributor::Frame(int shape) const
 {
   const Impl& I = *P;

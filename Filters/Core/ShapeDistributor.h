@@ -248,6 +248,9 @@ public:
   /// MapToSurface), interpolated in x's face. False for long shapes and points beyond the chart
   /// (farther from the centre than the shape's circle).
   bool ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const;
+  /// The spacing between outline points the drawn check uses (half a mean edge): Outline at
+  /// this spacing returns the outline the check drew.
+  double OutlineSpacing() const;
   /// A long shape's drawing map and its inverse near it (Index()ed; the one the drawn check
   /// built, or a new one); null for a short shape.
   std::shared_ptr<const CurveGrid> Frame(int shape) const;
