@@ -152,29 +152,6 @@ SafeDistanceTables Tables(const std::vector<SafeDistanceInput>& in)
   return r.Tables;
 }
 
-TriangleSoup Subdivide(const TriangleSoup& s)
-{
-  TriangleSoup out;
-  out.Points = s.Points;
-  std::map<std::pair<long long, long long>, long long> mid;
-  auto midpoint = [&](long long a, long long b) {
-    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-    auto it = mid.find(key);
-    if (it != mid.end())
-      return it->second;
-    out.Points.push_back((s.Points[a] + s.Points[b]) * 0.5);
-    return mid[key] = static_cast<long long>(out.Points.size()) - 1;
-  };
-  for (const auto& t : s.Triangles)
-  {
-    const long long ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
-    out.Triangles.push_back({ t[0], ab, ca });
-    out.Triangles.push_back({ ab, t[1], bc });
-    out.Triangles.push_back({ ca, bc, t[2] });
-    out.Triangles.push_back({ ab, bc, ca });
-  }
-  return out;
-}
 
 TriangleMesh Build(const TriangleSoup& s)
 {
@@ -405,7 +382,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
     std::fprintf(stderr, "%s: %s\n", meshPath.c_str(), error.c_str());
     return 1;
   }
-  const TriangleMesh mesh = Build(Subdivide(soup));
+  const TriangleMesh mesh = Build(SubdivideAtMidpoints(soup));
   std::vector<SafeDistanceInput> classes;
   for (const std::string& file : images)
   {
@@ -424,13 +401,9 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
   std::printf("At scale: %s subdivided once: %d vertices, %d faces; %zu classes (%d long), ShapeSize %.3g of "
               "the diagonal, %s\n", meshPath.c_str(), mesh.NumberOfVertices(), mesh.NumberOfFaces(),
     classes.size(), longClasses, size, ModeName(mode));
-  Hasher h;
-  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
-    h.AddValue(mesh.Position(v));
-  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
-    h.AddValue(mesh.Face(f));
+  const std::uint64_t meshHash = SaddleVertexGraph::HashMesh(mesh);
   SaddleVertexGraph graph;
-  if (cache.empty() || !graph.Load(cache, h.H, 50, error))
+  if (cache.empty() || !graph.Load(cache, meshHash, 50, error))
   {
     const double t0 = Now();
     SaddleVertexGraphOptions go;
@@ -441,12 +414,12 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       return 1;
     }
     std::printf("  graph build (K = 50, 2 threads): %.2f s\n", Now() - t0);
-    if (!cache.empty() && !graph.Save(cache, h.H, error))
+    if (!cache.empty() && !graph.Save(cache, meshHash, error))
       std::fprintf(stderr, "graph cache: %s\n", error.c_str());
   }
   const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
   ShapeDistributor d(mesh, &graph);
-  std::map<int, std::vector<double>> total, phase[8];
+  std::map<int, std::vector<double>> phase[8];
   std::map<int, std::vector<std::size_t>> counts;
   const char* names[8] = { "set-up", "candidates", "checks and charts", "rounds", "decals", "outlines",
     "overlap check", "all" };
@@ -477,7 +450,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       std::printf("    placements hash %016llx\n", static_cast<unsigned long long>(placements.H));
       std::vector<ShapeDecal> decals(n);
       std::vector<std::vector<OutlinePiece>> outlines(n);
-      const double spacing = 0.5 * mesh.MeanEdgeLength();
+      const double spacing = d.OutlineSpacing();
       double longSeconds = 0.0;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads) reduction(+ : longSeconds)
       for (int s = 0; s < n; ++s)
@@ -738,7 +711,7 @@ int main(int argc, char* argv[])
       return 1;
     }
     const TriangleMesh coarse = Build(soup);
-    const TriangleMesh fine = Build(Subdivide(soup));
+    const TriangleMesh fine = Build(SubdivideAtMidpoints(soup));
     std::vector<SafeDistanceInput> four(classes.begin(), classes.begin() + std::min<std::size_t>(4, classes.size()));
     const SafeDistanceTables t = Tables(four);
     std::printf("5. %s subdivided once: %d vertices, %d faces; %zu classes\n", args[0].c_str(),

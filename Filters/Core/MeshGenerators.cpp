@@ -1,5 +1,6 @@
 #include "MeshGenerators.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -218,6 +219,32 @@ std::vector<Vec2> MakeStarPolygon(int points, double outer, double inner)
     ring.emplace_back(r * std::cos(a), r * std::sin(a));
   }
   return ring;
+}
+
+TriangleSoup SubdivideAtMidpoints(const TriangleSoup& soup)
+{
+  TriangleSoup out;
+  out.Points = soup.Points;
+  std::map<std::pair<long long, long long>, long long> middle;
+  auto midpoint = [&](long long a, long long b) {
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    auto it = middle.find(key);
+    if (it != middle.end())
+    {
+      return it->second;
+    }
+    out.Points.push_back((soup.Points[a] + soup.Points[b]) * 0.5);
+    return middle[key] = static_cast<long long>(out.Points.size()) - 1;
+  };
+  for (const auto& t : soup.Triangles)
+  {
+    const long long ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+    out.Triangles.push_back({ t[0], ab, ca });
+    out.Triangles.push_back({ ab, t[1], bc });
+    out.Triangles.push_back({ ca, bc, t[2] });
+    out.Triangles.push_back({ ab, bc, ca });
+  }
+  return out;
 }
 
 } // namespace gs

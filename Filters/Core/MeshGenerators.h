@@ -30,6 +30,8 @@ TriangleSoup MakeCone(double halfAngle, double slant, int rings, int sectors);
 TriangleSoup MakeCylinder(double radius, double height, int sectors, int rings);
 // Unit-radius-scaled sphere by subdividing an icosahedron `level` times (20 * 4^level faces).
 TriangleSoup MakeIcosphere(double radius, int level);
+// Each triangle split into four at its edge midpoints: the same surface, four times the faces.
+TriangleSoup SubdivideAtMidpoints(const TriangleSoup& soup);
 // Torus with major radius R and minor radius r, n x m quads split into triangles.
 TriangleSoup MakeTorus(double majorRadius, double minorRadius, int n, int m);
 

@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 using namespace gs;
 
@@ -164,26 +163,7 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
   TriangleSoup soup;
   std::string error;
   ASSERT_TRUE(ReadMesh(std::string(GS_TEST_DATA_DIR) + "/bumpy_sphere.ply", soup, error)) << error;
-  // Midpoint subdivision (the same surface, four times the faces).
-  TriangleSoup fine;
-  fine.Points = soup.Points;
-  std::map<std::pair<long long, long long>, long long> middle;
-  auto midpoint = [&](long long a, long long b) {
-    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-    auto it = middle.find(key);
-    if (it != middle.end())
-      return it->second;
-    fine.Points.push_back((soup.Points[a] + soup.Points[b]) * 0.5);
-    return middle[key] = static_cast<long long>(fine.Points.size()) - 1;
-  };
-  for (const auto& t : soup.Triangles)
-  {
-    const long long ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
-    fine.Triangles.push_back({ t[0], ab, ca });
-    fine.Triangles.push_back({ ab, t[1], bc });
-    fine.Triangles.push_back({ ca, bc, t[2] });
-    fine.Triangles.push_back({ ab, bc, ca });
-  }
+  const TriangleSoup fine = SubdivideAtMidpoints(soup); // the same surface, 4x the faces
   const TriangleMesh mesh = gs_test::BuildMesh(fine);
   SaddleVertexGraph graph;
   ASSERT_TRUE(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr, error)) << error;
