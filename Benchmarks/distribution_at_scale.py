@@ -88,7 +88,6 @@ LoadPlugin(args.plugin, remote=False, ns=globals())
 mesh = XMLPolyDataReader(FileName=[path])
 field = Calculator(Input=mesh, ResultArrayName="Dir", Function="0.3*iHat+jHat+0.2*kHat")
 shapes_dir = os.path.join(root, "Data", "shapes")
-SetActiveSource(None)  # MSDT Source would take the mesh as polygon input
 msdt = MSDTSource(ShapeFileNames=[os.path.join(shapes_dir, n) for n in
                                   ("star.png", "gull.png", "leaf.png", "fish.png")])
 dist = ShapeDistributor(Input=field, Table=msdt, ShapeSize=args.size * diagonal, Mode=args.mode)

@@ -63,7 +63,6 @@ glyphs = Glyph(Input=CellCenters(Input=field), GlyphType="Line", OrientationArra
                ScaleArray=["POINTS", "No scale array"], ScaleFactor=0.08)
 picture(2, (field, ("POINTS", "SingularityIndex")), (glyphs, None))
 
-SetActiveSource(None)
 msdt = MSDTSource(ShapeFileNames=[args.shape])
 table = vtk_to_numpy(servermanager.Fetch(msdt).GetPointData().GetArray("SafeDistance"))
 print("3. safe distance table: %d values in [%.3f, %.3f] (circumradius 1)" % (table.size, table.min(), table.max()))

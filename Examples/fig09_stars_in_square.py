@@ -30,7 +30,6 @@ os.makedirs(args.output, exist_ok=True)
 plane = Plane(Origin=[0, 0, 0], Point1=[10, 0, 0], Point2=[0, 10, 0], XResolution=100, YResolution=100)
 square = Calculator(Input=Triangulate(Input=plane), AttributeType="Cell Data",
                     ResultArrayName="Direction", Function="iHat")
-SetActiveSource(None)
 msdt = MSDTSource(ShapeFileNames=[args.shape])
 shapes = ShapeDistributor(Input=square, Table=msdt, ShapeSize=0.5)
 shapes.DirectionArray = ["CELLS", "Direction"]

@@ -37,7 +37,6 @@ centre = (n // 2) * (n + 1) + n // 2  # the grid point at (5, 5)
 distance = SVGGeodesicDistance(Input=square, SourceVertexIds=[centre])
 density = Calculator(Input=distance, ResultArrayName="Density",
                      Function="max(0.25, min(1.0, GeodesicDistance / %g))" % args.radius)
-SetActiveSource(None)
 msdt = MSDTSource(ShapeFileNames=[args.shape])
 shapes = ShapeDistributor(Input=density, Table=msdt, ShapeSize=0.3, Seed=1)
 shapes.DirectionArray = ["CELLS", "Direction"]

@@ -29,7 +29,6 @@ os.makedirs(args.output, exist_ok=True)
 
 mesh = PLYReader(FileNames=[args.mesh])
 field = CrossField(Input=mesh, Symmetry=1)
-SetActiveSource(None)
 names = ("star", "gull", "leaf", "fish")
 msdt = MSDTSource(ShapeFileNames=[os.path.join(shapes_dir, n + ".png") for n in names])
 shapes = ShapeDistributor(Input=field, Table=msdt, ShapeSize=0.07, Seed=4, MaximumShapes=300)

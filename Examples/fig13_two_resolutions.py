@@ -29,7 +29,6 @@ os.makedirs(args.output, exist_ok=True)
 
 coarse = PLYReader(FileNames=[args.mesh])
 fine = Subdivide(Input=coarse, NumberofSubdivisions=1)
-SetActiveSource(None)
 msdt = MSDTSource(ShapeFileNames=[os.path.join(shapes_dir, n)
                                   for n in ("star.png", "gull.png", "leaf.png", "fish.png")])
 counts = {}

@@ -35,7 +35,6 @@ LoadPlugin(args.plugin, remote=False, ns=globals())
 os.makedirs(args.output, exist_ok=True)
 
 # The silhouette as MSDT Source sees it (its Silhouettes output: the square around the circle).
-SetActiveSource(None)
 eagle = MSDTSource(ShapeFileNames=[args.eagle], TextureSize=512, MaximumAspectRatio=1000)
 eagle.UpdatePipeline()
 image = servermanager.Fetch(eagle, idx=2)
@@ -90,9 +89,7 @@ out = self.GetPolyDataOutput()
 out.SetPoints(pts)
 out.SetPolys(polys)
 """ % [tuple(map(float, p)) for p in ring]
-SetActiveSource(None)
-ellipse_tables = MSDTSource(Polygons=ellipse, MaximumAspectRatio=1000)
-SetActiveSource(None)
+ellipse_tables = MSDTFromPolygons(Input=ellipse, MaximumAspectRatio=1000)
 eagle_tables = MSDTSource(ShapeFileNames=[args.eagle], MaximumAspectRatio=1000)
 
 plane = Plane(Origin=[0, 0, 0], Point1=[10, 0, 0], Point2=[0, 10, 0], XResolution=100, YResolution=100)

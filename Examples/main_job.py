@@ -155,8 +155,6 @@ density = Calculator(Input=distance, ResultArrayName="Density",
                      Function="max(0.45, min(1.0, GeodesicDistance / %g))" % (0.9 * radius))
 
 # 3. Tables and distribution.
-# (No active source: paraview.simple would connect it, the surface, as MSDT Source's polygons.)
-SetActiveSource(None)
 msdt = MSDTSource(ShapeFileNames=args.shapes, AngleBins=64, DistanceSteps=64, TextureSize=256)
 shapes = ShapeDistributor(Input=density, Table=msdt, ShapeSize=args.size, Mode=args.mode,
                           Seed=args.seed)

@@ -44,6 +44,10 @@ struct vtkMSDTSource::ShapeCache
   std::string Key;
   bool Ok = false;
   std::string Error;   // when !Ok, the message (already reported when the read happened)
+  // No file name and no polygons: a new source whose properties are not set yet. Not reported
+  // by RequestInformation (which the GUI and pvpython run as soon as the proxy exists), only
+  // when the output is asked for.
+  bool NoShape = false;
   gs::SafeDistanceTables Parts;
 };
 
@@ -304,8 +308,7 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
       bounds[5] - bounds[4] > 1e-9 * std::max({ 1.0, bounds[1] - bounds[0], bounds[3] - bounds[2] }))
     {
       cache.Error = "Polygons input: the points are not in a plane of constant z (a surface "
-                    "mesh connected by mistake? In pvpython, MSDTSource(...) connects the active "
-                    "source: call SetActiveSource(None) first)";
+                    "mesh connected by mistake?)";
       return;
     }
     std::string error;
@@ -323,7 +326,8 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
   }
   if (classes.empty())
   {
-    cache.Error = "No shape: set ShapeFileNames or connect polygons.";
+    cache.Error = "No shape: set ShapeFileNames (images) or use MSDT From Polygons.";
+    cache.NoShape = true;
     return;
   }
   gs::SafeDistanceOptions options;
@@ -358,7 +362,10 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
   this->UpdateShapes(inputVector);
   if (!this->Shapes->Ok)
   {
-    vtkErrorMacro(<< this->Shapes->Error);
+    if (!this->Shapes->NoShape)
+    {
+      vtkErrorMacro(<< this->Shapes->Error);
+    }
     return 1;
   }
   const gs::SafeDistanceTables& T = this->Shapes->Parts;
@@ -429,7 +436,7 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   this->UpdateShapes(inputVector); // normally a cache hit
   if (!this->Shapes->Ok)
   {
-    if (this->NumberOfShapeLoads != loads)
+    if (this->NumberOfShapeLoads != loads || this->Shapes->NoShape)
     {
       vtkErrorMacro(<< this->Shapes->Error);
     }

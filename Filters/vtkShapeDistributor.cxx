@@ -6,6 +6,7 @@
 
 #include "OverlapCheck.h"
 #include "SafeDistanceTable.h"
+#include "DirectionField.h"
 #include "ShapeDistributor.h"
 
 #include <vtkCellArray.h>
@@ -53,6 +54,9 @@ struct vtkShapeDistributor::Cache : vtkSurfaceMeshConverter::Cached
 
 namespace
 {
+// ShapeSize 0 (the proxy's default before the GUI proposes a value): this fraction of the
+// input's largest bounding-box side.
+constexpr double AutomaticShapeSize = 0.04;
 // Fraction of ShapeSize by which decals and outlines are lifted along the face normals.
 constexpr double Lift = 0.002;
 
@@ -290,9 +294,10 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   };
 
   // 1. Parameters and tables.
-  if (!(this->ShapeSize > 0.0) || !std::isfinite(this->ShapeSize))
+  if (!(this->ShapeSize >= 0.0) || !std::isfinite(this->ShapeSize))
   {
-    vtkErrorMacro("ShapeSize must be a positive finite number (it is " << this->ShapeSize << ").");
+    vtkErrorMacro("ShapeSize must be a positive finite number, or 0 for automatic (it is "
+      << this->ShapeSize << ").");
     return 1;
   }
   if (this->Mode != RANDOM && this->Mode != GREEDY && this->Mode != CIRCUMCIRCLE_POISSON_DISK)
@@ -331,6 +336,20 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
   vtkPolyData* surface = cache.Mesh.Surface;
+  // ShapeSize 0: automatic, a fraction of the surface's largest bounding-box side (what the
+  // GUI's properties panel proposes too, through the property's bounds domain).
+  double shapeSize = this->ShapeSize;
+  if (shapeSize == 0.0)
+  {
+    double b[6];
+    surface->GetBounds(b);
+    shapeSize = AutomaticShapeSize * std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+    if (!(shapeSize > 0.0) || !std::isfinite(shapeSize))
+    {
+      vtkErrorMacro("ShapeSize is 0 (automatic) but the input's bounds are empty: set ShapeSize.");
+      return 1;
+    }
+  }
   const vtkIdType firstPolygon = surface->GetNumberOfVerts() + surface->GetNumberOfLines();
   const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
 
@@ -385,6 +404,17 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
                                           << directionAssociation << ").");
     return 1;
   }
+  int symmetry = 1;
+  if (vtkDataArray* s = FieldArray(input->GetFieldData(), "Symmetry", 1))
+  {
+    symmetry = static_cast<int>(s->GetComponent(0, 0));
+    if (symmetry != 1 && symmetry != 2 && symmetry != 4)
+    {
+      vtkWarningMacro("The input's field data Symmetry is " << symmetry
+                                                           << " (not 1, 2 or 4): 1 is used.");
+      symmetry = 1;
+    }
+  }
   std::vector<gs::Vec3> directions(nf, gs::Vec3{ 0, 0, 0 });
   {
     const bool onPoints = directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS;
@@ -398,7 +428,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     }
     if (onPoints)
     {
-      // Per face: the corners' vectors summed after aligning each with the first (N-symmetric).
+      // Per face: the corners' vectors averaged N-symmetrically (a cross given by any arm).
       std::vector<gs::Vec3> atVertex(nv, gs::Vec3{ 0, 0, 0 });
       for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
       {
@@ -410,18 +440,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
           atVertex[v] = gs::Vec3{ x[0], x[1], x[2] };
         }
       }
-      for (int f = 0; f < nf; ++f)
-      {
-        const auto& c = mesh.Face(f);
-        const gs::Vec3 first = atVertex[c[0]];
-        gs::Vec3 sum = first;
-        for (int k = 1; k < 3; ++k)
-        {
-          const gs::Vec3 d = atVertex[c[k]];
-          sum = sum + (gs::Dot(d, first) < 0.0 ? d * -1.0 : d);
-        }
-        directions[f] = sum;
-      }
+      directions = gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
     }
     else
     {
@@ -458,17 +477,6 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
       }
     }
   }
-  int symmetry = 1;
-  if (vtkDataArray* s = FieldArray(input->GetFieldData(), "Symmetry", 1))
-  {
-    symmetry = static_cast<int>(s->GetComponent(0, 0));
-    if (symmetry != 1 && symmetry != 2 && symmetry != 4)
-    {
-      vtkWarningMacro("The input's field data Symmetry is " << symmetry
-                                                           << " (not 1, 2 or 4): 1 is used.");
-      symmetry = 1;
-    }
-  }
   this->UpdateProgress(0.05);
   if (this->CheckAbort())
   {
@@ -500,18 +508,18 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   // 5. Distribution (a warning first when it will be long: a tiny ShapeSize, or density
   // factors near 0, multiply the shapes by 1 / f^2).
   {
-    const double expected = gs::ShapeDistributor::ExpectedCount(mesh, tables, density, this->ShapeSize);
+    const double expected = gs::ShapeDistributor::ExpectedCount(mesh, tables, density, shapeSize);
     if (expected > 250000.0 && (this->MaximumShapes == 0 || this->MaximumShapes > 250000))
     {
       vtkWarningMacro("About " << static_cast<long long>(expected)
-                               << " shapes are expected (ShapeSize " << this->ShapeSize
+                               << " shapes are expected (ShapeSize " << shapeSize
                                << " times the density factors): the run may take minutes and "
                                   "gigabytes. A larger ShapeSize, density factors away from 0 or "
                                   "MaximumShapes keep it short; it can be aborted.");
     }
   }
   gs::ShapeDistributionOptions options;
-  options.ShapeSize = this->ShapeSize;
+  options.ShapeSize = shapeSize;
   options.ClassWeights = this->ClassWeights;
   options.Mode = static_cast<gs::DistributionMode>(this->Mode);
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
@@ -594,6 +602,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     single("NumberOfCharts", static_cast<double>(result.Statistics.Charts));
     single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
     single("Seconds", result.Statistics.Seconds);
+    single("ShapeSizeUsed", shapeSize);
     vtkNew<vtkStringArray> used;
     used->SetName("DirectionArrayUsed");
     used->InsertNextValue(directionChoice);
@@ -607,7 +616,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
 
   // 7. Decals and outlines, computed per shape in parallel, assembled in order.
-  const double lift = Lift * this->ShapeSize;
+  const double lift = Lift * shapeSize;
   std::vector<gs::ShapeDecal> decalOf(ns);
   std::vector<std::vector<gs::OutlinePiece>> outlineOf(ns);
   const double spacing = distributor.OutlineSpacing(); // the drawn check's outlines, kept

@@ -41,7 +41,7 @@
  * Results are identical for any NumberOfThreads for a given Seed.
  *
  * Errors (vtkErrorMacro, empty outputs): a mesh the core rejects, missing or wrong-typed
- * arrays, missing or inconsistent tables, ShapeSize <= 0 or absurdly small for the mesh,
+ * arrays, missing or inconsistent tables, ShapeSize < 0 or absurdly small for the mesh,
  * ClassWeights of the wrong length or all zero, unknown Mode, K < 0, negative MaximumShapes or
  * NumberOfThreads. Progress is reported and the run can be aborted.
  *
@@ -79,7 +79,8 @@ public:
   };
 
   ///@{
-  /// Circumradius (world units) of the first class at density 1. Default 1.
+  /// Circumradius (world units) of the first class at density 1. Default 0: automatic, 4% of
+  /// the input's largest bounding-box side (field data ShapeSizeUsed of Placements).
   vtkSetMacro(ShapeSize, double);
   vtkGetMacro(ShapeSize, double);
   ///@}
@@ -194,7 +195,7 @@ protected:
   int Execute(vtkPolyData* input, vtkImageData* tables, vtkPolyData* placements,
     vtkPolyData* decals, vtkPolyData* outlines);
 
-  double ShapeSize = 1.0;
+  double ShapeSize = 0.0; // 0: automatic (4% of the largest bounding-box side)
   std::vector<double> ClassWeights;
   int Mode = RANDOM;
   int Seed = 0;

@@ -117,6 +117,92 @@ Vec3 DirectionFieldSolver::DirectionInFace(int f, double angle) const
   return BasisX[f] * std::cos(angle) + BasisY[f] * std::sin(angle);
 }
 
+std::vector<Vec3> AreaWeightedVertexNormals(const TriangleMesh& mesh)
+{
+  std::vector<Vec3> vn(mesh.NumberOfVertices(), Vec3(0, 0, 0));
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+  {
+    const Vec3 fn = mesh.FaceNormal(f) * mesh.FaceArea(f);
+    for (int c = 0; c < 3; ++c)
+    {
+      vn[mesh.Face(f)[c]] += fn;
+    }
+  }
+  for (Vec3& v : vn)
+  {
+    const double l = Norm(v);
+    v = l > 0 ? v / l : v;
+  }
+  return vn;
+}
+
+std::vector<Vec3> FaceDirectionsFromVertices(
+  const TriangleMesh& mesh, const std::vector<Vec3>& atVertex, int symmetry)
+{
+  const int nf = mesh.NumberOfFaces();
+  const int n = symmetry == 2 || symmetry == 4 ? symmetry : 1;
+  std::vector<Vec3> out(nf, Vec3{ 0, 0, 0 });
+  if (static_cast<int>(atVertex.size()) != mesh.NumberOfVertices())
+  {
+    return out;
+  }
+  const std::vector<Vec3> vertexNormals = AreaWeightedVertexNormals(mesh);
+  for (int f = 0; f < nf; ++f)
+  {
+    const auto& c = mesh.Face(f);
+    const Vec3 normal = mesh.FaceNormal(f);
+    const Vec3 x = Unit(mesh.Position(c[1]) - mesh.Position(c[0]));
+    const Vec3 y = Cross(normal, x);
+    double re = 0.0, im = 0.0, reference = 0.0, weight = 0.0;
+    bool haveReference = false;
+    for (int k = 0; k < 3; ++k)
+    {
+      Vec3 v = atVertex[c[k]];
+      if (!IsFinite(v))
+      {
+        continue;
+      }
+      // Into the vertex's tangent plane, then turned into the face's (Rodrigues' formula for
+      // the rotation about vn x normal by their angle; plain projection where they are opposed).
+      const Vec3& vn = vertexNormals[c[k]];
+      const double cosine = Dot(vn, normal);
+      if (cosine > -0.9)
+      {
+        v = v - vn * Dot(vn, v);
+        const Vec3 axis = Cross(vn, normal);
+        v = v * cosine + Cross(axis, v) + axis * (Dot(axis, v) / (1.0 + cosine));
+      }
+      const double a = Dot(v, x), b = Dot(v, y);
+      const double length = std::hypot(a, b);
+      if (!(length > 0.0))
+      {
+        continue;
+      }
+      const double angle = std::atan2(b, a);
+      if (!haveReference)
+      {
+        reference = angle;
+        haveReference = true;
+      }
+      weight += length;
+      re += length * std::cos(n * angle);
+      im += length * std::sin(n * angle);
+    }
+    const double magnitude = std::hypot(re, im);
+    if (!haveReference || !(magnitude > 1e-9 * weight))
+    {
+      continue;
+    }
+    // The N directions angle + 2 pi k / N: the one closest to the first corner's vector.
+    const double angle = std::atan2(im, re) / n;
+    const double step = 2.0 * Pi / n;
+    const double k = std::round((reference - angle) / step);
+    const double chosen = angle + k * step;
+    out[f] = x * std::cos(chosen) + y * std::sin(chosen);
+  }
+  return out;
+}
+
 double DirectionFieldSolver::WrapSymmetric(double a, int n)
 {
   const double period = TwoPi / n;
@@ -130,21 +216,7 @@ double DirectionFieldSolver::WrapSymmetric(double a, int n)
 
 std::vector<Vec3> DirectionFieldSolver::VertexNormals() const
 {
-  std::vector<Vec3> vn(M.NumberOfVertices(), Vec3(0, 0, 0));
-  for (int f = 0; f < M.NumberOfFaces(); ++f)
-  {
-    const Vec3 fn = M.FaceNormal(f) * M.FaceArea(f);
-    for (int c = 0; c < 3; ++c)
-    {
-      vn[M.Face(f)[c]] += fn;
-    }
-  }
-  for (Vec3& v : vn)
-  {
-    const double l = Norm(v);
-    v = l > 0 ? v / l : v;
-  }
-  return vn;
+  return AreaWeightedVertexNormals(M);
 }
 
 std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vector<double>& angles) const

@@ -61,6 +61,22 @@ struct Streamline
   StopReason Reason = ReachedLength;
 };
 
+// Unit vertex normals: the area-weighted mean of the normals of the faces around each vertex
+// (the tangent planes of the direction fields' point output).
+std::vector<Vec3> AreaWeightedVertexNormals(const TriangleMesh& mesh);
+
+// Per-face directions of an N-direction field given at the vertices (N = 1, 2 or 4): each
+// corner's vector is projected onto its vertex's tangent plane (AreaWeightedVertexNormals) and
+// carried to the face plane by the smallest rotation taking the vertex normal to the face normal
+// (angles between a cross's arms are kept), its angle in the face multiplied by N (its
+// length kept as the weight), the three summed and the angle divided by N again; of the N
+// equivalent directions the one closest to the first usable corner's is returned, with unit length.
+// N = 1 is the plain sum; N = 2 lines up opposite vectors; N = 4 also vectors a quarter turn apart
+// (a cross given by any of its arms). Zero where no corner has a finite, nonzero tangent vector or
+// where they cancel (a singular face). `atVertex` has one vector per vertex.
+std::vector<Vec3> FaceDirectionsFromVertices(
+  const TriangleMesh& mesh, const std::vector<Vec3>& atVertex, int symmetry);
+
 class DirectionFieldSolver
 {
 public:

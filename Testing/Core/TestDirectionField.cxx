@@ -3,6 +3,7 @@
 #include "DirectionField.h"
 #include "TestMeshes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -499,4 +500,102 @@ TEST(DirectionField, StreamlineTracer)
   EXPECT_LT(pole.Length, 2.0);
   const gs::Vec3 pe = sphere.Interpolate(pole.End.Face, pole.End.Bary);
   EXPECT_GT(std::abs(pe.z), 0.9);
+}
+
+// Issue 21 (part 4): a point direction array averaged per face N-symmetrically. Each corner of a
+// face gets a smooth field's direction rotated by a random multiple of 2 pi / N (any arm of a
+// cross, either sense of a line): the face directions must be those of the unrotated field modulo
+// 2 pi / N (exactly, and to the wobble when the corners also wobble), and for N = 1 on a smooth
+// sphere the corners' mean. Aligning corners by sign only (N = 2's rule) gets crosses wrong by up
+// to 45 degrees.
+TEST(DirectionField, PointDirectionsAreAveragedNSymmetrically)
+{
+  const double pi = 3.14159265358979323846;
+  for (const double bumps : { 0.0, 0.02 })
+  {
+    const gs::TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(4, 5, bumps));
+    const std::vector<gs::Vec3> normals = gs::AreaWeightedVertexNormals(mesh);
+    const int nv = mesh.NumberOfVertices();
+    std::mt19937 rng(21);
+    std::uniform_int_distribution<int> arm(0, 3);
+    std::uniform_real_distribution<double> wobble(-0.05, 0.05);
+    // A smooth tangent field: the axis projected onto the tangent planes (poles at +-axis).
+    const gs::Vec3 axis = gs::Unit(gs::Vec3{ 0.3, 0.2, 1.0 });
+    std::vector<gs::Vec3> truth(nv);
+    for (int v = 0; v < nv; ++v)
+    {
+      truth[v] = gs::Unit(axis - normals[v] * gs::Dot(axis, normals[v]));
+    }
+    const auto awayFromPoles = [&](int f) {
+      const auto& c = mesh.Face(f);
+      const gs::Vec3 centre =
+        gs::Unit(mesh.Position(c[0]) + mesh.Position(c[1]) + mesh.Position(c[2]));
+      return std::abs(gs::Dot(axis, centre)) < 0.9;
+    };
+    const auto angleBetween = [](const gs::Vec3& a, const gs::Vec3& b, const gs::Vec3& n) {
+      return std::atan2(gs::Dot(gs::Cross(a, b), n), gs::Dot(a, b));
+    };
+    for (int symmetry : { 1, 2, 4 })
+    {
+      const double period = 2.0 * pi / symmetry;
+      const std::vector<gs::Vec3> reference = gs::FaceDirectionsFromVertices(mesh, truth, symmetry);
+      std::vector<gs::Vec3> arms(nv), wobbly(nv);
+      for (int v = 0; v < nv; ++v)
+      {
+        const double turn = period * (arm(rng) % symmetry);
+        arms[v] = gs::RotateTangent(truth[v], normals[v], turn) * (1.0 + 0.5 * wobble(rng));
+        wobbly[v] = gs::RotateTangent(truth[v], normals[v], turn + wobble(rng));
+      }
+      const std::vector<gs::Vec3> fromArms = gs::FaceDirectionsFromVertices(mesh, arms, symmetry);
+      const std::vector<gs::Vec3> fromWobbly = gs::FaceDirectionsFromVertices(mesh, wobbly, symmetry);
+      ASSERT_EQ(static_cast<int>(fromArms.size()), mesh.NumberOfFaces());
+      double worstArms = 0.0, worstWobbly = 0.0, worstMean = 0.0;
+      int checked = 0;
+      for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+      {
+        if (!awayFromPoles(f))
+        {
+          continue;
+        }
+        const gs::Vec3 n = mesh.FaceNormal(f);
+        ASSERT_NEAR(gs::Norm(fromArms[f]), 1.0, 1e-9);
+        EXPECT_NEAR(gs::Dot(fromArms[f], n), 0.0, 1e-9);
+        const auto offModulo = [&](double a) { return std::abs(a - period * std::round(a / period)); };
+        // Equal weights: the arms' lengths (0.975..1.025) move the mean by far less than 0.02.
+        worstArms = std::max(worstArms, offModulo(angleBetween(reference[f], fromArms[f], n)));
+        worstWobbly = std::max(worstWobbly, offModulo(angleBetween(reference[f], fromWobbly[f], n)));
+        if (symmetry == 1)
+        {
+          const auto& c = mesh.Face(f);
+          gs::Vec3 mean = truth[c[0]] + truth[c[1]] + truth[c[2]];
+          mean = gs::Unit(mean - n * gs::Dot(mean, n));
+          worstMean = std::max(worstMean, std::abs(angleBetween(mean, reference[f], n)));
+        }
+        ++checked;
+      }
+      EXPECT_GT(checked, mesh.NumberOfFaces() / 2);
+      EXPECT_LT(worstArms, 0.02) << "N = " << symmetry << ", bumps " << bumps;
+      EXPECT_LT(worstWobbly, 0.05) << "N = " << symmetry << ", bumps " << bumps;
+      if (symmetry == 1 && bumps == 0.0)
+      {
+        // On a smooth sphere, transport and projection agree to the faces' tilt squared.
+        EXPECT_LT(worstMean, 0.01);
+      }
+    }
+  }
+  // On a plane: corners that cancel (a singular face) and non-finite corners give zero.
+  const gs::TriangleMesh plane = gs_test::BuildMesh(gs::MakePlanarGrid(2, 2, 1.0, 1.0));
+  std::vector<gs::Vec3> atVertex(plane.NumberOfVertices(), gs::Vec3{ 0, 0, 0 });
+  const auto& c = plane.Face(0);
+  const gs::Vec3 n = plane.FaceNormal(0);
+  const gs::Vec3 t = gs::Unit(plane.Position(c[1]) - plane.Position(c[0]));
+  atVertex[c[0]] = t;
+  atVertex[c[1]] = t * -1.0;
+  atVertex[c[2]] = gs::Vec3{ std::nan(""), 0, 0 };
+  EXPECT_EQ(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 1)[0]), 0.0);
+  EXPECT_NEAR(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 2)[0]), 1.0, 1e-12);
+  atVertex[c[1]] = gs::RotateTangent(t, n, 0.5 * pi);
+  EXPECT_EQ(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 2)[0]), 0.0);
+  EXPECT_NEAR(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 4)[0]), 1.0, 1e-12);
+  EXPECT_NEAR(gs::Dot(gs::FaceDirectionsFromVertices(plane, atVertex, 4)[0], t), 1.0, 1e-12);
 }

@@ -106,7 +106,6 @@ out.GetPointData().AddArray(idx)
                          Function="max(0.45, min(1.0, GeodesicDistance / 0.9))")
     polar = GeodesicPolarCoordinates(Input=density, Radius=0.8)
     polar.Source = PointSource(Center=[0.0, 0.0, 1.0], NumberOfPoints=1, Radius=0.0)
-    SetActiveSource(None)
     msdt = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", s) for s in SHAPES],
                       AngleBins=48, DistanceSteps=48, TextureSize=64)
     shapes = ShapeDistributor(Input=density, Table=msdt, ShapeSize=0.12, Mode="Greedy", Seed=3)

@@ -65,6 +65,35 @@ def field(data, name):
 LoadPlugin(args.plugin, remote=False, ns=globals())
 check("MSDTSource" in globals(), "the plugin does not define MSDTSource")
 
+# 0. MSDT Source is a source (issue 20): made while another source is active it has no input
+# and takes none, and it says nothing before its properties are set; asked for its output
+# without a shape, it says what to set. The polygons route is the filter MSDT From Polygons.
+from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+
+messages = vtkStringOutputWindow()
+previous_window = vtkOutputWindow.GetInstance()
+vtkOutputWindow.SetInstance(messages)
+sphere = Sphere()
+SetActiveSource(sphere)
+bare = MSDTSource()
+check(bare.GetProperty("Polygons") is None and bare.GetProperty("Input") is None,
+      "MSDT Source has an input property")
+bare.AngleBins = 16
+check(messages.GetOutput() == "", "messages before the properties are set: %r" % messages.GetOutput())
+bare.UpdatePipeline()
+check("No shape" in messages.GetOutput() and "ShapeFileNames" in messages.GetOutput(),
+      "no shape: %r" % messages.GetOutput())
+check(bare.GetDataInformation(0).GetNumberOfPoints() == 0, "no shape: output not empty")
+SetActiveSource(sphere)
+check("MSDTFromPolygons" in globals(), "the plugin does not define MSDTFromPolygons")
+polygons_filter = MSDTFromPolygons()
+check(polygons_filter.Input is not None and polygons_filter.Input.SMProxy == sphere.SMProxy,
+      "MSDT From Polygons does not take the active source as its input")
+vtkOutputWindow.SetInstance(previous_window)
+Delete(polygons_filter)
+Delete(bare)
+Delete(sphere)
+
 temp = tempfile.mkdtemp(prefix="TestMSDTSource_", dir=args.temp)
 size = 64
 y, x = numpy.mgrid[0:size, 0:size] + 0.5
@@ -156,11 +185,12 @@ msdt.AngleBins = 8
 msdt.UpdatePipeline()
 check(tuple(msdt.GetDataInformation(0).GetExtent()) == (0, 7, 0, 7, 0, 15), "AngleBins = 8")
 
-# 2. A closed polyline on the Polygons port (a triangle) after the images: a third class.
+# 2. A closed polyline (a triangle) through MSDT From Polygons, after the images: a third class.
 triangle = PolyLineSource(Points=[0, 0, 0, 30, 0, 0, 0, 30, 0], Closed=1)
-msdt.Polygons = triangle
-msdt.UpdatePipeline()
-with_polygon = servermanager.Fetch(msdt, idx=0)
+from_polygons = MSDTFromPolygons(Input=triangle, ShapeFileNames=list(msdt.ShapeFileNames),
+                                 AngleBins=8)
+from_polygons.UpdatePipeline()
+with_polygon = servermanager.Fetch(from_polygons, idx=0)
 parts = field(with_polygon, "ClassNumberOfParts")
 check(parts is not None and list(parts) == [1, 3, 1], "with a polygon: parts %r" % (parts,))
 check(with_polygon.GetDimensions() == (8, 8, 25), "with a polygon: %r"
@@ -173,6 +203,7 @@ Show(OutputPort(msdt, 2), view)
 Render(view)
 Delete(view)
 del view
+Delete(from_polygons)
 Delete(msdt)
 Delete(triangle)
 

@@ -54,6 +54,24 @@ shapes2.UpdatePipeline()
 n2 = shapes2.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
 check(n2 == n, "made from the active source: %d shapes, typed: %d" % (n2, n))
 
+# The tutorial without SetActiveSource(None) and without ShapeSize: MSDT Source takes no input
+# whatever is active, and the size is automatic (4% of the largest bounding-box side, stated in
+# the field data ShapeSizeUsed), the value the GUI proposes.
+SetActiveSource(field)
+tables3 = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", "star.png")])
+shapes3 = ShapeDistributor(Input=field, Table=tables3)
+shapes3.UpdatePipeline()
+placements3 = shapes3.GetClientSideObject().GetOutputDataObject(0)
+n3 = placements3.GetNumberOfPoints()
+size_used = placements3.GetFieldData().GetArray("ShapeSizeUsed")
+bounds = mesh.GetDataInformation().GetBounds()
+largest = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
+print("automatic size: %s (largest side %.4f), %d shapes"
+      % (size_used.GetValue(0) if size_used else None, largest, n3))
+check(size_used is not None and abs(size_used.GetValue(0) - 0.04 * largest) < 1e-9 * largest,
+      "ShapeSizeUsed is not 4% of the largest side")
+check(n3 > 100, "the tutorial without ShapeSize placed %d shapes" % n3)
+
 # No direction anywhere: a clear error, no shapes.
 plain = PLYReader(FileNames=[os.path.join(args.data, "bumpy_sphere.ply")])
 bare = ShapeDistributor(Input=plain, Table=tables, ShapeSize=0.08)
