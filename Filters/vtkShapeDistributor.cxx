@@ -189,6 +189,7 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HolonomyMargin: " << this->HolonomyMargin << "\n";
   os << indent << "KeepInside: " << this->KeepInside << "\n";
   os << indent << "DrawnCheck: " << this->DrawnCheck << "\n";
+  os << indent << "DecalTolerance: " << this->DecalTolerance << "\n";
   os << indent << "VerifyOverlaps: " << this->VerifyOverlaps << "\n";
   os << indent << "K: " << this->K << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
@@ -298,6 +299,12 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   {
     vtkErrorMacro("ShapeSize must be a positive finite number, or 0 for automatic (it is "
       << this->ShapeSize << ").");
+    return 1;
+  }
+  if (!(this->DecalTolerance >= 0.0) || !std::isfinite(this->DecalTolerance))
+  {
+    vtkErrorMacro("DecalTolerance must be a finite number, at least 0 (it is "
+      << this->DecalTolerance << ").");
     return 1;
   }
   if (this->Mode != RANDOM && this->Mode != GREEDY && this->Mode != CIRCUMCIRCLE_POISSON_DISK)
@@ -626,7 +633,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (int s = 0; s < ns; ++s)
   {
-    decalOf[s] = distributor.Decal(s);
+    decalOf[s] = distributor.Decal(s, this->DecalTolerance);
   }
   lap("Decals");
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
@@ -703,9 +710,12 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
         const vtkIdType cell = first[s] + static_cast<vtkIdType>(k);
         const int f = d.Faces[k];
         const gs::Vec3 n = mesh.FaceNormal(f) * lift;
+        const auto& corners = mesh.Face(f);
         for (int j = 0; j < 3; ++j)
         {
-          const gs::Vec3 p = mesh.Position(mesh.Face(f)[j]) + n;
+          const std::array<double, 3>& b = d.Corners[k][j];
+          const gs::Vec3 p = mesh.Position(corners[0]) * b[0] + mesh.Position(corners[1]) * b[1] +
+            mesh.Position(corners[2]) * b[2] + n;
           const vtkIdType id = 3 * cell + j;
           x[3 * id] = p.x;
           x[3 * id + 1] = p.y;
@@ -799,8 +809,9 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     outlines->SetPoints(points);
     outlines->SetLines(lines);
     outlines->GetCellData()->AddArray(shapeId);
+    // (ClassId is not the active scalars: the GUI then draws the outlines in a solid colour,
+    // which stands out on any surface colouring; colour by ClassId to tell the classes apart.)
     outlines->GetCellData()->AddArray(classId);
-    outlines->GetCellData()->SetActiveScalars("ClassId");
   }
   lap("Assembly");
   {

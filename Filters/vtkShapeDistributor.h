@@ -151,6 +151,14 @@ public:
   ///@}
 
   ///@{
+  /// Decals: a face is split (to depth 5) where the shape's map departs from the face's affine
+  /// texture map by more than this fraction of the circumradius (a long shape bending inside a
+  /// face); 0: whole faces only. Default 0.01; negative or not finite is an error.
+  vtkSetMacro(DecalTolerance, double);
+  vtkGetMacro(DecalTolerance, double);
+  ///@}
+
+  ///@{
   /// Check the finished result for overlaps independently of the tables (gs::CheckOverlaps: the
   /// drawn outlines of neighbouring shapes, each carried into the other's polar chart and tested
   /// against its silhouette, deeper than 0.5% of the smaller circumradius). Adds the point array
@@ -206,6 +214,7 @@ protected:
   double HolonomyMargin = 1.0;
   bool KeepInside = false;
   bool DrawnCheck = true;
+  double DecalTolerance = 0.01;
   bool VerifyOverlaps = false;
   int K = 50;
   std::string CacheFileName;

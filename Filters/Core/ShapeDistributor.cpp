@@ -2702,7 +2702,77 @@ std::vector<OutlinePiece> ShapeDistributor::Outline(int shape, double spacing) c
   return P->OutlineOf(P->Placed.at(shape), spacing);
 }
 
-ShapeDecal ShapeDistributor::Decal(int shape) const
+namespace
+{
+// Whether triangle t (texture coordinates) meets the unit square [0, 1]^2 (separating axes).
+bool MeetsUnitSquare(const std::array<Vec2, 3>& t)
+{
+  const double minX = std::min({ t[0].x, t[1].x, t[2].x }), maxX = std::max({ t[0].x, t[1].x, t[2].x });
+  const double minY = std::min({ t[0].y, t[1].y, t[2].y }), maxY = std::max({ t[0].y, t[1].y, t[2].y });
+  if (maxX < 0.0 || minX > 1.0 || maxY < 0.0 || minY > 1.0)
+  {
+    return false;
+  }
+  const Vec2 square[4] = { { 0.0, 0.0 }, { 1.0, 0.0 }, { 1.0, 1.0 }, { 0.0, 1.0 } };
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec2 a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+    const Vec2 axis{ -(b.y - a.y), b.x - a.x };
+    const double side = Dot(axis, c - a);
+    bool allOut = true;
+    for (const Vec2& q : square)
+    {
+      allOut = allOut && Dot(axis, q - a) * side < 0.0;
+    }
+    if (allOut && side != 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+double SignedArea(const std::array<Vec2, 3>& t)
+{
+  return 0.5 * Cross(t[1] - t[0], t[2] - t[0]);
+}
+} // namespace
+
+bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
+{
+  if (p.Face < 0)
+  {
+    return false;
+  }
+  for (std::size_t k = 0; k < Faces.size(); ++k)
+  {
+    if (Faces[k] != p.Face)
+    {
+      continue;
+    }
+    // p's barycentric coordinates in the triangle: solve in the first two face coordinates.
+    const auto& B = Corners[k];
+    const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1],
+                 by = B[1][1] - B[2][1];
+    const double det = ax * by - bx * ay;
+    if (det == 0.0)
+    {
+      continue;
+    }
+    const double px = p.Bary[0] - B[2][0], py = p.Bary[1] - B[2][1];
+    const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
+    const double eps = -1e-9;
+    if (l0 >= eps && l1 >= eps && l2 >= eps)
+    {
+      const auto& U = TextureCoordinates[k];
+      uv = U[0] * l0 + U[1] * l1 + U[2] * l2;
+      return true;
+    }
+  }
+  return false;
+}
+
+ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
 {
   const Impl& I = *P;
   ShapeDecal decal;
@@ -2712,6 +2782,7 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
   const double reach = c.Radius * scale + I.MaxEdge;
   // Class-frame coordinates (normalized) of the vertices near the shape.
   std::vector<std::pair<int, Vec2>> local;
+  std::shared_ptr<const CurveGrid> grid;
   if (s.Curve.empty())
   {
     const Impl::Record& r = I.Accepted.at(shape);
@@ -2730,16 +2801,12 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
   }
   else
   {
-    // (The grid the drawn check built, or a new one.)
-    const Impl::Record& r = I.Accepted.at(shape);
-    if (r.Frame)
+    grid = Frame(shape); // the grid the drawn check built (indexed), or a new one
+    if (!grid)
     {
-      I.CurveShapeVertices(*r.Frame, local);
+      return decal;
     }
-    else
-    {
-      I.CurveShapeVertices(I.BuildCurveGrid(s, c), local);
-    }
+    I.CurveShapeVertices(*grid, local);
   }
   std::sort(local.begin(), local.end(),
     [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
@@ -2748,8 +2815,34 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
       [](const std::pair<int, Vec2>& e, int value) { return e.first < value; });
     return it != local.end() && it->first == v ? &it->second : nullptr;
   };
-  // Faces with all corners known, near the shape: one of them inside the square of the class
-  // (each face visited once, from its corner of smallest index).
+  const auto toTexture = [&c](const Vec2& q) {
+    return Vec2{ 0.5 * (q.x / c.Radius + 1.0), 0.5 * (q.y / c.Radius + 1.0) };
+  };
+  int hint = -1, firstValid = -1;
+  if (grid)
+  {
+    for (int k = 0; k < static_cast<int>(grid->Nodes.size()) && firstValid < 0; ++k)
+    {
+      firstValid = grid->Nodes[k].Valid ? k : -1;
+    }
+  }
+  // The shape's map at a point of face f: on the grid, or beyond it its affine extension (what
+  // the corners' values are, CurveShapeVertices).
+  const auto classAt = [&](int f, const std::array<double, 3>& b, Vec2& q) {
+    // (Not from the previous point's node: where the map folds, at a kink of the curve, the
+    // globally nearest node decides the sheet, the same for every point.)
+    if (grid->ClassPoint(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
+    {
+      return true;
+    }
+    if (hint < 0)
+    {
+      hint = firstValid;
+    }
+    return grid->Locate(I.M.Interpolate(f, b), hint, q, nullptr, &hint);
+  };
+  // Faces with all corners known, near the shape (each face visited once, from its corner of
+  // smallest index), whose texture triangle meets the class square.
   std::vector<int> faces;
   for (const auto& e : local)
   {
@@ -2763,24 +2856,121 @@ ShapeDecal ShapeDistributor::Decal(int shape) const
     }
   }
   std::sort(faces.begin(), faces.end());
+  std::vector<std::pair<int, std::array<Vec2, 3>>> whole;
+  double orientation = 0.0; // the map's sense: the area-weighted sign of the texture triangles
   for (int f : faces)
   {
     std::array<Vec2, 3> uv;
-    bool all = true, near = false;
+    bool all = true;
     for (int k = 0; k < 3 && all; ++k)
     {
       const Vec2* q = find(I.M.Face(f)[k]);
       all = q != nullptr;
       if (all)
       {
-        uv[k] = Vec2{ 0.5 * (q->x / c.Radius + 1.0), 0.5 * (q->y / c.Radius + 1.0) };
-        near = near || (uv[k].x >= 0.0 && uv[k].x <= 1.0 && uv[k].y >= 0.0 && uv[k].y <= 1.0);
+        // (A long shape's corners read like the points inside, on the grid where it reaches.)
+        std::array<double, 3> corner{ { 0.0, 0.0, 0.0 } };
+        corner[k] = 1.0;
+        Vec2 onGrid;
+        uv[k] = toTexture(grid && grid->ClassPoint(SurfacePoint::InFace(f, corner[0], corner[1], corner[2]), onGrid) ? onGrid : *q);
       }
     }
-    if (all && near)
+    if (all && MeetsUnitSquare(uv))
     {
+      whole.emplace_back(f, uv);
+      orientation += SignedArea(uv);
+    }
+  }
+  // Each face's texture map is affine; where the true map departs from it by more than the
+  // tolerance at an edge midpoint (a long shape's map along its curve, read on its grid), the
+  // triangle is split in four, to depth 5 (1024 pieces per face). A piece whose texture
+  // triangle is turned over (the map folds there) or stretched far beyond its size on the
+  // surface (a jump across a seam of the map) is dropped.
+  const double tolUV = tolerance > 0.0 ? 0.5 * tolerance : 0.0; // texture units per circumradius
+  const int maxDepth = 5;
+  const double sense = orientation >= 0.0 ? 1.0 : -1.0;
+  const double unit = 2.0 * c.Radius * scale; // world length of one texture unit
+  struct Piece
+  {
+    std::array<std::array<double, 3>, 3> B;
+    std::array<Vec2, 3> U;
+    int Depth;
+  };
+  std::vector<Piece> stack;
+  for (const auto& entry : whole)
+  {
+    const int f = entry.first;
+    const auto& corners = I.M.Face(f);
+    const Vec3 X[3] = { I.M.Position(corners[0]), I.M.Position(corners[1]), I.M.Position(corners[2]) };
+    stack.clear();
+    stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, entry.second, 0 });
+    while (!stack.empty())
+    {
+      const Piece t = stack.back();
+      stack.pop_back();
+      if (!MeetsUnitSquare(t.U))
+      {
+        continue;
+      }
+      auto at = [&X](const std::array<double, 3>& b) { return X[0] * b[0] + X[1] * b[1] + X[2] * b[2]; };
+      if (grid && tolUV > 0.0)
+      {
+        std::array<std::array<double, 3>, 3> mid;
+        std::array<Vec2, 3> trueUV;
+        double error = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          const auto& a = t.B[k];
+          const auto& b = t.B[(k + 1) % 3];
+          mid[k] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
+          const Vec2 linear = (t.U[k] + t.U[(k + 1) % 3]) * 0.5;
+          Vec2 q;
+          if (classAt(f, mid[k], q))
+          {
+            trueUV[k] = toTexture(q);
+            error = std::max(error, Norm(trueUV[k] - linear));
+          }
+          else
+          {
+            trueUV[k] = linear;
+          }
+        }
+        if (error > tolUV && t.Depth == maxDepth)
+        {
+          if (error > 5.0 * tolUV)
+          {
+            continue; // still not affine at 1/32 of the face: the map folds or jumps here
+          }
+        }
+        else if (error > tolUV)
+        {
+          // Corners 0, 1, 2 and midpoints m01, m12, m20.
+          stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1 });
+          stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1 });
+          stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1 });
+          stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1 });
+          continue;
+        }
+      }
+      // Folded or torn: dropped.
+      if (SignedArea(t.U) * sense < 0.0)
+      {
+        continue;
+      }
+      bool torn = false;
+      for (int k = 0; k < 3 && !torn; ++k)
+      {
+        const double onSurface = Norm(at(t.B[(k + 1) % 3]) - at(t.B[k]));
+        const double inTexture = Norm(t.U[(k + 1) % 3] - t.U[k]) * unit;
+        torn = inTexture > 4.0 * onSurface + 0.05 * unit;
+      }
+      if (torn)
+      {
+        continue;
+      }
       decal.Faces.push_back(f);
-      decal.TextureCoordinates.push_back(uv);
+      decal.Corners.push_back(t.B);
+      decal.TextureCoordinates.push_back(t.U);
     }
   }
   return decal;

@@ -150,13 +150,19 @@ struct ShapeDistributionResult
   ShapeDistributionStatistics Statistics;
 };
 
-/// A decal: the mesh faces a shape covers, with texture coordinates per face corner mapping the
-/// square around the class circle onto [0, 1]^2 (the convention of MSDT Source's silhouettes:
-/// class point r (2 u - 1, 2 v - 1)).
+/// A decal: triangles on the mesh faces a shape covers, with texture coordinates per corner
+/// mapping the square around the class circle onto [0, 1]^2 (the convention of MSDT Source's
+/// silhouettes: class point r (2 u - 1, 2 v - 1)). A triangle is a whole mesh face or, where the
+/// shape's map is not affine over the face (a long shape bending inside a face), a piece of one:
+/// its corners are barycentric coordinates in that face.
 struct ShapeDecal
 {
-  std::vector<int> Faces;
+  std::vector<int> Faces; ///< the mesh face of each triangle
+  std::vector<std::array<std::array<double, 3>, 3>> Corners; ///< per corner, barycentric in the face
   std::vector<std::array<Vec2, 3>> TextureCoordinates;
+  /// The texture coordinate at surface point p as a renderer draws it (linear in the triangle
+  /// holding p); false when no triangle holds it.
+  bool TextureCoordinate(const SurfacePoint& p, Vec2& uv) const;
 };
 
 /// A long shape's drawing map (arc length along its curve, then across along the perpendicular
@@ -233,10 +239,16 @@ public:
   /// sampled at most `spacing` apart (world units, > 0), cut where it leaves the surface (short
   /// shapes: closed along the mesh boundary; long shapes: open pieces). Thread-safe.
   std::vector<OutlinePiece> Outline(int shape, double spacing) const;
-  /// After Run: the faces covered by shape s with texture coordinates. May be called from the
-  /// threads of an OpenMP loop with at most the run's NumberOfThreads threads (long shapes use
-  /// the calling thread's geodesic engine).
-  ShapeDecal Decal(int shape) const;
+  /// After Run: the faces covered by shape s with texture coordinates: the faces whose texture
+  /// triangle meets the class square (so that a shape smaller than a face is drawn too), split
+  /// where the shape's map departs from the affine texture map by more than `tolerance` times
+  /// the circumradius (long shapes, whose map along the curve is read on its grid; a short
+  /// shape's map, its geodesic polar chart, is affine on each face wherever the surface unfolds
+  /// around its centre; 0: no splitting); pieces where the map folds or jumps are dropped. May
+  /// be called from the threads of an OpenMP loop with at most the run's NumberOfThreads
+  /// threads (long shapes use the calling thread's geodesic engine).
+  ShapeDecal Decal(int shape, double tolerance = DefaultDecalTolerance) const;
+  static constexpr double DefaultDecalTolerance = 0.01;
 
   const std::vector<PlacedShape>& Shapes() const;
   /// The tables and options of the last Run.
