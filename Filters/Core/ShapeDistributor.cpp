@@ -2704,23 +2704,23 @@ std::vector<OutlinePiece> ShapeDistributor::Outline(int shape, double spacing) c
 
 namespace
 {
-// Whether triangle t (texture coordinates) meets the unit square [0, 1]^2 (separating axes).
-bool MeetsUnitSquare(const std::array<Vec2, 3>& t)
+// Whether triangle t (texture coordinates) meets the box [lo, hi] (separating axes).
+bool MeetsBox(const std::array<Vec2, 3>& t, const Vec2& lo, const Vec2& hi)
 {
   const double minX = std::min({ t[0].x, t[1].x, t[2].x }), maxX = std::max({ t[0].x, t[1].x, t[2].x });
   const double minY = std::min({ t[0].y, t[1].y, t[2].y }), maxY = std::max({ t[0].y, t[1].y, t[2].y });
-  if (maxX < 0.0 || minX > 1.0 || maxY < 0.0 || minY > 1.0)
+  if (maxX < lo.x || minX > hi.x || maxY < lo.y || minY > hi.y)
   {
     return false;
   }
-  const Vec2 square[4] = { { 0.0, 0.0 }, { 1.0, 0.0 }, { 1.0, 1.0 }, { 0.0, 1.0 } };
+  const Vec2 box[4] = { lo, { hi.x, lo.y }, hi, { lo.x, hi.y } };
   for (int k = 0; k < 3; ++k)
   {
     const Vec2 a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
     const Vec2 axis{ -(b.y - a.y), b.x - a.x };
     const double side = Dot(axis, c - a);
     bool allOut = true;
-    for (const Vec2& q : square)
+    for (const Vec2& q : box)
     {
       allOut = allOut && Dot(axis, q - a) * side < 0.0;
     }
@@ -2818,6 +2818,26 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
   const auto toTexture = [&c](const Vec2& q) {
     return Vec2{ 0.5 * (q.x / c.Radius + 1.0), 0.5 * (q.y / c.Radius + 1.0) };
   };
+  // The texels that draw: the silhouette's bounding box (2% of the circumradius around it, for
+  // texture filtering) within the class square. Faces whose texture triangle misses it would
+  // draw only transparent texels: not in the decal.
+  Vec2 lo{ 1.0, 1.0 }, hi{ 0.0, 0.0 };
+  for (const auto& ring : c.Outline.Rings)
+  {
+    for (const Vec2& p : ring)
+    {
+      const Vec2 u = toTexture(p);
+      lo = Vec2{ std::min(lo.x, u.x), std::min(lo.y, u.y) };
+      hi = Vec2{ std::max(hi.x, u.x), std::max(hi.y, u.y) };
+    }
+  }
+  lo = Vec2{ std::max(0.0, lo.x - 0.01), std::max(0.0, lo.y - 0.01) };
+  hi = Vec2{ std::min(1.0, hi.x + 0.01), std::min(1.0, hi.y + 0.01) };
+  if (!(lo.x <= hi.x && lo.y <= hi.y))
+  {
+    lo = Vec2{ 0.0, 0.0 };
+    hi = Vec2{ 1.0, 1.0 };
+  }
   int hint = -1, firstValid = -1;
   if (grid)
   {
@@ -2841,6 +2861,19 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
     }
     return grid->Locate(I.M.Interpolate(f, b), hint, q, nullptr, &hint);
   };
+  // Faces checked for splitting: a long shape's faces wider than its grid's step (on smaller
+  // faces the grid, affine per grid triangle, knows the map no better than the face's corners).
+  const double tolUV = tolerance > 0.0 ? 0.5 * tolerance : 0.0; // texture units per circumradius
+  const auto splits = [&](int f) {
+    if (!grid || !(tolUV > 0.0))
+    {
+      return false;
+    }
+    const auto& v = I.M.Face(f);
+    const double longest = std::max({ Norm(I.M.Position(v[1]) - I.M.Position(v[0])),
+      Norm(I.M.Position(v[2]) - I.M.Position(v[1])), Norm(I.M.Position(v[0]) - I.M.Position(v[2])) });
+    return longest > grid->Step;
+  };
   // Faces with all corners known, near the shape (each face visited once, from its corner of
   // smallest index), whose texture triangle meets the class square.
   std::vector<int> faces;
@@ -2857,6 +2890,7 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
   }
   std::sort(faces.begin(), faces.end());
   std::vector<std::pair<int, std::array<Vec2, 3>>> whole;
+  std::unordered_map<int, Vec2> cornerValues; // vertices of faces to split, on the grid
   double orientation = 0.0; // the map's sense: the area-weighted sign of the texture triangles
   for (int f : faces)
   {
@@ -2864,18 +2898,28 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
     bool all = true;
     for (int k = 0; k < 3 && all; ++k)
     {
-      const Vec2* q = find(I.M.Face(f)[k]);
+      const int v = I.M.Face(f)[k];
+      const Vec2* q = find(v);
       all = q != nullptr;
       if (all)
       {
-        // (A long shape's corners read like the points inside, on the grid where it reaches.)
-        std::array<double, 3> corner{ { 0.0, 0.0, 0.0 } };
-        corner[k] = 1.0;
-        Vec2 onGrid;
-        uv[k] = toTexture(grid && grid->ClassPoint(SurfacePoint::InFace(f, corner[0], corner[1], corner[2]), onGrid) ? onGrid : *q);
+        // (The corners of a face to split are read like the points inside it, on the grid where
+        // it reaches: where the map folds the grid decides the sheet, the same for all.)
+        Vec2 value = *q;
+        if (splits(f))
+        {
+          auto known = cornerValues.find(v);
+          if (known == cornerValues.end())
+          {
+            Vec2 onGrid;
+            known = cornerValues.emplace(v, grid->ClassPoint(SurfacePoint::AtVertex(v), onGrid) ? onGrid : *q).first;
+          }
+          value = known->second;
+        }
+        uv[k] = toTexture(value);
       }
     }
-    if (all && MeetsUnitSquare(uv))
+    if (all && MeetsBox(uv, lo, hi))
     {
       whole.emplace_back(f, uv);
       orientation += SignedArea(uv);
@@ -2886,7 +2930,6 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
   // triangle is split in four, to depth 5 (1024 pieces per face). A piece whose texture
   // triangle is turned over (the map folds there) or stretched far beyond its size on the
   // surface (a jump across a seam of the map) is dropped.
-  const double tolUV = tolerance > 0.0 ? 0.5 * tolerance : 0.0; // texture units per circumradius
   const int maxDepth = 5;
   const double sense = orientation >= 0.0 ? 1.0 : -1.0;
   const double unit = 2.0 * c.Radius * scale; // world length of one texture unit
@@ -2897,23 +2940,25 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
     int Depth;
   };
   std::vector<Piece> stack;
+  std::unordered_map<std::uint64_t, std::pair<bool, Vec2>> midpoints; // face edges' midpoints
   for (const auto& entry : whole)
   {
     const int f = entry.first;
     const auto& corners = I.M.Face(f);
     const Vec3 X[3] = { I.M.Position(corners[0]), I.M.Position(corners[1]), I.M.Position(corners[2]) };
+    const bool split = splits(f);
     stack.clear();
     stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, entry.second, 0 });
     while (!stack.empty())
     {
       const Piece t = stack.back();
       stack.pop_back();
-      if (!MeetsUnitSquare(t.U))
+      if (!MeetsBox(t.U, lo, hi))
       {
         continue;
       }
       auto at = [&X](const std::array<double, 3>& b) { return X[0] * b[0] + X[1] * b[1] + X[2] * b[2]; };
-      if (grid && tolUV > 0.0)
+      if (split)
       {
         std::array<std::array<double, 3>, 3> mid;
         std::array<Vec2, 3> trueUV;
@@ -2924,8 +2969,28 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
           const auto& b = t.B[(k + 1) % 3];
           mid[k] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
           const Vec2 linear = (t.U[k] + t.U[(k + 1) % 3]) * 0.5;
+          // (A face's edge midpoints are shared with the neighbour across: read once.)
+          const std::uint64_t edge = t.Depth == 0
+            ? (static_cast<std::uint64_t>(std::min(corners[k], corners[(k + 1) % 3])) << 32) |
+              static_cast<std::uint32_t>(std::max(corners[k], corners[(k + 1) % 3]))
+            : 0;
+          const auto known = t.Depth == 0 ? midpoints.find(edge) : midpoints.end();
           Vec2 q;
-          if (classAt(f, mid[k], q))
+          bool found = false;
+          if (known != midpoints.end())
+          {
+            found = known->second.first;
+            q = known->second.second;
+          }
+          else
+          {
+            found = classAt(f, mid[k], q);
+            if (t.Depth == 0)
+            {
+              midpoints.emplace(edge, std::make_pair(found, q));
+            }
+          }
+          if (found)
           {
             trueUV[k] = toTexture(q);
             error = std::max(error, Norm(trueUV[k] - linear));
@@ -2935,11 +3000,14 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
             trueUV[k] = linear;
           }
         }
-        if (error > tolUV && t.Depth == maxDepth)
+        // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
+        const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
+          Norm(at(t.B[0]) - at(t.B[2])) });
+        if (error > tolUV && (t.Depth == maxDepth || size <= 0.5 * grid->Step))
         {
           if (error > 5.0 * tolUV)
           {
-            continue; // still not affine at 1/32 of the face: the map folds or jumps here
+            continue; // still not affine at the finest: the map folds or jumps here
           }
         }
         else if (error > tolUV)

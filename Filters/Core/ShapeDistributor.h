@@ -39,6 +39,14 @@
 // Termination: MaximumShapes reached, or MaximalFailures consecutive candidates (in priority
 // order) rejected: a shape then fits in only about 1 / MaximalFailures of random probes
 // (ProbeFitFraction measures it).
+//
+// ONE SHAPE MODEL. A placed shape is its map class point -> surface point (Map): a short
+// shape's exponential map about its centre, a long shape's curve map above. Everything drawn or
+// checked comes from that map: the outline (Outline: the class outline pushed forward), the
+// decal (Decal: the map's inverse, the centre's polar chart or for a long shape the map sampled
+// on a CurveGrid and inverted there, split where it is not affine over a face), the drawn check
+// and VerifyOverlaps (each outline read through the neighbour's inverse). The tables judge
+// rigid planar copies of the parts; the drawn check makes them hold where the map bends.
 #pragma once
 
 #include "SafeDistanceTable.h"
