@@ -40,6 +40,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 #include <string>
 #include <vector>
 
@@ -51,6 +53,75 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 long long TotalShapes = 0, TotalOverlaps = 0, TotalPairs = 0;
+// The decal oracle (issue 21): what the decals draw, compared on a fixed lattice of points of
+// every mesh face (28 barycentric points): a lattice point drawn inside the silhouette (the
+// texture coordinate, linear in the decal triangle holding it, as a renderer draws it) by two
+// shapes is drawn twice. Independent of the tables, the charts and the drawn check.
+struct DecalOracleResult
+{
+  long long SharingPairs = 0; // pairs with a lattice point drawn by both
+  long long PairsOverOnePercent = 0; // sharing more than 1% of the smaller shape's drawn points
+  double Worst = 0.0; // the largest shared fraction
+};
+
+DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes,
+  const std::vector<ShapeDecal>& decals)
+{
+  const int L = 6; // lattice: (i + 1/3) / (L + 1), i + j <= L
+  std::unordered_map<std::uint64_t, int> owner;
+  std::map<std::pair<int, int>, long long> shared;
+  std::vector<long long> drawn(shapes.size(), 0);
+  for (std::size_t s = 0; s < shapes.size(); ++s)
+  {
+    const SafeDistanceClass& c = t.Classes[shapes[s].ClassId];
+    const ClassRegion region(c.Outline.Rings, c.Radius, 0.0);
+    std::unordered_set<std::uint64_t> mine;
+    const ShapeDecal& decal = decals[s];
+    for (std::size_t k = 0; k < decal.Faces.size(); ++k)
+    {
+      const auto& B = decal.Corners[k];
+      const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1], by = B[1][1] - B[2][1];
+      const double det = ax * by - bx * ay;
+      if (det == 0.0)
+        continue;
+      int index = 0;
+      for (int i = 0; i <= L; ++i)
+        for (int j = 0; i + j <= L; ++j, ++index)
+        {
+          const double b0 = (i + 1.0 / 3.0) / (L + 1.0), b1 = (j + 1.0 / 3.0) / (L + 1.0);
+          const double px = b0 - B[2][0], py = b1 - B[2][1];
+          const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
+          if (l0 < 0.0 || l1 < 0.0 || l2 < 0.0)
+            continue;
+          const auto& U = decal.TextureCoordinates[k];
+          const Vec2 uv = U[0] * l0 + U[1] * l1 + U[2] * l2;
+          const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+          if (region.Inside(q))
+            mine.insert(static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index);
+        }
+    }
+    drawn[s] = static_cast<long long>(mine.size());
+    for (std::uint64_t key : mine)
+    {
+      const auto it = owner.find(key);
+      if (it == owner.end())
+        owner.emplace(key, static_cast<int>(s));
+      else
+        ++shared[{ it->second, static_cast<int>(s) }];
+    }
+  }
+  DecalOracleResult r;
+  for (const auto& e : shared)
+  {
+    const long long smaller = std::max(1LL, std::min(drawn[e.first.first], drawn[e.first.second]));
+    const double fraction = static_cast<double>(e.second) / smaller;
+    ++r.SharingPairs;
+    r.PairsOverOnePercent += fraction > 0.01 ? 1 : 0;
+    r.Worst = std::max(r.Worst, fraction);
+  }
+  return r;
+}
+
 std::string SvgPrefix; // --svg: seed-0 layouts of the square as SVG files
 
 void WriteSvg(const std::string& file, const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes, double size)
@@ -485,6 +556,13 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       co.NumberOfThreads = threads;
       const OverlapCheckResult check = CheckOverlaps(d, outlines, co);
       const double t4 = Now();
+      if (threads == 1)
+      {
+        const DecalOracleResult oracle = DecalOracle(t, r.Shapes, decals);
+        std::printf("    decal oracle: %lld pairs draw a common lattice point, %lld of them more than 1%% of the "
+                    "smaller shape's (worst %.2f%%)\n", oracle.SharingPairs, oracle.PairsOverOnePercent,
+          100.0 * oracle.Worst);
+      }
       const ShapeDistributionStatistics& st = r.Statistics;
       const double values[8] = { st.PrepareSeconds, st.GenerateSeconds, st.CheckSeconds, st.RoundSeconds,
         t2 - t1, t3 - t2, t4 - t3, t3 - t0 };
