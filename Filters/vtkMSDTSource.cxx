@@ -1,6 +1,7 @@
 #include "vtkMSDTSource.h"
 
 #include "vtkDistributedSurface.h"
+#include "vtkSafeDistanceTableImage.h"
 
 #include "SafeDistanceTable.h"
 #include "Silhouette.h"
@@ -465,102 +466,9 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   const gs::SafeDistanceTables& T = result.Tables;
   const int ka = T.AngleBins, P = T.NumberOfParts();
 
-  // 3. Port 0: the tables and their description.
-  tables->SetDimensions(ka, ka, P * P);
-  tables->SetSpacing(T.BinWidth(), T.BinWidth(), 1.0);
-  tables->SetOrigin(0.0, 0.0, 0.0);
-  vtkNew<vtkDoubleArray> values;
-  values->SetName("SafeDistance");
-  values->SetNumberOfTuples(static_cast<vtkIdType>(T.Values.size()));
-  for (std::size_t k = 0; k < T.Values.size(); ++k)
-  {
-    values->SetValue(static_cast<vtkIdType>(k), T.Values[k]);
-  }
-  tables->GetPointData()->SetScalars(values);
-
-  vtkFieldData* fd = tables->GetFieldData();
-  vtkNew<vtkStringArray> className;
-  className->SetName("ClassName");
-  auto classRadius = DoubleArray("ClassRadius", 1);
-  auto classCentre = DoubleArray("ClassSourceCentre", 2);
-  auto classAspect = DoubleArray("ClassAspectRatio", 1);
-  auto classAxis = DoubleArray("ClassMajorAxis", 2);
-  auto classParts = IntArray("ClassNumberOfParts");
-  for (const gs::SafeDistanceClass& c : T.Classes)
-  {
-    className->InsertNextValue(c.Name);
-    classRadius->InsertNextValue(c.Radius);
-    classCentre->InsertNextTuple2(c.SourceCircle.Centre.x, c.SourceCircle.Centre.y);
-    classAspect->InsertNextValue(c.AspectRatio);
-    classAxis->InsertNextTuple2(c.MajorAxis.x, c.MajorAxis.y);
-    classParts->InsertNextValue(static_cast<int>(c.Parts.size()));
-  }
-  auto partClass = IntArray("PartClassId");
-  auto partIndex = IntArray("PartIndex");
-  auto partCentre = DoubleArray("PartCentre", 2);
-  auto partRadius = DoubleArray("PartRadius", 1);
-  for (const gs::SafeDistancePart& p : T.Parts)
-  {
-    partClass->InsertNextValue(p.ClassId);
-    partIndex->InsertNextValue(p.Index);
-    partCentre->InsertNextTuple2(p.Centre.x, p.Centre.y);
-    partRadius->InsertNextValue(p.Radius);
-  }
-  // The class outlines (normalized units, class frame), so that a consumer of this port alone
-  // (Shape Distributor) can draw the shapes: ring r of class OutlineRingClass[r] holds points
-  // OutlineRingOffsets[r] .. OutlineRingOffsets[r + 1] - 1 of OutlinePoints.
-  auto outlinePoints = DoubleArray("OutlinePoints", 2);
-  auto ringOffsets = IntArray("OutlineRingOffsets");
-  auto ringClass = IntArray("OutlineRingClass");
-  for (std::size_t k = 0; k < T.Classes.size(); ++k)
-  {
-    for (const auto& ring : T.Classes[k].Outline.Rings)
-    {
-      ringOffsets->InsertNextValue(static_cast<int>(outlinePoints->GetNumberOfTuples()));
-      ringClass->InsertNextValue(static_cast<int>(k));
-      for (const gs::Vec2& q : ring)
-      {
-        outlinePoints->InsertNextTuple2(q.x, q.y);
-      }
-    }
-  }
-  ringOffsets->InsertNextValue(static_cast<int>(outlinePoints->GetNumberOfTuples()));
-  auto pairA = IntArray("PairPartA");
-  auto pairB = IntArray("PairPartB");
-  auto pairStep = DoubleArray("PairDistanceStep", 1);
-  for (int a = 0; a < P; ++a)
-  {
-    for (int b = 0; b < P; ++b)
-    {
-      pairA->InsertNextValue(a);
-      pairB->InsertNextValue(b);
-      pairStep->InsertNextValue(T.Step(a, b));
-    }
-  }
-  auto single = [&](const char* name, double v, bool integer) {
-    if (integer)
-    {
-      auto a = IntArray(name);
-      a->InsertNextValue(static_cast<int>(v));
-      fd->AddArray(a);
-    }
-    else
-    {
-      auto a = DoubleArray(name, 1);
-      a->InsertNextValue(v);
-      fd->AddArray(a);
-    }
-  };
-  for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ className, classRadius,
-         classCentre, classAspect, classAxis, classParts, partClass, partIndex, partCentre,
-         partRadius, pairA, pairB, pairStep, outlinePoints, ringOffsets, ringClass })
-  {
-    fd->AddArray(a);
-  }
-  single("AngleBins", ka, true);
-  single("DistanceSteps", T.DistanceSteps, true);
-  single("RotationSamples", T.RotationSamples, true);
-  single("Scale", T.Scale, false);
+  // 3. Port 0: the tables and their description (vtkSafeDistanceTableImage: the one definition
+  // of that image, read back by Shape Distributor).
+  vtkSafeDistanceTableImage::ToImage(T, tables);
 
   // 4. Port 1: outlines.
   vtkNew<vtkPoints> points;

@@ -2,6 +2,7 @@
 
 #include "vtkSaddleVertexGraphCache.h"
 #include "vtkDistributedSurface.h"
+#include "vtkSafeDistanceTableImage.h"
 #include "vtkSurfaceMeshConverter.h"
 
 #include "OverlapCheck.h"
@@ -66,101 +67,6 @@ vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
   return a && a->GetNumberOfComponents() == components ? a : nullptr;
 }
 
-// MSDT Source's port 0 back into the core's tables. False with `error` when something is missing
-// or inconsistent.
-bool TablesFromImage(vtkImageData* image, gs::SafeDistanceTables& T, std::string& error)
-{
-  vtkFieldData* fd = image->GetFieldData();
-  vtkDataArray* values = image->GetPointData()->GetArray("SafeDistance");
-  vtkDataArray* bins = FieldArray(fd, "AngleBins", 1);
-  vtkDataArray* steps = FieldArray(fd, "DistanceSteps", 1);
-  vtkDataArray* scale = FieldArray(fd, "Scale", 1);
-  vtkDataArray* classRadius = FieldArray(fd, "ClassRadius", 1);
-  vtkDataArray* classAxis = FieldArray(fd, "ClassMajorAxis", 2);
-  vtkDataArray* classAspect = FieldArray(fd, "ClassAspectRatio", 1);
-  vtkDataArray* partClass = FieldArray(fd, "PartClassId", 1);
-  vtkDataArray* partIndex = FieldArray(fd, "PartIndex", 1);
-  vtkDataArray* partCentre = FieldArray(fd, "PartCentre", 2);
-  vtkDataArray* partRadius = FieldArray(fd, "PartRadius", 1);
-  vtkDataArray* outline = FieldArray(fd, "OutlinePoints", 2);
-  vtkDataArray* ringOffsets = FieldArray(fd, "OutlineRingOffsets", 1);
-  vtkDataArray* ringClass = FieldArray(fd, "OutlineRingClass", 1);
-  vtkStringArray* names = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray("ClassName") : nullptr);
-  if (!values || values->GetNumberOfComponents() != 1 || !bins || !steps || !scale ||
-    !classRadius || !classAxis || !partClass || !partIndex || !partCentre || !partRadius ||
-    !outline || !ringOffsets || !ringClass)
-  {
-    error = "the Table input is not the output of MSDT Source (port 0): it needs the point array "
-            "SafeDistance and the field data of the classes, parts and outlines";
-    return false;
-  }
-  T = gs::SafeDistanceTables();
-  T.AngleBins = static_cast<int>(bins->GetComponent(0, 0));
-  T.DistanceSteps = static_cast<int>(steps->GetComponent(0, 0));
-  T.Scale = scale->GetComponent(0, 0);
-  const vtkIdType nc = classRadius->GetNumberOfTuples(), np = partRadius->GetNumberOfTuples();
-  if (nc < 1 || np < nc || classAxis->GetNumberOfTuples() != nc || partClass->GetNumberOfTuples() != np ||
-    partCentre->GetNumberOfTuples() != np || partIndex->GetNumberOfTuples() != np || T.AngleBins < 1 ||
-    values->GetNumberOfTuples() != np * np * T.AngleBins * T.AngleBins)
-  {
-    error = "the Table input is inconsistent (numbers of classes, parts, angle bins and values "
-            "do not match)";
-    return false;
-  }
-  T.Classes.resize(nc);
-  for (vtkIdType k = 0; k < nc; ++k)
-  {
-    gs::SafeDistanceClass& c = T.Classes[k];
-    c.Name = names && k < names->GetNumberOfValues() ? names->GetValue(k) : "class " + std::to_string(k);
-    c.Radius = classRadius->GetComponent(k, 0);
-    c.MajorAxis = gs::Vec2{ classAxis->GetComponent(k, 0), classAxis->GetComponent(k, 1) };
-    c.AspectRatio = classAspect && k < classAspect->GetNumberOfTuples() ? classAspect->GetComponent(k, 0) : 1.0;
-  }
-  T.Parts.resize(np);
-  for (vtkIdType p = 0; p < np; ++p)
-  {
-    gs::SafeDistancePart& part = T.Parts[p];
-    part.ClassId = static_cast<int>(partClass->GetComponent(p, 0));
-    part.Index = static_cast<int>(partIndex->GetComponent(p, 0));
-    part.Centre = gs::Vec2{ partCentre->GetComponent(p, 0), partCentre->GetComponent(p, 1) };
-    part.Radius = partRadius->GetComponent(p, 0);
-    if (part.ClassId < 0 || part.ClassId >= nc)
-    {
-      error = "the Table input has a part of an unknown class";
-      return false;
-    }
-    T.Classes[part.ClassId].Parts.push_back(static_cast<int>(p));
-  }
-  const vtkIdType rings = ringClass->GetNumberOfTuples();
-  if (ringOffsets->GetNumberOfTuples() != rings + 1)
-  {
-    error = "the Table input's outline rings are inconsistent";
-    return false;
-  }
-  for (vtkIdType r = 0; r < rings; ++r)
-  {
-    const int k = static_cast<int>(ringClass->GetComponent(r, 0));
-    const vtkIdType from = static_cast<vtkIdType>(ringOffsets->GetComponent(r, 0));
-    const vtkIdType to = static_cast<vtkIdType>(ringOffsets->GetComponent(r + 1, 0));
-    if (k < 0 || k >= nc || from < 0 || to < from || to > outline->GetNumberOfTuples())
-    {
-      error = "the Table input's outline rings are inconsistent";
-      return false;
-    }
-    std::vector<gs::Vec2> ring;
-    for (vtkIdType i = from; i < to; ++i)
-    {
-      ring.emplace_back(outline->GetComponent(i, 0), outline->GetComponent(i, 1));
-    }
-    T.Classes[k].Outline.Rings.push_back(std::move(ring));
-  }
-  T.Values.resize(static_cast<std::size_t>(values->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
-  {
-    T.Values[static_cast<std::size_t>(i)] = values->GetComponent(i, 0);
-  }
-  return true;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -327,7 +233,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
   gs::SafeDistanceTables tables;
   std::string error;
-  if (!TablesFromImage(tableImage, tables, error))
+  if (!vtkSafeDistanceTableImage::FromImage(tableImage, tables, error))
   {
     vtkErrorMacro("" << error << ".");
     return 1;
