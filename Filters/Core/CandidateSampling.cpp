@@ -14,6 +14,225 @@ namespace gs
 using namespace distribution;
 
 
+std::string ShapeDistributor::Impl::PrepareClassWeights()
+{
+  std::vector<double> w = O.ClassWeights;
+  if (w.empty())
+  {
+    w.assign(T.Classes.size(), 1.0);
+  }
+  if (w.size() != T.Classes.size())
+  {
+    return "ClassWeights has " + std::to_string(w.size()) + " values for " +
+      std::to_string(T.Classes.size()) + " classes";
+  }
+  ClassCdf.clear();
+  double sum = 0.0;
+  for (double x : w)
+  {
+    if (!(x >= 0.0) || !std::isfinite(x))
+    {
+      return "ClassWeights must be non-negative finite numbers";
+    }
+    sum += x;
+    ClassCdf.push_back(sum);
+  }
+  if (!(sum > 0.0))
+  {
+    return "ClassWeights are all zero";
+  }
+  return std::string();
+}
+
+std::string ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDirections)
+{
+  const int nf = M.NumberOfFaces();
+  if (static_cast<int>(faceDirections.size()) != nf)
+  {
+    return "one direction per face is needed (" + std::to_string(faceDirections.size()) +
+      " given for " + std::to_string(nf) + " faces)";
+  }
+  FaceDirection.assign(nf, Vec3{ 0, 0, 0 });
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(O.NumberOfThreads))
+  for (int f = 0; f < nf; ++f)
+  {
+    const Vec3& d = faceDirections[f];
+    if (!IsFinite(d))
+    {
+      continue;
+    }
+    const Vec3 n = M.FaceNormal(f);
+    const Vec3 t = d - n * Dot(n, d);
+    if (Norm(t) > 1e-12 * Norm(d) && Norm(t) > 0.0)
+    {
+      FaceDirection[f] = Unit(t);
+    }
+  }
+  return std::string();
+}
+
+std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& vertexDensity)
+{
+  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
+  if (!vertexDensity.empty() && static_cast<int>(vertexDensity.size()) != nv)
+  {
+    return "one density factor per vertex is needed (" + std::to_string(vertexDensity.size()) +
+      " given for " + std::to_string(nv) + " vertices)";
+  }
+  Density = vertexDensity;
+  FaceWeight.assign(nf, 0.0);
+  AllCdf.assign(nf, 0.0);
+  MaxFaceDensity = 0.0;
+  double total = 0.0;
+  double minimumScale = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < nf; ++f)
+  {
+    double fm = 1.0;
+    bool ok = true;
+    if (!Density.empty())
+    {
+      fm = 0.0;
+      for (int v : M.Face(f))
+      {
+        ok = ok && Density[v] > 0.0 && std::isfinite(Density[v]);
+        fm += Density[v] / 3.0;
+      }
+    }
+    if (ok)
+    {
+      FaceWeight[f] = M.FaceArea(f) / (fm * fm);
+      total += FaceWeight[f];
+      minimumScale = std::min(minimumScale, fm);
+      for (int v : M.Face(f))
+      {
+        MaxFaceDensity = std::max(MaxFaceDensity, Density.empty() ? 1.0 : Density[v]);
+      }
+    }
+    AllCdf[f] = total;
+  }
+  Dead.assign(nf, 0);
+  NumberOfClasses = static_cast<int>(T.Classes.size());
+  DeadFor.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
+  Killed.clear();
+  KilledBy.clear();
+  BuildCdf();
+  if (!(total > 0.0))
+  {
+    return "no face has a positive density factor at all its corners";
+  }
+  double area = 0.0;
+  for (int f = 0; f < nf; ++f)
+  {
+    area += M.FaceArea(f);
+  }
+  {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      smallest = std::min(smallest, c.Radius);
+    }
+    const double r = O.ShapeSize * minimumScale * smallest;
+    if (area / (r * r) > 1e9)
+    {
+      return "ShapeSize (times the smallest density factor) is too small for this mesh: more than "
+             "1e9 shapes would fit";
+    }
+  }
+  return std::string();
+}
+
+void ShapeDistributor::Impl::PrepareDeadFaces()
+{
+  // Dead faces: per (part, class), the smallest safe distance of the part against any part of
+  // the class (2% less, for the charts' approximations); per class, its reach.
+  {
+    const int np = CircleMode ? static_cast<int>(T.Classes.size()) : T.NumberOfParts();
+    const int nc = static_cast<int>(T.Classes.size());
+    KillRadius.assign(static_cast<std::size_t>(np) * nc, std::numeric_limits<double>::infinity());
+    KillReach.assign(nc, 0.0);
+    const std::size_t ka = static_cast<std::size_t>(T.AngleBins);
+    for (int x = 0; x < np; ++x)
+    {
+      for (int c = 0; c < nc; ++c)
+      {
+        double& kill = KillRadius[static_cast<std::size_t>(x) * nc + c];
+        if (CircleMode)
+        {
+          kill = T.Classes[x].Radius + T.Classes[c].Radius;
+        }
+        else
+        {
+          for (int pc : T.Classes[c].Parts)
+          {
+            const double* table = &T.Values[(static_cast<std::size_t>(x) * T.Parts.size() + pc) * ka * ka];
+            kill = std::min(kill, *std::min_element(table, table + ka * ka));
+          }
+        }
+        kill *= 0.98;
+      }
+    }
+    for (int c = 0; c < nc && !CircleMode; ++c)
+    {
+      if (T.Classes[c].Parts.size() <= 1)
+      {
+        continue;
+      }
+      for (int pc : T.Classes[c].Parts)
+      {
+        const Vec2& q = T.Parts[pc].Centre;
+        KillReach[c] = std::max(KillReach[c],
+          std::abs(Dot(q, T.Classes[c].MajorAxis)) + std::abs(Cross(T.Classes[c].MajorAxis, q)));
+      }
+    }
+  }
+}
+
+void ShapeDistributor::Impl::PrepareLongClasses()
+{
+  const int nf = M.NumberOfFaces();
+  ClassExtentMin.assign(T.Classes.size(), 0.0);
+  ClassExtentMax.assign(T.Classes.size(), 0.0);
+  bool anyLong = false;
+  for (std::size_t k = 0; k < T.Classes.size(); ++k)
+  {
+    const SafeDistanceClass& c = T.Classes[k];
+    if (c.Parts.size() <= 1)
+    {
+      continue;
+    }
+    anyLong = true;
+    double lo = 0.0, hi = 0.0;
+    for (const auto& ring : c.Outline.Rings)
+    {
+      for (const Vec2& p : ring)
+      {
+        lo = std::min(lo, Dot(p, c.MajorAxis));
+        hi = std::max(hi, Dot(p, c.MajorAxis));
+      }
+    }
+    for (int part : c.Parts)
+    {
+      const double a = Dot(T.Parts[part].Centre, c.MajorAxis);
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+    }
+    ClassExtentMin[k] = lo;
+    ClassExtentMax[k] = hi;
+  }
+  if (anyLong)
+  {
+    if (!Field)
+    {
+      Field.reset(new DirectionFieldSolver(M));
+    }
+    FieldAngles.assign(nf, 0.0);
+    for (int f = 0; f < nf; ++f)
+    {
+      FieldAngles[f] = Norm(FaceDirection[f]) > 0.0 ? Field->AngleInFace(f, FaceDirection[f]) : 0.0;
+    }
+  }
+}
+
 void ShapeDistributor::Impl::BuildCdf()
 {
   const int nf = M.NumberOfFaces();

@@ -13,6 +13,43 @@ namespace gs
 using namespace distribution;
 
 
+void ShapeDistributor::Impl::PrepareClassRegions()
+{
+  Regions.clear();
+  Clearance.assign(T.Classes.size(), -1.0);
+  {
+    double largest = 0.0;
+    std::vector<double> clearance(T.Classes.size(), -1.0);
+    for (std::size_t k = 0; k < T.Classes.size(); ++k)
+    {
+      const SafeDistanceClass& c = T.Classes[k];
+      ClassRegion probe(c.Outline.Rings, c.Radius, 0.0);
+      if (probe.Inside(Vec2{ 0.0, 0.0 }))
+      {
+        double d = std::numeric_limits<double>::infinity();
+        for (const auto& ring : c.Outline.Rings)
+        {
+          for (std::size_t i = 0, n = ring.size(); i < n; ++i)
+          {
+            const Vec2 a = ring[i], ab = ring[(i + 1) % n] - ring[i];
+            const double l2 = Dot(ab, ab);
+            const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, -Dot(a, ab) / l2)) : 0.0;
+            d = std::min(d, Norm(a + ab * t));
+          }
+        }
+        clearance[k] = d;
+        largest = std::max(largest, d);
+      }
+    }
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
+    }
+    Clearance = clearance;
+    MaxClearance = largest;
+  }
+}
+
 bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) const
 {
   const double fmax = std::max(X.S.Scale, Y.S.Scale);

@@ -12,6 +12,45 @@ namespace gs
 using namespace distribution;
 
 
+void ShapeDistributor::Impl::PrepareChartMeasures()
+{
+  const int nv = M.NumberOfVertices();
+  MaxEdge = 0.0;
+  {
+    double longest = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : longest) num_threads(ThreadCount(O.NumberOfThreads))
+    for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+    {
+      longest = std::max(longest, M.EdgeLength(h));
+    }
+    MaxEdge = longest;
+  }
+  ChartMargin = 2.0 * M.MeanEdgeLength();
+  if (static_cast<int>(Defect.size()) != nv)
+  {
+    Defect.assign(nv, 0.0);
+    for (int v = 0; v < nv; ++v)
+    {
+      Defect[v] = M.IsBoundaryVertex(v) ? 0.0 : std::abs(TwoPi - M.TotalAngle(v));
+    }
+  }
+  RMax = 0.0;
+  if (CircleMode)
+  {
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      RMax = std::max(RMax, c.Radius);
+    }
+  }
+  else
+  {
+    for (const SafeDistancePart& p : T.Parts)
+    {
+      RMax = std::max(RMax, p.Radius);
+    }
+  }
+}
+
 void ShapeDistributor::Impl::EnsureEngines(int threads)
 {
   const int nv = M.NumberOfVertices();
