@@ -5,6 +5,7 @@
 
 #include "SaddleVertexGraph.h"
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -186,6 +187,42 @@ const ShapeDistributionOptions& ShapeDistributor::Options() const
 bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const
 {
   return P->ClassPointOf(P->Accepted.at(shape), x, p);
+}
+
+ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
+  const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
+  const ShapeDistributionOptions& options, const std::function<bool(double)>& progress)
+{
+  const auto start = std::chrono::steady_clock::now();
+  ShapeDistributionResult result;
+  Impl& I = *P;
+  result.Error = I.Prepare(tables, faceDirections, vertexDensity, options);
+  if (!result.Error.empty())
+  {
+    I.Accepted.clear();
+    I.Placed.clear();
+    return result;
+  }
+  const int threads = ThreadCount(I.O.NumberOfThreads);
+  I.EnsureEngines(threads);
+  result.Statistics.PrepareSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!I.RunRounds(threads, progress, result.Statistics))
+  {
+    result.Error = "aborted";
+    I.Accepted.clear();
+    I.Placed.clear();
+    return result;
+  }
+  result.Statistics.Seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.Shapes = I.Placed;
+  result.Ok = true;
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return result;
 }
 
 double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -336,6 +337,48 @@ struct ShapeDistributor::Impl
   bool DrawnConflict(Record& c, std::vector<int>& scratch) const;
   /// DrawnConflict for one neighbour X of candidate c.
   bool DrawnPairConflict(const Record& c, const Record& X) const;
+
+  // ---- Priority rounds, Algorithm 3 (PriorityRounds.cpp) -------------------------------
+  /// Where a run stands between rounds.
+  struct RunState
+  {
+    long long FailuresToStop = 10000;
+    std::vector<int> Front;   // Greedy: the shapes accepted in the last round
+    bool SeedsGrow = true;    // Greedy: random rounds plant one seed each
+    long long Seeds = 0, GrownSinceSeed = 0;
+    long long Consecutive = 0; // consecutive failures in priority order
+    int RandomRounds = 0;
+    bool Stop = false;
+    double Reported = 0.0; // progress
+  };
+  /// The rounds of a prepared run, until MaximumShapes, MaximalFailures or no live face; false
+  /// when aborted by `progress`.
+  bool RunRounds(int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats);
+  /// A Greedy round's candidates: the proposals of every front shape, nearest to the first
+  /// shape first (kind 4 of Random).
+  void DrawGreedyBatch(const std::vector<int>& front, int round, int threads, std::vector<Record>& batch) const;
+  /// A random round's candidates (1 to 4096); false when no face is left alive.
+  bool DrawRandomBatch(int round, bool seeding, RunState& run, std::vector<Record>& batch);
+  /// (a) Rejects the candidates that conflict with accepted shapes in those shapes' charts.
+  void CheapChecks(std::vector<Record>& batch, int threads) const;
+  /// (b) Per survivor, the higher-priority survivors it may conflict with (parts closer in
+  /// space than the sum of their circumradii).
+  std::vector<std::vector<int>> HigherPriorityNeighbours(
+    const std::vector<Record>& batch, const std::vector<int>& survivors, int threads) const;
+  /// Greedy's random rounds: the first survivor that fits is the seed; the others are rejected.
+  void PlantSeed(std::vector<Record>& batch, const std::vector<int>& survivors, std::vector<char>& state,
+    std::vector<int>& acceptedAs, long long& charts);
+  /// (c) Survivors decided in waves (state: 0 undecided, 1 accepted, 2 rejected; acceptedAs:
+  /// the id in Accepted).
+  void DecideInWaves(std::vector<Record>& batch, const std::vector<int>& survivors,
+    const std::vector<std::vector<int>>& above, std::vector<char>& state, std::vector<int>& acceptedAs,
+    int threads, long long& charts, double& chartSeconds);
+  /// (d) Where the round ends in priority order (consecutive failures, MaximumShapes, Greedy's
+  /// one seed): the number of candidates kept.
+  int CutRound(const std::vector<char>& state, int roundStart, bool greedy, bool seeding, RunState& run,
+    ShapeDistributionStatistics& stats) const;
+  /// Takes back the round's shapes after the cut, recommitting the others in priority order.
+  void TakeBack(int roundStart, int cut, const std::vector<char>& state, const std::vector<int>& acceptedAs);
 
   // ---- Greedy proposals and lattices (GreedyProposals.cpp) ------------------------------
   // Greedy: per single-part class, the densest lattice of copies turned alike that the tables
