@@ -2,6 +2,8 @@
 // shape's polar chart, a long shape's CurveGrid), split where the map is not affine over a face.
 #include "ShapeDistributorImpl.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -80,20 +82,305 @@ bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
   return false;
 }
 
-ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
+namespace
 {
-  const Impl& I = *P;
+// The state of one decal as it is built: the class points of the vertices near the shape, the
+// texels that draw, the long shape's grid and the values read on it once per vertex and edge.
+struct DecalBuilder
+{
+  const TriangleMesh& M;
+  const SafeDistanceClass& C;
+  std::shared_ptr<const CurveGrid> Grid; // long shapes
+  double TolUV = 0.0;                    // texture units per circumradius
+  std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
+  Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
+  int Hint = -1, FirstValid = -1;
+  std::unordered_map<int, Vec2> CornerValues; // vertices of faces to split, on the grid
+  std::unordered_map<std::uint64_t, std::pair<bool, Vec2>> Midpoints; // face edges' midpoints
+
+  DecalBuilder(const TriangleMesh& mesh, const SafeDistanceClass& c, double tolerance)
+    : M(mesh)
+    , C(c)
+    , TolUV(tolerance > 0.0 ? 0.5 * tolerance : 0.0)
+  {
+  }
+
+  const Vec2* Find(int v) const
+  {
+    auto it = std::lower_bound(Local.begin(), Local.end(), v,
+      [](const std::pair<int, Vec2>& e, int value) { return e.first < value; });
+    return it != Local.end() && it->first == v ? &it->second : nullptr;
+  }
+
+  Vec2 ToTexture(const Vec2& q) const
+  {
+    return Vec2{ 0.5 * (q.x / C.Radius + 1.0), 0.5 * (q.y / C.Radius + 1.0) };
+  }
+
+  // Sorts the vertices; the texels that draw: the silhouette's bounding box (2% of the
+  // circumradius around it, for texture filtering) within the class square. Faces whose texture
+  // triangle misses it would draw only transparent texels: not in the decal.
+  void Start()
+  {
+    std::sort(Local.begin(), Local.end(),
+      [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
+    for (const auto& ring : C.Outline.Rings)
+    {
+      for (const Vec2& p : ring)
+      {
+        const Vec2 u = ToTexture(p);
+        Lo = Vec2{ std::min(Lo.x, u.x), std::min(Lo.y, u.y) };
+        Hi = Vec2{ std::max(Hi.x, u.x), std::max(Hi.y, u.y) };
+      }
+    }
+    Lo = Vec2{ std::max(0.0, Lo.x - 0.01), std::max(0.0, Lo.y - 0.01) };
+    Hi = Vec2{ std::min(1.0, Hi.x + 0.01), std::min(1.0, Hi.y + 0.01) };
+    if (!(Lo.x <= Hi.x && Lo.y <= Hi.y))
+    {
+      Lo = Vec2{ 0.0, 0.0 };
+      Hi = Vec2{ 1.0, 1.0 };
+    }
+    if (Grid)
+    {
+      for (int k = 0; k < static_cast<int>(Grid->Nodes.size()) && FirstValid < 0; ++k)
+      {
+        FirstValid = Grid->Nodes[k].Valid ? k : -1;
+      }
+    }
+  }
+
+  // The shape's map at a point of face f: on the grid, or beyond it its affine extension (what
+  // the corners' values are, CurveShapeVertices).
+  bool ClassAt(int f, const std::array<double, 3>& b, Vec2& q)
+  {
+    // (Not from the previous point's node: where the map folds, at a kink of the curve, the
+    // globally nearest node decides the sheet, the same for every point.)
+    if (Grid->ClassPoint(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
+    {
+      return true;
+    }
+    if (Hint < 0)
+    {
+      Hint = FirstValid;
+    }
+    return Grid->Locate(M.Interpolate(f, b), Hint, q, nullptr, &Hint);
+  }
+
+  // Faces checked for splitting: a long shape's faces wider than its grid's step (on smaller
+  // faces the grid, affine per grid triangle, knows the map no better than the face's corners).
+  bool Splits(int f) const
+  {
+    if (!Grid || !(TolUV > 0.0))
+    {
+      return false;
+    }
+    const auto& v = M.Face(f);
+    const double longest = std::max({ Norm(M.Position(v[1]) - M.Position(v[0])),
+      Norm(M.Position(v[2]) - M.Position(v[1])), Norm(M.Position(v[0]) - M.Position(v[2])) });
+    return longest > Grid->Step;
+  }
+
+  // Faces with all corners known, near the shape (each face visited once, from its corner of
+  // smallest index), whose texture triangle meets the class square; `orientation`: the map's
+  // sense, the area-weighted sign of the texture triangles.
+  std::vector<std::pair<int, std::array<Vec2, 3>>> WholeFaces(double& orientation);
+
+  // Face f (texture triangle uv) into the decal, split where the map is not affine.
+  void AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal);
+
+  // A piece of a face (barycentric corners B, texture corners U) as the subdivision sees it.
+  struct Piece
+  {
+    std::array<std::array<double, 3>, 3> B;
+    std::array<Vec2, 3> U;
+    int Depth;
+  };
+  // The map at the piece's edge midpoints (mid, trueUV; linear where it is not known) and the
+  // largest departure from the affine map there.
+  double MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
+    std::array<Vec2, 3>& trueUV);
+};
+
+std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double& orientation)
+{
+  std::vector<int> faces;
+  for (const auto& e : Local)
+  {
+    for (int h : M.OutgoingHalfedges(e.first))
+    {
+      const auto& corners = M.Face(h / 3);
+      if (e.first == std::min(corners[0], std::min(corners[1], corners[2])))
+      {
+        faces.push_back(h / 3);
+      }
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::pair<int, std::array<Vec2, 3>>> whole;
+  orientation = 0.0;
+  for (int f : faces)
+  {
+    std::array<Vec2, 3> uv;
+    bool all = true;
+    for (int k = 0; k < 3 && all; ++k)
+    {
+      const int v = M.Face(f)[k];
+      const Vec2* q = Find(v);
+      all = q != nullptr;
+      if (all)
+      {
+        // (The corners of a face to split are read like the points inside it, on the grid where
+        // it reaches: where the map folds the grid decides the sheet, the same for all.)
+        Vec2 value = *q;
+        if (Splits(f))
+        {
+          auto known = CornerValues.find(v);
+          if (known == CornerValues.end())
+          {
+            Vec2 onGrid;
+            known = CornerValues.emplace(v, Grid->ClassPoint(SurfacePoint::AtVertex(v), onGrid) ? onGrid : *q).first;
+          }
+          value = known->second;
+        }
+        uv[k] = ToTexture(value);
+      }
+    }
+    if (all && MeetsBox(uv, Lo, Hi))
+    {
+      whole.emplace_back(f, uv);
+      orientation += SignedArea(uv);
+    }
+  }
+  return whole;
+}
+
+double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
+  std::array<Vec2, 3>& trueUV)
+{
+  const auto& corners = M.Face(f);
+  double error = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const auto& a = t.B[k];
+    const auto& b = t.B[(k + 1) % 3];
+    mid[k] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
+    const Vec2 linear = (t.U[k] + t.U[(k + 1) % 3]) * 0.5;
+    // (A face's edge midpoints are shared with the neighbour across: read once.)
+    const std::uint64_t edge = t.Depth == 0
+      ? (static_cast<std::uint64_t>(std::min(corners[k], corners[(k + 1) % 3])) << 32) |
+        static_cast<std::uint32_t>(std::max(corners[k], corners[(k + 1) % 3]))
+      : 0;
+    const auto known = t.Depth == 0 ? Midpoints.find(edge) : Midpoints.end();
+    Vec2 q;
+    bool found = false;
+    if (known != Midpoints.end())
+    {
+      found = known->second.first;
+      q = known->second.second;
+    }
+    else
+    {
+      found = ClassAt(f, mid[k], q);
+      if (t.Depth == 0)
+      {
+        Midpoints.emplace(edge, std::make_pair(found, q));
+      }
+    }
+    if (found)
+    {
+      trueUV[k] = ToTexture(q);
+      error = std::max(error, Norm(trueUV[k] - linear));
+    }
+    else
+    {
+      trueUV[k] = linear;
+    }
+  }
+  return error;
+}
+
+// Each face's texture map is affine; where the true map departs from it by more than the
+// tolerance at an edge midpoint (a long shape's map along its curve, read on its grid), the
+// triangle is split in four, to depth 5 (1024 pieces per face). A piece whose texture triangle
+// is turned over (the map folds there) or stretched far beyond its size on the surface (a jump
+// across a seam of the map) is dropped.
+void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal)
+{
+  const int maxDepth = 5;
+  const auto& corners = M.Face(f);
+  const Vec3 X[3] = { M.Position(corners[0]), M.Position(corners[1]), M.Position(corners[2]) };
+  const bool split = Splits(f);
+  std::vector<Piece> stack;
+  stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, uv, 0 });
+  while (!stack.empty())
+  {
+    const Piece t = stack.back();
+    stack.pop_back();
+    if (!MeetsBox(t.U, Lo, Hi))
+    {
+      continue;
+    }
+    auto at = [&X](const std::array<double, 3>& b) { return X[0] * b[0] + X[1] * b[1] + X[2] * b[2]; };
+    if (split)
+    {
+      std::array<std::array<double, 3>, 3> mid;
+      std::array<Vec2, 3> trueUV;
+      const double error = MidpointError(f, t, mid, trueUV);
+      // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
+      const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
+        Norm(at(t.B[0]) - at(t.B[2])) });
+      if (error > TolUV && (t.Depth == maxDepth || size <= 0.5 * Grid->Step))
+      {
+        if (error > 5.0 * TolUV)
+        {
+          continue; // still not affine at the finest: the map folds or jumps here
+        }
+      }
+      else if (error > TolUV)
+      {
+        // Corners 0, 1, 2 and midpoints m01, m12, m20.
+        stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1 });
+        stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1 });
+        stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1 });
+        stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1 });
+        continue;
+      }
+    }
+    // Folded or torn: dropped.
+    if (SignedArea(t.U) * sense < 0.0)
+    {
+      continue;
+    }
+    bool torn = false;
+    for (int k = 0; k < 3 && !torn; ++k)
+    {
+      const double onSurface = Norm(at(t.B[(k + 1) % 3]) - at(t.B[k]));
+      const double inTexture = Norm(t.U[(k + 1) % 3] - t.U[k]) * unit;
+      torn = inTexture > 4.0 * onSurface + 0.05 * unit;
+    }
+    if (torn)
+    {
+      continue;
+    }
+    decal.Faces.push_back(f);
+    decal.Corners.push_back(t.B);
+    decal.TextureCoordinates.push_back(t.U);
+  }
+}
+} // namespace
+
+ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
+{
   ShapeDecal decal;
-  const PlacedShape& s = I.Placed.at(shape);
-  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
-  const double scale = I.O.ShapeSize * s.Scale;
-  const double reach = c.Radius * scale + I.MaxEdge;
+  const PlacedShape& s = Placed.at(shape);
+  const SafeDistanceClass& c = T.Classes[s.ClassId];
+  const double scale = O.ShapeSize * s.Scale;
+  const double reach = c.Radius * scale + MaxEdge;
+  DecalBuilder b(M, c, tolerance);
   // Class-frame coordinates (normalized) of the vertices near the shape.
-  std::vector<std::pair<int, Vec2>> local;
-  std::shared_ptr<const CurveGrid> grid;
   if (s.Curve.empty())
   {
-    const Impl::Record& r = I.Accepted.at(shape);
+    const Record& r = Accepted.at(shape);
     if (r.Charts.empty())
     {
       return decal;
@@ -103,253 +390,34 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
       const Vec2 q{ e.X, e.Y };
       if (Norm(q) <= reach)
       {
-        local.emplace_back(e.V, q * (1.0 / scale));
+        b.Local.emplace_back(e.V, q * (1.0 / scale));
       }
     }
   }
   else
   {
-    grid = Frame(shape); // the grid the drawn check built (indexed), or a new one
-    if (!grid)
+    b.Grid = FrameOf(shape); // the grid the drawn check built (indexed), or a new one
+    if (!b.Grid)
     {
       return decal;
     }
-    I.CurveShapeVertices(*grid, local);
+    CurveShapeVertices(*b.Grid, b.Local);
   }
-  std::sort(local.begin(), local.end(),
-    [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
-  auto find = [&](int v) -> const Vec2* {
-    auto it = std::lower_bound(local.begin(), local.end(), v,
-      [](const std::pair<int, Vec2>& e, int value) { return e.first < value; });
-    return it != local.end() && it->first == v ? &it->second : nullptr;
-  };
-  const auto toTexture = [&c](const Vec2& q) {
-    return Vec2{ 0.5 * (q.x / c.Radius + 1.0), 0.5 * (q.y / c.Radius + 1.0) };
-  };
-  // The texels that draw: the silhouette's bounding box (2% of the circumradius around it, for
-  // texture filtering) within the class square. Faces whose texture triangle misses it would
-  // draw only transparent texels: not in the decal.
-  Vec2 lo{ 1.0, 1.0 }, hi{ 0.0, 0.0 };
-  for (const auto& ring : c.Outline.Rings)
-  {
-    for (const Vec2& p : ring)
-    {
-      const Vec2 u = toTexture(p);
-      lo = Vec2{ std::min(lo.x, u.x), std::min(lo.y, u.y) };
-      hi = Vec2{ std::max(hi.x, u.x), std::max(hi.y, u.y) };
-    }
-  }
-  lo = Vec2{ std::max(0.0, lo.x - 0.01), std::max(0.0, lo.y - 0.01) };
-  hi = Vec2{ std::min(1.0, hi.x + 0.01), std::min(1.0, hi.y + 0.01) };
-  if (!(lo.x <= hi.x && lo.y <= hi.y))
-  {
-    lo = Vec2{ 0.0, 0.0 };
-    hi = Vec2{ 1.0, 1.0 };
-  }
-  int hint = -1, firstValid = -1;
-  if (grid)
-  {
-    for (int k = 0; k < static_cast<int>(grid->Nodes.size()) && firstValid < 0; ++k)
-    {
-      firstValid = grid->Nodes[k].Valid ? k : -1;
-    }
-  }
-  // The shape's map at a point of face f: on the grid, or beyond it its affine extension (what
-  // the corners' values are, CurveShapeVertices).
-  const auto classAt = [&](int f, const std::array<double, 3>& b, Vec2& q) {
-    // (Not from the previous point's node: where the map folds, at a kink of the curve, the
-    // globally nearest node decides the sheet, the same for every point.)
-    if (grid->ClassPoint(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
-    {
-      return true;
-    }
-    if (hint < 0)
-    {
-      hint = firstValid;
-    }
-    return grid->Locate(I.M.Interpolate(f, b), hint, q, nullptr, &hint);
-  };
-  // Faces checked for splitting: a long shape's faces wider than its grid's step (on smaller
-  // faces the grid, affine per grid triangle, knows the map no better than the face's corners).
-  const double tolUV = tolerance > 0.0 ? 0.5 * tolerance : 0.0; // texture units per circumradius
-  const auto splits = [&](int f) {
-    if (!grid || !(tolUV > 0.0))
-    {
-      return false;
-    }
-    const auto& v = I.M.Face(f);
-    const double longest = std::max({ Norm(I.M.Position(v[1]) - I.M.Position(v[0])),
-      Norm(I.M.Position(v[2]) - I.M.Position(v[1])), Norm(I.M.Position(v[0]) - I.M.Position(v[2])) });
-    return longest > grid->Step;
-  };
-  // Faces with all corners known, near the shape (each face visited once, from its corner of
-  // smallest index), whose texture triangle meets the class square.
-  std::vector<int> faces;
-  for (const auto& e : local)
-  {
-    for (int h : I.M.OutgoingHalfedges(e.first))
-    {
-      const auto& corners = I.M.Face(h / 3);
-      if (e.first == std::min(corners[0], std::min(corners[1], corners[2])))
-      {
-        faces.push_back(h / 3);
-      }
-    }
-  }
-  std::sort(faces.begin(), faces.end());
-  std::vector<std::pair<int, std::array<Vec2, 3>>> whole;
-  std::unordered_map<int, Vec2> cornerValues; // vertices of faces to split, on the grid
-  double orientation = 0.0; // the map's sense: the area-weighted sign of the texture triangles
-  for (int f : faces)
-  {
-    std::array<Vec2, 3> uv;
-    bool all = true;
-    for (int k = 0; k < 3 && all; ++k)
-    {
-      const int v = I.M.Face(f)[k];
-      const Vec2* q = find(v);
-      all = q != nullptr;
-      if (all)
-      {
-        // (The corners of a face to split are read like the points inside it, on the grid where
-        // it reaches: where the map folds the grid decides the sheet, the same for all.)
-        Vec2 value = *q;
-        if (splits(f))
-        {
-          auto known = cornerValues.find(v);
-          if (known == cornerValues.end())
-          {
-            Vec2 onGrid;
-            known = cornerValues.emplace(v, grid->ClassPoint(SurfacePoint::AtVertex(v), onGrid) ? onGrid : *q).first;
-          }
-          value = known->second;
-        }
-        uv[k] = toTexture(value);
-      }
-    }
-    if (all && MeetsBox(uv, lo, hi))
-    {
-      whole.emplace_back(f, uv);
-      orientation += SignedArea(uv);
-    }
-  }
-  // Each face's texture map is affine; where the true map departs from it by more than the
-  // tolerance at an edge midpoint (a long shape's map along its curve, read on its grid), the
-  // triangle is split in four, to depth 5 (1024 pieces per face). A piece whose texture
-  // triangle is turned over (the map folds there) or stretched far beyond its size on the
-  // surface (a jump across a seam of the map) is dropped.
-  const int maxDepth = 5;
+  b.Start();
+  double orientation = 0.0;
+  const std::vector<std::pair<int, std::array<Vec2, 3>>> whole = b.WholeFaces(orientation);
   const double sense = orientation >= 0.0 ? 1.0 : -1.0;
   const double unit = 2.0 * c.Radius * scale; // world length of one texture unit
-  struct Piece
-  {
-    std::array<std::array<double, 3>, 3> B;
-    std::array<Vec2, 3> U;
-    int Depth;
-  };
-  std::vector<Piece> stack;
-  std::unordered_map<std::uint64_t, std::pair<bool, Vec2>> midpoints; // face edges' midpoints
   for (const auto& entry : whole)
   {
-    const int f = entry.first;
-    const auto& corners = I.M.Face(f);
-    const Vec3 X[3] = { I.M.Position(corners[0]), I.M.Position(corners[1]), I.M.Position(corners[2]) };
-    const bool split = splits(f);
-    stack.clear();
-    stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, entry.second, 0 });
-    while (!stack.empty())
-    {
-      const Piece t = stack.back();
-      stack.pop_back();
-      if (!MeetsBox(t.U, lo, hi))
-      {
-        continue;
-      }
-      auto at = [&X](const std::array<double, 3>& b) { return X[0] * b[0] + X[1] * b[1] + X[2] * b[2]; };
-      if (split)
-      {
-        std::array<std::array<double, 3>, 3> mid;
-        std::array<Vec2, 3> trueUV;
-        double error = 0.0;
-        for (int k = 0; k < 3; ++k)
-        {
-          const auto& a = t.B[k];
-          const auto& b = t.B[(k + 1) % 3];
-          mid[k] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
-          const Vec2 linear = (t.U[k] + t.U[(k + 1) % 3]) * 0.5;
-          // (A face's edge midpoints are shared with the neighbour across: read once.)
-          const std::uint64_t edge = t.Depth == 0
-            ? (static_cast<std::uint64_t>(std::min(corners[k], corners[(k + 1) % 3])) << 32) |
-              static_cast<std::uint32_t>(std::max(corners[k], corners[(k + 1) % 3]))
-            : 0;
-          const auto known = t.Depth == 0 ? midpoints.find(edge) : midpoints.end();
-          Vec2 q;
-          bool found = false;
-          if (known != midpoints.end())
-          {
-            found = known->second.first;
-            q = known->second.second;
-          }
-          else
-          {
-            found = classAt(f, mid[k], q);
-            if (t.Depth == 0)
-            {
-              midpoints.emplace(edge, std::make_pair(found, q));
-            }
-          }
-          if (found)
-          {
-            trueUV[k] = toTexture(q);
-            error = std::max(error, Norm(trueUV[k] - linear));
-          }
-          else
-          {
-            trueUV[k] = linear;
-          }
-        }
-        // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
-        const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
-          Norm(at(t.B[0]) - at(t.B[2])) });
-        if (error > tolUV && (t.Depth == maxDepth || size <= 0.5 * grid->Step))
-        {
-          if (error > 5.0 * tolUV)
-          {
-            continue; // still not affine at the finest: the map folds or jumps here
-          }
-        }
-        else if (error > tolUV)
-        {
-          // Corners 0, 1, 2 and midpoints m01, m12, m20.
-          stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1 });
-          stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1 });
-          stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1 });
-          stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1 });
-          continue;
-        }
-      }
-      // Folded or torn: dropped.
-      if (SignedArea(t.U) * sense < 0.0)
-      {
-        continue;
-      }
-      bool torn = false;
-      for (int k = 0; k < 3 && !torn; ++k)
-      {
-        const double onSurface = Norm(at(t.B[(k + 1) % 3]) - at(t.B[k]));
-        const double inTexture = Norm(t.U[(k + 1) % 3] - t.U[k]) * unit;
-        torn = inTexture > 4.0 * onSurface + 0.05 * unit;
-      }
-      if (torn)
-      {
-        continue;
-      }
-      decal.Faces.push_back(f);
-      decal.Corners.push_back(t.B);
-      decal.TextureCoordinates.push_back(t.U);
-    }
+    b.AddFace(entry.first, entry.second, sense, unit, decal);
   }
   return decal;
+}
+
+ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
+{
+  return P->DecalOf(shape, tolerance);
 }
 
 } // namespace gs

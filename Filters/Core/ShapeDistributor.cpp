@@ -112,19 +112,7 @@ double ShapeDistributor::OutlineSpacing() const
 
 std::shared_ptr<const CurveGrid> ShapeDistributor::Frame(int shape) const
 {
-  const Impl& I = *P;
-  const PlacedShape& s = I.Placed.at(shape);
-  if (s.Curve.empty())
-  {
-    return nullptr;
-  }
-  if (I.Accepted.at(shape).Frame)
-  {
-    return I.Accepted.at(shape).Frame;
-  }
-  auto grid = std::make_shared<CurveGrid>(I.BuildCurveGrid(s, I.T.Classes[s.ClassId]));
-  grid->Index();
-  return grid;
+  return P->FrameOf(shape);
 }
 
 double ShapeDistributor::ExpectedCount(const TriangleMesh& mesh, const SafeDistanceTables& tables,

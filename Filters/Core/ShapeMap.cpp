@@ -362,6 +362,22 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   }
 }
 
+std::shared_ptr<const CurveGrid> ShapeDistributor::Impl::FrameOf(int shape) const
+{
+  const PlacedShape& s = Placed.at(shape);
+  if (s.Curve.empty())
+  {
+    return nullptr;
+  }
+  if (Accepted.at(shape).Frame)
+  {
+    return Accepted.at(shape).Frame;
+  }
+  auto grid = std::make_shared<CurveGrid>(BuildCurveGrid(s, T.Classes[s.ClassId]));
+  grid->Index();
+  return grid;
+}
+
 bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance, int* nearestNode) const
 {
   if (start < 0 || start >= static_cast<int>(Nodes.size()) || !Nodes[start].Valid)
