@@ -414,6 +414,18 @@ struct ShapeDistributor::Impl
   };
   /// The single-part accepted neighbours near parent A (for a new part pc, part pa of A).
   std::vector<Neighbour> NeighboursInChart(int parentId, int pa, int pc) const;
+  /// The contact curve of a parent for a new shape turned like it (GreedyProposals.cpp).
+  struct Contact;
+  /// Lattice neighbours of the parent that no placed neighbour rules out (betas and lengths).
+  void LatticeDirections(const Contact& contact, int cls, std::vector<double>& betas,
+    std::vector<double>& lengths) const;
+  /// Directions on the contact curve where the new shape touches a neighbour too.
+  void ContactDirections(const Contact& contact, std::vector<double>& betas) const;
+  /// The proposals' centres: geodesics shot from A (reference angle a0) at angles `betas`,
+  /// `lengths` long (or the contact curve's reach) and a hair more, kept where a shape of class
+  /// cls may land.
+  void ShootProposals(const Record& A, int cls, const Contact& contact, const std::vector<double>& betas,
+    const std::vector<double>& lengths, double a0, std::vector<Proposal>& out) const;
 
   // ---- The shape model: map, outline, CurveGrid (ShapeMap.cpp) --------------------------
   /// Class point p (normalized) of shape s -> surface point (see ShapeDistributor::Map).
