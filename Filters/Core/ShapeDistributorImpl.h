@@ -226,15 +226,6 @@ struct ShapeDistributor::Impl
   /// (greedy fronts keep neighbours turned alike in cross fields); otherwise the face's own.
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
     const Vec3* prefer = nullptr) const;
-  /// The field direction a shape at `centre` takes (see MakeShape); consumes one number of rng.
-  Vec3 ShapeDirection(const PlacedShape& s, Random& rng, const Vec3* prefer) const;
-  /// A long shape's streamline through its centre, both ways as far as the class extends;
-  /// false when the field ends before.
-  bool TraceCurve(PlacedShape& s, const SafeDistanceClass& c, const Vec3& dir) const;
-  /// A long shape's parts, each at its centre along and across the curve; false when one falls
-  /// off the surface.
-  bool PlaceParts(PlacedShape& s, const SafeDistanceClass& c) const;
-
   /// Faces where no candidate can fit any more: every candidate centred in them conflicts with
   /// part k of the new shape, because its distance from that part's centre is below the smallest
   /// safe distance against any part of any class, less the class's reach (its part centres'
@@ -335,8 +326,6 @@ struct ShapeDistributor::Impl
   /// copies; this catches where the drawn shapes are not (a long shape's part bending with its
   /// curve, a chart that is no isometry across the neighbour's circle).
   bool DrawnConflict(Record& c, std::vector<int>& scratch) const;
-  /// DrawnConflict for one neighbour X of candidate c.
-  bool DrawnPairConflict(const Record& c, const Record& X) const;
 
   // ---- Priority rounds, Algorithm 3 (PriorityRounds.cpp) -------------------------------
   /// Where a run stands between rounds.

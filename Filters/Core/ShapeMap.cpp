@@ -175,6 +175,56 @@ std::vector<OutlinePiece> ShapeDistributor::Impl::OutlineOf(const PlacedShape& s
   return DrawOutlinePieces(c.Outline.Rings, normalized, map);
 }
 
+bool ShapeDistributor::Impl::CurveGridFoot(
+  const PlacedShape& s, double u, double length, SurfacePoint& foot, Vec3& tangent) const
+{
+  int face = -1;
+  Vec3 x;
+  if (u >= 0.0 && u <= length)
+  {
+    if (!PointOnCurve(M, s.Curve, u, face, x, tangent))
+    {
+      return false;
+    }
+    foot = SurfacePoint::InFace(face, 0, 0, 0);
+    foot.Bary = M.ClampedBarycentric(face, x);
+  }
+  else
+  {
+    // Beyond an end: the geodesic continuing the curve's end.
+    const bool after = u > length;
+    if (!PointOnCurve(M, s.Curve, after ? length : 0.0, face, x, tangent))
+    {
+      return false;
+    }
+    SurfacePoint end = SurfacePoint::InFace(face, 0, 0, 0);
+    end.Bary = M.ClampedBarycentric(face, x);
+    const double angle = TangentAngle(M, end, after ? tangent : tangent * -1.0);
+    if (!std::isfinite(angle))
+    {
+      return false;
+    }
+    const double beyond = after ? u - length : -u;
+    const GeodesicShot shot = ShootGeodesic(M, end, angle, beyond);
+    if (shot.ReachedBoundary || shot.Pieces.empty())
+    {
+      return false;
+    }
+    foot = shot.End;
+    Vec3 dir = after ? tangent : tangent * -1.0;
+    for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
+    {
+      if (Norm(it->B - it->A) > 0.0)
+      {
+        dir = Unit(it->B - it->A);
+        break;
+      }
+    }
+    tangent = after ? dir : dir * -1.0;
+  }
+  return true;
+}
+
 CurveGrid ShapeDistributor::Impl::BuildCurveGrid(const PlacedShape& s, const SafeDistanceClass& c) const
 {
   CurveGrid grid;
@@ -230,51 +280,11 @@ CurveGrid ShapeDistributor::Impl::BuildCurveGrid(const PlacedShape& s, const Saf
   for (int i = 0; i < columns; ++i)
   {
     const double u = -margin + du * i;
-    int face = -1;
-    Vec3 x, tangent;
     SurfacePoint foot;
-    if (u >= 0.0 && u <= length)
+    Vec3 tangent;
+    if (!CurveGridFoot(s, u, length, foot, tangent))
     {
-      if (!PointOnCurve(M, s.Curve, u, face, x, tangent))
-      {
-        continue;
-      }
-      foot = SurfacePoint::InFace(face, 0, 0, 0);
-      foot.Bary = M.ClampedBarycentric(face, x);
-    }
-    else
-    {
-      // Beyond an end: the geodesic continuing the curve's end.
-      const bool after = u > length;
-      if (!PointOnCurve(M, s.Curve, after ? length : 0.0, face, x, tangent))
-      {
-        continue;
-      }
-      SurfacePoint end = SurfacePoint::InFace(face, 0, 0, 0);
-      end.Bary = M.ClampedBarycentric(face, x);
-      const double angle = TangentAngle(M, end, after ? tangent : tangent * -1.0);
-      if (!std::isfinite(angle))
-      {
-        continue;
-      }
-      const double beyond = after ? u - length : -u;
-      const GeodesicShot shot = ShootGeodesic(M, end, angle, beyond);
-      if (shot.ReachedBoundary || shot.Pieces.empty())
-      {
-        continue;
-      }
-      foot = shot.End;
-      Vec3 dir = after ? tangent : tangent * -1.0;
-      for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
-      {
-        if (Norm(it->B - it->A) > 0.0)
-        {
-          dir = Unit(it->B - it->A);
-          break;
-        }
-      }
-      tangent = after ? dir : dir * -1.0;
-      face = foot.Face;
+      continue;
     }
     const double a = (u - s.CurveCentre) / scale;
     const int centreRow = half;
