@@ -1,5 +1,13 @@
 // Minimal readers and writers for the mesh formats the project uses outside VTK (benchmarks,
 // data generation): OFF (libcgal-demo meshes) and ASCII PLY.
+//
+// Why a reader of our own next to VTK's (vtkPLYReader, ParaView's OFF reader): the core
+// (GeodesicShapesCore) and everything linked only to it stay free of VTK. The core unit tests
+// (GeodesicShapesCoreTests: TestOverlapCheck reads Data/bumpy_sphere.ply), the benchmarks
+// (Benchmarks/*: the CGAL OFF meshes, refined_elephant.off) and Tools/generate_data (writes the
+// bundled PLY files) build and run without ParaView. The filters read meshes with VTK; VTK tests
+// use this reader only to compare with the core on the very same triangles
+// (Testing/Cxx/FilterTestSupport.h). Keep it as small as the formats these files use.
 #pragma once
 
 #include "MeshGenerators.h"

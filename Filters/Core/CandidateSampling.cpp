@@ -1,0 +1,485 @@
+// Candidate sampling (dart throwing, Section 4): classes by ClassWeights, faces with probability
+// area / f^2 among the faces still alive, a uniform point in the face; the masks of dead faces
+// (where no candidate of a class can fit any more); a candidate's geometry (direction,
+// streamline of a long class, parts).
+#include "ShapeDistributorImpl.h"
+
+#include "GeodesicShooting.h"
+
+#include <cmath>
+#include <limits>
+
+namespace gs
+{
+using namespace distribution;
+
+
+std::string ShapeDistributor::Impl::PrepareClassWeights()
+{
+  std::vector<double> w = O.ClassWeights;
+  if (w.empty())
+  {
+    w.assign(T.Classes.size(), 1.0);
+  }
+  if (w.size() != T.Classes.size())
+  {
+    return "ClassWeights has " + std::to_string(w.size()) + " values for " +
+      std::to_string(T.Classes.size()) + " classes";
+  }
+  ClassCdf.clear();
+  double sum = 0.0;
+  for (double x : w)
+  {
+    if (!(x >= 0.0) || !std::isfinite(x))
+    {
+      return "ClassWeights must be non-negative finite numbers";
+    }
+    sum += x;
+    ClassCdf.push_back(sum);
+  }
+  if (!(sum > 0.0))
+  {
+    return "ClassWeights are all zero";
+  }
+  return std::string();
+}
+
+std::string ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDirections)
+{
+  const int nf = M.NumberOfFaces();
+  if (static_cast<int>(faceDirections.size()) != nf)
+  {
+    return "one direction per face is needed (" + std::to_string(faceDirections.size()) +
+      " given for " + std::to_string(nf) + " faces)";
+  }
+  FaceDirection.assign(nf, Vec3{ 0, 0, 0 });
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(O.NumberOfThreads))
+  for (int f = 0; f < nf; ++f)
+  {
+    const Vec3& d = faceDirections[f];
+    if (!IsFinite(d))
+    {
+      continue;
+    }
+    const Vec3 n = M.FaceNormal(f);
+    const Vec3 t = d - n * Dot(n, d);
+    if (Norm(t) > 1e-12 * Norm(d) && Norm(t) > 0.0)
+    {
+      FaceDirection[f] = Unit(t);
+    }
+  }
+  return std::string();
+}
+
+std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& vertexDensity)
+{
+  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
+  if (!vertexDensity.empty() && static_cast<int>(vertexDensity.size()) != nv)
+  {
+    return "one density factor per vertex is needed (" + std::to_string(vertexDensity.size()) +
+      " given for " + std::to_string(nv) + " vertices)";
+  }
+  Density = vertexDensity;
+  FaceWeight.assign(nf, 0.0);
+  AllCdf.assign(nf, 0.0);
+  MaxFaceDensity = 0.0;
+  double total = 0.0;
+  double minimumScale = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < nf; ++f)
+  {
+    double fm = 1.0;
+    bool ok = true;
+    if (!Density.empty())
+    {
+      fm = 0.0;
+      for (int v : M.Face(f))
+      {
+        ok = ok && Density[v] > 0.0 && std::isfinite(Density[v]);
+        fm += Density[v] / 3.0;
+      }
+    }
+    if (ok)
+    {
+      FaceWeight[f] = M.FaceArea(f) / (fm * fm);
+      total += FaceWeight[f];
+      minimumScale = std::min(minimumScale, fm);
+      for (int v : M.Face(f))
+      {
+        MaxFaceDensity = std::max(MaxFaceDensity, Density.empty() ? 1.0 : Density[v]);
+      }
+    }
+    AllCdf[f] = total;
+  }
+  Dead.assign(nf, 0);
+  NumberOfClasses = static_cast<int>(T.Classes.size());
+  DeadFor.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
+  Killed.clear();
+  KilledBy.clear();
+  BuildCdf();
+  if (!(total > 0.0))
+  {
+    return "no face has a positive density factor at all its corners";
+  }
+  double area = 0.0;
+  for (int f = 0; f < nf; ++f)
+  {
+    area += M.FaceArea(f);
+  }
+  {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      smallest = std::min(smallest, c.Radius);
+    }
+    const double r = O.ShapeSize * minimumScale * smallest;
+    if (area / (r * r) > 1e9)
+    {
+      return "ShapeSize (times the smallest density factor) is too small for this mesh: more than "
+             "1e9 shapes would fit";
+    }
+  }
+  return std::string();
+}
+
+void ShapeDistributor::Impl::PrepareDeadFaces()
+{
+  // Dead faces: per (part, class), the smallest safe distance of the part against any part of
+  // the class (2% less, for the charts' approximations); per class, its reach.
+  {
+    const int np = CircleMode ? static_cast<int>(T.Classes.size()) : T.NumberOfParts();
+    const int nc = static_cast<int>(T.Classes.size());
+    KillRadius.assign(static_cast<std::size_t>(np) * nc, std::numeric_limits<double>::infinity());
+    KillReach.assign(nc, 0.0);
+    const std::size_t ka = static_cast<std::size_t>(T.AngleBins);
+    for (int x = 0; x < np; ++x)
+    {
+      for (int c = 0; c < nc; ++c)
+      {
+        double& kill = KillRadius[static_cast<std::size_t>(x) * nc + c];
+        if (CircleMode)
+        {
+          kill = T.Classes[x].Radius + T.Classes[c].Radius;
+        }
+        else
+        {
+          for (int pc : T.Classes[c].Parts)
+          {
+            const double* table = &T.Values[(static_cast<std::size_t>(x) * T.Parts.size() + pc) * ka * ka];
+            kill = std::min(kill, *std::min_element(table, table + ka * ka));
+          }
+        }
+        kill *= 0.98;
+      }
+    }
+    for (int c = 0; c < nc && !CircleMode; ++c)
+    {
+      if (T.Classes[c].Parts.size() <= 1)
+      {
+        continue;
+      }
+      for (int pc : T.Classes[c].Parts)
+      {
+        const Vec2& q = T.Parts[pc].Centre;
+        KillReach[c] = std::max(KillReach[c],
+          std::abs(Dot(q, T.Classes[c].MajorAxis)) + std::abs(Cross(T.Classes[c].MajorAxis, q)));
+      }
+    }
+  }
+}
+
+void ShapeDistributor::Impl::PrepareLongClasses()
+{
+  const int nf = M.NumberOfFaces();
+  ClassExtentMin.assign(T.Classes.size(), 0.0);
+  ClassExtentMax.assign(T.Classes.size(), 0.0);
+  bool anyLong = false;
+  for (std::size_t k = 0; k < T.Classes.size(); ++k)
+  {
+    const SafeDistanceClass& c = T.Classes[k];
+    if (c.Parts.size() <= 1)
+    {
+      continue;
+    }
+    anyLong = true;
+    double lo = 0.0, hi = 0.0;
+    for (const auto& ring : c.Outline.Rings)
+    {
+      for (const Vec2& p : ring)
+      {
+        lo = std::min(lo, Dot(p, c.MajorAxis));
+        hi = std::max(hi, Dot(p, c.MajorAxis));
+      }
+    }
+    for (int part : c.Parts)
+    {
+      const double a = Dot(T.Parts[part].Centre, c.MajorAxis);
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+    }
+    ClassExtentMin[k] = lo;
+    ClassExtentMax[k] = hi;
+  }
+  if (anyLong)
+  {
+    if (!Field)
+    {
+      Field.reset(new DirectionFieldSolver(M));
+    }
+    FieldAngles.assign(nf, 0.0);
+    for (int f = 0; f < nf; ++f)
+    {
+      FieldAngles[f] = Norm(FaceDirection[f]) > 0.0 ? Field->AngleInFace(f, FaceDirection[f]) : 0.0;
+    }
+  }
+}
+
+void ShapeDistributor::Impl::BuildCdf()
+{
+  const int nf = M.NumberOfFaces();
+  FaceCdf.assign(nf, 0.0);
+  double total = 0.0;
+  for (int f = 0; f < nf; ++f)
+  {
+    total += Dead[f] ? 0.0 : FaceWeight[f];
+    FaceCdf[f] = total;
+  }
+  DeadSinceCdf = 0;
+}
+
+SurfacePoint ShapeDistributor::Impl::RandomPoint(Random& rng, bool live) const
+{
+  const std::vector<double>& cdf = live ? FaceCdf : AllCdf;
+  const double u = rng.Uniform() * cdf.back();
+  int f = static_cast<int>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
+  f = std::min(f, M.NumberOfFaces() - 1);
+  while (f > 0 && cdf[f] == cdf[f - 1])
+  {
+    --f; // never a zero-weight face
+  }
+  double a = rng.Uniform(), b = rng.Uniform();
+  if (a + b > 1.0)
+  {
+    a = 1.0 - a;
+    b = 1.0 - b;
+  }
+  return SurfacePoint::InFace(f, 1.0 - a - b, a, b);
+}
+
+int ShapeDistributor::Impl::RandomClass(Random& rng) const
+{
+  const double u = rng.Uniform() * ClassCdf.back();
+  int k = static_cast<int>(std::upper_bound(ClassCdf.begin(), ClassCdf.end(), u) - ClassCdf.begin());
+  k = std::min(k, static_cast<int>(ClassCdf.size()) - 1);
+  while (k > 0 && ClassCdf[k] == ClassCdf[k - 1])
+  {
+    --k;
+  }
+  return k;
+}
+
+void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) const
+{
+  const int n = static_cast<int>(batch.size());
+#pragma omp parallel num_threads(ThreadCount(O.NumberOfThreads))
+  {
+    std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 64)
+    for (int i = 0; i < n; ++i)
+    {
+      Random rng(O.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+      const int cls = RandomClass(rng);
+      const SurfacePoint centre = RandomPoint(rng);
+      // A class that certainly cannot fit in this face, or (long classes, whose shapes cost a
+      // streamline) at this centre: no need to build the shape.
+      batch[i].Valid = !DeadForClass(cls, centre.Face) &&
+        !(T.Classes[cls].Parts.size() > 1 && CentreCovered(centre, cls, DensityAt(centre), scratch)) &&
+        MakeShape(centre, cls, rng, batch[i].S);
+    }
+  }
+}
+
+bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
+  const Vec3* prefer) const
+{
+  s = PlacedShape();
+  s.ClassId = cls;
+  s.Centre = centre;
+  s.Scale = DensityAt(centre);
+  if (!(s.Scale > 0.0) || !std::isfinite(s.Scale))
+  {
+    return false;
+  }
+  const int f = centre.Face;
+  s.Position = M.Interpolate(f, centre.Bary);
+  s.Normal = M.FaceNormal(f);
+  Vec3 dir = FaceDirection[f];
+  const double spin = rng.Uniform();
+  if (!(Norm(dir) > 0.0))
+  {
+    const auto& v = M.Face(f);
+    dir = RotateTangent(Unit(M.Position(v[1]) - M.Position(v[0])), s.Normal, TwoPi * spin);
+  }
+  else if (prefer && O.Symmetry > 1)
+  {
+    Vec3 best = dir;
+    double bestDot = -2.0;
+    for (int k = 0; k < O.Symmetry; ++k)
+    {
+      const Vec3 candidate = RotateTangent(dir, s.Normal, TwoPi * k / O.Symmetry);
+      const double d = Dot(candidate, *prefer);
+      if (d > bestDot)
+      {
+        bestDot = d;
+        best = candidate;
+      }
+    }
+    dir = Unit(best);
+  }
+  const SafeDistanceClass& c = T.Classes[cls];
+  const double scale = O.ShapeSize * s.Scale;
+  if (c.Parts.size() <= 1)
+  {
+    s.Direction = dir;
+  }
+  else
+  {
+    // The major axis follows the field: trace the streamline both ways.
+    const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
+    s.Direction = Unit(RotateTangent(dir, s.Normal, -phiM));
+    const int n = O.Symmetry == 1 ? 2 : O.Symmetry;
+    const double a0 = Field->AngleInFace(f, dir);
+    const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
+    const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
+    const Streamline behind = Field->TraceStreamline(n, FieldAngles, centre, a0 + Pi, backward);
+    if (ahead.Length < forward * (1.0 - 1e-9) || behind.Length < backward * (1.0 - 1e-9))
+    {
+      return false;
+    }
+    for (auto it = behind.Pieces.rbegin(); it != behind.Pieces.rend(); ++it)
+    {
+      s.Curve.push_back(CurvePiece{ it->Face, it->B, it->A });
+    }
+    s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
+    s.CurveCentre = behind.Length;
+  }
+  if (CircleMode || c.Parts.size() <= 1)
+  {
+    PlacedPart p;
+    p.Part = CircleMode ? cls : c.Parts[0];
+    p.Centre = centre;
+    p.Position = s.Position;
+    p.Axis = s.Direction;
+    s.Parts.push_back(p);
+    return true;
+  }
+  const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
+  for (int part : c.Parts)
+  {
+    const Vec2& pc = T.Parts[part].Centre;
+    const double along = Dot(pc, c.MajorAxis) * scale;
+    const double across = Cross(c.MajorAxis, pc) * scale;
+    int face = -1;
+    Vec3 x, tangent;
+    if (!PointOnCurve(M, s.Curve, s.CurveCentre + along, face, x, tangent))
+    {
+      return false;
+    }
+    PlacedPart p;
+    p.Part = part;
+    Vec3 endTangent;
+    bool boundary = false;
+    if (!Across(face, x, tangent, across, p.Centre, endTangent, &boundary) || boundary)
+    {
+      return false;
+    }
+    p.Position = M.Interpolate(p.Centre.Face, p.Centre.Bary);
+    p.Axis = Unit(RotateTangent(endTangent, M.FaceNormal(p.Centre.Face), -phiM));
+    s.Parts.push_back(p);
+  }
+  return true;
+}
+
+void ShapeDistributor::Impl::CollectKills(const Record& r, std::vector<char>& mark, std::vector<int>& marked,
+  std::vector<std::pair<int, int>>& kills) const
+{
+  kills.clear();
+  const int nc = NumberOfClasses;
+  for (std::size_t k = 0; k < r.Charts.size() && k < r.S.Parts.size(); ++k)
+  {
+    const Chart& chart = r.Charts[k];
+    for (int c = 0; c < nc; ++c)
+    {
+      const double radius = KillRadius[static_cast<std::size_t>(r.S.Parts[k].Part) * nc + c] *
+          O.ShapeSize * r.S.Scale - KillReach[c] * O.ShapeSize * MaxFaceDensity;
+      if (!(radius > 0.0))
+      {
+        continue;
+      }
+      const float r2 = static_cast<float>(radius * radius);
+      marked.clear();
+      for (const ChartEntry& e : chart.Entries)
+      {
+        if (e.X * e.X + e.Y * e.Y < r2)
+        {
+          mark[e.V] = 1;
+          marked.push_back(e.V);
+        }
+      }
+      for (int v : marked)
+      {
+        const int start = M.VertexHalfedge(v);
+        int h = start;
+        do
+        {
+          const int f = h / 3;
+          const auto& t = M.Face(f);
+          // Each face once: from its smallest marked corner.
+          if (mark[t[0]] && mark[t[1]] && mark[t[2]] && v == std::min({ t[0], t[1], t[2] }))
+          {
+            kills.emplace_back(c, f);
+          }
+          h = M.RotateCCW(h);
+        } while (h >= 0 && h != start);
+      }
+      for (int v : marked)
+      {
+        mark[v] = 0;
+      }
+    }
+  }
+}
+
+void ShapeDistributor::Impl::KillFaces(const Record& r)
+{
+  std::vector<std::pair<int, int>> own;
+  if (!r.Prepared)
+  {
+    CollectKills(r, Marks[0], Marked, own); // (serial: the first thread's scratch)
+  }
+  const int nc = NumberOfClasses;
+  for (const auto& cf : r.Prepared ? r.Kills : own)
+  {
+    const int c = cf.first, f = cf.second;
+    char& dead = DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f];
+    if (dead)
+    {
+      continue;
+    }
+    dead = 1;
+    Killed.emplace_back(c, f);
+    bool all = true;
+    for (int o = 0; o < nc && all; ++o)
+    {
+      all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
+        DeadFor[static_cast<std::size_t>(o) * M.NumberOfFaces() + f];
+    }
+    if (all && !Dead[f])
+    {
+      Dead[f] = 1;
+      Killed.emplace_back(-1, f);
+      ++DeadSinceCdf;
+    }
+  }
+}
+
+} // namespace gs

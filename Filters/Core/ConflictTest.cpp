@@ -1,0 +1,341 @@
+// The conflict test (Section 4, Algorithm 2): two parts conflict when the geodesic distance of
+// their centres, read in the polar chart of one of them, is below the safe distance the tables
+// give for the angles between each part's axis and the geodesic joining the centres. Around it:
+// the cheap checks (against accepted shapes' charts, the centre inside a silhouette), the
+// boundary (KeepInside) and the drawn check (outlines as drawn, the tables' rigid copies aside).
+#include "ShapeDistributorImpl.h"
+
+#include <cmath>
+#include <limits>
+
+namespace gs
+{
+using namespace distribution;
+
+
+void ShapeDistributor::Impl::PrepareClassRegions()
+{
+  Regions.clear();
+  Clearance.assign(T.Classes.size(), -1.0);
+  {
+    double largest = 0.0;
+    std::vector<double> clearance(T.Classes.size(), -1.0);
+    for (std::size_t k = 0; k < T.Classes.size(); ++k)
+    {
+      const SafeDistanceClass& c = T.Classes[k];
+      ClassRegion probe(c.Outline.Rings, c.Radius, 0.0);
+      if (probe.Inside(Vec2{ 0.0, 0.0 }))
+      {
+        double d = std::numeric_limits<double>::infinity();
+        for (const auto& ring : c.Outline.Rings)
+        {
+          for (std::size_t i = 0, n = ring.size(); i < n; ++i)
+          {
+            const Vec2 a = ring[i], ab = ring[(i + 1) % n] - ring[i];
+            const double l2 = Dot(ab, ab);
+            const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, -Dot(a, ab) / l2)) : 0.0;
+            d = std::min(d, Norm(a + ab * t));
+          }
+        }
+        clearance[k] = d;
+        largest = std::max(largest, d);
+      }
+    }
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
+    }
+    Clearance = clearance;
+    MaxClearance = largest;
+  }
+}
+
+bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) const
+{
+  const double fmax = std::max(X.S.Scale, Y.S.Scale);
+  const double unit = O.ShapeSize * fmax * (1.0 + O.SafetyMargin);
+  for (std::size_t i = 0; i < X.S.Parts.size() && i < X.Charts.size(); ++i)
+  {
+    const Chart& chart = X.Charts[i];
+    const int pa = X.S.Parts[i].Part;
+    for (const PlacedPart& py : Y.S.Parts)
+    {
+      const int g = py.Centre.Face;
+      const auto& corners = M.Face(g);
+      const ChartEntry* e[3];
+      bool all = true;
+      for (int k = 0; k < 3 && all; ++k)
+      {
+        e[k] = chart.Find(corners[k]);
+        all = e[k] != nullptr;
+      }
+      if (!all)
+      {
+        // A corner beyond the chart radius R: Y's centre is at least R minus the face's
+        // longest edge away (a point of a triangle is within its longest edge of every corner). Farther than any safe distance: no conflict; otherwise (a face
+        // with edges longer than the chart margin) judged conservatively.
+        double longest = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          longest = std::max(longest, Norm(M.Position(corners[(k + 1) % 3]) - M.Position(corners[k])));
+        }
+        if (ChartRadius(X.S, X.S.Parts[i]) - longest >= (PartRadius(pa) + PartRadius(py.Part)) * unit)
+        {
+          continue;
+        }
+        return true;
+      }
+      Vec2 P[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        P[k] = Vec2{ e[k]->X, e[k]->Y };
+      }
+      const Vec2 q = P[0] * py.Centre.Bary[0] + P[1] * py.Centre.Bary[1] + P[2] * py.Centre.Bary[2];
+      const double d = Norm(q);
+      if (d >= (PartRadius(pa) + PartRadius(py.Part)) * unit)
+      {
+        continue;
+      }
+      if (CircleMode)
+      {
+        return true;
+      }
+      // Angles: A's axis is the chart's x axis; the arrival direction at Y's centre is the
+      // chart's radial direction pulled back into face g.
+      const double alphaA = d > 0.0 ? -std::atan2(q.y, q.x) : 0.0;
+      const Vec3 x0 = M.Position(corners[0]);
+      const Vec3 e1 = M.Position(corners[1]) - x0, e2 = M.Position(corners[2]) - x0;
+      const Vec2 E1 = P[1] - P[0], E2 = P[2] - P[0];
+      const double det = Cross(E1, E2);
+      Vec3 t;
+      if (d > 0.0 && std::abs(det) > 1e-12 * (Dot(E1, E1) + Dot(E2, E2)))
+      {
+        const Vec2 u = q * (1.0 / d);
+        const double a = Cross(u, E2) / det, b = Cross(E1, u) / det;
+        t = e1 * a + e2 * b;
+      }
+      else
+      {
+        t = py.Position - X.S.Parts[i].Position;
+      }
+      // Intrinsic distortion of the chart at Y's centre: the tables need rigid planar copies.
+      const double stretch = std::max({ std::abs(Norm(E1) / Norm(e1) - 1.0),
+        std::abs(Norm(E2) / Norm(e2) - 1.0), std::abs(Norm(E2 - E1) / Norm(e2 - e1) - 1.0) });
+      if (!(stretch <= O.DistortionLimit))
+      {
+        return true; // d < r_A + r_B: the circumcircles overlap
+      }
+      const Vec3 n = M.FaceNormal(g);
+      t = t - n * Dot(n, t);
+      double alphaB = 0.0;
+      if (Norm(t) > 0.0)
+      {
+        alphaB = std::atan2(Dot(n, Cross(t, py.Axis)), Dot(t, py.Axis));
+      }
+      // Holonomy: Y's outline, drawn by Y's own exponential map, is turned in X's chart by at
+      // most the absolute curvature enclosed by X, Y and the outline point (area at most
+      // (d + r_Y) r_Y / 2): a displacement of up to that angle times r_Y.
+      const double rY = PartRadius(py.Part) * unit;
+      const double turn = O.HolonomyMargin * chart.Roughness * 0.5 * (d + rY) * rY;
+      if (d < SafeDistance(pa, py.Part, alphaA, alphaB) * unit + turn * rY)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool ShapeDistributor::Impl::CheapConflict(const Record& c, std::vector<int>& scratch) const
+{
+  scratch.clear();
+  for (int v : CentreCorners(c))
+  {
+    scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+  }
+  SortUnique(scratch);
+  for (int x : scratch)
+  {
+    const Record& X = Accepted[x];
+    if (X.S.Scale >= c.S.Scale && ConflictInCharts(X, c))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool ShapeDistributor::Impl::TouchesBoundary(const Record& c) const
+{
+  for (std::size_t k = 0; k < c.Charts.size() && k < c.S.Parts.size(); ++k)
+  {
+    const double reach = PartRadius(c.S.Parts[k].Part) * O.ShapeSize * c.S.Scale + 0.5 * MaxEdge;
+    const float r2 = static_cast<float>(reach * reach);
+    for (const ChartEntry& e : c.Charts[k].Entries)
+    {
+      if (e.X * e.X + e.Y * e.Y < r2 && M.IsBoundaryVertex(e.V))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool ShapeDistributor::Impl::FullConflict(const Record& c, std::vector<int>& scratch) const
+{
+  if (O.KeepInside && TouchesBoundary(c))
+  {
+    return true;
+  }
+  scratch.clear();
+  for (int v : ChartVertices(c))
+  {
+    scratch.insert(scratch.end(), CentreIndex[v].begin(), CentreIndex[v].end());
+  }
+  SortUnique(scratch);
+  for (int y : scratch)
+  {
+    const Record& Y = Accepted[y];
+    if (Y.S.Scale < c.S.Scale && ConflictInCharts(c, Y))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, double scale, std::vector<int>& scratch) const
+{
+  if (CircleMode || Clearance[cls] < 0.0)
+  {
+    return false;
+  }
+  const auto& corners = M.Face(centre.Face);
+  scratch.clear();
+  for (int v : corners)
+  {
+    scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+  }
+  SortUnique(scratch);
+  const Vec3 position = M.Interpolate(centre.Face, centre.Bary);
+  for (int x : scratch)
+  {
+    const Record& X = Accepted[x];
+    const double unit = O.ShapeSize * X.S.Scale;
+    const ClassRegion& region = Regions[X.S.ClassId];
+    for (std::size_t i = 0; i < X.S.Parts.size() && i < X.Charts.size(); ++i)
+    {
+      const int pa = X.S.Parts[i].Part;
+      if (Norm(X.S.Parts[i].Position - position) > PartRadius(pa) * unit)
+      {
+        continue; // beyond the part's circle (the geodesic distance is never shorter)
+      }
+      const double margin = 0.02 * PartRadius(pa);
+      const double dilation = 0.9 * Clearance[cls] * scale / X.S.Scale - margin;
+      Vec2 q;
+      if (!ChartPoint(X.Charts[i], centre, unit, q))
+      {
+        continue;
+      }
+      if (Norm(q) > PartRadius(pa))
+      {
+        continue;
+      }
+      const Vec2 p = T.Parts[pa].Centre + q;
+      if (dilation >= 0.0 ? region.Within(p, std::min(dilation, MaxClearance)) : region.DeeplyInside(p, -dilation))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch) const
+{
+  if (CircleMode || !O.DrawnCheck)
+  {
+    return false;
+  }
+  if (!c.HasDrawn)
+  {
+    c.Drawn = OutlineOf(c.S, OutlineSpacing());
+    c.HasDrawn = true;
+  }
+  if (!c.S.Curve.empty() && !c.Frame)
+  {
+    std::shared_ptr<CurveGrid> frame = std::make_shared<CurveGrid>(BuildCurveGrid(c.S, T.Classes[c.S.ClassId]));
+    frame->Index();
+    c.Frame = frame;
+  }
+  scratch.clear();
+  for (int v : CentreCorners(c))
+  {
+    scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+  }
+  for (const Chart& chart : c.Charts)
+  {
+    for (const ChartEntry& e : chart.Entries)
+    {
+      scratch.insert(scratch.end(), CentreIndex[e.V].begin(), CentreIndex[e.V].end());
+    }
+  }
+  SortUnique(scratch);
+  const bool shortC = c.S.Curve.empty() && !c.Charts.empty() && !c.Charts[0].Entries.empty();
+  const double unitC = O.ShapeSize * c.S.Scale;
+  const double radiusC = T.Classes[c.S.ClassId].Radius * unitC;
+  for (int x : scratch)
+  {
+    const Record& X = Accepted[x];
+    const double unitX = O.ShapeSize * X.S.Scale;
+    const double radiusX = T.Classes[X.S.ClassId].Radius * unitX;
+    if (Norm(X.S.Position - c.S.Position) >= radiusX + radiusC)
+    {
+      continue; // the geodesic distance is never shorter
+    }
+    const bool shortX = X.S.Curve.empty() && !X.Charts.empty() && !X.Charts[0].Entries.empty();
+    const double depth = 0.00125 * std::min(radiusX, radiusC);
+    // (Outline points farther in space than sqrt(2) circumradii from a shape's centre are
+    // outside it: its outline is drawn along paths of length |along| + |across| at most.)
+    auto near = [this](const Record& R, double radius) {
+      const Vec3 centre = R.S.Position;
+      const double reach = 1.4143 * radius + M.MeanEdgeLength();
+      return [this, centre, reach](const SurfacePoint& q) {
+        return Norm((q.IsVertex() ? M.Position(q.Vertex) : M.Interpolate(q.Face, q.Bary)) - centre) <= reach;
+      };
+    };
+    const auto nearX = near(X, radiusX), nearC = near(c, radiusC);
+    if (shortX &&
+      OutlineEnters(Regions[X.S.ClassId], c.Drawn,
+        [this, &X](const SurfacePoint& q, Vec2& p) { return ClassPointOf(X, q, p); }, depth / unitX))
+    {
+      return true;
+    }
+    int hint = -1;
+    if (!shortX && X.Frame && !shortC &&
+      OutlineEnters(Regions[X.S.ClassId], c.Drawn,
+        [&X, &nearX, &hint](const SurfacePoint& q, Vec2& p) { return nearX(q) && X.Frame->ClassPoint(q, p, &hint); },
+        depth / unitX))
+    {
+      return true;
+    }
+    if (shortC && X.HasDrawn &&
+      OutlineEnters(Regions[c.S.ClassId], X.Drawn,
+        [this, &c](const SurfacePoint& q, Vec2& p) { return ClassPointOf(c, q, p); }, depth / unitC))
+    {
+      return true;
+    }
+    hint = -1;
+    if (!shortC && c.Frame && !shortX && X.HasDrawn &&
+      OutlineEnters(Regions[c.S.ClassId], X.Drawn,
+        [&c, &nearC, &hint](const SurfacePoint& q, Vec2& p) { return nearC(q) && c.Frame->ClassPoint(q, p, &hint); },
+        depth / unitC))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+} // namespace gs

@@ -1,0 +1,413 @@
+// Algorithm 3: rounds of candidates with priorities (their order in the round); a candidate is
+// accepted iff it conflicts with no accepted shape and no accepted higher-priority candidate of
+// its round, decided in parallel waves: the result is sequential dart throwing in priority
+// order, whatever the number of threads.
+#include "ShapeDistributorImpl.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+
+namespace gs
+{
+using namespace distribution;
+
+bool ShapeDistributor::Impl::RunRounds(
+  int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
+{
+  RunState run;
+  run.FailuresToStop = O.MaximalFailures > 0 ? O.MaximalFailures : 10000;
+  const bool greedyMode = O.Mode == DistributionMode::Greedy;
+  for (int round = 0; !run.Stop; ++round)
+  {
+    const bool greedy = greedyMode && !run.Front.empty();
+    const bool seeding = greedyMode && !greedy && run.SeedsGrow;
+    auto clock = std::chrono::steady_clock::now();
+    auto lap = [&clock](double& into) {
+      const auto now = std::chrono::steady_clock::now();
+      into += std::chrono::duration<double>(now - clock).count();
+      clock = now;
+    };
+    std::vector<Record> batch;
+    if (greedy)
+    {
+      DrawGreedyBatch(run.Front, round, threads, batch);
+    }
+    else if (!DrawRandomBatch(round, seeding, run, batch))
+    {
+      stats.Maximal = true; // no face left where a shape could fit
+      break;
+    }
+    const int n = static_cast<int>(batch.size());
+    lap(stats.GenerateSeconds);
+    stats.Candidates += n;
+    long long charts = 0;
+    double chartSeconds = 0.0;
+    // (a) Cheap checks against the shapes of previous rounds (no chart needed).
+    CheapChecks(batch, threads);
+    // (b) Survivors that may conflict with each other.
+    std::vector<int> survivors;
+    for (int i = 0; i < n; ++i)
+    {
+      if (!batch[i].Rejected)
+      {
+        survivors.push_back(i);
+      }
+    }
+    const std::vector<std::vector<int>> above = HigherPriorityNeighbours(batch, survivors, threads);
+    // (c) Waves: a survivor is decided once all its higher-priority neighbours are; it is then
+    // checked against every accepted shape (those of this round included) and, if free, gets
+    // its charts and is accepted. Candidates of one wave are never neighbours, so this is
+    // sequential dart throwing in priority order, with charts only for accepted shapes (and
+    // the rare ones a smaller neighbour rejects).
+    const int roundStart = static_cast<int>(Accepted.size());
+    std::vector<char> state(n, 2); // 0 undecided, 1 accepted, 2 rejected
+    for (int i : survivors)
+    {
+      state[i] = 0;
+    }
+    std::vector<int> acceptedAs(n, -1); // id in Accepted
+    if (seeding)
+    {
+      PlantSeed(batch, survivors, state, acceptedAs, charts);
+    }
+    else
+    {
+      DecideInWaves(batch, survivors, above, state, acceptedAs, threads, charts, chartSeconds);
+    }
+    stats.Charts += charts;
+    stats.ChartCpuSeconds += chartSeconds;
+    lap(stats.CheckSeconds);
+    // (d) Priority order: consecutive failures and MaximumShapes may end the run inside the
+    // round; shapes after that point are taken back.
+    const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
+    TakeBack(roundStart, cut, state, acceptedAs);
+    std::vector<int> nextFront;
+    for (int id = roundStart; id < static_cast<int>(Accepted.size()); ++id)
+    {
+      nextFront.push_back(id);
+    }
+    if (greedyMode)
+    {
+      // A seed whose front cannot grow at all: the gaps left hold single shapes, which plain
+      // dart throwing fills (one seed per round would cost a whole round per gap).
+      if (greedy)
+      {
+        run.GrownSinceSeed += static_cast<long long>(nextFront.size());
+      }
+      else if (seeding)
+      {
+        if (run.Seeds > 0 && run.GrownSinceSeed == 0)
+        {
+          run.SeedsGrow = false;
+        }
+        ++run.Seeds;
+        run.GrownSinceSeed = 0;
+      }
+      run.Front.swap(nextFront);
+    }
+    lap(stats.RoundSeconds);
+    stats.Rounds = round + 1;
+    double fraction = static_cast<double>(run.Consecutive) / static_cast<double>(run.FailuresToStop);
+    if (O.MaximumShapes > 0)
+    {
+      fraction = std::max(fraction, static_cast<double>(Accepted.size()) / O.MaximumShapes);
+    }
+    run.Reported = std::max(run.Reported, std::min(0.99, fraction));
+    if (progress && !progress(run.Reported))
+    {
+      return false;
+    }
+  }
+  stats.ConsecutiveFailures = run.Consecutive;
+  return true;
+}
+
+void ShapeDistributor::Impl::DrawGreedyBatch(
+  const std::vector<int>& front, int round, int threads, std::vector<Record>& batch) const
+{
+  // Proposals of every front shape, nearest to the first shape first.
+  std::vector<std::vector<Proposal>> proposals(front.size());
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+  for (int k = 0; k < static_cast<int>(front.size()); ++k)
+  {
+    proposals[k] = Propose(front[k], round, k);
+  }
+  std::vector<Proposal> all;
+  for (const auto& p : proposals)
+  {
+    all.insert(all.end(), p.begin(), p.end());
+  }
+  std::stable_sort(all.begin(), all.end(),
+    [](const Proposal& a, const Proposal& b) { return a.Key < b.Key; });
+  const int n = static_cast<int>(all.size());
+  batch.resize(n);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+  for (int i = 0; i < n; ++i)
+  {
+    Random rng(O.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+    batch[i].Valid = MakeShape(all[i].Centre, all[i].Class, rng, batch[i].S, &all[i].Prefer);
+  }
+}
+
+bool ShapeDistributor::Impl::DrawRandomBatch(
+  int round, bool seeding, RunState& run, std::vector<Record>& batch)
+{
+  if (DeadSinceCdf > 0)
+  {
+    BuildCdf();
+  }
+  if (!AnyLiveFace())
+  {
+    return false;
+  }
+  // Up to 4096: little work past the last failure. Greedy seeds one shape per round.
+  const int n = seeding ? (run.RandomRounds == 0 ? 1 : 256) : 256 << std::min(run.RandomRounds, 4);
+  ++run.RandomRounds;
+  batch.resize(n);
+  Generate(batch, round);
+  return true;
+}
+
+void ShapeDistributor::Impl::CheapChecks(std::vector<Record>& batch, int threads) const
+{
+  const int n = static_cast<int>(batch.size());
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 64)
+    for (int i = 0; i < n; ++i)
+    {
+      Record& r = batch[i];
+      r.Rejected = !r.Valid || CheapConflict(r, scratch);
+    }
+  }
+}
+
+std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
+  const std::vector<Record>& batch, const std::vector<int>& survivors, int threads) const
+{
+  // Parts closer in space than the sum of their circumradii (the geodesic distance is never
+  // shorter), found on a grid of cells as large as the largest such sum.
+  std::vector<std::vector<int>> above(batch.size());
+  const double cell = 2.0 * RMax * O.ShapeSize * MaxFaceDensity * (1.0 + O.SafetyMargin);
+  auto key = [cell](const Vec3& x) {
+    return std::array<long long, 3>{ static_cast<long long>(std::floor(x.x / cell)),
+      static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
+  };
+  std::vector<std::pair<std::array<long long, 3>, int>> grid; // (cell, candidate)
+  for (int i : survivors)
+  {
+    for (const PlacedPart& p : batch[i].S.Parts)
+    {
+      grid.emplace_back(key(p.Position), i);
+    }
+  }
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
+  for (std::size_t k = 0; k < survivors.size(); ++k)
+  {
+    const int i = survivors[k];
+    const Record& r = batch[i];
+    std::vector<int>& list = above[i];
+    for (const PlacedPart& p : r.S.Parts)
+    {
+      const std::array<long long, 3> c = key(p.Position);
+      for (long long dx = -1; dx <= 1; ++dx)
+        for (long long dy = -1; dy <= 1; ++dy)
+          for (long long dz = -1; dz <= 1; ++dz)
+          {
+            const std::array<long long, 3> q{ c[0] + dx, c[1] + dy, c[2] + dz };
+            auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, -1));
+            for (; it != grid.end() && it->first == q && it->second < i; ++it)
+            {
+              const Record& o = batch[it->second];
+              const double unit = O.ShapeSize * std::max(r.S.Scale, o.S.Scale) * (1.0 + O.SafetyMargin);
+              for (const PlacedPart& op : o.S.Parts)
+              {
+                if (Norm(op.Position - p.Position) <=
+                  (PartRadius(p.Part) + PartRadius(op.Part)) * unit * (1.0 + 1e-9))
+                {
+                  list.push_back(it->second);
+                  break;
+                }
+              }
+            }
+          }
+    }
+    SortUnique(list);
+  }
+  return above;
+}
+
+void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::vector<int>& survivors,
+  std::vector<char>& state, std::vector<int>& acceptedAs, long long& charts)
+{
+  // Greedy seeds one shape per random round: the first survivor that fits, in order.
+  std::vector<int> scratch;
+  for (int i : survivors)
+  {
+    Record& r = batch[i];
+    ComputeCharts(r, Engine0());
+    ++charts;
+    if (FullConflict(r, scratch) || DrawnConflict(r, scratch))
+    {
+      state[i] = 2;
+      continue;
+    }
+    state[i] = 1;
+    acceptedAs[i] = static_cast<int>(Accepted.size());
+    Commit(std::move(r));
+    break;
+  }
+  for (int i : survivors)
+  {
+    state[i] = state[i] == 0 ? 2 : state[i]; // after the seed: beyond the cut below
+  }
+}
+
+void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std::vector<int>& survivors,
+  const std::vector<std::vector<int>>& above, std::vector<char>& state, std::vector<int>& acceptedAs,
+  int threads, long long& chartCount, double& chartCpuSeconds)
+{
+  long long charts = 0;
+  double chartSeconds = 0.0;
+  std::vector<int> undecided = survivors, ready, waiting;
+  while (!undecided.empty())
+  {
+    ready.clear();
+    waiting.clear();
+    for (int i : undecided)
+    {
+      bool free = true;
+      for (int j : above[i])
+      {
+        free = free && state[j] != 0;
+      }
+      (free ? ready : waiting).push_back(i);
+    }
+    const int nr = static_cast<int>(ready.size());
+#pragma omp parallel num_threads(threads) reduction(+ : charts, chartSeconds)
+    {
+      std::vector<int> scratch, marked;
+      // One candidate at a time: a chart costs about 0.6 ms, and waves are often short (a
+      // chunk of 4 left one thread idle for up to 3 charts).
+#pragma omp for schedule(dynamic, 1)
+      for (int k = 0; k < nr; ++k)
+      {
+        Record& r = batch[ready[k]];
+        bool recheck = false;
+        for (int j : above[ready[k]])
+        {
+          recheck = recheck || state[j] == 1;
+        }
+        if (recheck && CheapConflict(r, scratch))
+        {
+          r.Rejected = true;
+          continue;
+        }
+        const auto chartStart = std::chrono::steady_clock::now();
+        ComputeCharts(r, Engine());
+        chartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
+        ++charts;
+        if (FullConflict(r, scratch) || DrawnConflict(r, scratch))
+        {
+          r.Rejected = true;
+          r.Charts.clear();
+          continue;
+        }
+        PrepareCommit(r, Marks[ThreadId()], marked);
+      }
+    }
+    for (int i : ready) // priority order
+    {
+      if (batch[i].Rejected)
+      {
+        state[i] = 2;
+        continue;
+      }
+      state[i] = 1;
+      acceptedAs[i] = static_cast<int>(Accepted.size());
+      Commit(std::move(batch[i]));
+    }
+    undecided.swap(waiting);
+  }
+  chartCount += charts;
+  chartCpuSeconds += chartSeconds;
+}
+
+int ShapeDistributor::Impl::CutRound(const std::vector<char>& state, int roundStart, bool greedy,
+  bool seeding, RunState& run, ShapeDistributionStatistics& stats) const
+{
+  const int n = static_cast<int>(state.size());
+  int cut = n;
+  int total = roundStart;
+  for (int i = 0; i < n; ++i)
+  {
+    if (state[i] != 1)
+    {
+      ++run.Consecutive;
+      if (run.Consecutive >= run.FailuresToStop && !greedy)
+      {
+        run.Stop = true;
+        stats.Maximal = true;
+        cut = i + 1;
+        break;
+      }
+      continue;
+    }
+    run.Consecutive = 0;
+    ++total;
+    if (O.MaximumShapes > 0 && total >= O.MaximumShapes)
+    {
+      run.Stop = true;
+      cut = i + 1;
+      break;
+    }
+    if (seeding)
+    {
+      cut = i + 1; // Greedy: one random seed, then its front grows
+      break;
+    }
+  }
+  return cut;
+}
+
+void ShapeDistributor::Impl::TakeBack(
+  int roundStart, int cut, const std::vector<char>& state, const std::vector<int>& acceptedAs)
+{
+  const int n = static_cast<int>(state.size());
+  bool takeBack = false;
+  for (int i = cut; i < n; ++i)
+  {
+    takeBack = takeBack || state[i] == 1;
+  }
+  if (!takeBack)
+  {
+    return;
+  }
+  std::vector<std::pair<int, Record>> kept; // (priority, record)
+  while (static_cast<int>(Accepted.size()) > roundStart)
+  {
+    const int id = static_cast<int>(Accepted.size()) - 1;
+    int i = 0;
+    while (acceptedAs[i] != id)
+    {
+      ++i;
+    }
+    Record r = Uncommit();
+    if (i < cut)
+    {
+      kept.emplace_back(i, std::move(r));
+    }
+  }
+  std::sort(kept.begin(), kept.end(),
+    [](const std::pair<int, Record>& a, const std::pair<int, Record>& b) { return a.first < b.first; });
+  for (auto& k : kept)
+  {
+    Commit(std::move(k.second));
+  }
+}
+
+} // namespace gs

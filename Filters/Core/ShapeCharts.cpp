@@ -1,0 +1,250 @@
+// Shape charts: the geodesic polar coordinates (log map) about every part centre of a shape, and
+// the accepted shapes kept with their charts: which vertices each chart holds (CoverIndex), which
+// faces hold a part centre (CentreIndex), the faces each kills; commit and take back.
+#include "ShapeDistributorImpl.h"
+
+#include "GeodesicShooting.h"
+
+#include <cmath>
+
+namespace gs
+{
+using namespace distribution;
+
+
+void ShapeDistributor::Impl::PrepareChartMeasures()
+{
+  const int nv = M.NumberOfVertices();
+  MaxEdge = 0.0;
+  {
+    double longest = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : longest) num_threads(ThreadCount(O.NumberOfThreads))
+    for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+    {
+      longest = std::max(longest, M.EdgeLength(h));
+    }
+    MaxEdge = longest;
+  }
+  ChartMargin = 2.0 * M.MeanEdgeLength();
+  if (static_cast<int>(Defect.size()) != nv)
+  {
+    Defect.assign(nv, 0.0);
+    for (int v = 0; v < nv; ++v)
+    {
+      Defect[v] = M.IsBoundaryVertex(v) ? 0.0 : std::abs(TwoPi - M.TotalAngle(v));
+    }
+  }
+  RMax = 0.0;
+  if (CircleMode)
+  {
+    for (const SafeDistanceClass& c : T.Classes)
+    {
+      RMax = std::max(RMax, c.Radius);
+    }
+  }
+  else
+  {
+    for (const SafeDistancePart& p : T.Parts)
+    {
+      RMax = std::max(RMax, p.Radius);
+    }
+  }
+}
+
+void ShapeDistributor::Impl::EnsureEngines(int threads)
+{
+  const int nv = M.NumberOfVertices();
+  if (static_cast<int>(Marks.size()) < threads)
+  {
+    Marks.resize(threads);
+  }
+  for (auto& m : Marks)
+  {
+    if (static_cast<int>(m.size()) != nv)
+    {
+      m.assign(nv, 0);
+    }
+  }
+  const int have = static_cast<int>(Engines.size());
+  if (have >= threads)
+  {
+    return;
+  }
+  Engines.resize(threads);
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+  for (int t = have; t < threads; ++t)
+  {
+    Engines[t].reset(new GeodesicPolarCoordinates(M, G));
+  }
+}
+
+void ShapeDistributor::Impl::ComputeCharts(Record& r, GeodesicPolarCoordinates& engine) const
+{
+  r.Charts.assign(r.S.Parts.size(), Chart());
+  for (std::size_t k = 0; k < r.S.Parts.size(); ++k)
+  {
+    const PlacedPart& p = r.S.Parts[k];
+    const double reference = TangentAngle(M, p.Centre, p.Axis);
+    if (!std::isfinite(reference) ||
+      !engine.Compute(p.Centre, ChartRadius(r.S, p), reference))
+    {
+      continue; // an empty chart: this part is evaluated from the other side only
+    }
+    Chart& c = r.Charts[k];
+    c.Entries.reserve(engine.Inside().size());
+    for (int v : engine.Inside())
+    {
+      const double rho = engine.Rho(v), theta = engine.Theta(v);
+      c.Entries.push_back(ChartEntry{ v, static_cast<float>(rho * std::cos(theta)),
+        static_cast<float>(rho * std::sin(theta)) });
+    }
+    std::sort(c.Entries.begin(), c.Entries.end(),
+      [](const ChartEntry& a, const ChartEntry& b) { return a.V < b.V; });
+    double defects = 0.0;
+    for (const ChartEntry& e : c.Entries)
+    {
+      defects += Defect[e.V];
+    }
+    const double radius = ChartRadius(r.S, p);
+    c.Roughness = static_cast<float>(defects / (Pi * radius * radius));
+  }
+}
+
+std::vector<int> ShapeDistributor::Impl::ChartVertices(const Record& r)
+{
+  std::vector<int> vs;
+  for (const Chart& c : r.Charts)
+  {
+    for (const ChartEntry& e : c.Entries)
+    {
+      vs.push_back(e.V);
+    }
+  }
+  SortUnique(vs);
+  return vs;
+}
+
+std::vector<int> ShapeDistributor::Impl::CentreCorners(const Record& r) const
+{
+  std::vector<int> vs;
+  for (const PlacedPart& p : r.S.Parts)
+  {
+    for (int v : M.Face(p.Centre.Face))
+    {
+      vs.push_back(v);
+    }
+  }
+  SortUnique(vs);
+  return vs;
+}
+
+bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& x, double unit, Vec2& p) const
+{
+  const double inverse = 1.0 / unit;
+  if (x.IsVertex())
+  {
+    const ChartEntry* e = chart.Find(x.Vertex);
+    if (!e)
+    {
+      return false;
+    }
+    p = Vec2{ e->X * inverse, e->Y * inverse };
+    return true;
+  }
+  if (x.Face < 0 || x.Face >= M.NumberOfFaces())
+  {
+    return false;
+  }
+  const auto& corners = M.Face(x.Face);
+  Vec2 q{ 0.0, 0.0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const ChartEntry* e = chart.Find(corners[k]);
+    if (!e)
+    {
+      return false;
+    }
+    q = q + Vec2{ e->X, e->Y } * x.Bary[k];
+  }
+  p = q * inverse;
+  return true;
+}
+
+bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const
+{
+  if (!r.S.Curve.empty() || r.Charts.empty() || r.Charts[0].Entries.empty())
+  {
+    return false;
+  }
+  return ChartPoint(r.Charts[0], x, O.ShapeSize * r.S.Scale, p);
+}
+
+void ShapeDistributor::Impl::PrepareCommit(Record& r, std::vector<char>& mark, std::vector<int>& marked) const
+{
+  r.Cover = ChartVertices(r);
+  r.Centres = CentreCorners(r);
+  CollectKills(r, mark, marked, r.Kills);
+  r.Prepared = true;
+}
+
+void ShapeDistributor::Impl::Commit(Record&& r)
+{
+  KilledBy.push_back(Killed.size());
+  KillFaces(r);
+  const int id = static_cast<int>(Accepted.size());
+  for (int v : r.Prepared ? r.Cover : ChartVertices(r))
+  {
+    CoverIndex[v].push_back(id);
+  }
+  for (int v : r.Prepared ? r.Centres : CentreCorners(r))
+  {
+    CentreIndex[v].push_back(id);
+  }
+  r.Cover.clear();
+  r.Cover.shrink_to_fit();
+  r.Centres.clear();
+  r.Kills.clear();
+  r.Kills.shrink_to_fit();
+  r.Prepared = false;
+  Placed.push_back(r.S);
+  Accepted.push_back(std::move(r));
+}
+
+ShapeDistributor::Impl::Record ShapeDistributor::Impl::Uncommit()
+{
+  const int id = static_cast<int>(Accepted.size()) - 1;
+  Record r = std::move(Accepted.back());
+  Accepted.pop_back();
+  Placed.pop_back();
+  for (int v : ChartVertices(r))
+  {
+    if (!CoverIndex[v].empty() && CoverIndex[v].back() == id)
+    {
+      CoverIndex[v].pop_back();
+    }
+  }
+  for (int v : CentreCorners(r))
+  {
+    if (!CentreIndex[v].empty() && CentreIndex[v].back() == id)
+    {
+      CentreIndex[v].pop_back();
+    }
+  }
+  for (std::size_t k = KilledBy[id]; k < Killed.size(); ++k)
+  {
+    if (Killed[k].first < 0)
+    {
+      Dead[Killed[k].second] = 0;
+    }
+    else
+    {
+      DeadFor[static_cast<std::size_t>(Killed[k].first) * M.NumberOfFaces() + Killed[k].second] = 0;
+    }
+  }
+  Killed.resize(KilledBy[id]);
+  KilledBy.pop_back();
+  DeadSinceCdf += 1;
+  return r;
+}
+
+} // namespace gs

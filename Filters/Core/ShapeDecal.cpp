@@ -1,0 +1,423 @@
+// Decals: the faces a shape covers with texture coordinates (the inverse of its map: a short
+// shape's polar chart, a long shape's CurveGrid), split where the map is not affine over a face.
+#include "ShapeDistributorImpl.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace gs
+{
+using namespace distribution;
+
+namespace
+{
+// Whether triangle t (texture coordinates) meets the box [lo, hi] (separating axes).
+bool MeetsBox(const std::array<Vec2, 3>& t, const Vec2& lo, const Vec2& hi)
+{
+  const double minX = std::min({ t[0].x, t[1].x, t[2].x }), maxX = std::max({ t[0].x, t[1].x, t[2].x });
+  const double minY = std::min({ t[0].y, t[1].y, t[2].y }), maxY = std::max({ t[0].y, t[1].y, t[2].y });
+  if (maxX < lo.x || minX > hi.x || maxY < lo.y || minY > hi.y)
+  {
+    return false;
+  }
+  const Vec2 box[4] = { lo, { hi.x, lo.y }, hi, { lo.x, hi.y } };
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec2 a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+    const Vec2 axis{ -(b.y - a.y), b.x - a.x };
+    const double side = Dot(axis, c - a);
+    bool allOut = true;
+    for (const Vec2& q : box)
+    {
+      allOut = allOut && Dot(axis, q - a) * side < 0.0;
+    }
+    if (allOut && side != 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+double SignedArea(const std::array<Vec2, 3>& t)
+{
+  return 0.5 * Cross(t[1] - t[0], t[2] - t[0]);
+}
+} // namespace
+
+bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
+{
+  if (p.Face < 0)
+  {
+    return false;
+  }
+  for (std::size_t k = 0; k < Faces.size(); ++k)
+  {
+    if (Faces[k] != p.Face)
+    {
+      continue;
+    }
+    // p's barycentric coordinates in the triangle: solve in the first two face coordinates.
+    const auto& B = Corners[k];
+    const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1],
+                 by = B[1][1] - B[2][1];
+    const double det = ax * by - bx * ay;
+    if (det == 0.0)
+    {
+      continue;
+    }
+    const double px = p.Bary[0] - B[2][0], py = p.Bary[1] - B[2][1];
+    const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
+    const double eps = -1e-9;
+    if (l0 >= eps && l1 >= eps && l2 >= eps)
+    {
+      const auto& U = TextureCoordinates[k];
+      uv = U[0] * l0 + U[1] * l1 + U[2] * l2;
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace
+{
+// The state of one decal as it is built: the class points of the vertices near the shape, the
+// texels that draw, the long shape's grid and the values read on it once per vertex and edge.
+struct DecalBuilder
+{
+  const TriangleMesh& M;
+  const SafeDistanceClass& C;
+  std::shared_ptr<const CurveGrid> Grid; // long shapes
+  double TolUV = 0.0;                    // texture units per circumradius
+  std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
+  Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
+  int Hint = -1, FirstValid = -1;
+  std::unordered_map<int, Vec2> CornerValues; // vertices of faces to split, on the grid
+  std::unordered_map<std::uint64_t, std::pair<bool, Vec2>> Midpoints; // face edges' midpoints
+
+  DecalBuilder(const TriangleMesh& mesh, const SafeDistanceClass& c, double tolerance)
+    : M(mesh)
+    , C(c)
+    , TolUV(tolerance > 0.0 ? 0.5 * tolerance : 0.0)
+  {
+  }
+
+  const Vec2* Find(int v) const
+  {
+    auto it = std::lower_bound(Local.begin(), Local.end(), v,
+      [](const std::pair<int, Vec2>& e, int value) { return e.first < value; });
+    return it != Local.end() && it->first == v ? &it->second : nullptr;
+  }
+
+  Vec2 ToTexture(const Vec2& q) const
+  {
+    return Vec2{ 0.5 * (q.x / C.Radius + 1.0), 0.5 * (q.y / C.Radius + 1.0) };
+  }
+
+  // Sorts the vertices; the texels that draw: the silhouette's bounding box (2% of the
+  // circumradius around it, for texture filtering) within the class square. Faces whose texture
+  // triangle misses it would draw only transparent texels: not in the decal.
+  void Start()
+  {
+    std::sort(Local.begin(), Local.end(),
+      [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
+    for (const auto& ring : C.Outline.Rings)
+    {
+      for (const Vec2& p : ring)
+      {
+        const Vec2 u = ToTexture(p);
+        Lo = Vec2{ std::min(Lo.x, u.x), std::min(Lo.y, u.y) };
+        Hi = Vec2{ std::max(Hi.x, u.x), std::max(Hi.y, u.y) };
+      }
+    }
+    Lo = Vec2{ std::max(0.0, Lo.x - 0.01), std::max(0.0, Lo.y - 0.01) };
+    Hi = Vec2{ std::min(1.0, Hi.x + 0.01), std::min(1.0, Hi.y + 0.01) };
+    if (!(Lo.x <= Hi.x && Lo.y <= Hi.y))
+    {
+      Lo = Vec2{ 0.0, 0.0 };
+      Hi = Vec2{ 1.0, 1.0 };
+    }
+    if (Grid)
+    {
+      for (int k = 0; k < static_cast<int>(Grid->Nodes.size()) && FirstValid < 0; ++k)
+      {
+        FirstValid = Grid->Nodes[k].Valid ? k : -1;
+      }
+    }
+  }
+
+  // The shape's map at a point of face f: on the grid, or beyond it its affine extension (what
+  // the corners' values are, CurveShapeVertices).
+  bool ClassAt(int f, const std::array<double, 3>& b, Vec2& q)
+  {
+    // (Not from the previous point's node: where the map folds, at a kink of the curve, the
+    // globally nearest node decides the sheet, the same for every point.)
+    if (Grid->ClassPoint(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
+    {
+      return true;
+    }
+    if (Hint < 0)
+    {
+      Hint = FirstValid;
+    }
+    return Grid->Locate(M.Interpolate(f, b), Hint, q, nullptr, &Hint);
+  }
+
+  // Faces checked for splitting: a long shape's faces wider than its grid's step (on smaller
+  // faces the grid, affine per grid triangle, knows the map no better than the face's corners).
+  bool Splits(int f) const
+  {
+    if (!Grid || !(TolUV > 0.0))
+    {
+      return false;
+    }
+    const auto& v = M.Face(f);
+    const double longest = std::max({ Norm(M.Position(v[1]) - M.Position(v[0])),
+      Norm(M.Position(v[2]) - M.Position(v[1])), Norm(M.Position(v[0]) - M.Position(v[2])) });
+    return longest > Grid->Step;
+  }
+
+  // Faces with all corners known, near the shape (each face visited once, from its corner of
+  // smallest index), whose texture triangle meets the class square; `orientation`: the map's
+  // sense, the area-weighted sign of the texture triangles.
+  std::vector<std::pair<int, std::array<Vec2, 3>>> WholeFaces(double& orientation);
+
+  // Face f (texture triangle uv) into the decal, split where the map is not affine.
+  void AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal);
+
+  // A piece of a face (barycentric corners B, texture corners U) as the subdivision sees it.
+  struct Piece
+  {
+    std::array<std::array<double, 3>, 3> B;
+    std::array<Vec2, 3> U;
+    int Depth;
+  };
+  // The map at the piece's edge midpoints (mid, trueUV; linear where it is not known) and the
+  // largest departure from the affine map there.
+  double MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
+    std::array<Vec2, 3>& trueUV);
+};
+
+std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double& orientation)
+{
+  std::vector<int> faces;
+  for (const auto& e : Local)
+  {
+    for (int h : M.OutgoingHalfedges(e.first))
+    {
+      const auto& corners = M.Face(h / 3);
+      if (e.first == std::min(corners[0], std::min(corners[1], corners[2])))
+      {
+        faces.push_back(h / 3);
+      }
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::pair<int, std::array<Vec2, 3>>> whole;
+  orientation = 0.0;
+  for (int f : faces)
+  {
+    std::array<Vec2, 3> uv;
+    bool all = true;
+    for (int k = 0; k < 3 && all; ++k)
+    {
+      const int v = M.Face(f)[k];
+      const Vec2* q = Find(v);
+      all = q != nullptr;
+      if (all)
+      {
+        // (The corners of a face to split are read like the points inside it, on the grid where
+        // it reaches: where the map folds the grid decides the sheet, the same for all.)
+        Vec2 value = *q;
+        if (Splits(f))
+        {
+          auto known = CornerValues.find(v);
+          if (known == CornerValues.end())
+          {
+            Vec2 onGrid;
+            known = CornerValues.emplace(v, Grid->ClassPoint(SurfacePoint::AtVertex(v), onGrid) ? onGrid : *q).first;
+          }
+          value = known->second;
+        }
+        uv[k] = ToTexture(value);
+      }
+    }
+    if (all && MeetsBox(uv, Lo, Hi))
+    {
+      whole.emplace_back(f, uv);
+      orientation += SignedArea(uv);
+    }
+  }
+  return whole;
+}
+
+double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
+  std::array<Vec2, 3>& trueUV)
+{
+  const auto& corners = M.Face(f);
+  double error = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const auto& a = t.B[k];
+    const auto& b = t.B[(k + 1) % 3];
+    mid[k] = { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
+    const Vec2 linear = (t.U[k] + t.U[(k + 1) % 3]) * 0.5;
+    // (A face's edge midpoints are shared with the neighbour across: read once.)
+    const std::uint64_t edge = t.Depth == 0
+      ? (static_cast<std::uint64_t>(std::min(corners[k], corners[(k + 1) % 3])) << 32) |
+        static_cast<std::uint32_t>(std::max(corners[k], corners[(k + 1) % 3]))
+      : 0;
+    const auto known = t.Depth == 0 ? Midpoints.find(edge) : Midpoints.end();
+    Vec2 q;
+    bool found = false;
+    if (known != Midpoints.end())
+    {
+      found = known->second.first;
+      q = known->second.second;
+    }
+    else
+    {
+      found = ClassAt(f, mid[k], q);
+      if (t.Depth == 0)
+      {
+        Midpoints.emplace(edge, std::make_pair(found, q));
+      }
+    }
+    if (found)
+    {
+      trueUV[k] = ToTexture(q);
+      error = std::max(error, Norm(trueUV[k] - linear));
+    }
+    else
+    {
+      trueUV[k] = linear;
+    }
+  }
+  return error;
+}
+
+// Each face's texture map is affine; where the true map departs from it by more than the
+// tolerance at an edge midpoint (a long shape's map along its curve, read on its grid), the
+// triangle is split in four, to depth 5 (1024 pieces per face). A piece whose texture triangle
+// is turned over (the map folds there) or stretched far beyond its size on the surface (a jump
+// across a seam of the map) is dropped.
+void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal)
+{
+  const int maxDepth = 5;
+  const auto& corners = M.Face(f);
+  const Vec3 X[3] = { M.Position(corners[0]), M.Position(corners[1]), M.Position(corners[2]) };
+  const bool split = Splits(f);
+  std::vector<Piece> stack;
+  stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, uv, 0 });
+  while (!stack.empty())
+  {
+    const Piece t = stack.back();
+    stack.pop_back();
+    if (!MeetsBox(t.U, Lo, Hi))
+    {
+      continue;
+    }
+    auto at = [&X](const std::array<double, 3>& b) { return X[0] * b[0] + X[1] * b[1] + X[2] * b[2]; };
+    if (split)
+    {
+      std::array<std::array<double, 3>, 3> mid;
+      std::array<Vec2, 3> trueUV;
+      const double error = MidpointError(f, t, mid, trueUV);
+      // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
+      const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
+        Norm(at(t.B[0]) - at(t.B[2])) });
+      if (error > TolUV && (t.Depth == maxDepth || size <= 0.5 * Grid->Step))
+      {
+        if (error > 5.0 * TolUV)
+        {
+          continue; // still not affine at the finest: the map folds or jumps here
+        }
+      }
+      else if (error > TolUV)
+      {
+        // Corners 0, 1, 2 and midpoints m01, m12, m20.
+        stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1 });
+        stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1 });
+        stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1 });
+        stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1 });
+        continue;
+      }
+    }
+    // Folded or torn: dropped.
+    if (SignedArea(t.U) * sense < 0.0)
+    {
+      continue;
+    }
+    bool torn = false;
+    for (int k = 0; k < 3 && !torn; ++k)
+    {
+      const double onSurface = Norm(at(t.B[(k + 1) % 3]) - at(t.B[k]));
+      const double inTexture = Norm(t.U[(k + 1) % 3] - t.U[k]) * unit;
+      torn = inTexture > 4.0 * onSurface + 0.05 * unit;
+    }
+    if (torn)
+    {
+      continue;
+    }
+    decal.Faces.push_back(f);
+    decal.Corners.push_back(t.B);
+    decal.TextureCoordinates.push_back(t.U);
+  }
+}
+} // namespace
+
+ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
+{
+  ShapeDecal decal;
+  const PlacedShape& s = Placed.at(shape);
+  const SafeDistanceClass& c = T.Classes[s.ClassId];
+  const double scale = O.ShapeSize * s.Scale;
+  const double reach = c.Radius * scale + MaxEdge;
+  DecalBuilder b(M, c, tolerance);
+  // Class-frame coordinates (normalized) of the vertices near the shape.
+  if (s.Curve.empty())
+  {
+    const Record& r = Accepted.at(shape);
+    if (r.Charts.empty())
+    {
+      return decal;
+    }
+    for (const ChartEntry& e : r.Charts[0].Entries)
+    {
+      const Vec2 q{ e.X, e.Y };
+      if (Norm(q) <= reach)
+      {
+        b.Local.emplace_back(e.V, q * (1.0 / scale));
+      }
+    }
+  }
+  else
+  {
+    b.Grid = FrameOf(shape); // the grid the drawn check built (indexed), or a new one
+    if (!b.Grid)
+    {
+      return decal;
+    }
+    CurveShapeVertices(*b.Grid, b.Local);
+  }
+  b.Start();
+  double orientation = 0.0;
+  const std::vector<std::pair<int, std::array<Vec2, 3>>> whole = b.WholeFaces(orientation);
+  const double sense = orientation >= 0.0 ? 1.0 : -1.0;
+  const double unit = 2.0 * c.Radius * scale; // world length of one texture unit
+  for (const auto& entry : whole)
+  {
+    b.AddFace(entry.first, entry.second, sense, unit, decal);
+  }
+  return decal;
+}
+
+ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
+{
+  return P->DecalOf(shape, tolerance);
+}
+
+} // namespace gs

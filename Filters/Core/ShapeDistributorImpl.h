@@ -1,0 +1,454 @@
+// The Shape Distributor's private state and the concepts it is made of (not installed; included
+// only by the distributor's own files). ShapeDistributor.h describes the model; each concept
+// lives in a file named after it:
+//   CandidateSampling.cpp  dart throwing: class and face distributions (area / f^2), dead-face
+//                          masks, a candidate's geometry (direction, streamline, parts)
+//   ShapeCharts.cpp        the polar charts of a shape's parts, and the accepted shapes with
+//                          their chart and centre indexes (commit, take back)
+//   ConflictTest.cpp       Algorithm 2: two shapes' parts judged in a polar chart by the safe
+//                          distance tables; the cheap centre check, the boundary and the drawn
+//                          check
+//   PriorityRounds.cpp     Algorithm 3: rounds of candidates accepted in priority order, in
+//                          parallel waves
+//   GreedyProposals.cpp    Greedy mode: candidates around accepted shapes, densest lattices
+//   ShapeMap.cpp           the shape model: class point -> surface point (exponential map,
+//                          curve map), outlines, CurveGrid
+//   ShapeDecal.cpp         a shape's decal (the inverse map on the faces it covers)
+//   ShapeDistributor.cpp   the public class: Run, the queries after it
+// Determinism: every random number comes from Random keyed by (Seed, kind, round, index); the
+// parallel loops write per-candidate results only, and shared state changes in priority order.
+#pragma once
+
+#include "DirectionField.h"
+#include "GeodesicPolarCoordinates.h"
+#include "OverlapCheck.h"
+#include "ShapeDistributor.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gs
+{
+namespace distribution
+{
+constexpr double Pi = 3.14159265358979323846;
+constexpr double TwoPi = 2.0 * Pi;
+
+inline std::uint64_t Mix(std::uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/// Counter-based generator: the stream of (seed, kind, round, index) is independent of threads.
+/// Kinds: 1 random candidates, 2 Greedy proposals, 3 probes, 4 Greedy candidates.
+struct Random
+{
+  std::uint64_t State;
+  Random(std::uint64_t seed, std::uint64_t kind, std::uint64_t round, std::uint64_t index)
+    : State(Mix(Mix(Mix(seed ^ Mix(kind)) ^ round) ^ index))
+  {
+  }
+  double Uniform()
+  {
+    State = Mix(State);
+    return static_cast<double>(State >> 11) * (1.0 / 9007199254740992.0);
+  }
+};
+
+inline int ThreadCount(int requested)
+{
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+inline int ThreadId()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+struct ChartEntry
+{
+  int V;
+  float X, Y;
+};
+
+/// Log-map coordinates of the vertices about one part centre (x axis: the part's axis), sorted
+/// by vertex.
+struct Chart
+{
+  std::vector<ChartEntry> Entries;
+  /// Sum of |angle defect| of the chart's vertices over the chart's area: the density of
+  /// absolute discrete Gaussian curvature around the centre.
+  float Roughness = 0.0f;
+  const ChartEntry* Find(int v) const
+  {
+    auto it = std::lower_bound(Entries.begin(), Entries.end(), v,
+      [](const ChartEntry& e, int value) { return e.V < value; });
+    return it != Entries.end() && it->V == v ? &*it : nullptr;
+  }
+};
+
+inline void SortUnique(std::vector<int>& v)
+{
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+} // namespace distribution
+
+struct ShapeDistributor::Impl
+{
+  using Random = distribution::Random;
+  using Chart = distribution::Chart;
+  using ChartEntry = distribution::ChartEntry;
+
+  const TriangleMesh& M;
+  const SaddleVertexGraph* G;
+
+  Impl(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
+    : M(mesh)
+    , G(graph)
+  {
+  }
+
+  /// A candidate or an accepted shape: its placement and the charts of its parts.
+  struct Record
+  {
+    PlacedShape S;
+    std::vector<Chart> Charts; // one per part (empty before the chart step)
+    bool Valid = false;
+    bool Rejected = false;
+    // Prepared in parallel for the commit (see PrepareCommit).
+    bool Prepared = false;
+    std::vector<int> Cover, Centres;
+    std::vector<std::pair<int, int>> Kills; // (class, face)
+    // The outline as drawn (Outline, OutlineSpacing), once the tables accept the shape.
+    std::vector<OutlinePiece> Drawn;
+    bool HasDrawn = false;
+    // Long shapes: the inverse of the drawing map (for the drawn check against long neighbours).
+    std::shared_ptr<const CurveGrid> Frame;
+  };
+
+  // ---- The run's inputs (Prepare) --------------------------------------------------------
+  SafeDistanceTables T;
+  ShapeDistributionOptions O;
+  bool CircleMode = false;
+  std::vector<Vec3> FaceDirection; // unit, in the face plane; zero: none
+  std::vector<double> Density;     // per vertex (empty: 1)
+  int NumberOfClasses = 0;
+  double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
+
+  /// Checks the inputs and sets up every concept's state for a run; the error, or empty.
+  std::string Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
+    const std::vector<double>& vertexDensity, const ShapeDistributionOptions& options);
+  /// The tables' and options' consistency (Prepare's first step); the error, or empty.
+  std::string CheckTablesAndOptions() const;
+
+  double PartRadius(int part) const
+  {
+    return CircleMode ? T.Classes[part].Radius : T.Parts[part].Radius;
+  }
+
+  // ---- Candidate sampling (CandidateSampling.cpp) ---------------------------------------
+  std::vector<double> ClassCdf;    // cumulative class weights
+  std::vector<double> FaceCdf;     // cumulative face weights (live faces only)
+  std::vector<double> FaceWeight;  // area / f^2 (0: no density)
+  std::vector<double> AllCdf;      // cumulative face weights of all faces (probes)
+  double MaxFaceDensity = 1.0;
+  std::vector<char> Dead;          // faces where no candidate can fit any more
+  int DeadSinceCdf = 0;            // faces killed since FaceCdf was built
+  std::vector<double> KillRadius;  // per (part, class) (normalized): see CollectKills
+  std::vector<double> KillReach;   // per class (normalized): see CollectKills
+  std::vector<char> DeadFor;       // per (class, face): no candidate of that class fits there
+  std::vector<std::pair<int, int>> Killed; // (class or -1 for all, face) killed, in order
+  std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
+  std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
+  std::unique_ptr<DirectionFieldSolver> Field; // long classes: streamlines
+  std::vector<double> FieldAngles;
+
+  /// ClassWeights as a distribution; the error, or empty.
+  std::string PrepareClassWeights();
+  /// The face directions projected to the faces' planes; the error, or empty.
+  std::string PrepareDirections(const std::vector<Vec3>& faceDirections);
+  /// The density, the face weights area / f^2 and the masks (nothing dead); the error, or empty.
+  std::string PrepareFaceWeights(const std::vector<double>& vertexDensity);
+  /// KillRadius and KillReach: per (part, class), the smallest safe distance of the part against
+  /// any part of the class (2% less, for the charts' approximations); per class, its reach.
+  void PrepareDeadFaces();
+  /// Long classes: their extent along the major axis, and the field's angles for streamlines.
+  void PrepareLongClasses();
+
+  double DensityAt(const SurfacePoint& p) const
+  {
+    if (Density.empty())
+    {
+      return 1.0;
+    }
+    const auto& f = M.Face(p.Face);
+    return p.Bary[0] * Density[f[0]] + p.Bary[1] * Density[f[1]] + p.Bary[2] * Density[f[2]];
+  }
+  /// Rebuilds the sampling distribution over the faces still alive.
+  void BuildCdf();
+  bool AnyLiveFace() const { return FaceCdf.back() > 0.0; }
+  bool DeadForClass(int c, int f) const
+  {
+    return DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f] != 0;
+  }
+  /// A face drawn with probability area / f^2 (live faces only, or all), a uniform point in it.
+  SurfacePoint RandomPoint(Random& rng, bool live = true) const;
+  /// A class drawn by ClassWeights.
+  int RandomClass(Random& rng) const;
+  /// Fills a round's batch of random candidates (parallel; kind 1 of Random).
+  void Generate(std::vector<Record>& batch, int round) const;
+  /// Builds a candidate's geometry at `centre` (a face point) for class `cls`: the direction,
+  /// the curve of a long class and the parts. False when it does not fit (curve too short).
+  /// `prefer` (optional): of the field's N directions in the face, take the one closest to it
+  /// (greedy fronts keep neighbours turned alike in cross fields); otherwise the face's own.
+  bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
+    const Vec3* prefer = nullptr) const;
+  /// Faces where no candidate can fit any more: every candidate centred in them conflicts with
+  /// part k of the new shape, because its distance from that part's centre is below the smallest
+  /// safe distance against any part of any class, less the class's reach (its part centres'
+  /// offsets from its sample). Sampling skips them: the run is the same dart throwing, without
+  /// the candidates that would certainly fail.
+  /// The (class, face) pairs the shape kills (see above), whatever is dead already. `mark` is a
+  /// per-vertex scratch array of zeros (left as found).
+  void CollectKills(const Record& r, std::vector<char>& mark, std::vector<int>& marked,
+    std::vector<std::pair<int, int>>& kills) const;
+  /// Marks the faces a committed shape kills (recorded in Killed for Uncommit).
+  void KillFaces(const Record& r);
+
+  // ---- Shape charts and the accepted shapes (ShapeCharts.cpp) ---------------------------
+  std::vector<Record> Accepted;
+  std::vector<PlacedShape> Placed;
+  std::vector<std::vector<int>> CoverIndex;  // vertex -> accepted shapes whose chart holds it
+  std::vector<std::vector<int>> CentreIndex; // vertex -> accepted shapes with a part centre in a face of it
+  double MaxEdge = 0.0;
+  double ChartMargin = 0.0; // beyond the largest safe distance: two mean edge lengths
+  std::vector<double> Defect; // per vertex: |2 pi - angle sum| (interior vertices)
+  std::vector<std::unique_ptr<GeodesicPolarCoordinates>> Engines; // per thread
+  std::vector<std::vector<char>> Marks; // per thread, per vertex, all 0 between uses
+  std::vector<int> Marked;
+
+  /// MaxEdge, ChartMargin, Defect and RMax: what the charts' radii and roughness need.
+  void PrepareChartMeasures();
+  /// A part's chart radius: (r_part + r_max) * ShapeSize * f (with the safety margin) + the
+  /// chart margin, enough to hold every centre the part could conflict with.
+  double ChartRadius(const PlacedShape& s, const PlacedPart& p) const
+  {
+    return (PartRadius(p.Part) + RMax) * O.ShapeSize * s.Scale * (1.0 + O.SafetyMargin) +
+      ChartMargin;
+  }
+  /// The charts of the record's parts (log map about each part centre, x axis the part's axis).
+  void ComputeCharts(Record& r, GeodesicPolarCoordinates& engine) const;
+  /// Chart vertices of a record (all parts), sorted, unique.
+  static std::vector<int> ChartVertices(const Record& r);
+  /// The corners of the faces holding the record's part centres, sorted, unique.
+  std::vector<int> CentreCorners(const Record& r) const;
+  /// A surface point in a chart (divided by `unit`): a vertex's entry, or a face point's corners
+  /// interpolated; false when a corner is not in the chart.
+  bool ChartPoint(const Chart& chart, const SurfacePoint& x, double unit, Vec2& p) const;
+  /// A short shape's class point of x (its centre's chart); false for long shapes.
+  bool ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const;
+  /// The commit's own work that needs no shared state, done in parallel before it.
+  void PrepareCommit(Record& r, std::vector<char>& mark, std::vector<int>& marked) const;
+  /// Accepts a shape: indexes its chart vertices and centre corners, kills faces.
+  void Commit(Record&& r);
+  /// Takes back the last committed shape (index entries, killed faces) and returns it.
+  Record Uncommit();
+  /// Per-thread geodesic engines and scratch marks for `threads` threads.
+  void EnsureEngines(int threads);
+  GeodesicPolarCoordinates& Engine() { return *Engines[distribution::ThreadId()]; }
+  GeodesicPolarCoordinates& Engine0() { return *Engines[0]; } // outside parallel regions
+
+  // ---- The conflict test, Algorithm 2 (ConflictTest.cpp) --------------------------------
+  // Per class: its silhouette for point queries, and the clearance of its centre (the distance
+  // from the class origin, the point a candidate is centred at, to the outline; -1 when the
+  // origin is outside the silhouette). See CentreCovered.
+  std::vector<ClassRegion> Regions;
+  std::vector<double> Clearance;
+  double MaxClearance = 0.0; // the regions' reach for Within
+
+  /// Regions, Clearance and MaxClearance of the classes.
+  void PrepareClassRegions();
+  /// The tables' safe distance of parts a and b at angles alphaA, alphaB (normalized); the sum
+  /// of the class radii in Circumcircle mode.
+  double SafeDistance(int a, int b, double alphaA, double alphaB) const
+  {
+    if (CircleMode)
+    {
+      return T.Classes[a].Radius + T.Classes[b].Radius;
+    }
+    return T.Lookup(a, b, alphaA, alphaB);
+  }
+  /// Does shape Y conflict with shape X, judged in X's charts?
+  bool ConflictInCharts(const Record& X, const Record& Y) const;
+  /// Checks against accepted shapes whose charts judge the pair (f_X >= f_C: the older decides
+  /// ties). Needs no chart of the candidate.
+  bool CheapConflict(const Record& c, std::vector<int>& scratch) const;
+  /// KeepInside: a boundary vertex within a part's circle (plus half the longest edge).
+  bool TouchesBoundary(const Record& c) const;
+  /// Checks against accepted shapes with a smaller density factor, in the candidate's charts
+  /// (and KeepInside).
+  bool FullConflict(const Record& c, std::vector<int>& scratch) const;
+  /// A candidate of class `cls` centred at `centre` (density factor `scale`) certainly overlaps
+  /// an accepted shape: its centre, inside its own silhouette with clearance rho (see
+  /// Clearance), lies within 0.9 rho of an accepted part's silhouette, read in that part's chart
+  /// within the part's circle (a 2% margin for the chart). The full check would reject it too
+  /// (the tables keep silhouettes apart); this one needs no curve, so long candidates skip
+  /// tracing their streamlines where the surface is taken.
+  bool CentreCovered(const SurfacePoint& centre, int cls, double scale, std::vector<int>& scratch) const;
+  /// The drawn check, after the tables accepted the candidate (its charts computed): its outline
+  /// as drawn (kept in the record) against every accepted neighbour's, as VerifyOverlaps judges
+  /// them: a conflict when one reaches into the other's silhouette deeper than a quarter of
+  /// VerifyOverlaps' tolerance (0.125% of the smaller circumradius), read in the chart of the
+  /// short one of the two (two long shapes: the tables alone). The tables assume rigid planar
+  /// copies; this catches where the drawn shapes are not (a long shape's part bending with its
+  /// curve, a chart that is no isometry across the neighbour's circle).
+  bool DrawnConflict(Record& c, std::vector<int>& scratch) const;
+
+  // ---- Priority rounds, Algorithm 3 (PriorityRounds.cpp) -------------------------------
+  /// Where a run stands between rounds.
+  struct RunState
+  {
+    long long FailuresToStop = 10000;
+    std::vector<int> Front;   // Greedy: the shapes accepted in the last round
+    bool SeedsGrow = true;    // Greedy: random rounds plant one seed each
+    long long Seeds = 0, GrownSinceSeed = 0;
+    long long Consecutive = 0; // consecutive failures in priority order
+    int RandomRounds = 0;
+    bool Stop = false;
+    double Reported = 0.0; // progress
+  };
+  /// The rounds of a prepared run, until MaximumShapes, MaximalFailures or no live face; false
+  /// when aborted by `progress`.
+  bool RunRounds(int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats);
+  /// A Greedy round's candidates: the proposals of every front shape, nearest to the first
+  /// shape first (kind 4 of Random).
+  void DrawGreedyBatch(const std::vector<int>& front, int round, int threads, std::vector<Record>& batch) const;
+  /// A random round's candidates (1 to 4096); false when no face is left alive.
+  bool DrawRandomBatch(int round, bool seeding, RunState& run, std::vector<Record>& batch);
+  /// (a) Rejects the candidates that conflict with accepted shapes in those shapes' charts.
+  void CheapChecks(std::vector<Record>& batch, int threads) const;
+  /// (b) Per survivor, the higher-priority survivors it may conflict with (parts closer in
+  /// space than the sum of their circumradii).
+  std::vector<std::vector<int>> HigherPriorityNeighbours(
+    const std::vector<Record>& batch, const std::vector<int>& survivors, int threads) const;
+  /// Greedy's random rounds: the first survivor that fits is the seed; the others are rejected.
+  void PlantSeed(std::vector<Record>& batch, const std::vector<int>& survivors, std::vector<char>& state,
+    std::vector<int>& acceptedAs, long long& charts);
+  /// (c) Survivors decided in waves (state: 0 undecided, 1 accepted, 2 rejected; acceptedAs:
+  /// the id in Accepted).
+  void DecideInWaves(std::vector<Record>& batch, const std::vector<int>& survivors,
+    const std::vector<std::vector<int>>& above, std::vector<char>& state, std::vector<int>& acceptedAs,
+    int threads, long long& charts, double& chartSeconds);
+  /// (d) Where the round ends in priority order (consecutive failures, MaximumShapes, Greedy's
+  /// one seed): the number of candidates kept.
+  int CutRound(const std::vector<char>& state, int roundStart, bool greedy, bool seeding, RunState& run,
+    ShapeDistributionStatistics& stats) const;
+  /// Takes back the round's shapes after the cut, recommitting the others in priority order.
+  void TakeBack(int roundStart, int cut, const std::vector<char>& state, const std::vector<int>& acceptedAs);
+
+  // ---- Greedy proposals and lattices (GreedyProposals.cpp) ------------------------------
+  // Greedy: per single-part class, the densest lattice of copies turned alike that the tables
+  // admit (six neighbour vectors in the shape's frame, normalized units); empty: none.
+  std::vector<std::vector<Vec2>> ClassLattice;
+  // Lattices found in earlier runs, by a hash of what they depend on (the part's radius and
+  // its own table): a re-run with the same tables (a new seed, say) skips the search (35-160
+  // ms for 4 classes at 64-128 angle bins).
+  std::map<std::uint64_t, std::vector<Vec2>> LatticeCache;
+
+  void ComputeLattices();
+  /// The densest lattice for part p (see ComputeLattices); empty when the search finds none.
+  std::vector<Vec2> PartLattice(int p) const;
+  /// Greedy: candidate centres around accepted shape `parentId`, touching it and one of its
+  /// neighbours (or, alone, in GreedyDirections directions), the new shape assumed turned like
+  /// the parent. Key: distance from the first shape (fronts fill outwards).
+  struct Proposal
+  {
+    SurfacePoint Centre;
+    int Class = 0;
+    double Key = 0.0;
+    Vec3 Prefer; // the parent's field direction
+  };
+  std::vector<Proposal> Propose(int parentId, int round, int slot) const;
+  /// An accepted neighbour as the parent's chart sees it: its centre and axis angle, its part
+  /// and the unit of the pair.
+  struct Neighbour
+  {
+    Vec2 Q;
+    double Axis;
+    int Part;
+    double Unit;
+  };
+  /// The single-part accepted neighbours near parent A (for a new part pc, part pa of A).
+  std::vector<Neighbour> NeighboursInChart(int parentId, int pa, int pc) const;
+  /// The contact curve of a parent for a new shape turned like it (GreedyProposals.cpp).
+  struct Contact;
+  /// Lattice neighbours of the parent that no placed neighbour rules out (betas and lengths).
+  void LatticeDirections(const Contact& contact, int cls, std::vector<double>& betas,
+    std::vector<double>& lengths) const;
+  /// Directions on the contact curve where the new shape touches a neighbour too.
+  void ContactDirections(const Contact& contact, std::vector<double>& betas) const;
+  /// The proposals' centres: geodesics shot from A (reference angle a0) at angles `betas`,
+  /// `lengths` long (or the contact curve's reach) and a hair more, kept where a shape of class
+  /// cls may land.
+  void ShootProposals(const Record& A, int cls, const Contact& contact, const std::vector<double>& betas,
+    const std::vector<double>& lengths, double a0, std::vector<Proposal>& out) const;
+
+  // ---- The shape model: map, outline, CurveGrid (ShapeMap.cpp) --------------------------
+  /// Class point p (normalized) of shape s -> surface point (see ShapeDistributor::Map).
+  MappedPoint MapShape(const PlacedShape& s, const Vec2& p) const;
+  /// Shape s's outline as drawn (see ShapeDistributor::Outline).
+  std::vector<OutlinePiece> OutlineOf(const PlacedShape& s, double spacing) const;
+  /// Between outline points: half a mean edge (what the filter draws).
+  double OutlineSpacing() const { return 0.5 * M.MeanEdgeLength(); }
+  /// Point at arc length u along curve pieces (clamped), with the unit tangent there.
+  static bool PointOnCurve(const TriangleMesh& m, const std::vector<CurvePiece>& curve, double u,
+    int& face, Vec3& x, Vec3& tangent);
+  /// From curve point (face, x) with tangent t: `across` to the left (negative: right) along the
+  /// perpendicular geodesic. Returns the end and the transported tangent.
+  bool Across(int face, const Vec3& x, const Vec3& t, double across, SurfacePoint& end,
+    Vec3& endTangent, bool* boundary = nullptr) const;
+  /// The map of a long shape (the one its outline and its parts use): class point p -> the
+  /// point at arc length CurveCentre + <p, m> scale along its curve, then <p, perp> scale across
+  /// it along the perpendicular geodesic (m: the class's major axis), sampled on a grid of
+  /// (along, across) nodes finer than an edge (one geodesic shot per column and side), covering
+  /// the silhouette's extent and two mean edges more. CurveGrid::Locate inverts it.
+  CurveGrid BuildCurveGrid(const PlacedShape& s, const SafeDistanceClass& c) const;
+  /// The foot of grid column u (arc length, beyond the ends along the geodesic continuing the
+  /// curve) and the curve's tangent there; false when the column has none.
+  bool CurveGridFoot(const PlacedShape& s, double u, double length, SurfacePoint& foot, Vec3& tangent) const;
+  /// The class points (normalized) of the vertices near a long shape: the vertices of the grid
+  /// nodes' faces and their neighbours, each located from a node of that face. Appends
+  /// (vertex, class point) pairs.
+  void CurveShapeVertices(const CurveGrid& grid, std::vector<std::pair<int, Vec2>>& local) const;
+  /// A long shape's CurveGrid: the one the drawn check built (indexed), or a new one.
+  std::shared_ptr<const CurveGrid> FrameOf(int shape) const;
+
+  // ---- Decals (ShapeDecal.cpp) ----------------------------------------------------------
+  /// See ShapeDistributor::Decal.
+  ShapeDecal DecalOf(int shape, double tolerance) const;
+};
+
+} // namespace gs

@@ -1,0 +1,204 @@
+// The Shape Distributor's results bit for bit (issue 18: refactors must not change them): the
+// placements, decals and outlines of small runs on a plane and a bumpy sphere (short star and a
+// long bar split into parts, Random and Greedy, with and without a density, KeepInside on and
+// off, with and without a saddle vertex graph) hashed and compared with hashes recorded before
+// the distributor was split into files. A change of any bit fails; when a change of results is
+// intended, the test prints the new hashes to record.
+#include "TestMeshes.h"
+
+#include "Hash.h"
+#include "MeshGenerators.h"
+#include "SaddleVertexGraph.h"
+#include "SafeDistanceTable.h"
+#include "ShapeDistributor.h"
+
+#include <gtest/gtest.h>
+
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+
+using namespace gs;
+
+namespace
+{
+SafeDistanceTables StarAndBar()
+{
+  const std::vector<Vec2> bar{ { -2.5, -0.5 }, { 2.5, -0.5 }, { 2.5, 0.5 }, { -2.5, 0.5 } };
+  std::vector<SafeDistanceInput> in;
+  in.push_back({ "star", ShapeFromPolygons({ MakeStarPolygon(5, 1.0, 0.4) }) });
+  in.push_back({ "bar", ShapeFromPolygons({ bar }) });
+  SafeDistanceOptions o;
+  o.AngleBins = 32;
+  o.DistanceSteps = 64;
+  o.Rows = 512;
+  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r.Tables;
+}
+
+void AddPoint(Hasher& h, const SurfacePoint& p)
+{
+  h.AddValue(p.Vertex);
+  h.AddValue(p.Face);
+  h.AddValue(p.Bary);
+}
+
+struct Hashes
+{
+  std::uint64_t Placements = 0, Decals = 0, Outlines = 0;
+  int Shapes = 0;
+  double Probe = 0.0; // ProbeFitFraction(200, 1)
+};
+
+// Placements (what DistributionBenchmark hashes, and the scale, parts and curves), every decal
+// (faces, corners, texture coordinates) and every outline at the drawn check's spacing.
+Hashes Hash(const ShapeDistributor& d, const ShapeDistributionResult& r)
+{
+  Hasher placements, decals, outlines;
+  for (const PlacedShape& s : r.Shapes)
+  {
+    placements.AddValue(s.Position);
+    placements.AddValue(s.Direction);
+    placements.AddValue(s.ClassId);
+    placements.AddValue(s.Scale);
+    for (const PlacedPart& p : s.Parts)
+    {
+      placements.AddValue(p.Part);
+      AddPoint(placements, p.Centre);
+      placements.AddValue(p.Axis);
+    }
+    for (const CurvePiece& c : s.Curve)
+    {
+      placements.AddValue(c.Face);
+      placements.AddValue(c.A);
+      placements.AddValue(c.B);
+    }
+    placements.AddValue(s.CurveCentre);
+  }
+  for (int s = 0; s < static_cast<int>(r.Shapes.size()); ++s)
+  {
+    const ShapeDecal decal = d.Decal(s);
+    decals.AddVector(decal.Faces);
+    decals.AddVector(decal.Corners);
+    decals.AddVector(decal.TextureCoordinates);
+    for (const OutlinePiece& piece : d.Outline(s, d.OutlineSpacing()))
+    {
+      for (const SurfacePoint& p : piece.Points)
+      {
+        AddPoint(outlines, p);
+      }
+      outlines.AddVector(piece.ClassPoints);
+      outlines.AddValue(piece.Closed);
+    }
+  }
+  return { placements.H, decals.H, outlines.H, static_cast<int>(r.Shapes.size()), 0.0 };
+}
+
+struct Case
+{
+  const char* Name;
+  bool Sphere;
+  DistributionMode Mode;
+  bool Density;
+  bool KeepInside;
+  bool Graph;
+  Hashes Expected;
+};
+
+// Recorded on the unsplit distributor (commit 9effd44).
+const Case Cases[] = {
+  { "plane random keep-inside", false, DistributionMode::Random, false, true, false,
+    { 0x36a3c994243e0236ull, 0x1509a19feedc474dull, 0x8d8ba8c82131c243ull, 47, 0.014999999999999999 } },
+  { "plane greedy density", false, DistributionMode::Greedy, true, false, false,
+    { 0x7ea3d6e40bcb8faeull, 0x8bee05b60b9069e6ull, 0x52a65acc23e910c2ull, 67, 0.0050000000000000001 } },
+  { "plane greedy density keep-inside graph", false, DistributionMode::Greedy, true, true, true,
+    { 0x16b928e9e7f1183full, 0xeb43f6f99bffddb5ull, 0xc19bd1c8fdb3c318ull, 51, 0.0050000000000000001 } },
+  { "sphere random density graph", true, DistributionMode::Random, true, false, true,
+    { 0x136560d75299427dull, 0x6729bb0a9123bb3full, 0x625a625d24d4cefcull, 130, 0 } },
+  { "sphere greedy graph", true, DistributionMode::Greedy, false, false, true,
+    { 0x081e3ec94f6ff087ull, 0x15ac46d5dafb208aull, 0xef5085869cd604f5ull, 97, 0 } },
+  { "sphere greedy density exact", true, DistributionMode::Greedy, true, false, false,
+    { 0x8198c3f245d3a3c9ull, 0xa118f871cebc9481ull, 0x119ca8780a540c55ull, 116, 0 } },
+  { "sphere circumcircles graph", true, DistributionMode::CircumcirclePoissonDisk, false, false, true,
+    { 0x3c042043c3068257ull, 0x8e4a939bd45fdfedull, 0xcad68a7795a2006eull, 96, 0.01 } },
+};
+} // namespace
+
+TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
+{
+  const SafeDistanceTables t = StarAndBar();
+  ASSERT_GT(t.Classes[1].Parts.size(), 1u);
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(30, 30, 6.0, 6.0));
+  const TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.03));
+  SaddleVertexGraph planeGraph, sphereGraph;
+  SaddleVertexGraphOptions go;
+  go.K = 20;
+  std::string error;
+  ASSERT_TRUE(planeGraph.Build(plane, go, nullptr, error)) << error;
+  ASSERT_TRUE(sphereGraph.Build(sphere, go, nullptr, error)) << error;
+  for (const Case& c : Cases)
+  {
+    const TriangleMesh& mesh = c.Sphere ? sphere : plane;
+    // A swirling field (long shapes bend) and a density growing along x.
+    std::vector<Vec3> directions(mesh.NumberOfFaces());
+    for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+    {
+      const auto& v = mesh.Face(f);
+      const Vec3 x = (mesh.Position(v[0]) + mesh.Position(v[1]) + mesh.Position(v[2])) / 3.0;
+      directions[f] = c.Sphere ? Cross(Vec3{ 0.2, 0.1, 1.0 }, x)
+                               : Vec3{ std::cos(0.4 * x.y), std::sin(0.4 * x.y), 0.0 };
+    }
+    std::vector<double> density;
+    if (c.Density)
+    {
+      for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+      {
+        density.push_back(c.Sphere ? 1.0 + 0.3 * mesh.Position(v).x : 0.7 + 0.1 * mesh.Position(v).x);
+      }
+    }
+    ShapeDistributionOptions o;
+    o.ShapeSize = c.Sphere ? 0.12 : 0.3;
+    o.Mode = c.Mode;
+    o.Seed = 5;
+    o.MaximalFailures = 300;
+    o.KeepInside = c.KeepInside;
+    Hashes first;
+    for (const int threads : { 1, 2 })
+    {
+      o.NumberOfThreads = threads;
+      ShapeDistributor d(mesh, c.Graph ? (c.Sphere ? &sphereGraph : &planeGraph) : nullptr);
+      const ShapeDistributionResult r = d.Run(t, directions, density, o);
+      ASSERT_TRUE(r.Ok) << r.Error;
+      Hashes h = Hash(d, r);
+      h.Probe = d.ProbeFitFraction(200, 1);
+      std::printf("%s, %d thread(s): %d shapes, { 0x%016" PRIx64 "ull, 0x%016" PRIx64 "ull, 0x%016" PRIx64
+                  "ull, %d, %.17g }\n",
+        c.Name, threads, h.Shapes, h.Placements, h.Decals, h.Outlines, h.Shapes, h.Probe);
+      if (threads == 1)
+      {
+        first = h;
+        EXPECT_GT(h.Shapes, 10) << c.Name;
+        int longShapes = 0;
+        for (const PlacedShape& s : r.Shapes)
+        {
+          longShapes += s.Curve.empty() ? 0 : 1;
+        }
+        EXPECT_GT(longShapes, 2) << c.Name;
+      }
+      else
+      {
+        // The seed alone decides (ShapeDistributor.h).
+        EXPECT_EQ(h.Placements, first.Placements) << c.Name;
+        EXPECT_EQ(h.Decals, first.Decals) << c.Name;
+        EXPECT_EQ(h.Outlines, first.Outlines) << c.Name;
+        EXPECT_EQ(h.Probe, first.Probe) << c.Name;
+      }
+      EXPECT_EQ(h.Shapes, c.Expected.Shapes) << c.Name;
+      EXPECT_EQ(h.Placements, c.Expected.Placements) << c.Name;
+      EXPECT_EQ(h.Decals, c.Expected.Decals) << c.Name;
+      EXPECT_EQ(h.Outlines, c.Expected.Outlines) << c.Name;
+      EXPECT_EQ(h.Probe, c.Expected.Probe) << c.Name;
+    }
+  }
+}
