@@ -180,8 +180,14 @@ bool ShapeDistributor::Impl::CurveGridFoot(
 {
   int face = -1;
   Vec3 x;
-  if (u >= 0.0 && u <= length)
+  // A column within rounding of an end is on the curve (it lands on an end whenever the class is
+  // exactly as long as its circle's diameter and the margin is the radius: a "beyond" geodesic a
+  // few 1e-17 long took its direction from rounding noise and turned the column, folding the
+  // grid).
+  const double snap = 1e-9 * std::max(length, M.MeanEdgeLength());
+  if (u >= -snap && u <= length + snap)
   {
+    u = std::min(length, std::max(0.0, u));
     if (!PointOnCurve(M, s.Curve, u, face, x, tangent))
     {
       return false;
@@ -214,7 +220,7 @@ bool ShapeDistributor::Impl::CurveGridFoot(
     Vec3 dir = after ? tangent : tangent * -1.0;
     for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
     {
-      if (Norm(it->B - it->A) > 0.0)
+      if (Norm(it->B - it->A) > 1e-9 * M.MeanEdgeLength()) // (never a rounding-length piece)
       {
         dir = Unit(it->B - it->A);
         break;
