@@ -18,7 +18,8 @@
  * Long shapes (aspect ratio above MaximumAspectRatio) are cut across their major axis into equal
  * parts, each with its own circle and tables (Fig. 7 of the paper).
  *
- * Input port 0 ("Polygons", optional vtkPolyData): polygon and polyline cells in the XY plane (z
+ * Input port 0 (optional vtkPolyData; in ParaView the "Input" of the filter proxy MSDT From
+ * Polygons, while the MSDT Source proxy has no input): polygon and polyline cells in the XY plane (z
  * ignored), each a closed ring (a repeated last point is dropped). Rings with the same value of
  * an integer cell array "ClassId" form one class (even-odd rule: holes allowed); without that
  * array every cell is its own class.
@@ -44,7 +45,7 @@
  * of every image output is known up front (downstream image filters see ka x ka x P^2); the
  * classes and parts are cached and reused (RequestData does not read again) until a file name,
  * a file's modification time or size, the polygons input, a threshold or MaximumAspectRatio
- * changes. When the Polygons port is connected its upstream is brought up to date during the
+ * changes. When port 0 is connected its upstream is brought up to date during the
  * information pass (the number of parts depends on it). Open polylines on that port (last point
  * not equal to the first) are closed, with a warning.
  *
