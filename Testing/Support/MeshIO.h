@@ -2,7 +2,8 @@
 // data generation): OFF (libcgal-demo meshes) and ASCII PLY.
 //
 // Why a reader of our own next to VTK's (vtkPLYReader, ParaView's OFF reader): the core
-// (GeodesicShapesCore) and everything linked only to it stay free of VTK. The core unit tests
+// (GeodesicShapesCore) and everything linked only to it stay free of VTK. It lives in the
+// test-support library (GeodesicShapesTestSupport), which the plugin does not link. The core unit tests
 // (GeodesicShapesCoreTests: TestOverlapCheck reads Data/bumpy_sphere.ply), the benchmarks
 // (Benchmarks/*: the CGAL OFF meshes, refined_elephant.off) and Tools/generate_data (writes the
 // bundled PLY files) build and run without ParaView. The filters read meshes with VTK; VTK tests
