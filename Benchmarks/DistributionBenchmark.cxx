@@ -4,6 +4,9 @@
 //     shape class, field-aligned (constant field) and unoriented (no field), 20 seeds, Random /
 //     Greedy / Circumcircle Poisson disk: mean counts and ratios. Every layout is checked by the
 //     independent planar overlap test.
+//     1b. Issue 17's square: the pentagram on a square 40 circumradii wide, 8 seeds: per seed and
+//     mean, Greedy against the circumcircles and against the densest lattice's count for the area
+//     (--square W: that section alone, W circumradii wide).
 //  2. Maximality: random probes that would still fit after a run.
 //  3. Density fidelity: a density ramp on the square; count x f^2 per unit area in strips.
 //  4. Real mesh (refined_elephant, subdivided once: ~355K faces): saddle vertex graph build,
@@ -16,6 +19,8 @@
 //       [--size 0.01] [--greedy] [--speed-rounds R] (see AtScale; environment: GS_DISTORTION_LIMIT
 //       sets DistortionLimit, GS_DRAWN_CHECK=0 turns the drawn check off, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
 //       shape's drawn map departs from its rigid parts)
+//   [--square W [--seeds N] (section 1b alone, a square W circumradii wide, N seeds; environment:
+//   GS_SQUARE_CELLS sets its mesh's cells per side, default edges of 0.2)]
 //   [--mesh-only (section 4 only)] [--speed-only (its speed figures only)] [--speed-rounds R]
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
 //   openclipart; polygons are used when missing).
@@ -124,13 +129,15 @@ DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<Pla
 
 std::string SvgPrefix; // --svg: seed-0 layouts of the square as SVG files
 
-void WriteSvg(const std::string& file, const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes, double size)
+void WriteSvg(const std::string& file, const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes, double size,
+  double side = 10.0)
 {
   FILE* f = std::fopen(file.c_str(), "w");
   if (!f)
     return;
-  std::fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' viewBox='-0.5 -0.5 11 11' width='800' height='800'>\n");
-  std::fprintf(f, "<rect x='0' y='0' width='10' height='10' fill='none' stroke='gray' stroke-width='0.02'/>\n");
+  std::fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' viewBox='%g %g %g %g' width='800' height='800'>\n",
+    -0.05 * side, -0.05 * side, 1.1 * side, 1.1 * side);
+  std::fprintf(f, "<rect x='0' y='0' width='%g' height='%g' fill='none' stroke='gray' stroke-width='0.02'/>\n", side, side);
   for (const PlacedShape& s : shapes)
   {
     const double a = std::atan2(s.Direction.y, s.Direction.x), k = size * s.Scale;
@@ -141,7 +148,7 @@ void WriteSvg(const std::string& file, const SafeDistanceTables& t, const std::v
       {
         const double x = s.Position.x + k * (std::cos(a) * p.x - std::sin(a) * p.y);
         const double y = s.Position.y + k * (std::sin(a) * p.x + std::cos(a) * p.y);
-        std::fprintf(f, "%.4f,%.4f ", x, 10.0 - y);
+        std::fprintf(f, "%.4f,%.4f ", x, side - y);
       }
       std::fprintf(f, "'/>\n");
     }
@@ -349,11 +356,60 @@ void DensityFidelity(const SafeDistanceInput& shape, int seeds)
   std::printf("  -> largest deviation %.1f%% (bar: 10%%)\n", 100.0 * worst);
 }
 
+// The densest lattice of copies turned alike that the tables admit (the cell area, normalized
+// units): the same definition as the distributor's Greedy lattices (GreedyProposals.cpp), searched
+// here independently: a lattice {i u + j v} is admissible when every vector w is at least D(angle
+// of w) long, D(beta) = the table's distance of the pair for the line at beta seen from either
+// copy; the basis vectors on D's boundary, smallest cell first.
+double DensestLatticeCell(const SafeDistanceTables& t)
+{
+  auto D = [&](double beta) {
+    double d = 0.0;
+    for (const double b : { beta - 2e-3, beta, beta + 2e-3 })
+      d = std::max({ d, t.Lookup(0, 0, -b, -b), t.Lookup(0, 0, -b - Pi, -b - Pi) });
+    return d;
+  };
+  const double cap = 2.0 * t.Parts[0].Radius;
+  auto admissible = [&](const Vec2& u, const Vec2& v) {
+    for (int i = -6; i <= 6; ++i)
+      for (int j = 0; j <= 6; ++j)
+      {
+        if (j == 0 && i <= 0)
+          continue;
+        const Vec2 w = u * i + v * j;
+        const double len = Norm(w);
+        if (len < cap && len < D(std::atan2(w.y, w.x)) * (1.0 - 1e-12))
+          return false;
+      }
+    return true;
+  };
+  const int n = 512;
+  std::vector<Vec2> boundary(n);
+  for (int k = 0; k < n; ++k)
+  {
+    const double beta = Pi * (k + 0.5) / n;
+    boundary[k] = Vec2{ std::cos(beta), std::sin(beta) } * (D(beta) * (1.0 + 1e-9));
+  }
+  double best = 1e300;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (const double sign : { 1.0, -1.0 })
+      {
+        const Vec2 u = boundary[a], v = boundary[b] * sign;
+        const double area = Cross(u, v);
+        if (area > 1e-12 * cap * cap && area < best && admissible(u, v))
+          best = area;
+      }
+  return best;
+}
+
 // Many shapes on a large square (all modes, pentagram, aligned): overlap checks at scale.
 void LargeSquare(const SafeDistanceInput& shape, int seeds)
 {
   const TriangleMesh plane = Build(MakePlanarGrid(150, 150, 50.0, 50.0));
   const SafeDistanceTables t = Tables({ shape });
+  const double lattice = 2500.0 / (DensestLatticeCell(t) * 0.25);
+  std::printf("  the densest lattice of the tables: %.1f shapes for the area\n", lattice);
   std::vector<Vec3> dirs(plane.NumberOfFaces(), Vec3{ 1, 0, 0 });
   for (DistributionMode mode :
     { DistributionMode::CircumcirclePoissonDisk, DistributionMode::Random, DistributionMode::Greedy })
@@ -377,9 +433,61 @@ void LargeSquare(const SafeDistanceInput& shape, int seeds)
     TotalShapes += static_cast<long long>(sum);
     TotalOverlaps += overlaps;
     TotalPairs += pairs;
-    std::printf("  %-12s %8.1f shapes per run, %.2f s per run, %d overlaps in %d close pairs\n",
-      ModeName(mode), sum / seeds, seconds / seeds, overlaps, pairs);
+    std::printf("  %-12s %8.1f shapes per run (%.1f%% of the lattice's), %.2f s per run, %d overlaps in %d close pairs\n",
+      ModeName(mode), sum / seeds, 100.0 * sum / seeds / lattice, seconds / seeds, overlaps, pairs);
   }
+}
+
+// Issue 17, part 4: the pentagram on a square `width` circumradii wide (shape radius 0.5, mesh
+// edges 0.2 as in section 1), field-aligned: Greedy against the circumcircles' count and the
+// densest lattice's count for the square's area, per seed; Random against the dart-throwing
+// estimate of section 1.
+void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
+{
+  const double side = 0.5 * width;
+  int cells = static_cast<int>(std::lround(side / 0.2));
+  if (const char* c = std::getenv("GS_SQUARE_CELLS"))
+    cells = std::max(1, std::atoi(c)); // (other mesh resolutions: cells per side)
+  const TriangleMesh plane = Build(MakePlanarGrid(cells, cells, side, side));
+  const SafeDistanceTables t = Tables({ shape });
+  const double r = t.Parts[0].Radius, size = 0.5;
+  const double cell = DensestLatticeCell(t);
+  const double lattice = side * side / (cell * size * size);
+  std::printf("  %g x %g square (%g circumradii), %d x %d cells: densest lattice of the tables %.3f r^2 -> %.1f "
+              "shapes for the area\n", side, side, width, cells, cells, cell / (r * r), lattice);
+  std::vector<Vec3> dirs(plane.NumberOfFaces(), Vec3{ 1, 0, 0 });
+  std::map<DistributionMode, double> mean;
+  for (DistributionMode mode :
+    { DistributionMode::CircumcirclePoissonDisk, DistributionMode::Random, DistributionMode::Greedy })
+  {
+    double sum = 0.0;
+    std::printf("    %-12s", ModeName(mode));
+    for (int seed = 0; seed < seeds; ++seed)
+    {
+      ShapeDistributor d(plane);
+      ShapeDistributionOptions o;
+      o.ShapeSize = size;
+      o.Mode = mode;
+      o.Seed = static_cast<std::uint64_t>(seed);
+      const ShapeDistributionResult res = d.Run(t, dirs, {}, o);
+      int pairs = 0;
+      const int overlaps = gs_test::CountPlanarOverlaps(plane, t, res.Shapes, o.ShapeSize, &pairs);
+      TotalShapes += static_cast<long long>(res.Shapes.size());
+      TotalOverlaps += overlaps;
+      TotalPairs += pairs;
+      sum += static_cast<double>(res.Shapes.size());
+      std::printf(" %zu%s", res.Shapes.size(), overlaps ? "(OVERLAPS)" : "");
+      if (seed == 0 && !SvgPrefix.empty())
+        WriteSvg(SvgPrefix + "_square" + std::to_string(static_cast<int>(width)) + "_" + ModeName(mode) + ".svg",
+          t, res.Shapes, o.ShapeSize, side);
+    }
+    mean[mode] = sum / seeds;
+    std::printf("  (seeds 0-%d): mean %.1f\n", seeds - 1, mean[mode]);
+  }
+  const double c = mean[DistributionMode::CircumcirclePoissonDisk];
+  std::printf("  circumcircle %.1f | random %.1f (%.2fx) | greedy %.1f (%.2fx; %.1f%% of the lattice's %.1f)\n", c,
+    mean[DistributionMode::Random], mean[DistributionMode::Random] / c, mean[DistributionMode::Greedy],
+    mean[DistributionMode::Greedy] / c, 100.0 * mean[DistributionMode::Greedy] / lattice, lattice);
 }
 
 // A generated bumpy sphere (saddles everywhere): several classes, surface overlap test.
@@ -724,6 +832,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
 int main(int argc, char* argv[])
 {
   bool quick = false, meshOnly = false, exactCharts = false, speedOnly = false;
+  double squareOnly = 0.0; // --square W: the issue's square only, W circumradii wide
+  int squareSeeds = 0;      // --seeds N: its seeds (default 8, --quick 3)
   int speedRounds = 3;
   double margin = -1.0, distortion = -1.0;
   std::vector<std::string> args, scaleImages;
@@ -743,6 +853,10 @@ int main(int argc, char* argv[])
       scaleMode = DistributionMode::Greedy;
     else if (std::strcmp(argv[i], "--image") == 0 && i + 1 < argc)
       scaleImages.push_back(argv[++i]);
+    else if (std::strcmp(argv[i], "--square") == 0 && i + 1 < argc)
+      squareOnly = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc)
+      squareSeeds = std::max(1, std::atoi(argv[++i]));
     else if (std::strcmp(argv[i], "--quick") == 0)
       quick = true;
     else if (std::strcmp(argv[i], "--svg") == 0 && i + 1 < argc)
@@ -776,6 +890,15 @@ int main(int argc, char* argv[])
       std::printf("(no %s image in '%s')\n", name, images.c_str());
   }
   const int seeds = quick ? 3 : 20;
+  if (squareOnly > 0.0)
+  {
+    const int n = squareSeeds > 0 ? squareSeeds : quick ? 3 : 8;
+    std::printf("1b. The pentagram on a square %g circumradii wide, aligned, %d seeds\n", squareOnly, n);
+    IssueSquare(classes[0], squareOnly, n);
+    std::printf("Total: %lld shapes placed, %lld close pairs checked, %lld overlaps\n", TotalShapes, TotalPairs,
+      TotalOverlaps);
+    return TotalOverlaps == 0 ? 0 : 2;
+  }
 
   if (!meshOnly)
   {
@@ -785,6 +908,8 @@ int main(int argc, char* argv[])
     if (c.Name == "pentagram" || c.Name == "star" || c.Name == "eagle")
       Figure9(c.Name, c, seeds);
   }
+  std::printf("1b. Issue 17's square: the pentagram on a square 40 circumradii wide, aligned, %d seeds\n", quick ? 3 : 8);
+  IssueSquare(classes[0], 40.0, quick ? 3 : 8);
   std::printf("2. Density fidelity (pentagram, %d seeds)\n", quick ? 2 : 8);
   DensityFidelity(classes[0], quick ? 2 : 8);
   std::printf("3. Large square 50 x 50, pentagram radius 0.5, aligned, %d seeds per mode\n", quick ? 1 : 7);
