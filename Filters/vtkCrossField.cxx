@@ -1,7 +1,7 @@
 #include "vtkCrossField.h"
 
 #include "vtkDistributedSurface.h"
-#include "vtkSurfaceMeshConverter.h"
+#include "vtkCachedSurface.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "DirectionField.h"
@@ -30,18 +30,15 @@
 
 vtkStandardNewMacro(vtkCrossField);
 
-// The converted mesh and the direction-field solver (with its factorizations), kept while the
-// input mesh is unchanged (same object, same modification time).
-struct vtkCrossField::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh (vtkCachedSurface) and the direction-field solver (with its
+// factorizations), kept while the input mesh is unchanged.
+struct vtkCrossField::Cache : vtkCachedSurface
 {
-  std::unique_ptr<vtkSurfacePointLocator> Locator;  // refers to Mesh; on demand
   std::unique_ptr<gs::DirectionFieldSolver> Solver; // refers to Mesh.Build.Mesh
 };
 
 namespace
 {
-// Spacing of the 3D samples of a stroke before snapping, in mean edge lengths.
-constexpr double StrokeSnapSpacing = 0.25;
 // A face a stroke crosses over less than this many mean edge lengths is not constrained.
 constexpr double MinimumCrossedLength = 0.1;
 }
@@ -167,17 +164,13 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
                     "(the index of each singularity, a multiple of 1/Symmetry).");
       return 1;
     }
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     for (vtkIdType i = 0; i < singularities->GetNumberOfPoints(); ++i)
     {
       double x[3];
       singularities->GetPoint(i, x);
       gs::SurfacePoint p;
       std::string reason;
-      if (!cache.Locator->Snap(x, p, reason))
+      if (!cache.Locator().Snap(x, p, reason))
       {
         vtkErrorMacro("Singularity " << i << ": " << reason << ".");
         return 1;
@@ -201,10 +194,6 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
   std::vector<gs::FaceDirectionConstraint> constraints;
   if (strokes && strokes->GetNumberOfLines() > 0)
   {
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     auto it = vtk::TakeSmartPointer(strokes->GetLines()->NewIterator());
     vtkIdType cellId = 0;
     for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
@@ -214,8 +203,7 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
       it->GetCurrentCell(npts, pts);
       std::vector<gs::SurfacePoint> curve;
       std::string reason;
-      if (!cache.Locator->SnapPolyline(strokes->GetPoints(), npts, pts,
-            StrokeSnapSpacing * mesh.MeanEdgeLength(), curve, reason))
+      if (!cache.SnapCurve(strokes->GetPoints(), npts, pts, curve, reason))
       {
         vtkErrorMacro("Stroke " << cellId << ": " << reason << ".");
         return 1;

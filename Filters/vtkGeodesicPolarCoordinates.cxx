@@ -1,9 +1,7 @@
 #include "vtkGeodesicPolarCoordinates.h"
 
-#include "vtkSaddleVertexGraphCache.h"
-
+#include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
-#include "vtkSurfaceMeshConverter.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "GeodesicPolarCoordinates.h"
@@ -31,16 +29,12 @@
 
 vtkStandardNewMacro(vtkGeodesicPolarCoordinates);
 
-// The converted mesh and what is derived from it, kept while the input mesh is unchanged (same
-// object, same modification time), so that changing only the source, the radius or the
-// reference direction does not convert the mesh again.
-struct vtkGeodesicPolarCoordinates::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh and what is derived from it (vtkCachedSurface), kept while the input mesh
+// is unchanged, so that changing only the source, the radius or the reference direction does
+// not convert the mesh again, and the engine over it.
+struct vtkGeodesicPolarCoordinates::Cache : vtkCachedSurface
 {
-  std::unique_ptr<vtkSurfacePointLocator> Locator;         // refers to Mesh; on demand
-  std::unique_ptr<gs::GeodesicPolarCoordinates> Polar;      // refers to Mesh.Build.Mesh
-  std::shared_ptr<const gs::SaddleVertexGraph> Graph;        // the graph Polar uses (K >= 1)
-  std::uint64_t Hash = 0;
-  bool HashValid = false;
+  std::unique_ptr<gs::GeodesicPolarCoordinates> Polar; // over Mesh.Build.Mesh and Graph()
 };
 
 namespace
@@ -48,8 +42,6 @@ namespace
 // A snapped point this close to a corner (in barycentric weight) is that vertex: the source then
 // has the vertex's angle sum and first edge, as with SourceVertexId.
 constexpr double VertexSnapTolerance = 1e-12;
-// Spacing of the 3D samples of a curve source before snapping, in mean edge lengths.
-constexpr double CurveSnapSpacing = 0.25;
 // Mapping to input points checks for abort every this many points.
 constexpr size_t AbortCheckInterval = 1 << 14;
 }
@@ -168,10 +160,6 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
   std::vector<gs::SurfacePoint> curve;
   if (curveSource)
   {
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     if (polySource->GetNumberOfLines() > 1)
     {
       vtkWarningMacro("The Source input has " << polySource->GetNumberOfLines()
@@ -183,8 +171,7 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
     it->GoToFirstCell();
     it->GetCurrentCell(npts, pts);
     std::string reason;
-    if (!cache.Locator->SnapPolyline(polySource->GetPoints(), npts, pts,
-          CurveSnapSpacing * mesh.MeanEdgeLength(), curve, reason))
+    if (!cache.SnapCurve(polySource->GetPoints(), npts, pts, curve, reason))
     {
       vtkErrorMacro("Source curve: " << reason << ".");
       return 1;
@@ -210,14 +197,10 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
       vtkWarningMacro("The Source input has " << source->GetNumberOfPoints()
                                               << " points: only the first one is used.");
     }
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     double x[3];
     source->GetPoint(0, x);
     std::string reason;
-    if (!cache.Locator->Snap(x, sourcePoint, reason))
+    if (!cache.Locator().Snap(x, sourcePoint, reason))
     {
       vtkErrorMacro("Source point 0: " << reason << ".");
       return 1;
@@ -275,22 +258,19 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
       << this->K << ".");
     return 1;
   }
-  std::shared_ptr<const gs::SaddleVertexGraph> graph;
-  if (this->K >= 1)
+  bool graphChanged = false;
+  if (this->K == 0)
   {
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
-      this, mesh, cache.Hash, cache.HashValid, this->K, std::string(), 0.3, 0.4);
-    if (!found.Graph)
-    {
-      return 1; // aborted, or the error is reported
-    }
-    graph = found.Graph;
+    graphChanged = cache.UseNoSaddleVertexGraph();
   }
-  if (!cache.Polar || graph != cache.Graph)
+  else if (!cache.UseSaddleVertexGraph(this, this->K, std::string(), 0.3, 0.4, graphChanged))
+  {
+    return 1; // aborted, or the error is reported
+  }
+  if (!cache.Polar || graphChanged)
   {
     cache.Polar.reset();
-    cache.Graph = graph;
-    cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph.get()));
+    cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph()));
   }
   gs::GeodesicPolarCoordinates& polar = *cache.Polar;
   if (curveSource)

@@ -1,8 +1,8 @@
 #include "vtkSVGGeodesicDistance.h"
 
-#include "vtkSaddleVertexGraphCache.h"
+#include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
-#include "vtkSurfaceMeshConverter.h"
+#include "vtkSaddleVertexGraphCache.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "ExactGeodesic.h"
@@ -33,24 +33,17 @@
 
 vtkStandardNewMacro(vtkSVGGeodesicDistance);
 
-// The converted mesh and what is derived from it, kept while the input mesh is unchanged (same
-// object, same modification time), so that changing only the sources or parameters does not
-// redo them. The saddle vertex graph itself lives in vtkSaddleVertexGraphCache (shared by the
-// whole process); this only holds on to the one in use and the solver over it.
-struct vtkSVGGeodesicDistance::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh and what is derived from it (vtkCachedSurface), kept while the input mesh
+// is unchanged, so that changing only the sources or parameters does not redo them, and the
+// solvers over it.
+struct vtkSVGGeodesicDistance::Cache : vtkCachedSurface
 {
-  std::unique_ptr<gs::ExactGeodesicSolver> Exact;   // refers to Mesh.Build.Mesh; on demand
-  std::unique_ptr<vtkSurfacePointLocator> Locator;  // refers to Mesh; on demand
-  bool HashValid = false;
-  std::uint64_t Hash = 0; // gs::SaddleVertexGraph::HashMesh(Mesh.Build.Mesh); on demand
-  std::shared_ptr<const gs::SaddleVertexGraph> Graph;
-  std::unique_ptr<gs::SVGGeodesicSolver> SVG; // over Mesh.Build.Mesh and *Graph
+  std::unique_ptr<gs::ExactGeodesicSolver> Exact; // refers to Mesh.Build.Mesh; on demand
+  std::unique_ptr<gs::SVGGeodesicSolver> SVG;     // over Mesh.Build.Mesh and Graph()
 };
 
 namespace
 {
-// Spacing of the 3D samples of a curve source before snapping, in mean edge lengths.
-constexpr double CurveSnapSpacing = 0.25;
 // Spacing of the curve samples seeding the exact solver (the exact reference), in mean edges.
 constexpr double ExactCurveSpacing = 1.0 / 16.0;
 
@@ -165,13 +158,9 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   std::vector<std::vector<gs::SurfacePoint>> curveSources;
   if (sources)
   {
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     std::string reason;
     auto snap = [&](const double x[3], gs::SurfacePoint& p, vtkIdType pointId) {
-      if (!cache.Locator->Snap(x, p, reason))
+      if (!cache.Locator().Snap(x, p, reason))
       {
         vtkErrorMacro("Source point " << pointId << ": " << reason << ".");
         return false;
@@ -182,7 +171,6 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
     vtkPolyData* polySources = vtkPolyData::SafeDownCast(sources);
     if (polySources && polySources->GetNumberOfLines() > 0)
     {
-      const double spacing = CurveSnapSpacing * mesh.MeanEdgeLength();
       auto it = vtk::TakeSmartPointer(polySources->GetLines()->NewIterator());
       vtkIdType npts;
       const vtkIdType* pts;
@@ -190,7 +178,7 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
       {
         it->GetCurrentCell(npts, pts);
         std::vector<gs::SurfacePoint> curve;
-        if (!cache.Locator->SnapPolyline(sources->GetPoints(), npts, pts, spacing, curve, reason))
+        if (!cache.SnapCurve(sources->GetPoints(), npts, pts, curve, reason))
         {
           vtkErrorMacro("Source curve: " << reason << ".");
           return 1;
@@ -253,18 +241,16 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   vtkSaddleVertexGraphCache::Origin graphOrigin = vtkSaddleVertexGraphCache::Origin::Memory;
   if (useGraph)
   {
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
-      this, mesh, cache.Hash, cache.HashValid, this->K, this->CacheFileName, 0.1, 0.7);
-    if (!found.Graph)
+    bool graphChanged = false;
+    if (!cache.UseSaddleVertexGraph(
+          this, this->K, this->CacheFileName, 0.1, 0.7, graphChanged, &graphOrigin))
     {
       return 1; // aborted, or the error is reported
     }
-    graphOrigin = found.From;
-    if (found.Graph != cache.Graph || !cache.SVG)
+    if (graphChanged || !cache.SVG)
     {
       cache.SVG.reset();
-      cache.Graph = found.Graph;
-      cache.SVG.reset(new gs::SVGGeodesicSolver(mesh, *cache.Graph));
+      cache.SVG.reset(new gs::SVGGeodesicSolver(mesh, *cache.Graph()));
     }
   }
   this->UpdateProgress(0.8);
@@ -360,10 +346,10 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
     }
     vtkNew<vtkDoubleArray> meanDegree;
     meanDegree->SetName("SVGMeanDegree");
-    meanDegree->InsertNextValue(cache.Graph->MeanDegree());
+    meanDegree->InsertNextValue(cache.Graph()->MeanDegree());
     vtkNew<vtkDoubleArray> buildSeconds;
     buildSeconds->SetName("SVGBuildSeconds");
-    buildSeconds->InsertNextValue(cache.Graph->BuildSeconds());
+    buildSeconds->InsertNextValue(cache.Graph()->BuildSeconds());
     vtkNew<vtkStringArray> origin;
     origin->SetName("SVGGraphOrigin");
     origin->InsertNextValue(vtkSaddleVertexGraphCache::OriginName(graphOrigin));

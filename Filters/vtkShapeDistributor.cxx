@@ -1,9 +1,8 @@
 #include "vtkShapeDistributor.h"
 
-#include "vtkSaddleVertexGraphCache.h"
+#include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
 #include "vtkSafeDistanceTableImage.h"
-#include "vtkSurfaceMeshConverter.h"
 
 #include "OverlapCheck.h"
 #include "SafeDistanceTable.h"
@@ -43,14 +42,11 @@
 
 vtkStandardNewMacro(vtkShapeDistributor);
 
-// The converted mesh, its hash and the distributor (per-thread geodesic engines), kept while the
-// input mesh is unchanged.
-struct vtkShapeDistributor::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh and what is derived from it (vtkCachedSurface), and the distributor
+// (per-thread geodesic engines), kept while the input mesh is unchanged.
+struct vtkShapeDistributor::Cache : vtkCachedSurface
 {
-  std::unique_ptr<gs::ShapeDistributor> Distributor; // refers to Mesh.Build.Mesh and Graph
-  std::shared_ptr<const gs::SaddleVertexGraph> Graph;
-  std::uint64_t Hash = 0;
-  bool HashValid = false;
+  std::unique_ptr<gs::ShapeDistributor> Distributor; // over Mesh.Build.Mesh and Graph()
 };
 
 namespace
@@ -398,22 +394,20 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   lap("Input");
 
   // 4. Saddle vertex graph (shared, cached) and the distributor.
-  std::shared_ptr<const gs::SaddleVertexGraph> graph;
-  if (this->K >= 1)
+  bool graphChanged = false;
+  if (this->K == 0)
   {
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
-      this, mesh, cache.Hash, cache.HashValid, this->K, this->CacheFileName, 0.05, 0.35);
-    if (!found.Graph)
-    {
-      return 1; // aborted, or the error is reported
-    }
-    graph = found.Graph;
+    graphChanged = cache.UseNoSaddleVertexGraph();
   }
-  if (!cache.Distributor || graph != cache.Graph)
+  else if (!cache.UseSaddleVertexGraph(
+             this, this->K, this->CacheFileName, 0.05, 0.35, graphChanged))
+  {
+    return 1; // aborted, or the error is reported
+  }
+  if (!cache.Distributor || graphChanged)
   {
     cache.Distributor.reset();
-    cache.Graph = graph;
-    cache.Distributor.reset(new gs::ShapeDistributor(mesh, cache.Graph.get()));
+    cache.Distributor.reset(new gs::ShapeDistributor(mesh, cache.Graph()));
   }
   gs::ShapeDistributor& distributor = *cache.Distributor;
   lap("Graph");
