@@ -36,18 +36,19 @@ public:
   vtkSurfacePointLocator& Locator();
 
   // A polyline of `points` (ids[0 .. n)) snapped as a curve on the surface, sampled every
-  // vtkSurfacePointLocator::CurveSampleSpacing mean edge lengths (vtkSurfacePointLocator::SnapCurve).
+  // vtkSurfacePointLocator::CurveSampleSpacing mean edge lengths (see SnapCurve there).
   bool SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
     std::vector<gs::SurfacePoint>& curve, std::string& error);
 
   // gs::SaddleVertexGraph::HashMesh of the converted mesh; computed on first use.
   std::uint64_t MeshHash();
 
-  // Makes the saddle vertex graph of K the one in use: from vtkSaddleVertexGraphCache (memory, `fileName` if not empty, or built with progress
-  // `progressStart` .. + `progressSpan` on `algorithm`, which may abort it). False on error or
-  // abort (the error and any warnings are reported on `algorithm`); the graph in use is then
-  // unchanged. `changed` says whether the graph in use is now another one (an engine built over
-  // the previous one must be rebuilt); `origin` (may be null) where it came from.
+  // Makes the saddle vertex graph of K the one in use: from vtkSaddleVertexGraphCache (memory,
+  // `fileName` if not empty, or built with progress `progressStart` .. + `progressSpan` on
+  // `algorithm`, which may abort it). False on error or abort (the error and any warnings are
+  // reported on `algorithm`); the graph in use is then unchanged. `changed` says whether the
+  // graph in use is now another one (an engine built over the previous one must be rebuilt);
+  // `origin` (may be null) where it came from.
   bool UseSaddleVertexGraph(vtkAlgorithm* algorithm, int k, const std::string& fileName,
     double progressStart, double progressSpan, bool& changed,
     vtkSaddleVertexGraphCache::Origin* origin = nullptr);

@@ -50,13 +50,6 @@ struct vtkSVGGeodesicDistance::Run
   vtkSaddleVertexGraphCache::Origin GraphOrigin = vtkSaddleVertexGraphCache::Origin::Memory;
 };
 
-namespace
-{
-// Spacing of the curve samples seeding the exact solver (the exact reference), in mean edges.
-constexpr double ExactCurveSpacing = 1.0 / 16.0;
-
-}
-
 //------------------------------------------------------------------------------
 vtkSVGGeodesicDistance::vtkSVGGeodesicDistance()
 {
@@ -338,7 +331,7 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
     {
       const std::vector<gs::CurvePiece> pieces = gs::TraceSurfaceCurve(mesh, curve);
       const std::vector<gs::SurfacePoint> samples =
-        gs::SampleCurvePieces(mesh, pieces, ExactCurveSpacing * mesh.MeanEdgeLength());
+        gs::SampleCurvePieces(mesh, pieces, gs::ExactCurveSampleSpacing * mesh.MeanEdgeLength());
       exactSources.insert(exactSources.end(), samples.begin(), samples.end());
     }
     gs::ExactGeodesicOptions options;

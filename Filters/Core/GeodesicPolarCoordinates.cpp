@@ -133,7 +133,7 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
   const std::vector<CurvePiece>& pieces = CurvePieces;
   // Samples along the pieces (as SampleCurvePieces makes them), with their arc length and the
   // curve's tangent angle there.
-  const double spacing = Mesh.MeanEdgeLength() / 16.0;
+  const double spacing = ExactCurveSampleSpacing * Mesh.MeanEdgeLength();
   std::vector<SurfacePoint> samples = SampleCurvePieces(Mesh, pieces, spacing);
   // Samples within rounding of a vertex (a curve through mesh vertices) are that vertex: a face
   // point a hair's breadth from a corner makes needle-thin windows.

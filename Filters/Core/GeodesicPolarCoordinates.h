@@ -57,12 +57,13 @@ public:
   // direction, with the outward normal up) and ArcLength = u in [0, 1], the normalized arc
   // length along the vertex's own offset curve (the level set of |delta| on its side), from
   // where it leaves the curve's start to where it reaches its end (the paper's Fig. 3); points
-  // beyond the ends (in the caps) get 0 or 1. Exact solver from the curve sampled every 1/16
-  // edge; each point's foot (where its geodesic leaves the curve perpendicularly) is placed by
-  // the departure angle, exact for straight pieces on developable surfaces. Null for an empty
-  // or zero-length curve, an invalid point or radius; the coordinates stay valid until the next
-  // Compute or ComputeCurve. In this mode Rho() and Theta() are NaN, PolarAt is false,
-  // ToSurface and UseIsoCurveAngles do nothing (use CurveCoordinatesAt, ToSurfaceFromCurve).
+  // beyond the ends (in the caps) get 0 or 1. Exact solver from the curve sampled every
+  // ExactCurveSampleSpacing edge (SurfaceCurve.h); each point's foot (where its geodesic leaves
+  // the curve perpendicularly) is placed by the departure angle, exact for straight pieces on
+  // developable surfaces. Null for an empty or zero-length curve, an invalid point or radius;
+  // the coordinates stay valid until the next Compute or ComputeCurve. In this mode Rho() and
+  // Theta() are NaN, PolarAt is false, ToSurface and UseIsoCurveAngles do nothing (use
+  // CurveCoordinatesAt, ToSurfaceFromCurve).
   const CurveCoordinates* ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
   bool IsCurve() const { return CurveMode; }
   // Curve coordinates of any surface point (interpolated inside its face: both vary linearly
