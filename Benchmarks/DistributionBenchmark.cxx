@@ -35,6 +35,7 @@
 #include "SaddleVertexGraph.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
+#include "ShapeDrawing.h"
 #include "Silhouette.h"
 #include "TriangleMesh.h"
 
@@ -627,18 +628,13 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         placements.AddValue(shape.ClassId);
       }
       std::printf("    placements hash %016llx\n", static_cast<unsigned long long>(placements.H));
-      std::vector<ShapeDecal> decals(n);
-      std::vector<std::vector<OutlinePiece>> outlines(n);
-      const double spacing = d.OutlineSpacing();
+      std::vector<double> decalSeconds;
+      const std::vector<ShapeDecal> decals =
+        DrawDecals(d, ShapeDistributor::DefaultDecalTolerance, threads, &decalSeconds);
       double longSeconds = 0.0;
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) reduction(+ : longSeconds)
       for (int s = 0; s < n; ++s)
-      {
-        const double start = Now();
-        decals[s] = d.Decal(s);
         if (!r.Shapes[s].Curve.empty())
-          longSeconds += Now() - start;
-      }
+          longSeconds += decalSeconds[s];
       const double t2 = Now();
       if (threads == 1)
       {
@@ -656,9 +652,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
           pieces, ShapeDistributor::DefaultDecalTolerance, t2 - t1, wholeFaces, w1 - w0,
           wholeFaces > 0 ? static_cast<double>(pieces) / wholeFaces : 0.0, (w1 - w0) > 0 ? (t2 - t1) / (w1 - w0) : 0.0);
       }
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-      for (int s = 0; s < n; ++s)
-        outlines[s] = d.Outline(s, spacing);
+      const std::vector<std::vector<OutlinePiece>> outlines = DrawOutlines(d, threads);
       const double t3 = Now();
       OverlapCheckOptions co;
       co.NumberOfThreads = threads;

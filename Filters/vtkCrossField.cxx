@@ -1,7 +1,7 @@
 #include "vtkCrossField.h"
 
 #include "vtkDistributedSurface.h"
-#include "vtkSurfaceMeshConverter.h"
+#include "vtkCachedSurface.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "DirectionField.h"
@@ -30,18 +30,23 @@
 
 vtkStandardNewMacro(vtkCrossField);
 
-// The converted mesh and the direction-field solver (with its factorizations), kept while the
-// input mesh is unchanged (same object, same modification time).
-struct vtkCrossField::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh (vtkCachedSurface) and the direction-field solver (with its
+// factorizations), kept while the input mesh is unchanged.
+struct vtkCrossField::Cache : vtkCachedSurface
 {
-  std::unique_ptr<vtkSurfacePointLocator> Locator;  // refers to Mesh; on demand
   std::unique_ptr<gs::DirectionFieldSolver> Solver; // refers to Mesh.Build.Mesh
+};
+
+// One Execute's singularities and stroke constraints, and the solved angles, step to step.
+struct vtkCrossField::Run
+{
+  std::vector<gs::VertexSingularity> Singularities; // prescribed, on vertices
+  std::vector<gs::FaceDirectionConstraint> Constraints; // from the strokes
+  std::vector<double> Angles; // per face, the solve's result
 };
 
 namespace
 {
-// Spacing of the 3D samples of a stroke before snapping, in mean edge lengths.
-constexpr double StrokeSnapSpacing = 0.25;
 // A face a stroke crosses over less than this many mean edge lengths is not constrained.
 constexpr double MinimumCrossedLength = 0.1;
 }
@@ -106,24 +111,90 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
   this->UpdateProgress(0.0);
 
   // 1. Parameters.
+  if (!this->CheckParameters(singularities))
+  {
+    return 1;
+  }
+  const int n = this->Symmetry;
+
+  // 2. The core mesh and solver, kept while the input is unchanged.
+  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
+  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
+  {
+    return 1;
+  }
+  if (!cache.Solver)
+  {
+    cache.Solver.reset(new gs::DirectionFieldSolver(cache.Mesh.Build.Mesh));
+  }
+  gs::DirectionFieldSolver& solver = *cache.Solver;
+  this->UpdateProgress(0.1);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 3. Singularities: snapped to the nearest vertex, with their Index.
+  Run run;
+  if (!this->FindSingularities(cache, singularities, run))
+  {
+    return 1;
+  }
+
+  // 4. Strokes: every line cell, snapped and traced across faces; each piece constrains its face.
+  if (!this->ReadStrokes(cache, strokes, run))
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.2);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 5. Solve.
+  std::string error;
+  const bool ok = this->Mode == SMOOTHEST
+    ? solver.SolveSmoothest(n, this->CurvatureAlignment, run.Constraints, run.Angles, error)
+    : solver.SolvePrescribed(n, run.Singularities, run.Constraints, run.Angles, error);
+  if (!ok)
+  {
+    vtkErrorMacro("Cross field: " << error << ".");
+    return 1;
+  }
+  this->UpdateProgress(0.8);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 6. Output: the surface with the arrays.
+  this->WriteOutput(cache, run, output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkCrossField::CheckParameters(vtkPointSet* singularities)
+{
   const int n = this->Symmetry;
   if (n != 1 && n != 2 && n != 4)
   {
     vtkErrorMacro("Symmetry must be 1 (vector field), 2 (line field) or 4 (cross field); it is "
       << n << ".");
-    return 1;
+    return false;
   }
   if (this->Mode != SMOOTHEST && this->Mode != PRESCRIBED_SINGULARITIES)
   {
     vtkErrorMacro("Unknown Mode " << this->Mode
                                   << ": 0 (Smoothest) or 1 (Prescribed singularities).");
-    return 1;
+    return false;
   }
   if (!(this->CurvatureAlignment >= 0.0) || !std::isfinite(this->CurvatureAlignment))
   {
     vtkErrorMacro("CurvatureAlignment must be finite and >= 0 (it is "
       << this->CurvatureAlignment << ").");
-    return 1;
+    return false;
   }
   if (this->CurvatureAlignment > 0.0 && (n == 1 || this->Mode != SMOOTHEST))
   {
@@ -135,28 +206,14 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
     vtkWarningMacro("The Singularities input is ignored in the Smoothest mode (singularities are "
                     "placed automatically); choose Prescribed singularities to use it.");
   }
+  return true;
+}
 
-  // 2. The core mesh and solver, kept while the input is unchanged.
-  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
-  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
-  {
-    return 1;
-  }
+//------------------------------------------------------------------------------
+bool vtkCrossField::FindSingularities(Cache& cache, vtkPointSet* singularities, Run& run)
+{
+  std::vector<gs::VertexSingularity>& placed = run.Singularities;
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
-  if (!cache.Solver)
-  {
-    cache.Solver.reset(new gs::DirectionFieldSolver(mesh));
-  }
-  gs::DirectionFieldSolver& solver = *cache.Solver;
-  this->UpdateProgress(0.1);
-  if (this->CheckAbort())
-  {
-    return 1;
-  }
-
-  // 3. Singularities: snapped to the nearest vertex, with their Index.
-  std::vector<gs::VertexSingularity> placed;
   if (singularities && this->Mode == PRESCRIBED_SINGULARITIES &&
     singularities->GetNumberOfPoints() > 0)
   {
@@ -165,11 +222,7 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
     {
       vtkErrorMacro("The Singularities input needs a point array \"Index\" with one component "
                     "(the index of each singularity, a multiple of 1/Symmetry).");
-      return 1;
-    }
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
+      return false;
     }
     for (vtkIdType i = 0; i < singularities->GetNumberOfPoints(); ++i)
     {
@@ -177,10 +230,10 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
       singularities->GetPoint(i, x);
       gs::SurfacePoint p;
       std::string reason;
-      if (!cache.Locator->Snap(x, p, reason))
+      if (!cache.Locator().Snap(x, p, reason))
       {
         vtkErrorMacro("Singularity " << i << ": " << reason << ".");
-        return 1;
+        return false;
       }
       const auto corner = std::max_element(p.Bary.begin(), p.Bary.end());
       const int v = mesh.Face(p.Face)[static_cast<size_t>(corner - p.Bary.begin())];
@@ -194,17 +247,18 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
                   "Euler characteristic "
       << mesh.EulerCharacteristic()
       << ": connect a Singularities input (points with a point array \"Index\").");
-    return 1;
+    return false;
   }
+  return true;
+}
 
-  // 4. Strokes: every line cell, snapped and traced across faces; each piece constrains its face.
-  std::vector<gs::FaceDirectionConstraint> constraints;
+//------------------------------------------------------------------------------
+bool vtkCrossField::ReadStrokes(Cache& cache, vtkPolyData* strokes, Run& run)
+{
+  std::vector<gs::FaceDirectionConstraint>& constraints = run.Constraints;
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   if (strokes && strokes->GetNumberOfLines() > 0)
   {
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     auto it = vtk::TakeSmartPointer(strokes->GetLines()->NewIterator());
     vtkIdType cellId = 0;
     for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
@@ -214,11 +268,10 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
       it->GetCurrentCell(npts, pts);
       std::vector<gs::SurfacePoint> curve;
       std::string reason;
-      if (!cache.Locator->SnapPolyline(strokes->GetPoints(), npts, pts,
-            StrokeSnapSpacing * mesh.MeanEdgeLength(), curve, reason))
+      if (!cache.SnapCurve(strokes->GetPoints(), npts, pts, curve, reason))
       {
         vtkErrorMacro("Stroke " << cellId << ": " << reason << ".");
-        return 1;
+        return false;
       }
       if (curve.size() < 2)
       {
@@ -226,9 +279,7 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
                                              "surface: ignored.");
         continue;
       }
-      // The stroke's own segments in space: each crossed face takes the direction of the
-      // segment closest to the piece inside it, projected onto the face (the traced pieces
-      // bend where the path is re-aimed near vertices; their direction is not used).
+      // The stroke's own points in space (their segments give the faces' directions).
       std::vector<gs::Vec3> polyline;
       for (vtkIdType k = 0; k < npts; ++k)
       {
@@ -236,57 +287,8 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
         strokes->GetPoints()->GetPoint(pts[k], x);
         polyline.emplace_back(x[0], x[1], x[2]);
       }
-      auto segmentDirection = [&](const gs::Vec3& m) {
-        double best = std::numeric_limits<double>::infinity();
-        gs::Vec3 direction(0, 0, 0);
-        for (size_t k = 0; k + 1 < polyline.size(); ++k)
-        {
-          const gs::Vec3 a = polyline[k], ab = polyline[k + 1] - polyline[k];
-          const double l2 = gs::Dot(ab, ab);
-          if (!(l2 > 0))
-          {
-            continue;
-          }
-          const double t = std::min(1.0, std::max(0.0, gs::Dot(m - a, ab) / l2));
-          const double d = gs::Norm(a + ab * t - m);
-          if (d < best)
-          {
-            best = d;
-            direction = ab;
-          }
-        }
-        return direction;
-      };
-      // Faces crossed over less than this length are not constrained (a stroke through a vertex
-      // grazes the faces around it).
-      const double minimumLength = MinimumCrossedLength * mesh.MeanEdgeLength();
-      std::vector<std::pair<int, double>> crossed; // face, length inside, in stroke order
-      std::vector<gs::Vec3> middles;
-      for (const gs::CurvePiece& piece : gs::TraceSurfaceCurve(mesh, curve))
-      {
-        const double l = gs::Norm(piece.B - piece.A);
-        if (!crossed.empty() && crossed.back().first == piece.Face)
-        {
-          crossed.back().second += l;
-          continue;
-        }
-        crossed.emplace_back(piece.Face, l);
-        middles.push_back((piece.A + piece.B) * 0.5);
-      }
-      for (size_t k = 0; k < crossed.size(); ++k)
-      {
-        if (crossed[k].second < minimumLength)
-        {
-          continue;
-        }
-        const gs::Vec3 d = segmentDirection(middles[k]);
-        const gs::Vec3 normal = mesh.FaceNormal(crossed[k].first);
-        const gs::Vec3 tangent = d - normal * gs::Dot(d, normal);
-        if (gs::Norm(tangent) > 1e-9 * gs::Norm(d))
-        {
-          constraints.push_back({ crossed[k].first, tangent });
-        }
-      }
+      gs::AddStrokeConstraints(
+        mesh, curve, polyline, MinimumCrossedLength * mesh.MeanEdgeLength(), constraints);
     }
     if (constraints.empty())
     {
@@ -297,30 +299,17 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
   {
     vtkWarningMacro("The Strokes input has no line cell: no direction constraint.");
   }
-  this->UpdateProgress(0.2);
-  if (this->CheckAbort())
-  {
-    return 1;
-  }
+  return true;
+}
 
-  // 5. Solve.
-  std::vector<double> angles;
-  std::string error;
-  const bool ok = this->Mode == SMOOTHEST
-    ? solver.SolveSmoothest(n, this->CurvatureAlignment, constraints, angles, error)
-    : solver.SolvePrescribed(n, placed, constraints, angles, error);
-  if (!ok)
-  {
-    vtkErrorMacro("Cross field: " << error << ".");
-    return 1;
-  }
-  this->UpdateProgress(0.8);
-  if (this->CheckAbort())
-  {
-    return 1;
-  }
-
-  // 6. Output: the surface with the arrays.
+//------------------------------------------------------------------------------
+void vtkCrossField::WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output)
+{
+  const std::vector<double>& angles = run.Angles;
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  const gs::DirectionFieldSolver& solver = *cache.Solver;
+  const int n = this->Symmetry;
   output->ShallowCopy(cache.Mesh.Surface);
   const vtkIdType numberOfCells = output->GetNumberOfCells();
   const vtkIdType firstPolygon = output->GetNumberOfVerts() + output->GetNumberOfLines();
@@ -391,6 +380,4 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
   indexSum->SetName("SingularityIndexSum");
   indexSum->InsertNextValue(sum);
   output->GetFieldData()->AddArray(indexSum);
-  this->UpdateProgress(1.0);
-  return 1;
 }

@@ -114,6 +114,13 @@ private:
 
   struct Cache;
   std::unique_ptr<Cache> MeshCache;
+
+  // Execute's steps (vtkCrossField.cxx); each reports its own errors.
+  bool CheckParameters(vtkPointSet* singularities);
+  struct Run; // one Execute's singularities, stroke constraints and angles
+  bool FindSingularities(Cache& cache, vtkPointSet* singularities, Run& run);
+  bool ReadStrokes(Cache& cache, vtkPolyData* strokes, Run& run);
+  void WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output);
 };
 
 #endif

@@ -1,9 +1,7 @@
 #include "vtkGeodesicPolarCoordinates.h"
 
-#include "vtkSaddleVertexGraphCache.h"
-
+#include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
-#include "vtkSurfaceMeshConverter.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "GeodesicPolarCoordinates.h"
@@ -31,16 +29,22 @@
 
 vtkStandardNewMacro(vtkGeodesicPolarCoordinates);
 
-// The converted mesh and what is derived from it, kept while the input mesh is unchanged (same
-// object, same modification time), so that changing only the source, the radius or the
-// reference direction does not convert the mesh again.
-struct vtkGeodesicPolarCoordinates::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh and what is derived from it (vtkCachedSurface), kept while the input mesh
+// is unchanged, so that changing only the source, the radius or the reference direction does
+// not convert the mesh again, and the engine over it.
+struct vtkGeodesicPolarCoordinates::Cache : vtkCachedSurface
 {
-  std::unique_ptr<vtkSurfacePointLocator> Locator;         // refers to Mesh; on demand
-  std::unique_ptr<gs::GeodesicPolarCoordinates> Polar;      // refers to Mesh.Build.Mesh
-  std::shared_ptr<const gs::SaddleVertexGraph> Graph;        // the graph Polar uses (K >= 1)
-  std::uint64_t Hash = 0;
-  bool HashValid = false;
+  std::unique_ptr<gs::GeodesicPolarCoordinates> Polar; // over Mesh.Build.Mesh and Graph()
+};
+
+// One Execute's source and results, step to step.
+struct vtkGeodesicPolarCoordinates::Run
+{
+  bool CurveSource = false;            // the Source input has line cells
+  gs::SurfacePoint Point;              // a point source (snapped, or SourceVertexId)
+  std::vector<gs::SurfacePoint> Curve; // a curve source, snapped
+  double ReferenceAngle = 0.0;         // theta's zero, a tangent angle at Point
+  const gs::CurveCoordinates* CurveCoordinates = nullptr; // a curve source's result
 };
 
 namespace
@@ -48,8 +52,6 @@ namespace
 // A snapped point this close to a corner (in barycentric weight) is that vertex: the source then
 // has the vertex's angle sum and first edge, as with SourceVertexId.
 constexpr double VertexSnapTolerance = 1e-12;
-// Spacing of the 3D samples of a curve source before snapping, in mean edge lengths.
-constexpr double CurveSnapSpacing = 0.25;
 // Mapping to input points checks for abort every this many points.
 constexpr size_t AbortCheckInterval = 1 << 14;
 }
@@ -112,36 +114,14 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
   this->UpdateProgress(0.0);
 
   // 1. Parameters.
-  if (this->AngleMode != GEODESIC_DIRECTION && this->AngleMode != ISO_CURVE_ARC_LENGTH)
+  if (!this->CheckParameters())
   {
-    vtkErrorMacro("Unknown AngleMode " << this->AngleMode
-                                       << ": 0 (Geodesic direction) or 1 (Iso-curve arc length).");
     return 1;
   }
-  if (!(this->Radius > 0.0))
-  {
-    vtkErrorMacro("Radius must be > 0 (it is " << this->Radius << ").");
-    return 1;
-  }
-  if (!(this->DecalSize > 0.0) || !std::isfinite(this->DecalSize))
-  {
-    vtkErrorMacro("DecalSize must be finite and > 0 (it is " << this->DecalSize << ").");
-    return 1;
-  }
-  const double* reference = this->ReferenceDirection;
-  if (!std::isfinite(reference[0]) || !std::isfinite(reference[1]) ||
-    !std::isfinite(reference[2]))
-  {
-    vtkErrorMacro("ReferenceDirection (" << reference[0] << ", " << reference[1] << ", "
-                                         << reference[2] << ") is not finite.");
-    return 1;
-  }
-  const bool firstEdgeReference =
-    reference[0] == 0.0 && reference[1] == 0.0 && reference[2] == 0.0;
-
   // A Source with line cells is a curve source: its first polyline.
   vtkPolyData* polySource = vtkPolyData::SafeDownCast(source);
-  const bool curveSource = polySource && polySource->GetNumberOfLines() > 0;
+  Run run;
+  run.CurveSource = polySource && polySource->GetNumberOfLines() > 0;
   if (source && source->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro("The Source input has no point.");
@@ -154,8 +134,6 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
   {
     return 1;
   }
-  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
   this->UpdateProgress(0.2);
   if (this->CheckAbort())
   {
@@ -164,14 +142,70 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
 
   // 3. The source: the first polyline of port 1 (a curve), its first point, or SourceVertexId;
   //    snapped to the surface.
-  gs::SurfacePoint sourcePoint;
-  std::vector<gs::SurfacePoint> curve;
-  if (curveSource)
+  if (!this->FindSource(cache, source, run))
   {
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
+    return 1;
+  }
+
+  // 4. Theta's zero as a tangent angle at the source.
+  this->ResolveReferenceAngle(cache, run);
+
+  // 5. Solve: exact geodesics truncated at the radius (K = 0), or the saddle vertex graph of K
+  //    from the process-wide cache (built with progress 0.3 .. 0.7 when new).
+  if (!this->Solve(cache, run))
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.8);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 6. Map back to every input point (welded points share their vertex's coordinates).
+  return this->WriteOutput(cache, run, output);
+}
+
+//------------------------------------------------------------------------------
+bool vtkGeodesicPolarCoordinates::CheckParameters()
+{
+  if (this->AngleMode != GEODESIC_DIRECTION && this->AngleMode != ISO_CURVE_ARC_LENGTH)
+  {
+    vtkErrorMacro("Unknown AngleMode " << this->AngleMode
+                                       << ": 0 (Geodesic direction) or 1 (Iso-curve arc length).");
+    return false;
+  }
+  if (!(this->Radius > 0.0))
+  {
+    vtkErrorMacro("Radius must be > 0 (it is " << this->Radius << ").");
+    return false;
+  }
+  if (!(this->DecalSize > 0.0) || !std::isfinite(this->DecalSize))
+  {
+    vtkErrorMacro("DecalSize must be finite and > 0 (it is " << this->DecalSize << ").");
+    return false;
+  }
+  const double* reference = this->ReferenceDirection;
+  if (!std::isfinite(reference[0]) || !std::isfinite(reference[1]) ||
+    !std::isfinite(reference[2]))
+  {
+    vtkErrorMacro("ReferenceDirection (" << reference[0] << ", " << reference[1] << ", "
+                                         << reference[2] << ") is not finite.");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGeodesicPolarCoordinates::FindSource(Cache& cache, vtkPointSet* source, Run& run)
+{
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  vtkPolyData* polySource = vtkPolyData::SafeDownCast(source);
+  std::vector<gs::SurfacePoint>& curve = run.Curve;
+  gs::SurfacePoint& sourcePoint = run.Point;
+  if (run.CurveSource)
+  {
     if (polySource->GetNumberOfLines() > 1)
     {
       vtkWarningMacro("The Source input has " << polySource->GetNumberOfLines()
@@ -183,16 +217,15 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
     it->GoToFirstCell();
     it->GetCurrentCell(npts, pts);
     std::string reason;
-    if (!cache.Locator->SnapPolyline(polySource->GetPoints(), npts, pts,
-          CurveSnapSpacing * mesh.MeanEdgeLength(), curve, reason))
+    if (!cache.SnapCurve(polySource->GetPoints(), npts, pts, curve, reason))
     {
       vtkErrorMacro("Source curve: " << reason << ".");
-      return 1;
+      return false;
     }
     if (curve.size() < 2)
     {
       vtkErrorMacro("The Source curve has fewer than two distinct points on the surface.");
-      return 1;
+      return false;
     }
     // Curve coordinates are (u, delta) from exact geodesics: say so when a setting is ignored.
     const bool referenceSet = this->ReferenceDirection[0] != 0.0 ||
@@ -210,17 +243,13 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
       vtkWarningMacro("The Source input has " << source->GetNumberOfPoints()
                                               << " points: only the first one is used.");
     }
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     double x[3];
     source->GetPoint(0, x);
     std::string reason;
-    if (!cache.Locator->Snap(x, sourcePoint, reason))
+    if (!cache.Locator().Snap(x, sourcePoint, reason))
     {
       vtkErrorMacro("Source point 0: " << reason << ".");
-      return 1;
+      return false;
     }
     const auto corner = std::max_element(sourcePoint.Bary.begin(), sourcePoint.Bary.end());
     if (*corner >= 1.0 - VertexSnapTolerance)
@@ -236,21 +265,31 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
     {
       vtkErrorMacro("SourceVertexId " << this->SourceVertexId << " is out of range [0, "
                                       << numberOfPoints << ").");
-      return 1;
+      return false;
     }
     const int v = pointToVertex[static_cast<size_t>(this->SourceVertexId)];
     if (v < 0)
     {
       vtkErrorMacro("SourceVertexId " << this->SourceVertexId
                                       << " is not used by any triangle.");
-      return 1;
+      return false;
     }
     sourcePoint = gs::SurfacePoint::AtVertex(v);
   }
+  return true;
+}
 
-  // 4. Theta's zero as a tangent angle at the source.
-  double referenceAngle = 0.0;
-  if (!firstEdgeReference && !curveSource)
+//------------------------------------------------------------------------------
+void vtkGeodesicPolarCoordinates::ResolveReferenceAngle(const Cache& cache, Run& run)
+{
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const gs::SurfacePoint& sourcePoint = run.Point;
+  const double* reference = this->ReferenceDirection;
+  const bool firstEdgeReference =
+    reference[0] == 0.0 && reference[1] == 0.0 && reference[2] == 0.0;
+  double& referenceAngle = run.ReferenceAngle;
+  referenceAngle = 0.0;
+  if (!firstEdgeReference && !run.CurveSource)
   {
     const double angle = gs::TangentAngle(
       mesh, sourcePoint, gs::Vec3(reference[0], reference[1], reference[2]));
@@ -266,48 +305,49 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
                                                 "using the source's first edge instead.");
     }
   }
+}
 
-  // 5. Solve: exact geodesics truncated at the radius (K = 0), or the saddle vertex graph of K
-  //    from the process-wide cache (built with progress 0.3 .. 0.7 when new).
+//------------------------------------------------------------------------------
+bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
+{
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   if (this->K < 0)
   {
     vtkErrorMacro("K must be 0 (exact engine) or at least 1 (saddle vertex graph); it is "
       << this->K << ".");
-    return 1;
+    return false;
   }
-  std::shared_ptr<const gs::SaddleVertexGraph> graph;
-  if (this->K >= 1)
+  bool graphChanged = false;
+  if (this->K == 0)
   {
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
-      this, mesh, cache.Hash, cache.HashValid, this->K, std::string(), 0.3, 0.4);
-    if (!found.Graph)
-    {
-      return 1; // aborted, or the error is reported
-    }
-    graph = found.Graph;
+    graphChanged = cache.UseNoSaddleVertexGraph();
   }
-  if (!cache.Polar || graph != cache.Graph)
+  else if (!cache.UseSaddleVertexGraph(this, this->K, std::string(), 0.3, 0.4, graphChanged))
+  {
+    return false; // aborted, or the error is reported
+  }
+  if (!cache.Polar || graphChanged)
   {
     cache.Polar.reset();
-    cache.Graph = graph;
-    cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph.get()));
+    cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph()));
   }
   gs::GeodesicPolarCoordinates& polar = *cache.Polar;
-  if (curveSource)
+  if (run.CurveSource)
   {
-    if (!polar.ComputeCurve(curve, this->Radius))
+    run.CurveCoordinates = polar.ComputeCurve(run.Curve, this->Radius);
+    if (!run.CurveCoordinates)
     {
       vtkErrorMacro("The geodesic polar coordinates solver rejected the curve (zero length?) or "
                     "the radius.");
-      return 1;
+      return false;
     }
   }
-  else if (!polar.Compute(sourcePoint, this->Radius, referenceAngle))
+  else if (!polar.Compute(run.Point, this->Radius, run.ReferenceAngle))
   {
     vtkErrorMacro("The geodesic polar coordinates solver rejected the source or the radius.");
-    return 1;
+    return false;
   }
-  if (this->AngleMode == ISO_CURVE_ARC_LENGTH && !curveSource)
+  if (this->AngleMode == ISO_CURVE_ARC_LENGTH && !run.CurveSource)
   {
     const int kept = polar.UseIsoCurveAngles();
     if (kept > 0)
@@ -318,13 +358,16 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
                          "geodesic-direction angle.");
     }
   }
-  this->UpdateProgress(0.8);
-  if (this->CheckAbort())
-  {
-    return 1;
-  }
+  return true;
+}
 
-  // 6. Map back to every input point (welded points share their vertex's coordinates).
+//------------------------------------------------------------------------------
+int vtkGeodesicPolarCoordinates::WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output)
+{
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  const gs::GeodesicPolarCoordinates& polar = *cache.Polar;
+  const bool curveSource = run.CurveSource;
+  const gs::CurveCoordinates* curveCoordinates = run.CurveCoordinates;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
   vtkNew<vtkDoubleArray> rhoArray;
@@ -349,8 +392,9 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
       }
     }
     const int v = pointToVertex[i];
-    double rho = v >= 0 ? polar.Rho(v) : nan;
-    double theta = v >= 0 ? polar.Theta(v) : nan;
+    // (Curve source: rho is the offset, theta the arc length.)
+    double rho = v < 0 ? nan : curveSource ? curveCoordinates->Offset[v] : polar.Rho(v);
+    double theta = v < 0 ? nan : curveSource ? curveCoordinates->ArcLength[v] : polar.Theta(v);
     if (!std::isfinite(rho) || std::abs(rho) > this->Radius || !std::isfinite(theta))
     {
       rho = theta = nan;
@@ -387,7 +431,7 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
   }
   vtkNew<vtkDoubleArray> summary;
   summary->SetName(curveSource ? "CurveLength" : "SourceAngleSum");
-  summary->InsertNextValue(curveSource ? polar.CurveLength() : polar.SourceAngleSum());
+  summary->InsertNextValue(curveSource ? curveCoordinates->Length : polar.SourceAngleSum());
   fieldData->AddArray(summary);
   output->SetFieldData(fieldData);
   this->UpdateProgress(1.0);

@@ -168,6 +168,14 @@ private:
   // Converted mesh, locator and polar-coordinate solver, reused while the input is unchanged.
   struct Cache;
   std::unique_ptr<Cache> MeshCache;
+
+  // Execute's steps (vtkGeodesicPolarCoordinates.cxx); each reports its own errors.
+  struct Run; // one Execute's source and results
+  bool CheckParameters();
+  bool FindSource(Cache& cache, vtkPointSet* source, Run& run);
+  void ResolveReferenceAngle(const Cache& cache, Run& run);
+  bool Solve(Cache& cache, Run& run);
+  int WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output);
 };
 
 #endif

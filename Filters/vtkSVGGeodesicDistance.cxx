@@ -1,8 +1,8 @@
 #include "vtkSVGGeodesicDistance.h"
 
-#include "vtkSaddleVertexGraphCache.h"
+#include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
-#include "vtkSurfaceMeshConverter.h"
+#include "vtkSaddleVertexGraphCache.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "ExactGeodesic.h"
@@ -33,28 +33,22 @@
 
 vtkStandardNewMacro(vtkSVGGeodesicDistance);
 
-// The converted mesh and what is derived from it, kept while the input mesh is unchanged (same
-// object, same modification time), so that changing only the sources or parameters does not
-// redo them. The saddle vertex graph itself lives in vtkSaddleVertexGraphCache (shared by the
-// whole process); this only holds on to the one in use and the solver over it.
-struct vtkSVGGeodesicDistance::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh and what is derived from it (vtkCachedSurface), kept while the input mesh
+// is unchanged, so that changing only the sources or parameters does not redo them, and the
+// solvers over it.
+struct vtkSVGGeodesicDistance::Cache : vtkCachedSurface
 {
-  std::unique_ptr<gs::ExactGeodesicSolver> Exact;   // refers to Mesh.Build.Mesh; on demand
-  std::unique_ptr<vtkSurfacePointLocator> Locator;  // refers to Mesh; on demand
-  bool HashValid = false;
-  std::uint64_t Hash = 0; // gs::SaddleVertexGraph::HashMesh(Mesh.Build.Mesh); on demand
-  std::shared_ptr<const gs::SaddleVertexGraph> Graph;
-  std::unique_ptr<gs::SVGGeodesicSolver> SVG; // over Mesh.Build.Mesh and *Graph
+  std::unique_ptr<gs::ExactGeodesicSolver> Exact; // refers to Mesh.Build.Mesh; on demand
+  std::unique_ptr<gs::SVGGeodesicSolver> SVG;     // over Mesh.Build.Mesh and Graph()
 };
 
-namespace
+// One Execute's sources, step to step.
+struct vtkSVGGeodesicDistance::Run
 {
-// Spacing of the 3D samples of a curve source before snapping, in mean edge lengths.
-constexpr double CurveSnapSpacing = 0.25;
-// Spacing of the curve samples seeding the exact solver (the exact reference), in mean edges.
-constexpr double ExactCurveSpacing = 1.0 / 16.0;
-
-}
+  std::vector<gs::SurfacePoint> PointSources;
+  std::vector<std::vector<gs::SurfacePoint>> CurveSources;
+  vtkSaddleVertexGraphCache::Origin GraphOrigin = vtkSaddleVertexGraphCache::Origin::Memory;
+};
 
 //------------------------------------------------------------------------------
 vtkSVGGeodesicDistance::vtkSVGGeodesicDistance()
@@ -143,7 +137,7 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
     vtkErrorMacro("ResultArrayName is empty.");
     return 1;
   }
-  const bool useGraph = this->Solver != EXACT;
+  Run run;
 
   // 1. The core mesh, converted once while the input is unchanged.
   Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
@@ -151,8 +145,6 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   {
     return 1;
   }
-  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
   this->UpdateProgress(0.1);
   if (this->CheckAbort())
   {
@@ -161,17 +153,51 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
 
   // 2. Sources: curves (line cells of port 1) and points (its other points), or the listed
   //    point ids.
-  std::vector<gs::SurfacePoint> pointSources;
-  std::vector<std::vector<gs::SurfacePoint>> curveSources;
+  if (!this->FindSources(cache, sources, run))
+  {
+    return 1;
+  }
+
+  // 3. The saddle vertex graph (SVG solvers): from this process's cache, the cache file, or
+  //    built now with progress 0.1 .. 0.8.
+  if (this->Solver != EXACT && !this->UseGraph(cache, run))
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.8);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 4. Solve.
+  if (!this->Solve(cache, run))
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.9);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+
+  // 5. Map back to every input point (welded points share their vertex's distance).
+  this->WriteOutput(cache, run, output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSVGGeodesicDistance::FindSources(Cache& cache, vtkPointSet* sources, Run& run)
+{
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  std::vector<gs::SurfacePoint>& pointSources = run.PointSources;
+  std::vector<std::vector<gs::SurfacePoint>>& curveSources = run.CurveSources;
   if (sources)
   {
-    if (!cache.Locator)
-    {
-      cache.Locator.reset(new vtkSurfacePointLocator(cache.Mesh));
-    }
     std::string reason;
     auto snap = [&](const double x[3], gs::SurfacePoint& p, vtkIdType pointId) {
-      if (!cache.Locator->Snap(x, p, reason))
+      if (!cache.Locator().Snap(x, p, reason))
       {
         vtkErrorMacro("Source point " << pointId << ": " << reason << ".");
         return false;
@@ -182,7 +208,6 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
     vtkPolyData* polySources = vtkPolyData::SafeDownCast(sources);
     if (polySources && polySources->GetNumberOfLines() > 0)
     {
-      const double spacing = CurveSnapSpacing * mesh.MeanEdgeLength();
       auto it = vtk::TakeSmartPointer(polySources->GetLines()->NewIterator());
       vtkIdType npts;
       const vtkIdType* pts;
@@ -190,10 +215,10 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
       {
         it->GetCurrentCell(npts, pts);
         std::vector<gs::SurfacePoint> curve;
-        if (!cache.Locator->SnapPolyline(sources->GetPoints(), npts, pts, spacing, curve, reason))
+        if (!cache.SnapCurve(sources->GetPoints(), npts, pts, curve, reason))
         {
           vtkErrorMacro("Source curve: " << reason << ".");
-          return 1;
+          return false;
         }
         for (vtkIdType i = 0; i < npts; ++i)
         {
@@ -216,7 +241,7 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
       gs::SurfacePoint p;
       if (!snap(x, p, i))
       {
-        return 1;
+        return false;
       }
       pointSources.push_back(p);
     }
@@ -230,13 +255,13 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
       {
         vtkErrorMacro("Source vertex id " << id << " is out of range [0, " << numberOfPoints
                                           << ").");
-        return 1;
+        return false;
       }
       const int v = pointToVertex[static_cast<size_t>(id)];
       if (v < 0)
       {
         vtkErrorMacro("Source vertex id " << id << " is not used by any triangle.");
-        return 1;
+        return false;
       }
       pointSources.push_back(gs::SurfacePoint::AtVertex(v));
     }
@@ -245,35 +270,33 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   {
     vtkErrorMacro("No source: set SourceVertexIds or connect source points or lines to the "
                   "Sources port (with at least one point).");
-    return 1;
+    return false;
   }
+  return true;
+}
 
-  // 3. The saddle vertex graph (SVG solvers): from this process's cache, the cache file, or
-  //    built now with progress 0.1 .. 0.8.
-  vtkSaddleVertexGraphCache::Origin graphOrigin = vtkSaddleVertexGraphCache::Origin::Memory;
-  if (useGraph)
+//------------------------------------------------------------------------------
+bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
+{
+  bool graphChanged = false;
+  if (!cache.UseSaddleVertexGraph(
+        this, this->K, this->CacheFileName, 0.1, 0.7, graphChanged, &run.GraphOrigin))
   {
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
-      this, mesh, cache.Hash, cache.HashValid, this->K, this->CacheFileName, 0.1, 0.7);
-    if (!found.Graph)
-    {
-      return 1; // aborted, or the error is reported
-    }
-    graphOrigin = found.From;
-    if (found.Graph != cache.Graph || !cache.SVG)
-    {
-      cache.SVG.reset();
-      cache.Graph = found.Graph;
-      cache.SVG.reset(new gs::SVGGeodesicSolver(mesh, *cache.Graph));
-    }
+    return false; // aborted, or the error is reported
   }
-  this->UpdateProgress(0.8);
-  if (this->CheckAbort())
+  if (graphChanged || !cache.SVG)
   {
-    return 1;
+    cache.SVG.reset();
+    cache.SVG.reset(new gs::SVGGeodesicSolver(cache.Mesh.Build.Mesh, *cache.Graph()));
   }
+  return true;
+}
 
-  // 4. Solve.
+//------------------------------------------------------------------------------
+bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
+{
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const bool useGraph = this->Solver != EXACT;
   bool solved = false;
   if (useGraph)
   {
@@ -282,18 +305,18 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
                                                      : gs::GraphAlgorithm::LabelCorrecting;
     options.MaximumDistance = this->MaximumDistance;
     options.Refine = this->UnfoldingRefinement;
-    if (curveSources.empty())
+    if (run.CurveSources.empty())
     {
-      solved = cache.SVG->Solve(pointSources, options);
+      solved = cache.SVG->Solve(run.PointSources, options);
     }
     else
     {
       // Point sources join the curve solve as one-point curves.
-      for (const gs::SurfacePoint& p : pointSources)
+      for (const gs::SurfacePoint& p : run.PointSources)
       {
-        curveSources.push_back({ p });
+        run.CurveSources.push_back({ p });
       }
-      solved = cache.SVG->SolveCurves(curveSources, options);
+      solved = cache.SVG->SolveCurves(run.CurveSources, options);
     }
   }
   else
@@ -303,12 +326,12 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
       cache.Exact.reset(new gs::ExactGeodesicSolver(mesh));
     }
     // Curves: traced across faces and densely sampled; the exact solver runs from every sample.
-    std::vector<gs::SurfacePoint> exactSources = pointSources;
-    for (const auto& curve : curveSources)
+    std::vector<gs::SurfacePoint> exactSources = run.PointSources;
+    for (const auto& curve : run.CurveSources)
     {
       const std::vector<gs::CurvePiece> pieces = gs::TraceSurfaceCurve(mesh, curve);
       const std::vector<gs::SurfacePoint> samples =
-        gs::SampleCurvePieces(mesh, pieces, ExactCurveSpacing * mesh.MeanEdgeLength());
+        gs::SampleCurvePieces(mesh, pieces, gs::ExactCurveSampleSpacing * mesh.MeanEdgeLength());
       exactSources.insert(exactSources.end(), samples.begin(), samples.end());
     }
     gs::ExactGeodesicOptions options;
@@ -318,15 +341,16 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   if (!solved)
   {
     vtkErrorMacro("The geodesic solver rejected the sources.");
-    return 1;
+    return false;
   }
-  this->UpdateProgress(0.9);
-  if (this->CheckAbort())
-  {
-    return 1;
-  }
+  return true;
+}
 
-  // 5. Map back to every input point (welded points share their vertex's distance).
+//------------------------------------------------------------------------------
+void vtkSVGGeodesicDistance::WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output)
+{
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  const bool useGraph = this->Solver != EXACT;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   vtkNew<vtkDoubleArray> distance;
   distance->SetName(this->ResultArrayName.c_str());
@@ -360,20 +384,18 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
     }
     vtkNew<vtkDoubleArray> meanDegree;
     meanDegree->SetName("SVGMeanDegree");
-    meanDegree->InsertNextValue(cache.Graph->MeanDegree());
+    meanDegree->InsertNextValue(cache.Graph()->MeanDegree());
     vtkNew<vtkDoubleArray> buildSeconds;
     buildSeconds->SetName("SVGBuildSeconds");
-    buildSeconds->InsertNextValue(cache.Graph->BuildSeconds());
+    buildSeconds->InsertNextValue(cache.Graph()->BuildSeconds());
     vtkNew<vtkStringArray> origin;
     origin->SetName("SVGGraphOrigin");
-    origin->InsertNextValue(vtkSaddleVertexGraphCache::OriginName(graphOrigin));
+    origin->InsertNextValue(vtkSaddleVertexGraphCache::OriginName(run.GraphOrigin));
     fieldData->AddArray(meanDegree);
     fieldData->AddArray(buildSeconds);
     fieldData->AddArray(origin);
     output->SetFieldData(fieldData);
   }
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 //------------------------------------------------------------------------------

@@ -177,6 +177,13 @@ private:
   // Converted mesh, locator, solvers and graph, reused while the input mesh is unchanged.
   struct Cache;
   std::unique_ptr<Cache> MeshCache;
+
+  // Execute's steps (vtkSVGGeodesicDistance.cxx); each reports its own errors.
+  struct Run; // one Execute's sources
+  bool FindSources(Cache& cache, vtkPointSet* sources, Run& run);
+  bool UseGraph(Cache& cache, Run& run);
+  bool Solve(Cache& cache, Run& run);
+  void WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output);
 };
 
 #endif

@@ -242,15 +242,10 @@ std::size_t vtkSaddleVertexGraphCache::NumberOfGraphs()
 }
 
 vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::GetFor(vtkAlgorithm* algorithm,
-  const gs::TriangleMesh& mesh, std::uint64_t& hash, bool& hashValid, int k,
-  const std::string& fileName, double progressStart, double progressSpan)
+  const gs::TriangleMesh& mesh, std::uint64_t meshHash, int k, const std::string& fileName,
+  double progressStart, double progressSpan)
 {
-  if (!hashValid)
-  {
-    hash = gs::SaddleVertexGraph::HashMesh(mesh);
-    hashValid = true;
-  }
-  Result found = Get(mesh, hash, k, fileName, [=](double fraction) {
+  Result found = Get(mesh, meshHash, k, fileName, [=](double fraction) {
     algorithm->UpdateProgress(progressStart + progressSpan * fraction);
     return !algorithm->CheckAbort();
   });

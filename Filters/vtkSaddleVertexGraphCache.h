@@ -59,12 +59,12 @@ public:
   static Result Get(const gs::TriangleMesh& mesh, std::uint64_t meshHash, int k,
     const std::string& fileName, const gs::ProgressCallback& progress);
 
-  // Get() for a filter: hashes the mesh once (`hash` / `hashValid` belong to the filter's mesh
-  // cache), reports the build's progress on `algorithm` from `progressStart` over
-  // `progressSpan` (and aborts the build when the algorithm is aborted), and emits the
-  // warnings and the error there. Result::Graph is null on error or abort.
-  static Result GetFor(vtkAlgorithm* algorithm, const gs::TriangleMesh& mesh, std::uint64_t& hash,
-    bool& hashValid, int k, const std::string& fileName, double progressStart,
+  // Get() for a filter (see vtkCachedSurface::UseSaddleVertexGraph): reports the build's
+  // progress on `algorithm` from `progressStart` over `progressSpan` (and aborts the build when
+  // the algorithm is aborted), and emits the warnings and the error there. Result::Graph is null
+  // on error or abort.
+  static Result GetFor(vtkAlgorithm* algorithm, const gs::TriangleMesh& mesh,
+    std::uint64_t meshHash, int k, const std::string& fileName, double progressStart,
     double progressSpan);
 
   // Number of most recently used graphs the cache keeps alive.

@@ -1,14 +1,14 @@
 #include "vtkShapeDistributor.h"
 
-#include "vtkSaddleVertexGraphCache.h"
+#include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
 #include "vtkSafeDistanceTableImage.h"
-#include "vtkSurfaceMeshConverter.h"
 
 #include "OverlapCheck.h"
 #include "SafeDistanceTable.h"
 #include "DirectionField.h"
 #include "ShapeDistributor.h"
+#include "ShapeDrawing.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -43,14 +43,50 @@
 
 vtkStandardNewMacro(vtkShapeDistributor);
 
-// The converted mesh, its hash and the distributor (per-thread geodesic engines), kept while the
-// input mesh is unchanged.
-struct vtkShapeDistributor::Cache : vtkSurfaceMeshConverter::Cached
+// The converted mesh and what is derived from it (vtkCachedSurface), and the distributor
+// (per-thread geodesic engines), kept while the input mesh is unchanged.
+struct vtkShapeDistributor::Cache : vtkCachedSurface
 {
-  std::unique_ptr<gs::ShapeDistributor> Distributor; // refers to Mesh.Build.Mesh and Graph
-  std::shared_ptr<const gs::SaddleVertexGraph> Graph;
-  std::uint64_t Hash = 0;
-  bool HashValid = false;
+  std::unique_ptr<gs::ShapeDistributor> Distributor; // over Mesh.Build.Mesh and Graph()
+};
+
+// One Execute's inputs and results, step to step, and the wall time of each phase (reported as
+// the field data PhaseSeconds of Placements).
+struct vtkShapeDistributor::Run
+{
+  gs::SafeDistanceTables Tables;
+  double ShapeSize = 0.0;     // resolved (ShapeSize 0: automatic)
+  vtkIdType FirstPolygon = 0; // the surface's cell id of core face 0
+  std::vector<gs::Vec3> Directions; // per face
+  std::vector<double> Density;      // per vertex; empty: none
+  int Symmetry = 1;                 // of the direction field (the input's field data Symmetry)
+  std::string DirectionChoice;      // "CELLS name" or "POINTS name" (DirectionArrayUsed)
+  gs::ShapeDistributionResult Result;
+  std::vector<std::pair<const char*, double>> Phases;
+  std::chrono::steady_clock::time_point Clock = std::chrono::steady_clock::now();
+
+  // Ends the phase `name` now.
+  void Lap(const char* name)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    this->Phases.emplace_back(name, std::chrono::duration<double>(now - this->Clock).count());
+    this->Clock = now;
+  }
+
+  // PhaseSeconds: one tuple, a component per phase (SetUp .. Rounds split Distribution).
+  void WritePhaseSeconds(vtkPolyData* placements) const
+  {
+    vtkNew<vtkDoubleArray> split;
+    split->SetName("PhaseSeconds");
+    split->SetNumberOfComponents(static_cast<int>(this->Phases.size()));
+    split->SetNumberOfTuples(1);
+    for (std::size_t k = 0; k < this->Phases.size(); ++k)
+    {
+      split->SetComponentName(static_cast<vtkIdType>(k), this->Phases[k].first);
+      split->SetComponent(0, static_cast<int>(k), this->Phases[k].second);
+    }
+    placements->GetFieldData()->AddArray(split);
+  }
 };
 
 namespace
@@ -65,6 +101,239 @@ vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
 {
   vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
   return a && a->GetNumberOfComponents() == components ? a : nullptr;
+}
+
+// Fills Placements: one vertex per shape with its class, scale, direction, normal and face (the
+// input's cell id), and the run's statistics as field data.
+void WritePlacements(const gs::ShapeDistributionResult& result, vtkIdType firstPolygon,
+  double shapeSize, const std::string& directionChoice, vtkPolyData* placements)
+{
+  const std::vector<gs::PlacedShape>& shapes = result.Shapes;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> verts;
+  vtkNew<vtkIntArray> classId;
+  classId->SetName("ClassId");
+  vtkNew<vtkDoubleArray> scale;
+  scale->SetName("Scale");
+  vtkNew<vtkDoubleArray> direction;
+  direction->SetName("Direction");
+  direction->SetNumberOfComponents(3);
+  vtkNew<vtkDoubleArray> normal;
+  normal->SetName("Normal");
+  normal->SetNumberOfComponents(3);
+  vtkNew<vtkIdTypeArray> faceId;
+  faceId->SetName("FaceId");
+  for (const gs::PlacedShape& s : shapes)
+  {
+    const vtkIdType id = points->InsertNextPoint(s.Position.x, s.Position.y, s.Position.z);
+    verts->InsertNextCell(1, &id);
+    classId->InsertNextValue(s.ClassId);
+    scale->InsertNextValue(s.Scale);
+    direction->InsertNextTuple3(s.Direction.x, s.Direction.y, s.Direction.z);
+    normal->InsertNextTuple3(s.Normal.x, s.Normal.y, s.Normal.z);
+    faceId->InsertNextValue(firstPolygon + s.Centre.Face);
+  }
+  placements->SetPoints(points);
+  placements->SetVerts(verts);
+  placements->GetPointData()->AddArray(classId);
+  placements->GetPointData()->AddArray(scale);
+  placements->GetPointData()->AddArray(direction);
+  placements->GetPointData()->AddArray(normal);
+  placements->GetPointData()->AddArray(faceId);
+  placements->GetPointData()->SetActiveScalars("ClassId");
+  placements->GetPointData()->SetActiveVectors("Direction");
+  vtkFieldData* fd = placements->GetFieldData();
+  auto single = [fd](const char* name, double value) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fd->AddArray(a);
+  };
+  single("NumberOfCandidates", static_cast<double>(result.Statistics.Candidates));
+  single("NumberOfCharts", static_cast<double>(result.Statistics.Charts));
+  single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
+  single("Seconds", result.Statistics.Seconds);
+  single("ShapeSizeUsed", shapeSize);
+  vtkNew<vtkStringArray> used;
+  used->SetName("DirectionArrayUsed");
+  used->InsertNextValue(directionChoice);
+  fd->AddArray(used);
+}
+
+// VerifyOverlaps' result on Placements: Overlaps per shape, OverlappingPairs, OverlapCheckSeconds.
+void WriteOverlaps(const gs::OverlapCheckResult& found, int ns, vtkPolyData* placements)
+{
+  vtkNew<vtkIntArray> overlaps;
+  overlaps->SetName("Overlaps");
+  for (int s = 0; s < ns; ++s)
+  {
+    overlaps->InsertNextValue(found.Overlaps[s]);
+  }
+  placements->GetPointData()->AddArray(overlaps);
+  vtkNew<vtkDoubleArray> pairs, seconds;
+  pairs->SetName("OverlappingPairs");
+  pairs->InsertNextValue(static_cast<double>(found.Pairs.size()));
+  seconds->SetName("OverlapCheckSeconds");
+  seconds->InsertNextValue(found.Seconds);
+  placements->GetFieldData()->AddArray(pairs);
+  placements->GetFieldData()->AddArray(seconds);
+}
+
+vtkSmartPointer<vtkIdTypeArray> IdArray(vtkIdType n)
+{
+  vtkNew<vtkIdTypeArray> a;
+  a->SetNumberOfValues(n);
+  return vtkSmartPointer<vtkIdTypeArray>(a.GetPointer());
+}
+
+// Decals and outlines are written straight into arrays sized beforehand (per shape, its first
+// cell and point), in parallel over the shapes, lifted `lift` off the surface.
+
+// Decals: the triangles of every shape's decal with their texture coordinates; cell arrays
+// ShapeId and ClassId.
+void WriteDecals(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedShape>& shapes,
+  const std::vector<gs::ShapeDecal>& decalOf, double lift, int threads, vtkPolyData* decals)
+{
+  (void)threads;
+  const int ns = static_cast<int>(shapes.size());
+  std::vector<vtkIdType> first(ns + 1, 0);
+  for (int s = 0; s < ns; ++s)
+  {
+    first[s + 1] = first[s] + static_cast<vtkIdType>(decalOf[s].Faces.size());
+  }
+  const vtkIdType nd = first[ns];
+  vtkNew<vtkDoubleArray> xyz;
+  xyz->SetNumberOfComponents(3);
+  xyz->SetNumberOfTuples(3 * nd);
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName("TextureCoordinates");
+  tcoords->SetNumberOfComponents(2);
+  tcoords->SetNumberOfTuples(3 * nd);
+  vtkNew<vtkIntArray> shapeId, classId;
+  shapeId->SetName("ShapeId");
+  classId->SetName("ClassId");
+  shapeId->SetNumberOfValues(nd);
+  classId->SetNumberOfValues(nd);
+  vtkSmartPointer<vtkIdTypeArray> offsets = IdArray(nd + 1), connectivity = IdArray(3 * nd);
+  double* x = xyz->GetPointer(0);
+  float* t = tcoords->GetPointer(0);
+  vtkIdType* o = offsets->GetPointer(0);
+  vtkIdType* c = connectivity->GetPointer(0);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+  for (int s = 0; s < ns; ++s)
+  {
+    const gs::ShapeDecal& d = decalOf[s];
+    for (std::size_t k = 0; k < d.Faces.size(); ++k)
+    {
+      const vtkIdType cell = first[s] + static_cast<vtkIdType>(k);
+      for (int j = 0; j < 3; ++j)
+      {
+        const gs::Vec3 p = gs::LiftedFacePoint(mesh, d.Faces[k], d.Corners[k][j], lift);
+        const vtkIdType id = 3 * cell + j;
+        x[3 * id] = p.x;
+        x[3 * id + 1] = p.y;
+        x[3 * id + 2] = p.z;
+        t[2 * id] = static_cast<float>(d.TextureCoordinates[k][j].x);
+        t[2 * id + 1] = static_cast<float>(d.TextureCoordinates[k][j].y);
+        c[id] = id;
+      }
+      o[cell] = 3 * cell;
+      shapeId->SetValue(cell, s);
+      classId->SetValue(cell, shapes[s].ClassId);
+    }
+  }
+  o[nd] = 3 * nd;
+  vtkNew<vtkPoints> points;
+  points->SetData(xyz);
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  decals->SetPoints(points);
+  decals->SetPolys(polys);
+  decals->GetPointData()->SetTCoords(tcoords);
+  decals->GetCellData()->AddArray(shapeId);
+  decals->GetCellData()->AddArray(classId);
+}
+
+// Outlines: one polyline per outline piece (closed pieces repeat their first point); cell
+// arrays ShapeId and ClassId.
+void WriteOutlines(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedShape>& shapes,
+  const std::vector<std::vector<gs::OutlinePiece>>& outlineOf, double lift, int threads,
+  vtkPolyData* outlines)
+{
+  (void)threads;
+  const int ns = static_cast<int>(shapes.size());
+  // Per shape: its first line and point; a closed piece repeats its first point id.
+  std::vector<vtkIdType> firstLine(ns + 1, 0), firstPoint(ns + 1, 0), firstId(ns + 1, 0);
+  for (int s = 0; s < ns; ++s)
+  {
+    vtkIdType lines = 0, points = 0, ids = 0;
+    for (const gs::OutlinePiece& piece : outlineOf[s])
+    {
+      if (piece.Points.size() >= 2)
+      {
+        ++lines;
+        points += static_cast<vtkIdType>(piece.Points.size());
+        ids += static_cast<vtkIdType>(piece.Points.size()) + (piece.Closed ? 1 : 0);
+      }
+    }
+    firstLine[s + 1] = firstLine[s] + lines;
+    firstPoint[s + 1] = firstPoint[s] + points;
+    firstId[s + 1] = firstId[s] + ids;
+  }
+  const vtkIdType nl = firstLine[ns], np = firstPoint[ns], ni = firstId[ns];
+  vtkNew<vtkDoubleArray> xyz;
+  xyz->SetNumberOfComponents(3);
+  xyz->SetNumberOfTuples(np);
+  vtkNew<vtkIntArray> shapeId, classId;
+  shapeId->SetName("ShapeId");
+  classId->SetName("ClassId");
+  shapeId->SetNumberOfValues(nl);
+  classId->SetNumberOfValues(nl);
+  vtkSmartPointer<vtkIdTypeArray> offsets = IdArray(nl + 1), connectivity = IdArray(ni);
+  double* x = xyz->GetPointer(0);
+  vtkIdType* o = offsets->GetPointer(0);
+  vtkIdType* c = connectivity->GetPointer(0);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+  for (int s = 0; s < ns; ++s)
+  {
+    vtkIdType line = firstLine[s], point = firstPoint[s], id = firstId[s];
+    for (const gs::OutlinePiece& piece : outlineOf[s])
+    {
+      if (piece.Points.size() < 2)
+      {
+        continue;
+      }
+      o[line] = id;
+      shapeId->SetValue(line, s);
+      classId->SetValue(line, shapes[s].ClassId);
+      ++line;
+      const vtkIdType start = point;
+      for (const gs::SurfacePoint& q : piece.Points)
+      {
+        const gs::Vec3 p = gs::LiftedSurfacePoint(mesh, q, lift);
+        x[3 * point] = p.x;
+        x[3 * point + 1] = p.y;
+        x[3 * point + 2] = p.z;
+        c[id++] = point++;
+      }
+      if (piece.Closed)
+      {
+        c[id++] = start;
+      }
+    }
+  }
+  o[nl] = ni;
+  vtkNew<vtkPoints> points;
+  points->SetData(xyz);
+  vtkNew<vtkCellArray> lines;
+  lines->SetData(offsets, connectivity);
+  outlines->SetPoints(points);
+  outlines->SetLines(lines);
+  outlines->GetCellData()->AddArray(shapeId);
+  // (ClassId is not the active scalars: the GUI then draws the outlines in a solid colour,
+  // which stands out on any surface colouring; colour by ClassId to tell the classes apart.)
+  outlines->GetCellData()->AddArray(classId);
 }
 
 } // namespace
@@ -191,63 +460,155 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     return 1;
   }
   this->UpdateProgress(0.0);
-  // Wall time of each phase, reported as the field data PhaseSeconds of Placements.
-  std::vector<std::pair<const char*, double>> phases;
-  auto clock = std::chrono::steady_clock::now();
-  auto lap = [&phases, &clock](const char* name) {
-    const auto now = std::chrono::steady_clock::now();
-    phases.emplace_back(name, std::chrono::duration<double>(now - clock).count());
-    clock = now;
-  };
+  Run run;
 
   // 1. Parameters and tables.
+  if (!this->CheckParameters())
+  {
+    return 1;
+  }
+  std::string error;
+  if (!vtkSafeDistanceTableImage::FromImage(tableImage, run.Tables, error))
+  {
+    vtkErrorMacro("" << error << ".");
+    return 1;
+  }
+  run.Lap("Tables");
+
+  // 2. Mesh (kept while unchanged) and the shape size.
+  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
+  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this) || !this->ResolveShapeSize(cache, run))
+  {
+    return 1;
+  }
+  run.Lap("Mesh");
+
+  // 3. Direction (per face) and density (per vertex), read on the converted surface (which
+  // carries the input's arrays through a triangulation).
+  if (!this->ReadDirections(input, cache, run) || !this->ReadDensity(cache, run))
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.05);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+  run.Lap("Input");
+
+  // 4. Saddle vertex graph (shared, cached) and the distributor.
+  bool graphChanged = false;
+  if (this->K == 0)
+  {
+    graphChanged = cache.UseNoSaddleVertexGraph();
+  }
+  else if (!cache.UseSaddleVertexGraph(
+             this, this->K, this->CacheFileName, 0.05, 0.35, graphChanged))
+  {
+    return 1; // aborted, or the error is reported
+  }
+  if (!cache.Distributor || graphChanged)
+  {
+    cache.Distributor.reset();
+    cache.Distributor.reset(new gs::ShapeDistributor(cache.Mesh.Build.Mesh, cache.Graph()));
+  }
+  gs::ShapeDistributor& distributor = *cache.Distributor;
+  run.Lap("Graph");
+
+  // 5. Distribution.
+  if (!this->Distribute(cache, run))
+  {
+    return 1;
+  }
+
+  // 6. Placements.
+  WritePlacements(run.Result, run.FirstPolygon, run.ShapeSize, run.DirectionChoice, placements);
+  this->UpdateProgress(0.87);
+  if (this->CheckAbort())
+  {
+    placements->Initialize();
+    return 1;
+  }
+
+  // 7. Decals and outlines, computed per shape in parallel (the outlines as the drawn check drew
+  // them), checked for overlaps if asked, and assembled in order, lifted off the surface.
+  const std::vector<gs::PlacedShape>& shapes = run.Result.Shapes;
+  const int ns = static_cast<int>(shapes.size());
+  const std::vector<gs::ShapeDecal> decalOf =
+    gs::DrawDecals(distributor, this->DecalTolerance, this->NumberOfThreads);
+  run.Lap("Decals");
+  const std::vector<std::vector<gs::OutlinePiece>> outlineOf =
+    gs::DrawOutlines(distributor, this->NumberOfThreads);
+  run.Lap("Outlines");
+  if (this->VerifyOverlaps)
+  {
+    gs::OverlapCheckOptions check;
+    check.NumberOfThreads = this->NumberOfThreads;
+    const gs::OverlapCheckResult found = gs::CheckOverlaps(distributor, outlineOf, check);
+    WriteOverlaps(found, ns, placements);
+    if (!found.Pairs.empty())
+    {
+      vtkWarningMacro("VerifyOverlaps: " << found.Pairs.size() << " pair(s) of shapes overlap "
+                                         << "(first: shapes " << found.Pairs[0].first << " and "
+                                         << found.Pairs[0].second
+                                         << "); see the Overlaps array of Placements.");
+    }
+    run.Lap("VerifyOverlaps");
+  }
+#ifdef _OPENMP
+  const int threads = this->NumberOfThreads > 0 ? this->NumberOfThreads : omp_get_max_threads();
+#else
+  const int threads = 1;
+#endif
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const double lift = Lift * run.ShapeSize;
+  WriteDecals(mesh, shapes, decalOf, lift, threads, decals);
+  WriteOutlines(mesh, shapes, outlineOf, lift, threads, outlines);
+  run.Lap("Assembly");
+  run.WritePhaseSeconds(placements);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::CheckParameters()
+{
   if (!(this->ShapeSize >= 0.0) || !std::isfinite(this->ShapeSize))
   {
     vtkErrorMacro("ShapeSize must be a positive finite number, or 0 for automatic (it is "
       << this->ShapeSize << ").");
-    return 1;
+    return false;
   }
   if (!(this->DecalTolerance >= 0.0) || !std::isfinite(this->DecalTolerance))
   {
     vtkErrorMacro("DecalTolerance must be a finite number, at least 0 (it is "
       << this->DecalTolerance << ").");
-    return 1;
+    return false;
   }
   if (this->Mode != RANDOM && this->Mode != GREEDY && this->Mode != CIRCUMCIRCLE_POISSON_DISK)
   {
     vtkErrorMacro("Unknown Mode " << this->Mode
                                   << ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk).");
-    return 1;
+    return false;
   }
   if (!(this->DistortionLimit >= 0.0) || !(this->HolonomyMargin >= 0.0) ||
     this->HolonomyMargin > 100.0)
   {
     vtkErrorMacro("DistortionLimit must be >= 0 and HolonomyMargin in [0, 100].");
-    return 1;
+    return false;
   }
   if (this->K < 0 || this->MaximumShapes < 0 || this->NumberOfThreads < 0 ||
     this->MaximalFailures < 0)
   {
     vtkErrorMacro("K, MaximumShapes, MaximalFailures and NumberOfThreads must be >= 0.");
-    return 1;
+    return false;
   }
-  gs::SafeDistanceTables tables;
-  std::string error;
-  if (!vtkSafeDistanceTableImage::FromImage(tableImage, tables, error))
-  {
-    vtkErrorMacro("" << error << ".");
-    return 1;
-  }
+  return true;
+}
 
-  lap("Tables");
-  // 2. Mesh (kept while unchanged).
-  Cache& cache = vtkSurfaceMeshConverter::Update(this->MeshCache, input);
-  if (!vtkSurfaceMeshConverter::Report(cache.Mesh, this))
-  {
-    return 1;
-  }
-  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::ResolveShapeSize(const Cache& cache, Run& run)
+{
   vtkPolyData* surface = cache.Mesh.Surface;
   // ShapeSize 0: automatic, a fraction of the surface's largest bounding-box side (what the
   // GUI's properties panel proposes too, through the property's bounds domain).
@@ -260,15 +621,21 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     if (!(shapeSize > 0.0) || !std::isfinite(shapeSize))
     {
       vtkErrorMacro("ShapeSize is 0 (automatic) but the input's bounds are empty: set ShapeSize.");
-      return 1;
+      return false;
     }
   }
-  const vtkIdType firstPolygon = surface->GetNumberOfVerts() + surface->GetNumberOfLines();
-  const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
+  run.ShapeSize = shapeSize;
+  run.FirstPolygon = surface->GetNumberOfVerts() + surface->GetNumberOfLines();
+  return true;
+}
 
-  lap("Mesh");
-  // 3. Direction (per face) and density (per vertex), read on the converted surface (which
-  // carries the input's arrays through a triangulation).
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache, Run& run)
+{
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  vtkPolyData* surface = cache.Mesh.Surface;
+  const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
   vtkInformation* directionInfo = this->GetInputArrayInformation(0);
   const char* directionName = directionInfo && directionInfo->Has(vtkDataObject::FIELD_NAME())
     ? directionInfo->Get(vtkDataObject::FIELD_NAME())
@@ -279,7 +646,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   // Unset (ParaView leaves "0" or nothing when the input's arrays were not known when the
   // filter was made): the cell array Direction (Cross Field's), its point array, then the active
   // vectors (cells, then points). The choice is the field data DirectionArrayUsed of Placements.
-  std::string directionChoice;
+  std::string& directionChoice = run.DirectionChoice;
   if (!directionName || !*directionName || std::string(directionName) == "0" ||
     std::string(directionName) == "None")
   {
@@ -305,7 +672,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
       vtkErrorMacro("No DirectionArray given and the input has none to use: no cell or point "
                     "array Direction and no active 3-component vectors. Run Cross Field first, or "
                     "set DirectionArray to a cell or point array of tangent vectors.");
-      return 1;
+      return false;
     }
   }
   directionChoice = std::string(directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS ? "POINTS " : "CELLS ") + directionName;
@@ -315,9 +682,10 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     vtkErrorMacro("The DirectionArray \"" << directionName
                                           << "\" must be a point or cell array (association "
                                           << directionAssociation << ").");
-    return 1;
+    return false;
   }
-  int symmetry = 1;
+  int& symmetry = run.Symmetry;
+  symmetry = 1;
   if (vtkDataArray* s = FieldArray(input->GetFieldData(), "Symmetry", 1))
   {
     symmetry = static_cast<int>(s->GetComponent(0, 0));
@@ -328,7 +696,8 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
       symmetry = 1;
     }
   }
-  std::vector<gs::Vec3> directions(nf, gs::Vec3{ 0, 0, 0 });
+  std::vector<gs::Vec3>& directions = run.Directions;
+  directions.assign(nf, gs::Vec3{ 0, 0, 0 });
   {
     const bool onPoints = directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS;
     vtkDataArray* a = onPoints ? surface->GetPointData()->GetArray(directionName)
@@ -337,7 +706,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     {
       vtkErrorMacro("The DirectionArray \"" << directionName << "\" is missing from the input's "
                     << (onPoints ? "point" : "cell") << " data or does not have 3 components.");
-      return 1;
+      return false;
     }
     if (onPoints)
     {
@@ -360,12 +729,22 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
       for (int f = 0; f < nf; ++f)
       {
         double x[3];
-        a->GetTuple(firstPolygon + f, x);
+        a->GetTuple(run.FirstPolygon + f, x);
         directions[f] = gs::Vec3{ x[0], x[1], x[2] };
       }
     }
   }
-  std::vector<double> density;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::ReadDensity(const Cache& cache, Run& run)
+{
+  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
+  vtkPolyData* surface = cache.Mesh.Surface;
+  const int nv = cache.Mesh.Build.Mesh.NumberOfVertices();
+  std::vector<double>& density = run.Density;
+  density.clear();
   vtkInformation* densityInfo = this->GetInputArrayInformation(1);
   const char* densityName = densityInfo && densityInfo->Has(vtkDataObject::FIELD_NAME())
     ? densityInfo->Get(vtkDataObject::FIELD_NAME())
@@ -378,7 +757,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
       vtkErrorMacro("The DensityArray \"" << densityName
                                           << "\" is missing from the input's point data or is "
                                              "not a scalar array.");
-      return 1;
+      return false;
     }
     density.assign(nv, std::numeric_limits<double>::quiet_NaN());
     for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
@@ -390,349 +769,55 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
       }
     }
   }
-  this->UpdateProgress(0.05);
-  if (this->CheckAbort())
-  {
-    return 1;
-  }
-  lap("Input");
+  return true;
+}
 
-  // 4. Saddle vertex graph (shared, cached) and the distributor.
-  std::shared_ptr<const gs::SaddleVertexGraph> graph;
-  if (this->K >= 1)
-  {
-    const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(
-      this, mesh, cache.Hash, cache.HashValid, this->K, this->CacheFileName, 0.05, 0.35);
-    if (!found.Graph)
-    {
-      return 1; // aborted, or the error is reported
-    }
-    graph = found.Graph;
-  }
-  if (!cache.Distributor || graph != cache.Graph)
-  {
-    cache.Distributor.reset();
-    cache.Graph = graph;
-    cache.Distributor.reset(new gs::ShapeDistributor(mesh, cache.Graph.get()));
-  }
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
+{
   gs::ShapeDistributor& distributor = *cache.Distributor;
-  lap("Graph");
-
-  // 5. Distribution (a warning first when it will be long: a tiny ShapeSize, or density
-  // factors near 0, multiply the shapes by 1 / f^2).
+  // A warning first when it will be long: a tiny ShapeSize, or density factors near 0, multiply
+  // the shapes by 1 / f^2.
+  const double expected = gs::ShapeDistributor::ExpectedCount(
+    distributor.Mesh(), run.Tables, run.Density, run.ShapeSize);
+  if (expected > 250000.0 && (this->MaximumShapes == 0 || this->MaximumShapes > 250000))
   {
-    const double expected = gs::ShapeDistributor::ExpectedCount(mesh, tables, density, shapeSize);
-    if (expected > 250000.0 && (this->MaximumShapes == 0 || this->MaximumShapes > 250000))
-    {
-      vtkWarningMacro("About " << static_cast<long long>(expected)
-                               << " shapes are expected (ShapeSize " << shapeSize
-                               << " times the density factors): the run may take minutes and "
-                                  "gigabytes. A larger ShapeSize, density factors away from 0 or "
-                                  "MaximumShapes keep it short; it can be aborted.");
-    }
+    vtkWarningMacro("About " << static_cast<long long>(expected)
+                             << " shapes are expected (ShapeSize " << run.ShapeSize
+                             << " times the density factors): the run may take minutes and "
+                                "gigabytes. A larger ShapeSize, density factors away from 0 or "
+                                "MaximumShapes keep it short; it can be aborted.");
   }
   gs::ShapeDistributionOptions options;
-  options.ShapeSize = shapeSize;
+  options.ShapeSize = run.ShapeSize;
   options.ClassWeights = this->ClassWeights;
   options.Mode = static_cast<gs::DistributionMode>(this->Mode);
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.MaximumShapes = this->MaximumShapes;
   options.MaximalFailures = this->MaximalFailures;
   options.NumberOfThreads = this->NumberOfThreads;
-  options.Symmetry = symmetry;
+  options.Symmetry = run.Symmetry;
   options.DistortionLimit = this->DistortionLimit;
   options.HolonomyMargin = this->HolonomyMargin;
   options.KeepInside = this->KeepInside;
   options.DrawnCheck = this->DrawnCheck;
-  const gs::ShapeDistributionResult result =
-    distributor.Run(tables, directions, density, options, [this](double p) {
-      this->UpdateProgress(0.4 + 0.45 * p);
-      return !this->CheckAbort();
-    });
-  if (!result.Ok)
+  run.Result = distributor.Run(run.Tables, run.Directions, run.Density, options, [this](double p) {
+    this->UpdateProgress(0.4 + 0.45 * p);
+    return !this->CheckAbort();
+  });
+  if (!run.Result.Ok)
   {
-    if (result.Error != "aborted")
+    if (run.Result.Error != "aborted")
     {
-      vtkErrorMacro("Shape distribution: " << result.Error << ".");
+      vtkErrorMacro("Shape distribution: " << run.Result.Error << ".");
     }
-    return 1;
+    return false;
   }
-  const std::vector<gs::PlacedShape>& shapes = result.Shapes;
-  const int ns = static_cast<int>(shapes.size());
-  lap("Distribution");
-  {
-    const gs::ShapeDistributionStatistics& st = result.Statistics;
-    phases.emplace_back("SetUp", st.PrepareSeconds);
-    phases.emplace_back("Candidates", st.GenerateSeconds);
-    phases.emplace_back("ChecksAndCharts", st.CheckSeconds);
-    phases.emplace_back("Rounds", st.RoundSeconds);
-  }
-
-  // 6. Placements.
-  {
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    vtkNew<vtkCellArray> verts;
-    vtkNew<vtkIntArray> classId;
-    classId->SetName("ClassId");
-    vtkNew<vtkDoubleArray> scale;
-    scale->SetName("Scale");
-    vtkNew<vtkDoubleArray> direction;
-    direction->SetName("Direction");
-    direction->SetNumberOfComponents(3);
-    vtkNew<vtkDoubleArray> normal;
-    normal->SetName("Normal");
-    normal->SetNumberOfComponents(3);
-    vtkNew<vtkIdTypeArray> faceId;
-    faceId->SetName("FaceId");
-    for (const gs::PlacedShape& s : shapes)
-    {
-      const vtkIdType id = points->InsertNextPoint(s.Position.x, s.Position.y, s.Position.z);
-      verts->InsertNextCell(1, &id);
-      classId->InsertNextValue(s.ClassId);
-      scale->InsertNextValue(s.Scale);
-      direction->InsertNextTuple3(s.Direction.x, s.Direction.y, s.Direction.z);
-      normal->InsertNextTuple3(s.Normal.x, s.Normal.y, s.Normal.z);
-      faceId->InsertNextValue(firstPolygon + s.Centre.Face);
-    }
-    placements->SetPoints(points);
-    placements->SetVerts(verts);
-    placements->GetPointData()->AddArray(classId);
-    placements->GetPointData()->AddArray(scale);
-    placements->GetPointData()->AddArray(direction);
-    placements->GetPointData()->AddArray(normal);
-    placements->GetPointData()->AddArray(faceId);
-    placements->GetPointData()->SetActiveScalars("ClassId");
-    placements->GetPointData()->SetActiveVectors("Direction");
-    vtkFieldData* fd = placements->GetFieldData();
-    auto single = [fd](const char* name, double value) {
-      vtkNew<vtkDoubleArray> a;
-      a->SetName(name);
-      a->InsertNextValue(value);
-      fd->AddArray(a);
-    };
-    single("NumberOfCandidates", static_cast<double>(result.Statistics.Candidates));
-    single("NumberOfCharts", static_cast<double>(result.Statistics.Charts));
-    single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
-    single("Seconds", result.Statistics.Seconds);
-    single("ShapeSizeUsed", shapeSize);
-    vtkNew<vtkStringArray> used;
-    used->SetName("DirectionArrayUsed");
-    used->InsertNextValue(directionChoice);
-    fd->AddArray(used);
-  }
-  this->UpdateProgress(0.87);
-  if (this->CheckAbort())
-  {
-    placements->Initialize();
-    return 1;
-  }
-
-  // 7. Decals and outlines, computed per shape in parallel, assembled in order.
-  const double lift = Lift * shapeSize;
-  std::vector<gs::ShapeDecal> decalOf(ns);
-  std::vector<std::vector<gs::OutlinePiece>> outlineOf(ns);
-  const double spacing = distributor.OutlineSpacing(); // the drawn check's outlines, kept
-#ifdef _OPENMP
-  const int threads = this->NumberOfThreads > 0 ? this->NumberOfThreads : omp_get_max_threads();
-#endif
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-  for (int s = 0; s < ns; ++s)
-  {
-    decalOf[s] = distributor.Decal(s, this->DecalTolerance);
-  }
-  lap("Decals");
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-  for (int s = 0; s < ns; ++s)
-  {
-    outlineOf[s] = distributor.Outline(s, spacing);
-  }
-  lap("Outlines");
-  if (this->VerifyOverlaps)
-  {
-    gs::OverlapCheckOptions check;
-    check.NumberOfThreads = this->NumberOfThreads;
-    const gs::OverlapCheckResult found = gs::CheckOverlaps(distributor, outlineOf, check);
-    vtkNew<vtkIntArray> overlaps;
-    overlaps->SetName("Overlaps");
-    for (int s = 0; s < ns; ++s)
-    {
-      overlaps->InsertNextValue(found.Overlaps[s]);
-    }
-    placements->GetPointData()->AddArray(overlaps);
-    vtkNew<vtkDoubleArray> pairs, seconds;
-    pairs->SetName("OverlappingPairs");
-    pairs->InsertNextValue(static_cast<double>(found.Pairs.size()));
-    seconds->SetName("OverlapCheckSeconds");
-    seconds->InsertNextValue(found.Seconds);
-    placements->GetFieldData()->AddArray(pairs);
-    placements->GetFieldData()->AddArray(seconds);
-    if (!found.Pairs.empty())
-    {
-      vtkWarningMacro("VerifyOverlaps: " << found.Pairs.size() << " pair(s) of shapes overlap "
-                                         << "(first: shapes " << found.Pairs[0].first << " and "
-                                         << found.Pairs[0].second
-                                         << "); see the Overlaps array of Placements.");
-    }
-    lap("VerifyOverlaps");
-  }
-  // Decals and outlines written straight into arrays sized beforehand (per shape, its first
-  // face and point), in parallel.
-  auto idArray = [](vtkIdType n) {
-    vtkNew<vtkIdTypeArray> a;
-    a->SetNumberOfValues(n);
-    return vtkSmartPointer<vtkIdTypeArray>(a.GetPointer());
-  };
-  {
-    std::vector<vtkIdType> first(ns + 1, 0);
-    for (int s = 0; s < ns; ++s)
-    {
-      first[s + 1] = first[s] + static_cast<vtkIdType>(decalOf[s].Faces.size());
-    }
-    const vtkIdType nd = first[ns];
-    vtkNew<vtkDoubleArray> xyz;
-    xyz->SetNumberOfComponents(3);
-    xyz->SetNumberOfTuples(3 * nd);
-    vtkNew<vtkFloatArray> tcoords;
-    tcoords->SetName("TextureCoordinates");
-    tcoords->SetNumberOfComponents(2);
-    tcoords->SetNumberOfTuples(3 * nd);
-    vtkNew<vtkIntArray> shapeId, classId;
-    shapeId->SetName("ShapeId");
-    classId->SetName("ClassId");
-    shapeId->SetNumberOfValues(nd);
-    classId->SetNumberOfValues(nd);
-    vtkSmartPointer<vtkIdTypeArray> offsets = idArray(nd + 1), connectivity = idArray(3 * nd);
-    double* x = xyz->GetPointer(0);
-    float* t = tcoords->GetPointer(0);
-    vtkIdType* o = offsets->GetPointer(0);
-    vtkIdType* c = connectivity->GetPointer(0);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-    for (int s = 0; s < ns; ++s)
-    {
-      const gs::ShapeDecal& d = decalOf[s];
-      for (std::size_t k = 0; k < d.Faces.size(); ++k)
-      {
-        const vtkIdType cell = first[s] + static_cast<vtkIdType>(k);
-        const int f = d.Faces[k];
-        const gs::Vec3 n = mesh.FaceNormal(f) * lift;
-        const auto& corners = mesh.Face(f);
-        for (int j = 0; j < 3; ++j)
-        {
-          const std::array<double, 3>& b = d.Corners[k][j];
-          const gs::Vec3 p = mesh.Position(corners[0]) * b[0] + mesh.Position(corners[1]) * b[1] +
-            mesh.Position(corners[2]) * b[2] + n;
-          const vtkIdType id = 3 * cell + j;
-          x[3 * id] = p.x;
-          x[3 * id + 1] = p.y;
-          x[3 * id + 2] = p.z;
-          t[2 * id] = static_cast<float>(d.TextureCoordinates[k][j].x);
-          t[2 * id + 1] = static_cast<float>(d.TextureCoordinates[k][j].y);
-          c[id] = id;
-        }
-        o[cell] = 3 * cell;
-        shapeId->SetValue(cell, s);
-        classId->SetValue(cell, shapes[s].ClassId);
-      }
-    }
-    o[nd] = 3 * nd;
-    vtkNew<vtkPoints> points;
-    points->SetData(xyz);
-    vtkNew<vtkCellArray> polys;
-    polys->SetData(offsets, connectivity);
-    decals->SetPoints(points);
-    decals->SetPolys(polys);
-    decals->GetPointData()->SetTCoords(tcoords);
-    decals->GetCellData()->AddArray(shapeId);
-    decals->GetCellData()->AddArray(classId);
-  }
-  {
-    // Per shape: its first line and point; a closed piece repeats its first point id.
-    std::vector<vtkIdType> firstLine(ns + 1, 0), firstPoint(ns + 1, 0), firstId(ns + 1, 0);
-    for (int s = 0; s < ns; ++s)
-    {
-      vtkIdType lines = 0, points = 0, ids = 0;
-      for (const gs::OutlinePiece& piece : outlineOf[s])
-      {
-        if (piece.Points.size() >= 2)
-        {
-          ++lines;
-          points += static_cast<vtkIdType>(piece.Points.size());
-          ids += static_cast<vtkIdType>(piece.Points.size()) + (piece.Closed ? 1 : 0);
-        }
-      }
-      firstLine[s + 1] = firstLine[s] + lines;
-      firstPoint[s + 1] = firstPoint[s] + points;
-      firstId[s + 1] = firstId[s] + ids;
-    }
-    const vtkIdType nl = firstLine[ns], np = firstPoint[ns], ni = firstId[ns];
-    vtkNew<vtkDoubleArray> xyz;
-    xyz->SetNumberOfComponents(3);
-    xyz->SetNumberOfTuples(np);
-    vtkNew<vtkIntArray> shapeId, classId;
-    shapeId->SetName("ShapeId");
-    classId->SetName("ClassId");
-    shapeId->SetNumberOfValues(nl);
-    classId->SetNumberOfValues(nl);
-    vtkSmartPointer<vtkIdTypeArray> offsets = idArray(nl + 1), connectivity = idArray(ni);
-    double* x = xyz->GetPointer(0);
-    vtkIdType* o = offsets->GetPointer(0);
-    vtkIdType* c = connectivity->GetPointer(0);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-    for (int s = 0; s < ns; ++s)
-    {
-      vtkIdType line = firstLine[s], point = firstPoint[s], id = firstId[s];
-      for (const gs::OutlinePiece& piece : outlineOf[s])
-      {
-        if (piece.Points.size() < 2)
-        {
-          continue;
-        }
-        o[line] = id;
-        shapeId->SetValue(line, s);
-        classId->SetValue(line, shapes[s].ClassId);
-        ++line;
-        const vtkIdType start = point;
-        for (const gs::SurfacePoint& q : piece.Points)
-        {
-          const gs::Vec3 p = mesh.Interpolate(q.Face, q.Bary) + mesh.FaceNormal(q.Face) * lift;
-          x[3 * point] = p.x;
-          x[3 * point + 1] = p.y;
-          x[3 * point + 2] = p.z;
-          c[id++] = point++;
-        }
-        if (piece.Closed)
-        {
-          c[id++] = start;
-        }
-      }
-    }
-    o[nl] = ni;
-    vtkNew<vtkPoints> points;
-    points->SetData(xyz);
-    vtkNew<vtkCellArray> lines;
-    lines->SetData(offsets, connectivity);
-    outlines->SetPoints(points);
-    outlines->SetLines(lines);
-    outlines->GetCellData()->AddArray(shapeId);
-    // (ClassId is not the active scalars: the GUI then draws the outlines in a solid colour,
-    // which stands out on any surface colouring; colour by ClassId to tell the classes apart.)
-    outlines->GetCellData()->AddArray(classId);
-  }
-  lap("Assembly");
-  {
-    // (SetUp .. Rounds split Distribution.)
-    vtkNew<vtkDoubleArray> split;
-    split->SetName("PhaseSeconds");
-    split->SetNumberOfComponents(static_cast<int>(phases.size()));
-    split->SetNumberOfTuples(1);
-    for (std::size_t k = 0; k < phases.size(); ++k)
-    {
-      split->SetComponentName(static_cast<vtkIdType>(k), phases[k].first);
-      split->SetComponent(0, static_cast<int>(k), phases[k].second);
-    }
-    placements->GetFieldData()->AddArray(split);
-  }
-  this->UpdateProgress(1.0);
-  return 1;
+  run.Lap("Distribution");
+  const gs::ShapeDistributionStatistics& st = run.Result.Statistics;
+  run.Phases.emplace_back("SetUp", st.PrepareSeconds);
+  run.Phases.emplace_back("Candidates", st.GenerateSeconds);
+  run.Phases.emplace_back("ChecksAndCharts", st.CheckSeconds);
+  run.Phases.emplace_back("Rounds", st.RoundSeconds);
+  return true;
 }

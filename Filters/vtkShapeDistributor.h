@@ -225,6 +225,14 @@ private:
 
   struct Cache;
   std::unique_ptr<Cache> MeshCache;
+
+  // Execute's steps (vtkShapeDistributor.cxx); each reports its own errors.
+  struct Run; // one Execute's inputs, results and phase times
+  bool CheckParameters();
+  bool ResolveShapeSize(const Cache& cache, Run& run);
+  bool ReadDirections(vtkPolyData* input, const Cache& cache, Run& run);
+  bool ReadDensity(const Cache& cache, Run& run);
+  bool Distribute(Cache& cache, Run& run);
 };
 
 #endif

@@ -12,6 +12,7 @@
 
 #include "TriangleMesh.h"
 
+#include <vtkPolyData.h> // Update() reads its modification times
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 
@@ -22,7 +23,6 @@
 #include <vector>
 
 class vtkObject;
-class vtkPolyData;
 
 class vtkSurfaceMeshConverter
 {

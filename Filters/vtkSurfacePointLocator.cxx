@@ -84,9 +84,10 @@ bool vtkSurfacePointLocator::Snap(
 }
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePointLocator::SnapPolyline(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
-  double spacing, std::vector<gs::SurfacePoint>& curve, std::string& error)
+bool vtkSurfacePointLocator::SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
+  std::vector<gs::SurfacePoint>& curve, std::string& error)
 {
+  const double spacing = CurveSampleSpacing * this->Mesh.Build.Mesh.MeanEdgeLength();
   // At most this many samples per segment (a segment far longer than the mesh).
   constexpr vtkIdType MaximumSamplesPerSegment = 1 << 20;
   curve.clear();

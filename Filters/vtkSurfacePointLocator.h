@@ -39,11 +39,13 @@ public:
   static constexpr double MaximumDistanceFraction = 0.25;
 
   // A polyline of `points` (ids[0 .. n)) as a curve on the surface: each segment is sampled at
-  // most `spacing` apart in space and every sample snapped (consecutive duplicates dropped), so
-  // that consecutive surface points are close. False, with the reason, for an id out of range,
-  // non-finite coordinates or a point that cannot be snapped.
-  bool SnapPolyline(vtkPoints* points, vtkIdType n, const vtkIdType* ids, double spacing,
+  // most CurveSampleSpacing mean edge lengths apart in space and every sample snapped
+  // (consecutive duplicates dropped), so that consecutive surface points are close. False, with
+  // the reason, for an id out of range, non-finite coordinates or a point that cannot be
+  // snapped. (Every filter's curve sources and strokes.)
+  bool SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
     std::vector<gs::SurfacePoint>& curve, std::string& error);
+  static constexpr double CurveSampleSpacing = 0.25;
 
   vtkSurfacePointLocator(const vtkSurfacePointLocator&) = delete;
   vtkSurfacePointLocator& operator=(const vtkSurfacePointLocator&) = delete;

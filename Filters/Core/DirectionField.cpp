@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 namespace gs
@@ -134,6 +135,65 @@ std::vector<Vec3> AreaWeightedVertexNormals(const TriangleMesh& mesh)
     v = l > 0 ? v / l : v;
   }
   return vn;
+}
+
+void AddStrokeConstraints(const TriangleMesh& mesh, const std::vector<SurfacePoint>& curve,
+  const std::vector<Vec3>& polyline, double minimumLength,
+  std::vector<FaceDirectionConstraint>& constraints)
+{
+  // The stroke's own segments in space: each crossed face takes the direction of the segment
+  // closest to the piece inside it, projected onto the face (the traced pieces bend where the
+  // path is re-aimed near vertices; their direction is not used).
+  auto segmentDirection = [&](const Vec3& m) {
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 direction(0, 0, 0);
+    for (size_t k = 0; k + 1 < polyline.size(); ++k)
+    {
+      const Vec3 a = polyline[k], ab = polyline[k + 1] - polyline[k];
+      const double l2 = Dot(ab, ab);
+      if (!(l2 > 0))
+      {
+        continue;
+      }
+      const double t = std::min(1.0, std::max(0.0, Dot(m - a, ab) / l2));
+      const double d = Norm(a + ab * t - m);
+      if (d < best)
+      {
+        best = d;
+        direction = ab;
+      }
+    }
+    return direction;
+  };
+  // Faces crossed over less than minimumLength are not constrained (a stroke through a vertex
+  // grazes the faces around it).
+  std::vector<std::pair<int, double>> crossed; // face, length inside, in stroke order
+  std::vector<Vec3> middles;
+  for (const CurvePiece& piece : TraceSurfaceCurve(mesh, curve))
+  {
+    const double l = Norm(piece.B - piece.A);
+    if (!crossed.empty() && crossed.back().first == piece.Face)
+    {
+      crossed.back().second += l;
+      continue;
+    }
+    crossed.emplace_back(piece.Face, l);
+    middles.push_back((piece.A + piece.B) * 0.5);
+  }
+  for (size_t k = 0; k < crossed.size(); ++k)
+  {
+    if (crossed[k].second < minimumLength)
+    {
+      continue;
+    }
+    const Vec3 d = segmentDirection(middles[k]);
+    const Vec3 normal = mesh.FaceNormal(crossed[k].first);
+    const Vec3 tangent = d - normal * Dot(d, normal);
+    if (Norm(tangent) > 1e-9 * Norm(d))
+    {
+      constraints.push_back({ crossed[k].first, tangent });
+    }
+  }
 }
 
 std::vector<Vec3> FaceDirectionsFromVertices(

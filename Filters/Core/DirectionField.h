@@ -77,6 +77,14 @@ std::vector<Vec3> AreaWeightedVertexNormals(const TriangleMesh& mesh);
 std::vector<Vec3> FaceDirectionsFromVertices(
   const TriangleMesh& mesh, const std::vector<Vec3>& atVertex, int symmetry);
 
+// Direction constraints from a stroke drawn on the surface: `curve` is the stroke snapped to the
+// surface, `polyline` its own points in space. Every face the stroke's traced path crosses over
+// at least `minimumLength` takes the direction of the stroke segment closest to the piece inside
+// it, projected onto the face; appended to `constraints` in stroke order.
+void AddStrokeConstraints(const TriangleMesh& mesh, const std::vector<SurfacePoint>& curve,
+  const std::vector<Vec3>& polyline, double minimumLength,
+  std::vector<FaceDirectionConstraint>& constraints);
+
 class DirectionFieldSolver
 {
 public:

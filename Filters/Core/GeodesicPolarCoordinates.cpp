@@ -24,15 +24,15 @@ double Wrap(double a)
 } // namespace
 
 GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
-  : M(mesh)
+  : Mesh(mesh)
   , Solver(mesh)
 {
   if (graph && graph->NumberOfVertices() == mesh.NumberOfVertices())
   {
     Svg.reset(new SVGGeodesicSolver(mesh, *graph));
   }
-  R.assign(M.NumberOfVertices(), NaN);
-  T.assign(M.NumberOfVertices(), NaN);
+  VertexRho.assign(Mesh.NumberOfVertices(), NaN);
+  VertexTheta.assign(Mesh.NumberOfVertices(), NaN);
 }
 
 double GeodesicPolarCoordinates::RawToTheta(double raw) const
@@ -44,8 +44,8 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
 {
   for (int v : InsideList)
   {
-    R[v] = NaN;
-    T[v] = NaN;
+    VertexRho[v] = NaN;
+    VertexTheta[v] = NaN;
   }
   InsideList.clear();
   CurveMode = false;
@@ -55,8 +55,8 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
     return false;
   }
   const double maxDistance = std::isfinite(radius) ? radius : 0.0;
-  Turn = source.IsVertex() && source.Vertex >= 0 && source.Vertex < M.NumberOfVertices()
-    ? M.TotalAngle(source.Vertex)
+  Turn = source.IsVertex() && source.Vertex >= 0 && source.Vertex < Mesh.NumberOfVertices()
+    ? Mesh.TotalAngle(source.Vertex)
     : TwoPi;
   Reference = referenceAngle;
   if (Svg)
@@ -92,46 +92,49 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
   Source = source;
   for (int v : InsideList)
   {
-    R[v] = Svg ? Svg->Distance(v) : Solver.Distance(v);
+    VertexRho[v] = Svg ? Svg->Distance(v) : Solver.Distance(v);
     const double raw = Svg ? Svg->DepartureAngle(v) : Solver.DepartureAngle(v);
     // The source vertex itself is the pole: angle 0 by convention.
-    T[v] = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
+    VertexTheta[v] = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
   }
   return true;
 }
 
-bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& curve, double radius)
+const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
+  const std::vector<SurfacePoint>& curve, double radius)
 {
   for (int v : InsideList)
   {
-    R[v] = NaN;
-    T[v] = NaN;
+    VertexRho[v] = NaN;
+    VertexTheta[v] = NaN;
   }
   InsideList.clear();
   CurveMode = true;
-  CurveTotal = 0.0;
-  Foot.assign(M.NumberOfVertices(), NaN);
-  Across.assign(M.NumberOfVertices(), NaN);
+  Curve.Length = 0.0;
+  Curve.Offset.assign(Mesh.NumberOfVertices(), NaN);
+  Curve.ArcLength.assign(Mesh.NumberOfVertices(), NaN);
+  Foot.assign(Mesh.NumberOfVertices(), NaN);
+  Across.assign(Mesh.NumberOfVertices(), NaN);
   if (!(radius > 0.0) || curve.empty())
   {
-    return false;
+    return nullptr;
   }
   for (const SurfacePoint& p : curve)
   {
     const bool valid = p.IsVertex()
-      ? p.Vertex < M.NumberOfVertices()
-      : p.Face >= 0 && p.Face < M.NumberOfFaces() && std::isfinite(p.Bary[0] + p.Bary[1] + p.Bary[2]);
+      ? p.Vertex < Mesh.NumberOfVertices()
+      : p.Face >= 0 && p.Face < Mesh.NumberOfFaces() && std::isfinite(p.Bary[0] + p.Bary[1] + p.Bary[2]);
     if (!valid)
     {
-      return false;
+      return nullptr;
     }
   }
-  CurvePieces = TraceSurfaceCurve(M, curve);
+  CurvePieces = TraceSurfaceCurve(Mesh, curve);
   const std::vector<CurvePiece>& pieces = CurvePieces;
   // Samples along the pieces (as SampleCurvePieces makes them), with their arc length and the
   // curve's tangent angle there.
-  const double spacing = M.MeanEdgeLength() / 16.0;
-  std::vector<SurfacePoint> samples = SampleCurvePieces(M, pieces, spacing);
+  const double spacing = ExactCurveSampleSpacing * Mesh.MeanEdgeLength();
+  std::vector<SurfacePoint> samples = SampleCurvePieces(Mesh, pieces, spacing);
   // Samples within rounding of a vertex (a curve through mesh vertices) are that vertex: a face
   // point a hair's breadth from a corner makes needle-thin windows.
   for (SurfacePoint& sample : samples)
@@ -140,7 +143,7 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     {
       if (sample.Bary[k] > 1.0 - 1e-7)
       {
-        sample = SurfacePoint::AtVertex(M.Face(sample.Face)[k]);
+        sample = SurfacePoint::AtVertex(Mesh.Face(sample.Face)[k]);
       }
     }
   }
@@ -152,25 +155,25 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing)));
     for (int i = 0; i <= steps; ++i)
     {
-      arc.push_back(CurveTotal + length * i / steps);
+      arc.push_back(Curve.Length + length * i / steps);
       direction.push_back(piece.B - piece.A);
       if (length == 0.0)
       {
         break;
       }
     }
-    CurveTotal += length;
+    Curve.Length += length;
   }
-  if (!(CurveTotal > 0.0) || arc.size() != samples.size())
+  if (!(Curve.Length > 0.0) || arc.size() != samples.size())
   {
-    return false;
+    return nullptr;
   }
   // A zero-length piece (a point of the curve alone) takes the direction of its nearest
   // neighbour along the curve. Then each direction becomes a tangent angle in the convention
   // the solver uses for that sample (its face's frame, or the fan of the vertex it is).
   // (Pieces shorter than a millionth of an edge, e.g. the tracer's steps off a vertex, count as
   // points: their direction is noise.)
-  const double tiny = 1e-6 * M.MeanEdgeLength();
+  const double tiny = 1e-6 * Mesh.MeanEdgeLength();
   std::vector<double> tangent(samples.size(), NaN);
   for (std::size_t i = 0; i < samples.size(); ++i)
   {
@@ -185,13 +188,13 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     const SurfacePoint at = samples[i].IsVertex()
       ? samples[i]
       : SurfacePoint::InFace(samples[i].Face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
-    tangent[i] = TangentAngle(M, at, d);
+    tangent[i] = TangentAngle(Mesh, at, d);
   }
   // A few edges beyond the radius, so that the offset curves near the radius can be traced.
   // Straight runs of the curve: consecutive samples whose directions agree. A foot that
   // projects past the end of its run, where the curve turns, is the turning point itself (the
   // offset curve goes round it on the outer side).
-  std::vector<double> runStart(samples.size(), 0.0), runEnd(samples.size(), CurveTotal);
+  std::vector<double> runStart(samples.size(), 0.0), runEnd(samples.size(), Curve.Length);
   {
     std::size_t first = 0;
     Vec3 runDirection;
@@ -224,10 +227,10 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     }
   }
   ExactGeodesicOptions options;
-  options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * M.MeanEdgeLength() : 0.0;
+  options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * Mesh.MeanEdgeLength() : 0.0;
   if (!Solver.Solve(samples, options))
   {
-    return false;
+    return nullptr;
   }
   InsideList = Solver.FinalVertices();
   for (int v : InsideList)
@@ -239,7 +242,7 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     // (angles in the foot face's frame: samples are face points of their piece's face).
     if (root < 0)
     {
-      R[v] = T[v] = NaN;
+      Curve.Offset[v] = Curve.ArcLength[v] = NaN;
       continue;
     }
     double side = 1.0, along = 0.0, across = d;
@@ -255,15 +258,15 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
     }
     double foot = arc[root] + along;
     // Past a turn of the curve: the foot is the turning point, the offset the distance to it.
-    if ((foot > runEnd[root] && runEnd[root] < CurveTotal) || (foot < runStart[root] && runStart[root] > 0.0))
+    if ((foot > runEnd[root] && runEnd[root] < Curve.Length) || (foot < runStart[root] && runStart[root] > 0.0))
     {
       foot = foot > runEnd[root] ? runEnd[root] : runStart[root];
       across = d;
     }
     // Beyond an end of the curve the closest point is that end: the distance itself.
-    const bool cap = foot < 0.0 || foot > CurveTotal;
-    R[v] = d == 0.0 ? 0.0 : side * (cap ? d : across);
-    T[v] = std::min(1.0, std::max(0.0, foot / CurveTotal));
+    const bool cap = foot < 0.0 || foot > Curve.Length;
+    Curve.Offset[v] = d == 0.0 ? 0.0 : side * (cap ? d : across);
+    Curve.ArcLength[v] = std::min(1.0, std::max(0.0, foot / Curve.Length));
     Foot[v] = foot; // unclamped: continues past the ends along the end's direction
     Across[v] = d == 0.0 ? 0.0 : side * across; // offset from the (extended) curve's line
   }
@@ -274,28 +277,28 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
   {
     const Vec3 ab = piece.B - piece.A;
     const double length = Norm(ab);
-    const Vec3 n = M.FaceNormal(piece.Face);
+    const Vec3 n = Mesh.FaceNormal(piece.Face);
     // (A piece of a millionth of an edge is a point: its direction cannot tell the side.)
     for (int k = 0; length > tiny && k < 3; ++k)
     {
-      const int v = M.Face(piece.Face)[k];
-      if (!std::isfinite(R[v]))
+      const int v = Mesh.Face(piece.Face)[k];
+      if (!std::isfinite(Curve.Offset[v]))
       {
         continue;
       }
-      const Vec3 p = M.Position(v);
+      const Vec3 p = Mesh.Position(v);
       const double t = std::min(1.0, std::max(0.0, Dot(p - piece.A, ab) / (length * length)));
       const Vec3 foot = piece.A + ab * t;
       const double d = Norm(p - foot);
-      if (d < std::abs(R[v]))
+      if (d < std::abs(Curve.Offset[v]))
       {
-        R[v] = Dot(Cross(ab, p - foot), n) < 0.0 ? -d : d;
-        T[v] = std::min(1.0, std::max(0.0, (start + t * length) / CurveTotal));
+        Curve.Offset[v] = Dot(Cross(ab, p - foot), n) < 0.0 ? -d : d;
+        Curve.ArcLength[v] = std::min(1.0, std::max(0.0, (start + t * length) / Curve.Length));
         // (A foot clamped to the piece's end keeps the solver's unclamped value.)
         if (t > 0.0 && t < 1.0)
         {
           Foot[v] = start + t * length;
-          Across[v] = R[v];
+          Across[v] = Curve.Offset[v];
         }
       }
     }
@@ -308,13 +311,13 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
   for (std::size_t i = 0; i < InsideList.size(); ++i)
   {
     const int v = InsideList[i];
-    if (!(std::abs(R[v]) <= radius) || R[v] == 0.0 || !(T[v] > 0.0 && T[v] < 1.0))
+    if (!(std::abs(Curve.Offset[v]) <= radius) || Curve.Offset[v] == 0.0 || !(Curve.ArcLength[v] > 0.0 && Curve.ArcLength[v] < 1.0))
     {
       continue;
     }
     // Walking with the curve on the left runs towards the start for points on the left.
-    const double towardsStart = WalkOffsetCurve(v, R[v] > 0.0, 0.0);
-    const double towardsEnd = WalkOffsetCurve(v, R[v] < 0.0, 1.0);
+    const double towardsStart = WalkOffsetCurve(v, Curve.Offset[v] > 0.0, 0.0);
+    const double towardsEnd = WalkOffsetCurve(v, Curve.Offset[v] < 0.0, 1.0);
     if (towardsStart >= 0.0 && towardsEnd >= 0.0 && towardsStart + towardsEnd > 0.0)
     {
       offsetU[i] = towardsStart / (towardsStart + towardsEnd);
@@ -325,21 +328,21 @@ bool GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& cur
   for (std::size_t i = 0; i < InsideList.size(); ++i)
   {
     const int v = InsideList[i];
-    if (std::abs(R[v]) <= radius)
+    if (std::abs(Curve.Offset[v]) <= radius)
     {
       if (std::isfinite(offsetU[i]))
       {
-        T[v] = offsetU[i];
+        Curve.ArcLength[v] = offsetU[i];
       }
       inside.push_back(v);
     }
     else
     {
-      R[v] = T[v] = NaN;
+      Curve.Offset[v] = Curve.ArcLength[v] = NaN;
     }
   }
   InsideList = std::move(inside);
-  return true;
+  return &Curve;
 }
 
 double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double stopAt) const
@@ -351,18 +354,18 @@ double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double
   // linear across the curve, where |delta| has a kink).
   // Beyond the curve's ends the offset from the extended end lines keeps the level sets
   // straight up to where they are cut off.
-  const double side = R[v] < 0.0 ? -1.0 : 1.0;
+  const double side = Curve.Offset[v] < 0.0 ? -1.0 : 1.0;
   const double c = side * Across[v];
   auto level = [&](int w) { return w == v ? c : side * Across[w]; };
   auto below = [&](int w) { return w != v && side * Across[w] < c; };
   auto valid = [&](int w) { return w == v || (std::isfinite(Across[w]) && std::isfinite(Foot[w])); };
   // The foot's arc length, unclamped: linear across the ends of straight curves, so that where
   // an offset curve leaves the curve's span is found exactly.
-  const double end = stopAt * CurveTotal;
+  const double end = stopAt * Curve.Length;
   int h = -1;
-  for (int out : M.OutgoingHalfedges(v))
+  for (int out : Mesh.OutgoingHalfedges(v))
   {
-    const int a = M.Destination(out), b = M.Opposite(out);
+    const int a = Mesh.Destination(out), b = Mesh.Opposite(out);
     if (valid(a) && valid(b) && (curveOnLeft ? (!below(a) && below(b)) : (below(a) && !below(b))))
     {
       h = TriangleMesh::Next(out);
@@ -373,19 +376,19 @@ double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double
   {
     return -1.0;
   }
-  Vec3 x = M.Position(v);
+  Vec3 x = Mesh.Position(v);
   double ux = Foot[v], length = 0.0;
-  const int maxSteps = 4 * M.NumberOfFaces() + 8;
+  const int maxSteps = 4 * Mesh.NumberOfFaces() + 8;
   for (int step = 0; step < maxSteps; ++step)
   {
-    const int a = M.Origin(h), b = M.Destination(h);
+    const int a = Mesh.Origin(h), b = Mesh.Destination(h);
     if (!valid(a) || !valid(b) || (curveOnLeft ? b : a) == v)
     {
       return -1.0; // left the solved band, or back at the start without reaching an end
     }
     const double la = level(a), lb = level(b);
     const double t = std::abs(lb - la) > 0.0 ? std::min(1.0, std::max(0.0, (c - la) / (lb - la))) : 0.5;
-    const Vec3 y = M.Position(a) + (M.Position(b) - M.Position(a)) * t;
+    const Vec3 y = Mesh.Position(a) + (Mesh.Position(b) - Mesh.Position(a)) * t;
     const double uy = Foot[a] + (Foot[b] - Foot[a]) * t;
     const double piece = Norm(y - x);
     if ((stopAt == 0.0 && uy <= end) || (stopAt == 1.0 && uy >= end))
@@ -397,20 +400,46 @@ double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double
     length += piece;
     x = y;
     ux = uy;
-    const int twin = M.Twin(h);
+    const int twin = Mesh.Twin(h);
     if (twin < 0)
     {
       return -1.0;
     }
     const int e1 = TriangleMesh::Next(twin), e2 = TriangleMesh::Prev(twin);
-    const int third = M.Destination(e1);
+    const int third = Mesh.Destination(e1);
     if (!valid(third))
     {
       return -1.0;
     }
-    h = below(third) == below(M.Origin(e1)) ? e2 : e1;
+    h = below(third) == below(Mesh.Origin(e1)) ? e2 : e1;
   }
   return -1.0;
+}
+
+bool GeodesicPolarCoordinates::CurveCoordinatesAt(
+  const SurfacePoint& q, double& offset, double& arcLength) const
+{
+  offset = arcLength = NaN;
+  if (!CurveMode)
+  {
+    return false;
+  }
+  // (Offset, ArcLength) inside a face: both vary linearly across a face beside a straight
+  // piece; interpolated.
+  if (q.IsVertex())
+  {
+    offset = Curve.Offset[q.Vertex];
+    arcLength = Curve.ArcLength[q.Vertex];
+    return std::isfinite(offset);
+  }
+  const auto& t = Mesh.Face(q.Face);
+  if (!std::isfinite(Curve.Offset[t[0]]) || !std::isfinite(Curve.Offset[t[1]]) || !std::isfinite(Curve.Offset[t[2]]))
+  {
+    return false;
+  }
+  offset = q.Bary[0] * Curve.Offset[t[0]] + q.Bary[1] * Curve.Offset[t[1]] + q.Bary[2] * Curve.Offset[t[2]];
+  arcLength = q.Bary[0] * Curve.ArcLength[t[0]] + q.Bary[1] * Curve.ArcLength[t[1]] + q.Bary[2] * Curve.ArcLength[t[2]];
+  return true;
 }
 
 bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, double& theta) const
@@ -418,38 +447,23 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
   rho = theta = NaN;
   if (CurveMode)
   {
-    // (Offset, ArcLength) inside a face: both vary linearly across a face beside a straight
-    // piece; interpolated.
-    if (q.IsVertex())
-    {
-      rho = R[q.Vertex];
-      theta = T[q.Vertex];
-      return std::isfinite(rho);
-    }
-    const auto& t = M.Face(q.Face);
-    if (!std::isfinite(R[t[0]]) || !std::isfinite(R[t[1]]) || !std::isfinite(R[t[2]]))
-    {
-      return false;
-    }
-    rho = q.Bary[0] * R[t[0]] + q.Bary[1] * R[t[1]] + q.Bary[2] * R[t[2]];
-    theta = q.Bary[0] * T[t[0]] + q.Bary[1] * T[t[1]] + q.Bary[2] * T[t[2]];
-    return true;
+    return false; // curve coordinates: CurveCoordinatesAt
   }
   if (q.IsVertex())
   {
-    rho = R[q.Vertex];
-    theta = T[q.Vertex];
+    rho = VertexRho[q.Vertex];
+    theta = VertexTheta[q.Vertex];
     return std::isfinite(rho);
   }
-  const auto& t = M.Face(q.Face);
-  const Vec3 x = M.Interpolate(q.Face, q.Bary);
+  const auto& t = Mesh.Face(q.Face);
+  const Vec3 x = Mesh.Interpolate(q.Face, q.Bary);
   const bool sourceFace = Source.IsVertex()
     ? (t[0] == Source.Vertex || t[1] == Source.Vertex || t[2] == Source.Vertex)
     : Source.Face == q.Face;
   if (sourceFace)
   {
     // Straight inside the face: exact.
-    const Vec3 s = Source.IsVertex() ? M.Position(Source.Vertex) : M.Interpolate(Source.Face, Source.Bary);
+    const Vec3 s = Source.IsVertex() ? Mesh.Position(Source.Vertex) : Mesh.Interpolate(Source.Face, Source.Bary);
     rho = Norm(x - s);
     if (rho == 0.0)
     {
@@ -457,15 +471,15 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
       return true;
     }
     // The tangent angle at the source of the direction towards x, measured in x's face.
-    const double raw = TangentAngle(M, Source, x - s);
+    const double raw = TangentAngle(Mesh, Source, x - s);
     theta = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
     return true;
   }
-  if (!std::isfinite(R[t[0]]) || !std::isfinite(R[t[1]]) || !std::isfinite(R[t[2]]))
+  if (!std::isfinite(VertexRho[t[0]]) || !std::isfinite(VertexRho[t[1]]) || !std::isfinite(VertexRho[t[2]]))
   {
     return false;
   }
-  const UnfoldedTriangle u = UnfoldTriangle(M, q.Face, q.Bary, { { R[t[0]], R[t[1]], R[t[2]] } });
+  const UnfoldedTriangle u = UnfoldTriangle(Mesh, q.Face, q.Bary, { { VertexRho[t[0]], VertexRho[t[1]], VertexRho[t[2]] } });
   rho = u.Distance;
   // Theta: in the unfolding, the direction from the unfolded source to q, turned by the offset
   // that maps the corners' unfolded directions onto their angles (the same for all corners on a
@@ -480,7 +494,7 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
     {
       const Vec2 c = u.Corners[k] - u.Source;
       // Angles in the unfolding are true angles at the source: scale them like the raw ones.
-      const double o = T[t[k]] - std::atan2(c.y, c.x) * TwoPi / Turn;
+      const double o = VertexTheta[t[k]] - std::atan2(c.y, c.x) * TwoPi / Turn;
       if (k == 0)
       {
         offset0 = o;
@@ -494,11 +508,11 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
   }
   for (int k = 0; k < 3; ++k)
   {
-    double d = T[t[k]] - T[t[0]];
+    double d = VertexTheta[t[k]] - VertexTheta[t[0]];
     d -= TwoPi * std::round(d / TwoPi);
     sum += q.Bary[k] * d;
   }
-  theta = Wrap(T[t[0]] + sum);
+  theta = Wrap(VertexTheta[t[0]] + sum);
   return true;
 }
 
@@ -524,25 +538,25 @@ bool GeodesicPolarCoordinates::TraceIsoCurve(int v,
   const std::vector<std::vector<std::pair<Vec3, Vec3>>>& reference, double& toReference,
   double& length) const
 {
-  const double c = R[v];
+  const double c = VertexRho[v];
   // Distances just beyond the radius come from an exact solve a few edges further.
-  auto rho = [&](int w) { return std::isfinite(R[w]) ? R[w] : Solver.Distance(w); };
+  auto rho = [&](int w) { return std::isfinite(VertexRho[w]) ? VertexRho[w] : Solver.Distance(w); };
   // Below the level: strictly closer than v (vertices at exactly the level count as above; v
   // itself is where the loop starts and ends).
   auto below = [&](int w) { return w != v && rho(w) < c; };
   // Point on half-edge h where the level is reached (one end below, the other above).
   auto crossing = [&](int h) {
-    const int a = M.Origin(h), b = M.Destination(h);
+    const int a = Mesh.Origin(h), b = Mesh.Destination(h);
     const double ra = a == v ? c : rho(a), rb = b == v ? c : rho(b);
     const double t = std::isfinite(rb) && std::abs(rb - ra) > 0.0 ? (c - ra) / (rb - ra) : 1.0;
-    return M.Position(a) + (M.Position(b) - M.Position(a)) * std::min(1.0, std::max(0.0, t));
+    return Mesh.Position(a) + (Mesh.Position(b) - Mesh.Position(a)) * std::min(1.0, std::max(0.0, t));
   };
   // Start: the face around v whose far edge goes from above to below counter-clockwise, so that
   // the walk keeps the source (below) on its left.
   int h0 = -1;
-  for (int h : M.OutgoingHalfedges(v))
+  for (int h : Mesh.OutgoingHalfedges(v))
   {
-    const int a = M.Destination(h), b = M.Opposite(h);
+    const int a = Mesh.Destination(h), b = Mesh.Opposite(h);
     if (!below(a) && below(b))
     {
       h0 = TriangleMesh::Next(h); // edge a -> b, crossed from v
@@ -553,23 +567,23 @@ bool GeodesicPolarCoordinates::TraceIsoCurve(int v,
   {
     return false;
   }
-  Vec3 x = M.Position(v);
+  Vec3 x = Mesh.Position(v);
   int h = h0; // the edge the walk leaves its current face through
   length = 0.0;
   toReference = -1.0;
-  const int maxSteps = 4 * M.NumberOfFaces() + 8;
+  const int maxSteps = 4 * Mesh.NumberOfFaces() + 8;
   for (int step = 0; step < maxSteps; ++step)
   {
     const int f = h / 3;
     // Every edge the walk leaves through runs from above to below; when its upper end is v, the
     // level is reached at v itself: the loop is closed.
-    const bool closing = M.Origin(h) == v && step > 0;
-    const Vec3 y = closing ? M.Position(v) : crossing(h);
+    const bool closing = Mesh.Origin(h) == v && step > 0;
+    const Vec3 y = closing ? Mesh.Position(v) : crossing(h);
     const double piece = Norm(y - x);
     double t = 0.0;
     for (const auto& seg : reference[f])
     {
-      if (toReference < 0.0 && SegmentsCross(x, y, seg.first, seg.second, M.FaceNormal(f), t))
+      if (toReference < 0.0 && SegmentsCross(x, y, seg.first, seg.second, Mesh.FaceNormal(f), t))
       {
         toReference = length + t * piece;
       }
@@ -580,17 +594,17 @@ bool GeodesicPolarCoordinates::TraceIsoCurve(int v,
     {
       return toReference >= 0.0 && length > 0.0;
     }
-    const int twin = M.Twin(h);
+    const int twin = Mesh.Twin(h);
     if (twin < 0)
     {
       return false; // the iso-curve meets the mesh boundary: not a loop
     }
     // In the next face, leave through the other edge that changes side.
     const int e1 = TriangleMesh::Next(twin), e2 = TriangleMesh::Prev(twin);
-    const int third = M.Destination(e1);
+    const int third = Mesh.Destination(e1);
     // twin runs from the shared edge's lower end to its upper end; the level leaves through e1
     // (upper end to third) when third is below, through e2 (third to the lower end) otherwise.
-    h = below(third) == below(M.Origin(e1)) ? e2 : e1;
+    h = below(third) == below(Mesh.Origin(e1)) ? e2 : e1;
   }
   return false;
 }
@@ -603,15 +617,15 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
   }
   IsoAngles = true;
   // The reference geodesic: from the source in direction theta = 0 to the radius.
-  std::vector<std::vector<std::pair<Vec3, Vec3>>> reference(M.NumberOfFaces());
+  std::vector<std::vector<std::pair<Vec3, Vec3>>> reference(Mesh.NumberOfFaces());
   double radius = 0.0;
   for (int v : InsideList)
   {
-    radius = std::max(radius, R[v]);
+    radius = std::max(radius, VertexRho[v]);
   }
-  const GeodesicShot ray = ShootGeodesic(M, Source, Reference, radius * 1.01 + M.MeanEdgeLength());
+  const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, radius * 1.01 + Mesh.MeanEdgeLength());
   ExactGeodesicOptions beyond;
-  beyond.MaximumDistance = radius + 3.0 * M.MeanEdgeLength();
+  beyond.MaximumDistance = radius + 3.0 * Mesh.MeanEdgeLength();
   Solver.Solve({ Source }, beyond);
   for (const CurvePiece& piece : ray.Pieces)
   {
@@ -620,14 +634,14 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
   int kept = 0;
   for (int v : InsideList)
   {
-    if (!(R[v] > 0.0))
+    if (!(VertexRho[v] > 0.0))
     {
       continue;
     }
     double toReference = 0.0, length = 0.0;
     if (TraceIsoCurve(v, reference, toReference, length))
     {
-      T[v] = std::fmod(TwoPi * (length - toReference) / length, TwoPi);
+      VertexTheta[v] = std::fmod(TwoPi * (length - toReference) / length, TwoPi);
     }
     else
     {
@@ -639,13 +653,13 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
 
 SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta) const
 {
-  if (!CurveMode || !(CurveTotal > 0.0) || !std::isfinite(u) || !std::isfinite(delta))
+  if (!CurveMode || !(Curve.Length > 0.0) || !std::isfinite(u) || !std::isfinite(delta))
   {
     return SurfacePoint();
   }
   // The curve point at arc length u L, and the curve's direction there.
-  const double target = std::min(1.0, std::max(0.0, u)) * CurveTotal;
-  const double tiny = 1e-6 * M.MeanEdgeLength();
+  const double target = std::min(1.0, std::max(0.0, u)) * Curve.Length;
+  const double tiny = 1e-6 * Mesh.MeanEdgeLength();
   double start = 0.0;
   const CurvePiece* at = nullptr;
   double t = 0.0;
@@ -669,15 +683,15 @@ SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta
   }
   const Vec3 x = at->A + (at->B - at->A) * t;
   SurfacePoint foot = SurfacePoint::InFace(at->Face, 0, 0, 0);
-  foot.Bary = M.ClampedBarycentric(at->Face, x);
+  foot.Bary = Mesh.ClampedBarycentric(at->Face, x);
   if (delta == 0.0)
   {
     return foot;
   }
   // Perpendicular to the curve: a quarter turn left of its direction for delta > 0.
-  const double tangentAngle = TangentAngle(M, foot, at->B - at->A);
+  const double tangentAngle = TangentAngle(Mesh, foot, at->B - at->A);
   const double quarter = 0.5 * 3.14159265358979323846;
-  return ShootGeodesic(M, foot, tangentAngle + (delta > 0.0 ? quarter : -quarter), std::abs(delta)).End;
+  return ShootGeodesic(Mesh, foot, tangentAngle + (delta > 0.0 ? quarter : -quarter), std::abs(delta)).End;
 }
 
 SurfacePoint GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
@@ -690,33 +704,33 @@ SurfacePoint GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
   {
     return InverseIsoCurve(rho, theta);
   }
-  return ShootGeodesic(M, Source, Reference + theta * Turn / TwoPi, rho).End;
+  return ShootGeodesic(Mesh, Source, Reference + theta * Turn / TwoPi, rho).End;
 }
 
 SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) const
 {
   // The level loop at rho = c, traced counter-clockwise from where it crosses the reference
   // geodesic (as UseIsoCurveAngles measured it), walked to the fraction theta / 2 pi of its length.
-  auto rho = [&](int w) { return std::isfinite(R[w]) ? R[w] : Solver.Distance(w); };
+  auto rho = [&](int w) { return std::isfinite(VertexRho[w]) ? VertexRho[w] : Solver.Distance(w); };
   auto below = [&](int w) { return rho(w) < c; };
   auto crossing = [&](int h) {
-    const int a = M.Origin(h), b = M.Destination(h);
+    const int a = Mesh.Origin(h), b = Mesh.Destination(h);
     const double ra = rho(a), rb = rho(b);
     const double t = std::isfinite(rb) && std::abs(rb - ra) > 0.0 ? (c - ra) / (rb - ra) : 1.0;
-    return M.Position(a) + (M.Position(b) - M.Position(a)) * std::min(1.0, std::max(0.0, t));
+    return Mesh.Position(a) + (Mesh.Position(b) - Mesh.Position(a)) * std::min(1.0, std::max(0.0, t));
   };
   auto toSurface = [&](int f, const Vec3& x) {
     SurfacePoint p = SurfacePoint::InFace(f, 0, 0, 0);
-    p.Bary = M.ClampedBarycentric(f, x);
+    p.Bary = Mesh.ClampedBarycentric(f, x);
     return p;
   };
   // 1. Where the reference geodesic reaches the level.
-  const GeodesicShot ray = ShootGeodesic(M, Source, Reference, c * 1.01 + M.MeanEdgeLength());
+  const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, c * 1.01 + Mesh.MeanEdgeLength());
   int f0 = -1;
   Vec3 start;
   for (const CurvePiece& piece : ray.Pieces)
   {
-    const auto& t = M.Face(piece.Face);
+    const auto& t = Mesh.Face(piece.Face);
     auto interpolated = [&](const Vec3& x) {
       const SurfacePoint p = toSurface(piece.Face, x);
       return p.Bary[0] * rho(t[0]) + p.Bary[1] * rho(t[1]) + p.Bary[2] * rho(t[2]);
@@ -731,14 +745,14 @@ SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) c
   }
   if (f0 < 0)
   {
-    return ShootGeodesic(M, Source, Reference + theta * Turn / TwoPi, c).End;
+    return ShootGeodesic(Mesh, Source, Reference + theta * Turn / TwoPi, c).End;
   }
   // 2. The loop, as points (with their faces) and cumulative lengths.
   int h = -1;
   for (int k = 0; k < 3; ++k)
   {
     const int e = 3 * f0 + k;
-    if (!below(M.Origin(e)) && below(M.Destination(e)))
+    if (!below(Mesh.Origin(e)) && below(Mesh.Destination(e)))
     {
       h = e;
     }
@@ -750,14 +764,14 @@ SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) c
   std::vector<Vec3> points{ start };
   std::vector<int> faces;
   std::vector<double> cumulative{ 0.0 };
-  const int maxSteps = 4 * M.NumberOfFaces() + 8;
+  const int maxSteps = 4 * Mesh.NumberOfFaces() + 8;
   for (int step = 0; step < maxSteps; ++step)
   {
     const Vec3 y = crossing(h);
     faces.push_back(h / 3);
     cumulative.push_back(cumulative.back() + Norm(y - points.back()));
     points.push_back(y);
-    const int twin = M.Twin(h);
+    const int twin = Mesh.Twin(h);
     if (twin < 0)
     {
       break; // not a loop: walk what there is
@@ -772,8 +786,8 @@ SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) c
       break;
     }
     const int e1 = TriangleMesh::Next(twin), e2 = TriangleMesh::Prev(twin);
-    const int third = M.Destination(e1);
-    h = below(third) == below(M.Origin(e1)) ? e2 : e1;
+    const int third = Mesh.Destination(e1);
+    h = below(third) == below(Mesh.Origin(e1)) ? e2 : e1;
   }
   // 3. The point at the fraction theta / 2 pi of the loop's length.
   double a = std::fmod(theta, TwoPi);

@@ -8,8 +8,9 @@
 // Two engines: the exact solver truncated at the radius (exact distances and departure angles;
 // behind a saddle or reflex boundary vertex, the angle of the path to it), or, given a saddle
 // vertex graph, the SVG solver (exact in the source's K-disk, near-exact beyond, several times
-// faster on large patches). The `Iso-curve arc length` angle mode and curve sources are not part
-// of this version.
+// faster on large patches). Theta can be replaced by the iso-curve arc-length angle
+// (UseIsoCurveAngles). About a curve instead of a point (ComputeCurve), the coordinates are
+// (offset, arc length), a CurveCoordinates of their own.
 #pragma once
 
 #include "ExactGeodesic.h"
@@ -24,6 +25,19 @@
 
 namespace gs
 {
+
+/// Coordinates about a curve (GeodesicPolarCoordinates::ComputeCurve), per vertex; NaN beyond the
+/// radius (or unreachable).
+struct CurveCoordinates
+{
+  /// delta: the signed geodesic distance to the curve, positive on the left of the curve's
+  /// direction (with the outward normal up).
+  std::vector<double> Offset;
+  /// u in [0, 1]: the normalized arc length along the vertex's own offset curve (0 and 1 in the
+  /// caps beyond the curve's ends).
+  std::vector<double> ArcLength;
+  double Length = 0.0; ///< the curve's length
+};
 
 class GeodesicPolarCoordinates
 {
@@ -43,17 +57,18 @@ public:
   // direction, with the outward normal up) and ArcLength = u in [0, 1], the normalized arc
   // length along the vertex's own offset curve (the level set of |delta| on its side), from
   // where it leaves the curve's start to where it reaches its end (the paper's Fig. 3); points
-  // beyond the ends (in the caps) get 0 or 1. Exact solver from the curve sampled every 1/16
-  // edge; each point's foot (where its geodesic leaves the curve perpendicularly) is placed by
-  // the departure angle, exact for straight pieces on developable surfaces. False
-  // for an empty or zero-length curve, an invalid point or radius. In this mode Rho() and
-  // Theta() return Offset() and ArcLength(); ToSurface and UseIsoCurveAngles do nothing (use
-  // ToSurfaceFromCurve).
-  bool ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
+  // beyond the ends (in the caps) get 0 or 1. Exact solver from the curve sampled every
+  // ExactCurveSampleSpacing edge (SurfaceCurve.h); each point's foot (where its geodesic leaves
+  // the curve perpendicularly) is placed by the departure angle, exact for straight pieces on
+  // developable surfaces. Null for an empty or zero-length curve, an invalid point or radius;
+  // the coordinates stay valid until the next Compute or ComputeCurve. In this mode Rho() and
+  // Theta() are NaN, PolarAt is false, ToSurface and UseIsoCurveAngles do nothing (use
+  // CurveCoordinatesAt, ToSurfaceFromCurve).
+  const CurveCoordinates* ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
   bool IsCurve() const { return CurveMode; }
-  double Offset(int v) const { return R[v]; }
-  double ArcLength(int v) const { return T[v]; }
-  double CurveLength() const { return CurveTotal; }
+  // Curve coordinates of any surface point (interpolated inside its face: both vary linearly
+  // across a face beside a straight piece). False outside the radius or after Compute.
+  bool CurveCoordinatesAt(const SurfacePoint& q, double& offset, double& arcLength) const;
   // The inverse map of curve coordinates: the surface point at signed offset delta from the
   // curve point at normalized arc length u along the curve, along the geodesic leaving it
   // perpendicularly (the exact inverse where the offset curves are parallel to the curve:
@@ -61,8 +76,8 @@ public:
   SurfacePoint ToSurfaceFromCurve(double u, double delta) const;
 
   // Per vertex, NaN outside the radius (or unreachable).
-  double Rho(int v) const { return R[v]; }
-  double Theta(int v) const { return T[v]; }
+  double Rho(int v) const { return VertexRho[v]; }
+  double Theta(int v) const { return VertexTheta[v]; }
   // Vertices inside the radius, by increasing rho.
   const std::vector<int>& Inside() const { return InsideList; }
 
@@ -100,20 +115,20 @@ private:
   bool TraceIsoCurve(int v, const std::vector<std::vector<std::pair<Vec3, Vec3>>>& reference,
     double& toReference, double& length) const;
 
-  const TriangleMesh& M;
+  const TriangleMesh& Mesh;
   ExactGeodesicSolver Solver;
   std::unique_ptr<SVGGeodesicSolver> Svg;
   std::vector<int> InsideList;
   SurfacePoint Source;
   double Reference = 0.0;
   double Turn = 0.0;
-  std::vector<double> R, T;
+  std::vector<double> VertexRho, VertexTheta; // per vertex (Compute)
   bool CurveMode = false;
   bool IsoAngles = false;
   std::vector<CurvePiece> CurvePieces;
   std::vector<double> Foot;   // curve mode: arc length of each vertex's foot, unclamped
   std::vector<double> Across; // curve mode: signed offset from the foot's tangent line
-  double CurveTotal = 0.0;
+  CurveCoordinates Curve; // ComputeCurve's result
 };
 
 } // namespace gs

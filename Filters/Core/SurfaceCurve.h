@@ -31,6 +31,10 @@ struct FaceExit
 };
 FaceExit FindFaceExit(const TriangleMesh& mesh, int f, const Vec3& x, const Vec3& d, int entry);
 
+// Spacing of the samples of a curve source seeding the exact geodesic solver, in mean edge
+// lengths: the exact reference for distances to a curve and for curve coordinates.
+constexpr double ExactCurveSampleSpacing = 1.0 / 16.0;
+
 // Surface points along the pieces, at most `spacing` apart within each piece (both ends kept).
 std::vector<SurfacePoint> SampleCurvePieces(
   const TriangleMesh& mesh, const std::vector<CurvePiece>& pieces, double spacing);

@@ -1,4 +1,4 @@
-// Small fixed-size vector types used by the geometry core (no VTK, no Eigen in headers).
+// Small fixed-size vector types used by the geometry core (plain structs: no VTK, no Eigen).
 #pragma once
 
 #include <cmath>

@@ -342,9 +342,11 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
   // A straight segment: delta is the signed distance to the line, u the projection's fraction,
   // for points beside the segment.
   const Vec3 a(1.03, 1.51, 0), b(2.97, 2.23, 0);
-  ASSERT_TRUE(pc.ComputeCurve({ locate(a), locate(b) }, 0.6));
+  const CurveCoordinates* segment = pc.ComputeCurve({ locate(a), locate(b) }, 0.6);
+  ASSERT_TRUE(segment);
   EXPECT_TRUE(pc.IsCurve());
-  EXPECT_NEAR(pc.CurveLength(), Norm(b - a), 1e-9);
+  EXPECT_NEAR(segment->Length, Norm(b - a), 1e-9);
+  EXPECT_TRUE(std::isnan(pc.Rho(pc.Inside().front()))); // not polar coordinates
   const Vec3 dir = (b - a) / Norm(b - a);
   int beside = 0, queried = 0;
   for (int v : pc.Inside())
@@ -355,18 +357,18 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
       continue;
     ++beside;
     const double signedDistance = Cross(dir, d).z; // > 0 on the left (normal +z)
-    EXPECT_NEAR(pc.Offset(v), signedDistance, 1e-9) << v;
-    EXPECT_NEAR(pc.ArcLength(v), along, 1e-9) << v;
+    EXPECT_NEAR(segment->Offset[v], signedDistance, 1e-9) << v;
+    EXPECT_NEAR(segment->ArcLength[v], along, 1e-9) << v;
     // Inverse map: back to the vertex.
-    const SurfacePoint back = pc.ToSurfaceFromCurve(pc.ArcLength(v), pc.Offset(v));
+    const SurfacePoint back = pc.ToSurfaceFromCurve(segment->ArcLength[v], segment->Offset[v]);
     // And the coordinates of that surface point (inside a face, all of whose corners are in the
     // band) are the vertex's.
     double offset = 0, u = 0;
-    if (pc.PolarAt(back, offset, u))
+    if (pc.CurveCoordinatesAt(back, offset, u))
     {
       ++queried;
-      EXPECT_NEAR(offset, pc.Offset(v), 1e-6 * m.MeanEdgeLength());
-      EXPECT_NEAR(u, pc.ArcLength(v), 1e-6);
+      EXPECT_NEAR(offset, segment->Offset[v], 1e-6 * m.MeanEdgeLength());
+      EXPECT_NEAR(u, segment->ArcLength[v], 1e-6);
     }
     EXPECT_LT(Norm(m.Interpolate(back.Face, back.Bary) - m.Position(v)), 1e-6 * m.MeanEdgeLength()) << v;
   }
@@ -381,7 +383,8 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     const double t = a0 + (a1 - a0) * i / 40.0;
     arc.push_back(locate(Vec3(2 + r0 * std::cos(t), 2 + r0 * std::sin(t), 0)));
   }
-  ASSERT_TRUE(pc.ComputeCurve(arc, 0.4));
+  const CurveCoordinates* onArc = pc.ComputeCurve(arc, 0.4);
+  ASSERT_TRUE(onArc);
   int checked = 0;
   for (int v : pc.Inside())
   {
@@ -390,8 +393,8 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     if (angle < a0 + 0.05 || angle > a1 - 0.05)
       continue;
     ++checked;
-    EXPECT_NEAR(pc.Offset(v), r0 - Norm(d), 2e-3) << v; // the arc is a polyline of 40 chords
-    EXPECT_NEAR(pc.ArcLength(v), (angle - a0) / (a1 - a0), 1e-2) << v; // chords, not the arc
+    EXPECT_NEAR(onArc->Offset[v], r0 - Norm(d), 2e-3) << v; // the arc is a polyline of 40 chords
+    EXPECT_NEAR(onArc->ArcLength[v], (angle - a0) / (a1 - a0), 1e-2) << v; // chords, not the arc
   }
   EXPECT_GT(checked, 50);
   EXPECT_FALSE(pc.ComputeCurve({}, 1.0));
@@ -401,7 +404,8 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
   std::vector<SurfacePoint> grid;
   for (int k = 0; k <= 42; ++k)
     grid.push_back(locate(Vec3(1.0 + 2.0 * k / 42.0, 2.0, 0)));
-  ASSERT_TRUE(pc.ComputeCurve(grid, 0.5));
+  const CurveCoordinates* alongEdges = pc.ComputeCurve(grid, 0.5);
+  ASSERT_TRUE(alongEdges);
   int wrong = 0, near = 0;
   for (int v : pc.Inside())
   {
@@ -409,7 +413,7 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     if (p.x < 1.05 || p.x > 2.95)
       continue;
     ++near;
-    wrong += std::abs(pc.Offset(v) - (p.y - 2.0)) > 1e-6;
+    wrong += std::abs(alongEdges->Offset[v] - (p.y - 2.0)) > 1e-6;
   }
   EXPECT_GT(near, 100);
   EXPECT_EQ(wrong, 0);
@@ -426,18 +430,19 @@ TEST(GeodesicPolarCoordinates, CurveArcLengthAlongEachOffsetCurve)
     return SurfacePoint::AtVertex(static_cast<int>(std::lround(y * 10) * 41 + std::lround(x * 10)));
   };
   GeodesicPolarCoordinates pc(m);
-  ASSERT_TRUE(pc.ComputeCurve({ vertexAt(1, 1), vertexAt(2, 1), vertexAt(2, 2) }, 0.35));
-  EXPECT_NEAR(pc.CurveLength(), 2.0, 1e-12);
+  const CurveCoordinates* turn = pc.ComputeCurve({ vertexAt(1, 1), vertexAt(2, 1), vertexAt(2, 2) }, 0.35);
+  ASSERT_TRUE(turn);
+  EXPECT_NEAR(turn->Length, 2.0, 1e-12);
   const double d = 0.2;
   for (int i = 11; i <= 17; ++i)
   {
     const double x = 0.1 * i;
     const SurfacePoint outer = vertexAt(x, 1 - d), inner = vertexAt(x, 1 + d);
-    EXPECT_NEAR(pc.Offset(outer.Vertex), -d, 1e-9);
-    EXPECT_NEAR(pc.Offset(inner.Vertex), d, 1e-9);
+    EXPECT_NEAR(turn->Offset[outer.Vertex], -d, 1e-9);
+    EXPECT_NEAR(turn->Offset[inner.Vertex], d, 1e-9);
     // (The quarter circle is traced as chords across the faces: 0.2% shorter.)
-    EXPECT_NEAR(pc.ArcLength(outer.Vertex), (x - 1) / (2 + Pi * d / 2), 3e-3 * (x - 1) / 2) << x;
-    EXPECT_GT(std::abs(pc.ArcLength(outer.Vertex) - (x - 1) / 2), 0.05 * (x - 1) / 2) << x;
-    EXPECT_NEAR(pc.ArcLength(inner.Vertex), (x - 1) / (2 - 2 * d), 1e-6) << x;
+    EXPECT_NEAR(turn->ArcLength[outer.Vertex], (x - 1) / (2 + Pi * d / 2), 3e-3 * (x - 1) / 2) << x;
+    EXPECT_GT(std::abs(turn->ArcLength[outer.Vertex] - (x - 1) / 2), 0.05 * (x - 1) / 2) << x;
+    EXPECT_NEAR(turn->ArcLength[inner.Vertex], (x - 1) / (2 - 2 * d), 1e-6) << x;
   }
 }

@@ -8,6 +8,7 @@
 #include "SaddleVertexGraph.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
+#include "ShapeDrawing.h"
 
 #include <gtest/gtest.h>
 
@@ -326,4 +327,58 @@ TEST(ShapeDecal, SplitDecalsDrawABentShapeNarrowerThanTheTriangles)
     a.Points, a.Uncovered, a.Max);
   EXPECT_LT(a.Uncovered, a.Points / 20); // (in pieces dropped where the map folds)
   EXPECT_LT(a.Max, 0.02);
+}
+
+TEST(ShapeDrawing, DrawsEveryShapeAsItsOwnCallsAndLiftsAlongTheNormals)
+{
+  // DrawDecals / DrawOutlines (the filter's and the benchmark's parallel loops) give each shape's
+  // own Decal and Outline at the drawn check's spacing, whatever the thread count; the lifted
+  // points lie `lift` along their face's normal.
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(40, 40, 8.0, 8.0));
+  const SafeDistanceTables t = Tables({ MakeStarPolygon(5, 1.0, 0.4), Bar() });
+  std::vector<Vec3> directions(plane.NumberOfFaces(), Vec3{ 1.0, 0.3, 0.0 });
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.7;
+  o.Seed = 5;
+  o.MaximalFailures = 500;
+  o.NumberOfThreads = 2;
+  ShapeDistributor d(plane);
+  const ShapeDistributionResult r = d.Run(t, directions, {}, o);
+  ASSERT_TRUE(r.Ok) << r.Error;
+  const int n = static_cast<int>(r.Shapes.size());
+  ASSERT_GT(n, 5);
+  for (const int threads : { 1, 2 })
+  {
+    std::vector<double> seconds;
+    const std::vector<ShapeDecal> decals = DrawDecals(d, 0.01, threads, &seconds);
+    const std::vector<std::vector<OutlinePiece>> outlines = DrawOutlines(d, threads);
+    ASSERT_EQ(static_cast<int>(decals.size()), n);
+    ASSERT_EQ(static_cast<int>(outlines.size()), n);
+    ASSERT_EQ(static_cast<int>(seconds.size()), n);
+    for (int s = 0; s < n; ++s)
+    {
+      const ShapeDecal decal = d.Decal(s, 0.01);
+      EXPECT_EQ(decals[s].Faces, decal.Faces) << s;
+      EXPECT_EQ(decals[s].Corners, decal.Corners) << s;
+      const std::vector<OutlinePiece> outline = d.Outline(s, d.OutlineSpacing());
+      ASSERT_EQ(outlines[s].size(), outline.size()) << s;
+      for (std::size_t k = 0; k < outline.size(); ++k)
+      {
+        EXPECT_EQ(outlines[s][k].Closed, outline[k].Closed);
+        ASSERT_EQ(outlines[s][k].Points.size(), outline[k].Points.size());
+        for (std::size_t i = 0; i < outline[k].Points.size(); ++i)
+        {
+          EXPECT_EQ(outlines[s][k].Points[i].Face, outline[k].Points[i].Face);
+          EXPECT_EQ(outlines[s][k].Points[i].Bary, outline[k].Points[i].Bary);
+        }
+      }
+      EXPECT_GE(seconds[s], 0.0);
+    }
+  }
+  const double lift = 0.01;
+  const SurfacePoint q = SurfacePoint::InFace(7, 0.2, 0.3, 0.5);
+  const Vec3 up = LiftedSurfacePoint(plane, q, lift) - plane.Interpolate(q.Face, q.Bary);
+  EXPECT_NEAR(Norm(up - plane.FaceNormal(q.Face) * lift), 0.0, 1e-15);
+  const Vec3 corner = LiftedFacePoint(plane, 7, { 1.0, 0.0, 0.0 }, lift);
+  EXPECT_NEAR(Norm(corner - plane.Position(plane.Face(7)[0]) - plane.FaceNormal(7) * lift), 0.0, 1e-15);
 }

@@ -1,0 +1,66 @@
+#include "ShapeDrawing.h"
+
+#include <chrono>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gs
+{
+
+namespace
+{
+int Threads(int numberOfThreads)
+{
+#ifdef _OPENMP
+  return numberOfThreads > 0 ? numberOfThreads : omp_get_max_threads();
+#else
+  (void)numberOfThreads;
+  return 1;
+#endif
+}
+} // namespace
+
+std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double tolerance,
+  int numberOfThreads, std::vector<double>* seconds)
+{
+  const int ns = static_cast<int>(distributor.Shapes().size());
+  std::vector<ShapeDecal> decals(ns);
+  if (seconds)
+  {
+    seconds->assign(ns, 0.0);
+  }
+  const int threads = Threads(numberOfThreads);
+  (void)threads;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+  for (int s = 0; s < ns; ++s)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    decals[s] = distributor.Decal(s, tolerance);
+    if (seconds)
+    {
+      (*seconds)[s] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  }
+  return decals;
+}
+
+std::vector<std::vector<OutlinePiece>> DrawOutlines(
+  const ShapeDistributor& distributor, int numberOfThreads)
+{
+  const int ns = static_cast<int>(distributor.Shapes().size());
+  std::vector<std::vector<OutlinePiece>> outlines(ns);
+  const double spacing = distributor.OutlineSpacing();
+  const int threads = Threads(numberOfThreads);
+  (void)threads;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+  for (int s = 0; s < ns; ++s)
+  {
+    outlines[s] = distributor.Outline(s, spacing);
+  }
+  return outlines;
+}
+
+} // namespace gs

@@ -1,0 +1,68 @@
+#include "vtkCachedSurface.h"
+
+#include "vtkSurfacePointLocator.h"
+
+#include "SaddleVertexGraph.h"
+
+//------------------------------------------------------------------------------
+vtkCachedSurface::vtkCachedSurface() = default;
+
+//------------------------------------------------------------------------------
+vtkCachedSurface::~vtkCachedSurface() = default;
+
+//------------------------------------------------------------------------------
+vtkSurfacePointLocator& vtkCachedSurface::Locator()
+{
+  if (!this->PointLocator)
+  {
+    this->PointLocator.reset(new vtkSurfacePointLocator(this->Mesh));
+  }
+  return *this->PointLocator;
+}
+
+//------------------------------------------------------------------------------
+bool vtkCachedSurface::SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
+  std::vector<gs::SurfacePoint>& curve, std::string& error)
+{
+  return this->Locator().SnapCurve(points, n, ids, curve, error);
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t vtkCachedSurface::MeshHash()
+{
+  if (!this->HashValid)
+  {
+    this->Hash = gs::SaddleVertexGraph::HashMesh(this->Mesh.Build.Mesh);
+    this->HashValid = true;
+  }
+  return this->Hash;
+}
+
+//------------------------------------------------------------------------------
+bool vtkCachedSurface::UseSaddleVertexGraph(vtkAlgorithm* algorithm, int k,
+  const std::string& fileName, double progressStart, double progressSpan, bool& changed,
+  vtkSaddleVertexGraphCache::Origin* origin)
+{
+  changed = false;
+  const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(algorithm,
+    this->Mesh.Build.Mesh, this->MeshHash(), k, fileName, progressStart, progressSpan);
+  if (!found.Graph)
+  {
+    return false; // aborted, or the error is reported
+  }
+  if (origin)
+  {
+    *origin = found.From;
+  }
+  changed = found.Graph != this->GraphInUse;
+  this->GraphInUse = found.Graph;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkCachedSurface::UseNoSaddleVertexGraph()
+{
+  const bool changed = this->GraphInUse != nullptr;
+  this->GraphInUse.reset();
+  return changed;
+}

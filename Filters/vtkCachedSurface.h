@@ -1,0 +1,70 @@
+// vtkCachedSurface: a filter's input surface, converted once (vtkSurfaceMeshConverter), and what
+// every filter derives from it on demand: its mesh hash, the saddle vertex graph in use (from the
+// process-wide vtkSaddleVertexGraphCache) and the surface point locator.
+//
+// Not a vtkObject and not wrapped (a private class of the GeodesicShapes::Filters module). Each
+// filter keeps one through vtkSurfaceMeshConverter::Update, which replaces it (and so drops all
+// of the above) when the input's points or cells change; a filter's own cache derives from it
+// and adds the engines it builds over the mesh (and the graph).
+#ifndef vtkCachedSurface_h
+#define vtkCachedSurface_h
+
+#include "vtkSaddleVertexGraphCache.h"
+#include "vtkSurfaceMeshConverter.h"
+
+#include "SurfacePoint.h"
+
+#include <vtkType.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkPoints;
+class vtkSurfacePointLocator;
+
+class vtkCachedSurface : public vtkSurfaceMeshConverter::Cached
+{
+public:
+  vtkCachedSurface();
+  ~vtkCachedSurface();
+
+  // The locator over the converted surface (Mesh must be a successful conversion); built on
+  // first use.
+  vtkSurfacePointLocator& Locator();
+
+  // A polyline of `points` (ids[0 .. n)) snapped as a curve on the surface, sampled every
+  // vtkSurfacePointLocator::CurveSampleSpacing mean edge lengths (see SnapCurve there).
+  bool SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
+    std::vector<gs::SurfacePoint>& curve, std::string& error);
+
+  // gs::SaddleVertexGraph::HashMesh of the converted mesh; computed on first use.
+  std::uint64_t MeshHash();
+
+  // Makes the saddle vertex graph of K the one in use: from vtkSaddleVertexGraphCache (memory,
+  // `fileName` if not empty, or built with progress `progressStart` .. + `progressSpan` on
+  // `algorithm`, which may abort it). False on error or abort (the error and any warnings are
+  // reported on `algorithm`); the graph in use is then unchanged. `changed` says whether the
+  // graph in use is now another one (an engine built over the previous one must be rebuilt);
+  // `origin` (may be null) where it came from.
+  bool UseSaddleVertexGraph(vtkAlgorithm* algorithm, int k, const std::string& fileName,
+    double progressStart, double progressSpan, bool& changed,
+    vtkSaddleVertexGraphCache::Origin* origin = nullptr);
+  // No saddle vertex graph in use (an exact engine); true when one was.
+  bool UseNoSaddleVertexGraph();
+  // The saddle vertex graph in use (null: none).
+  const gs::SaddleVertexGraph* Graph() const { return this->GraphInUse.get(); }
+
+  vtkCachedSurface(const vtkCachedSurface&) = delete;
+  vtkCachedSurface& operator=(const vtkCachedSurface&) = delete;
+
+private:
+  std::unique_ptr<vtkSurfacePointLocator> PointLocator; // refers to Mesh; on demand
+  std::uint64_t Hash = 0;                                // of Mesh.Build.Mesh; on demand
+  bool HashValid = false;
+  std::shared_ptr<const gs::SaddleVertexGraph> GraphInUse; // kept alive while in use
+};
+
+#endif
