@@ -85,22 +85,14 @@ DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<Pla
     const ShapeDecal& decal = decals[s];
     for (std::size_t k = 0; k < decal.Faces.size(); ++k)
     {
-      const auto& B = decal.Corners[k];
-      const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1], by = B[1][1] - B[2][1];
-      const double det = ax * by - bx * ay;
-      if (det == 0.0)
-        continue;
       int index = 0;
       for (int i = 0; i <= L; ++i)
         for (int j = 0; i + j <= L; ++j, ++index)
         {
           const double b0 = (i + 1.0 / 3.0) / (L + 1.0), b1 = (j + 1.0 / 3.0) / (L + 1.0);
-          const double px = b0 - B[2][0], py = b1 - B[2][1];
-          const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
-          if (l0 < 0.0 || l1 < 0.0 || l2 < 0.0)
+          Vec2 uv;
+          if (!decal.TextureCoordinateIn(k, { b0, b1, 1.0 - b0 - b1 }, uv))
             continue;
-          const auto& U = decal.TextureCoordinates[k];
-          const Vec2 uv = U[0] * l0 + U[1] * l1 + U[2] * l2;
           const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
           if (region.Inside(q))
             mine.insert(static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index);

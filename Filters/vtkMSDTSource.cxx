@@ -11,7 +11,6 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDemandDrivenPipeline.h>
-#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -126,14 +125,6 @@ vtkTypeBool vtkMSDTSource::ProcessRequest(
 
 namespace
 {
-vtkSmartPointer<vtkDoubleArray> DoubleArray(const char* name, int components)
-{
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->SetNumberOfComponents(components);
-  return a.GetPointer();
-}
-
 vtkSmartPointer<vtkIntArray> IntArray(const char* name)
 {
   vtkNew<vtkIntArray> a;

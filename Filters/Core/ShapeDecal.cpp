@@ -48,6 +48,29 @@ double SignedArea(const std::array<Vec2, 3>& t)
 }
 } // namespace
 
+bool ShapeDecal::TextureCoordinateIn(std::size_t k, const std::array<double, 3>& bary, Vec2& uv) const
+{
+  // bary's barycentric coordinates in triangle k: solve in the first two face coordinates.
+  const auto& B = Corners[k];
+  const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1],
+               by = B[1][1] - B[2][1];
+  const double det = ax * by - bx * ay;
+  if (det == 0.0)
+  {
+    return false;
+  }
+  const double px = bary[0] - B[2][0], py = bary[1] - B[2][1];
+  const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
+  const double eps = -1e-9;
+  if (l0 >= eps && l1 >= eps && l2 >= eps)
+  {
+    const auto& U = TextureCoordinates[k];
+    uv = U[0] * l0 + U[1] * l1 + U[2] * l2;
+    return true;
+  }
+  return false;
+}
+
 bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
 {
   if (p.Face < 0)
@@ -56,26 +79,8 @@ bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
   }
   for (std::size_t k = 0; k < Faces.size(); ++k)
   {
-    if (Faces[k] != p.Face)
+    if (Faces[k] == p.Face && TextureCoordinateIn(k, p.Bary, uv))
     {
-      continue;
-    }
-    // p's barycentric coordinates in the triangle: solve in the first two face coordinates.
-    const auto& B = Corners[k];
-    const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1],
-                 by = B[1][1] - B[2][1];
-    const double det = ax * by - bx * ay;
-    if (det == 0.0)
-    {
-      continue;
-    }
-    const double px = p.Bary[0] - B[2][0], py = p.Bary[1] - B[2][1];
-    const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
-    const double eps = -1e-9;
-    if (l0 >= eps && l1 >= eps && l2 >= eps)
-    {
-      const auto& U = TextureCoordinates[k];
-      uv = U[0] * l0 + U[1] * l1 + U[2] * l2;
       return true;
     }
   }

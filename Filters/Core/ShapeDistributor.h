@@ -171,6 +171,9 @@ struct ShapeDecal
   /// The texture coordinate at surface point p as a renderer draws it (linear in the triangle
   /// holding p); false when no triangle holds it.
   bool TextureCoordinate(const SurfacePoint& p, Vec2& uv) const;
+  /// The same for the point of barycentric coordinates `bary` in face Faces[k], when it lies in
+  /// triangle k.
+  bool TextureCoordinateIn(std::size_t k, const std::array<double, 3>& bary, Vec2& uv) const;
 };
 
 /// A long shape's drawing map (arc length along its curve, then across along the perpendicular

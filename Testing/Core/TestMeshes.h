@@ -2,11 +2,15 @@
 #pragma once
 
 #include "MeshGenerators.h"
+#include "SafeDistanceTable.h"
+#include "Silhouette.h"
 #include "TriangleMesh.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
+#include <vector>
 
 namespace gs_test
 {
@@ -30,6 +34,24 @@ inline gs::TriangleSoup BumpySoup(int level, unsigned seed, double amplitude)
     p = p * u(rng);
   }
   return s;
+}
+
+// Safe distance tables of polygon classes ("class 0", "class 1", ...): 32 angle bins, 64 distance
+// steps, 512 rows, fine enough for the distributor's tests and fast.
+inline gs::SafeDistanceTables PolygonTables(const std::vector<std::vector<gs::Vec2>>& classes)
+{
+  std::vector<gs::SafeDistanceInput> in;
+  for (std::size_t k = 0; k < classes.size(); ++k)
+  {
+    in.push_back({ "class " + std::to_string(k), gs::ShapeFromPolygons({ classes[k] }) });
+  }
+  gs::SafeDistanceOptions o;
+  o.AngleBins = 32;
+  o.DistanceSteps = 64;
+  o.Rows = 512;
+  gs::SafeDistanceResult r = gs::ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok) << r.Error;
+  return r.Tables;
 }
 
 } // namespace gs_test

@@ -20,22 +20,6 @@ using namespace gs;
 
 namespace
 {
-SafeDistanceTables Tables(const std::vector<std::vector<Vec2>>& classes)
-{
-  std::vector<SafeDistanceInput> in;
-  for (std::size_t k = 0; k < classes.size(); ++k)
-  {
-    in.push_back({ "class" + std::to_string(k), ShapeFromPolygons({ classes[k] }) });
-  }
-  SafeDistanceOptions o;
-  o.AngleBins = 32;
-  o.DistanceSteps = 64;
-  o.Rows = 512;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
-}
-
 double DistanceToRings(const std::vector<std::vector<Vec2>>& rings, const Vec2& p)
 {
   double best = 1e300;
@@ -111,7 +95,7 @@ TEST(ShapeDecal, DecalsAgreeWithOutlinesOnAPlane)
 {
   // A straight field (the map is affine: exact) and a turning one (long shapes bend).
   const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(60, 60, 12.0, 12.0));
-  const SafeDistanceTables t = Tables({ MakeStarPolygon(5, 1.0, 0.4), Bar() });
+  const SafeDistanceTables t = gs_test::PolygonTables({ MakeStarPolygon(5, 1.0, 0.4), Bar() });
   ASSERT_GT(t.Classes[1].Parts.size(), 1u);
   for (const bool turning : { false, true })
   {
@@ -161,7 +145,7 @@ TEST(ShapeDecal, DecalsAgreeWithOutlinesOnASphere)
     const Vec3 x = (sphere.Position(c[0]) + sphere.Position(c[1]) + sphere.Position(c[2])) / 3.0;
     directions[f] = Cross(Vec3{ 0, 0, 1 }, x);
   }
-  const SafeDistanceTables t = Tables({ MakeStarPolygon(5, 1.0, 0.4), Bar() });
+  const SafeDistanceTables t = gs_test::PolygonTables({ MakeStarPolygon(5, 1.0, 0.4), Bar() });
   ShapeDistributionOptions o;
   o.ShapeSize = 0.12;
   o.Seed = 1;
@@ -283,7 +267,7 @@ Drawn CompareDrawn(const ShapeDistributor& d, const TriangleMesh& mesh, const Sa
 TEST(ShapeDecal, SplitDecalsDrawABentShapeNarrowerThanTheTriangles)
 {
   const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(8, 8, 12.0, 12.0)); // edges 1.5
-  const SafeDistanceTables t = Tables({ Bar() });
+  const SafeDistanceTables t = gs_test::PolygonTables({ Bar() });
   ASSERT_GT(t.Classes[0].Parts.size(), 1u);
   std::vector<Vec3> directions(plane.NumberOfFaces());
   for (int f = 0; f < plane.NumberOfFaces(); ++f)
@@ -335,7 +319,7 @@ TEST(ShapeDrawing, DrawsEveryShapeAsItsOwnCallsAndLiftsAlongTheNormals)
   // own Decal and Outline at the drawn check's spacing, whatever the thread count; the lifted
   // points lie `lift` along their face's normal.
   const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(40, 40, 8.0, 8.0));
-  const SafeDistanceTables t = Tables({ MakeStarPolygon(5, 1.0, 0.4), Bar() });
+  const SafeDistanceTables t = gs_test::PolygonTables({ MakeStarPolygon(5, 1.0, 0.4), Bar() });
   std::vector<Vec3> directions(plane.NumberOfFaces(), Vec3{ 1.0, 0.3, 0.0 });
   ShapeDistributionOptions o;
   o.ShapeSize = 0.7;

@@ -24,17 +24,8 @@ namespace
 {
 SafeDistanceTables StarAndBar()
 {
-  const std::vector<Vec2> bar{ { -2.5, -0.5 }, { 2.5, -0.5 }, { 2.5, 0.5 }, { -2.5, 0.5 } };
-  std::vector<SafeDistanceInput> in;
-  in.push_back({ "star", ShapeFromPolygons({ MakeStarPolygon(5, 1.0, 0.4) }) });
-  in.push_back({ "bar", ShapeFromPolygons({ bar }) });
-  SafeDistanceOptions o;
-  o.AngleBins = 32;
-  o.DistanceSteps = 64;
-  o.Rows = 512;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  return gs_test::PolygonTables(
+    { MakeStarPolygon(5, 1.0, 0.4), { { -2.5, -0.5 }, { 2.5, -0.5 }, { 2.5, 0.5 }, { -2.5, 0.5 } } });
 }
 
 void AddPoint(Hasher& h, const SurfacePoint& p)
