@@ -22,6 +22,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -318,6 +319,26 @@ int main(int, char*[])
     Run run(Plane(4), tables);
     run.Filter->SetShapeSize(1e-12);
     ExpectError(run, "tiny size", "ShapeSize");
+  }
+  for (const double tolerance : { -0.01, std::numeric_limits<double>::quiet_NaN() })
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetShapeSize(0.5);
+    run.Filter->SetDecalTolerance(tolerance);
+    ExpectError(run, "bad DecalTolerance", "DecalTolerance");
+  }
+  {
+    // ShapeSize 0: automatic, 4% of the largest bounding-box side (stated in the field data).
+    Run run(Plane(4), tables);
+    run.Filter->SetShapeSize(0.0);
+    run.Update();
+    vtkDataArray* used = run.Out(0)->GetFieldData()->GetArray("ShapeSizeUsed");
+    double bounds[6];
+    Plane(4)->GetBounds(bounds);
+    const double side = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+    Check(run.Messages->Errors.empty() && used && std::abs(used->GetComponent(0, 0) - 0.04 * side) <= 1e-12 * side &&
+        run.Out(0)->GetNumberOfPoints() > 0,
+      "automatic size", "ShapeSizeUsed = 4% of the largest side, shapes placed");
   }
   {
     Run run(Plane(4), tables);
