@@ -1,8 +1,8 @@
-// Our saddle vertex graph against CGAL's heat method (Crane et al. 2013; CGAL::Heat_method_3,
+// Our saddle vertex graph and discrete geodesic graphs against CGAL's heat method (Crane et al. 2013; CGAL::Heat_method_3,
 // prefactored once, then solved from each new source), both measured against the exact solver
 // in the same run, on the same welded mesh and sources.
 //
-//   HeatMethodComparison mesh.off|mesh.ply [...] [--sources N] [--k K] [--rounds R]
+//   HeatMethodComparison mesh.off|mesh.ply [...] [--sources N] [--k K] [--dgg A,B,...] [--rounds R]
 #include "BenchmarkSupport.h"
 #include "ExactGeodesic.h"
 #include "MeshIO.h"
@@ -97,6 +97,7 @@ int main(int argc, char** argv)
 {
   std::vector<std::string> files;
   int numSources = 5, k = 50, rounds = 5;
+  std::vector<double> accuracies = { 1e-2, 1e-3 };
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -104,11 +105,24 @@ int main(int argc, char** argv)
       numSources = std::max(1, std::atoi(argv[++i]));
     else if (a == "--k" && i + 1 < argc)
       k = std::atoi(argv[++i]);
+    else if (a == "--dgg" && i + 1 < argc)
+    {
+      accuracies.clear();
+      for (const char* p = argv[++i]; *p;)
+      {
+        char* end = nullptr;
+        accuracies.push_back(std::strtod(p, &end));
+        p = *end == ',' ? end + 1 : end;
+        if (end == p && *p)
+          break;
+      }
+    }
     else if (a == "--rounds" && i + 1 < argc)
       rounds = std::max(1, std::atoi(argv[++i]));
     else if (a == "--help" || a == "-h")
     {
-      std::printf("usage: %s mesh [...] [--sources N] [--k K] [--rounds R]\n", argv[0]);
+      std::printf(
+        "usage: %s mesh [...] [--sources N] [--k K] [--dgg 1e-2,1e-3] [--rounds R]\n", argv[0]);
       return 0;
     }
     else
@@ -141,15 +155,28 @@ int main(int argc, char** argv)
       exact.Solve(s);
       ref.push_back(exact.Distances());
     }
-    gs::SaddleVertexGraph graph;
-    gs::SaddleVertexGraphOptions opt;
-    opt.K = k;
-    if (!graph.Build(m, opt, nullptr, error))
+    // The graphs: SVG with K, then a discrete geodesic graph per accuracy.
+    std::vector<gs::SaddleVertexGraphOptions> configurations(1);
+    configurations[0].K = k;
+    for (double accuracy : accuracies)
     {
-      std::fprintf(stderr, "%s\n", error.c_str());
-      continue;
+      configurations.emplace_back();
+      configurations.back().Construction = gs::GraphConstruction::DiscreteGeodesic;
+      configurations.back().Accuracy = accuracy;
     }
-    gs::SVGGeodesicSolver svg(m, graph);
+    std::vector<std::unique_ptr<gs::SaddleVertexGraph>> graphs;
+    std::vector<std::unique_ptr<gs::SVGGeodesicSolver>> solvers;
+    for (const auto& opt : configurations)
+    {
+      graphs.push_back(std::make_unique<gs::SaddleVertexGraph>());
+      if (!graphs.back()->Build(m, opt, nullptr, error))
+      {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        graphs.pop_back();
+        continue;
+      }
+      solvers.push_back(std::make_unique<gs::SVGGeodesicSolver>(m, *graphs.back()));
+    }
     CgalMesh cm;
     std::vector<CgalMesh::Vertex_index> vi(nv);
     for (int v = 0; v < nv; ++v)
@@ -163,14 +190,26 @@ int main(int argc, char** argv)
       cm.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
     }
     std::vector<Method> methods;
+    for (std::size_t g = 0; g < graphs.size(); ++g)
     {
+      const gs::SaddleVertexGraph& graph = *graphs[g];
+      gs::SVGGeodesicSolver& solver = *solvers[g];
       Method ours;
-      ours.Label = "SVG K=" + std::to_string(graph.GetK());
+      char label[64];
+      if (graph.GetConstruction() == gs::GraphConstruction::DiscreteGeodesic)
+        std::snprintf(label, sizeof(label), "DGG accuracy %.0e (%.1f links/v)", graph.GetAccuracy(),
+          graph.MeanDegree());
+      else
+        std::snprintf(label, sizeof(label), "SVG K=%d (%.1f links/v)", graph.GetK(), graph.MeanDegree());
+      ours.Label = label;
       ours.Setup = graph.BuildSeconds();
-      ours.Solve = [&](std::size_t i) { svg.Solve({ gs::SurfacePoint::AtVertex(sources[i]) }); };
-      ours.Distance = [&](int v) { return svg.Distance(v); };
+      ours.Solve = [&solver, &sources](std::size_t i) {
+        solver.Solve({ gs::SurfacePoint::AtVertex(sources[i]) });
+      };
+      ours.Distance = [&solver](int v) { return solver.Distance(v); };
       methods.push_back(std::move(ours));
     }
+    const std::size_t heatIndex = methods.size();
     methods.push_back(MakeHeat<CGAL::Heat_method_3::Direct>("direct", "v:heat", cm, vi, sources));
     methods.push_back(MakeHeat<CGAL::Heat_method_3::Intrinsic_Delaunay>(
       "intrinsic Delaunay", "v:heat_idt", cm, vi, sources));
@@ -201,16 +240,18 @@ int main(int argc, char** argv)
     const std::string name = path.substr(path.find_last_of('/') + 1);
     std::printf("%s (%d vertices, %zu sources, %d timed rounds):\n", name.c_str(), nv,
       sources.size(), rounds);
-    const double svgSolve = Median(methods[0].Times), svgMean = methods[0].Err.Mean();
+    // Ratios against the heat method (direct), measured in this run.
+    const double heatSolve = Median(methods[heatIndex].Times);
+    const double heatMean = methods[heatIndex].Err.Mean();
     for (const Method& me : methods)
     {
       const double solve = Median(me.Times);
       std::printf("  %s: setup %.3f s, solve %.2f ms (median; min %.2f), mean error %.2e, max %.2e",
         me.Label.c_str(), me.Setup, 1e3 * solve,
         1e3 * *std::min_element(me.Times.begin(), me.Times.end()), me.Err.Mean(), me.Err.Max);
-      if (&me != &methods[0])
-        std::printf(" | error ratio heat/SVG %.1f, time ratio heat/SVG %.2f", me.Err.Mean() / svgMean,
-          solve / svgSolve);
+      if (&me != &methods[heatIndex])
+        std::printf(" | heat (direct) / this: error %.1f, solve time %.2f", heatMean / me.Err.Mean(),
+          heatSolve / solve);
       std::printf("\n");
     }
     std::fflush(stdout);

@@ -50,6 +50,7 @@ int main(int argc, char** argv)
 {
   std::vector<std::string> files;
   std::vector<int> ks = { 50, 100, 200 };
+  std::vector<double> accuracies; // discrete geodesic graphs
   int numSources = 5, threads = 0;
   double maxError = 0.0; // > 0: exit 1 when the refined mean error exceeds it (a test)
   bool failed = false;
@@ -63,6 +64,13 @@ int main(int argc, char** argv)
       std::string item;
       while (std::getline(ss, item, ','))
         ks.push_back(std::atoi(item.c_str()));
+    }
+    else if (a == "--dgg" && i + 1 < argc)
+    {
+      std::stringstream ss(argv[++i]);
+      std::string item;
+      while (std::getline(ss, item, ','))
+        accuracies.push_back(std::atof(item.c_str()));
     }
     else if (a == "--sources" && i + 1 < argc)
       numSources = std::max(1, std::atoi(argv[++i]));
@@ -85,7 +93,7 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "no mesh given (try --help)\n");
     return 2;
   }
-  std::printf("%-24s %7s %4s %8s %9s %10s %10s %10s %10s %10s %10s %10s %8s %8s %8s %10s %10s "
+  std::printf("%-24s %7s %6s %8s %9s %10s %10s %10s %10s %10s %10s %10s %8s %8s %8s %10s %10s "
               "%8s %8s %8s\n",
     "mesh", "verts", "K", "edges/v", "build_s", "us/v/core", "graph_err", "graph_max", "svg_err",
     "svg_max", "pt_err", "exact_s", "lc_ms", "dij_ms", "svg_ms", "exact/svg", "dij/lc", "kept_B/v",
@@ -134,11 +142,23 @@ int main(int argc, char** argv)
       pointRef.push_back(exact.Distances());
     }
     const std::string name = path.substr(path.find_last_of('/') + 1);
+    std::vector<SaddleVertexGraphOptions> configurations;
     for (int k : ks)
     {
+      configurations.emplace_back();
+      configurations.back().K = k;
+    }
+    for (double accuracy : accuracies)
+    {
+      configurations.emplace_back();
+      configurations.back().Construction = GraphConstruction::DiscreteGeodesic;
+      configurations.back().Accuracy = accuracy;
+    }
+    for (SaddleVertexGraphOptions opt : configurations)
+    {
+      const bool dgg = opt.Construction == GraphConstruction::DiscreteGeodesic;
+      const int k = dgg ? 0 : opt.K;
       SaddleVertexGraph g;
-      SaddleVertexGraphOptions opt;
-      opt.K = k;
       opt.NumberOfThreads = threads;
       // Peak memory of the build: the process's peak resident size is reset first (Linux).
       std::ofstream("/proc/self/clear_refs") << "5";
@@ -228,8 +248,13 @@ int main(int argc, char** argv)
       }
       lc /= numSources;
       dij /= numSources;
-      std::printf("%-24s %7d %4d %8.1f %9.2f %10.1f %10.2e %10.2e %10.2e %10.2e %10.2e %10.4f %8.2f %8.2f %8.2f %10.1f %10.2f %8.0f %8.0f %8.0f\n",
-        name.c_str(), nv, g.GetK(), g.MeanDegree(), g.BuildSeconds(),
+      char label[32];
+      if (dgg)
+        std::snprintf(label, sizeof(label), "e%.0e", opt.Accuracy);
+      else
+        std::snprintf(label, sizeof(label), "%d", g.GetK());
+      std::printf("%-24s %7d %6s %8.1f %9.2f %10.1f %10.2e %10.2e %10.2e %10.2e %10.2e %10.4f %8.2f %8.2f %8.2f %10.1f %10.2f %8.0f %8.0f %8.0f\n",
+        name.c_str(), nv, label, g.MeanDegree(), g.BuildSeconds(),
         1e6 * g.BuildSeconds() * cores / nv, meanErr / count, maxErr, refinedErr / refinedCount,
         refinedMax, pointErr / pointCount, exactTime, 1e3 * lc, 1e3 * dij, 1e3 * refined,
         exactTime / refined, dij / lc, keptPerVertex, peakPerVertex, estimatePerVertex);

@@ -39,13 +39,13 @@ std::uint64_t vtkCachedSurface::MeshHash()
 }
 
 //------------------------------------------------------------------------------
-bool vtkCachedSurface::UseSaddleVertexGraph(vtkAlgorithm* algorithm, int k,
-  const std::string& fileName, double progressStart, double progressSpan, bool& changed,
+bool vtkCachedSurface::UseSaddleVertexGraph(vtkAlgorithm* algorithm,
+  const gs::SaddleVertexGraphOptions& options, const std::string& fileName, double progressStart, double progressSpan, bool& changed,
   vtkSaddleVertexGraphCache::Origin* origin)
 {
   changed = false;
   const vtkSaddleVertexGraphCache::Result found = vtkSaddleVertexGraphCache::GetFor(algorithm,
-    this->Mesh.Build.Mesh, this->MeshHash(), k, fileName, progressStart, progressSpan);
+    this->Mesh.Build.Mesh, this->MeshHash(), options, fileName, progressStart, progressSpan);
   if (!found.Graph)
   {
     return false; // aborted, or the error is reported
@@ -57,6 +57,19 @@ bool vtkCachedSurface::UseSaddleVertexGraph(vtkAlgorithm* algorithm, int k,
   changed = found.Graph != this->GraphInUse;
   this->GraphInUse = found.Graph;
   return true;
+}
+
+//------------------------------------------------------------------------------
+gs::SaddleVertexGraphOptions vtkCachedSurface::GraphOptions(int k, double accuracy)
+{
+  gs::SaddleVertexGraphOptions options;
+  options.K = k;
+  if (accuracy != 0.0)
+  {
+    options.Construction = gs::GraphConstruction::DiscreteGeodesic;
+    options.Accuracy = accuracy;
+  }
+  return options;
 }
 
 //------------------------------------------------------------------------------

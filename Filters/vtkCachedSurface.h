@@ -43,15 +43,20 @@ public:
   // gs::SaddleVertexGraph::HashMesh of the converted mesh; computed on first use.
   std::uint64_t MeshHash();
 
-  // Makes the saddle vertex graph of K the one in use: from vtkSaddleVertexGraphCache (memory,
+  // Makes the geodesic graph of `options` (a saddle vertex graph of K, or a discrete geodesic
+  // graph of an accuracy) the one in use: from vtkSaddleVertexGraphCache (memory,
   // `fileName` if not empty, or built with progress `progressStart` .. + `progressSpan` on
   // `algorithm`, which may abort it). False on error or abort (the error and any warnings are
   // reported on `algorithm`); the graph in use is then unchanged. `changed` says whether the
   // graph in use is now another one (an engine built over the previous one must be rebuilt);
   // `origin` (may be null) where it came from.
-  bool UseSaddleVertexGraph(vtkAlgorithm* algorithm, int k, const std::string& fileName,
+  bool UseSaddleVertexGraph(vtkAlgorithm* algorithm, const gs::SaddleVertexGraphOptions& options,
+    const std::string& fileName,
     double progressStart, double progressSpan, bool& changed,
     vtkSaddleVertexGraphCache::Origin* origin = nullptr);
+  // The graph the filters' engine properties ask for: the saddle vertex graph of K, or with a
+  // non-zero accuracy the discrete geodesic graph of that accuracy (whose range the core checks).
+  static gs::SaddleVertexGraphOptions GraphOptions(int k, double accuracy);
   // No saddle vertex graph in use (an exact engine); true when one was.
   bool UseNoSaddleVertexGraph();
   // The saddle vertex graph in use (null: none).

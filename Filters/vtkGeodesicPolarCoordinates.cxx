@@ -322,7 +322,9 @@ bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
   {
     graphChanged = cache.UseNoSaddleVertexGraph();
   }
-  else if (!cache.UseSaddleVertexGraph(this, this->K, std::string(), 0.3, 0.4, graphChanged))
+  else if (!cache.UseSaddleVertexGraph(this,
+             vtkCachedSurface::GraphOptions(this->K, this->GraphAccuracy), std::string(), 0.3, 0.4,
+             graphChanged))
   {
     return false; // aborted, or the error is reported
   }
@@ -456,4 +458,5 @@ void vtkGeodesicPolarCoordinates::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DecalSize: " << this->DecalSize << "\n";
   os << indent << "K: " << this->K << (this->K == 0 ? " (exact engine)" : " (saddle vertex graph)")
      << "\n";
+  os << indent << "GraphAccuracy: " << this->GraphAccuracy << "\n";
 }

@@ -138,6 +138,14 @@ public:
   vtkGetMacro(K, int);
   ///@}
 
+  ///@{
+  /// With K >= 1: 0 (default) uses the saddle vertex graph of K; an accuracy (1e-5 .. 0.1) uses
+  /// the discrete geodesic graph of that relative accuracy instead (as SVG Geodesic Distance's
+  /// DGG solver, sharing its cache). Other values are an error.
+  vtkSetMacro(GraphAccuracy, double);
+  vtkGetMacro(GraphAccuracy, double);
+  ///@}
+
   /// Connect the optional source (port 1): its first point is the source.
   void SetSourceConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetSourceData(vtkDataObject* source) { this->SetInputData(1, source); }
@@ -164,6 +172,7 @@ private:
   int AngleMode = GEODESIC_DIRECTION;
   double DecalSize = 1.0;
   int K = 0;
+  double GraphAccuracy = 0.0;
 
   // Converted mesh, locator and polar-coordinate solver, reused while the input is unchanged.
   struct Cache;

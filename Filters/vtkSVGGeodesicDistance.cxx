@@ -71,6 +71,8 @@ const char* vtkSVGGeodesicDistance::GetSolverName(int solver)
       return "SVG (label-correcting)";
     case SVG_DIJKSTRA:
       return "SVG (Dijkstra)";
+    case DGG:
+      return "DGG (accuracy-bounded)";
     default:
       return "unknown";
   }
@@ -126,10 +128,11 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
 
-  if (this->Solver < EXACT || this->Solver > SVG_DIJKSTRA)
+  if (this->Solver < EXACT || this->Solver > DGG)
   {
     vtkErrorMacro("Unknown Solver " << this->Solver
-                                    << " (0 = Exact, 1 = SVG (label-correcting), 2 = SVG (Dijkstra)).");
+                                    << " (0 = Exact, 1 = SVG (label-correcting), 2 = SVG (Dijkstra), "
+                                       "3 = DGG (accuracy-bounded)).");
     return 1;
   }
   if (this->ResultArrayName.empty())
@@ -279,8 +282,9 @@ bool vtkSVGGeodesicDistance::FindSources(Cache& cache, vtkPointSet* sources, Run
 bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
 {
   bool graphChanged = false;
-  if (!cache.UseSaddleVertexGraph(
-        this, this->K, this->CacheFileName, 0.1, 0.7, graphChanged, &run.GraphOrigin))
+  if (!cache.UseSaddleVertexGraph(this,
+        vtkCachedSurface::GraphOptions(this->K, this->Solver == DGG ? this->Accuracy : 0.0),
+        this->CacheFileName, 0.1, 0.7, graphChanged, &run.GraphOrigin))
   {
     return false; // aborted, or the error is reported
   }
@@ -413,6 +417,7 @@ void vtkSVGGeodesicDistance::PrintSelf(ostream& os, vtkIndent indent)
      << (this->MaximumDistance > 0.0 ? "" : " (unlimited)") << "\n";
   os << indent << "ResultArrayName: " << this->ResultArrayName << "\n";
   os << indent << "K: " << this->K << "\n";
+  os << indent << "Accuracy: " << this->Accuracy << "\n";
   os << indent << "CacheFileName: "
      << (this->CacheFileName.empty() ? "(none)" : this->CacheFileName) << "\n";
   os << indent << "UnfoldingRefinement: " << (this->UnfoldingRefinement ? "on" : "off") << "\n";

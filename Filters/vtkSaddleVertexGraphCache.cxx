@@ -14,10 +14,23 @@ namespace
 {
 using GraphPointer = std::shared_ptr<const gs::SaddleVertexGraph>;
 
+// What tells graphs of one mesh apart: the construction and its parameter (K clamped to the
+// vertex count as the core clamps it, or the accuracy).
+struct GraphKey
+{
+  gs::GraphConstruction Construction = gs::GraphConstruction::SaddleVertex;
+  int K = 0;
+  double Accuracy = 0.0;
+  bool operator==(const GraphKey& o) const
+  {
+    return Construction == o.Construction && K == o.K && Accuracy == o.Accuracy;
+  }
+};
+
 struct Entry
 {
   std::uint64_t Hash = 0;
-  int K = 0;
+  GraphKey Key;
   std::weak_ptr<const gs::SaddleVertexGraph> Graph;
   std::set<std::string> Files; // cache files known to hold this graph
 };
@@ -50,14 +63,14 @@ void Touch(Store& store, const GraphPointer& graph)
   }
 }
 
-Entry* Find(Store& store, std::uint64_t hash, int k)
+Entry* Find(Store& store, std::uint64_t hash, const GraphKey& key)
 {
   store.Entries.erase(std::remove_if(store.Entries.begin(), store.Entries.end(),
                         [](const Entry& e) { return e.Graph.expired(); }),
     store.Entries.end());
   for (Entry& e : store.Entries)
   {
-    if (e.Hash == hash && e.K == k)
+    if (e.Hash == hash && e.Key == key)
     {
       return &e;
     }
@@ -72,13 +85,13 @@ bool FileExists(const std::string& path)
 }
 
 // Writes the graph to `fileName` unless the entry already knows the file holds it.
-void SaveIfNeeded(const GraphPointer& graph, std::uint64_t hash, int k,
+void SaveIfNeeded(const GraphPointer& graph, std::uint64_t hash, const GraphKey& key,
   const std::string& fileName, std::vector<std::string>& warnings)
 {
   Store& store = TheStore();
   {
     std::lock_guard<std::mutex> lock(store.Mutex);
-    Entry* e = Find(store, hash, k);
+    Entry* e = Find(store, hash, key);
     if (e && e->Files.count(fileName) && FileExists(fileName))
     {
       return;
@@ -87,22 +100,23 @@ void SaveIfNeeded(const GraphPointer& graph, std::uint64_t hash, int k,
   std::string error;
   if (!graph->Save(fileName, hash, error))
   {
-    warnings.push_back("could not save the saddle vertex graph to the cache file: " + error);
+    warnings.push_back("could not save the graph to the cache file: " + error);
     return;
   }
   std::lock_guard<std::mutex> lock(store.Mutex);
-  if (Entry* e = Find(store, hash, k))
+  if (Entry* e = Find(store, hash, key))
   {
     e->Files.insert(fileName);
   }
 }
 
 // Adds a new graph (or returns the one another thread added meanwhile).
-GraphPointer Insert(const GraphPointer& graph, std::uint64_t hash, int k, const std::string& file)
+GraphPointer Insert(
+  const GraphPointer& graph, std::uint64_t hash, const GraphKey& key, const std::string& file)
 {
   Store& store = TheStore();
   std::lock_guard<std::mutex> lock(store.Mutex);
-  Entry* e = Find(store, hash, k);
+  Entry* e = Find(store, hash, key);
   GraphPointer kept = e ? e->Graph.lock() : nullptr;
   if (!kept)
   {
@@ -111,7 +125,7 @@ GraphPointer Insert(const GraphPointer& graph, std::uint64_t hash, int k, const 
       store.Entries.push_back(Entry());
       e = &store.Entries.back();
       e->Hash = hash;
-      e->K = k;
+      e->Key = key;
     }
     e->Graph = graph;
     e->Files.clear();
@@ -143,12 +157,19 @@ const char* vtkSaddleVertexGraphCache::OriginName(Origin origin)
 
 //------------------------------------------------------------------------------
 vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::TriangleMesh& mesh,
-  std::uint64_t meshHash, int k, const std::string& fileName, const gs::ProgressCallback& progress)
+  std::uint64_t meshHash, const gs::SaddleVertexGraphOptions& options, const std::string& fileName,
+  const gs::ProgressCallback& progress)
 {
   Result result;
   const int nv = mesh.NumberOfVertices();
-  const bool validK = k >= 1 && nv > 0;
-  const int key = validK ? std::min(k, nv) : k; // the core clamps K to the vertex count
+  const bool dgg = options.Construction == gs::GraphConstruction::DiscreteGeodesic;
+  // Invalid requests go straight to the build, whose error says why.
+  const bool validK = nv > 0 &&
+    (dgg ? options.Accuracy >= 1e-5 && options.Accuracy <= 0.1 : options.K >= 1);
+  GraphKey key;
+  key.Construction = options.Construction;
+  key.K = dgg ? 0 : std::min(options.K, std::max(nv, 1)); // the core clamps K to the vertex count
+  key.Accuracy = dgg ? options.Accuracy : 0.0;
 
   // 1. Memory.
   if (validK)
@@ -183,7 +204,7 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   {
     auto graph = std::make_shared<gs::SaddleVertexGraph>();
     std::string error;
-    if (graph->Load(fileName, meshHash, key, error))
+    if (graph->Load(fileName, meshHash, options, error))
     {
       result.Graph = Insert(graph, meshHash, key, fileName);
       result.From = Origin::File;
@@ -201,8 +222,6 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
     return go;
   };
   auto graph = std::make_shared<gs::SaddleVertexGraph>();
-  gs::SaddleVertexGraphOptions options;
-  options.K = k;
   std::string error;
   const bool built = graph->Build(mesh, options, watch, error);
   if (abortRequested)
@@ -212,7 +231,7 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   }
   if (!built)
   {
-    result.Error = error.empty() ? "the saddle vertex graph could not be built" : error;
+    result.Error = error.empty() ? "the graph could not be built" : error;
     return result;
   }
   result.Graph = Insert(graph, meshHash, key, std::string());
@@ -242,10 +261,10 @@ std::size_t vtkSaddleVertexGraphCache::NumberOfGraphs()
 }
 
 vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::GetFor(vtkAlgorithm* algorithm,
-  const gs::TriangleMesh& mesh, std::uint64_t meshHash, int k, const std::string& fileName,
-  double progressStart, double progressSpan)
+  const gs::TriangleMesh& mesh, std::uint64_t meshHash, const gs::SaddleVertexGraphOptions& options,
+  const std::string& fileName, double progressStart, double progressSpan)
 {
-  Result found = Get(mesh, meshHash, k, fileName, [=](double fraction) {
+  Result found = Get(mesh, meshHash, options, fileName, [=](double fraction) {
     algorithm->UpdateProgress(progressStart + progressSpan * fraction);
     return !algorithm->CheckAbort();
   });

@@ -1,16 +1,18 @@
-// vtkSaddleVertexGraphCache: the process-wide store of saddle vertex graphs (gs::SaddleVertexGraph),
-// so that a graph is built once per mesh geometry and K and then shared by every filter instance
-// and every filter of the suite that needs it.
+// vtkSaddleVertexGraphCache: the process-wide store of geodesic graphs (gs::SaddleVertexGraph:
+// saddle vertex graphs and discrete geodesic graphs), so that a graph is built once per mesh
+// geometry and construction (K, or the accuracy) and then shared by every filter instance and
+// every filter of the suite that needs it.
 //
 // Not a vtkObject and not wrapped (a private class of the GeodesicShapes::Filters module).
-//  - Graphs are keyed by (gs::SaddleVertexGraph::HashMesh(mesh), effective K), where the
-//    effective K is K clamped to the vertex count (the core does the same). A pipeline that
+//  - Graphs are keyed by (gs::SaddleVertexGraph::HashMesh(mesh), construction, effective K or
+//    accuracy), where the effective K is K clamped to the vertex count (the core does the same). A pipeline that
 //    re-executes and produces a new vtkPolyData with identical points and cells hashes to the
 //    same key: the graph is not rebuilt.
 //  - The Capacity most recently used graphs are kept alive by the cache; any graph still held by
 //    a filter (a shared_ptr) is found as well, however old.
 //  - With a file name: a graph found in memory is written there once (so the file exists for
-//    the next session); otherwise the file is loaded when it matches the mesh and K; a missing
+//    the next session); otherwise the file is loaded when it matches the mesh and the
+//    construction (each has its own file format); a missing
 //    file is silent, a stale or corrupt one gets a warning and the graph is rebuilt, then saved
 //    (a failed save is a warning).
 //  - An aborted build (the progress callback returned false) caches nothing.
@@ -52,20 +54,21 @@ public:
     std::vector<std::string> Warnings; // stale/corrupt cache file, failed save
   };
 
-  // The graph of `mesh` (whose HashMesh is `meshHash`) for K, from memory, from `fileName` (if
-  // not empty) or built with the core's default thread count. `progress` (may be empty) sees
-  // the build's fraction done and aborts it by returning false. K < 1 is an error (the core's
-  // message).
-  static Result Get(const gs::TriangleMesh& mesh, std::uint64_t meshHash, int k,
-    const std::string& fileName, const gs::ProgressCallback& progress);
+  // The graph of `mesh` (whose HashMesh is `meshHash`) for `options` (construction, K or
+  // accuracy; its thread count is used for a build), from memory, from `fileName` (if not
+  // empty) or built. `progress` (may be empty) sees the build's fraction done and aborts it by
+  // returning false. An invalid K or accuracy is an error (the core's message).
+  static Result Get(const gs::TriangleMesh& mesh, std::uint64_t meshHash,
+    const gs::SaddleVertexGraphOptions& options, const std::string& fileName,
+    const gs::ProgressCallback& progress);
 
   // Get() for a filter (see vtkCachedSurface::UseSaddleVertexGraph): reports the build's
   // progress on `algorithm` from `progressStart` over `progressSpan` (and aborts the build when
   // the algorithm is aborted), and emits the warnings and the error there. Result::Graph is null
   // on error or abort.
   static Result GetFor(vtkAlgorithm* algorithm, const gs::TriangleMesh& mesh,
-    std::uint64_t meshHash, int k, const std::string& fileName, double progressStart,
-    double progressSpan);
+    std::uint64_t meshHash, const gs::SaddleVertexGraphOptions& options,
+    const std::string& fileName, double progressStart, double progressSpan);
 
   // Number of most recently used graphs the cache keeps alive.
   static constexpr std::size_t Capacity = 4;

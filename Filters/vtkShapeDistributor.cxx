@@ -367,6 +367,7 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DecalTolerance: " << this->DecalTolerance << "\n";
   os << indent << "VerifyOverlaps: " << this->VerifyOverlaps << "\n";
   os << indent << "K: " << this->K << "\n";
+  os << indent << "GraphAccuracy: " << this->GraphAccuracy << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
 }
 
@@ -502,8 +503,9 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   {
     graphChanged = cache.UseNoSaddleVertexGraph();
   }
-  else if (!cache.UseSaddleVertexGraph(
-             this, this->K, this->CacheFileName, 0.05, 0.35, graphChanged))
+  else if (!cache.UseSaddleVertexGraph(this,
+             vtkCachedSurface::GraphOptions(this->K, this->GraphAccuracy), this->CacheFileName,
+             0.05, 0.35, graphChanged))
   {
     return 1; // aborted, or the error is reported
   }

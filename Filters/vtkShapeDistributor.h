@@ -183,6 +183,14 @@ public:
   ///@}
 
   ///@{
+  /// With K >= 1: 0 (default) uses the saddle vertex graph of K; an accuracy (1e-5 .. 0.1) uses
+  /// the discrete geodesic graph of that relative accuracy instead (as SVG Geodesic Distance's
+  /// DGG solver, sharing its cache). Other values are an error.
+  vtkSetMacro(GraphAccuracy, double);
+  vtkGetMacro(GraphAccuracy, double);
+  ///@}
+
+  ///@{
   /// Optional saddle vertex graph cache file (see vtkSVGGeodesicDistance).
   vtkSetStdStringFromCharMacro(CacheFileName);
   vtkGetCharFromStdStringMacro(CacheFileName);
@@ -217,6 +225,7 @@ protected:
   double DecalTolerance = 0.01;
   bool VerifyOverlaps = false;
   int K = 50;
+  double GraphAccuracy = 0.0;
   std::string CacheFileName;
 
 private:

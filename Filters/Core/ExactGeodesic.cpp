@@ -1,4 +1,5 @@
 #include "ExactGeodesic.h"
+#include "WindowGeometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,27 +10,9 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
-
-// Plain sqrt: std::hypot's overflow guards cost more than the whole window update, and the
-// coordinates here are mesh-sized (checked finite when the mesh is built).
-inline double Hypot(double x, double y)
-{
-  return std::sqrt(x * x + y * y);
-}
-
-// Distance from (ix, iy) to the segment [b0, b1] of the x axis.
-inline double SegmentDistance(double ix, double iy, double b0, double b1)
-{
-  if (ix < b0)
-  {
-    return Hypot(b0 - ix, iy);
-  }
-  if (ix > b1)
-  {
-    return Hypot(ix - b1, iy);
-  }
-  return std::abs(iy);
-}
+using window_geometry::Hypot;
+using window_geometry::RayHit;
+using window_geometry::SegmentDistance;
 } // namespace
 
 ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
@@ -160,82 +143,12 @@ void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, dou
 bool ExactGeodesicSolver::Trim(Window& w) const
 {
   const int h = w.H;
-  const double L = M.EdgeLength(h);
-  const double ix = w.Ix, iy = w.Iy, s = w.Sigma;
-  const double tol = Tolerance;
-
-  // A point p = (t, 0) of the window is useless when a known path through an end point of the
-  // edge reaches it at least as short: D(A) + t <= s + |I p|. The difference is monotone in t
-  // for A (and for B), so the useless part is an interval at that end, found in closed form.
-  const double dA = Dist[M.Origin(h)];
-  if (dA < Inf)
-  {
-    const double target = dA + tol;
-    auto g = [&](double t) { return s + Hypot(t - ix, iy) - t; };
-    if (g(w.B1) >= target)
-    {
-      return false;
-    }
-    if (g(w.B0) >= target)
-    {
-      const double k = target - s;
-      const double denom = 2.0 * (k + ix);
-      if (denom > 0.0)
-      {
-        const double t = (ix * ix + iy * iy - k * k) / denom;
-        w.B0 = std::min(std::max(t, w.B0), w.B1);
-      }
-    }
-  }
-  const double dB = Dist[M.Destination(h)];
-  if (dB < Inf)
-  {
-    const double target = dB + tol;
-    auto g = [&](double t) { return s + Hypot(t - ix, iy) - (L - t); };
-    if (g(w.B0) >= target)
-    {
-      return false;
-    }
-    if (g(w.B1) >= target)
-    {
-      const double k = target - s;
-      const double mx = L - ix;
-      const double denom = 2.0 * (k + mx);
-      if (denom > 0.0)
-      {
-        const double t = L - (mx * mx + iy * iy - k * k) / denom;
-        w.B1 = std::max(std::min(t, w.B1), w.B0);
-      }
-    }
-  }
-  // The opposite vertex C dominates the whole window when D(C) + |C p| <= s + |I p| for every p
-  // of the window: the minimum of s + |I p| - |C p| is at an end or where p lies on the line
-  // through I and C mirrored below the edge.
-  const double dC = Dist[M.Opposite(h)];
-  if (dC < Inf)
-  {
-    const double cx = Cx[h], cy = Cy[h];
-    auto f = [&](double t) { return s + Hypot(t - ix, iy) - Hypot(t - cx, cy); };
-    double lowest = std::min(f(w.B0), f(w.B1));
-    const double dy = -cy - iy;
-    if (std::abs(dy) > 1e-300)
-    {
-      const double t = ix + (cx - ix) * (-iy) / dy;
-      if (t > w.B0 && t < w.B1)
-      {
-        lowest = std::min(lowest, f(t));
-      }
-    }
-    if (lowest >= dC + tol)
-    {
-      return false;
-    }
-  }
-  if (!(w.B1 - w.B0 > 1e-14 * L))
+  if (!window_geometry::TrimWindow(M.EdgeLength(h), w.Ix, w.Iy, w.Sigma, Cx[h], Cy[h],
+        Dist[M.Origin(h)], Dist[M.Destination(h)], Dist[M.Opposite(h)], Tolerance, w.B0, w.B1))
   {
     return false;
   }
-  w.Key = s + SegmentDistance(ix, iy, w.B0, w.B1);
+  w.Key = w.Sigma + SegmentDistance(w.Ix, w.Iy, w.B0, w.B1);
   return true;
 }
 
@@ -487,12 +400,6 @@ void ExactGeodesicSolver::Propagate(Window w)
     }
   }
 
-  // Intersection of the ray from I' through P' with the new edge (y' = 0), in the new frame.
-  auto hit = [](double jx, double jy, double px, double py, double fallback) {
-    const double den = py - jy;
-    return den > 1e-300 ? jx + (px - jx) * (-jy) / den : fallback;
-  };
-
   if (left)
   {
     const int t = M.Twin(TriangleMesh::Prev(h));
@@ -500,12 +407,12 @@ void ExactGeodesicSolver::Propagate(Window w)
     {
       // New frame: origin A, x along A -> C.
       const double b = M.EdgeLength(t);
-      const double ux = cx / b, uy = cy / b;
+      const window_geometry::LeftFrame frame(cx, cy, b);
       Window c;
-      c.Ix = ix * ux + iy * uy;
-      c.Iy = std::min(ux * iy - uy * ix, -1e-12 * b);
-      c.B0 = hit(c.Ix, c.Iy, w.B0 * ux, -w.B0 * uy, 0.0);
-      c.B1 = right ? b : hit(c.Ix, c.Iy, w.B1 * ux, -w.B1 * uy, b);
+      c.Ix = frame.X(ix, iy);
+      c.Iy = std::min(frame.Y(ix, iy), -1e-12 * b);
+      c.B0 = RayHit(c.Ix, c.Iy, frame.X(w.B0, 0.0), frame.Y(w.B0, 0.0), 0.0);
+      c.B1 = right ? b : RayHit(c.Ix, c.Iy, frame.X(w.B1, 0.0), frame.Y(w.B1, 0.0), b);
       c.B0 = std::min(std::max(c.B0, 0.0), b);
       c.B1 = std::min(std::max(c.B1, 0.0), b);
       if (c.B1 > c.B0)
@@ -526,14 +433,12 @@ void ExactGeodesicSolver::Propagate(Window w)
     {
       // New frame: origin C, x along C -> B.
       const double a = M.EdgeLength(t);
-      const double ux = (L - cx) / a, uy = -cy / a;
-      auto toX = [&](double px, double py) { return (px - cx) * ux + (py - cy) * uy; };
-      auto toY = [&](double px, double py) { return ux * (py - cy) - uy * (px - cx); };
+      const window_geometry::RightFrame frame(cx, cy, L, a);
       Window c;
-      c.Ix = toX(ix, iy);
-      c.Iy = std::min(toY(ix, iy), -1e-12 * a);
-      c.B0 = left ? 0.0 : hit(c.Ix, c.Iy, toX(w.B0, 0.0), toY(w.B0, 0.0), 0.0);
-      c.B1 = hit(c.Ix, c.Iy, toX(w.B1, 0.0), toY(w.B1, 0.0), a);
+      c.Ix = frame.X(ix, iy);
+      c.Iy = std::min(frame.Y(ix, iy), -1e-12 * a);
+      c.B0 = left ? 0.0 : RayHit(c.Ix, c.Iy, frame.X(w.B0, 0.0), frame.Y(w.B0, 0.0), 0.0);
+      c.B1 = RayHit(c.Ix, c.Iy, frame.X(w.B1, 0.0), frame.Y(w.B1, 0.0), a);
       c.B0 = std::min(std::max(c.B0, 0.0), a);
       c.B1 = std::min(std::max(c.B1, 0.0), a);
       if (c.B1 > c.B0)

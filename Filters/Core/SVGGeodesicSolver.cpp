@@ -192,6 +192,10 @@ SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVerte
 {
   Exact.assign(M.NumberOfVertices(), 0);
   Angle.assign(M.NumberOfVertices(), NaN);
+  if (G.GetConstruction() == GraphConstruction::DiscreteGeodesic)
+  {
+    RefinementFloor = 1.0 / (1.0 + G.GetAccuracy());
+  }
   // Per node (the sweep's numbering): whether the vertex's stencil closes into a full fan.
   if (G.NumberOfVertices() == M.NumberOfVertices())
   {
@@ -458,6 +462,9 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
         bestAngle = Angle[G.StencilTarget(via)] + std::atan2(bx * qy - by * qx, bx * qx + by * qy);
       }
     }
+    // A discrete geodesic graph's distance is within its accuracy above the geodesic distance:
+    // refinement may not go lower than that bound (unfolding across a hole or a saddle could).
+    best = std::max(best, RefinementFloor * Graph.Distance(x));
     if (best < Graph.Distance(x) && best <= limit)
     {
       Graph.Lower(x, best);
@@ -608,7 +615,7 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
   {
     facePoints.push_back(SurfacePoint::AtVertex(G.Vertex(v.first)));
   }
-  const int k = std::max(G.GetK(), 1);
+  const int k = G.LocalDiskSize();
   return SolveFromPieces(facePoints, k * static_cast<int>(facePoints.size()), options);
 }
 
@@ -650,7 +657,7 @@ bool SVGGeodesicSolver::SolveCurves(
   }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  const long long wanted = static_cast<long long>(std::max(G.GetK(), 1)) * static_cast<long long>(faces.size());
+  const long long wanted = static_cast<long long>(G.LocalDiskSize()) * static_cast<long long>(faces.size());
   return SolveFromPieces(
     samples, static_cast<int>(std::min<long long>(wanted, M.NumberOfVertices())), options);
 }

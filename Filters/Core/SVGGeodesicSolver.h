@@ -107,6 +107,10 @@ private:
   std::vector<int> AngleSet;           // nodes whose Angle is set
   mutable std::vector<int> ReachedVertices; // Reached()'s buffer
   double AnglePeriod = 0.0; // full turn of the source's tangent angles
+  // Refinement keeps a vertex's distance at or above this fraction of its graph distance:
+  // 1 / (1 + accuracy) for a discrete geodesic graph (whose distances are at most that far
+  // above the geodesic distance), 0 (no floor) for a saddle vertex graph.
+  double RefinementFloor = 0.0;
   // The sweep's order: reached nodes sorted by distance (radix sort on 32-bit keys).
   std::vector<std::pair<std::uint32_t, int>> Order, OrderScratch;
 };

@@ -1,5 +1,6 @@
 #include "SaddleVertexGraph.h"
 
+#include "DiscreteGeodesicGraph.h"
 #include "ExactGeodesic.h"
 #include "Hash.h"
 
@@ -27,13 +28,19 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
+// Cache file formats: the saddle vertex graph's header holds K (int32) after the mesh hash, the
+// discrete geodesic graph's the accuracy (double); the rest is laid out alike.
 constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '4' };
+constexpr char DGGMagic[8] = { 'G', 'S', 'D', 'G', 'G', '0', '0', '1' };
 
 // Build memory per vertex and per unit of K (bytes), above the peaks SVGBenchmark measured on
 // armadillo, refined_elephant and mannequin-devil: 4.9-5.0 KB per vertex at K = 50, 9.2-10.1 KB
 // at K = 100, 16.7-18.8 KB at K = 200 (about 95 bytes per unit of K).
 constexpr double PER_VERTEX_BYTES = 1024.0;
 constexpr double PER_LINK_BYTES = 100.0;
+// The discrete geodesic graph's epsilon per unit of the accuracy asked for (see
+// DiscreteGeodesicGraph.h).
+constexpr double DGGEpsilonPerAccuracy = 0.2;
 
 // The bits of a 21-bit integer spread to every third bit (for 63-bit Z-order keys).
 std::uint64_t SpreadBits(std::uint64_t v)
@@ -83,6 +90,34 @@ double SaddleVertexGraph::EstimatedBuildBytes(int numberOfVertices, int k)
   return PER_VERTEX_BYTES * n + PER_LINK_BYTES * kk * n;
 }
 
+double SaddleVertexGraph::EstimatedBuildBytes(
+  int numberOfVertices, const SaddleVertexGraphOptions& options)
+{
+  if (options.Construction == GraphConstruction::SaddleVertex)
+  {
+    return EstimatedBuildBytes(numberOfVertices, options.K);
+  }
+  // Links per vertex grow as 1 / sqrt(epsilon) (SVGBenchmark: about 2.8 / sqrt(epsilon) before
+  // symmetrization); counted as a K of twice that, above the measured peaks.
+  const double epsilon = DGGEpsilonPerAccuracy * std::max(options.Accuracy, 1e-5);
+  return EstimatedBuildBytes(numberOfVertices, static_cast<int>(std::ceil(6.0 / std::sqrt(epsilon))));
+}
+
+int SaddleVertexGraph::LocalDiskSize() const
+{
+  if (Construction == GraphConstruction::SaddleVertex)
+  {
+    return std::max(K, 1);
+  }
+  // A path from the source leaves the exactly solved disk (radius r) through one of its vertices,
+  // at most about half an edge (l / 2) off the geodesic: a detour of l^2 / (8 r) over a path at
+  // least r long, within epsilon when r^2 >= l^2 / (8 epsilon), that is for about
+  // pi r^2 / (0.87 l^2) = 0.45 / epsilon vertices.
+  const double epsilon = DGGEpsilonPerAccuracy * std::max(Accuracy, 1e-5);
+  const double wanted = std::ceil(0.45 / epsilon);
+  return static_cast<int>(std::min<double>(std::max(50.0, wanted), std::max(NumberOfVertices(), 1)));
+}
+
 std::size_t SaddleVertexGraph::MemoryBytes() const
 {
   return (Offsets.size() + StencilOffsets.size()) * sizeof(std::int64_t) +
@@ -104,7 +139,9 @@ void SaddleVertexGraph::Clear()
   LinkStencil.clear();
   NodeOf.clear();
   VertexOf.clear();
+  Construction = GraphConstruction::SaddleVertex;
   K = 0;
+  Accuracy = 0.0;
 }
 
 std::uint64_t SaddleVertexGraph::HashMesh(const TriangleMesh& mesh)
@@ -132,22 +169,32 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     error = "the mesh has no vertices";
     return false;
   }
-  if (options.K < 1)
+  const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
+  if (!dgg && options.K < 1)
   {
     error = "K must be at least 1 (got " + std::to_string(options.K) + ")";
     return false;
   }
+  if (dgg && !(options.Accuracy >= 1e-5 && options.Accuracy <= 0.1))
+  {
+    error = "the accuracy of a discrete geodesic graph must be within 1e-5 .. 0.1 (got " +
+      std::to_string(options.Accuracy) + ")";
+    return false;
+  }
   const int k = std::min(options.K, nv);
   // Refuse before allocating what the machine cannot give now.
-  const double estimate = EstimatedBuildBytes(nv, k);
+  const double estimate = EstimatedBuildBytes(nv, options);
   const double available = AvailableMemoryBytes();
   if (available > 0 && estimate > 0.8 * available)
   {
-    error = "a saddle vertex graph with K = " + std::to_string(k) + " on " + std::to_string(nv) +
-      " vertices needs about " + std::to_string(static_cast<long long>(estimate / 1048576.0)) +
+    error = (dgg ? "a discrete geodesic graph with the accuracy " + std::to_string(options.Accuracy)
+                 : "a saddle vertex graph with K = " + std::to_string(k)) +
+      " on " + std::to_string(nv) + " vertices needs about " +
+      std::to_string(static_cast<long long>(estimate / 1048576.0)) +
       " MiB while building, more than the " +
-      std::to_string(static_cast<long long>(available / 1048576.0)) +
-      " MiB available; lower K (memory grows linearly with K)";
+      std::to_string(static_cast<long long>(available / 1048576.0)) + " MiB available; " +
+      (dgg ? "ask for a coarser accuracy (memory grows as 1 / sqrt(accuracy))"
+           : "lower K (memory grows linearly with K)");
     return false;
   }
 
@@ -163,6 +210,9 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     ExactGeodesicSolver solver(mesh);
     ExactGeodesicOptions opt;
     opt.MaximumFinalVertices = k;
+    DGGPropagation propagation(mesh);
+    std::vector<DGGPropagation::Link> links;
+    const double epsilon = DGGEpsilonPerAccuracy * options.Accuracy;
     int masterCount = 0;
     // Sources in node order: consecutive solves then cover overlapping neighbourhoods, whose
     // mesh data and solver state the previous solve left in the cache.
@@ -174,14 +224,26 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
         continue;
       }
       const int s = VertexOf[node];
-      solver.Solve(s, opt);
       auto& out = direct[s];
-      for (int v : solver.FinalVertices())
+      if (dgg)
       {
-        if (v != s && solver.IsDirect(v))
+        propagation.Run(s, epsilon, links);
+        for (const auto& link : links)
         {
-          out.emplace_back(v, solver.Distance(v));
-          angles[s].push_back(solver.DepartureAngle(v));
+          out.emplace_back(link.Target, link.Distance);
+          angles[s].push_back(link.Angle);
+        }
+      }
+      else
+      {
+        solver.Solve(s, opt);
+        for (int v : solver.FinalVertices())
+        {
+          if (v != s && solver.IsDirect(v))
+          {
+            out.emplace_back(v, solver.Distance(v));
+            angles[s].push_back(solver.DepartureAngle(v));
+          }
         }
       }
       const int n = ++done;
@@ -324,7 +386,9 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
     error = "aborted";
     return false;
   }
-  K = k;
+  Construction = options.Construction;
+  K = dgg ? 0 : k;
+  Accuracy = dgg ? options.Accuracy : 0.0;
   Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
 }
@@ -392,11 +456,15 @@ bool SaddleVertexGraph::Save(
     return false;
   }
   const std::int64_t nv = NumberOfVertices(), ne = NumberOfEntries();
+  const bool dgg = Construction == GraphConstruction::DiscreteGeodesic;
   const std::int32_t k = K;
+  const double accuracy = Accuracy;
+  const void* key = dgg ? static_cast<const void*>(&accuracy) : static_cast<const void*>(&k);
+  const std::size_t keySize = dgg ? sizeof(accuracy) : sizeof(k);
   const double seconds = Seconds;
   Hasher sum;
   sum.Add(&meshHash, sizeof(meshHash));
-  sum.Add(&k, sizeof(k));
+  sum.Add(key, keySize);
   sum.Add(&seconds, sizeof(seconds));
   sum.Add(&nv, sizeof(nv));
   sum.Add(&ne, sizeof(ne));
@@ -411,9 +479,9 @@ bool SaddleVertexGraph::Save(
   sum.AddVector(StencilXY);
   sum.AddVector(WrapXY);
   sum.AddVector(VertexOf);
-  out.write(Magic, sizeof(Magic));
+  out.write(dgg ? DGGMagic : Magic, sizeof(Magic));
   out.write(reinterpret_cast<const char*>(&meshHash), sizeof(meshHash));
-  out.write(reinterpret_cast<const char*>(&k), sizeof(k));
+  out.write(static_cast<const char*>(key), static_cast<std::streamsize>(keySize));
   out.write(reinterpret_cast<const char*>(&seconds), sizeof(seconds));
   out.write(reinterpret_cast<const char*>(&nv), sizeof(nv));
   out.write(reinterpret_cast<const char*>(&ne), sizeof(ne));
@@ -438,6 +506,16 @@ bool SaddleVertexGraph::Save(
 
 bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error)
 {
+  SaddleVertexGraphOptions options;
+  options.K = k;
+  return Load(path, meshHash, options, error);
+}
+
+bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
+  const SaddleVertexGraphOptions& options, std::string& error)
+{
+  const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
+  const int k = options.K;
   Clear();
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -451,20 +529,31 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   char magic[8] = {};
   std::uint64_t hash = 0;
   std::int32_t fileK = 0;
+  double fileAccuracy = 0.0;
+  void* key = dgg ? static_cast<void*>(&fileAccuracy) : static_cast<void*>(&fileK);
+  const std::int64_t keySize = dgg ? sizeof(fileAccuracy) : sizeof(fileK);
   double seconds = 0.0;
   std::int64_t nv = 0, ne = 0;
   in.read(magic, sizeof(magic));
+  const char* expected = dgg ? DGGMagic : Magic;
+  if (in && std::memcmp(magic, expected, 5) != 0 &&
+    (std::memcmp(magic, Magic, 5) == 0 || std::memcmp(magic, DGGMagic, 5) == 0))
+  {
+    error = path + (dgg ? " holds a saddle vertex graph, not a discrete geodesic graph"
+                        : " holds a discrete geodesic graph, not a saddle vertex graph");
+    return false;
+  }
   in.read(reinterpret_cast<char*>(&hash), sizeof(hash));
-  in.read(reinterpret_cast<char*>(&fileK), sizeof(fileK));
+  in.read(static_cast<char*>(key), keySize);
   in.read(reinterpret_cast<char*>(&seconds), sizeof(seconds));
   in.read(reinterpret_cast<char*>(&nv), sizeof(nv));
   in.read(reinterpret_cast<char*>(&ne), sizeof(ne));
-  if (!in || std::memcmp(magic, Magic, sizeof(Magic)) != 0)
+  if (!in || std::memcmp(magic, expected, sizeof(Magic)) != 0)
   {
     // (Format 004 added the node order; earlier files are rebuilt.)
-    error = in && std::memcmp(magic, Magic, 5) == 0
-      ? path + " is a saddle vertex graph cache file of another format version"
-      : path + " is not a saddle vertex graph cache file";
+    error = in && std::memcmp(magic, expected, 5) == 0
+      ? path + " is a geodesic graph cache file of another format version"
+      : path + " is not a geodesic graph cache file";
     return false;
   }
   if (hash != meshHash)
@@ -473,13 +562,19 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
     return false;
   }
   // K is clamped to the vertex count when building: compare the clamped request.
-  if (nv >= 1 && static_cast<std::int64_t>(fileK) != std::min<std::int64_t>(k, nv))
+  if (dgg && fileAccuracy != options.Accuracy)
+  {
+    error = path + " was made for the accuracy " + std::to_string(fileAccuracy) + ", not " +
+      std::to_string(options.Accuracy);
+    return false;
+  }
+  if (!dgg && nv >= 1 && static_cast<std::int64_t>(fileK) != std::min<std::int64_t>(k, nv))
   {
     error = path + " was made with K = " + std::to_string(fileK) + ", not " + std::to_string(k);
     return false;
   }
   const std::int64_t header =
-    sizeof(Magic) + sizeof(hash) + sizeof(fileK) + sizeof(seconds) + 2 * sizeof(std::int64_t);
+    sizeof(Magic) + sizeof(hash) + keySize + sizeof(seconds) + 2 * sizeof(std::int64_t);
   // Size of everything before the stencil count, and what the stencil adds for ns entries.
   const std::int64_t linksEnd = header + (nv + 1) * 8 + ne * 12;
   if (nv < 1 || ne < 0 || nv > (1LL << 31) || ne > (1LL << 40) || fileSize < linksEnd + 16)
@@ -520,7 +615,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   }
   Hasher sum;
   sum.Add(&hash, sizeof(hash));
-  sum.Add(&fileK, sizeof(fileK));
+  sum.Add(key, static_cast<std::size_t>(keySize));
   sum.Add(&seconds, sizeof(seconds));
   sum.Add(&nv, sizeof(nv));
   sum.Add(&ne, sizeof(ne));
@@ -602,7 +697,9 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, in
   VertexOf = std::move(vertexOf);
   NodeOf = std::move(nodeOf);
   IndexLinksInStencils();
-  K = fileK;
+  Construction = options.Construction;
+  K = dgg ? 0 : fileK;
+  Accuracy = dgg ? fileAccuracy : 0.0;
   Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;
   return true;
 }

@@ -36,9 +36,21 @@ inline void Prefetch(const void* p)
 // Called with the fraction done (0..1) from the calling thread; returning false aborts.
 using ProgressCallback = std::function<bool(double)>;
 
+// Which links a graph keeps (both give graphs of the same form, solved by the same solvers).
+enum class GraphConstruction
+{
+  // Saddle vertex graph: every direct geodesic within each vertex's K-nearest geodesic disk.
+  SaddleVertex,
+  // Discrete geodesic graph (DiscreteGeodesicGraph.h): only the direct geodesics that no route
+  // through another vertex approximates within the accuracy; reaches as far as needed.
+  DiscreteGeodesic
+};
+
 struct SaddleVertexGraphOptions
 {
-  int K = 50;              // geodesic disk size: number of nearest vertices solved exactly
+  GraphConstruction Construction = GraphConstruction::SaddleVertex;
+  int K = 50;              // SaddleVertex: geodesic disk size (number of nearest vertices)
+  double Accuracy = 1e-3;  // DiscreteGeodesic: largest relative error aimed at, 1e-5 .. 0.1
   int NumberOfThreads = 0; // 0: OpenMP's default
 };
 
@@ -59,7 +71,16 @@ public:
   {
     return NumberOfVertices() ? static_cast<double>(Targets.size()) / NumberOfVertices() : 0.0;
   }
+  GraphConstruction GetConstruction() const { return Construction; }
+  // The saddle vertex graph's K (0 for a discrete geodesic graph).
   int GetK() const { return K; }
+  // The discrete geodesic graph's accuracy (0 for a saddle vertex graph).
+  double GetAccuracy() const { return Accuracy; }
+  // How many nearest vertices an exact solve from a point or curve source should reach before
+  // it seeds the graph: K for a saddle vertex graph; for a discrete geodesic graph the disk
+  // whose edge-sized gaps between seeds cost at most its epsilon (about 0.45 / epsilon
+  // vertices, at least 50; see DiscreteGeodesicGraph.h for epsilon).
+  int LocalDiskSize() const;
   double BuildSeconds() const { return Seconds; }
   std::size_t MemoryBytes() const;
 
@@ -67,6 +88,7 @@ public:
   // upper estimate from the peaks SVGBenchmark measures (README, "Memory"). Build refuses a
   // request whose estimate exceeds 80% of AvailableMemoryBytes(), before allocating.
   static double EstimatedBuildBytes(int numberOfVertices, int k);
+  static double EstimatedBuildBytes(int numberOfVertices, const SaddleVertexGraphOptions& options);
   // Memory the system can give now: MemAvailable of /proc/meminfo, else free physical pages;
   // 0 when unknown (no check). GS_AVAILABLE_MEMORY (bytes) overrides it, for tests.
   static double AvailableMemoryBytes();
@@ -156,10 +178,15 @@ public:
   // the graph empty. BuildSeconds() of a loaded graph is the original build's.
   bool Save(const std::string& path, std::uint64_t meshHash, std::string& error) const;
   bool Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error);
+  // The same for any construction: a discrete geodesic graph's file (its own format) must have
+  // been saved for exactly the same accuracy.
+  bool Load(const std::string& path, std::uint64_t meshHash,
+    const SaddleVertexGraphOptions& options, std::string& error);
 
   bool operator==(const SaddleVertexGraph& o) const
   {
-    return Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights &&
+    return Construction == o.Construction && K == o.K && Accuracy == o.Accuracy &&
+      Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights &&
       StencilOffsets == o.StencilOffsets && StencilTargets == o.StencilTargets &&
       StencilR == o.StencilR && StencilXY == o.StencilXY && WrapXY == o.WrapXY &&
       VertexOf == o.VertexOf;
@@ -179,7 +206,9 @@ private:
   std::vector<int> NodeOf, VertexOf;
   void OrderNodes(const TriangleMesh& mesh);
   void IndexLinksInStencils();
+  GraphConstruction Construction = GraphConstruction::SaddleVertex;
   int K = 0;
+  double Accuracy = 0.0;
   double Seconds = 0.0;
 };
 

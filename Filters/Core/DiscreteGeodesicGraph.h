@@ -1,0 +1,111 @@
+// The local step of the discrete geodesic graph (DGG: Wang, Fang, Wu, Xin, He, CAGD 2017; fast
+// construction: Adikusuma, Fang, He, ACM TOG 2020): from one vertex s, the direct geodesics
+// (through no saddle or boundary vertex) that no shorter route through another vertex
+// approximates within the accuracy epsilon. They become the graph's links from s.
+//
+// How (our formulation of the papers' idea). Window propagation as in the exact solver, from s
+// only and along direct geodesics only (windows behind saddle and boundary vertices are those
+// vertices' own business: their links continue the path). Each window also carries the
+// vertices its rays were split at on its two sides ("anchors"): an anchor a seen from the
+// window's unfolded source I lies in the window's wedge, behind its edge, so the straight
+// segment from a to any point x the window will reach stays in the unfolded strip of faces and
+// is a path on the surface: d(a, x) <= |a x|. A point x is covered when
+//     d(s, a) + |a x| <= (1 + epsilon) d(s, x),
+// the route through a being then at most epsilon longer. Along any ray from I the slack
+// (1 + epsilon)|I x| - |a x| - |I a| grows (its derivative is at least epsilon), so a window
+// whose whole interval is covered stays covered beyond: it is dropped, and the propagation
+// dies out by itself once every direction has passed close enough to a vertex (on a flat
+// region after about 1 / sqrt(epsilon) edges in the worst directions). A reached vertex whose
+// best arrival is not covered becomes a link, with the length of its direct geodesic.
+//
+// Every link is the length of a real surface path, so graph distances never fall below the
+// geodesic distance; the route that replaces a dropped link is at most epsilon longer per step
+// of replacement, and steps compound over shorter and shorter pieces: the graph's error is a
+// small multiple of epsilon (the DGG papers' O(epsilon)). SaddleVertexGraph::Build turns the
+// user's accuracy into epsilon with the factor DGGEpsilonPerAccuracy, measured so that the
+// largest relative error found against the exact solver stays below the accuracy asked for.
+#pragma once
+
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace gs
+{
+
+struct DGGStatistics
+{
+  std::int64_t WindowsPropagated = 0;
+  std::int64_t WindowsCovered = 0; // dropped because their whole interval was covered
+};
+
+class DGGPropagation
+{
+public:
+  // The mesh must outlive the object; reused for many sources (each Run resets what it touched).
+  explicit DGGPropagation(const TriangleMesh& mesh);
+
+  struct Link
+  {
+    int Target;
+    double Distance; // length of the direct geodesic from the source
+    double Angle;    // direction it leaves the source (as ExactGeodesicSolver::DepartureAngle)
+  };
+  // The links of vertex s for epsilon (> 0): its mesh neighbours (always) and every vertex whose
+  // shortest direct geodesic from s is not covered. Stops early (returns false, `links` partial)
+  // when more than maxWindows windows were propagated (0: no limit).
+  bool Run(int s, double epsilon, std::vector<Link>& links, std::int64_t maxWindows = 0);
+
+  const DGGStatistics& Statistics() const { return Stats; }
+
+private:
+  // Vertices behind a window from which the straight segment to any point of its interval stays
+  // in the unfolded strip (see Propagate), with their distance from the source.
+  static constexpr int MaxAnchors = 6;
+  struct Anchor
+  {
+    double X, Y, D;
+  };
+  struct Window
+  {
+    double Key;    // smallest distance over the interval
+    double B0, B1; // interval along half-edge H from Origin(H)
+    double Ix, Iy; // unfolded source in H's frame (Iy < 0)
+    double Phi;    // departure angle = Phi + angle of (x - I) in this frame
+    Anchor Anchors[MaxAnchors]; // sorted by distance
+    int NumAnchors;
+    int H;
+  };
+  static void AddAnchor(Window& w, double x, double y);
+  struct QueueEntry
+  {
+    double Key;
+    int Slot;
+  };
+
+  void Reset();
+  void Reach(int v, double d, bool covered, double angle, int via, double crossing);
+  bool Trim(Window& w) const;
+  bool Covered(const Window& w, double epsilon) const;
+  void Push(Window& w, double epsilon);
+  void Propagate(const Window& w, double epsilon);
+
+  const TriangleMesh& M;
+  std::vector<double> Cx, Cy;    // opposite vertex of each half-edge in its frame
+  std::vector<double> FanAngle;  // half-edge direction about its origin (as in the exact solver)
+  std::vector<double> Dist;      // best direct distance found
+  std::vector<unsigned char> IsCovered; // whether that best arrival is covered
+  std::vector<double> Angle;     // its departure angle
+  std::vector<int> CrossHalfedge;
+  std::vector<double> CrossX;
+  std::vector<int> Touched;
+  std::vector<Window> Pool;
+  std::vector<int> FreeSlots;
+  std::vector<QueueEntry> Queue;
+  double Tolerance = 0.0;
+  DGGStatistics Stats;
+};
+
+} // namespace gs

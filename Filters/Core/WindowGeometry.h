@@ -1,0 +1,152 @@
+// Geometry shared by the window propagations (ExactGeodesicSolver, DGGPropagation): a window
+// lies on a half-edge H in H's frame (origin Origin(H), x along H, y > 0 towards face(H)) with
+// its unfolded source I below the edge; it crosses face(H), whose opposite vertex is C.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gs
+{
+namespace window_geometry
+{
+
+// Plain sqrt: std::hypot's overflow guards cost more than the whole window update, and the
+// coordinates here are mesh-sized (checked finite when the mesh is built).
+inline double Hypot(double x, double y)
+{
+  return std::sqrt(x * x + y * y);
+}
+
+// Distance from (ix, iy) to the segment [b0, b1] of the x axis.
+inline double SegmentDistance(double ix, double iy, double b0, double b1)
+{
+  if (ix < b0)
+  {
+    return Hypot(b0 - ix, iy);
+  }
+  if (ix > b1)
+  {
+    return Hypot(ix - b1, iy);
+  }
+  return std::abs(iy);
+}
+
+// Where the ray from I' through P' crosses the new edge (y' = 0), in the new frame.
+inline double RayHit(double jx, double jy, double px, double py, double fallback)
+{
+  const double den = py - jy;
+  return den > 1e-300 ? jx + (px - jx) * (-jy) / den : fallback;
+}
+
+// The frame of the half-edge across A -> C (the left child): origin A, x along A -> C, given C
+// at (cx, cy) and |AC| = b. A point of H's frame in the new one.
+struct LeftFrame
+{
+  double Ux, Uy;
+  LeftFrame(double cx, double cy, double b)
+    : Ux(cx / b)
+    , Uy(cy / b)
+  {
+  }
+  double X(double px, double py) const { return px * Ux + py * Uy; }
+  double Y(double px, double py) const { return Ux * py - Uy * px; }
+  // The point at t along the new edge, in H's frame.
+  double EdgeX(double t) const { return t * Ux; }
+  double EdgeY(double t) const { return t * Uy; }
+};
+
+// The frame of the half-edge across C -> B (the right child): origin C, x along C -> B, given
+// |AB| = L and |CB| = a.
+struct RightFrame
+{
+  double Cx, Cy, Ux, Uy;
+  RightFrame(double cx, double cy, double L, double a)
+    : Cx(cx)
+    , Cy(cy)
+    , Ux((L - cx) / a)
+    , Uy(-cy / a)
+  {
+  }
+  double X(double px, double py) const { return (px - Cx) * Ux + (py - Cy) * Uy; }
+  double Y(double px, double py) const { return Ux * (py - Cy) - Uy * (px - Cx); }
+  double EdgeX(double t) const { return Cx + t * Ux; }
+  double EdgeY(double t) const { return Cy + t * Uy; }
+};
+
+// Cuts from [b0, b1] the points p = (t, 0) reached at least as short through an end point of
+// the edge (distances dA, dB, infinite when unknown: dA + t <= sigma + |I p|), and drops the
+// window when the opposite vertex C (distance dC) dominates it entirely. Returns false when
+// nothing is left.
+inline bool TrimWindow(double L, double ix, double iy, double s, double cx, double cy, double dA,
+  double dB, double dC, double tol, double& b0, double& b1)
+{
+  const double Inf = std::numeric_limits<double>::infinity();
+  // The difference is monotone in t for A (and for B), so the useless part is an interval at
+  // that end, found in closed form.
+  if (dA < Inf)
+  {
+    const double target = dA + tol;
+    auto g = [&](double t) { return s + Hypot(t - ix, iy) - t; };
+    if (g(b1) >= target)
+    {
+      return false;
+    }
+    if (g(b0) >= target)
+    {
+      const double k = target - s;
+      const double denom = 2.0 * (k + ix);
+      if (denom > 0.0)
+      {
+        const double t = (ix * ix + iy * iy - k * k) / denom;
+        b0 = std::min(std::max(t, b0), b1);
+      }
+    }
+  }
+  if (dB < Inf)
+  {
+    const double target = dB + tol;
+    auto g = [&](double t) { return s + Hypot(t - ix, iy) - (L - t); };
+    if (g(b0) >= target)
+    {
+      return false;
+    }
+    if (g(b1) >= target)
+    {
+      const double k = target - s;
+      const double mx = L - ix;
+      const double denom = 2.0 * (k + mx);
+      if (denom > 0.0)
+      {
+        const double t = L - (mx * mx + iy * iy - k * k) / denom;
+        b1 = std::max(std::min(t, b1), b0);
+      }
+    }
+  }
+  // C dominates the whole window when D(C) + |C p| <= s + |I p| for every p of the window: the
+  // minimum of s + |I p| - |C p| is at an end or where p lies on the line through I and C
+  // mirrored below the edge.
+  if (dC < Inf)
+  {
+    auto f = [&](double t) { return s + Hypot(t - ix, iy) - Hypot(t - cx, cy); };
+    double lowest = std::min(f(b0), f(b1));
+    const double dy = -cy - iy;
+    if (std::abs(dy) > 1e-300)
+    {
+      const double t = ix + (cx - ix) * (-iy) / dy;
+      if (t > b0 && t < b1)
+      {
+        lowest = std::min(lowest, f(t));
+      }
+    }
+    if (lowest >= dC + tol)
+    {
+      return false;
+    }
+  }
+  return b1 - b0 > 1e-14 * L;
+}
+
+} // namespace window_geometry
+} // namespace gs

@@ -1,0 +1,241 @@
+// The discrete geodesic graph (DiscreteGeodesicGraph.h, GraphConstruction::DiscreteGeodesic):
+// its promise is a largest relative error within the accuracy asked for, against the exact
+// solver, with graph distances never below the geodesic distance.
+#include "DiscreteGeodesicGraph.h"
+#include "ExactGeodesic.h"
+#include "MeshGenerators.h"
+#include "SVGGeodesicSolver.h"
+#include "SurfaceCurve.h"
+#include "SaddleVertexGraph.h"
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+using namespace gs;
+using gs_test::BuildMesh;
+
+namespace
+{
+SaddleVertexGraph BuildDGG(const TriangleMesh& m, double accuracy, int threads = 0)
+{
+  SaddleVertexGraph g;
+  SaddleVertexGraphOptions o;
+  o.Construction = GraphConstruction::DiscreteGeodesic;
+  o.Accuracy = accuracy;
+  o.NumberOfThreads = threads;
+  std::string error;
+  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  return g;
+}
+
+// A planar grid whose interior vertices are moved by up to `jitter` of the spacing (no
+// collinear rows for the graph to follow).
+TriangleMesh JitteredPlane(int n, double jitter, unsigned seed)
+{
+  TriangleSoup s = MakePlanarGrid(n, n, 1.0, 1.0);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter / n, jitter / n);
+  for (Vec3& p : s.Points)
+  {
+    if (p.x > 1e-9 && p.x < 1.0 - 1e-9 && p.y > 1e-9 && p.y < 1.0 - 1e-9)
+    {
+      p.x += u(rng);
+      p.y += u(rng);
+    }
+  }
+  return BuildMesh(s);
+}
+
+struct Errors
+{
+  double Max = 0.0, Mean = 0.0, LowestRatio = INFINITY; // LowestRatio: min approx / exact
+  long long Count = 0;
+  void Add(double approx, double exact)
+  {
+    if (!(exact > 0.0) || !std::isfinite(exact))
+      return;
+    const double e = std::abs(approx - exact) / exact;
+    Max = std::max(Max, e);
+    Mean += e;
+    LowestRatio = std::min(LowestRatio, approx / exact);
+    ++Count;
+  }
+};
+
+// Errors of the graph alone and of the refined solve from a few vertex sources (every vertex but
+// the source counted).
+void Measure(const TriangleMesh& m, const SaddleVertexGraph& g, Errors& graph, Errors& refined)
+{
+  ExactGeodesicSolver exact(m);
+  SVGGeodesicSolver solver(m, g);
+  const int nv = m.NumberOfVertices();
+  for (int s : { 0, nv / 3, (2 * nv) / 3 + 1 })
+  {
+    ASSERT_TRUE(exact.Solve(s));
+    SVGSolveOptions plain;
+    plain.Refine = false;
+    ASSERT_TRUE(solver.Solve({ SurfacePoint::AtVertex(s) }, plain));
+    for (int v = 0; v < nv; ++v)
+      graph.Add(solver.Distance(v), exact.Distance(v));
+    ASSERT_TRUE(solver.Solve({ SurfacePoint::AtVertex(s) }));
+    for (int v = 0; v < nv; ++v)
+      refined.Add(solver.Distance(v), exact.Distance(v));
+  }
+}
+} // namespace
+
+TEST(DiscreteGeodesicGraph, LargestErrorWithinTheAccuracy)
+{
+  struct Case
+  {
+    const char* Name;
+    TriangleMesh Mesh;
+  };
+  const Case cases[] = {
+    { "bumpy sphere", BuildMesh(gs_test::BumpySoup(4, 3, 0.1)) },
+    { "torus", BuildMesh(MakeTorus(1.0, 0.4, 48, 24)) },
+    { "jittered plane", JitteredPlane(30, 0.3, 2) },
+    { "L-shape (a reflex boundary corner)", BuildMesh(MakeLShape(16)) },
+  };
+  for (const Case& c : cases)
+  {
+    double previousDegree = 0.0;
+    for (double accuracy : { 1e-2, 1e-3 })
+    {
+      const SaddleVertexGraph g = BuildDGG(c.Mesh, accuracy);
+      Errors graph, refined;
+      Measure(c.Mesh, g, graph, refined);
+      ASSERT_GT(graph.Count, 100);
+      // Links are lengths of surface paths: graph distances never fall below the geodesic one.
+      EXPECT_GE(graph.LowestRatio, 1.0 - 1e-9) << c.Name << ", accuracy " << accuracy;
+      EXPECT_LE(graph.Max, accuracy) << c.Name << ", accuracy " << accuracy;
+      EXPECT_LE(refined.Max, accuracy) << c.Name << ", accuracy " << accuracy;
+      // Refinement by unfolding lowers the mean error of a coarse graph (a fine one is as
+      // accurate as the unfolding itself: refinement may then add error, within the floor).
+      if (accuracy >= 1e-2)
+        EXPECT_LE(refined.Mean / refined.Count, graph.Mean / graph.Count)
+          << c.Name << ", accuracy " << accuracy;
+      // A finer accuracy needs more links.
+      EXPECT_GT(g.MeanDegree(), previousDegree) << c.Name;
+      previousDegree = g.MeanDegree();
+    }
+  }
+}
+
+TEST(DiscreteGeodesicGraph, PointAndCurveSourcesWithinTheAccuracy)
+{
+  const TriangleMesh m = BuildMesh(gs_test::BumpySoup(4, 5, 0.1));
+  const double accuracy = 1e-2;
+  const SaddleVertexGraph g = BuildDGG(m, accuracy);
+  SVGGeodesicSolver solver(m, g);
+  ExactGeodesicSolver exact(m);
+  Errors point;
+  for (int f : { 11, 2000, 4321 })
+  {
+    const SurfacePoint p = SurfacePoint::InFace(f, 0.2, 0.5, 0.3);
+    ASSERT_TRUE(exact.Solve({ p }));
+    ASSERT_TRUE(solver.Solve({ p }));
+    for (int v = 0; v < m.NumberOfVertices(); ++v)
+      point.Add(solver.Distance(v), exact.Distance(v));
+  }
+  EXPECT_LE(point.Max, accuracy);
+  // A curve: the exact reference from dense samples of the same traced curve.
+  const std::vector<SurfacePoint> curve = { SurfacePoint::InFace(100, 0.3, 0.3, 0.4),
+    SurfacePoint::InFace(140, 0.3, 0.3, 0.4), SurfacePoint::InFace(190, 0.3, 0.3, 0.4) };
+  ASSERT_TRUE(solver.SolveCurve(curve));
+  const std::vector<SurfacePoint> samples = SampleCurvePieces(
+    m, TraceSurfaceCurve(m, curve), ExactCurveSampleSpacing * m.MeanEdgeLength());
+  ASSERT_TRUE(exact.Solve(samples));
+  Errors fromCurve;
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+    fromCurve.Add(solver.Distance(v), exact.Distance(v));
+  ASSERT_GT(fromCurve.Count, 1000);
+  EXPECT_LE(fromCurve.Max, accuracy);
+}
+
+TEST(DiscreteGeodesicGraph, DeterministicSymmetricAndSparserThanItsAccuracyNeeds)
+{
+  const TriangleMesh m = BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
+  const SaddleVertexGraph one = BuildDGG(m, 1e-2, 1);
+  const SaddleVertexGraph two = BuildDGG(m, 1e-2, 2);
+  EXPECT_TRUE(one == two) << "the graph depends on the thread count";
+  EXPECT_EQ(one.GetConstruction(), GraphConstruction::DiscreteGeodesic);
+  EXPECT_EQ(one.GetAccuracy(), 1e-2);
+  EXPECT_EQ(one.GetK(), 0);
+  // Undirected, with equal weights both ways (graph distances are a metric).
+  for (int u = 0; u < one.NumberOfVertices(); ++u)
+  {
+    for (std::int64_t e = one.Begin(u); e < one.End(u); ++e)
+    {
+      const int x = one.Target(e);
+      bool found = false;
+      for (std::int64_t b = one.Begin(x); b < one.End(x); ++b)
+        found = found || (one.Target(b) == u && one.Weight(b) == one.Weight(e));
+      ASSERT_TRUE(found) << "link " << u << " -> " << x << " has no twin";
+    }
+  }
+  // The propagation from one vertex keeps far fewer vertices than it reaches.
+  DGGPropagation propagation(m);
+  std::vector<DGGPropagation::Link> links;
+  ASSERT_TRUE(propagation.Run(5, 1e-2, links));
+  EXPECT_GT(propagation.Statistics().WindowsCovered, 0);
+  EXPECT_LT(links.size(), 60u);
+  for (const auto& link : links)
+    EXPECT_TRUE(std::isfinite(link.Distance) && std::isfinite(link.Angle));
+}
+
+TEST(DiscreteGeodesicGraph, RejectsAccuracyOutOfRange)
+{
+  const TriangleMesh m = BuildMesh(MakeIcosphere(1.0, 1));
+  for (double accuracy : { 0.0, -1e-3, 0.5, 1e-7, std::nan("") })
+  {
+    SaddleVertexGraph g;
+    SaddleVertexGraphOptions o;
+    o.Construction = GraphConstruction::DiscreteGeodesic;
+    o.Accuracy = accuracy;
+    std::string error;
+    EXPECT_FALSE(g.Build(m, o, nullptr, error)) << accuracy;
+    EXPECT_NE(error.find("accuracy"), std::string::npos) << error;
+    EXPECT_TRUE(g.Empty());
+  }
+}
+
+TEST(DiscreteGeodesicGraph, CacheFilesOfTheirOwnFormat)
+{
+  const TriangleMesh m = BuildMesh(gs_test::BumpySoup(2, 9, 0.1));
+  const std::uint64_t hash = SaddleVertexGraph::HashMesh(m);
+  const SaddleVertexGraph g = BuildDGG(m, 5e-3);
+  const std::string path = std::string(::testing::TempDir()) + "dgg_cache.svgg";
+  std::string error;
+  ASSERT_TRUE(g.Save(path, hash, error)) << error;
+  SaddleVertexGraphOptions same;
+  same.Construction = GraphConstruction::DiscreteGeodesic;
+  same.Accuracy = 5e-3;
+  SaddleVertexGraph loaded;
+  ASSERT_TRUE(loaded.Load(path, hash, same, error)) << error;
+  EXPECT_TRUE(loaded == g);
+  EXPECT_EQ(loaded.GetAccuracy(), 5e-3);
+  SaddleVertexGraphOptions other = same;
+  other.Accuracy = 1e-3;
+  EXPECT_FALSE(loaded.Load(path, hash, other, error));
+  EXPECT_NE(error.find("accuracy"), std::string::npos) << error;
+  EXPECT_FALSE(loaded.Load(path, hash + 1, same, error));
+  // A saddle vertex graph request does not take a discrete geodesic graph's file, nor the
+  // reverse.
+  EXPECT_FALSE(loaded.Load(path, hash, 50, error));
+  EXPECT_NE(error.find("discrete geodesic graph"), std::string::npos) << error;
+  SaddleVertexGraph svg;
+  SaddleVertexGraphOptions svgOptions;
+  svgOptions.K = 20;
+  ASSERT_TRUE(svg.Build(m, svgOptions, nullptr, error)) << error;
+  ASSERT_TRUE(svg.Save(path, hash, error)) << error;
+  EXPECT_FALSE(loaded.Load(path, hash, same, error));
+  EXPECT_NE(error.find("saddle vertex graph"), std::string::npos) << error;
+  std::remove(path.c_str());
+}
