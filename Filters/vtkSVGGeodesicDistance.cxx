@@ -282,9 +282,14 @@ bool vtkSVGGeodesicDistance::FindSources(Cache& cache, vtkPointSet* sources, Run
 bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
 {
   bool graphChanged = false;
-  if (!cache.UseSaddleVertexGraph(this,
-        vtkCachedSurface::GraphOptions(this->K, this->Solver == DGG ? this->Accuracy : 0.0),
-        this->CacheFileName, 0.1, 0.7, graphChanged, &run.GraphOrigin))
+  gs::SaddleVertexGraphOptions options;
+  options.K = this->K;
+  if (this->Solver == DGG)
+  {
+    options.Construction = gs::GraphConstruction::DiscreteGeodesic;
+    options.Accuracy = this->Accuracy; // (0 included: the core rejects what is out of range)
+  }
+  if (!cache.UseSaddleVertexGraph(this, options, this->CacheFileName, 0.1, 0.7, graphChanged, &run.GraphOrigin))
   {
     return false; // aborted, or the error is reported
   }

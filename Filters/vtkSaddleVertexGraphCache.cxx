@@ -78,6 +78,12 @@ Entry* Find(Store& store, std::uint64_t hash, const GraphKey& key)
   return nullptr;
 }
 
+const char* GraphName(const gs::SaddleVertexGraphOptions& options)
+{
+  return options.Construction == gs::GraphConstruction::DiscreteGeodesic ? "Discrete geodesic graph"
+                                                                         : "Saddle vertex graph";
+}
+
 bool FileExists(const std::string& path)
 {
   std::error_code ec;
@@ -271,11 +277,11 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::GetFor(vtkAlgorithm
   for (const std::string& warning : found.Warnings)
   {
     vtkWarningWithObjectMacro(algorithm,
-      "Saddle vertex graph (CacheFileName " << fileName << "): " << warning);
+      GraphName(options) << " (CacheFileName " << fileName << "): " << warning);
   }
   if (!found.Graph && !found.Aborted)
   {
-    vtkErrorWithObjectMacro(algorithm, "Saddle vertex graph: " << found.Error);
+    vtkErrorWithObjectMacro(algorithm, GraphName(options) << ": " << found.Error);
   }
   return found;
 }

@@ -497,6 +497,89 @@ void TestAbortDuringBuild()
   std::cout << test << ": full build of " << mesh->GetNumberOfPoints() << " vertices took "
             << again.FieldValue("SVGBuildSeconds") << " s\n";
 }
+
+//------------------------------------------------------------------------------
+// The DGG solver as users call it: its largest error within Accuracy against the exact solver,
+// with and without refinement, vertex and point sources; cached by accuracy (memory and its own
+// file format); an accuracy out of range is an error naming it.
+void TestDiscreteGeodesicGraph()
+{
+  const std::string test = "DiscreteGeodesicGraph";
+  ResetGraphCache();
+  auto mesh = ReadMesh("bumpy_sphere.ply");
+  auto run = [&](double accuracy, bool refine, const std::vector<vtkIdType>& ids,
+               vtkPolyData* sources, const std::string& file) {
+    vtkNew<vtkSVGGeodesicDistance> filter;
+    filter->SetInputData(mesh);
+    filter->SetSolver(vtkSVGGeodesicDistance::DGG);
+    filter->SetAccuracy(accuracy);
+    filter->SetUnfoldingRefinement(refine);
+    filter->SetCacheFileName(file.c_str());
+    for (vtkIdType id : ids)
+      filter->AddSourceVertexId(id);
+    if (sources)
+      filter->SetSourcesData(sources);
+    return Execute(filter);
+  };
+  const std::vector<vtkIdType> ids = { 3, 1500 };
+  const Run exact = Solve(mesh, vtkSVGGeodesicDistance::EXACT, ids);
+  for (double accuracy : { 1e-2, 2e-3 })
+  {
+    for (bool refine : { false, true })
+    {
+      const Run dgg = run(accuracy, refine, ids, nullptr, "");
+      const Errors e = RelativeErrors(dgg.Distances(), exact.Distances());
+      std::cout << test << " bumpy_sphere.ply, accuracy " << accuracy
+                << (refine ? " refined" : " graph only") << ": mean relative error " << e.Mean
+                << ", max " << e.Max << ", " << dgg.FieldValue("SVGMeanDegree")
+                << " links/vertex (" << dgg.Origin() << ")\n";
+      Check(dgg.Errors.empty() && dgg.Warnings.empty(), test, "messages");
+      Check(e.Count > 1000 && e.Max <= accuracy, test, "largest error above the accuracy");
+      Check(dgg.Origin() == (refine ? "memory" : "built"), test, "origin " + dgg.Origin());
+    }
+  }
+  // A point source inside a face (between two vertices, snapped to the surface).
+  vtkNew<vtkPolyData> point;
+  vtkNew<vtkPoints> points;
+  double p[3], q[3];
+  mesh->GetPoint(40, p);
+  mesh->GetPoint(41, q);
+  points->InsertNextPoint(
+    0.6 * p[0] + 0.4 * q[0], 0.6 * p[1] + 0.4 * q[1], 0.6 * p[2] + 0.4 * q[2]);
+  point->SetPoints(points);
+  const Run exactPoint = Solve(mesh, vtkSVGGeodesicDistance::EXACT, {}, point);
+  const Run dggPoint = run(1e-2, true, {}, point, "");
+  const Errors ep = RelativeErrors(dggPoint.Distances(), exactPoint.Distances());
+  std::cout << test << " point source, accuracy 0.01: mean " << ep.Mean << ", max " << ep.Max
+            << "\n";
+  Check(dggPoint.Errors.empty() && ep.Count > 1000 && ep.Max <= 1e-2, test, "point source");
+
+  // Its own cache file: written, loaded by an emptied cache, refused for another accuracy.
+  const std::string file = TempDir + "/dgg_cache.svgg";
+  std::remove(file.c_str());
+  const Run saved = run(1e-2, true, ids, nullptr, file);
+  Check(saved.Origin() == "memory" && FileExists(file), test, "cache file not written");
+  ResetGraphCache();
+  const Run loaded = run(1e-2, true, ids, nullptr, file);
+  Check(loaded.Origin() == "loaded" && loaded.Warnings.empty() &&
+      MaxAbsoluteDifference(loaded.Distances(), saved.Distances()) == 0.0,
+    test, "cache file not loaded as saved: origin " + loaded.Origin());
+  const Run other = run(5e-3, true, ids, nullptr, file);
+  Check(other.Origin() == "built" && Mentions(other.Warnings, "accuracy"), test,
+    "a file of another accuracy was used");
+  // The SVG solver does not take a DGG file (another format): it warns and rebuilds.
+  const Run svg = Solve(mesh, vtkSVGGeodesicDistance::SVG_LABEL_CORRECTING, ids, nullptr, 50, file);
+  Check(svg.Origin() == "built" && Mentions(svg.Warnings, "rebuilding"), test,
+    "the SVG solver used a DGG file");
+  std::remove(file.c_str());
+
+  for (double bad : { 0.0, -1e-3, 0.5, std::nan("") })
+  {
+    const Run r = run(bad, true, ids, nullptr, "");
+    Check(!r.Errors.empty() && Mentions(r.Errors, "accuracy") && r.Empty(), test,
+      "accuracy " + std::to_string(bad) + " accepted");
+  }
+}
 }
 
 int main(int argc, char* argv[])
@@ -517,6 +600,7 @@ int main(int argc, char* argv[])
   TestGraphCache();
   TestBadK();
   TestAbortDuringBuild();
+  TestDiscreteGeodesicGraph();
   if (Failures > 0)
   {
     std::cerr << Failures << " check(s) failed\n";
