@@ -277,11 +277,11 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::GetFor(vtkAlgorithm
   for (const std::string& warning : found.Warnings)
   {
     vtkWarningWithObjectMacro(algorithm,
-      GraphName(options) << " (CacheFileName " << fileName << "): " << warning);
+      "" << GraphName(options) << " (CacheFileName " << fileName << "): " << warning);
   }
   if (!found.Graph && !found.Aborted)
   {
-    vtkErrorWithObjectMacro(algorithm, GraphName(options) << ": " << found.Error);
+    vtkErrorWithObjectMacro(algorithm, "" << GraphName(options) << ": " << found.Error);
   }
   return found;
 }

@@ -90,11 +90,12 @@ def _copy(polydata):
 
 _SOLVERS = {"svg": vtkSVGGeodesicDistance.SVG_LABEL_CORRECTING,
             "svg-dijkstra": vtkSVGGeodesicDistance.SVG_DIJKSTRA,
+            "dgg": vtkSVGGeodesicDistance.DGG,
             "exact": vtkSVGGeodesicDistance.EXACT}
 
 
-def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, maximum_distance=0.0,
-                      cache_file=None, return_vtk=False):
+def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, accuracy=1e-3,
+                      maximum_distance=0.0, cache_file=None, return_vtk=False):
     """Geodesic distance (shortest path on the surface) from sources to every vertex.
 
     mesh: a vtkPolyData or (vertices, triangles).
@@ -102,8 +103,10 @@ def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, maximum
         snapped to the closest surface point, a vertex, an edge or a triangle point).
     curves: polylines on or near the surface, each a (k, 3) array: the distance to the curve.
     solver: "svg" (saddle vertex graph, label-correcting; default: near-exact, fast once the
-        graph is built), "svg-dijkstra", or "exact" (exact polyhedral geodesics).
-    k: the graph's neighbourhood size (SVG solvers; default 50). maximum_distance: stop there
+        graph is built), "svg-dijkstra", "dgg" (discrete geodesic graph: largest relative error
+        within `accuracy`), or "exact" (exact polyhedral geodesics).
+    k: the graph's neighbourhood size (SVG solvers; default 50). accuracy: the DGG's largest
+        relative error, 1e-5 .. 0.1 (default 1e-3). maximum_distance: stop there
         (0: none; beyond it NaN). cache_file: where the graph is saved and read back.
     Returns an (n,) array of distances (NaN where unreachable), and the filter's output too
     when return_vtk is true.
@@ -114,6 +117,7 @@ def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, maximum
     f.SetInputData(as_polydata(mesh))
     f.SetSolver(_SOLVERS[solver])
     f.SetK(int(k))
+    f.SetAccuracy(float(accuracy))
     f.SetMaximumDistance(float(maximum_distance))
     if cache_file:
         f.SetCacheFileName(str(cache_file))

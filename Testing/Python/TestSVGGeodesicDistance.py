@@ -143,6 +143,19 @@ if all(r is not None for r in results.values()):
     same = abs(results["SVG (label-correcting)"] - results["SVG (Dijkstra)"]).max()
     check(same <= 1e-9, "label-correcting and Dijkstra differ by %g" % same)
 
+# 3b. The accuracy-bounded solver by its name: its largest error within the Accuracy asked for.
+dgg = SVGGeodesicDistance(Input=torus, SourceVertexIds=[0, 1000],
+                          Solver="DGG (accuracy-bounded)", Accuracy=0.01)
+output, distances = run(dgg)
+if distances is not None and exact is not None:
+    relative = abs(distances[mask] - exact[mask]) / exact[mask]
+    print("torus, DGG (accuracy 0.01) vs Exact: mean relative error %.3g, max %.3g, "
+          "%.1f links per vertex" % (relative.mean(), relative.max(),
+                                     field_value(output, "SVGMeanDegree")))
+    check(relative.max() <= 0.01, "DGG: largest relative error %g above the accuracy"
+          % relative.max())
+Delete(dgg)
+
 # 4. Curve sources on the bundled planar grid (unit square): a PolyLineSource (two segments) and
 #    a Line source, against the analytic distance to the polyline, for each Solver.
 grid = PLYReader(FileNames=[os.path.join(args.data, "planar_grid.ply")])
