@@ -58,6 +58,7 @@ struct Parameters
   double DecalSize = 1.0;
   int AngleMode = vtkGeodesicPolarCoordinates::GEODESIC_DIRECTION;
   int K = 0;
+  double GraphAccuracy = 0.0;
   vtkPointSet* Source = nullptr;
 };
 
@@ -92,6 +93,7 @@ RunResult Run(vtkPolyData* mesh, const Parameters& p)
   filter->SetDecalSize(p.DecalSize);
   filter->SetAngleMode(p.AngleMode);
   filter->SetK(p.K);
+  filter->SetGraphAccuracy(p.GraphAccuracy);
   if (p.Source)
   {
     filter->SetSourceData(p.Source);
@@ -572,13 +574,16 @@ void TestIsoCurveMode(vtkPolyData* grid)
     "no warning for iso-curves meeting the boundary");
 }
 
-void TestGraphEngine(vtkPolyData* grid)
+// The graph engines (the saddle vertex graph of K, and with GraphAccuracy the discrete
+// geodesic graph) against the exact engine on the plane.
+void TestGraphEngine(vtkPolyData* grid, double graphAccuracy)
 {
-  const std::string test = "GraphEngine";
+  const std::string test = graphAccuracy > 0.0 ? "DiscreteGeodesicGraphEngine" : "GraphEngine";
   Parameters p;
   p.SourceVertexId = 10 * 21 + 10;
   p.Radius = 0.8;
   p.K = 50;
+  p.GraphAccuracy = graphAccuracy;
   const RunResult r = Run(grid, p);
   Check(r.Errors.empty() && r.Rho() && r.Theta(), test, "no output");
   if (!r.Rho() || !r.Theta())
@@ -610,6 +615,12 @@ void TestGraphEngine(vtkPolyData* grid)
   Check(inside > 100, test, "too few points inside the radius");
   Check(worstRho < 1e-9, test, "rho differs from the exact engine's");
   Check(worstTheta < 0.1 * Pi / 180, test, "theta differs from the exact engine's by 0.1 degree or more");
+  if (graphAccuracy > 0.0)
+  {
+    p.GraphAccuracy = 0.5;
+    ExpectRejected("GraphAccuracyOutOfRange", grid, p, "accuracy");
+    return;
+  }
   p.K = -1;
   ExpectRejected("NegativeK", grid, p, "K must be");
 }
@@ -629,7 +640,8 @@ int main(int argc, char* argv[])
   TestSourcePort(grid);
   TestBadInputs(grid);
   TestCacheAndAbort();
-  TestGraphEngine(grid);
+  TestGraphEngine(grid, 0.0);
+  TestGraphEngine(grid, 1e-2);
   TestIsoCurveMode(grid);
   TestCurveSource(grid);
   if (Failures > 0)

@@ -374,6 +374,22 @@ int main(int, char*[])
     run.Update();
     Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() > 0, "K = 0", "exact charts should work");
   }
+  {
+    // Charts on a discrete geodesic graph: shapes, none overlapping by the drawn check.
+    Run run(Plane(8), tables);
+    run.Filter->SetGraphAccuracy(0.02);
+    run.Filter->SetVerifyOverlaps(true);
+    run.Update();
+    vtkDataArray* pairs = run.Out(0)->GetFieldData()->GetArray("OverlappingPairs");
+    Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() > 0 && pairs &&
+        pairs->GetTuple1(0) == 0.0,
+      "GraphAccuracy", "charts on a discrete geodesic graph should work without overlaps");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetGraphAccuracy(0.5);
+    ExpectError(run, "graph accuracy out of range", "accuracy");
+  }
   // 6. Abort: empty outputs, no error.
   {
     Run run(Plane(30), tables);
