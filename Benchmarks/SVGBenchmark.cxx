@@ -2,9 +2,11 @@
 // accuracy against the exact solver for K = 50, 100, 200, and single-source speed of the
 // label-correcting and Dijkstra graph solvers against the exact solver, in the same run.
 //
-//   SVGBenchmark mesh.off|mesh.ply [...] [--k 50,100,200] [--sources N] [--threads T]
+//   SVGBenchmark mesh.off|mesh.ply [...] [--k 50,100,200] [--dgg 1e-2,1e-3] [--sources N]
+//                [--threads T] [--subdivide S (midpoint subdivisions of each mesh first)]
 #include "BenchmarkSupport.h"
 #include "ExactGeodesic.h"
+#include "MeshGenerators.h"
 #include "MeshIO.h"
 #include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
@@ -51,7 +53,7 @@ int main(int argc, char** argv)
   std::vector<std::string> files;
   std::vector<int> ks = { 50, 100, 200 };
   std::vector<double> accuracies; // discrete geodesic graphs
-  int numSources = 5, threads = 0;
+  int numSources = 5, threads = 0, subdivisions = 0;
   double maxError = 0.0; // > 0: exit 1 when the refined mean error exceeds it (a test)
   bool failed = false;
   for (int i = 1; i < argc; ++i)
@@ -74,13 +76,16 @@ int main(int argc, char** argv)
     }
     else if (a == "--sources" && i + 1 < argc)
       numSources = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--subdivide" && i + 1 < argc)
+      subdivisions = std::max(0, std::atoi(argv[++i]));
     else if (a == "--threads" && i + 1 < argc)
       threads = std::atoi(argv[++i]);
     else if (a == "--max-error" && i + 1 < argc)
       maxError = std::atof(argv[++i]);
     else if (a == "--help" || a == "-h")
     {
-      std::printf("usage: %s mesh [...] [--k 50,100,200] [--sources N] [--threads T] "
+      std::printf("usage: %s mesh [...] [--k 50,100,200] [--dgg 1e-2,1e-3] [--sources N] "
+                  "[--threads T] [--subdivide S] "
                   "[--max-error E (exit 1 when the mean error exceeds E)]\n",
         argv[0]);
       return 0;
@@ -107,6 +112,8 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "%s\n", error.c_str());
       continue;
     }
+    for (int level = 0; level < subdivisions; ++level)
+      soup = SubdivideAtMidpoints(soup);
     MeshBuildResult r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
     if (!r.Ok)
     {
@@ -157,7 +164,6 @@ int main(int argc, char** argv)
     for (SaddleVertexGraphOptions opt : configurations)
     {
       const bool dgg = opt.Construction == GraphConstruction::DiscreteGeodesic;
-      const int k = dgg ? 0 : opt.K;
       SaddleVertexGraph g;
       opt.NumberOfThreads = threads;
       // Peak memory of the build: the process's peak resident size is reset first (Linux).
@@ -170,7 +176,7 @@ int main(int argc, char** argv)
       }
       const double peakPerVertex = (StatusBytes("VmHWM:") - rssBefore) / nv;
       const double keptPerVertex = static_cast<double>(g.MemoryBytes()) / nv;
-      const double estimatePerVertex = SaddleVertexGraph::EstimatedBuildBytes(nv, k) / nv;
+      const double estimatePerVertex = SaddleVertexGraph::EstimatedBuildBytes(nv, opt) / nv;
 #ifdef _OPENMP
       const int cores = threads > 0 ? threads : omp_get_max_threads();
 #else
