@@ -12,13 +12,7 @@ namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
 using window_geometry::Hypot;
-using window_geometry::RayHit;
 
-template <class Entry>
-bool QueueOrder(const Entry& a, const Entry& b)
-{
-  return a.Key > b.Key;
-}
 // Whether the segment from anchor a to (x, y) (beyond the edge, y >= 0) crosses the edge's line
 // within [b0, b1] (up to `slack`).
 template <class Anchor>
@@ -52,30 +46,8 @@ void InheritAnchors(const Window& w, Window& c, const Frame& frame, double slack
 DGGPropagation::DGGPropagation(const TriangleMesh& mesh)
   : M(mesh)
 {
-  const int nh = M.NumberOfHalfedges();
-  Cx.resize(nh);
-  Cy.resize(nh);
-  for (int h = 0; h < nh; ++h)
-  {
-    const double b = M.EdgeLength(TriangleMesh::Prev(h));
-    const double a = M.CornerAngle(h);
-    Cx[h] = b * std::cos(a);
-    Cy[h] = b * std::sin(a);
-  }
+  window_geometry::HalfedgeFrames(M, Cx, Cy, FanAngle);
   const int nv = M.NumberOfVertices();
-  FanAngle.assign(nh, 0.0);
-  for (int v = 0; v < nv; ++v)
-  {
-    const int start = M.VertexHalfedge(v);
-    double angle = 0.0;
-    int h = start;
-    do
-    {
-      FanAngle[h] = angle;
-      angle += M.CornerAngle(h);
-      h = M.RotateCCW(h);
-    } while (h >= 0 && h != start);
-  }
   Dist.assign(nv, Inf);
   IsCovered.assign(nv, 0);
   Angle.assign(nv, 0.0);
@@ -93,9 +65,7 @@ void DGGPropagation::Reset()
     CrossHalfedge[v] = -1;
   }
   Touched.clear();
-  Queue.clear();
-  Pool.clear();
-  FreeSlots.clear();
+  Queue.Clear();
   Stats = DGGStatistics();
 }
 
@@ -208,21 +178,30 @@ bool DGGPropagation::Covered(const Window& w, double epsilon) const
   };
   // Most windows are not covered: rejected by one sample, the interval's middle. Otherwise the
   // two anchors with the most slack there are tried.
-  int order[MaxAnchors];
-  double atMiddle[MaxAnchors];
+  int best0 = 0, best1 = -1;
   {
     const double mid = 0.5 * (w.B0 + w.B1);
+    double atMiddle[MaxAnchors] = {};
     for (int k = 0; k < n; ++k)
     {
       atMiddle[k] = slack(k, mid);
-      order[k] = k;
+      if (atMiddle[k] > atMiddle[best0])
+      {
+        best0 = k;
+      }
     }
-    std::sort(order, order + n, [&](int a, int b) { return atMiddle[a] > atMiddle[b]; });
-    if (!(atMiddle[order[0]] >= 0.0))
+    for (int k = 0; k < n; ++k)
+    {
+      if (k != best0 && (best1 < 0 || atMiddle[k] > atMiddle[best1]))
+      {
+        best1 = k;
+      }
+    }
+    if (!(atMiddle[best0] >= 0.0))
     {
       return false;
     }
-    const Anchor best[2] = { anchors[order[0]], anchors[order[n > 1 ? 1 : 0]] };
+    const Anchor best[2] = { anchors[best0], anchors[best1 >= 0 ? best1 : best0] };
     n = std::min(n, 2);
     std::copy(best, best + n, anchors);
   }
@@ -300,20 +279,7 @@ void DGGPropagation::Push(Window& w, double epsilon)
     ++Stats.WindowsCovered;
     return;
   }
-  int slot;
-  if (!FreeSlots.empty())
-  {
-    slot = FreeSlots.back();
-    FreeSlots.pop_back();
-    Pool[slot] = w;
-  }
-  else
-  {
-    slot = static_cast<int>(Pool.size());
-    Pool.push_back(w);
-  }
-  Queue.push_back({ w.Key, slot });
-  std::push_heap(Queue.begin(), Queue.end(), QueueOrder<QueueEntry>);
+  Queue.Push(w);
 }
 
 void DGGPropagation::Propagate(const Window& w, double epsilon)
@@ -356,51 +322,36 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
       }
     }
   }
-  if (left)
-  {
-    const int t = M.Twin(TriangleMesh::Prev(h));
-    if (t >= 0)
+  // The children through A -> C (left) and C -> B (right), with the anchors they keep.
+  auto child = [&](int t, const auto& frame, double length, bool wholeLow, bool wholeHigh,
+                 double turn) {
+    const window_geometry::ChildWindow made =
+      window_geometry::MakeChild(frame, length, ix, iy, w.B0, w.B1, wholeLow, wholeHigh);
+    if (!(made.B1 > made.B0))
     {
-      const double b = M.EdgeLength(t);
-      const window_geometry::LeftFrame frame(cx, cy, b);
-      Window c;
-      c.Ix = frame.X(ix, iy);
-      c.Iy = std::min(frame.Y(ix, iy), -1e-12 * b);
-      c.B0 = RayHit(c.Ix, c.Iy, frame.X(w.B0, 0.0), frame.Y(w.B0, 0.0), 0.0);
-      c.B1 = right ? b : RayHit(c.Ix, c.Iy, frame.X(w.B1, 0.0), frame.Y(w.B1, 0.0), b);
-      c.B0 = std::min(std::max(c.B0, 0.0), b);
-      c.B1 = std::min(std::max(c.B1, 0.0), b);
-      if (c.B1 > c.B0)
-      {
-        c.H = t;
-        c.Phi = w.Phi + std::atan2(cy, cx);
-        InheritAnchors(w, c, frame, cover);
-        Push(c, epsilon);
-      }
+      return;
     }
+    Window c;
+    c.Ix = made.Ix;
+    c.Iy = made.Iy;
+    c.B0 = made.B0;
+    c.B1 = made.B1;
+    c.H = t;
+    c.Phi = w.Phi + turn;
+    InheritAnchors(w, c, frame, cover);
+    Push(c, epsilon);
+  };
+  const int leftEdge = M.Twin(TriangleMesh::Prev(h)), rightEdge = M.Twin(TriangleMesh::Next(h));
+  if (left && leftEdge >= 0)
+  {
+    const double b = M.EdgeLength(leftEdge);
+    child(leftEdge, window_geometry::LeftFrame(cx, cy, b), b, false, right, std::atan2(cy, cx));
   }
-  if (right)
+  if (right && rightEdge >= 0)
   {
-    const int t = M.Twin(TriangleMesh::Next(h));
-    if (t >= 0)
-    {
-      const double a = M.EdgeLength(t);
-      const window_geometry::RightFrame frame(cx, cy, L, a);
-      Window c;
-      c.Ix = frame.X(ix, iy);
-      c.Iy = std::min(frame.Y(ix, iy), -1e-12 * a);
-      c.B0 = left ? 0.0 : RayHit(c.Ix, c.Iy, frame.X(w.B0, 0.0), frame.Y(w.B0, 0.0), 0.0);
-      c.B1 = RayHit(c.Ix, c.Iy, frame.X(w.B1, 0.0), frame.Y(w.B1, 0.0), a);
-      c.B0 = std::min(std::max(c.B0, 0.0), a);
-      c.B1 = std::min(std::max(c.B1, 0.0), a);
-      if (c.B1 > c.B0)
-      {
-        c.H = t;
-        c.Phi = w.Phi + std::atan2(-cy, L - cx);
-        InheritAnchors(w, c, frame, cover);
-        Push(c, epsilon);
-      }
-    }
+    const double a = M.EdgeLength(rightEdge);
+    child(rightEdge, window_geometry::RightFrame(cx, cy, L, a), a, left, false,
+      std::atan2(-cy, L - cx));
   }
 }
 
@@ -440,18 +391,14 @@ bool DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::i
   } while (h >= 0 && h != start);
 
   bool complete = true;
-  while (!Queue.empty())
+  while (!Queue.Empty())
   {
     if (maxWindows > 0 && Stats.WindowsPropagated >= maxWindows)
     {
       complete = false;
       break;
     }
-    std::pop_heap(Queue.begin(), Queue.end(), QueueOrder<QueueEntry>);
-    const int slot = Queue.back().Slot;
-    Queue.pop_back();
-    FreeSlots.push_back(slot);
-    Window w = Pool[slot];
+    Window w = Queue.Pop();
     // Vertex distances may have dropped since the window was queued.
     if (Trim(w))
     {

@@ -27,6 +27,7 @@
 #pragma once
 
 #include "TriangleMesh.h"
+#include "WindowGeometry.h"
 
 #include <cstdint>
 #include <limits>
@@ -79,11 +80,6 @@ private:
     int H;
   };
   static void AddAnchor(Window& w, double x, double y);
-  struct QueueEntry
-  {
-    double Key;
-    int Slot;
-  };
 
   void Reset();
   void Reach(int v, double d, bool covered, double angle, int via, double crossing);
@@ -101,9 +97,7 @@ private:
   std::vector<int> CrossHalfedge;
   std::vector<double> CrossX;
   std::vector<int> Touched;
-  std::vector<Window> Pool;
-  std::vector<int> FreeSlots;
-  std::vector<QueueEntry> Queue;
+  window_geometry::WindowQueue<Window> Queue;
   double Tolerance = 0.0;
   DGGStatistics Stats;
 };

@@ -11,38 +11,14 @@ namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
 using window_geometry::Hypot;
-using window_geometry::RayHit;
 using window_geometry::SegmentDistance;
 } // namespace
 
 ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
   : M(mesh)
 {
-  const int nh = M.NumberOfHalfedges();
-  Cx.resize(nh);
-  Cy.resize(nh);
-  for (int h = 0; h < nh; ++h)
-  {
-    // The opposite vertex C seen from Origin(h): |AC| at the corner angle of A.
-    const double b = M.EdgeLength(TriangleMesh::Prev(h));
-    const double a = M.CornerAngle(h);
-    Cx[h] = b * std::cos(a);
-    Cy[h] = b * std::sin(a);
-  }
+  window_geometry::HalfedgeFrames(M, Cx, Cy, FanAngle);
   const int nv = M.NumberOfVertices();
-  FanAngle.assign(nh, 0.0);
-  for (int v = 0; v < nv; ++v)
-  {
-    const int start = M.VertexHalfedge(v);
-    double angle = 0.0;
-    int h = start;
-    do
-    {
-      FanAngle[h] = angle;
-      angle += M.CornerAngle(h);
-      h = M.RotateCCW(h);
-    } while (h >= 0 && h != start);
-  }
   InAngle.assign(nv, LazyAngle());
   Departure.assign(nv, LazyAngle());
   Root.assign(nv, -1);
@@ -72,9 +48,7 @@ void ExactGeodesicSolver::Reset()
   }
   Touched.clear();
   FinalOrder.clear();
-  Queue.clear();
-  Pool.clear();
-  FreeSlots.clear();
+  Queue.Clear();
   VertexQueue.clear();
   Stats = ExactGeodesicStatistics();
 }
@@ -154,29 +128,12 @@ bool ExactGeodesicSolver::Trim(Window& w) const
 
 void ExactGeodesicSolver::Enqueue(const Window& w)
 {
-  int slot;
-  if (!FreeSlots.empty())
-  {
-    slot = FreeSlots.back();
-    FreeSlots.pop_back();
-    Pool[slot] = w;
-  }
-  else
-  {
-    slot = static_cast<int>(Pool.size());
-    Pool.push_back(w);
-  }
-  Queue.push_back({ w.Key, slot });
-  std::push_heap(Queue.begin(), Queue.end(), EntryOrder());
+  Queue.Push(w);
 }
 
 ExactGeodesicSolver::Window ExactGeodesicSolver::Dequeue()
 {
-  std::pop_heap(Queue.begin(), Queue.end(), EntryOrder());
-  const int slot = Queue.back().Slot;
-  Queue.pop_back();
-  FreeSlots.push_back(slot);
-  return Pool[slot];
+  return Queue.Pop();
 }
 
 void ExactGeodesicSolver::PushWindow(Window w)
@@ -188,7 +145,7 @@ void ExactGeodesicSolver::PushWindow(Window w)
   }
   Enqueue(w);
   Stats.MaximumQueueSize =
-    std::max<std::int64_t>(Stats.MaximumQueueSize, static_cast<std::int64_t>(Queue.size()));
+    std::max<std::int64_t>(Stats.MaximumQueueSize, static_cast<std::int64_t>(Queue.Size()));
 }
 
 void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
@@ -408,13 +365,13 @@ void ExactGeodesicSolver::Propagate(Window w)
       // New frame: origin A, x along A -> C.
       const double b = M.EdgeLength(t);
       const window_geometry::LeftFrame frame(cx, cy, b);
+      const window_geometry::ChildWindow child =
+        window_geometry::MakeChild(frame, b, ix, iy, w.B0, w.B1, false, right);
       Window c;
-      c.Ix = frame.X(ix, iy);
-      c.Iy = std::min(frame.Y(ix, iy), -1e-12 * b);
-      c.B0 = RayHit(c.Ix, c.Iy, frame.X(w.B0, 0.0), frame.Y(w.B0, 0.0), 0.0);
-      c.B1 = right ? b : RayHit(c.Ix, c.Iy, frame.X(w.B1, 0.0), frame.Y(w.B1, 0.0), b);
-      c.B0 = std::min(std::max(c.B0, 0.0), b);
-      c.B1 = std::min(std::max(c.B1, 0.0), b);
+      c.Ix = child.Ix;
+      c.Iy = child.Iy;
+      c.B0 = child.B0;
+      c.B1 = child.B1;
       if (c.B1 > c.B0)
       {
         c.H = t;
@@ -434,13 +391,13 @@ void ExactGeodesicSolver::Propagate(Window w)
       // New frame: origin C, x along C -> B.
       const double a = M.EdgeLength(t);
       const window_geometry::RightFrame frame(cx, cy, L, a);
+      const window_geometry::ChildWindow child =
+        window_geometry::MakeChild(frame, a, ix, iy, w.B0, w.B1, left, false);
       Window c;
-      c.Ix = frame.X(ix, iy);
-      c.Iy = std::min(frame.Y(ix, iy), -1e-12 * a);
-      c.B0 = left ? 0.0 : RayHit(c.Ix, c.Iy, frame.X(w.B0, 0.0), frame.Y(w.B0, 0.0), 0.0);
-      c.B1 = RayHit(c.Ix, c.Iy, frame.X(w.B1, 0.0), frame.Y(w.B1, 0.0), a);
-      c.B0 = std::min(std::max(c.B0, 0.0), a);
-      c.B1 = std::min(std::max(c.B1, 0.0), a);
+      c.Ix = child.Ix;
+      c.Iy = child.Iy;
+      c.B0 = child.B0;
+      c.B1 = child.B1;
       if (c.B1 > c.B0)
       {
         c.H = t;
@@ -558,7 +515,7 @@ bool ExactGeodesicSolver::Solve(
   }
 
   bool truncated = false;
-  while (!Queue.empty())
+  while (!Queue.Empty())
   {
     Window w = Dequeue();
     if (w.Key > maxDistance)

@@ -17,6 +17,7 @@
 
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
+#include "WindowGeometry.h"
 
 #include <cmath>
 #include <cstdint>
@@ -107,7 +108,6 @@ private:
     int Src;       // PathOrigin code of the pseudo-source
     int Root;      // index of the source the window's paths start from
   };
-  // The queue orders small (key, slot) entries; windows stay in a pool with a free list.
   // An angle kept as Base + atan2(Y, X), evaluated only when asked for: every window that
   // improves a vertex would otherwise pay for trigonometry it rarely needs.
   struct LazyAngle
@@ -117,16 +117,6 @@ private:
     static LazyAngle Exactly(double a) { return { a, 1.0, 0.0 }; }
     double Value() const { return Y == 0.0 && X > 0.0 ? Base : Base + std::atan2(Y, X); }
   };
-  struct QueueEntry
-  {
-    double Key;
-    int Slot;
-  };
-  struct EntryOrder
-  {
-    bool operator()(const QueueEntry& a, const QueueEntry& b) const { return a.Key > b.Key; }
-  };
-
   void Reset();
   // inAngle: direction (in v's fan, see FanAngle) towards where the path comes from; NaN if
   // unknown. It limits which directions v spreads into when it becomes a pseudo-source.
@@ -159,9 +149,7 @@ private:
   std::vector<unsigned char> Propagated; // pseudo-source vertex already spread its windows
   std::vector<int> Touched;
   std::vector<int> FinalOrder;
-  std::vector<Window> Pool;
-  std::vector<int> FreeSlots;
-  std::vector<QueueEntry> Queue; // binary heap
+  window_geometry::WindowQueue<Window> Queue;
   struct VertexKey
   {
     double D;

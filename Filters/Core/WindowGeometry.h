@@ -3,9 +3,12 @@
 // its unfolded source I below the edge; it crosses face(H), whose opposite vertex is C.
 #pragma once
 
+#include "TriangleMesh.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace gs
 {
@@ -73,6 +76,114 @@ struct RightFrame
   double Y(double px, double py) const { return Ux * (py - Cy) - Uy * (px - Cx); }
   double EdgeX(double t) const { return Cx + t * Ux; }
   double EdgeY(double t) const { return Cy + t * Uy; }
+};
+
+// Per half-edge h: the opposite vertex in h's frame (cx, cy), and h's direction about its origin
+// (counter-clockwise from the origin's VertexHalfedge, 0 .. total angle).
+inline void HalfedgeFrames(const TriangleMesh& mesh, std::vector<double>& cx,
+  std::vector<double>& cy, std::vector<double>& fanAngle)
+{
+  const int nh = mesh.NumberOfHalfedges();
+  cx.resize(nh);
+  cy.resize(nh);
+  for (int h = 0; h < nh; ++h)
+  {
+    // The opposite vertex C seen from Origin(h): |AC| at the corner angle of A.
+    const double b = mesh.EdgeLength(TriangleMesh::Prev(h));
+    const double a = mesh.CornerAngle(h);
+    cx[h] = b * std::cos(a);
+    cy[h] = b * std::sin(a);
+  }
+  fanAngle.assign(nh, 0.0);
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+  {
+    const int start = mesh.VertexHalfedge(v);
+    double angle = 0.0;
+    int h = start;
+    do
+    {
+      fanAngle[h] = angle;
+      angle += mesh.CornerAngle(h);
+      h = mesh.RotateCCW(h);
+    } while (h >= 0 && h != start);
+  }
+}
+
+// A child window: the rays of a window (source (ix, iy), interval [b0, b1]) that leave face(H)
+// through the new edge of `frame` (length `length`), in that edge's frame. `wholeLow` /
+// `wholeHigh`: the child reaches that end of the new edge (the parent's rays pass on both sides
+// of C). Empty when B1 <= B0.
+struct ChildWindow
+{
+  double Ix, Iy, B0, B1;
+};
+template <class Frame>
+ChildWindow MakeChild(const Frame& frame, double length, double ix, double iy, double b0,
+  double b1, bool wholeLow, bool wholeHigh)
+{
+  ChildWindow c;
+  c.Ix = frame.X(ix, iy);
+  c.Iy = std::min(frame.Y(ix, iy), -1e-12 * length);
+  c.B0 = wholeLow ? 0.0 : RayHit(c.Ix, c.Iy, frame.X(b0, 0.0), frame.Y(b0, 0.0), 0.0);
+  c.B1 = wholeHigh ? length : RayHit(c.Ix, c.Iy, frame.X(b1, 0.0), frame.Y(b1, 0.0), length);
+  c.B0 = std::min(std::max(c.B0, 0.0), length);
+  c.B1 = std::min(std::max(c.B1, 0.0), length);
+  return c;
+}
+
+// Windows by increasing Key: a binary heap of small (key, slot) entries over a pool of windows
+// with a free list (the windows themselves never move in the heap).
+template <class Window>
+class WindowQueue
+{
+public:
+  void Push(const Window& w)
+  {
+    int slot;
+    if (!FreeSlots.empty())
+    {
+      slot = FreeSlots.back();
+      FreeSlots.pop_back();
+      Pool[slot] = w;
+    }
+    else
+    {
+      slot = static_cast<int>(Pool.size());
+      Pool.push_back(w);
+    }
+    Heap.push_back({ w.Key, slot });
+    std::push_heap(Heap.begin(), Heap.end(), Order());
+  }
+  Window Pop()
+  {
+    std::pop_heap(Heap.begin(), Heap.end(), Order());
+    const int slot = Heap.back().Slot;
+    Heap.pop_back();
+    FreeSlots.push_back(slot);
+    return Pool[slot];
+  }
+  bool Empty() const { return Heap.empty(); }
+  std::size_t Size() const { return Heap.size(); }
+  void Clear()
+  {
+    Heap.clear();
+    Pool.clear();
+    FreeSlots.clear();
+  }
+
+private:
+  struct Entry
+  {
+    double Key;
+    int Slot;
+  };
+  struct Order
+  {
+    bool operator()(const Entry& a, const Entry& b) const { return a.Key > b.Key; }
+  };
+  std::vector<Window> Pool;
+  std::vector<int> FreeSlots;
+  std::vector<Entry> Heap;
 };
 
 // Cuts from [b0, b1] the points p = (t, 0) reached at least as short through an end point of
