@@ -19,14 +19,14 @@ namespace
 constexpr double Pi = 3.14159265358979323846;
 constexpr double TwoPi = 2.0 * Pi;
 
-bool ValidSymmetry(int n, std::string& error)
+Status CheckSymmetry(int n)
 {
   if (n != 1 && n != 2 && n != 4)
   {
-    error = "symmetry must be 1, 2 or 4 (got " + std::to_string(n) + ")";
-    return false;
+    return Status::Error("Symmetry must be 1 (vector field), 2 (line field) or 4 (cross field); "
+                         "it is " + std::to_string(n));
   }
-  return true;
+  return Status();
 }
 
 double WrapPi(double a)
@@ -475,19 +475,18 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
   return norm > 0 ? Eigen::VectorXd(ritz * std::sqrt(area) / norm) : ritz;
 }
 
-bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
-  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-  std::string& error)
+Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
   const int nf = M.NumberOfFaces();
-  if (!ValidSymmetry(n, error))
+  if (Status symmetry = CheckSymmetry(n); !symmetry.Ok())
   {
-    return false;
+    return symmetry;
   }
   if (!(alignment >= 0.0) || !std::isfinite(alignment))
   {
-    error = "curvature alignment weight must be finite and >= 0";
-    return false;
+    return Status::Error(
+      "CurvatureAlignment must be finite and >= 0 (it is " + std::to_string(alignment) + ")");
   }
   if (n == 1)
   {
@@ -495,8 +494,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   }
   if (nf == 0)
   {
-    error = "empty mesh";
-    return false;
+    return Status::Error("empty mesh");
   }
   // Constrained faces and their values exp(i N angle); repeated faces average their constraints.
   std::vector<double> cre(nf, 0.0), cim(nf, 0.0);
@@ -505,15 +503,13 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   {
     if (c.Face < 0 || c.Face >= nf || !IsFinite(c.Direction))
     {
-      error = "invalid direction constraint (face " + std::to_string(c.Face) + ")";
-      return false;
+      return Status::Error("invalid direction constraint (face " + std::to_string(c.Face) + ")");
     }
     const double a = AngleInFace(c.Face, c.Direction);
     const double x = Dot(c.Direction, BasisX[c.Face]), y = Dot(c.Direction, BasisY[c.Face]);
     if (std::hypot(x, y) <= 0.0)
     {
-      error = "direction constraint normal to its face " + std::to_string(c.Face);
-      return false;
+      return Status::Error("direction constraint normal to its face " + std::to_string(c.Face));
     }
     cre[c.Face] += std::cos(n * a);
     cim[c.Face] += std::sin(n * a);
@@ -527,8 +523,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
       const double l = std::hypot(cre[f], cim[f]);
       if (l < 1e-12)
       {
-        error = "contradictory direction constraints in face " + std::to_string(f);
-        return false;
+        return Status::Error("contradictory direction constraints in face " + std::to_string(f));
       }
       cre[f] /= l;
       cim[f] /= l;
@@ -639,8 +634,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     if (nfree > 0 && Cache->Solver.info() != Eigen::Success)
     {
       Cache.reset();
-      error = "factorization of the connection Laplacian failed";
-      return false;
+      return Status::Error("factorization of the connection Laplacian failed");
     }
   }
 
@@ -763,8 +757,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     }
     if (!u.allFinite())
     {
-      error = "direction field solve produced non-finite values";
-      return false;
+      return Status::Error("direction field solve produced non-finite values");
     }
   }
   angles.assign(nf, 0.0);
@@ -775,7 +768,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     const double y = i >= 0 ? u[2 * i + 1] : cim[f];
     angles[f] = std::atan2(y, x) / n;
   }
-  return true;
+  return Status();
 }
 
 namespace
@@ -791,33 +784,29 @@ int Find(std::vector<int>& parent, int a)
 }
 } // namespace
 
-bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
-  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-  std::string& error)
+Status DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
   const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
-  if (!ValidSymmetry(n, error))
+  if (Status symmetry = CheckSymmetry(n); !symmetry.Ok())
   {
-    return false;
+    return symmetry;
   }
   if (nf == 0)
   {
-    error = "empty mesh";
-    return false;
+    return Status::Error("empty mesh");
   }
   std::vector<double> index(nv, 0.0);
   for (const VertexSingularity& s : singularities)
   {
     if (s.Vertex < 0 || s.Vertex >= nv || !std::isfinite(s.Index))
     {
-      error = "invalid singularity (vertex " + std::to_string(s.Vertex) + ")";
-      return false;
+      return Status::Error("invalid singularity (vertex " + std::to_string(s.Vertex) + ")");
     }
     if (std::abs(s.Index * n - std::round(s.Index * n)) > 1e-6)
     {
-      error = "singularity index " + std::to_string(s.Index) + " at vertex " +
-        std::to_string(s.Vertex) + " is not a multiple of 1/" + std::to_string(n);
-      return false;
+      return Status::Error("singularity index " + std::to_string(s.Index) + " at vertex " +
+        std::to_string(s.Vertex) + " is not a multiple of 1/" + std::to_string(n));
     }
     index[s.Vertex] += std::round(s.Index * n) / n;
   }
@@ -826,8 +815,7 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
     if (c.Face < 0 || c.Face >= nf || !IsFinite(c.Direction) ||
       std::hypot(Dot(c.Direction, BasisX[c.Face]), Dot(c.Direction, BasisY[c.Face])) <= 0.0)
     {
-      error = "invalid direction constraint (face " + std::to_string(c.Face) + ")";
-      return false;
+      return Status::Error("invalid direction constraint (face " + std::to_string(c.Face) + ")");
     }
   }
   // A face constrained twice keeps its first constraint.
@@ -843,12 +831,11 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
       }
     }
   }
-  return SolvePrescribedUnique(n, index, unique, angles, error);
+  return SolvePrescribedUnique(n, index, unique, angles);
 }
 
-bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double>& index,
-  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-  std::string& error)
+Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double>& index,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
   const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices(), nh = M.NumberOfHalfedges();
   std::vector<int> constrainedFaces;
@@ -1088,8 +1075,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     cf->Solver.compute(k);
     if (cf->Solver.info() != Eigen::Success)
     {
-      error = "factorization of the trivial-connection system failed";
-      return false;
+      return Status::Error("factorization of the trivial-connection system failed");
     }
     cf->ComponentEuler.assign(ncomp, 0.0);
     for (int v = 0; v < nv; ++v)
@@ -1125,8 +1111,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
         "(boundary vertices count the field's turning against the boundary)",
         sum[c], cf.ComponentEuler[c],
         sum.size() > 1 ? (" of connected component " + std::to_string(c)).c_str() : "");
-      error = buffer;
-      return false;
+      return Status::Error(buffer);
     }
   }
   // Right-hand side.
@@ -1169,9 +1154,9 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
   const double residual = (cf.C * x - b).norm();
   if (!x.allFinite() || residual > 1e-7 * (1.0 + b.norm()))
   {
-    error = "the singularities and direction constraints are incompatible (a constraint crosses a "
-            "singularity or two constraints disagree): residual " + std::to_string(residual);
-    return false;
+    return Status::Error("the singularities and direction constraints are incompatible (a "
+                         "constraint crosses a singularity or two constraints disagree): residual " +
+      std::to_string(residual));
   }
   // Transport over the dual tree, then rotate each component onto its first constraint.
   angles.assign(nf, 0.0);
@@ -1200,7 +1185,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
   {
     angles[f] = WrapPi(angles[f] + shift[M.FaceComponent(f)]);
   }
-  return true;
+  return Status();
 }
 
 
