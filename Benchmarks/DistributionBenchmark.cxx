@@ -193,12 +193,12 @@ std::vector<Vec2> Pentagram()
 // Scaled to circumradius 1, so that every class has the same size.
 bool ShapeFromImage(const std::string& file, Shape2D& shape)
 {
-  SilhouetteReadResult r = ReadSilhouetteImage(file);
-  if (!r.Ok)
+  Result<SilhouetteImage> r = ReadSilhouetteImage(file);
+  if (!r.Ok())
   {
     return false;
   }
-  shape = ShapeFromMask(r.Mask);
+  shape = ShapeFromMask(r->Mask);
   std::vector<Vec2> all;
   for (const auto& ring : shape.Rings)
     all.insert(all.end(), ring.begin(), ring.end());
@@ -214,13 +214,13 @@ SafeDistanceTables Tables(const std::vector<SafeDistanceInput>& in)
   SafeDistanceOptions o;
   o.AngleBins = 64;
   o.DistanceSteps = 64;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  if (!r.Ok)
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  if (!r.Ok())
   {
-    std::fprintf(stderr, "tables: %s\n", r.Error.c_str());
+    std::fprintf(stderr, "tables: %s\n", r.Message().c_str());
     std::exit(1);
   }
-  return r.Tables;
+  return *r;
 }
 
 

@@ -31,9 +31,9 @@ SafeDistanceTables StarAndTile()
   in.push_back({ "tile", ShapeFromPolygons({ tile }) });
   SafeDistanceOptions o;
   o.AngleBins = 32;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return *r;
 }
 
 SafeDistanceTables Shrunk(SafeDistanceTables t, double factor)
@@ -170,9 +170,9 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
   std::vector<SafeDistanceInput> in;
   for (const char* name : { "star", "gull", "leaf", "fish" })
   {
-    SilhouetteReadResult image = ReadSilhouetteImage(std::string(GS_TEST_DATA_DIR) + "/shapes/" + name + ".png");
-    ASSERT_TRUE(image.Ok) << name;
-    Shape2D shape = ShapeFromMask(image.Mask);
+    Result<SilhouetteImage> image = ReadSilhouetteImage(std::string(GS_TEST_DATA_DIR) + "/shapes/" + name + ".png");
+    ASSERT_TRUE(image.Ok()) << name;
+    Shape2D shape = ShapeFromMask(image->Mask);
     std::vector<Vec2> all;
     for (const auto& ring : shape.Rings)
       all.insert(all.end(), ring.begin(), ring.end());
@@ -185,8 +185,8 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
   SafeDistanceOptions so;
   so.AngleBins = 64;
   so.DistanceSteps = 64;
-  SafeDistanceResult tables = ComputeSafeDistanceTables(in, so);
-  ASSERT_TRUE(tables.Ok) << tables.Error;
+  Result<SafeDistanceTables> tables = ComputeSafeDistanceTables(in, so);
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
   const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
   int oracleWithout = 0, oracleWith = 0, checkWithout = 0, checkWith = 0;
   std::size_t shapesWithout = 0, shapesWith = 0;
@@ -199,9 +199,9 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
       o.Seed = seed;
       o.DrawnCheck = drawn;
       ShapeDistributor d(mesh, &graph);
-      const ShapeDistributionResult r = d.Run(tables.Tables, directions, {}, o);
+      const ShapeDistributionResult r = d.Run(*tables, directions, {}, o);
       ASSERT_TRUE(r.Ok) << r.Error;
-      const int oracle = gs_test::CountSurfaceOverlaps(mesh, tables.Tables, d, o.ShapeSize, 0.02);
+      const int oracle = gs_test::CountSurfaceOverlaps(mesh, *tables, d, o.ShapeSize, 0.02);
       (drawn ? oracleWith : oracleWithout) += oracle;
       (drawn ? shapesWith : shapesWithout) += r.Shapes.size();
       // VerifyOverlaps' check, which also reads long shapes through their frames (pairs of two
@@ -254,14 +254,14 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
   std::vector<SafeDistanceInput> in;
   in.push_back({ "star", ShapeFromPolygons({ MakeStarPolygon(5, 1.0, 0.4) }) });
   in.push_back({ "banana", ShapeFromPolygons({ banana }) });
-  const SafeDistanceResult tables = ComputeSafeDistanceTables(in);
-  ASSERT_TRUE(tables.Ok) << tables.Error;
+  const Result<SafeDistanceTables> tables = ComputeSafeDistanceTables(in);
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
   ShapeDistributor d(mesh);
   ShapeDistributionOptions o;
   o.ShapeSize = 0.04;
   o.Seed = 4;
   o.MaximumShapes = 600;
-  const ShapeDistributionResult r = d.Run(tables.Tables, directions, {}, o);
+  const ShapeDistributionResult r = d.Run(*tables, directions, {}, o);
   ASSERT_TRUE(r.Ok) << r.Error;
   int longShapes = 0, folded = 0;
   for (int s = 0; s < static_cast<int>(r.Shapes.size()); ++s)

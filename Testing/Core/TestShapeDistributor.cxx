@@ -38,9 +38,9 @@ SafeDistanceTables Tables(const std::vector<std::vector<Vec2>>& classes, int bin
   o.AngleBins = bins;
   o.DistanceSteps = 64;
   o.Rows = 512;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return *r;
 }
 
 struct Plane

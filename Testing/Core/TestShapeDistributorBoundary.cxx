@@ -57,9 +57,9 @@ SafeDistanceTables StarAndTile(int bins)
   in.push_back({ "tile", ShapeFromPolygons({ tile }) });
   SafeDistanceOptions o;
   o.AngleBins = bins;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return *r;
 }
 
 // The class outline of shape s placed rigidly in the plane (its circle centre at the shape's
@@ -234,9 +234,9 @@ TEST(ShapeDistributorBoundary, LongBentShapesOverTheBoundaryDoNotOverlap)
   in.push_back({ "banana", ShapeFromPolygons({ banana }) });
   SafeDistanceOptions so;
   so.AngleBins = 64;
-  SafeDistanceResult tables = ComputeSafeDistanceTables(in, so);
-  ASSERT_TRUE(tables.Ok) << tables.Error;
-  ASSERT_GT(tables.Tables.Classes[1].Parts.size(), 1u);
+  Result<SafeDistanceTables> tables = ComputeSafeDistanceTables(in, so);
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
+  ASSERT_GT(tables->Classes[1].Parts.size(), 1u);
   std::vector<Vec3> directions(mesh.NumberOfFaces());
   for (int f = 0; f < mesh.NumberOfFaces(); ++f)
   {
@@ -255,11 +255,11 @@ TEST(ShapeDistributorBoundary, LongBentShapesOverTheBoundaryDoNotOverlap)
       o.MaximalFailures = 2000;
       o.DrawnCheck = drawnCheck;
       ShapeDistributor d(mesh);
-      const ShapeDistributionResult r = d.Run(tables.Tables, directions, {}, o);
+      const ShapeDistributionResult r = d.Run(*tables, directions, {}, o);
       ASSERT_TRUE(r.Ok) << r.Error;
       std::vector<double> radius;
       for (const PlacedShape& s : r.Shapes)
-        radius.push_back(tables.Tables.Classes[s.ClassId].Radius * o.ShapeSize * s.Scale);
+        radius.push_back(tables->Classes[s.ClassId].Radius * o.ShapeSize * s.Scale);
       const auto drawn = gs_test::DrawnPlanarOutlines(mesh, d, 0.25 * mesh.MeanEdgeLength());
       (drawnCheck ? with : without) += gs_test::CountDrawnOverlaps(r.Shapes, drawn, radius, 1e-3);
     }

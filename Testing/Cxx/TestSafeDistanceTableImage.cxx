@@ -82,14 +82,14 @@ int main()
   gs::SafeDistanceOptions options;
   options.AngleBins = 16;
   options.DistanceSteps = 32;
-  const gs::SafeDistanceResult computed = gs::ComputeSafeDistanceTables(in, options);
-  Check(computed.Ok, "core tables: " + computed.Error);
-  Check(computed.Tables.NumberOfParts() > 2, "the bar is split into parts");
+  const gs::Result<gs::SafeDistanceTables> computed = gs::ComputeSafeDistanceTables(in, options);
+  Check(computed.Ok(), "core tables: " + computed.Message());
+  Check(computed->NumberOfParts() > 2, "the bar is split into parts");
   vtkNew<vtkImageData> image;
-  vtkSafeDistanceTableImage::ToImage(computed.Tables, image);
+  vtkSafeDistanceTableImage::ToImage(*computed, image);
   int dims[3];
   image->GetDimensions(dims);
-  const int P = computed.Tables.NumberOfParts();
+  const int P = computed->NumberOfParts();
   Check(dims[0] == 16 && dims[1] == 16 && dims[2] == P * P, "image dimensions");
   Check(image->GetPointData()->GetScalars() &&
       std::string(image->GetPointData()->GetScalars()->GetName()) == vtkSafeDistanceTableImage::SafeDistance,
@@ -97,7 +97,7 @@ int main()
   gs::SafeDistanceTables back;
   std::string error;
   Check(vtkSafeDistanceTableImage::FromImage(image, back, error), "read back: " + error);
-  Compare(computed.Tables, back, "core -> image -> core");
+  Compare(*computed, back, "core -> image -> core");
 
   // 2. MSDT Source's output (polygons with a ClassId) reads back and writes again identically.
   vtkNew<vtkPolyData> polygons;
@@ -145,6 +145,6 @@ int main()
   Check(!vtkSafeDistanceTableImage::FromImage(inconsistent, back, error) && error.find("inconsistent") != std::string::npos,
     "too few values are refused: " + error);
 
-  std::printf("%s (%d part(s), %zu values)\n", failures ? "FAILED" : "OK", P, computed.Tables.Values.size());
+  std::printf("%s (%d part(s), %zu values)\n", failures ? "FAILED" : "OK", P, computed->Values.size());
   return failures ? 1 : 0;
 }
