@@ -14,7 +14,7 @@ namespace gs
 using namespace distribution;
 
 
-std::string ShapeDistributor::Impl::PrepareClassWeights()
+Status ShapeDistributor::Impl::PrepareClassWeights()
 {
   std::vector<double> w = O.ClassWeights;
   if (w.empty())
@@ -23,8 +23,8 @@ std::string ShapeDistributor::Impl::PrepareClassWeights()
   }
   if (w.size() != T.Classes.size())
   {
-    return "ClassWeights has " + std::to_string(w.size()) + " values for " +
-      std::to_string(T.Classes.size()) + " classes";
+    return Status::Error("ClassWeights has " + std::to_string(w.size()) + " values for " +
+      std::to_string(T.Classes.size()) + " classes");
   }
   ClassCdf.clear();
   double sum = 0.0;
@@ -32,25 +32,25 @@ std::string ShapeDistributor::Impl::PrepareClassWeights()
   {
     if (!(x >= 0.0) || !std::isfinite(x))
     {
-      return "ClassWeights must be non-negative finite numbers";
+      return Status::Error("ClassWeights must be non-negative finite numbers");
     }
     sum += x;
     ClassCdf.push_back(sum);
   }
   if (!(sum > 0.0))
   {
-    return "ClassWeights are all zero";
+    return Status::Error("ClassWeights are all zero");
   }
-  return std::string();
+  return Status();
 }
 
-std::string ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDirections)
+Status ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDirections)
 {
   const int nf = M.NumberOfFaces();
   if (static_cast<int>(faceDirections.size()) != nf)
   {
-    return "one direction per face is needed (" + std::to_string(faceDirections.size()) +
-      " given for " + std::to_string(nf) + " faces)";
+    return Status::Error("one direction per face is needed (" +
+      std::to_string(faceDirections.size()) + " given for " + std::to_string(nf) + " faces)");
   }
   FaceDirection.assign(nf, Vec3{ 0, 0, 0 });
 #pragma omp parallel for schedule(static) num_threads(ThreadCount(O.NumberOfThreads))
@@ -68,16 +68,16 @@ std::string ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& f
       FaceDirection[f] = Unit(t);
     }
   }
-  return std::string();
+  return Status();
 }
 
-std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& vertexDensity)
+Status ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& vertexDensity)
 {
   const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
   if (!vertexDensity.empty() && static_cast<int>(vertexDensity.size()) != nv)
   {
-    return "one density factor per vertex is needed (" + std::to_string(vertexDensity.size()) +
-      " given for " + std::to_string(nv) + " vertices)";
+    return Status::Error("one density factor per vertex is needed (" +
+      std::to_string(vertexDensity.size()) + " given for " + std::to_string(nv) + " vertices)");
   }
   Density = vertexDensity;
   FaceWeight.assign(nf, 0.0);
@@ -118,7 +118,7 @@ std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>
   BuildCdf();
   if (!(total > 0.0))
   {
-    return "no face has a positive density factor at all its corners";
+    return Status::Error("no face has a positive density factor at all its corners");
   }
   double area = 0.0;
   for (int f = 0; f < nf; ++f)
@@ -134,11 +134,11 @@ std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>
     const double r = O.ShapeSize * minimumScale * smallest;
     if (area / (r * r) > 1e9)
     {
-      return "ShapeSize (times the smallest density factor) is too small for this mesh: more than "
-             "1e9 shapes would fit";
+      return Status::Error("ShapeSize (times the smallest density factor) is too small for this "
+                           "mesh: more than 1e9 shapes would fit");
     }
   }
-  return std::string();
+  return Status();
 }
 
 void ShapeDistributor::Impl::PrepareDeadFaces()

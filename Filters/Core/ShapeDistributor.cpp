@@ -13,31 +13,29 @@ namespace gs
 {
 using namespace distribution;
 
-std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
+Status ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
   const ShapeDistributionOptions& options)
 {
   T = tables;
   O = options;
   CircleMode = O.Mode == DistributionMode::CircumcirclePoissonDisk;
-  std::string error = CheckTablesAndOptions();
-  if (!error.empty())
+  if (Status checked = CheckTablesAndOptions(); !checked.Ok())
   {
-    return error;
+    return checked;
   }
   ComputeLattices();
-  error = PrepareClassWeights();
-  if (error.empty())
+  if (Status weights = PrepareClassWeights(); !weights.Ok())
   {
-    error = PrepareDirections(faceDirections);
+    return weights;
   }
-  if (error.empty())
+  if (Status directions = PrepareDirections(faceDirections); !directions.Ok())
   {
-    error = PrepareFaceWeights(vertexDensity);
+    return directions;
   }
-  if (!error.empty())
+  if (Status density = PrepareFaceWeights(vertexDensity); !density.Ok())
   {
-    return error;
+    return density;
   }
   PrepareChartMeasures();
   PrepareDeadFaces();
@@ -47,62 +45,78 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   Placed.clear();
   CoverIndex.assign(M.NumberOfVertices(), {});
   CentreIndex.assign(M.NumberOfVertices(), {});
-  return std::string();
+  return Status();
 }
 
-std::string ShapeDistributor::Impl::CheckTablesAndOptions() const
+Status ShapeDistributor::Impl::CheckTablesAndOptions() const
 {
   if (M.NumberOfFaces() == 0)
   {
-    return "the mesh has no faces";
+    return Status::Error("the mesh has no faces");
+  }
+  if (G && G->NumberOfVertices() != M.NumberOfVertices())
+  {
+    return Status::Error("the saddle vertex graph was built for another mesh (" +
+      std::to_string(G->NumberOfVertices()) + " vertices; the mesh has " +
+      std::to_string(M.NumberOfVertices()) + ")");
   }
   if (T.Classes.empty() || T.Parts.empty())
   {
-    return "the tables hold no shape class";
+    return Status::Error("the tables hold no shape class");
   }
   const std::size_t ka = static_cast<std::size_t>(std::max(T.AngleBins, 0));
   if (T.AngleBins < 1 || T.Values.size() != T.Parts.size() * T.Parts.size() * ka * ka)
   {
-    return "the tables are inconsistent (" + std::to_string(T.Values.size()) +
+    return Status::Error("the tables are inconsistent (" + std::to_string(T.Values.size()) +
       " values for " + std::to_string(T.Parts.size()) + " parts and " +
-      std::to_string(T.AngleBins) + " angle bins)";
+      std::to_string(T.AngleBins) + " angle bins)");
   }
   for (const SafeDistanceClass& c : T.Classes)
   {
     if (c.Parts.empty() || !(c.Radius > 0.0) || !std::isfinite(c.Radius))
     {
-      return "class '" + c.Name + "' has no part or no valid radius";
+      return Status::Error("class '" + c.Name + "' has no part or no valid radius");
     }
   }
   for (double v : T.Values)
   {
     if (!std::isfinite(v) || v < 0.0)
     {
-      return "the tables hold a negative or non-finite safe distance";
+      return Status::Error("the tables hold a negative or non-finite safe distance");
     }
   }
   if (!(O.ShapeSize > 0.0) || !std::isfinite(O.ShapeSize))
   {
-    return "ShapeSize must be a positive finite number (it is " + std::to_string(O.ShapeSize) + ")";
+    return Status::Error(
+      "ShapeSize must be a positive finite number (it is " + std::to_string(O.ShapeSize) + ")");
   }
   if (O.ShapeSize * 1e7 < M.MeanEdgeLength())
   {
-    return "ShapeSize " + std::to_string(O.ShapeSize) +
+    return Status::Error("ShapeSize " + std::to_string(O.ShapeSize) +
       " is absurdly small for this mesh (mean edge length " + std::to_string(M.MeanEdgeLength()) +
-      "): it would take more than 1e14 shapes";
+      "): it would take more than 1e14 shapes");
   }
   if (O.Symmetry != 1 && O.Symmetry != 2 && O.Symmetry != 4)
   {
-    return "the direction field's symmetry must be 1, 2 or 4 (it is " + std::to_string(O.Symmetry) + ")";
+    return Status::Error("the direction field's symmetry must be 1, 2 or 4 (it is " +
+      std::to_string(O.Symmetry) + ")");
   }
-  if (O.MaximumShapes < 0 || O.MaximalFailures < 0 || O.GreedyDirections < 1 ||
-    O.GreedyDirections > 1024 || !(O.SafetyMargin >= 0.0) || O.SafetyMargin > 10.0 ||
-    !(O.DistortionLimit >= 0.0) || !(O.HolonomyMargin >= 0.0) || O.HolonomyMargin > 100.0)
+  if (O.Mode != DistributionMode::Random && O.Mode != DistributionMode::Greedy &&
+    O.Mode != DistributionMode::CircumcirclePoissonDisk)
   {
-    return "invalid MaximumShapes, MaximalFailures, GreedyDirections (1..1024), SafetyMargin "
-           "(0..10), DistortionLimit (>= 0) or HolonomyMargin (0..100)";
+    return Status::Error("unknown Mode " + std::to_string(static_cast<int>(O.Mode)) +
+      ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk)");
   }
-  return std::string();
+  if (O.MaximumShapes < 0 || O.MaximalFailures < 0 || O.NumberOfThreads < 0 ||
+    O.GreedyDirections < 1 || O.GreedyDirections > 1024 || !(O.SafetyMargin >= 0.0) ||
+    O.SafetyMargin > 10.0 || !(O.DistortionLimit >= 0.0) || !(O.HolonomyMargin >= 0.0) ||
+    O.HolonomyMargin > 100.0)
+  {
+    return Status::Error("invalid MaximumShapes, MaximalFailures, NumberOfThreads (>= 0), "
+                         "GreedyDirections (1..1024), SafetyMargin (0..10), DistortionLimit "
+                         "(>= 0) or HolonomyMargin (0..100)");
+  }
+  return Status();
 }
 
 double ShapeDistributor::OutlineSpacing() const
@@ -146,7 +160,7 @@ double ShapeDistributor::ExpectedCount(const TriangleMesh& mesh, const SafeDista
 }
 
 ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
-  : P(new Impl(mesh, graph && graph->NumberOfVertices() == mesh.NumberOfVertices() ? graph : nullptr))
+  : P(new Impl(mesh, graph))
 {
 }
 
@@ -177,19 +191,18 @@ bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) con
   return P->ClassPointOf(P->Accepted.at(shape), x, p);
 }
 
-ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
+Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables,
   const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
   const ShapeDistributionOptions& options, const std::function<bool(double)>& progress)
 {
   const auto start = std::chrono::steady_clock::now();
-  ShapeDistributionResult result;
+  ShapeDistribution result;
   Impl& I = *P;
-  result.Error = I.Prepare(tables, faceDirections, vertexDensity, options);
-  if (!result.Error.empty())
+  if (Status prepared = I.Prepare(tables, faceDirections, vertexDensity, options); !prepared.Ok())
   {
     I.Accepted.clear();
     I.Placed.clear();
-    return result;
+    return prepared;
   }
   const int threads = ThreadCount(I.O.NumberOfThreads);
   I.EnsureEngines(threads);
@@ -197,15 +210,13 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!I.RunRounds(threads, progress, result.Statistics))
   {
-    result.Error = "aborted";
     I.Accepted.clear();
     I.Placed.clear();
-    return result;
+    return Status::Aborted();
   }
   result.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.Shapes = I.Placed;
-  result.Ok = true;
   if (progress)
   {
     progress(1.0);

@@ -158,11 +158,11 @@ struct ShapeDistributor::Impl
   int NumberOfClasses = 0;
   double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
 
-  /// Checks the inputs and sets up every concept's state for a run; the error, or empty.
-  std::string Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
+  /// Checks the inputs and sets up every concept's state for a run.
+  Status Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
     const std::vector<double>& vertexDensity, const ShapeDistributionOptions& options);
-  /// The tables' and options' consistency (Prepare's first step); the error, or empty.
-  std::string CheckTablesAndOptions() const;
+  /// The consistency of the mesh, graph, tables and options (Prepare's first step).
+  Status CheckTablesAndOptions() const;
 
   double PartRadius(int part) const
   {
@@ -186,12 +186,12 @@ struct ShapeDistributor::Impl
   std::unique_ptr<DirectionFieldSolver> Field; // long classes: streamlines
   std::vector<double> FieldAngles;
 
-  /// ClassWeights as a distribution; the error, or empty.
-  std::string PrepareClassWeights();
-  /// The face directions projected to the faces' planes; the error, or empty.
-  std::string PrepareDirections(const std::vector<Vec3>& faceDirections);
-  /// The density, the face weights area / f^2 and the masks (nothing dead); the error, or empty.
-  std::string PrepareFaceWeights(const std::vector<double>& vertexDensity);
+  /// ClassWeights as a distribution.
+  Status PrepareClassWeights();
+  /// The face directions projected to the faces' planes.
+  Status PrepareDirections(const std::vector<Vec3>& faceDirections);
+  /// The density, the face weights area / f^2 and the masks (nothing dead).
+  Status PrepareFaceWeights(const std::vector<double>& vertexDensity);
   /// KillRadius and KillReach: per (part, class), the smallest safe distance of the part against
   /// any part of the class (2% less, for the charts' approximations); per class, its reach.
   void PrepareDeadFaces();

@@ -72,22 +72,22 @@ TEST(OverlapCheck, FindsThePlanarOraclesOverlapsAndNoOther)
     o.MaximalFailures = 2000;
     o.DrawnCheck = factor == 1.0; // shrunk tables: the tables alone decide (and fail)
     ShapeDistributor d(mesh);
-    const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
-    ASSERT_TRUE(r.Ok) << r.Error;
+    const Result<ShapeDistribution> r = d.Run(Shrunk(t, factor), directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
     // The oracle: drawn outlines (cut at the square's sides) sharing area.
     std::vector<double> radius;
-    for (const PlacedShape& s : r.Shapes)
+    for (const PlacedShape& s : r->Shapes)
       radius.push_back(t.Classes[s.ClassId].Radius * o.ShapeSize * s.Scale * (1.0 + 1e-9));
     std::vector<std::pair<int, int>> expected;
     gs_test::CountDrawnOverlaps(
-      r.Shapes, gs_test::DrawnPlanarOutlines(mesh, d, spacing), radius, 1e-5, &expected);
+      r->Shapes, gs_test::DrawnPlanarOutlines(mesh, d, spacing), radius, 1e-5, &expected);
     const auto outlines = Outlines(d, spacing);
     OverlapCheckOptions co;
     co.NumberOfThreads = 2;
     const OverlapCheckResult found = CheckOverlaps(d, outlines, co);
     co.NumberOfThreads = 1;
     EXPECT_EQ(CheckOverlaps(d, outlines, co).Pairs, found.Pairs) << "any thread count";
-    EXPECT_GT(found.PairsExamined, static_cast<long long>(r.Shapes.size()) / 2);
+    EXPECT_GT(found.PairsExamined, static_cast<long long>(r->Shapes.size()) / 2);
     if (factor == 1.0)
     {
       EXPECT_TRUE(expected.empty());
@@ -136,8 +136,8 @@ TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
       o.DrawnCheck = false;
     }
     ShapeDistributor d(mesh, &graph);
-    const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
-    ASSERT_TRUE(r.Ok) << r.Error;
+    const Result<ShapeDistribution> r = d.Run(Shrunk(t, factor), directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
     const OverlapCheckResult found = CheckOverlaps(d, Outlines(d, spacing));
     const int oracle = gs_test::CountSurfaceOverlaps(mesh, t, d, o.ShapeSize, 0.02);
     if (factor == 1.0)
@@ -199,11 +199,11 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
       o.Seed = seed;
       o.DrawnCheck = drawn;
       ShapeDistributor d(mesh, &graph);
-      const ShapeDistributionResult r = d.Run(*tables, directions, {}, o);
-      ASSERT_TRUE(r.Ok) << r.Error;
+      const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+      ASSERT_TRUE(r.Ok()) << r.Message();
       const int oracle = gs_test::CountSurfaceOverlaps(mesh, *tables, d, o.ShapeSize, 0.02);
       (drawn ? oracleWith : oracleWithout) += oracle;
-      (drawn ? shapesWith : shapesWithout) += r.Shapes.size();
+      (drawn ? shapesWith : shapesWithout) += r->Shapes.size();
       // VerifyOverlaps' check, which also reads long shapes through their frames (pairs of two
       // long shapes included): nothing with the drawn check, at least the oracle's without.
       const OverlapCheckResult found = CheckOverlaps(d, Outlines(d, 0.5 * mesh.MeanEdgeLength()));
@@ -261,10 +261,10 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
   o.ShapeSize = 0.04;
   o.Seed = 4;
   o.MaximumShapes = 600;
-  const ShapeDistributionResult r = d.Run(*tables, directions, {}, o);
-  ASSERT_TRUE(r.Ok) << r.Error;
+  const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+  ASSERT_TRUE(r.Ok()) << r.Message();
   int longShapes = 0, folded = 0;
-  for (int s = 0; s < static_cast<int>(r.Shapes.size()); ++s)
+  for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
   {
     const std::shared_ptr<const CurveGrid> grid = d.Frame(s);
     if (!grid)
@@ -279,12 +279,12 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
       }
     folded += regular ? 0 : 1;
   }
-  std::vector<std::vector<OutlinePiece>> outlines(r.Shapes.size());
+  std::vector<std::vector<OutlinePiece>> outlines(r->Shapes.size());
   for (std::size_t s = 0; s < outlines.size(); ++s)
     outlines[s] = d.Outline(static_cast<int>(s), d.OutlineSpacing());
   const OverlapCheckResult check = CheckOverlaps(d, outlines);
   std::printf("small bananas on a torus: %zu shapes, %d long, %d with a folded grid, %zu overlapping pairs\n",
-    r.Shapes.size(), longShapes, folded, check.Pairs.size());
+    r->Shapes.size(), longShapes, folded, check.Pairs.size());
   EXPECT_GT(longShapes, 100);
   EXPECT_EQ(folded, 0);
   EXPECT_EQ(check.Pairs.size(), 0u);
