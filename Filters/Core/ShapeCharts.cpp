@@ -86,7 +86,7 @@ void ShapeDistributor::Impl::ComputeCharts(Record& r, GeodesicPolarCoordinates& 
     const PlacedPart& p = r.S.Parts[k];
     const double reference = TangentAngle(M, p.Centre, p.Axis);
     if (!std::isfinite(reference) ||
-      !engine.Compute(p.Centre, ChartRadius(r.S, p), reference))
+      !engine.Compute(p.Centre, ChartRadius(r.S, p), reference).Ok())
     {
       continue; // an empty chart: this part is evaluated from the other side only
     }
