@@ -184,8 +184,8 @@ struct CurveGrid
   {
     bool Valid = false;
     SurfacePoint At;
-    Vec3 X; ///< position
-    Vec2 P; ///< class point (normalized units)
+    Vec3 Position;
+    Vec2 ClassPoint; ///< normalized units
   };
   const TriangleMesh* Mesh = nullptr;
   int Columns = 0, Rows = 0;
@@ -283,7 +283,7 @@ public:
 
 private:
   struct Impl;
-  std::unique_ptr<Impl> P;
+  std::unique_ptr<Impl> Internal;
 };
 
 } // namespace gs

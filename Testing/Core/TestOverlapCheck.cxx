@@ -275,7 +275,7 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
       for (int j = 0; j < grid->Rows && regular; ++j)
       {
         const CurveGrid::Node &a = grid->Nodes[i * grid->Rows + j], &b = grid->Nodes[(i + 1) * grid->Rows + j];
-        regular = !(a.Valid && b.Valid && Norm(b.X - a.X) > 4.0 * grid->Step);
+        regular = !(a.Valid && b.Valid && Norm(b.Position - a.Position) > 4.0 * grid->Step);
       }
     folded += regular ? 0 : 1;
   }
