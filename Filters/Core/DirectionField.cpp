@@ -70,37 +70,37 @@ struct DirectionFieldSolver::ConnectionFactorization
 };
 
 DirectionFieldSolver::DirectionFieldSolver(const TriangleMesh& mesh)
-  : M(mesh)
+  : Surface(mesh)
 {
-  const int nf = M.NumberOfFaces();
+  const int nf = Surface.NumberOfFaces();
   BasisX.resize(nf);
   BasisY.resize(nf);
 #pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f)
   {
-    const Vec3 n = M.FaceNormal(f);
-    Vec3 x = M.Position(M.Destination(3 * f)) - M.Position(M.Origin(3 * f));
+    const Vec3 n = Surface.FaceNormal(f);
+    Vec3 x = Surface.Position(Surface.Destination(3 * f)) - Surface.Position(Surface.Origin(3 * f));
     const double l = Norm(x);
     x = l > 0 ? x / l : Vec3(1, 0, 0);
     BasisX[f] = x;
     BasisY[f] = Cross(n, x);
   }
-  Transport.assign(M.NumberOfHalfedges(), 0.0);
-  EdgeWeight.assign(M.NumberOfHalfedges(), 0.0);
+  Transport.assign(Surface.NumberOfHalfedges(), 0.0);
+  EdgeWeight.assign(Surface.NumberOfHalfedges(), 0.0);
 #pragma omp parallel for schedule(static)
-  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+  for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
   {
-    const int t = M.Twin(h);
+    const int t = Surface.Twin(h);
     if (t < 0)
     {
       continue;
     }
-    const Vec3 e = M.Position(M.Destination(h)) - M.Position(M.Origin(h));
+    const Vec3 e = Surface.Position(Surface.Destination(h)) - Surface.Position(Surface.Origin(h));
     const int f = TriangleMesh::FaceOf(h), g = TriangleMesh::FaceOf(t);
     // e has angle a_f in f and a_g in g: phi in f is (phi - a_f) from e, hence a_g + phi - a_f.
     Transport[h] = WrapPi(AngleInFace(g, e) - AngleInFace(f, e));
-    const double areas = M.FaceArea(f) + M.FaceArea(g);
-    const double l = M.EdgeLength(h);
+    const double areas = Surface.FaceArea(f) + Surface.FaceArea(g);
+    const double l = Surface.EdgeLength(h);
     // Primal edge length over the distance between the two barycentres across it.
     EdgeWeight[h] = areas > 0 ? 3.0 * l * l / (2.0 * areas) : 0.0;
   }
@@ -276,12 +276,12 @@ double DirectionFieldSolver::WrapSymmetric(double a, int n)
 
 std::vector<Vec3> DirectionFieldSolver::VertexNormals() const
 {
-  return AreaWeightedVertexNormals(M);
+  return AreaWeightedVertexNormals(Surface);
 }
 
 std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vector<double>& angles) const
 {
-  const int nv = M.NumberOfVertices();
+  const int nv = Surface.NumberOfVertices();
   const std::vector<Vec3> normals = VertexNormals();
   std::vector<Vec3> directions(nv, Vec3(0, 0, 0));
   for (int v = 0; v < nv; ++v)
@@ -291,8 +291,8 @@ std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vecto
     {
       continue;
     }
-    const std::vector<int> out = M.OutgoingHalfedges(v);
-    Vec3 x = M.Position(M.Destination(out[0])) - M.Position(v);
+    const std::vector<int> out = Surface.OutgoingHalfedges(v);
+    Vec3 x = Surface.Position(Surface.Destination(out[0])) - Surface.Position(v);
     x = x - normal * Dot(x, normal);
     const double lx = Norm(x);
     if (!(lx > 0))
@@ -307,9 +307,9 @@ std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vecto
       const int f = TriangleMesh::FaceOf(h);
       const Vec3 d = DirectionInFace(f, angles[f]);
       const double a = std::atan2(Dot(d, y), Dot(d, x));
-      re += M.FaceArea(f) * std::cos(n * a);
-      im += M.FaceArea(f) * std::sin(n * a);
-      area += M.FaceArea(f);
+      re += Surface.FaceArea(f) * std::cos(n * a);
+      im += Surface.FaceArea(f) * std::sin(n * a);
+      area += Surface.FaceArea(f);
     }
     if (std::hypot(re, im) > 1e-9 * area)
     {
@@ -324,14 +324,14 @@ double DirectionFieldSolver::IndexSum(int n, const std::vector<double>& angles) 
 {
   const std::vector<double> raw = VertexIndices(n, angles);
   double sum = 0.0;
-  for (int v = 0; v < M.NumberOfVertices(); ++v)
+  for (int v = 0; v < Surface.NumberOfVertices(); ++v)
   {
-    if (!M.IsBoundaryVertex(v))
+    if (!Surface.IsBoundaryVertex(v))
     {
       sum += std::round(raw[v] * n) / n;
     }
   }
-  for (const auto& loop : M.BoundaryLoops())
+  for (const auto& loop : Surface.BoundaryLoops())
   {
     double turning = 0.0;
     for (int v : loop)
@@ -346,7 +346,7 @@ double DirectionFieldSolver::IndexSum(int n, const std::vector<double>& angles) 
 void DirectionFieldSolver::ComputeCurvatureTarget(
   int n, std::vector<double>& re, std::vector<double>& im) const
 {
-  const int nf = M.NumberOfFaces();
+  const int nf = Surface.NumberOfFaces();
   const std::vector<Vec3> vn = VertexNormals();
   re.assign(nf, 0.0);
   im.assign(nf, 0.0);
@@ -359,8 +359,8 @@ void DirectionFieldSolver::ComputeCurvatureTarget(
     for (int c = 0; c < 3; ++c)
     {
       const int h = 3 * f + c;
-      const Vec3 e = M.Position(M.Destination(h)) - M.Position(M.Origin(h));
-      const Vec3 dn = vn[M.Destination(h)] - vn[M.Origin(h)];
+      const Vec3 e = Surface.Position(Surface.Destination(h)) - Surface.Position(Surface.Origin(h));
+      const Vec3 dn = vn[Surface.Destination(h)] - vn[Surface.Origin(h)];
       const double ex = Dot(e, BasisX[f]), ey = Dot(e, BasisY[f]);
       const double dx = Dot(dn, BasisX[f]), dy = Dot(dn, BasisY[f]);
       // rows: (ex, ey, 0) . (s11, s12, s22) = dx ; (0, ex, ey) . s = dy
@@ -384,8 +384,8 @@ void DirectionFieldSolver::ComputeCurvatureTarget(
     }
     re[f] = x;
     im[f] = y;
-    total += std::hypot(x, y) * M.FaceArea(f);
-    area += M.FaceArea(f);
+    total += std::hypot(x, y) * Surface.FaceArea(f);
+    area += Surface.FaceArea(f);
   }
   const double mean = area > 0 ? total / area : 0.0;
   if (mean > 0)
@@ -409,8 +409,8 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
   double area = 0.0;
   for (int f = 0; f < nf; ++f)
   {
-    mass[2 * f] = mass[2 * f + 1] = M.FaceArea(f);
-    area += M.FaceArea(f);
+    mass[2 * f] = mass[2 * f + 1] = Surface.FaceArea(f);
+    area += Surface.FaceArea(f);
   }
   std::mt19937 rng(12345u);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -478,7 +478,7 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
 Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
-  const int nf = M.NumberOfFaces();
+  const int nf = Surface.NumberOfFaces();
   if (Status symmetry = CheckSymmetry(n); !symmetry.Ok())
   {
     return symmetry;
@@ -532,13 +532,13 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   }
 
   double sumW = 0.0, sumA = 0.0;
-  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+  for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
   {
     sumW += EdgeWeight[h];
   }
   for (int f = 0; f < nf; ++f)
   {
-    sumA += M.FaceArea(f);
+    sumA += Surface.FaceArea(f);
   }
   const double sigma = sumA > 0 ? sumW / sumA : 1.0; // energy / area scale
   const double eps = 1e-10 * sigma;
@@ -550,10 +550,10 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     Cache->Alignment = alignment;
     Cache->Constrained = constrained;
     std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(8 * M.NumberOfHalfedges() + 2 * nf);
-    for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+    trip.reserve(8 * Surface.NumberOfHalfedges() + 2 * nf);
+    for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
     {
-      const int t = M.Twin(h);
+      const int t = Surface.Twin(h);
       if (t < h)
       {
         continue; // boundary or already seen from its twin
@@ -579,7 +579,7 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     }
     for (int f = 0; f < nf; ++f)
     {
-      const double d = (alignment * sigma + eps) * M.FaceArea(f);
+      const double d = (alignment * sigma + eps) * Surface.FaceArea(f);
       trip.emplace_back(2 * f, 2 * f, d);
       trip.emplace_back(2 * f + 1, 2 * f + 1, d);
     }
@@ -659,18 +659,18 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     {
       if (freeIndex[f] >= 0)
       {
-        rhsFixed[2 * freeIndex[f]] += alignment * sigma * M.FaceArea(f) * qre[f];
-        rhsFixed[2 * freeIndex[f] + 1] += alignment * sigma * M.FaceArea(f) * qim[f];
+        rhsFixed[2 * freeIndex[f]] += alignment * sigma * Surface.FaceArea(f) * qre[f];
+        rhsFixed[2 * freeIndex[f] + 1] += alignment * sigma * Surface.FaceArea(f) * qim[f];
       }
     }
   }
   // Components with neither constraints nor alignment: inverse iteration for the smallest
   // eigenvector (Knoppel et al.), normalised per component.
-  const int ncomp = std::max(1, M.NumberOfComponents());
+  const int ncomp = std::max(1, Surface.NumberOfComponents());
   std::vector<char> compFree(ncomp, alignment > 0 ? 0 : 1);
   for (int f : constrained)
   {
-    compFree[M.FaceComponent(f)] = 0;
+    compFree[Surface.FaceComponent(f)] = 0;
   }
   const bool iterate = std::find(compFree.begin(), compFree.end(), 1) != compFree.end();
   Eigen::VectorXd u = Eigen::VectorXd::Zero(2 * nfree);
@@ -695,7 +695,7 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
       std::vector<double> norm(ncomp), compArea(ncomp, 0.0);
       for (int f = 0; f < nf; ++f)
       {
-        compArea[M.FaceComponent(f)] += M.FaceArea(f);
+        compArea[Surface.FaceComponent(f)] += Surface.FaceArea(f);
       }
       // Normalised to an area-weighted mean |u|^2 of 1. Stops when the Rayleigh quotient (the
       // field's smoothness energy) is stable to 1e-6 relative, or after 60 iterations: with a
@@ -708,10 +708,10 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
         for (int f = 0; f < nf; ++f)
         {
           const int i = freeIndex[f];
-          if (i >= 0 && compFree[M.FaceComponent(f)])
+          if (i >= 0 && compFree[Surface.FaceComponent(f)])
           {
-            rhs[2 * i] += M.FaceArea(f) * u[2 * i];
-            rhs[2 * i + 1] += M.FaceArea(f) * u[2 * i + 1];
+            rhs[2 * i] += Surface.FaceArea(f) * u[2 * i];
+            rhs[2 * i + 1] += Surface.FaceArea(f) * u[2 * i + 1];
           }
         }
         Eigen::VectorXd next = Cache->Solver.solve(rhs);
@@ -719,10 +719,10 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
         for (int f = 0; f < nf; ++f)
         {
           const int i = freeIndex[f];
-          if (i >= 0 && compFree[M.FaceComponent(f)])
+          if (i >= 0 && compFree[Surface.FaceComponent(f)])
           {
-            uu += M.FaceArea(f) * (u[2 * i] * u[2 * i] + u[2 * i + 1] * u[2 * i + 1]);
-            un += M.FaceArea(f) * (u[2 * i] * next[2 * i] + u[2 * i + 1] * next[2 * i + 1]);
+            uu += Surface.FaceArea(f) * (u[2 * i] * u[2 * i] + u[2 * i + 1] * u[2 * i + 1]);
+            un += Surface.FaceArea(f) * (u[2 * i] * next[2 * i] + u[2 * i + 1] * next[2 * i + 1]);
           }
         }
         const double quotient = un != 0.0 ? uu / un : 0.0; // ~ smallest eigenvalue of B
@@ -732,14 +732,14 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
           const int i = freeIndex[f];
           if (i >= 0)
           {
-            norm[M.FaceComponent(f)] +=
-              M.FaceArea(f) * (next[2 * i] * next[2 * i] + next[2 * i + 1] * next[2 * i + 1]);
+            norm[Surface.FaceComponent(f)] +=
+              Surface.FaceArea(f) * (next[2 * i] * next[2 * i] + next[2 * i + 1] * next[2 * i + 1]);
           }
         }
         for (int f = 0; f < nf; ++f)
         {
           const int i = freeIndex[f];
-          const int c = M.FaceComponent(f);
+          const int c = Surface.FaceComponent(f);
           if (i >= 0 && compFree[c] && norm[c] > 0)
           {
             const double s = std::sqrt(compArea[c] / norm[c]);
@@ -787,7 +787,7 @@ int Find(std::vector<int>& parent, int a)
 Status DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
   const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
-  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
+  const int nf = Surface.NumberOfFaces(), nv = Surface.NumberOfVertices();
   if (Status symmetry = CheckSymmetry(n); !symmetry.Ok())
   {
     return symmetry;
@@ -837,7 +837,8 @@ Status DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSing
 Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double>& index,
   const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
-  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices(), nh = M.NumberOfHalfedges();
+  const int nf = Surface.NumberOfFaces(), nv = Surface.NumberOfVertices(),
+            nh = Surface.NumberOfHalfedges();
   std::vector<int> constrainedFaces;
   for (const FaceDirectionConstraint& c : constraints)
   {
@@ -854,7 +855,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     std::vector<double> weight;
     for (int h = 0; h < nh; ++h)
     {
-      const int t = M.Twin(h);
+      const int t = Surface.Twin(h);
       if (t > h)
       {
         cf->EdgeOf[h] = cf->EdgeOf[t] = ne++;
@@ -880,27 +881,27 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     }
     std::vector<char> inTree(nh, 0);
     auto tryAdd = [&](int h) {
-      const int a = Find(uf, M.Origin(h)), b = Find(uf, M.Destination(h));
+      const int a = Find(uf, Surface.Origin(h)), b = Find(uf, Surface.Destination(h));
       if (a != b)
       {
         uf[a] = b;
         inTree[h] = 1;
-        if (M.Twin(h) >= 0)
+        if (Surface.Twin(h) >= 0)
         {
-          inTree[M.Twin(h)] = 1;
+          inTree[Surface.Twin(h)] = 1;
         }
       }
     };
     for (int h = 0; h < nh; ++h)
     {
-      if (M.Twin(h) < 0)
+      if (Surface.Twin(h) < 0)
       {
         tryAdd(h);
       }
     }
     for (int h = 0; h < nh; ++h)
     {
-      if (M.Twin(h) > h)
+      if (Surface.Twin(h) > h)
       {
         tryAdd(h);
       }
@@ -923,7 +924,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
         const int f = cf->Order[head++];
         for (int c = 0; c < 3; ++c)
         {
-          const int h = 3 * f + c, t = M.Twin(h);
+          const int h = 3 * f + c, t = Surface.Twin(h);
           if (t < 0 || inTree[h])
           {
             continue;
@@ -945,7 +946,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
       std::vector<int> up, down;
       while (cf->Depth[a] > cf->Depth[b])
       {
-        up.push_back(M.Twin(cf->ParentHalfedge[a]));
+        up.push_back(Surface.Twin(cf->ParentHalfedge[a]));
         a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
       }
       while (cf->Depth[b] > cf->Depth[a])
@@ -955,7 +956,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
       }
       while (a != b)
       {
-        up.push_back(M.Twin(cf->ParentHalfedge[a]));
+        up.push_back(Surface.Twin(cf->ParentHalfedge[a]));
         a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
         down.push_back(cf->ParentHalfedge[b]);
         b = TriangleMesh::FaceOf(cf->ParentHalfedge[b]);
@@ -965,7 +966,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     };
     for (int h = 0; h < nh; ++h)
     {
-      const int t = M.Twin(h);
+      const int t = Surface.Twin(h);
       if (t > h && !inTree[h] && !inDual[h])
       {
         std::vector<int> cycle{ h };
@@ -977,14 +978,14 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     for (size_t i = 1; i < constrainedFaces.size(); ++i)
     {
       const int a = constrainedFaces[i - 1], b = constrainedFaces[i];
-      if (a == b || M.FaceComponent(a) != M.FaceComponent(b))
+      if (a == b || Surface.FaceComponent(a) != Surface.FaceComponent(b))
       {
         continue;
       }
       std::vector<int> path;
       for (int c = 0; c < 3; ++c)
       {
-        const int t = M.Twin(3 * a + c);
+        const int t = Surface.Twin(3 * a + c);
         if (t >= 0 && TriangleMesh::FaceOf(t) == b)
         {
           path = { 3 * a + c };
@@ -999,21 +1000,21 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     }
     // Rows: interior vertices and boundary loops (a loop's dual cycle is the union of its
     // vertices' fans), all but the last of each component (they sum to zero).
-    const int ncomp = std::max(1, M.NumberOfComponents());
+    const int ncomp = std::max(1, Surface.NumberOfComponents());
     std::vector<std::pair<int, int>> candidates; // (vertex, -1) or (-1, loop)
     std::vector<int> lastOfComponent(ncomp, -1);
     for (int v = 0; v < nv; ++v)
     {
-      if (!M.IsBoundaryVertex(v))
+      if (!Surface.IsBoundaryVertex(v))
       {
-        lastOfComponent[M.VertexComponent(v)] = static_cast<int>(candidates.size());
+        lastOfComponent[Surface.VertexComponent(v)] = static_cast<int>(candidates.size());
         candidates.emplace_back(v, -1);
       }
     }
-    const auto& loops = M.BoundaryLoops();
+    const auto& loops = Surface.BoundaryLoops();
     for (int l = 0; l < static_cast<int>(loops.size()); ++l)
     {
-      lastOfComponent[M.VertexComponent(loops[l][0])] = static_cast<int>(candidates.size());
+      lastOfComponent[Surface.VertexComponent(loops[l][0])] = static_cast<int>(candidates.size());
       candidates.emplace_back(-1, l);
     }
     std::vector<char> drop(candidates.size(), 0);
@@ -1030,7 +1031,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
       const int e = cf->EdgeOf[h];
       if (e >= 0)
       {
-        trip.emplace_back(r, e, h < M.Twin(h) ? 1.0 : -1.0);
+        trip.emplace_back(r, e, h < Surface.Twin(h) ? 1.0 : -1.0);
       }
     };
     for (size_t i = 0; i < candidates.size(); ++i)
@@ -1044,7 +1045,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
         candidates[i].first >= 0 ? single : loops[candidates[i].second];
       for (int v : vertices)
       {
-        for (int h : M.OutgoingHalfedges(v))
+        for (int h : Surface.OutgoingHalfedges(v))
         {
           addCrossing(row, TriangleMesh::Prev(h));
         }
@@ -1080,15 +1081,16 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     cf->ComponentEuler.assign(ncomp, 0.0);
     for (int v = 0; v < nv; ++v)
     {
-      cf->ComponentEuler[M.VertexComponent(v)] += 1.0;
+      cf->ComponentEuler[Surface.VertexComponent(v)] += 1.0;
     }
     for (int f = 0; f < nf; ++f)
     {
-      cf->ComponentEuler[M.FaceComponent(f)] += 1.0;
+      cf->ComponentEuler[Surface.FaceComponent(f)] += 1.0;
       for (int c = 0; c < 3; ++c)
       {
         const int h = 3 * f + c;
-        cf->ComponentEuler[M.FaceComponent(f)] -= M.Twin(h) < 0 ? 1.0 : (M.Twin(h) > h ? 1.0 : 0.0);
+        cf->ComponentEuler[Surface.FaceComponent(f)] -=
+          Surface.Twin(h) < 0 ? 1.0 : (Surface.Twin(h) > h ? 1.0 : 0.0);
       }
     }
     ConnectionCache = std::move(cf);
@@ -1099,7 +1101,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
   std::vector<double> sum(cf.ComponentEuler.size(), 0.0);
   for (int v = 0; v < nv; ++v)
   {
-    sum[M.VertexComponent(v)] += index[v];
+    sum[Surface.VertexComponent(v)] += index[v];
   }
   for (size_t c = 0; c < sum.size(); ++c)
   {
@@ -1123,7 +1125,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     double rhs = 0.0;
     for (int v : vertices)
     {
-      const double defect = (M.IsBoundaryVertex(v) ? Pi : TwoPi) - M.TotalAngle(v);
+      const double defect = (Surface.IsBoundaryVertex(v) ? Pi : TwoPi) - Surface.TotalAngle(v);
       rhs += TwoPi * index[v] - defect;
     }
     b[row++] = rhs;
@@ -1168,13 +1170,14 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
       continue;
     }
     const int e = cf.EdgeOf[h];
-    angles[f] = angles[TriangleMesh::FaceOf(h)] + Transport[h] + (h < M.Twin(h) ? x[e] : -x[e]);
+    angles[f] =
+      angles[TriangleMesh::FaceOf(h)] + Transport[h] + (h < Surface.Twin(h) ? x[e] : -x[e]);
   }
   std::vector<char> rotated(cf.ComponentEuler.size(), 0);
   std::vector<double> shift(cf.ComponentEuler.size(), 0.0);
   for (const FaceDirectionConstraint& c : constraints)
   {
-    const int comp = M.FaceComponent(c.Face);
+    const int comp = Surface.FaceComponent(c.Face);
     if (!rotated[comp])
     {
       rotated[comp] = 1;
@@ -1183,7 +1186,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
   }
   for (int f = 0; f < nf; ++f)
   {
-    angles[f] = WrapPi(angles[f] + shift[M.FaceComponent(f)]);
+    angles[f] = WrapPi(angles[f] + shift[Surface.FaceComponent(f)]);
   }
   return Status();
 }
@@ -1194,7 +1197,7 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
   double maxTurn) const
 {
   Streamline line;
-  const int nf = M.NumberOfFaces();
+  const int nf = Surface.NumberOfFaces();
   if (n < 1 || static_cast<int>(angles.size()) != nf || nf == 0 || !(length >= 0.0) ||
     !std::isfinite(length))
   {
@@ -1209,15 +1212,15 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
   Vec3 x;
   if (start.IsVertex())
   {
-    f = TriangleMesh::FaceOf(M.VertexHalfedge(start.Vertex));
-    x = M.Position(start.Vertex);
+    f = TriangleMesh::FaceOf(Surface.VertexHalfedge(start.Vertex));
+    x = Surface.Position(start.Vertex);
   }
   else
   {
-    x = M.Interpolate(f, start.Bary);
+    x = Surface.Interpolate(f, start.Bary);
   }
   line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = M.ClampedBarycentric(f, x);
+  line.End.Bary = Surface.ClampedBarycentric(f, x);
   auto singularFace = [&](int face) {
     if (!indices)
     {
@@ -1225,7 +1228,8 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
     }
     for (int c = 0; c < 3; ++c)
     {
-      if (std::abs((*indices)[M.Face(face)[c]]) > 1e-9 && !M.IsBoundaryVertex(M.Face(face)[c]))
+      if (std::abs((*indices)[Surface.Face(face)[c]]) > 1e-9 &&
+        !Surface.IsBoundaryVertex(Surface.Face(face)[c]))
       {
         return true;
       }
@@ -1248,7 +1252,7 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
   const int maxSteps = 10 * nf + 1000;
   for (int step = 0; step < maxSteps; ++step)
   {
-    const FaceExit out = FindFaceExit(M, f, x, d, entry);
+    const FaceExit out = FindFaceExit(Surface, f, x, d, entry);
     if (out.Edge < 0)
     {
       line.Reason = Streamline::Stuck;
@@ -1264,13 +1268,14 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
       break;
     }
     const double s = std::min(1.0 - 1e-9, std::max(1e-9, out.S));
-    const Vec3 A = M.Position(M.Origin(out.Edge)), B = M.Position(M.Destination(out.Edge));
+    const Vec3 A = Surface.Position(Surface.Origin(out.Edge)),
+               B = Surface.Position(Surface.Destination(out.Edge));
     const Vec3 y = A + (B - A) * s;
     line.Pieces.push_back({ f, x, y });
     line.Length += out.T;
     remaining -= out.T;
     x = y;
-    const int t = M.Twin(out.Edge);
+    const int t = Surface.Twin(out.Edge);
     if (t < 0)
     {
       line.Reason = Streamline::ReachedBoundary;
@@ -1291,22 +1296,22 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
     entry = t;
   }
   line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = M.ClampedBarycentric(f, x);
+  line.End.Bary = Surface.ClampedBarycentric(f, x);
   return line;
 }
 
 std::vector<double> DirectionFieldSolver::VertexIndices(int n, const std::vector<double>& angles) const
 {
-  const int nv = M.NumberOfVertices();
+  const int nv = Surface.NumberOfVertices();
   std::vector<double> index(nv, 0.0);
   for (int v = 0; v < nv; ++v)
   {
-    const std::vector<int> out = M.OutgoingHalfedges(v);
+    const std::vector<int> out = Surface.OutgoingHalfedges(v);
     double jumps = 0.0;
     for (int h : out)
     {
       const int p = TriangleMesh::Prev(h); // crossing p goes to the next face counter-clockwise
-      const int t = M.Twin(p);
+      const int t = Surface.Twin(p);
       if (t < 0)
       {
         continue;
@@ -1314,7 +1319,7 @@ std::vector<double> DirectionFieldSolver::VertexIndices(int n, const std::vector
       const int f = TriangleMesh::FaceOf(h), g = TriangleMesh::FaceOf(t);
       jumps += WrapSymmetric(angles[g] - (angles[f] + Transport[p]), n);
     }
-    const double defect = (M.IsBoundaryVertex(v) ? Pi : TwoPi) - M.TotalAngle(v);
+    const double defect = (Surface.IsBoundaryVertex(v) ? Pi : TwoPi) - Surface.TotalAngle(v);
     index[v] = (jumps + defect) / TwoPi;
   }
   return index;
@@ -1324,9 +1329,9 @@ std::vector<double> DirectionFieldSolver::RoundedVertexIndices(
   int n, const std::vector<double>& angles) const
 {
   std::vector<double> index = VertexIndices(n, angles);
-  for (int v = 0; v < M.NumberOfVertices(); ++v)
+  for (int v = 0; v < Surface.NumberOfVertices(); ++v)
   {
-    if (!M.IsBoundaryVertex(v))
+    if (!Surface.IsBoundaryVertex(v))
     {
       index[v] = std::round(index[v] * n) / n;
     }
@@ -1337,9 +1342,9 @@ std::vector<double> DirectionFieldSolver::RoundedVertexIndices(
 double DirectionFieldSolver::Energy(int n, const std::vector<double>& angles) const
 {
   double e = 0.0, a = 0.0;
-  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+  for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
   {
-    const int t = M.Twin(h);
+    const int t = Surface.Twin(h);
     if (t < h)
     {
       continue;
@@ -1348,9 +1353,9 @@ double DirectionFieldSolver::Energy(int n, const std::vector<double>& angles) co
     const double d = n * (angles[g] - angles[f] - Transport[h]);
     e += EdgeWeight[h] * 2.0 * (1.0 - std::cos(d));
   }
-  for (int f = 0; f < M.NumberOfFaces(); ++f)
+  for (int f = 0; f < Surface.NumberOfFaces(); ++f)
   {
-    a += M.FaceArea(f);
+    a += Surface.FaceArea(f);
   }
   return a > 0 ? e / a : 0.0;
 }

@@ -91,7 +91,7 @@ public:
   explicit DirectionFieldSolver(const TriangleMesh& mesh);
   ~DirectionFieldSolver();
 
-  const TriangleMesh& Mesh() const { return M; }
+  const TriangleMesh& Mesh() const { return Surface; }
 
   // Tangent frame of a face.
   Vec3 FaceBasisX(int f) const { return BasisX[f]; }
@@ -166,7 +166,7 @@ private:
   std::vector<Vec3> VertexNormals() const;
   void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
 
-  const TriangleMesh& M;
+  const TriangleMesh& Surface;
   std::vector<Vec3> BasisX, BasisY;
   std::vector<double> Transport;
   std::vector<double> EdgeWeight; // per half-edge (same on both twins)
