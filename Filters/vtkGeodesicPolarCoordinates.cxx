@@ -326,8 +326,9 @@ bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
     cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph()));
   }
   gs::GeodesicPolarCoordinates& polar = *cache.Polar;
-  const gs::Status solved = run.CurveSource ? polar.ComputeCurve(run.Curve, this->Radius)
-                                            : polar.Compute(run.Point, this->Radius, run.ReferenceAngle);
+  const gs::Status solved = run.CurveSource
+    ? polar.ComputeCurve(run.Curve, this->Radius)
+    : polar.Compute(run.Point, this->Radius, run.ReferenceAngle);
   if (!solved.Ok())
   {
     vtkErrorMacro("Geodesic polar coordinates about the source "

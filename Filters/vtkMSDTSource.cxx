@@ -244,7 +244,6 @@ gs::Status CheckParameters(vtkMSDTSource* source)
 }
 } // namespace
 
-
 //------------------------------------------------------------------------------
 void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
 {
@@ -326,7 +325,8 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     cache.NoShape = true;
     return;
   }
-  gs::Result<gs::SafeDistanceTables> parts = gs::ComputeSafeDistanceParts(classes, TableOptions(this));
+  gs::Result<gs::SafeDistanceTables> parts =
+    gs::ComputeSafeDistanceParts(classes, TableOptions(this));
   if (!parts.Ok())
   {
     cache.Error = "Safe distance tables: " + parts.Message() + ".";

@@ -105,8 +105,8 @@ vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
 
 // Fills Placements: one vertex per shape with its class, scale, direction, normal and face (the
 // input's cell id), and the run's statistics as field data.
-void WritePlacements(const gs::ShapeDistribution& result, vtkIdType firstPolygon,
-  double shapeSize, const std::string& directionChoice, vtkPolyData* placements)
+void WritePlacements(const gs::ShapeDistribution& result, vtkIdType firstPolygon, double shapeSize,
+  const std::string& directionChoice, vtkPolyData* placements)
 {
   const std::vector<gs::PlacedShape>& shapes = result.Shapes;
   vtkNew<vtkPoints> points;
@@ -522,7 +522,8 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
 
   // 6. Placements.
-  WritePlacements(run.Distribution, run.FirstPolygon, run.ShapeSize, run.DirectionChoice, placements);
+  WritePlacements(
+    run.Distribution, run.FirstPolygon, run.ShapeSize, run.DirectionChoice, placements);
   this->UpdateProgress(0.87);
   if (this->CheckAbort())
   {
@@ -582,8 +583,8 @@ bool vtkShapeDistributor::CheckParameters()
   }
   if (this->K < 0)
   {
-    vtkErrorMacro("K must be >= 0 (0: exact charts, without a saddle vertex graph); it is "
-      << this->K << ".");
+    vtkErrorMacro(
+      "K must be >= 0 (0: exact charts, without a saddle vertex graph); it is " << this->K << ".");
     return false;
   }
   return true;

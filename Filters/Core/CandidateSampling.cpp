@@ -13,7 +13,6 @@ namespace gs
 {
 using namespace distribution;
 
-
 Status ShapeDistributor::Impl::PrepareClassWeights()
 {
   std::vector<double> w = Options.ClassWeights;

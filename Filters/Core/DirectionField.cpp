@@ -23,8 +23,9 @@ Status CheckSymmetry(int n)
 {
   if (n != 1 && n != 2 && n != 4)
   {
-    return Status::Error("Symmetry must be 1 (vector field), 2 (line field) or 4 (cross field); "
-                         "it is " + std::to_string(n));
+    return Status::Error(
+      "Symmetry must be 1 (vector field), 2 (line field) or 4 (cross field); it is " +
+      std::to_string(n));
   }
   return Status();
 }
@@ -784,7 +785,8 @@ int Find(std::vector<int>& parent, int a)
 }
 } // namespace
 
-Status DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
+Status DirectionFieldSolver::SolvePrescribed(int n,
+  const std::vector<VertexSingularity>& singularities,
   const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
   const int nf = Surface.NumberOfFaces(), nv = Surface.NumberOfVertices();
@@ -1157,7 +1159,8 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
   if (!x.allFinite() || residual > 1e-7 * (1.0 + b.norm()))
   {
     return Status::Error("the singularities and direction constraints are incompatible (a "
-                         "constraint crosses a singularity or two constraints disagree): residual " +
+                         "constraint crosses a singularity or two constraints disagree): "
+                         "residual " +
       std::to_string(residual));
   }
   // Transport over the dual tree, then rotate each component onto its first constraint.

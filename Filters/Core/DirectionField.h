@@ -13,8 +13,8 @@
 // Euler characteristic (Poincare-Hopf) whatever the field.
 #pragma once
 
-#include "SurfaceCurve.h"
 #include "Status.h"
+#include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 #include "Vector.h"
@@ -107,8 +107,8 @@ public:
   // connection Laplacian), or, with `curvatureAlignment` t > 0, the smoothest field pulled towards
   // the principal curvature directions (N = 2, 4) with weight t (0: ignore curvature; 1: balanced).
   // Hard constraints replace the eigenproblem by the smoothest extension of the constrained faces.
-  // The angles per face go to `angles`. The factorization is kept and reused while N and t stay the same
-  // and the set of constrained faces does not change.
+  // The angles per face go to `angles`. The factorization is kept and reused while N and t stay the
+  // same and the set of constrained faces does not change.
   Status SolveSmoothest(int n, double curvatureAlignment,
     const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles);
 

@@ -291,7 +291,8 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
     }
     double foot = arc[root] + along;
     // Past a turn of the curve: the foot is the turning point, the offset the distance to it.
-    if ((foot > runEnd[root] && runEnd[root] < CurveResult.Length) || (foot < runStart[root] && runStart[root] > 0.0))
+    if ((foot > runEnd[root] && runEnd[root] < CurveResult.Length) ||
+      (foot < runStart[root] && runStart[root] > 0.0))
     {
       foot = foot > runEnd[root] ? runEnd[root] : runStart[root];
       across = d;
@@ -326,7 +327,8 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
       if (d < std::abs(CurveResult.Offset[v]))
       {
         CurveResult.Offset[v] = Dot(Cross(ab, p - foot), n) < 0.0 ? -d : d;
-        CurveResult.ArcLength[v] = std::min(1.0, std::max(0.0, (start + t * length) / CurveResult.Length));
+        CurveResult.ArcLength[v] =
+          std::min(1.0, std::max(0.0, (start + t * length) / CurveResult.Length));
         // (A foot clamped to the piece's end keeps the solver's unclamped value.)
         if (t > 0.0 && t < 1.0)
         {
@@ -344,7 +346,8 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
   for (std::size_t i = 0; i < InsideList.size(); ++i)
   {
     const int v = InsideList[i];
-    if (!(std::abs(CurveResult.Offset[v]) <= radius) || CurveResult.Offset[v] == 0.0 || !(CurveResult.ArcLength[v] > 0.0 && CurveResult.ArcLength[v] < 1.0))
+    if (!(std::abs(CurveResult.Offset[v]) <= radius) || CurveResult.Offset[v] == 0.0 ||
+      !(CurveResult.ArcLength[v] > 0.0 && CurveResult.ArcLength[v] < 1.0))
     {
       continue;
     }
@@ -466,12 +469,15 @@ bool GeodesicPolarCoordinates::CurveCoordinatesAt(
     return std::isfinite(offset);
   }
   const auto& t = Mesh.Face(q.Face);
-  if (!std::isfinite(CurveResult.Offset[t[0]]) || !std::isfinite(CurveResult.Offset[t[1]]) || !std::isfinite(CurveResult.Offset[t[2]]))
+  if (!std::isfinite(CurveResult.Offset[t[0]]) || !std::isfinite(CurveResult.Offset[t[1]]) ||
+    !std::isfinite(CurveResult.Offset[t[2]]))
   {
     return false;
   }
-  offset = q.Bary[0] * CurveResult.Offset[t[0]] + q.Bary[1] * CurveResult.Offset[t[1]] + q.Bary[2] * CurveResult.Offset[t[2]];
-  arcLength = q.Bary[0] * CurveResult.ArcLength[t[0]] + q.Bary[1] * CurveResult.ArcLength[t[1]] + q.Bary[2] * CurveResult.ArcLength[t[2]];
+  offset = q.Bary[0] * CurveResult.Offset[t[0]] + q.Bary[1] * CurveResult.Offset[t[1]] +
+    q.Bary[2] * CurveResult.Offset[t[2]];
+  arcLength = q.Bary[0] * CurveResult.ArcLength[t[0]] + q.Bary[1] * CurveResult.ArcLength[t[1]] +
+    q.Bary[2] * CurveResult.ArcLength[t[2]];
   return true;
 }
 

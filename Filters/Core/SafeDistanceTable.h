@@ -162,11 +162,10 @@ Status CheckSafeDistanceOptions(const SafeDistanceOptions& options);
 Result<SafeDistanceTables> ComputeSafeDistanceValues(SafeDistanceTables parts,
   const SafeDistanceOptions& options = {}, const std::function<bool(double)>& progress = nullptr);
 
-/// Both steps: builds the classes, parts and all P^2 tables. OpenMP-parallel (profiles over angle bins,
-/// tables over rows) and deterministic. `progress` (optional) is called from the calling
+/// Both steps: builds the classes, parts and all P^2 tables. OpenMP-parallel (profiles over angle
+/// bins, tables over rows) and deterministic. `progress` (optional) is called from the calling
 /// thread with values in [0, 1]; returning false aborts (the result IsAborted()).
 Result<SafeDistanceTables> ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,
-  const SafeDistanceOptions& options = {},
-  const std::function<bool(double)>& progress = nullptr);
+  const SafeDistanceOptions& options = {}, const std::function<bool(double)>& progress = nullptr);
 
 } // namespace gs

@@ -236,8 +236,7 @@ public:
   /// options, directions or densities: every option is checked here, callers need not.
   Result<ShapeDistribution> Run(const SafeDistanceTables& tables,
     const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
-    const ShapeDistributionOptions& options,
-    const std::function<bool(double)>& progress = nullptr);
+    const ShapeDistributionOptions& options, const std::function<bool(double)>& progress = nullptr);
 
   /// After Run: the fraction of `probes` random candidates (drawn like the run's, with
   /// field-aligned orientation) that would fit among the placed shapes.

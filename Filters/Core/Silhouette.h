@@ -72,7 +72,8 @@ Result<SilhouetteImage> MakeSilhouette(const float* pixels, int width, int heigh
 /// Writes a mask as an 8-bit PNG (or any format OpenImageIO writes, chosen by extension): RGBA
 /// black with alpha 255 inside, 0 outside when `withAlpha`, else one channel, 0 inside and 255
 /// outside. Used by tests and tools.
-Status WriteSilhouetteImage(const SilhouetteMask& mask, const std::string& fileName, bool withAlpha);
+Status WriteSilhouetteImage(
+  const SilhouetteMask& mask, const std::string& fileName, bool withAlpha);
 
 /// A 2D region bounded by closed rings (even-odd rule). Each ring lists its vertices once (the
 /// closing edge from the last vertex back to the first is implied). Rings are oriented with the
