@@ -467,12 +467,13 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   {
     return 1;
   }
-  std::string error;
-  if (!vtkSafeDistanceTableImage::FromImage(tableImage, run.Tables, error))
+  gs::Result<gs::SafeDistanceTables> tables = vtkSafeDistanceTableImage::FromImage(tableImage);
+  if (!tables.Ok())
   {
-    vtkErrorMacro("" << error << ".");
+    vtkErrorMacro("" << tables.Message() << ".");
     return 1;
   }
+  run.Tables = std::move(tables).Value();
   run.Lap("Tables");
 
   // 2. Mesh (kept while unchanged) and the shape size.
