@@ -979,7 +979,7 @@ int main(int argc, char* argv[])
         if (distortion >= 0.0)
           o.DistortionLimit = distortion;
         const double t0 = Now();
-        results[threads] = d.Run(t, directionsOf(fine), {}, o).Value();
+        results[threads] = std::move(*d.Run(t, directionsOf(fine), {}, o));
         times[threads].push_back(Now() - t0);
         const ShapeDistribution& r = results[threads];
         std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s (candidates %.2f, "

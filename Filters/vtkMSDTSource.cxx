@@ -333,7 +333,7 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     return;
   }
   cache.Ok = true;
-  cache.Parts = std::move(parts).Value();
+  cache.Parts = std::move(*parts);
 }
 
 //------------------------------------------------------------------------------

@@ -473,7 +473,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     vtkErrorMacro("" << tables.Message() << ".");
     return 1;
   }
-  run.Tables = std::move(tables).Value();
+  run.Tables = std::move(*tables);
   run.Lap("Tables");
 
   // 2. Mesh (kept while unchanged) and the shape size.
@@ -799,7 +799,7 @@ bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
     }
     return false;
   }
-  run.Distribution = std::move(placed).Value();
+  run.Distribution = std::move(*placed);
   run.Lap("Distribution");
   const gs::ShapeDistributionStatistics& st = run.Distribution.Statistics;
   run.Phases.emplace_back("SetUp", st.PrepareSeconds);

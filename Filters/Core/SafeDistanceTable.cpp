@@ -582,7 +582,7 @@ Result<SafeDistanceTables> ComputeSafeDistanceTables(const std::vector<SafeDista
   {
     return parts;
   }
-  return ComputeSafeDistanceValues(std::move(parts).Value(), options, progress);
+  return ComputeSafeDistanceValues(std::move(*parts), options, progress);
 }
 
 } // namespace gs

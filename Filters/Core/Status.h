@@ -46,16 +46,12 @@ private:
   std::string Text;
 };
 
-/// A Status with, when Ok(), a value (Value(), or -> and *). Made from a value (ok) or from a
+/// A Status with, when Ok(), a value (read with * and ->). Made from a value (ok) or from a
 /// failed Status, so that `return Status::Error("...")` works in a function returning Result<T>.
 template <typename T>
 class [[nodiscard]] Result : public Status
 {
 public:
-  Result(const T& value)
-    : Val(value)
-  {
-  }
   Result(T&& value)
     : Val(std::move(value))
   {
@@ -66,14 +62,11 @@ public:
     assert(!this->Ok());
   }
 
-  /// The value (only when Ok()).
-  T& Value() & { return this->Val; }
-  const T& Value() const& { return this->Val; }
-  T&& Value() && { return std::move(this->Val); }
+  /// The value (only when Ok()); std::move(*result) takes it out.
+  T& operator*() { return this->Val; }
+  const T& operator*() const { return this->Val; }
   T* operator->() { return &this->Val; }
   const T* operator->() const { return &this->Val; }
-  T& operator*() & { return this->Val; }
-  const T& operator*() const& { return this->Val; }
 
 private:
   T Val{};

@@ -62,7 +62,7 @@ ShapeDistribution Distribute(ShapeDistributor& d, const Plane& p, const SafeDist
 {
   Result<ShapeDistribution> r = d.Run(t, p.Directions, density, o);
   EXPECT_TRUE(r.Ok()) << r.Message();
-  return std::move(r).Value();
+  return std::move(*r);
 }
 } // namespace
 
