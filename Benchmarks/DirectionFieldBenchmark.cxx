@@ -98,33 +98,33 @@ int main(int argc, char* argv[])
       // No constraint: the smallest eigenvector (factorization + Rayleigh-Ritz iterations).
       gs::DirectionFieldSolver solver(mesh);
       auto t0 = Clock::now();
-      const bool ok = solver.SolveSmoothest(4, 0.0, {}, angles, error);
+      const bool ok = solver.SolveSmoothest(4, 0.0, {}, angles).Ok();
       free = Seconds(t0);
       bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
     }
     {
       gs::DirectionFieldSolver solver(mesh);
       auto t0 = Clock::now();
-      bool ok = solver.SolveSmoothest(4, 0.0, stroke, angles, error);
+      bool ok = solver.SolveSmoothest(4, 0.0, stroke, angles).Ok();
       smoothFirst = Seconds(t0);
       bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
       t0 = Clock::now();
-      ok = solver.SolveSmoothest(4, 0.0, turned, angles, error);
+      ok = solver.SolveSmoothest(4, 0.0, turned, angles).Ok();
       smoothRe = Seconds(t0);
       bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
     }
     {
       gs::DirectionFieldSolver solver(mesh);
       auto t0 = Clock::now();
-      bool ok = solver.SolvePrescribed(4, Spread(mesh, 0), {}, angles, error);
+      const gs::Status first = solver.SolvePrescribed(4, Spread(mesh, 0), {}, angles);
       presFirst = Seconds(t0);
-      bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
-      if (!ok)
+      bad += !first.Ok() || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
+      if (!first.Ok())
       {
-        std::fprintf(stderr, "%s\n", error.c_str());
+        std::fprintf(stderr, "%s\n", first.Message().c_str());
       }
       t0 = Clock::now();
-      ok = solver.SolvePrescribed(4, Spread(mesh, 17), {}, angles, error);
+      const bool ok = solver.SolvePrescribed(4, Spread(mesh, 17), {}, angles).Ok();
       presRe = Seconds(t0);
       bad += !ok || std::abs(solver.IndexSum(4, angles) - chi) > 1e-6;
     }

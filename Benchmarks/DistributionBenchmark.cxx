@@ -193,12 +193,12 @@ std::vector<Vec2> Pentagram()
 // Scaled to circumradius 1, so that every class has the same size.
 bool ShapeFromImage(const std::string& file, Shape2D& shape)
 {
-  SilhouetteReadResult r = ReadSilhouetteImage(file);
-  if (!r.Ok)
+  Result<SilhouetteImage> r = ReadSilhouetteImage(file);
+  if (!r.Ok())
   {
     return false;
   }
-  shape = ShapeFromMask(r.Mask);
+  shape = ShapeFromMask(r->Mask);
   std::vector<Vec2> all;
   for (const auto& ring : shape.Rings)
     all.insert(all.end(), ring.begin(), ring.end());
@@ -214,13 +214,13 @@ SafeDistanceTables Tables(const std::vector<SafeDistanceInput>& in)
   SafeDistanceOptions o;
   o.AngleBins = 64;
   o.DistanceSteps = 64;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  if (!r.Ok)
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  if (!r.Ok())
   {
-    std::fprintf(stderr, "tables: %s\n", r.Error.c_str());
+    std::fprintf(stderr, "tables: %s\n", r.Message().c_str());
     std::exit(1);
   }
-  return r.Tables;
+  return *r;
 }
 
 
@@ -281,19 +281,19 @@ void Figure9(const std::string& name, const SafeDistanceInput& shape, int seeds)
         o.ShapeSize = 0.5;
         o.Mode = mode;
         o.Seed = static_cast<std::uint64_t>(seed);
-        const ShapeDistributionResult r = d.Run(t, dirs, {}, o);
+        const Result<ShapeDistribution> r = d.Run(t, dirs, {}, o);
         int pairs = 0;
-        const int overlaps = gs_test::CountPlanarOverlaps(plane, t, r.Shapes, o.ShapeSize, &pairs);
-        TotalShapes += static_cast<long long>(r.Shapes.size());
+        const int overlaps = gs_test::CountPlanarOverlaps(plane, t, r->Shapes, o.ShapeSize, &pairs);
+        TotalShapes += static_cast<long long>(r->Shapes.size());
         TotalOverlaps += overlaps;
         TotalPairs += pairs;
-        sum += static_cast<double>(r.Shapes.size());
+        sum += static_cast<double>(r->Shapes.size());
         if (seed == 0 && aligned)
         {
           if (!SvgPrefix.empty())
-            WriteSvg(SvgPrefix + "_" + name + "_" + ModeName(mode) + ".svg", t, r.Shapes, o.ShapeSize);
+            WriteSvg(SvgPrefix + "_" + name + "_" + ModeName(mode) + ".svg", t, r->Shapes, o.ShapeSize);
           std::printf("    %-12s seed 0: %zu shapes, %lld candidates, %.3f s; probes that fit: %.4f%% of 1e5\n",
-            ModeName(mode), r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Seconds,
+            ModeName(mode), r->Shapes.size(), r->Statistics.Candidates, r->Statistics.Seconds,
             100.0 * d.ProbeFitFraction(100000, 12345));
         }
       }
@@ -323,12 +323,12 @@ void DensityFidelity(const SafeDistanceInput& shape, int seeds)
     ShapeDistributionOptions o;
     o.ShapeSize = 0.3;
     o.Seed = static_cast<std::uint64_t>(seed);
-    const ShapeDistributionResult r = d.Run(t, dirs, f, o);
-    TotalShapes += static_cast<long long>(r.Shapes.size());
+    const Result<ShapeDistribution> r = d.Run(t, dirs, f, o);
+    TotalShapes += static_cast<long long>(r->Shapes.size());
     int pairs = 0;
-    TotalOverlaps += gs_test::CountPlanarOverlaps(plane, t, r.Shapes, o.ShapeSize, &pairs);
+    TotalOverlaps += gs_test::CountPlanarOverlaps(plane, t, r->Shapes, o.ShapeSize, &pairs);
     TotalPairs += pairs;
-    for (const PlacedShape& s : r.Shapes)
+    for (const PlacedShape& s : r->Shapes)
     {
       const int k = static_cast<int>(s.Position.x / 2.0);
       // Stay one shape away from the square's sides (boundary effects).
@@ -416,12 +416,12 @@ void LargeSquare(const SafeDistanceInput& shape, int seeds)
       o.ShapeSize = 0.5;
       o.Mode = mode;
       o.Seed = static_cast<std::uint64_t>(1000 + seed);
-      const ShapeDistributionResult r = d.Run(t, dirs, {}, o);
+      const Result<ShapeDistribution> r = d.Run(t, dirs, {}, o);
       int p = 0;
-      overlaps += gs_test::CountPlanarOverlaps(plane, t, r.Shapes, o.ShapeSize, &p);
+      overlaps += gs_test::CountPlanarOverlaps(plane, t, r->Shapes, o.ShapeSize, &p);
       pairs += p;
-      sum += static_cast<double>(r.Shapes.size());
-      seconds += r.Statistics.Seconds;
+      sum += static_cast<double>(r->Shapes.size());
+      seconds += r->Statistics.Seconds;
     }
     TotalShapes += static_cast<long long>(sum);
     TotalOverlaps += overlaps;
@@ -462,17 +462,17 @@ void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
       o.ShapeSize = size;
       o.Mode = mode;
       o.Seed = static_cast<std::uint64_t>(seed);
-      const ShapeDistributionResult res = d.Run(t, dirs, {}, o);
+      const Result<ShapeDistribution> res = d.Run(t, dirs, {}, o);
       int pairs = 0;
-      const int overlaps = gs_test::CountPlanarOverlaps(plane, t, res.Shapes, o.ShapeSize, &pairs);
-      TotalShapes += static_cast<long long>(res.Shapes.size());
+      const int overlaps = gs_test::CountPlanarOverlaps(plane, t, res->Shapes, o.ShapeSize, &pairs);
+      TotalShapes += static_cast<long long>(res->Shapes.size());
       TotalOverlaps += overlaps;
       TotalPairs += pairs;
-      sum += static_cast<double>(res.Shapes.size());
-      std::printf(" %zu%s", res.Shapes.size(), overlaps ? "(OVERLAPS)" : "");
+      sum += static_cast<double>(res->Shapes.size());
+      std::printf(" %zu%s", res->Shapes.size(), overlaps ? "(OVERLAPS)" : "");
       if (seed == 0 && !SvgPrefix.empty())
         WriteSvg(SvgPrefix + "_square" + std::to_string(static_cast<int>(width)) + "_" + ModeName(mode) + ".svg",
-          t, res.Shapes, o.ShapeSize, side);
+          t, res->Shapes, o.ShapeSize, side);
     }
     mean[mode] = sum / seeds;
     std::printf("  (seeds 0-%d): mean %.1f\n", seeds - 1, mean[mode]);
@@ -520,14 +520,14 @@ void BumpySphere(const std::vector<SafeDistanceInput>& classes, int seeds)
     if (getenv("GS_DISTORTION"))
       o.DistortionLimit = atof(getenv("GS_DISTORTION"));
     o.Seed = static_cast<std::uint64_t>(seed);
-    const ShapeDistributionResult r = d.Run(t, dirs, {}, o);
+    const Result<ShapeDistribution> r = d.Run(t, dirs, {}, o);
     long long p = 0;
     overlaps += gs_test::CountSurfaceOverlaps(sphere, t, d, o.ShapeSize, 0.02, &p);
     pairs += p;
-    shapes += static_cast<long long>(r.Shapes.size());
-    seconds += r.Statistics.Seconds;
+    shapes += static_cast<long long>(r->Shapes.size());
+    seconds += r->Statistics.Seconds;
     if (getenv("GS_VERBOSE"))
-      std::printf("    seed %d: %zu shapes, %lld candidates, %lld charts, %.2f s (generate %.2f, checks %.2f, set-up %.2f)\n", seed, r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, r.Statistics.Seconds, r.Statistics.GenerateSeconds, r.Statistics.CheckSeconds, r.Statistics.PrepareSeconds);
+      std::printf("    seed %d: %zu shapes, %lld candidates, %lld charts, %.2f s (generate %.2f, checks %.2f, set-up %.2f)\n", seed, r->Shapes.size(), r->Statistics.Candidates, r->Statistics.Charts, r->Statistics.Seconds, r->Statistics.GenerateSeconds, r->Statistics.CheckSeconds, r->Statistics.PrepareSeconds);
   }
   TotalShapes += shapes;
   TotalOverlaps += overlaps;
@@ -609,11 +609,11 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       if (const char* limit = std::getenv("GS_DISTORTION_LIMIT"))
         o.DistortionLimit = std::atof(limit); // (0: every close pair judged by circumcircles)
       const double t0 = Now();
-      const ShapeDistributionResult r = d.Run(t, directions, {}, o);
+      const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
       const double t1 = Now();
-      const int n = static_cast<int>(r.Shapes.size());
+      const int n = static_cast<int>(r->Shapes.size());
       Hasher placements; // (for refactors: the same placements bit for bit)
-      for (const PlacedShape& shape : r.Shapes)
+      for (const PlacedShape& shape : r->Shapes)
       {
         placements.AddValue(shape.Position);
         placements.AddValue(shape.Direction);
@@ -625,7 +625,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         DrawDecals(d, ShapeDistributor::DefaultDecalTolerance, threads, &decalSeconds);
       double longSeconds = 0.0;
       for (int s = 0; s < n; ++s)
-        if (!r.Shapes[s].Curve.empty())
+        if (!r->Shapes[s].Curve.empty())
           longSeconds += decalSeconds[s];
       const double t2 = Now();
       if (threads == 1)
@@ -652,12 +652,12 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       const double t4 = Now();
       if (threads == 1)
       {
-        const DecalOracleResult oracle = DecalOracle(t, r.Shapes, decals);
+        const DecalOracleResult oracle = DecalOracle(t, r->Shapes, decals);
         std::printf("    decal oracle: %lld pairs draw a common lattice point, %lld of them more than 1%% of the "
                     "smaller shape's (worst %.2f%%)\n", oracle.SharingPairs, oracle.PairsOverOnePercent,
           100.0 * oracle.Worst);
       }
-      const ShapeDistributionStatistics& st = r.Statistics;
+      const ShapeDistributionStatistics& st = r->Statistics;
       const double values[8] = { st.PrepareSeconds, st.GenerateSeconds, st.CheckSeconds, st.RoundSeconds,
         t2 - t1, t3 - t2, t4 - t3, t3 - t0 };
       std::printf("  seed %d, %d thread(s): %d shapes, %lld candidates, %lld charts; distribution %.2f s, "
@@ -667,13 +667,13 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         run == 0 ? " (warm-up)" : "");
       for (std::size_t k = 0; k < check.Pairs.size() && k < 4 && threads == 1; ++k)
       {
-        const PlacedShape &a = r.Shapes[check.Pairs[k].first], &b = r.Shapes[check.Pairs[k].second];
+        const PlacedShape &a = r->Shapes[check.Pairs[k].first], &b = r->Shapes[check.Pairs[k].second];
         // Depth: the deepest point of the long (or second) outline inside the short shape.
         const int sa = a.Curve.empty() ? check.Pairs[k].first : check.Pairs[k].second;
         const int sb = sa == check.Pairs[k].first ? check.Pairs[k].second : check.Pairs[k].first;
         double depth = 0.0;
-        const auto& rings = t.Classes[r.Shapes[sa].ClassId].Outline.Rings;
-        ClassRegion region(rings, t.Classes[r.Shapes[sa].ClassId].Radius, 0.0);
+        const auto& rings = t.Classes[r->Shapes[sa].ClassId].Outline.Rings;
+        ClassRegion region(rings, t.Classes[r->Shapes[sa].ClassId].Radius, 0.0);
         for (const OutlinePiece& piece : outlines[sb])
           for (const SurfacePoint& q : piece.Points)
           {
@@ -696,10 +696,10 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
               {
                 const Vec3 X = mesh.Interpolate(q.Face, q.Bary);
                 std::printf("      deepest so far %.3f at class point of %d (%.3f %.3f); parts of %d:", best, sa, p.x, p.y, sb);
-                for (const PlacedPart& part : r.Shapes[sb].Parts)
+                for (const PlacedPart& part : r->Shapes[sb].Parts)
                   std::printf(" [part %d r %.3f: %.4f from the point, %.4f from %d's centre]", part.Part,
-                    t.Parts[part.Part].Radius * o.ShapeSize * r.Shapes[sb].Scale, Norm(part.Position - X),
-                    Norm(part.Position - r.Shapes[sa].Position), sa);
+                    t.Parts[part.Part].Radius * o.ShapeSize * r->Shapes[sb].Scale, Norm(part.Position - X),
+                    Norm(part.Position - r->Shapes[sa].Position), sa);
                 std::printf("\n");
               }
             }
@@ -707,7 +707,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         {
           // Independent of both maps: the two drawn outlines projected on the tangent plane at the
           // first shape's centre, their common area over the smaller one's.
-          const PlacedShape& A = r.Shapes[check.Pairs[k].first];
+          const PlacedShape& A = r->Shapes[check.Pairs[k].first];
           const Vec3 n = A.Normal, e1 = Unit(A.Direction), e2 = Cross(n, e1);
           auto project = [&](int s) {
             std::vector<std::vector<Vec2>> rings;
@@ -732,8 +732,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         if (std::getenv("GS_DEBUG_DEPTH"))
         {
           // The long shape's drawn map against each rigid part, at its outline points in the part's circle.
-          const int L = r.Shapes[check.Pairs[k].first].Curve.empty() ? check.Pairs[k].second : check.Pairs[k].first;
-          const PlacedShape& ls = r.Shapes[L];
+          const int L = r->Shapes[check.Pairs[k].first].Curve.empty() ? check.Pairs[k].second : check.Pairs[k].first;
+          const PlacedShape& ls = r->Shapes[L];
           const double unit = o.ShapeSize * ls.Scale;
           for (const PlacedPart& part : ls.Parts)
           {
@@ -757,7 +757,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
             // In the short shape's chart: the part's rigid copy (placed as the conflict test places
             // it) against the drawn long shape, and whether the rigid copy overlaps the short one.
             const int S = L == check.Pairs[k].first ? check.Pairs[k].second : check.Pairs[k].first;
-            const double sunit = o.ShapeSize * r.Shapes[S].Scale;
+            const double sunit = o.ShapeSize * r->Shapes[S].Scale;
             Vec2 qc;
             if (!d.ClassPoint(S, part.Centre, qc))
               continue;
@@ -766,7 +766,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
             if (!d.ClassPoint(S, step.End, qa))
               continue;
             const double axis = std::atan2(qa.y - qc.y, qa.x - qc.x);
-            const ClassRegion region(t.Classes[r.Shapes[S].ClassId].Outline.Rings, t.Classes[r.Shapes[S].ClassId].Radius, 0.0);
+            const ClassRegion region(t.Classes[r->Shapes[S].ClassId].Outline.Rings, t.Classes[r->Shapes[S].ClassId].Radius, 0.0);
             double gap = 0.0;
             int rigidInside = 0, drawnInside = 0;
             for (const auto& ring : t.Classes[ls.ClassId].Outline.Rings)
@@ -786,20 +786,20 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
             const double phi = std::atan2(qc.y, qc.x);
             std::printf("        in %d's chart: centre (%.4f %.4f), d %.4f, axis %.3f, alphaA %.3f alphaB %.3f, table %.4f; rigid vs drawn max %.4f; points inside: rigid %d, drawn %d\n",
               S, qc.x, qc.y, Norm(qc), axis, -phi, axis - phi,
-              t.Lookup(t.Classes[r.Shapes[S].ClassId].Parts[0], part.Part, -phi, axis - phi), gap, rigidInside, drawnInside);
+              t.Lookup(t.Classes[r->Shapes[S].ClassId].Parts[0], part.Part, -phi, axis - phi), gap, rigidInside, drawnInside);
           }
         }
         std::printf("    overlap: shapes %d (class %d%s) and %d (class %d%s), centres %.4f apart (radius %.4f): "
                     "the outline of %d reaches %.2f%% of the radius into %d\n",
           check.Pairs[k].first, a.ClassId, a.Curve.empty() ? "" : ", long", check.Pairs[k].second, b.ClassId,
           b.Curve.empty() ? "" : ", long", Norm(a.Position - b.Position), o.ShapeSize, sb,
-          100.0 * depth / t.Classes[r.Shapes[sa].ClassId].Radius, sa);
+          100.0 * depth / t.Classes[r->Shapes[sa].ClassId].Radius, sa);
       }
       if (run == 0)
         continue; // the first run of each thread count: per-thread engines, lattices
       for (int k = 0; k < 8; ++k)
         phase[k][threads].push_back(values[k]);
-      counts[threads].push_back(r.Shapes.size());
+      counts[threads].push_back(r->Shapes.size());
     }
   }
   for (int threads : { 1, 2 })
@@ -950,9 +950,9 @@ int main(int argc, char* argv[])
       o.ShapeSize = shapeSize;
       o.Seed = 1;
       const double t0 = Now();
-      const ShapeDistributionResult r = cold.Run(t, directionsOf(fine), {}, o);
+      const Result<ShapeDistribution> r = cold.Run(t, directionsOf(fine), {}, o);
       std::printf("  cold run (new distributor, 2 threads): %zu shapes in %.2f s (set-up %.2f s)\n",
-        r.Shapes.size(), Now() - t0, r.Statistics.PrepareSeconds);
+        r->Shapes.size(), Now() - t0, r->Statistics.PrepareSeconds);
     }
     // Warm, as the filter re-runs while the mesh is unchanged: the same distributor.
     ShapeDistributor d(fine, exactCharts ? nullptr : graphs[&fine].get());
@@ -960,11 +960,11 @@ int main(int argc, char* argv[])
       ShapeDistributionOptions o;
       o.ShapeSize = shapeSize;
       o.MaximumShapes = 1;
-      d.Run(t, directionsOf(fine), {}, o);
+      static_cast<void>(d.Run(t, directionsOf(fine), {}, o)); // warm-up: lattices, engines
     }
     // Speed: rounds alternating 1 and 2 threads (so that load changes on the machine fall on
     // both), median times; the checks below use the last run of each.
-    ShapeDistributionResult results[3];
+    ShapeDistribution results[3];
     std::vector<double> times[3];
     for (int round = 0; round < speedRounds; ++round)
     {
@@ -979,9 +979,9 @@ int main(int argc, char* argv[])
         if (distortion >= 0.0)
           o.DistortionLimit = distortion;
         const double t0 = Now();
-        results[threads] = d.Run(t, directionsOf(fine), {}, o);
+        results[threads] = std::move(*d.Run(t, directionsOf(fine), {}, o));
         times[threads].push_back(Now() - t0);
-        const ShapeDistributionResult& r = results[threads];
+        const ShapeDistribution& r = results[threads];
         std::printf("  %d thread(s): %zu shapes, %lld candidates, %lld charts, %.2f s (candidates %.2f, "
                     "checks and charts %.2f (charts %.2f s CPU), rounds %.2f, set-up %.2f)\n", threads,
           r.Shapes.size(), r.Statistics.Candidates, r.Statistics.Charts, times[threads].back(),
@@ -991,7 +991,7 @@ int main(int argc, char* argv[])
     }
     const double t1s = Median(times[1]), t2s = Median(times[2]);
     const std::vector<PlacedShape>& reference = results[1].Shapes;
-    const ShapeDistributionResult& r = results[2];
+    const ShapeDistribution& r = results[2];
     bool same = r.Shapes.size() == reference.size();
     for (std::size_t i = 0; same && i < reference.size(); ++i)
       same = r.Shapes[i].Position.x == reference[i].Position.x && r.Shapes[i].ClassId == reference[i].ClassId;
@@ -1022,7 +1022,7 @@ int main(int argc, char* argv[])
         ShapeDistributionOptions o;
         o.ShapeSize = shapeSize;
         o.Seed = static_cast<std::uint64_t>(100 + seed);
-        counts[which] += static_cast<double>(d.Run(t, directionsOf(m), {}, o).Shapes.size()) / resolutionSeeds;
+        counts[which] += static_cast<double>(d.Run(t, directionsOf(m), {}, o)->Shapes.size()) / resolutionSeeds;
       }
     }
     std::printf("  resolution: %.1f shapes on %d faces, %.1f on %d faces: %.1f%% apart (bar: 5%%)\n",

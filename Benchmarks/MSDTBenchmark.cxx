@@ -39,13 +39,13 @@ double Seconds(Clock::time_point t0)
 // The silhouette of `file` re-rasterized into a size x size mask (bounding box fitted, margin 1).
 bool Load512(const std::string& file, int size, gs::SilhouetteMask& mask, std::string& error)
 {
-  const gs::SilhouetteReadResult read = gs::ReadSilhouetteImage(file);
-  if (!read.Ok)
+  const gs::Result<gs::SilhouetteImage> read = gs::ReadSilhouetteImage(file);
+  if (!read.Ok())
   {
-    error = read.Error;
+    error = read.Message();
     return false;
   }
-  const gs::Shape2D shape = gs::ShapeFromMask(read.Mask);
+  const gs::Shape2D shape = gs::ShapeFromMask(read->Mask);
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (const auto& ring : shape.Rings)
     for (const gs::Vec2& p : ring)
@@ -59,7 +59,7 @@ bool Load512(const std::string& file, int size, gs::SilhouetteMask& mask, std::s
   const gs::Vec2 origin{ 0.5 * (x0 + x1) - 0.5 * size * pixel, 0.5 * (y0 + y1) - 0.5 * size * pixel };
   mask = gs::RasterizeShape(shape, size, size, origin, pixel);
   std::printf("%s: %dx%d image, %zu pixels inside, re-rasterized to %dx%d (%zu inside)\n",
-    file.c_str(), read.Mask.Width, read.Mask.Height, read.Mask.Count(), size, size, mask.Count());
+    file.c_str(), read->Mask.Width, read->Mask.Height, read->Mask.Count(), size, size, mask.Count());
   return true;
 }
 
@@ -121,7 +121,7 @@ int main(int argc, char* argv[])
 
     // Speed (whole pipeline from the mask: contours, circle, profiles, table).
     double best = 1e300;
-    gs::SafeDistanceResult result;
+    gs::Result<gs::SafeDistanceTables> result = gs::Status::Error("not computed");
     for (int run = 0; run < 3; ++run)
     {
       const auto t0 = Clock::now();
@@ -129,22 +129,22 @@ int main(int argc, char* argv[])
       result = gs::ComputeSafeDistanceTables({ { file, std::move(shape) } }, options);
       best = std::min(best, Seconds(t0));
     }
-    if (!result.Ok)
+    if (!result.Ok())
     {
-      std::printf("  error: %s\n", result.Error.c_str());
+      std::printf("  error: %s\n", result.Message().c_str());
       ++failures;
       continue;
     }
-    const gs::SafeDistanceTables& T = result.Tables;
+    const gs::SafeDistanceTables& T = *result;
     std::printf("  %zu boundary edges, %d part(s), aspect %.2f, rotation samples %d\n",
       input.Shape.NumberOfEdges(), T.NumberOfParts(), T.Classes[0].AspectRatio, T.RotationSamples);
     std::printf("  table time (512x512, ka=kr=64): %.3f s\n", best);
 
     // Tightness against the paper's sampled-angle table.
-    const gs::SafeDistanceResult plain = gs::ComputeSafeDistanceTables({ input }, sampled);
-    const double ratio = Mean(T.Values) / Mean(plain.Tables.Values);
+    const gs::Result<gs::SafeDistanceTables> plain = gs::ComputeSafeDistanceTables({ input }, sampled);
+    const double ratio = Mean(T.Values) / Mean(plain->Values);
     std::printf("  tightness: mean conservative %.4f / mean sampled-angle %.4f = %.4f (+%.2f%%)\n",
-      Mean(T.Values), Mean(plain.Tables.Values), ratio, 100.0 * (ratio - 1.0));
+      Mean(T.Values), Mean(plain->Values), ratio, 100.0 * (ratio - 1.0));
 
     // Conservativeness: random probes over every ordered pair of parts. Each part's region is
     // rebuilt by the oracle's own clipping of the class outline to the part's slab
@@ -211,7 +211,7 @@ int main(int argc, char* argv[])
         for (int i = 0; i < T.AngleBins; i += 3)
           for (int j = 0; j < T.AngleBins; j += 3)
           {
-            const double d = plain.Tables.Value(a, b, i, j) - 1.5 * T.Step(a, b);
+            const double d = plain->Value(a, b, i, j) - 1.5 * T.Step(a, b);
             if (d <= 0)
               continue;
             ++belowTested;
@@ -225,7 +225,7 @@ int main(int argc, char* argv[])
   {
     classes.resize(4);
     double best = 1e300;
-    gs::SafeDistanceResult result;
+    gs::Result<gs::SafeDistanceTables> result = gs::Status::Error("not computed");
     for (int run = 0; run < 3; ++run)
     {
       const auto t0 = Clock::now();
@@ -233,7 +233,7 @@ int main(int argc, char* argv[])
       best = std::min(best, Seconds(t0));
     }
     std::printf("4 classes (%d parts, %d tables, 512x512 each, ka=kr=64): %.3f s\n",
-      result.Tables.NumberOfParts(), result.Tables.NumberOfPairs(), best);
+      result->NumberOfParts(), result->NumberOfPairs(), best);
   }
   return failures == 0 ? 0 : 1;
 }

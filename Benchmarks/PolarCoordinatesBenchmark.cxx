@@ -60,19 +60,25 @@ int main(int argc, char** argv)
     double seconds = 0, fastSeconds = 0, radiusSum = 0, worst = 0, rhoErr = 0;
     std::vector<double> thetaErr;
     long long inside = 0;
+    auto compute = [](GeodesicPolarCoordinates& polar, int s, double radius) {
+      if (const Status solved = polar.Compute(SurfacePoint::AtVertex(s), radius); !solved.Ok())
+      {
+        std::fprintf(stderr, "source %d: %s\n", s, solved.Message().c_str());
+      }
+    };
     for (int k = 0; k < numSources; ++k)
     {
       const int s = static_cast<int>((static_cast<long long>(k) * 7919 + 13) % nv);
       // The radius holding `patch` vertices.
-      pc.Compute(SurfacePoint::AtVertex(s), INFINITY);
+      compute(pc, s, INFINITY);
       const std::vector<int>& all = pc.Inside();
       const int count = std::min<int>(patch, static_cast<int>(all.size()));
       const double radius = pc.Rho(all[count - 1]) * (1 + 1e-12);
       auto t0 = std::chrono::steady_clock::now();
-      pc.Compute(SurfacePoint::AtVertex(s), radius);
+      compute(pc, s, radius);
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       t0 = std::chrono::steady_clock::now();
-      fast.Compute(SurfacePoint::AtVertex(s), radius);
+      compute(fast, s, radius);
       fastSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       radiusSum += radius;
       inside += static_cast<long long>(pc.Inside().size());

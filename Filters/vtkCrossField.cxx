@@ -153,13 +153,12 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
   }
 
   // 5. Solve.
-  std::string error;
-  const bool ok = this->Mode == SMOOTHEST
-    ? solver.SolveSmoothest(n, this->CurvatureAlignment, run.Constraints, run.Angles, error)
-    : solver.SolvePrescribed(n, run.Singularities, run.Constraints, run.Angles, error);
-  if (!ok)
+  const gs::Status solved = this->Mode == SMOOTHEST
+    ? solver.SolveSmoothest(n, this->CurvatureAlignment, run.Constraints, run.Angles)
+    : solver.SolvePrescribed(n, run.Singularities, run.Constraints, run.Angles);
+  if (!solved.Ok())
   {
-    vtkErrorMacro("Cross field: " << error << ".");
+    vtkErrorMacro("Cross field: " << solved.Message() << ".");
     return 1;
   }
   this->UpdateProgress(0.8);
@@ -178,22 +177,10 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
 bool vtkCrossField::CheckParameters(vtkPointSet* singularities)
 {
   const int n = this->Symmetry;
-  if (n != 1 && n != 2 && n != 4)
-  {
-    vtkErrorMacro("Symmetry must be 1 (vector field), 2 (line field) or 4 (cross field); it is "
-      << n << ".");
-    return false;
-  }
   if (this->Mode != SMOOTHEST && this->Mode != PRESCRIBED_SINGULARITIES)
   {
     vtkErrorMacro("Unknown Mode " << this->Mode
                                   << ": 0 (Smoothest) or 1 (Prescribed singularities).");
-    return false;
-  }
-  if (!(this->CurvatureAlignment >= 0.0) || !std::isfinite(this->CurvatureAlignment))
-  {
-    vtkErrorMacro("CurvatureAlignment must be finite and >= 0 (it is "
-      << this->CurvatureAlignment << ").");
     return false;
   }
   if (this->CurvatureAlignment > 0.0 && (n == 1 || this->Mode != SMOOTHEST))
@@ -239,15 +226,6 @@ bool vtkCrossField::FindSingularities(Cache& cache, vtkPointSet* singularities, 
       const int v = mesh.Face(p.Face)[static_cast<size_t>(corner - p.Bary.begin())];
       placed.push_back({ v, index->GetComponent(i, 0) });
     }
-  }
-  else if (this->Mode == PRESCRIBED_SINGULARITIES && mesh.EulerCharacteristic() != 0 &&
-    mesh.BoundaryLoops().empty())
-  {
-    vtkErrorMacro("The Prescribed singularities mode needs singularities whose indices sum to the "
-                  "Euler characteristic "
-      << mesh.EulerCharacteristic()
-      << ": connect a Singularities input (points with a point array \"Index\").");
-    return false;
   }
   return true;
 }

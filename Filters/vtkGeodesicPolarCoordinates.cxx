@@ -44,7 +44,6 @@ struct vtkGeodesicPolarCoordinates::Run
   gs::SurfacePoint Point;              // a point source (snapped, or SourceVertexId)
   std::vector<gs::SurfacePoint> Curve; // a curve source, snapped
   double ReferenceAngle = 0.0;         // theta's zero, a tangent angle at Point
-  const gs::CurveCoordinates* CurveCoordinates = nullptr; // a curve source's result
 };
 
 namespace
@@ -173,11 +172,6 @@ bool vtkGeodesicPolarCoordinates::CheckParameters()
   {
     vtkErrorMacro("Unknown AngleMode " << this->AngleMode
                                        << ": 0 (Geodesic direction) or 1 (Iso-curve arc length).");
-    return false;
-  }
-  if (!(this->Radius > 0.0))
-  {
-    vtkErrorMacro("Radius must be > 0 (it is " << this->Radius << ").");
     return false;
   }
   if (!(this->DecalSize > 0.0) || !std::isfinite(this->DecalSize))
@@ -334,19 +328,13 @@ bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
     cache.Polar.reset(new gs::GeodesicPolarCoordinates(mesh, cache.Graph()));
   }
   gs::GeodesicPolarCoordinates& polar = *cache.Polar;
-  if (run.CurveSource)
+  const gs::Status solved = run.CurveSource
+    ? polar.ComputeCurve(run.Curve, this->Radius)
+    : polar.Compute(run.Point, this->Radius, run.ReferenceAngle);
+  if (!solved.Ok())
   {
-    run.CurveCoordinates = polar.ComputeCurve(run.Curve, this->Radius);
-    if (!run.CurveCoordinates)
-    {
-      vtkErrorMacro("The geodesic polar coordinates solver rejected the curve (zero length?) or "
-                    "the radius.");
-      return false;
-    }
-  }
-  else if (!polar.Compute(run.Point, this->Radius, run.ReferenceAngle))
-  {
-    vtkErrorMacro("The geodesic polar coordinates solver rejected the source or the radius.");
+    vtkErrorMacro("Geodesic polar coordinates about the source "
+      << (run.CurveSource ? "curve" : "point") << ": " << solved.Message() << ".");
     return false;
   }
   if (this->AngleMode == ISO_CURVE_ARC_LENGTH && !run.CurveSource)
@@ -369,7 +357,7 @@ int vtkGeodesicPolarCoordinates::WriteOutput(const Cache& cache, const Run& run,
   const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
   const gs::GeodesicPolarCoordinates& polar = *cache.Polar;
   const bool curveSource = run.CurveSource;
-  const gs::CurveCoordinates* curveCoordinates = run.CurveCoordinates;
+  const gs::CurveCoordinates& curveCoordinates = polar.Curve(); // a curve source's
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
   vtkNew<vtkDoubleArray> rhoArray;
@@ -395,8 +383,8 @@ int vtkGeodesicPolarCoordinates::WriteOutput(const Cache& cache, const Run& run,
     }
     const int v = pointToVertex[i];
     // (Curve source: rho is the offset, theta the arc length.)
-    double rho = v < 0 ? nan : curveSource ? curveCoordinates->Offset[v] : polar.Rho(v);
-    double theta = v < 0 ? nan : curveSource ? curveCoordinates->ArcLength[v] : polar.Theta(v);
+    double rho = v < 0 ? nan : curveSource ? curveCoordinates.Offset[v] : polar.Rho(v);
+    double theta = v < 0 ? nan : curveSource ? curveCoordinates.ArcLength[v] : polar.Theta(v);
     if (!std::isfinite(rho) || std::abs(rho) > this->Radius || !std::isfinite(theta))
     {
       rho = theta = nan;
@@ -433,7 +421,7 @@ int vtkGeodesicPolarCoordinates::WriteOutput(const Cache& cache, const Run& run,
   }
   vtkNew<vtkDoubleArray> summary;
   summary->SetName(curveSource ? "CurveLength" : "SourceAngleSum");
-  summary->InsertNextValue(curveSource ? curveCoordinates->Length : polar.SourceAngleSum());
+  summary->InsertNextValue(curveSource ? curveCoordinates.Length : polar.SourceAngleSum());
   fieldData->AddArray(summary);
   output->SetFieldData(fieldData);
   this->UpdateProgress(1.0);

@@ -211,35 +211,38 @@ std::string ShapeKey(const std::vector<std::string>& files, double alpha, double
   }
   return key.str();
 }
-} // namespace
 
-//------------------------------------------------------------------------------
-std::string vtkMSDTSource::ParameterError() const
+// The tables' options from the source's parameters.
+gs::SafeDistanceOptions TableOptions(vtkMSDTSource* source)
 {
-  std::ostringstream error;
-  if (this->AngleBins < 1 || this->AngleBins > 4096)
-  {
-    error << "AngleBins must be in [1, 4096], got " << this->AngleBins << ".";
-  }
-  else if (this->DistanceSteps < 1 || this->DistanceSteps > (1 << 20))
-  {
-    error << "DistanceSteps must be in [1, 1048576], got " << this->DistanceSteps << ".";
-  }
-  else if (!(this->MaximumAspectRatio >= 1.0))
-  {
-    error << "MaximumAspectRatio must be at least 1, got " << this->MaximumAspectRatio << ".";
-  }
-  else if (!(this->AlphaThreshold >= 0.0 && this->AlphaThreshold <= 1.0) ||
-    !(this->LuminanceThreshold >= 0.0 && this->LuminanceThreshold <= 1.0))
-  {
-    error << "AlphaThreshold and LuminanceThreshold must be in [0, 1].";
-  }
-  else if (this->TextureSize < 1 || this->TextureSize > 8192)
-  {
-    error << "TextureSize must be in [1, 8192], got " << this->TextureSize << ".";
-  }
-  return error.str();
+  gs::SafeDistanceOptions options;
+  options.AngleBins = source->GetAngleBins();
+  options.DistanceSteps = source->GetDistanceSteps();
+  options.MaximumAspectRatio = source->GetMaximumAspectRatio();
+  return options;
 }
+
+// The first invalid parameter: the tables' options (checked by the core), the thresholds and
+// TextureSize.
+gs::Status CheckParameters(vtkMSDTSource* source)
+{
+  if (gs::Status options = gs::CheckSafeDistanceOptions(TableOptions(source)); !options.Ok())
+  {
+    return options;
+  }
+  const double alpha = source->GetAlphaThreshold(), luminance = source->GetLuminanceThreshold();
+  if (!(alpha >= 0.0 && alpha <= 1.0) || !(luminance >= 0.0 && luminance <= 1.0))
+  {
+    return gs::Status::Error("AlphaThreshold and LuminanceThreshold must be in [0, 1]");
+  }
+  if (source->GetTextureSize() < 1 || source->GetTextureSize() > 8192)
+  {
+    return gs::Status::Error(
+      "TextureSize must be in [1, 8192], got " + std::to_string(source->GetTextureSize()));
+  }
+  return gs::Status();
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
@@ -274,21 +277,21 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
   thresholds.LuminanceThreshold = this->LuminanceThreshold;
   for (const std::string& file : this->ShapeFileNames)
   {
-    const gs::SilhouetteReadResult read = gs::ReadSilhouetteImage(file, thresholds);
-    if (!read.Ok)
+    const gs::Result<gs::SilhouetteImage> read = gs::ReadSilhouetteImage(file, thresholds);
+    if (!read.Ok())
     {
-      cache.Error = "Shape " + std::to_string(classes.size()) + ": " + read.Error + ".";
+      cache.Error = "Shape " + std::to_string(classes.size()) + ": " + read.Message() + ".";
       return;
     }
-    if (read.ReductionFactor > 1)
+    if (read->ReductionFactor > 1)
     {
       vtkWarningMacro("Shape " << classes.size() << ": image '" << file << "' is "
-                               << read.ImageWidth << " x " << read.ImageHeight
-                               << " pixels; read reduced by " << read.ReductionFactor
+                               << read->ImageWidth << " x " << read->ImageHeight
+                               << " pixels; read reduced by " << read->ReductionFactor
                                << " (at most " << gs::MaximumSilhouetteImageSide
                                << " pixels on a side).");
     }
-    classes.push_back({ file, gs::ShapeFromMask(read.Mask) });
+    classes.push_back({ file, gs::ShapeFromMask(read->Mask) });
   }
   if (polygons)
   {
@@ -322,16 +325,15 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     cache.NoShape = true;
     return;
   }
-  gs::SafeDistanceOptions options;
-  options.MaximumAspectRatio = this->MaximumAspectRatio;
-  gs::SafeDistanceResult parts = gs::ComputeSafeDistanceParts(classes, options);
-  if (!parts.Ok)
+  gs::Result<gs::SafeDistanceTables> parts =
+    gs::ComputeSafeDistanceParts(classes, TableOptions(this));
+  if (!parts.Ok())
   {
-    cache.Error = "Safe distance tables: " + parts.Error + ".";
+    cache.Error = "Safe distance tables: " + parts.Message() + ".";
     return;
   }
   cache.Ok = true;
-  cache.Parts = std::move(parts.Tables);
+  cache.Parts = std::move(*parts);
 }
 
 //------------------------------------------------------------------------------
@@ -345,10 +347,9 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
     outputVector->GetInformationObject(port)->Set(
       vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), none, 6);
   }
-  const std::string parameterError = this->ParameterError();
-  if (!parameterError.empty())
+  if (const gs::Status parameters = CheckParameters(this); !parameters.Ok())
   {
-    vtkErrorMacro(<< parameterError);
+    vtkErrorMacro(<< parameters.Message() << ".");
     return 1;
   }
   this->UpdateShapes(inputVector);
@@ -364,10 +365,9 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
   const int ka = this->AngleBins, P = T.NumberOfParts(), m = static_cast<int>(T.Classes.size());
   // Tables that would not fit in memory are refused before any allocation (the core checks
   // the same when it computes them).
-  const std::string tooLarge = gs::SafeDistanceTableSizeError(P, ka);
-  if (!tooLarge.empty())
+  if (const gs::Status size = gs::CheckSafeDistanceTableSize(P, ka); !size.Ok())
   {
-    vtkErrorMacro("Safe distance tables: " << m << " classes, " << tooLarge << ".");
+    vtkErrorMacro("Safe distance tables: " << m << " classes, " << size.Message() << ".");
     return 1;
   }
 
@@ -420,7 +420,7 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   this->UpdateProgress(0.0);
 
   // Errors were reported by RequestInformation (same parameters, same cached shapes).
-  if (!this->ParameterError().empty())
+  if (!CheckParameters(this).Ok())
   {
     return 1;
   }
@@ -437,24 +437,20 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   this->UpdateProgress(0.1);
 
   // 2. The tables.
-  gs::SafeDistanceOptions options;
-  options.AngleBins = this->AngleBins;
-  options.DistanceSteps = this->DistanceSteps;
-  options.MaximumAspectRatio = this->MaximumAspectRatio;
-  const gs::SafeDistanceResult result =
-    gs::ComputeSafeDistanceValues(this->Shapes->Parts, options, [this](double p) {
+  const gs::Result<gs::SafeDistanceTables> result =
+    gs::ComputeSafeDistanceValues(this->Shapes->Parts, TableOptions(this), [this](double p) {
       this->UpdateProgress(0.1 + 0.8 * p);
       return !this->CheckAbort();
     });
-  if (!result.Ok)
+  if (!result.Ok())
   {
-    if (result.Error != "aborted")
+    if (!result.IsAborted())
     {
-      vtkErrorMacro("Safe distance tables: " << result.Error << ".");
+      vtkErrorMacro("Safe distance tables: " << result.Message() << ".");
     }
     return 1;
   }
-  const gs::SafeDistanceTables& T = result.Tables;
+  const gs::SafeDistanceTables& T = *result;
   const int ka = T.AngleBins, P = T.NumberOfParts();
 
   // 3. Port 0: the tables and their description (vtkSafeDistanceTableImage: the one definition

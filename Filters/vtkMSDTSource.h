@@ -153,8 +153,6 @@ private:
   vtkMSDTSource(const vtkMSDTSource&) = delete;
   void operator=(const vtkMSDTSource&) = delete;
 
-  /// The parameter error, empty when all parameters are valid.
-  std::string ParameterError() const;
   /// Reads and splits the shapes unless the cache already holds them for the current inputs.
   void UpdateShapes(vtkInformationVector** inputVector);
 

@@ -41,19 +41,19 @@ vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
 using Names = vtkSafeDistanceTableImage;
 
 //------------------------------------------------------------------------------
-void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& T, vtkImageData* image)
+void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& tables, vtkImageData* image)
 {
   image->Initialize();
-  const int ka = T.AngleBins, P = T.NumberOfParts();
+  const int ka = tables.AngleBins, P = tables.NumberOfParts();
   image->SetDimensions(ka, ka, P * P);
-  image->SetSpacing(T.BinWidth(), T.BinWidth(), 1.0);
+  image->SetSpacing(tables.BinWidth(), tables.BinWidth(), 1.0);
   image->SetOrigin(0.0, 0.0, 0.0);
   vtkNew<vtkDoubleArray> values;
   values->SetName(Names::SafeDistance);
-  values->SetNumberOfTuples(static_cast<vtkIdType>(T.Values.size()));
-  for (std::size_t k = 0; k < T.Values.size(); ++k)
+  values->SetNumberOfTuples(static_cast<vtkIdType>(tables.Values.size()));
+  for (std::size_t k = 0; k < tables.Values.size(); ++k)
   {
-    values->SetValue(static_cast<vtkIdType>(k), T.Values[k]);
+    values->SetValue(static_cast<vtkIdType>(k), tables.Values[k]);
   }
   image->GetPointData()->SetScalars(values);
 
@@ -65,7 +65,7 @@ void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& T, vtkImag
   auto classAspect = DoubleArray(Names::ClassAspectRatio, 1);
   auto classAxis = DoubleArray(Names::ClassMajorAxis, 2);
   auto classParts = IntArray(Names::ClassNumberOfParts);
-  for (const gs::SafeDistanceClass& c : T.Classes)
+  for (const gs::SafeDistanceClass& c : tables.Classes)
   {
     className->InsertNextValue(c.Name);
     classRadius->InsertNextValue(c.Radius);
@@ -78,7 +78,7 @@ void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& T, vtkImag
   auto partIndex = IntArray(Names::PartIndex);
   auto partCentre = DoubleArray(Names::PartCentre, 2);
   auto partRadius = DoubleArray(Names::PartRadius, 1);
-  for (const gs::SafeDistancePart& p : T.Parts)
+  for (const gs::SafeDistancePart& p : tables.Parts)
   {
     partClass->InsertNextValue(p.ClassId);
     partIndex->InsertNextValue(p.Index);
@@ -88,9 +88,9 @@ void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& T, vtkImag
   auto outlinePoints = DoubleArray(Names::OutlinePoints, 2);
   auto ringOffsets = IntArray(Names::OutlineRingOffsets);
   auto ringClass = IntArray(Names::OutlineRingClass);
-  for (std::size_t k = 0; k < T.Classes.size(); ++k)
+  for (std::size_t k = 0; k < tables.Classes.size(); ++k)
   {
-    for (const auto& ring : T.Classes[k].Outline.Rings)
+    for (const auto& ring : tables.Classes[k].Outline.Rings)
     {
       ringOffsets->InsertNextValue(static_cast<int>(outlinePoints->GetNumberOfTuples()));
       ringClass->InsertNextValue(static_cast<int>(k));
@@ -110,7 +110,7 @@ void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& T, vtkImag
     {
       pairA->InsertNextValue(a);
       pairB->InsertNextValue(b);
-      pairStep->InsertNextValue(T.Step(a, b));
+      pairStep->InsertNextValue(tables.Step(a, b));
     }
   }
   for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ className, classRadius,
@@ -124,14 +124,13 @@ void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& T, vtkImag
     fd->AddArray(a);
   };
   single(IntArray(Names::AngleBins), ka);
-  single(IntArray(Names::DistanceSteps), T.DistanceSteps);
-  single(IntArray(Names::RotationSamples), T.RotationSamples);
-  single(DoubleArray(Names::Scale, 1), T.Scale);
+  single(IntArray(Names::DistanceSteps), tables.DistanceSteps);
+  single(IntArray(Names::RotationSamples), tables.RotationSamples);
+  single(DoubleArray(Names::Scale, 1), tables.Scale);
 }
 
 //------------------------------------------------------------------------------
-bool vtkSafeDistanceTableImage::FromImage(
-  vtkImageData* image, gs::SafeDistanceTables& T, std::string& error)
+gs::Result<gs::SafeDistanceTables> vtkSafeDistanceTableImage::FromImage(vtkImageData* image)
 {
   vtkFieldData* fd = image ? image->GetFieldData() : nullptr;
   vtkDataArray* values = image ? image->GetPointData()->GetArray(Names::SafeDistance) : nullptr;
@@ -156,29 +155,28 @@ bool vtkSafeDistanceTableImage::FromImage(
     !classRadius || !classAxis || !partClass || !partIndex || !partCentre || !partRadius ||
     !outline || !ringOffsets || !ringClass)
   {
-    error = "the Table input is not the output of MSDT Source (port 0): it needs the point array "
-            "SafeDistance and the field data of the classes, parts and outlines";
-    return false;
+    return gs::Status::Error("the Table input is not the output of MSDT Source (port 0): it "
+                             "needs the point array SafeDistance and the field data of the "
+                             "classes, parts and outlines");
   }
-  T = gs::SafeDistanceTables();
-  T.AngleBins = static_cast<int>(bins->GetComponent(0, 0));
-  T.DistanceSteps = static_cast<int>(steps->GetComponent(0, 0));
-  T.RotationSamples = samples ? static_cast<int>(samples->GetComponent(0, 0)) : 0;
-  T.Scale = scale->GetComponent(0, 0);
+  gs::SafeDistanceTables tables;
+  tables.AngleBins = static_cast<int>(bins->GetComponent(0, 0));
+  tables.DistanceSteps = static_cast<int>(steps->GetComponent(0, 0));
+  tables.RotationSamples = samples ? static_cast<int>(samples->GetComponent(0, 0)) : 0;
+  tables.Scale = scale->GetComponent(0, 0);
   const vtkIdType nc = classRadius->GetNumberOfTuples(), np = partRadius->GetNumberOfTuples();
   if (nc < 1 || np < nc || classAxis->GetNumberOfTuples() != nc ||
     partClass->GetNumberOfTuples() != np || partCentre->GetNumberOfTuples() != np ||
-    partIndex->GetNumberOfTuples() != np || T.AngleBins < 1 ||
-    values->GetNumberOfTuples() != np * np * T.AngleBins * T.AngleBins)
+    partIndex->GetNumberOfTuples() != np || tables.AngleBins < 1 ||
+    values->GetNumberOfTuples() != np * np * tables.AngleBins * tables.AngleBins)
   {
-    error = "the Table input is inconsistent (numbers of classes, parts, angle bins and values "
-            "do not match)";
-    return false;
+    return gs::Status::Error("the Table input is inconsistent (numbers of classes, parts, angle "
+                             "bins and values do not match)");
   }
-  T.Classes.resize(nc);
+  tables.Classes.resize(nc);
   for (vtkIdType k = 0; k < nc; ++k)
   {
-    gs::SafeDistanceClass& c = T.Classes[k];
+    gs::SafeDistanceClass& c = tables.Classes[k];
     c.Name = names && k < names->GetNumberOfValues() ? names->GetValue(k) : "class " + std::to_string(k);
     c.Radius = classRadius->GetComponent(k, 0);
     c.MajorAxis = gs::Vec2{ classAxis->GetComponent(k, 0), classAxis->GetComponent(k, 1) };
@@ -188,26 +186,24 @@ bool vtkSafeDistanceTableImage::FromImage(
       c.SourceCircle.Centre = gs::Vec2{ classCentre->GetComponent(k, 0), classCentre->GetComponent(k, 1) };
     }
   }
-  T.Parts.resize(np);
+  tables.Parts.resize(np);
   for (vtkIdType p = 0; p < np; ++p)
   {
-    gs::SafeDistancePart& part = T.Parts[p];
+    gs::SafeDistancePart& part = tables.Parts[p];
     part.ClassId = static_cast<int>(partClass->GetComponent(p, 0));
     part.Index = static_cast<int>(partIndex->GetComponent(p, 0));
     part.Centre = gs::Vec2{ partCentre->GetComponent(p, 0), partCentre->GetComponent(p, 1) };
     part.Radius = partRadius->GetComponent(p, 0);
     if (part.ClassId < 0 || part.ClassId >= nc)
     {
-      error = "the Table input has a part of an unknown class";
-      return false;
+      return gs::Status::Error("the Table input has a part of an unknown class");
     }
-    T.Classes[part.ClassId].Parts.push_back(static_cast<int>(p));
+    tables.Classes[part.ClassId].Parts.push_back(static_cast<int>(p));
   }
   const vtkIdType rings = ringClass->GetNumberOfTuples();
   if (ringOffsets->GetNumberOfTuples() != rings + 1)
   {
-    error = "the Table input's outline rings are inconsistent";
-    return false;
+    return gs::Status::Error("the Table input's outline rings are inconsistent");
   }
   for (vtkIdType r = 0; r < rings; ++r)
   {
@@ -216,20 +212,19 @@ bool vtkSafeDistanceTableImage::FromImage(
     const vtkIdType to = static_cast<vtkIdType>(ringOffsets->GetComponent(r + 1, 0));
     if (k < 0 || k >= nc || from < 0 || to < from || to > outline->GetNumberOfTuples())
     {
-      error = "the Table input's outline rings are inconsistent";
-      return false;
+      return gs::Status::Error("the Table input's outline rings are inconsistent");
     }
     std::vector<gs::Vec2> ring;
     for (vtkIdType i = from; i < to; ++i)
     {
       ring.emplace_back(outline->GetComponent(i, 0), outline->GetComponent(i, 1));
     }
-    T.Classes[k].Outline.Rings.push_back(std::move(ring));
+    tables.Classes[k].Outline.Rings.push_back(std::move(ring));
   }
-  T.Values.resize(static_cast<std::size_t>(values->GetNumberOfTuples()));
+  tables.Values.resize(static_cast<std::size_t>(values->GetNumberOfTuples()));
   for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
   {
-    T.Values[static_cast<std::size_t>(i)] = values->GetComponent(i, 0);
+    tables.Values[static_cast<std::size_t>(i)] = values->GetComponent(i, 0);
   }
-  return true;
+  return tables;
 }

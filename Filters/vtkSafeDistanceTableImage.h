@@ -12,8 +12,7 @@
 #define vtkSafeDistanceTableImage_h
 
 #include "SafeDistanceTable.h" // for gs::SafeDistanceTables
-
-#include <string> // for std::string
+#include "Status.h"            // for gs::Result
 
 class vtkImageData;
 
@@ -52,9 +51,9 @@ public:
   /// Writes `tables` into `image` (its previous content is replaced).
   static void ToImage(const gs::SafeDistanceTables& tables, vtkImageData* image);
 
-  /// Reads `image` back; false with `error` (a sentence naming what is missing or inconsistent)
-  /// when it is not such an image.
-  static bool FromImage(vtkImageData* image, gs::SafeDistanceTables& tables, std::string& error);
+  /// Reads `image` back; fails, naming what is missing or inconsistent, when it is not such an
+  /// image.
+  static gs::Result<gs::SafeDistanceTables> FromImage(vtkImageData* image);
 };
 
 #endif

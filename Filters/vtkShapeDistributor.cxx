@@ -61,7 +61,7 @@ struct vtkShapeDistributor::Run
   std::vector<double> Density;      // per vertex; empty: none
   int Symmetry = 1;                 // of the direction field (the input's field data Symmetry)
   std::string DirectionChoice;      // "CELLS name" or "POINTS name" (DirectionArrayUsed)
-  gs::ShapeDistributionResult Result;
+  gs::ShapeDistribution Distribution;
   std::vector<std::pair<const char*, double>> Phases;
   std::chrono::steady_clock::time_point Clock = std::chrono::steady_clock::now();
 
@@ -105,8 +105,8 @@ vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
 
 // Fills Placements: one vertex per shape with its class, scale, direction, normal and face (the
 // input's cell id), and the run's statistics as field data.
-void WritePlacements(const gs::ShapeDistributionResult& result, vtkIdType firstPolygon,
-  double shapeSize, const std::string& directionChoice, vtkPolyData* placements)
+void WritePlacements(const gs::ShapeDistribution& result, vtkIdType firstPolygon, double shapeSize,
+  const std::string& directionChoice, vtkPolyData* placements)
 {
   const std::vector<gs::PlacedShape>& shapes = result.Shapes;
   vtkNew<vtkPoints> points;
@@ -468,12 +468,13 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   {
     return 1;
   }
-  std::string error;
-  if (!vtkSafeDistanceTableImage::FromImage(tableImage, run.Tables, error))
+  gs::Result<gs::SafeDistanceTables> tables = vtkSafeDistanceTableImage::FromImage(tableImage);
+  if (!tables.Ok())
   {
-    vtkErrorMacro("" << error << ".");
+    vtkErrorMacro("" << tables.Message() << ".");
     return 1;
   }
+  run.Tables = std::move(*tables);
   run.Lap("Tables");
 
   // 2. Mesh (kept while unchanged) and the shape size.
@@ -524,7 +525,8 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
 
   // 6. Placements.
-  WritePlacements(run.Result, run.FirstPolygon, run.ShapeSize, run.DirectionChoice, placements);
+  WritePlacements(
+    run.Distribution, run.FirstPolygon, run.ShapeSize, run.DirectionChoice, placements);
   this->UpdateProgress(0.87);
   if (this->CheckAbort())
   {
@@ -534,7 +536,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
 
   // 7. Decals and outlines, computed per shape in parallel (the outlines as the drawn check drew
   // them), checked for overlaps if asked, and assembled in order, lifted off the surface.
-  const std::vector<gs::PlacedShape>& shapes = run.Result.Shapes;
+  const std::vector<gs::PlacedShape>& shapes = run.Distribution.Shapes;
   const int ns = static_cast<int>(shapes.size());
   const std::vector<gs::ShapeDecal> decalOf =
     gs::DrawDecals(distributor, this->DecalTolerance, this->NumberOfThreads);
@@ -573,36 +575,19 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
 }
 
 //------------------------------------------------------------------------------
+// The parameters the distributor does not see (it checks its own options when it runs).
 bool vtkShapeDistributor::CheckParameters()
 {
-  if (!(this->ShapeSize >= 0.0) || !std::isfinite(this->ShapeSize))
-  {
-    vtkErrorMacro("ShapeSize must be a positive finite number, or 0 for automatic (it is "
-      << this->ShapeSize << ").");
-    return false;
-  }
   if (!(this->DecalTolerance >= 0.0) || !std::isfinite(this->DecalTolerance))
   {
     vtkErrorMacro("DecalTolerance must be a finite number, at least 0 (it is "
       << this->DecalTolerance << ").");
     return false;
   }
-  if (this->Mode != RANDOM && this->Mode != GREEDY && this->Mode != CIRCUMCIRCLE_POISSON_DISK)
+  if (this->K < 0)
   {
-    vtkErrorMacro("Unknown Mode " << this->Mode
-                                  << ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk).");
-    return false;
-  }
-  if (!(this->DistortionLimit >= 0.0) || !(this->HolonomyMargin >= 0.0) ||
-    this->HolonomyMargin > 100.0)
-  {
-    vtkErrorMacro("DistortionLimit must be >= 0 and HolonomyMargin in [0, 100].");
-    return false;
-  }
-  if (this->K < 0 || this->MaximumShapes < 0 || this->NumberOfThreads < 0 ||
-    this->MaximalFailures < 0)
-  {
-    vtkErrorMacro("K, MaximumShapes, MaximalFailures and NumberOfThreads must be >= 0.");
+    vtkErrorMacro(
+      "K must be >= 0 (0: exact charts, without a saddle vertex graph); it is " << this->K << ".");
     return false;
   }
   return true;
@@ -803,20 +788,22 @@ bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
   options.HolonomyMargin = this->HolonomyMargin;
   options.KeepInside = this->KeepInside;
   options.DrawnCheck = this->DrawnCheck;
-  run.Result = distributor.Run(run.Tables, run.Directions, run.Density, options, [this](double p) {
-    this->UpdateProgress(0.4 + 0.45 * p);
-    return !this->CheckAbort();
-  });
-  if (!run.Result.Ok)
+  gs::Result<gs::ShapeDistribution> placed =
+    distributor.Run(run.Tables, run.Directions, run.Density, options, [this](double p) {
+      this->UpdateProgress(0.4 + 0.45 * p);
+      return !this->CheckAbort();
+    });
+  if (!placed.Ok())
   {
-    if (run.Result.Error != "aborted")
+    if (!placed.IsAborted())
     {
-      vtkErrorMacro("Shape distribution: " << run.Result.Error << ".");
+      vtkErrorMacro("Shape distribution: " << placed.Message() << ".");
     }
     return false;
   }
+  run.Distribution = std::move(*placed);
   run.Lap("Distribution");
-  const gs::ShapeDistributionStatistics& st = run.Result.Statistics;
+  const gs::ShapeDistributionStatistics& st = run.Distribution.Statistics;
   run.Phases.emplace_back("SetUp", st.PrepareSeconds);
   run.Phases.emplace_back("Candidates", st.GenerateSeconds);
   run.Phases.emplace_back("ChecksAndCharts", st.CheckSeconds);

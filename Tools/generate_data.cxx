@@ -82,11 +82,10 @@ int WriteShapes(const std::string& dir)
     const int size = 128;
     const gs::SilhouetteMask mask = gs::RasterizeShape(
       gs::ShapeFromPolygons({ shape.Ring }), size, size, gs::Vec2{ -1.05, -1.05 }, 2.1 / size);
-    std::string error;
     const std::string path = dir + "/shapes/" + shape.Name;
-    if (!gs::WriteSilhouetteImage(mask, path, true, &error))
+    if (const gs::Status written = gs::WriteSilhouetteImage(mask, path, true); !written.Ok())
     {
-      std::cerr << path << ": " << error << "\n";
+      std::cerr << path << ": " << written.Message() << "\n";
       status = 1;
       continue;
     }

@@ -13,18 +13,17 @@ namespace gs
 {
 using namespace distribution;
 
-
-std::string ShapeDistributor::Impl::PrepareClassWeights()
+Status ShapeDistributor::Impl::PrepareClassWeights()
 {
-  std::vector<double> w = O.ClassWeights;
+  std::vector<double> w = Options.ClassWeights;
   if (w.empty())
   {
-    w.assign(T.Classes.size(), 1.0);
+    w.assign(Tables.Classes.size(), 1.0);
   }
-  if (w.size() != T.Classes.size())
+  if (w.size() != Tables.Classes.size())
   {
-    return "ClassWeights has " + std::to_string(w.size()) + " values for " +
-      std::to_string(T.Classes.size()) + " classes";
+    return Status::Error("ClassWeights has " + std::to_string(w.size()) + " values for " +
+      std::to_string(Tables.Classes.size()) + " classes");
   }
   ClassCdf.clear();
   double sum = 0.0;
@@ -32,28 +31,28 @@ std::string ShapeDistributor::Impl::PrepareClassWeights()
   {
     if (!(x >= 0.0) || !std::isfinite(x))
     {
-      return "ClassWeights must be non-negative finite numbers";
+      return Status::Error("ClassWeights must be non-negative finite numbers");
     }
     sum += x;
     ClassCdf.push_back(sum);
   }
   if (!(sum > 0.0))
   {
-    return "ClassWeights are all zero";
+    return Status::Error("ClassWeights are all zero");
   }
-  return std::string();
+  return Status();
 }
 
-std::string ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDirections)
+Status ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDirections)
 {
-  const int nf = M.NumberOfFaces();
+  const int nf = Mesh.NumberOfFaces();
   if (static_cast<int>(faceDirections.size()) != nf)
   {
-    return "one direction per face is needed (" + std::to_string(faceDirections.size()) +
-      " given for " + std::to_string(nf) + " faces)";
+    return Status::Error("one direction per face is needed (" +
+      std::to_string(faceDirections.size()) + " given for " + std::to_string(nf) + " faces)");
   }
   FaceDirection.assign(nf, Vec3{ 0, 0, 0 });
-#pragma omp parallel for schedule(static) num_threads(ThreadCount(O.NumberOfThreads))
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(Options.NumberOfThreads))
   for (int f = 0; f < nf; ++f)
   {
     const Vec3& d = faceDirections[f];
@@ -61,23 +60,23 @@ std::string ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& f
     {
       continue;
     }
-    const Vec3 n = M.FaceNormal(f);
+    const Vec3 n = Mesh.FaceNormal(f);
     const Vec3 t = d - n * Dot(n, d);
     if (Norm(t) > 1e-12 * Norm(d) && Norm(t) > 0.0)
     {
       FaceDirection[f] = Unit(t);
     }
   }
-  return std::string();
+  return Status();
 }
 
-std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& vertexDensity)
+Status ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& vertexDensity)
 {
-  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
+  const int nf = Mesh.NumberOfFaces(), nv = Mesh.NumberOfVertices();
   if (!vertexDensity.empty() && static_cast<int>(vertexDensity.size()) != nv)
   {
-    return "one density factor per vertex is needed (" + std::to_string(vertexDensity.size()) +
-      " given for " + std::to_string(nv) + " vertices)";
+    return Status::Error("one density factor per vertex is needed (" +
+      std::to_string(vertexDensity.size()) + " given for " + std::to_string(nv) + " vertices)");
   }
   Density = vertexDensity;
   FaceWeight.assign(nf, 0.0);
@@ -92,7 +91,7 @@ std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>
     if (!Density.empty())
     {
       fm = 0.0;
-      for (int v : M.Face(f))
+      for (int v : Mesh.Face(f))
       {
         ok = ok && Density[v] > 0.0 && std::isfinite(Density[v]);
         fm += Density[v] / 3.0;
@@ -100,10 +99,10 @@ std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>
     }
     if (ok)
     {
-      FaceWeight[f] = M.FaceArea(f) / (fm * fm);
+      FaceWeight[f] = Mesh.FaceArea(f) / (fm * fm);
       total += FaceWeight[f];
       minimumScale = std::min(minimumScale, fm);
-      for (int v : M.Face(f))
+      for (int v : Mesh.Face(f))
       {
         MaxFaceDensity = std::max(MaxFaceDensity, Density.empty() ? 1.0 : Density[v]);
       }
@@ -111,34 +110,34 @@ std::string ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>
     AllCdf[f] = total;
   }
   Dead.assign(nf, 0);
-  NumberOfClasses = static_cast<int>(T.Classes.size());
+  NumberOfClasses = static_cast<int>(Tables.Classes.size());
   DeadFor.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
   Killed.clear();
   KilledBy.clear();
   BuildCdf();
   if (!(total > 0.0))
   {
-    return "no face has a positive density factor at all its corners";
+    return Status::Error("no face has a positive density factor at all its corners");
   }
   double area = 0.0;
   for (int f = 0; f < nf; ++f)
   {
-    area += M.FaceArea(f);
+    area += Mesh.FaceArea(f);
   }
   {
     double smallest = std::numeric_limits<double>::infinity();
-    for (const SafeDistanceClass& c : T.Classes)
+    for (const SafeDistanceClass& c : Tables.Classes)
     {
       smallest = std::min(smallest, c.Radius);
     }
-    const double r = O.ShapeSize * minimumScale * smallest;
+    const double r = Options.ShapeSize * minimumScale * smallest;
     if (area / (r * r) > 1e9)
     {
-      return "ShapeSize (times the smallest density factor) is too small for this mesh: more than "
-             "1e9 shapes would fit";
+      return Status::Error("ShapeSize (times the smallest density factor) is too small for this "
+                           "mesh: more than 1e9 shapes would fit");
     }
   }
-  return std::string();
+  return Status();
 }
 
 void ShapeDistributor::Impl::PrepareDeadFaces()
@@ -146,11 +145,11 @@ void ShapeDistributor::Impl::PrepareDeadFaces()
   // Dead faces: per (part, class), the smallest safe distance of the part against any part of
   // the class (2% less, for the charts' approximations); per class, its reach.
   {
-    const int np = CircleMode ? static_cast<int>(T.Classes.size()) : T.NumberOfParts();
-    const int nc = static_cast<int>(T.Classes.size());
+    const int np = CircleMode ? static_cast<int>(Tables.Classes.size()) : Tables.NumberOfParts();
+    const int nc = static_cast<int>(Tables.Classes.size());
     KillRadius.assign(static_cast<std::size_t>(np) * nc, std::numeric_limits<double>::infinity());
     KillReach.assign(nc, 0.0);
-    const std::size_t ka = static_cast<std::size_t>(T.AngleBins);
+    const std::size_t ka = static_cast<std::size_t>(Tables.AngleBins);
     for (int x = 0; x < np; ++x)
     {
       for (int c = 0; c < nc; ++c)
@@ -158,13 +157,14 @@ void ShapeDistributor::Impl::PrepareDeadFaces()
         double& kill = KillRadius[static_cast<std::size_t>(x) * nc + c];
         if (CircleMode)
         {
-          kill = T.Classes[x].Radius + T.Classes[c].Radius;
+          kill = Tables.Classes[x].Radius + Tables.Classes[c].Radius;
         }
         else
         {
-          for (int pc : T.Classes[c].Parts)
+          for (int pc : Tables.Classes[c].Parts)
           {
-            const double* table = &T.Values[(static_cast<std::size_t>(x) * T.Parts.size() + pc) * ka * ka];
+            const double* table =
+              &Tables.Values[(static_cast<std::size_t>(x) * Tables.Parts.size() + pc) * ka * ka];
             kill = std::min(kill, *std::min_element(table, table + ka * ka));
           }
         }
@@ -173,15 +173,16 @@ void ShapeDistributor::Impl::PrepareDeadFaces()
     }
     for (int c = 0; c < nc && !CircleMode; ++c)
     {
-      if (T.Classes[c].Parts.size() <= 1)
+      if (Tables.Classes[c].Parts.size() <= 1)
       {
         continue;
       }
-      for (int pc : T.Classes[c].Parts)
+      for (int pc : Tables.Classes[c].Parts)
       {
-        const Vec2& q = T.Parts[pc].Centre;
+        const Vec2& q = Tables.Parts[pc].Centre;
         KillReach[c] = std::max(KillReach[c],
-          std::abs(Dot(q, T.Classes[c].MajorAxis)) + std::abs(Cross(T.Classes[c].MajorAxis, q)));
+          std::abs(Dot(q, Tables.Classes[c].MajorAxis)) +
+            std::abs(Cross(Tables.Classes[c].MajorAxis, q)));
       }
     }
   }
@@ -189,13 +190,13 @@ void ShapeDistributor::Impl::PrepareDeadFaces()
 
 void ShapeDistributor::Impl::PrepareLongClasses()
 {
-  const int nf = M.NumberOfFaces();
-  ClassExtentMin.assign(T.Classes.size(), 0.0);
-  ClassExtentMax.assign(T.Classes.size(), 0.0);
+  const int nf = Mesh.NumberOfFaces();
+  ClassExtentMin.assign(Tables.Classes.size(), 0.0);
+  ClassExtentMax.assign(Tables.Classes.size(), 0.0);
   bool anyLong = false;
-  for (std::size_t k = 0; k < T.Classes.size(); ++k)
+  for (std::size_t k = 0; k < Tables.Classes.size(); ++k)
   {
-    const SafeDistanceClass& c = T.Classes[k];
+    const SafeDistanceClass& c = Tables.Classes[k];
     if (c.Parts.size() <= 1)
     {
       continue;
@@ -212,7 +213,7 @@ void ShapeDistributor::Impl::PrepareLongClasses()
     }
     for (int part : c.Parts)
     {
-      const double a = Dot(T.Parts[part].Centre, c.MajorAxis);
+      const double a = Dot(Tables.Parts[part].Centre, c.MajorAxis);
       lo = std::min(lo, a);
       hi = std::max(hi, a);
     }
@@ -223,7 +224,7 @@ void ShapeDistributor::Impl::PrepareLongClasses()
   {
     if (!Field)
     {
-      Field.reset(new DirectionFieldSolver(M));
+      Field.reset(new DirectionFieldSolver(Mesh));
     }
     FieldAngles.assign(nf, 0.0);
     for (int f = 0; f < nf; ++f)
@@ -235,7 +236,7 @@ void ShapeDistributor::Impl::PrepareLongClasses()
 
 void ShapeDistributor::Impl::BuildCdf()
 {
-  const int nf = M.NumberOfFaces();
+  const int nf = Mesh.NumberOfFaces();
   FaceCdf.assign(nf, 0.0);
   double total = 0.0;
   for (int f = 0; f < nf; ++f)
@@ -251,7 +252,7 @@ SurfacePoint ShapeDistributor::Impl::RandomPoint(Random& rng, bool live) const
   const std::vector<double>& cdf = live ? FaceCdf : AllCdf;
   const double u = rng.Uniform() * cdf.back();
   int f = static_cast<int>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
-  f = std::min(f, M.NumberOfFaces() - 1);
+  f = std::min(f, Mesh.NumberOfFaces() - 1);
   while (f > 0 && cdf[f] == cdf[f - 1])
   {
     --f; // never a zero-weight face
@@ -280,20 +281,21 @@ int ShapeDistributor::Impl::RandomClass(Random& rng) const
 void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) const
 {
   const int n = static_cast<int>(batch.size());
-#pragma omp parallel num_threads(ThreadCount(O.NumberOfThreads))
+#pragma omp parallel num_threads(ThreadCount(Options.NumberOfThreads))
   {
     std::vector<int> scratch;
 #pragma omp for schedule(dynamic, 64)
     for (int i = 0; i < n; ++i)
     {
-      Random rng(O.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+      Random rng(Options.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
       const int cls = RandomClass(rng);
       const SurfacePoint centre = RandomPoint(rng);
       // A class that certainly cannot fit in this face, or (long classes, whose shapes cost a
       // streamline) at this centre: no need to build the shape.
       batch[i].Valid = !DeadForClass(cls, centre.Face) &&
-        !(T.Classes[cls].Parts.size() > 1 && CentreCovered(centre, cls, DensityAt(centre), scratch)) &&
-        MakeShape(centre, cls, rng, batch[i].S);
+        !(Tables.Classes[cls].Parts.size() > 1 &&
+          CentreCovered(centre, cls, DensityAt(centre), scratch)) &&
+        MakeShape(centre, cls, rng, batch[i].Shape);
     }
   }
 }
@@ -310,22 +312,22 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     return false;
   }
   const int f = centre.Face;
-  s.Position = M.Interpolate(f, centre.Bary);
-  s.Normal = M.FaceNormal(f);
+  s.Position = Mesh.Interpolate(f, centre.Bary);
+  s.Normal = Mesh.FaceNormal(f);
   Vec3 dir = FaceDirection[f];
   const double spin = rng.Uniform();
   if (!(Norm(dir) > 0.0))
   {
-    const auto& v = M.Face(f);
-    dir = RotateTangent(Unit(M.Position(v[1]) - M.Position(v[0])), s.Normal, TwoPi * spin);
+    const auto& v = Mesh.Face(f);
+    dir = RotateTangent(Unit(Mesh.Position(v[1]) - Mesh.Position(v[0])), s.Normal, TwoPi * spin);
   }
-  else if (prefer && O.Symmetry > 1)
+  else if (prefer && Options.Symmetry > 1)
   {
     Vec3 best = dir;
     double bestDot = -2.0;
-    for (int k = 0; k < O.Symmetry; ++k)
+    for (int k = 0; k < Options.Symmetry; ++k)
     {
-      const Vec3 candidate = RotateTangent(dir, s.Normal, TwoPi * k / O.Symmetry);
+      const Vec3 candidate = RotateTangent(dir, s.Normal, TwoPi * k / Options.Symmetry);
       const double d = Dot(candidate, *prefer);
       if (d > bestDot)
       {
@@ -335,8 +337,8 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     }
     dir = Unit(best);
   }
-  const SafeDistanceClass& c = T.Classes[cls];
-  const double scale = O.ShapeSize * s.Scale;
+  const SafeDistanceClass& c = Tables.Classes[cls];
+  const double scale = Options.ShapeSize * s.Scale;
   if (c.Parts.size() <= 1)
   {
     s.Direction = dir;
@@ -346,7 +348,7 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     // The major axis follows the field: trace the streamline both ways.
     const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
     s.Direction = Unit(RotateTangent(dir, s.Normal, -phiM));
-    const int n = O.Symmetry == 1 ? 2 : O.Symmetry;
+    const int n = Options.Symmetry == 1 ? 2 : Options.Symmetry;
     const double a0 = Field->AngleInFace(f, dir);
     const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
     const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
@@ -375,12 +377,12 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
   const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
   for (int part : c.Parts)
   {
-    const Vec2& pc = T.Parts[part].Centre;
+    const Vec2& pc = Tables.Parts[part].Centre;
     const double along = Dot(pc, c.MajorAxis) * scale;
     const double across = Cross(c.MajorAxis, pc) * scale;
     int face = -1;
     Vec3 x, tangent;
-    if (!PointOnCurve(M, s.Curve, s.CurveCentre + along, face, x, tangent))
+    if (!PointOnCurve(Mesh, s.Curve, s.CurveCentre + along, face, x, tangent))
     {
       return false;
     }
@@ -392,8 +394,8 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     {
       return false;
     }
-    p.Position = M.Interpolate(p.Centre.Face, p.Centre.Bary);
-    p.Axis = Unit(RotateTangent(endTangent, M.FaceNormal(p.Centre.Face), -phiM));
+    p.Position = Mesh.Interpolate(p.Centre.Face, p.Centre.Bary);
+    p.Axis = Unit(RotateTangent(endTangent, Mesh.FaceNormal(p.Centre.Face), -phiM));
     s.Parts.push_back(p);
   }
   return true;
@@ -404,13 +406,14 @@ void ShapeDistributor::Impl::CollectKills(const Record& r, std::vector<char>& ma
 {
   kills.clear();
   const int nc = NumberOfClasses;
-  for (std::size_t k = 0; k < r.Charts.size() && k < r.S.Parts.size(); ++k)
+  for (std::size_t k = 0; k < r.Charts.size() && k < r.Shape.Parts.size(); ++k)
   {
     const Chart& chart = r.Charts[k];
     for (int c = 0; c < nc; ++c)
     {
-      const double radius = KillRadius[static_cast<std::size_t>(r.S.Parts[k].Part) * nc + c] *
-          O.ShapeSize * r.S.Scale - KillReach[c] * O.ShapeSize * MaxFaceDensity;
+      const double radius = KillRadius[static_cast<std::size_t>(r.Shape.Parts[k].Part) * nc + c] *
+          Options.ShapeSize * r.Shape.Scale -
+        KillReach[c] * Options.ShapeSize * MaxFaceDensity;
       if (!(radius > 0.0))
       {
         continue;
@@ -421,24 +424,24 @@ void ShapeDistributor::Impl::CollectKills(const Record& r, std::vector<char>& ma
       {
         if (e.X * e.X + e.Y * e.Y < r2)
         {
-          mark[e.V] = 1;
-          marked.push_back(e.V);
+          mark[e.Vertex] = 1;
+          marked.push_back(e.Vertex);
         }
       }
       for (int v : marked)
       {
-        const int start = M.VertexHalfedge(v);
+        const int start = Mesh.VertexHalfedge(v);
         int h = start;
         do
         {
           const int f = h / 3;
-          const auto& t = M.Face(f);
+          const auto& t = Mesh.Face(f);
           // Each face once: from its smallest marked corner.
           if (mark[t[0]] && mark[t[1]] && mark[t[2]] && v == std::min({ t[0], t[1], t[2] }))
           {
             kills.emplace_back(c, f);
           }
-          h = M.RotateCCW(h);
+          h = Mesh.RotateCCW(h);
         } while (h >= 0 && h != start);
       }
       for (int v : marked)
@@ -460,7 +463,7 @@ void ShapeDistributor::Impl::KillFaces(const Record& r)
   for (const auto& cf : r.Prepared ? r.Kills : own)
   {
     const int c = cf.first, f = cf.second;
-    char& dead = DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f];
+    char& dead = DeadFor[static_cast<std::size_t>(c) * Mesh.NumberOfFaces() + f];
     if (dead)
     {
       continue;
@@ -471,7 +474,7 @@ void ShapeDistributor::Impl::KillFaces(const Record& r)
     for (int o = 0; o < nc && all; ++o)
     {
       all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
-        DeadFor[static_cast<std::size_t>(o) * M.NumberOfFaces() + f];
+        DeadFor[static_cast<std::size_t>(o) * Mesh.NumberOfFaces() + f];
     }
     if (all && !Dead[f])
     {

@@ -16,13 +16,13 @@ using namespace distribution;
 void ShapeDistributor::Impl::PrepareClassRegions()
 {
   Regions.clear();
-  Clearance.assign(T.Classes.size(), -1.0);
+  Clearance.assign(Tables.Classes.size(), -1.0);
   {
     double largest = 0.0;
-    std::vector<double> clearance(T.Classes.size(), -1.0);
-    for (std::size_t k = 0; k < T.Classes.size(); ++k)
+    std::vector<double> clearance(Tables.Classes.size(), -1.0);
+    for (std::size_t k = 0; k < Tables.Classes.size(); ++k)
     {
-      const SafeDistanceClass& c = T.Classes[k];
+      const SafeDistanceClass& c = Tables.Classes[k];
       ClassRegion probe(c.Outline.Rings, c.Radius, 0.0);
       if (probe.Inside(Vec2{ 0.0, 0.0 }))
       {
@@ -41,7 +41,7 @@ void ShapeDistributor::Impl::PrepareClassRegions()
         largest = std::max(largest, d);
       }
     }
-    for (const SafeDistanceClass& c : T.Classes)
+    for (const SafeDistanceClass& c : Tables.Classes)
     {
       Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
     }
@@ -52,16 +52,16 @@ void ShapeDistributor::Impl::PrepareClassRegions()
 
 bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) const
 {
-  const double fmax = std::max(X.S.Scale, Y.S.Scale);
-  const double unit = O.ShapeSize * fmax * (1.0 + O.SafetyMargin);
-  for (std::size_t i = 0; i < X.S.Parts.size() && i < X.Charts.size(); ++i)
+  const double fmax = std::max(X.Shape.Scale, Y.Shape.Scale);
+  const double unit = Options.ShapeSize * fmax * (1.0 + Options.SafetyMargin);
+  for (std::size_t i = 0; i < X.Shape.Parts.size() && i < X.Charts.size(); ++i)
   {
     const Chart& chart = X.Charts[i];
-    const int pa = X.S.Parts[i].Part;
-    for (const PlacedPart& py : Y.S.Parts)
+    const int pa = X.Shape.Parts[i].Part;
+    for (const PlacedPart& py : Y.Shape.Parts)
     {
       const int g = py.Centre.Face;
-      const auto& corners = M.Face(g);
+      const auto& corners = Mesh.Face(g);
       const ChartEntry* e[3];
       bool all = true;
       for (int k = 0; k < 3 && all; ++k)
@@ -77,9 +77,11 @@ bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) 
         double longest = 0.0;
         for (int k = 0; k < 3; ++k)
         {
-          longest = std::max(longest, Norm(M.Position(corners[(k + 1) % 3]) - M.Position(corners[k])));
+          longest = std::max(
+            longest, Norm(Mesh.Position(corners[(k + 1) % 3]) - Mesh.Position(corners[k])));
         }
-        if (ChartRadius(X.S, X.S.Parts[i]) - longest >= (PartRadius(pa) + PartRadius(py.Part)) * unit)
+        if (ChartRadius(X.Shape, X.Shape.Parts[i]) - longest >=
+          (PartRadius(pa) + PartRadius(py.Part)) * unit)
         {
           continue;
         }
@@ -103,8 +105,8 @@ bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) 
       // Angles: A's axis is the chart's x axis; the arrival direction at Y's centre is the
       // chart's radial direction pulled back into face g.
       const double alphaA = d > 0.0 ? -std::atan2(q.y, q.x) : 0.0;
-      const Vec3 x0 = M.Position(corners[0]);
-      const Vec3 e1 = M.Position(corners[1]) - x0, e2 = M.Position(corners[2]) - x0;
+      const Vec3 x0 = Mesh.Position(corners[0]);
+      const Vec3 e1 = Mesh.Position(corners[1]) - x0, e2 = Mesh.Position(corners[2]) - x0;
       const Vec2 E1 = P[1] - P[0], E2 = P[2] - P[0];
       const double det = Cross(E1, E2);
       Vec3 t;
@@ -116,16 +118,16 @@ bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) 
       }
       else
       {
-        t = py.Position - X.S.Parts[i].Position;
+        t = py.Position - X.Shape.Parts[i].Position;
       }
       // Intrinsic distortion of the chart at Y's centre: the tables need rigid planar copies.
       const double stretch = std::max({ std::abs(Norm(E1) / Norm(e1) - 1.0),
         std::abs(Norm(E2) / Norm(e2) - 1.0), std::abs(Norm(E2 - E1) / Norm(e2 - e1) - 1.0) });
-      if (!(stretch <= O.DistortionLimit))
+      if (!(stretch <= Options.DistortionLimit))
       {
         return true; // d < r_A + r_B: the circumcircles overlap
       }
-      const Vec3 n = M.FaceNormal(g);
+      const Vec3 n = Mesh.FaceNormal(g);
       t = t - n * Dot(n, t);
       double alphaB = 0.0;
       if (Norm(t) > 0.0)
@@ -136,7 +138,7 @@ bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) 
       // most the absolute curvature enclosed by X, Y and the outline point (area at most
       // (d + r_Y) r_Y / 2): a displacement of up to that angle times r_Y.
       const double rY = PartRadius(py.Part) * unit;
-      const double turn = O.HolonomyMargin * chart.Roughness * 0.5 * (d + rY) * rY;
+      const double turn = Options.HolonomyMargin * chart.Roughness * 0.5 * (d + rY) * rY;
       if (d < SafeDistance(pa, py.Part, alphaA, alphaB) * unit + turn * rY)
       {
         return true;
@@ -157,7 +159,7 @@ bool ShapeDistributor::Impl::CheapConflict(const Record& c, std::vector<int>& sc
   for (int x : scratch)
   {
     const Record& X = Accepted[x];
-    if (X.S.Scale >= c.S.Scale && ConflictInCharts(X, c))
+    if (X.Shape.Scale >= c.Shape.Scale && ConflictInCharts(X, c))
     {
       return true;
     }
@@ -167,13 +169,14 @@ bool ShapeDistributor::Impl::CheapConflict(const Record& c, std::vector<int>& sc
 
 bool ShapeDistributor::Impl::TouchesBoundary(const Record& c) const
 {
-  for (std::size_t k = 0; k < c.Charts.size() && k < c.S.Parts.size(); ++k)
+  for (std::size_t k = 0; k < c.Charts.size() && k < c.Shape.Parts.size(); ++k)
   {
-    const double reach = PartRadius(c.S.Parts[k].Part) * O.ShapeSize * c.S.Scale + 0.5 * MaxEdge;
+    const double reach =
+      PartRadius(c.Shape.Parts[k].Part) * Options.ShapeSize * c.Shape.Scale + 0.5 * MaxEdge;
     const float r2 = static_cast<float>(reach * reach);
     for (const ChartEntry& e : c.Charts[k].Entries)
     {
-      if (e.X * e.X + e.Y * e.Y < r2 && M.IsBoundaryVertex(e.V))
+      if (e.X * e.X + e.Y * e.Y < r2 && Mesh.IsBoundaryVertex(e.Vertex))
       {
         return true;
       }
@@ -184,7 +187,7 @@ bool ShapeDistributor::Impl::TouchesBoundary(const Record& c) const
 
 bool ShapeDistributor::Impl::FullConflict(const Record& c, std::vector<int>& scratch) const
 {
-  if (O.KeepInside && TouchesBoundary(c))
+  if (Options.KeepInside && TouchesBoundary(c))
   {
     return true;
   }
@@ -197,7 +200,7 @@ bool ShapeDistributor::Impl::FullConflict(const Record& c, std::vector<int>& scr
   for (int y : scratch)
   {
     const Record& Y = Accepted[y];
-    if (Y.S.Scale < c.S.Scale && ConflictInCharts(c, Y))
+    if (Y.Shape.Scale < c.Shape.Scale && ConflictInCharts(c, Y))
     {
       return true;
     }
@@ -211,28 +214,28 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
   {
     return false;
   }
-  const auto& corners = M.Face(centre.Face);
+  const auto& corners = Mesh.Face(centre.Face);
   scratch.clear();
   for (int v : corners)
   {
     scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
   }
   SortUnique(scratch);
-  const Vec3 position = M.Interpolate(centre.Face, centre.Bary);
+  const Vec3 position = Mesh.Interpolate(centre.Face, centre.Bary);
   for (int x : scratch)
   {
     const Record& X = Accepted[x];
-    const double unit = O.ShapeSize * X.S.Scale;
-    const ClassRegion& region = Regions[X.S.ClassId];
-    for (std::size_t i = 0; i < X.S.Parts.size() && i < X.Charts.size(); ++i)
+    const double unit = Options.ShapeSize * X.Shape.Scale;
+    const ClassRegion& region = Regions[X.Shape.ClassId];
+    for (std::size_t i = 0; i < X.Shape.Parts.size() && i < X.Charts.size(); ++i)
     {
-      const int pa = X.S.Parts[i].Part;
-      if (Norm(X.S.Parts[i].Position - position) > PartRadius(pa) * unit)
+      const int pa = X.Shape.Parts[i].Part;
+      if (Norm(X.Shape.Parts[i].Position - position) > PartRadius(pa) * unit)
       {
         continue; // beyond the part's circle (the geodesic distance is never shorter)
       }
       const double margin = 0.02 * PartRadius(pa);
-      const double dilation = 0.9 * Clearance[cls] * scale / X.S.Scale - margin;
+      const double dilation = 0.9 * Clearance[cls] * scale / X.Shape.Scale - margin;
       Vec2 q;
       if (!ChartPoint(X.Charts[i], centre, unit, q))
       {
@@ -242,7 +245,7 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
       {
         continue;
       }
-      const Vec2 p = T.Parts[pa].Centre + q;
+      const Vec2 p = Tables.Parts[pa].Centre + q;
       if (dilation >= 0.0 ? region.Within(p, std::min(dilation, MaxClearance)) : region.DeeplyInside(p, -dilation))
       {
         return true;
@@ -254,18 +257,19 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
 
 bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch) const
 {
-  if (CircleMode || !O.DrawnCheck)
+  if (CircleMode || !Options.DrawnCheck)
   {
     return false;
   }
   if (!c.HasDrawn)
   {
-    c.Drawn = OutlineOf(c.S, OutlineSpacing());
+    c.Drawn = OutlineOf(c.Shape, OutlineSpacing());
     c.HasDrawn = true;
   }
-  if (!c.S.Curve.empty() && !c.Frame)
+  if (!c.Shape.Curve.empty() && !c.Frame)
   {
-    std::shared_ptr<CurveGrid> frame = std::make_shared<CurveGrid>(BuildCurveGrid(c.S, T.Classes[c.S.ClassId]));
+    std::shared_ptr<CurveGrid> frame =
+      std::make_shared<CurveGrid>(BuildCurveGrid(c.Shape, Tables.Classes[c.Shape.ClassId]));
     frame->Index();
     c.Frame = frame;
   }
@@ -278,58 +282,67 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
   {
     for (const ChartEntry& e : chart.Entries)
     {
-      scratch.insert(scratch.end(), CentreIndex[e.V].begin(), CentreIndex[e.V].end());
+      scratch.insert(scratch.end(), CentreIndex[e.Vertex].begin(), CentreIndex[e.Vertex].end());
     }
   }
   SortUnique(scratch);
-  const bool shortC = c.S.Curve.empty() && !c.Charts.empty() && !c.Charts[0].Entries.empty();
-  const double unitC = O.ShapeSize * c.S.Scale;
-  const double radiusC = T.Classes[c.S.ClassId].Radius * unitC;
+  const bool shortC = c.Shape.Curve.empty() && !c.Charts.empty() && !c.Charts[0].Entries.empty();
+  const double unitC = Options.ShapeSize * c.Shape.Scale;
+  const double radiusC = Tables.Classes[c.Shape.ClassId].Radius * unitC;
   for (int x : scratch)
   {
     const Record& X = Accepted[x];
-    const double unitX = O.ShapeSize * X.S.Scale;
-    const double radiusX = T.Classes[X.S.ClassId].Radius * unitX;
-    if (Norm(X.S.Position - c.S.Position) >= radiusX + radiusC)
+    const double unitX = Options.ShapeSize * X.Shape.Scale;
+    const double radiusX = Tables.Classes[X.Shape.ClassId].Radius * unitX;
+    if (Norm(X.Shape.Position - c.Shape.Position) >= radiusX + radiusC)
     {
       continue; // the geodesic distance is never shorter
     }
-    const bool shortX = X.S.Curve.empty() && !X.Charts.empty() && !X.Charts[0].Entries.empty();
+    const bool shortX = X.Shape.Curve.empty() && !X.Charts.empty() && !X.Charts[0].Entries.empty();
     const double depth = 0.00125 * std::min(radiusX, radiusC);
     // (Outline points farther in space than sqrt(2) circumradii from a shape's centre are
     // outside it: its outline is drawn along paths of length |along| + |across| at most.)
     auto near = [this](const Record& R, double radius) {
-      const Vec3 centre = R.S.Position;
-      const double reach = 1.4143 * radius + M.MeanEdgeLength();
+      const Vec3 centre = R.Shape.Position;
+      const double reach = 1.4143 * radius + Mesh.MeanEdgeLength();
       return [this, centre, reach](const SurfacePoint& q) {
-        return Norm((q.IsVertex() ? M.Position(q.Vertex) : M.Interpolate(q.Face, q.Bary)) - centre) <= reach;
+        return Norm((q.IsVertex() ? Mesh.Position(q.Vertex) : Mesh.Interpolate(q.Face, q.Bary)) -
+                 centre) <= reach;
       };
     };
     const auto nearX = near(X, radiusX), nearC = near(c, radiusC);
     if (shortX &&
-      OutlineEnters(Regions[X.S.ClassId], c.Drawn,
-        [this, &X](const SurfacePoint& q, Vec2& p) { return ClassPointOf(X, q, p); }, depth / unitX))
+      OutlineEnters(
+        Regions[X.Shape.ClassId], c.Drawn,
+        [this, &X](const SurfacePoint& q, Vec2& p) { return ClassPointOf(X, q, p); },
+        depth / unitX))
     {
       return true;
     }
     int hint = -1;
     if (!shortX && X.Frame && !shortC &&
-      OutlineEnters(Regions[X.S.ClassId], c.Drawn,
-        [&X, &nearX, &hint](const SurfacePoint& q, Vec2& p) { return nearX(q) && X.Frame->ClassPoint(q, p, &hint); },
+      OutlineEnters(
+        Regions[X.Shape.ClassId], c.Drawn,
+        [&X, &nearX, &hint](
+          const SurfacePoint& q, Vec2& p) { return nearX(q) && X.Frame->ClassPoint(q, p, &hint); },
         depth / unitX))
     {
       return true;
     }
     if (shortC && X.HasDrawn &&
-      OutlineEnters(Regions[c.S.ClassId], X.Drawn,
-        [this, &c](const SurfacePoint& q, Vec2& p) { return ClassPointOf(c, q, p); }, depth / unitC))
+      OutlineEnters(
+        Regions[c.Shape.ClassId], X.Drawn,
+        [this, &c](const SurfacePoint& q, Vec2& p) { return ClassPointOf(c, q, p); },
+        depth / unitC))
     {
       return true;
     }
     hint = -1;
     if (!shortC && c.Frame && !shortX && X.HasDrawn &&
-      OutlineEnters(Regions[c.S.ClassId], X.Drawn,
-        [&c, &nearC, &hint](const SurfacePoint& q, Vec2& p) { return nearC(q) && c.Frame->ClassPoint(q, p, &hint); },
+      OutlineEnters(
+        Regions[c.Shape.ClassId], X.Drawn,
+        [&c, &nearC, &hint](
+          const SurfacePoint& q, Vec2& p) { return nearC(q) && c.Frame->ClassPoint(q, p, &hint); },
         depth / unitC))
     {
       return true;

@@ -19,14 +19,15 @@ namespace
 constexpr double Pi = 3.14159265358979323846;
 constexpr double TwoPi = 2.0 * Pi;
 
-bool ValidSymmetry(int n, std::string& error)
+Status CheckSymmetry(int n)
 {
   if (n != 1 && n != 2 && n != 4)
   {
-    error = "symmetry must be 1, 2 or 4 (got " + std::to_string(n) + ")";
-    return false;
+    return Status::Error(
+      "Symmetry must be 1 (vector field), 2 (line field) or 4 (cross field); it is " +
+      std::to_string(n));
   }
-  return true;
+  return Status();
 }
 
 double WrapPi(double a)
@@ -70,37 +71,37 @@ struct DirectionFieldSolver::ConnectionFactorization
 };
 
 DirectionFieldSolver::DirectionFieldSolver(const TriangleMesh& mesh)
-  : M(mesh)
+  : Surface(mesh)
 {
-  const int nf = M.NumberOfFaces();
+  const int nf = Surface.NumberOfFaces();
   BasisX.resize(nf);
   BasisY.resize(nf);
 #pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f)
   {
-    const Vec3 n = M.FaceNormal(f);
-    Vec3 x = M.Position(M.Destination(3 * f)) - M.Position(M.Origin(3 * f));
+    const Vec3 n = Surface.FaceNormal(f);
+    Vec3 x = Surface.Position(Surface.Destination(3 * f)) - Surface.Position(Surface.Origin(3 * f));
     const double l = Norm(x);
     x = l > 0 ? x / l : Vec3(1, 0, 0);
     BasisX[f] = x;
     BasisY[f] = Cross(n, x);
   }
-  Transport.assign(M.NumberOfHalfedges(), 0.0);
-  EdgeWeight.assign(M.NumberOfHalfedges(), 0.0);
+  Transport.assign(Surface.NumberOfHalfedges(), 0.0);
+  EdgeWeight.assign(Surface.NumberOfHalfedges(), 0.0);
 #pragma omp parallel for schedule(static)
-  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+  for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
   {
-    const int t = M.Twin(h);
+    const int t = Surface.Twin(h);
     if (t < 0)
     {
       continue;
     }
-    const Vec3 e = M.Position(M.Destination(h)) - M.Position(M.Origin(h));
+    const Vec3 e = Surface.Position(Surface.Destination(h)) - Surface.Position(Surface.Origin(h));
     const int f = TriangleMesh::FaceOf(h), g = TriangleMesh::FaceOf(t);
     // e has angle a_f in f and a_g in g: phi in f is (phi - a_f) from e, hence a_g + phi - a_f.
     Transport[h] = WrapPi(AngleInFace(g, e) - AngleInFace(f, e));
-    const double areas = M.FaceArea(f) + M.FaceArea(g);
-    const double l = M.EdgeLength(h);
+    const double areas = Surface.FaceArea(f) + Surface.FaceArea(g);
+    const double l = Surface.EdgeLength(h);
     // Primal edge length over the distance between the two barycentres across it.
     EdgeWeight[h] = areas > 0 ? 3.0 * l * l / (2.0 * areas) : 0.0;
   }
@@ -276,12 +277,12 @@ double DirectionFieldSolver::WrapSymmetric(double a, int n)
 
 std::vector<Vec3> DirectionFieldSolver::VertexNormals() const
 {
-  return AreaWeightedVertexNormals(M);
+  return AreaWeightedVertexNormals(Surface);
 }
 
 std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vector<double>& angles) const
 {
-  const int nv = M.NumberOfVertices();
+  const int nv = Surface.NumberOfVertices();
   const std::vector<Vec3> normals = VertexNormals();
   std::vector<Vec3> directions(nv, Vec3(0, 0, 0));
   for (int v = 0; v < nv; ++v)
@@ -291,8 +292,8 @@ std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vecto
     {
       continue;
     }
-    const std::vector<int> out = M.OutgoingHalfedges(v);
-    Vec3 x = M.Position(M.Destination(out[0])) - M.Position(v);
+    const std::vector<int> out = Surface.OutgoingHalfedges(v);
+    Vec3 x = Surface.Position(Surface.Destination(out[0])) - Surface.Position(v);
     x = x - normal * Dot(x, normal);
     const double lx = Norm(x);
     if (!(lx > 0))
@@ -307,9 +308,9 @@ std::vector<Vec3> DirectionFieldSolver::VertexDirections(int n, const std::vecto
       const int f = TriangleMesh::FaceOf(h);
       const Vec3 d = DirectionInFace(f, angles[f]);
       const double a = std::atan2(Dot(d, y), Dot(d, x));
-      re += M.FaceArea(f) * std::cos(n * a);
-      im += M.FaceArea(f) * std::sin(n * a);
-      area += M.FaceArea(f);
+      re += Surface.FaceArea(f) * std::cos(n * a);
+      im += Surface.FaceArea(f) * std::sin(n * a);
+      area += Surface.FaceArea(f);
     }
     if (std::hypot(re, im) > 1e-9 * area)
     {
@@ -324,14 +325,14 @@ double DirectionFieldSolver::IndexSum(int n, const std::vector<double>& angles) 
 {
   const std::vector<double> raw = VertexIndices(n, angles);
   double sum = 0.0;
-  for (int v = 0; v < M.NumberOfVertices(); ++v)
+  for (int v = 0; v < Surface.NumberOfVertices(); ++v)
   {
-    if (!M.IsBoundaryVertex(v))
+    if (!Surface.IsBoundaryVertex(v))
     {
       sum += std::round(raw[v] * n) / n;
     }
   }
-  for (const auto& loop : M.BoundaryLoops())
+  for (const auto& loop : Surface.BoundaryLoops())
   {
     double turning = 0.0;
     for (int v : loop)
@@ -346,7 +347,7 @@ double DirectionFieldSolver::IndexSum(int n, const std::vector<double>& angles) 
 void DirectionFieldSolver::ComputeCurvatureTarget(
   int n, std::vector<double>& re, std::vector<double>& im) const
 {
-  const int nf = M.NumberOfFaces();
+  const int nf = Surface.NumberOfFaces();
   const std::vector<Vec3> vn = VertexNormals();
   re.assign(nf, 0.0);
   im.assign(nf, 0.0);
@@ -359,8 +360,8 @@ void DirectionFieldSolver::ComputeCurvatureTarget(
     for (int c = 0; c < 3; ++c)
     {
       const int h = 3 * f + c;
-      const Vec3 e = M.Position(M.Destination(h)) - M.Position(M.Origin(h));
-      const Vec3 dn = vn[M.Destination(h)] - vn[M.Origin(h)];
+      const Vec3 e = Surface.Position(Surface.Destination(h)) - Surface.Position(Surface.Origin(h));
+      const Vec3 dn = vn[Surface.Destination(h)] - vn[Surface.Origin(h)];
       const double ex = Dot(e, BasisX[f]), ey = Dot(e, BasisY[f]);
       const double dx = Dot(dn, BasisX[f]), dy = Dot(dn, BasisY[f]);
       // rows: (ex, ey, 0) . (s11, s12, s22) = dx ; (0, ex, ey) . s = dy
@@ -384,8 +385,8 @@ void DirectionFieldSolver::ComputeCurvatureTarget(
     }
     re[f] = x;
     im[f] = y;
-    total += std::hypot(x, y) * M.FaceArea(f);
-    area += M.FaceArea(f);
+    total += std::hypot(x, y) * Surface.FaceArea(f);
+    area += Surface.FaceArea(f);
   }
   const double mean = area > 0 ? total / area : 0.0;
   if (mean > 0)
@@ -409,8 +410,8 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
   double area = 0.0;
   for (int f = 0; f < nf; ++f)
   {
-    mass[2 * f] = mass[2 * f + 1] = M.FaceArea(f);
-    area += M.FaceArea(f);
+    mass[2 * f] = mass[2 * f + 1] = Surface.FaceArea(f);
+    area += Surface.FaceArea(f);
   }
   std::mt19937 rng(12345u);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -475,19 +476,18 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
   return norm > 0 ? Eigen::VectorXd(ritz * std::sqrt(area) / norm) : ritz;
 }
 
-bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
-  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-  std::string& error)
+Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
-  const int nf = M.NumberOfFaces();
-  if (!ValidSymmetry(n, error))
+  const int nf = Surface.NumberOfFaces();
+  if (Status symmetry = CheckSymmetry(n); !symmetry.Ok())
   {
-    return false;
+    return symmetry;
   }
   if (!(alignment >= 0.0) || !std::isfinite(alignment))
   {
-    error = "curvature alignment weight must be finite and >= 0";
-    return false;
+    return Status::Error(
+      "CurvatureAlignment must be finite and >= 0 (it is " + std::to_string(alignment) + ")");
   }
   if (n == 1)
   {
@@ -495,8 +495,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   }
   if (nf == 0)
   {
-    error = "empty mesh";
-    return false;
+    return Status::Error("empty mesh");
   }
   // Constrained faces and their values exp(i N angle); repeated faces average their constraints.
   std::vector<double> cre(nf, 0.0), cim(nf, 0.0);
@@ -505,15 +504,13 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   {
     if (c.Face < 0 || c.Face >= nf || !IsFinite(c.Direction))
     {
-      error = "invalid direction constraint (face " + std::to_string(c.Face) + ")";
-      return false;
+      return Status::Error("invalid direction constraint (face " + std::to_string(c.Face) + ")");
     }
     const double a = AngleInFace(c.Face, c.Direction);
     const double x = Dot(c.Direction, BasisX[c.Face]), y = Dot(c.Direction, BasisY[c.Face]);
     if (std::hypot(x, y) <= 0.0)
     {
-      error = "direction constraint normal to its face " + std::to_string(c.Face);
-      return false;
+      return Status::Error("direction constraint normal to its face " + std::to_string(c.Face));
     }
     cre[c.Face] += std::cos(n * a);
     cim[c.Face] += std::sin(n * a);
@@ -527,8 +524,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
       const double l = std::hypot(cre[f], cim[f]);
       if (l < 1e-12)
       {
-        error = "contradictory direction constraints in face " + std::to_string(f);
-        return false;
+        return Status::Error("contradictory direction constraints in face " + std::to_string(f));
       }
       cre[f] /= l;
       cim[f] /= l;
@@ -537,13 +533,13 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   }
 
   double sumW = 0.0, sumA = 0.0;
-  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+  for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
   {
     sumW += EdgeWeight[h];
   }
   for (int f = 0; f < nf; ++f)
   {
-    sumA += M.FaceArea(f);
+    sumA += Surface.FaceArea(f);
   }
   const double sigma = sumA > 0 ? sumW / sumA : 1.0; // energy / area scale
   const double eps = 1e-10 * sigma;
@@ -555,10 +551,10 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     Cache->Alignment = alignment;
     Cache->Constrained = constrained;
     std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(8 * M.NumberOfHalfedges() + 2 * nf);
-    for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+    trip.reserve(8 * Surface.NumberOfHalfedges() + 2 * nf);
+    for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
     {
-      const int t = M.Twin(h);
+      const int t = Surface.Twin(h);
       if (t < h)
       {
         continue; // boundary or already seen from its twin
@@ -584,7 +580,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     }
     for (int f = 0; f < nf; ++f)
     {
-      const double d = (alignment * sigma + eps) * M.FaceArea(f);
+      const double d = (alignment * sigma + eps) * Surface.FaceArea(f);
       trip.emplace_back(2 * f, 2 * f, d);
       trip.emplace_back(2 * f + 1, 2 * f + 1, d);
     }
@@ -639,8 +635,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     if (nfree > 0 && Cache->Solver.info() != Eigen::Success)
     {
       Cache.reset();
-      error = "factorization of the connection Laplacian failed";
-      return false;
+      return Status::Error("factorization of the connection Laplacian failed");
     }
   }
 
@@ -665,18 +660,18 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     {
       if (freeIndex[f] >= 0)
       {
-        rhsFixed[2 * freeIndex[f]] += alignment * sigma * M.FaceArea(f) * qre[f];
-        rhsFixed[2 * freeIndex[f] + 1] += alignment * sigma * M.FaceArea(f) * qim[f];
+        rhsFixed[2 * freeIndex[f]] += alignment * sigma * Surface.FaceArea(f) * qre[f];
+        rhsFixed[2 * freeIndex[f] + 1] += alignment * sigma * Surface.FaceArea(f) * qim[f];
       }
     }
   }
   // Components with neither constraints nor alignment: inverse iteration for the smallest
   // eigenvector (Knoppel et al.), normalised per component.
-  const int ncomp = std::max(1, M.NumberOfComponents());
+  const int ncomp = std::max(1, Surface.NumberOfComponents());
   std::vector<char> compFree(ncomp, alignment > 0 ? 0 : 1);
   for (int f : constrained)
   {
-    compFree[M.FaceComponent(f)] = 0;
+    compFree[Surface.FaceComponent(f)] = 0;
   }
   const bool iterate = std::find(compFree.begin(), compFree.end(), 1) != compFree.end();
   Eigen::VectorXd u = Eigen::VectorXd::Zero(2 * nfree);
@@ -701,7 +696,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
       std::vector<double> norm(ncomp), compArea(ncomp, 0.0);
       for (int f = 0; f < nf; ++f)
       {
-        compArea[M.FaceComponent(f)] += M.FaceArea(f);
+        compArea[Surface.FaceComponent(f)] += Surface.FaceArea(f);
       }
       // Normalised to an area-weighted mean |u|^2 of 1. Stops when the Rayleigh quotient (the
       // field's smoothness energy) is stable to 1e-6 relative, or after 60 iterations: with a
@@ -714,10 +709,10 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
         for (int f = 0; f < nf; ++f)
         {
           const int i = freeIndex[f];
-          if (i >= 0 && compFree[M.FaceComponent(f)])
+          if (i >= 0 && compFree[Surface.FaceComponent(f)])
           {
-            rhs[2 * i] += M.FaceArea(f) * u[2 * i];
-            rhs[2 * i + 1] += M.FaceArea(f) * u[2 * i + 1];
+            rhs[2 * i] += Surface.FaceArea(f) * u[2 * i];
+            rhs[2 * i + 1] += Surface.FaceArea(f) * u[2 * i + 1];
           }
         }
         Eigen::VectorXd next = Cache->Solver.solve(rhs);
@@ -725,10 +720,10 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
         for (int f = 0; f < nf; ++f)
         {
           const int i = freeIndex[f];
-          if (i >= 0 && compFree[M.FaceComponent(f)])
+          if (i >= 0 && compFree[Surface.FaceComponent(f)])
           {
-            uu += M.FaceArea(f) * (u[2 * i] * u[2 * i] + u[2 * i + 1] * u[2 * i + 1]);
-            un += M.FaceArea(f) * (u[2 * i] * next[2 * i] + u[2 * i + 1] * next[2 * i + 1]);
+            uu += Surface.FaceArea(f) * (u[2 * i] * u[2 * i] + u[2 * i + 1] * u[2 * i + 1]);
+            un += Surface.FaceArea(f) * (u[2 * i] * next[2 * i] + u[2 * i + 1] * next[2 * i + 1]);
           }
         }
         const double quotient = un != 0.0 ? uu / un : 0.0; // ~ smallest eigenvalue of B
@@ -738,14 +733,14 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
           const int i = freeIndex[f];
           if (i >= 0)
           {
-            norm[M.FaceComponent(f)] +=
-              M.FaceArea(f) * (next[2 * i] * next[2 * i] + next[2 * i + 1] * next[2 * i + 1]);
+            norm[Surface.FaceComponent(f)] +=
+              Surface.FaceArea(f) * (next[2 * i] * next[2 * i] + next[2 * i + 1] * next[2 * i + 1]);
           }
         }
         for (int f = 0; f < nf; ++f)
         {
           const int i = freeIndex[f];
-          const int c = M.FaceComponent(f);
+          const int c = Surface.FaceComponent(f);
           if (i >= 0 && compFree[c] && norm[c] > 0)
           {
             const double s = std::sqrt(compArea[c] / norm[c]);
@@ -763,8 +758,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     }
     if (!u.allFinite())
     {
-      error = "direction field solve produced non-finite values";
-      return false;
+      return Status::Error("direction field solve produced non-finite values");
     }
   }
   angles.assign(nf, 0.0);
@@ -775,7 +769,7 @@ bool DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     const double y = i >= 0 ? u[2 * i + 1] : cim[f];
     angles[f] = std::atan2(y, x) / n;
   }
-  return true;
+  return Status();
 }
 
 namespace
@@ -791,33 +785,30 @@ int Find(std::vector<int>& parent, int a)
 }
 } // namespace
 
-bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
-  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-  std::string& error)
+Status DirectionFieldSolver::SolvePrescribed(int n,
+  const std::vector<VertexSingularity>& singularities,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
-  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices();
-  if (!ValidSymmetry(n, error))
+  const int nf = Surface.NumberOfFaces(), nv = Surface.NumberOfVertices();
+  if (Status symmetry = CheckSymmetry(n); !symmetry.Ok())
   {
-    return false;
+    return symmetry;
   }
   if (nf == 0)
   {
-    error = "empty mesh";
-    return false;
+    return Status::Error("empty mesh");
   }
   std::vector<double> index(nv, 0.0);
   for (const VertexSingularity& s : singularities)
   {
     if (s.Vertex < 0 || s.Vertex >= nv || !std::isfinite(s.Index))
     {
-      error = "invalid singularity (vertex " + std::to_string(s.Vertex) + ")";
-      return false;
+      return Status::Error("invalid singularity (vertex " + std::to_string(s.Vertex) + ")");
     }
     if (std::abs(s.Index * n - std::round(s.Index * n)) > 1e-6)
     {
-      error = "singularity index " + std::to_string(s.Index) + " at vertex " +
-        std::to_string(s.Vertex) + " is not a multiple of 1/" + std::to_string(n);
-      return false;
+      return Status::Error("singularity index " + std::to_string(s.Index) + " at vertex " +
+        std::to_string(s.Vertex) + " is not a multiple of 1/" + std::to_string(n));
     }
     index[s.Vertex] += std::round(s.Index * n) / n;
   }
@@ -826,8 +817,7 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
     if (c.Face < 0 || c.Face >= nf || !IsFinite(c.Direction) ||
       std::hypot(Dot(c.Direction, BasisX[c.Face]), Dot(c.Direction, BasisY[c.Face])) <= 0.0)
     {
-      error = "invalid direction constraint (face " + std::to_string(c.Face) + ")";
-      return false;
+      return Status::Error("invalid direction constraint (face " + std::to_string(c.Face) + ")");
     }
   }
   // A face constrained twice keeps its first constraint.
@@ -843,14 +833,14 @@ bool DirectionFieldSolver::SolvePrescribed(int n, const std::vector<VertexSingul
       }
     }
   }
-  return SolvePrescribedUnique(n, index, unique, angles, error);
+  return SolvePrescribedUnique(n, index, unique, angles);
 }
 
-bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double>& index,
-  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-  std::string& error)
+Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double>& index,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
-  const int nf = M.NumberOfFaces(), nv = M.NumberOfVertices(), nh = M.NumberOfHalfedges();
+  const int nf = Surface.NumberOfFaces(), nv = Surface.NumberOfVertices(),
+            nh = Surface.NumberOfHalfedges();
   std::vector<int> constrainedFaces;
   for (const FaceDirectionConstraint& c : constraints)
   {
@@ -867,7 +857,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     std::vector<double> weight;
     for (int h = 0; h < nh; ++h)
     {
-      const int t = M.Twin(h);
+      const int t = Surface.Twin(h);
       if (t > h)
       {
         cf->EdgeOf[h] = cf->EdgeOf[t] = ne++;
@@ -893,27 +883,27 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     }
     std::vector<char> inTree(nh, 0);
     auto tryAdd = [&](int h) {
-      const int a = Find(uf, M.Origin(h)), b = Find(uf, M.Destination(h));
+      const int a = Find(uf, Surface.Origin(h)), b = Find(uf, Surface.Destination(h));
       if (a != b)
       {
         uf[a] = b;
         inTree[h] = 1;
-        if (M.Twin(h) >= 0)
+        if (Surface.Twin(h) >= 0)
         {
-          inTree[M.Twin(h)] = 1;
+          inTree[Surface.Twin(h)] = 1;
         }
       }
     };
     for (int h = 0; h < nh; ++h)
     {
-      if (M.Twin(h) < 0)
+      if (Surface.Twin(h) < 0)
       {
         tryAdd(h);
       }
     }
     for (int h = 0; h < nh; ++h)
     {
-      if (M.Twin(h) > h)
+      if (Surface.Twin(h) > h)
       {
         tryAdd(h);
       }
@@ -936,7 +926,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
         const int f = cf->Order[head++];
         for (int c = 0; c < 3; ++c)
         {
-          const int h = 3 * f + c, t = M.Twin(h);
+          const int h = 3 * f + c, t = Surface.Twin(h);
           if (t < 0 || inTree[h])
           {
             continue;
@@ -958,7 +948,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
       std::vector<int> up, down;
       while (cf->Depth[a] > cf->Depth[b])
       {
-        up.push_back(M.Twin(cf->ParentHalfedge[a]));
+        up.push_back(Surface.Twin(cf->ParentHalfedge[a]));
         a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
       }
       while (cf->Depth[b] > cf->Depth[a])
@@ -968,7 +958,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
       }
       while (a != b)
       {
-        up.push_back(M.Twin(cf->ParentHalfedge[a]));
+        up.push_back(Surface.Twin(cf->ParentHalfedge[a]));
         a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
         down.push_back(cf->ParentHalfedge[b]);
         b = TriangleMesh::FaceOf(cf->ParentHalfedge[b]);
@@ -978,7 +968,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     };
     for (int h = 0; h < nh; ++h)
     {
-      const int t = M.Twin(h);
+      const int t = Surface.Twin(h);
       if (t > h && !inTree[h] && !inDual[h])
       {
         std::vector<int> cycle{ h };
@@ -990,14 +980,14 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     for (size_t i = 1; i < constrainedFaces.size(); ++i)
     {
       const int a = constrainedFaces[i - 1], b = constrainedFaces[i];
-      if (a == b || M.FaceComponent(a) != M.FaceComponent(b))
+      if (a == b || Surface.FaceComponent(a) != Surface.FaceComponent(b))
       {
         continue;
       }
       std::vector<int> path;
       for (int c = 0; c < 3; ++c)
       {
-        const int t = M.Twin(3 * a + c);
+        const int t = Surface.Twin(3 * a + c);
         if (t >= 0 && TriangleMesh::FaceOf(t) == b)
         {
           path = { 3 * a + c };
@@ -1012,21 +1002,21 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     }
     // Rows: interior vertices and boundary loops (a loop's dual cycle is the union of its
     // vertices' fans), all but the last of each component (they sum to zero).
-    const int ncomp = std::max(1, M.NumberOfComponents());
+    const int ncomp = std::max(1, Surface.NumberOfComponents());
     std::vector<std::pair<int, int>> candidates; // (vertex, -1) or (-1, loop)
     std::vector<int> lastOfComponent(ncomp, -1);
     for (int v = 0; v < nv; ++v)
     {
-      if (!M.IsBoundaryVertex(v))
+      if (!Surface.IsBoundaryVertex(v))
       {
-        lastOfComponent[M.VertexComponent(v)] = static_cast<int>(candidates.size());
+        lastOfComponent[Surface.VertexComponent(v)] = static_cast<int>(candidates.size());
         candidates.emplace_back(v, -1);
       }
     }
-    const auto& loops = M.BoundaryLoops();
+    const auto& loops = Surface.BoundaryLoops();
     for (int l = 0; l < static_cast<int>(loops.size()); ++l)
     {
-      lastOfComponent[M.VertexComponent(loops[l][0])] = static_cast<int>(candidates.size());
+      lastOfComponent[Surface.VertexComponent(loops[l][0])] = static_cast<int>(candidates.size());
       candidates.emplace_back(-1, l);
     }
     std::vector<char> drop(candidates.size(), 0);
@@ -1043,7 +1033,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
       const int e = cf->EdgeOf[h];
       if (e >= 0)
       {
-        trip.emplace_back(r, e, h < M.Twin(h) ? 1.0 : -1.0);
+        trip.emplace_back(r, e, h < Surface.Twin(h) ? 1.0 : -1.0);
       }
     };
     for (size_t i = 0; i < candidates.size(); ++i)
@@ -1057,7 +1047,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
         candidates[i].first >= 0 ? single : loops[candidates[i].second];
       for (int v : vertices)
       {
-        for (int h : M.OutgoingHalfedges(v))
+        for (int h : Surface.OutgoingHalfedges(v))
         {
           addCrossing(row, TriangleMesh::Prev(h));
         }
@@ -1088,21 +1078,21 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     cf->Solver.compute(k);
     if (cf->Solver.info() != Eigen::Success)
     {
-      error = "factorization of the trivial-connection system failed";
-      return false;
+      return Status::Error("factorization of the trivial-connection system failed");
     }
     cf->ComponentEuler.assign(ncomp, 0.0);
     for (int v = 0; v < nv; ++v)
     {
-      cf->ComponentEuler[M.VertexComponent(v)] += 1.0;
+      cf->ComponentEuler[Surface.VertexComponent(v)] += 1.0;
     }
     for (int f = 0; f < nf; ++f)
     {
-      cf->ComponentEuler[M.FaceComponent(f)] += 1.0;
+      cf->ComponentEuler[Surface.FaceComponent(f)] += 1.0;
       for (int c = 0; c < 3; ++c)
       {
         const int h = 3 * f + c;
-        cf->ComponentEuler[M.FaceComponent(f)] -= M.Twin(h) < 0 ? 1.0 : (M.Twin(h) > h ? 1.0 : 0.0);
+        cf->ComponentEuler[Surface.FaceComponent(f)] -=
+          Surface.Twin(h) < 0 ? 1.0 : (Surface.Twin(h) > h ? 1.0 : 0.0);
       }
     }
     ConnectionCache = std::move(cf);
@@ -1113,7 +1103,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
   std::vector<double> sum(cf.ComponentEuler.size(), 0.0);
   for (int v = 0; v < nv; ++v)
   {
-    sum[M.VertexComponent(v)] += index[v];
+    sum[Surface.VertexComponent(v)] += index[v];
   }
   for (size_t c = 0; c < sum.size(); ++c)
   {
@@ -1125,8 +1115,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
         "(boundary vertices count the field's turning against the boundary)",
         sum[c], cf.ComponentEuler[c],
         sum.size() > 1 ? (" of connected component " + std::to_string(c)).c_str() : "");
-      error = buffer;
-      return false;
+      return Status::Error(buffer);
     }
   }
   // Right-hand side.
@@ -1138,7 +1127,7 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
     double rhs = 0.0;
     for (int v : vertices)
     {
-      const double defect = (M.IsBoundaryVertex(v) ? Pi : TwoPi) - M.TotalAngle(v);
+      const double defect = (Surface.IsBoundaryVertex(v) ? Pi : TwoPi) - Surface.TotalAngle(v);
       rhs += TwoPi * index[v] - defect;
     }
     b[row++] = rhs;
@@ -1169,9 +1158,10 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
   const double residual = (cf.C * x - b).norm();
   if (!x.allFinite() || residual > 1e-7 * (1.0 + b.norm()))
   {
-    error = "the singularities and direction constraints are incompatible (a constraint crosses a "
-            "singularity or two constraints disagree): residual " + std::to_string(residual);
-    return false;
+    return Status::Error("the singularities and direction constraints are incompatible (a "
+                         "constraint crosses a singularity or two constraints disagree): "
+                         "residual " +
+      std::to_string(residual));
   }
   // Transport over the dual tree, then rotate each component onto its first constraint.
   angles.assign(nf, 0.0);
@@ -1183,13 +1173,14 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
       continue;
     }
     const int e = cf.EdgeOf[h];
-    angles[f] = angles[TriangleMesh::FaceOf(h)] + Transport[h] + (h < M.Twin(h) ? x[e] : -x[e]);
+    angles[f] =
+      angles[TriangleMesh::FaceOf(h)] + Transport[h] + (h < Surface.Twin(h) ? x[e] : -x[e]);
   }
   std::vector<char> rotated(cf.ComponentEuler.size(), 0);
   std::vector<double> shift(cf.ComponentEuler.size(), 0.0);
   for (const FaceDirectionConstraint& c : constraints)
   {
-    const int comp = M.FaceComponent(c.Face);
+    const int comp = Surface.FaceComponent(c.Face);
     if (!rotated[comp])
     {
       rotated[comp] = 1;
@@ -1198,9 +1189,9 @@ bool DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double
   }
   for (int f = 0; f < nf; ++f)
   {
-    angles[f] = WrapPi(angles[f] + shift[M.FaceComponent(f)]);
+    angles[f] = WrapPi(angles[f] + shift[Surface.FaceComponent(f)]);
   }
-  return true;
+  return Status();
 }
 
 
@@ -1209,7 +1200,7 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
   double maxTurn) const
 {
   Streamline line;
-  const int nf = M.NumberOfFaces();
+  const int nf = Surface.NumberOfFaces();
   if (n < 1 || static_cast<int>(angles.size()) != nf || nf == 0 || !(length >= 0.0) ||
     !std::isfinite(length))
   {
@@ -1224,15 +1215,15 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
   Vec3 x;
   if (start.IsVertex())
   {
-    f = TriangleMesh::FaceOf(M.VertexHalfedge(start.Vertex));
-    x = M.Position(start.Vertex);
+    f = TriangleMesh::FaceOf(Surface.VertexHalfedge(start.Vertex));
+    x = Surface.Position(start.Vertex);
   }
   else
   {
-    x = M.Interpolate(f, start.Bary);
+    x = Surface.Interpolate(f, start.Bary);
   }
   line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = M.ClampedBarycentric(f, x);
+  line.End.Bary = Surface.ClampedBarycentric(f, x);
   auto singularFace = [&](int face) {
     if (!indices)
     {
@@ -1240,7 +1231,8 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
     }
     for (int c = 0; c < 3; ++c)
     {
-      if (std::abs((*indices)[M.Face(face)[c]]) > 1e-9 && !M.IsBoundaryVertex(M.Face(face)[c]))
+      if (std::abs((*indices)[Surface.Face(face)[c]]) > 1e-9 &&
+        !Surface.IsBoundaryVertex(Surface.Face(face)[c]))
       {
         return true;
       }
@@ -1263,7 +1255,7 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
   const int maxSteps = 10 * nf + 1000;
   for (int step = 0; step < maxSteps; ++step)
   {
-    const FaceExit out = FindFaceExit(M, f, x, d, entry);
+    const FaceExit out = FindFaceExit(Surface, f, x, d, entry);
     if (out.Edge < 0)
     {
       line.Reason = Streamline::Stuck;
@@ -1279,13 +1271,14 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
       break;
     }
     const double s = std::min(1.0 - 1e-9, std::max(1e-9, out.S));
-    const Vec3 A = M.Position(M.Origin(out.Edge)), B = M.Position(M.Destination(out.Edge));
+    const Vec3 A = Surface.Position(Surface.Origin(out.Edge)),
+               B = Surface.Position(Surface.Destination(out.Edge));
     const Vec3 y = A + (B - A) * s;
     line.Pieces.push_back({ f, x, y });
     line.Length += out.T;
     remaining -= out.T;
     x = y;
-    const int t = M.Twin(out.Edge);
+    const int t = Surface.Twin(out.Edge);
     if (t < 0)
     {
       line.Reason = Streamline::ReachedBoundary;
@@ -1306,22 +1299,22 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
     entry = t;
   }
   line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = M.ClampedBarycentric(f, x);
+  line.End.Bary = Surface.ClampedBarycentric(f, x);
   return line;
 }
 
 std::vector<double> DirectionFieldSolver::VertexIndices(int n, const std::vector<double>& angles) const
 {
-  const int nv = M.NumberOfVertices();
+  const int nv = Surface.NumberOfVertices();
   std::vector<double> index(nv, 0.0);
   for (int v = 0; v < nv; ++v)
   {
-    const std::vector<int> out = M.OutgoingHalfedges(v);
+    const std::vector<int> out = Surface.OutgoingHalfedges(v);
     double jumps = 0.0;
     for (int h : out)
     {
       const int p = TriangleMesh::Prev(h); // crossing p goes to the next face counter-clockwise
-      const int t = M.Twin(p);
+      const int t = Surface.Twin(p);
       if (t < 0)
       {
         continue;
@@ -1329,7 +1322,7 @@ std::vector<double> DirectionFieldSolver::VertexIndices(int n, const std::vector
       const int f = TriangleMesh::FaceOf(h), g = TriangleMesh::FaceOf(t);
       jumps += WrapSymmetric(angles[g] - (angles[f] + Transport[p]), n);
     }
-    const double defect = (M.IsBoundaryVertex(v) ? Pi : TwoPi) - M.TotalAngle(v);
+    const double defect = (Surface.IsBoundaryVertex(v) ? Pi : TwoPi) - Surface.TotalAngle(v);
     index[v] = (jumps + defect) / TwoPi;
   }
   return index;
@@ -1339,9 +1332,9 @@ std::vector<double> DirectionFieldSolver::RoundedVertexIndices(
   int n, const std::vector<double>& angles) const
 {
   std::vector<double> index = VertexIndices(n, angles);
-  for (int v = 0; v < M.NumberOfVertices(); ++v)
+  for (int v = 0; v < Surface.NumberOfVertices(); ++v)
   {
-    if (!M.IsBoundaryVertex(v))
+    if (!Surface.IsBoundaryVertex(v))
     {
       index[v] = std::round(index[v] * n) / n;
     }
@@ -1352,9 +1345,9 @@ std::vector<double> DirectionFieldSolver::RoundedVertexIndices(
 double DirectionFieldSolver::Energy(int n, const std::vector<double>& angles) const
 {
   double e = 0.0, a = 0.0;
-  for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+  for (int h = 0; h < Surface.NumberOfHalfedges(); ++h)
   {
-    const int t = M.Twin(h);
+    const int t = Surface.Twin(h);
     if (t < h)
     {
       continue;
@@ -1363,9 +1356,9 @@ double DirectionFieldSolver::Energy(int n, const std::vector<double>& angles) co
     const double d = n * (angles[g] - angles[f] - Transport[h]);
     e += EdgeWeight[h] * 2.0 * (1.0 - std::cos(d));
   }
-  for (int f = 0; f < M.NumberOfFaces(); ++f)
+  for (int f = 0; f < Surface.NumberOfFaces(); ++f)
   {
-    a += M.FaceArea(f);
+    a += Surface.FaceArea(f);
   }
   return a > 0 ? e / a : 0.0;
 }

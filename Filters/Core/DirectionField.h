@@ -13,6 +13,7 @@
 // Euler characteristic (Poincare-Hopf) whatever the field.
 #pragma once
 
+#include "Status.h"
 #include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
@@ -21,7 +22,6 @@
 #include <Eigen/Core>
 
 #include <memory>
-#include <string>
 #include <vector>
 
 namespace gs
@@ -91,7 +91,7 @@ public:
   explicit DirectionFieldSolver(const TriangleMesh& mesh);
   ~DirectionFieldSolver();
 
-  const TriangleMesh& Mesh() const { return M; }
+  const TriangleMesh& Mesh() const { return Surface; }
 
   // Tangent frame of a face.
   Vec3 FaceBasisX(int f) const { return BasisX[f]; }
@@ -107,11 +107,10 @@ public:
   // connection Laplacian), or, with `curvatureAlignment` t > 0, the smoothest field pulled towards
   // the principal curvature directions (N = 2, 4) with weight t (0: ignore curvature; 1: balanced).
   // Hard constraints replace the eigenproblem by the smoothest extension of the constrained faces.
-  // Returns the angles per face. The factorization is kept and reused while N and t stay the same
-  // and the set of constrained faces does not change.
-  bool SolveSmoothest(int n, double curvatureAlignment,
-    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-    std::string& error);
+  // The angles per face go to `angles`. The factorization is kept and reused while N and t stay the
+  // same and the set of constrained faces does not change.
+  Status SolveSmoothest(int n, double curvatureAlignment,
+    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles);
 
   // Crane, Desbrun, Schroder 2010 trivial connections: the smoothest (least Dirichlet energy)
   // change of the Levi-Civita connection whose holonomy around every vertex gives exactly the
@@ -125,9 +124,8 @@ public:
   // constrained twice keeps its first constraint).
   // The factorization is kept while the constrained faces do not change: new singularities or
   // new stroke directions re-solve with it.
-  bool SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
-    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-    std::string& error);
+  Status SolvePrescribed(int n, const std::vector<VertexSingularity>& singularities,
+    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles);
 
   // Index (times N, an integer for interior vertices) of every vertex, as a real number.
   std::vector<double> VertexIndices(int n, const std::vector<double>& angles) const;
@@ -162,14 +160,13 @@ public:
 
 private:
   struct Factorization;
-  bool SolvePrescribedUnique(int n, const std::vector<double>& index,
-    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles,
-    std::string& error);
+  Status SolvePrescribedUnique(int n, const std::vector<double>& index,
+    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles);
   Eigen::VectorXd SmallestEigenvector(const Factorization& cache, int nf) const;
   std::vector<Vec3> VertexNormals() const;
   void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
 
-  const TriangleMesh& M;
+  const TriangleMesh& Surface;
   std::vector<Vec3> BasisX, BasisY;
   std::vector<double> Transport;
   std::vector<double> EdgeWeight; // per half-edge (same on both twins)

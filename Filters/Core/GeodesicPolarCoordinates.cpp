@@ -21,13 +21,29 @@ double Wrap(double a)
   a = std::fmod(a, TwoPi);
   return a < 0.0 ? a + TwoPi : a;
 }
+
+Status RadiusError(double radius)
+{
+  return Status::Error("Radius must be > 0 (it is " + std::to_string(radius) + ")");
+}
+
+Status SourceError()
+{
+  return Status::Error("the geodesic solver rejected the source");
+}
 } // namespace
 
 GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
   : Mesh(mesh)
   , Solver(mesh)
 {
-  if (graph && graph->NumberOfVertices() == mesh.NumberOfVertices())
+  if (graph && graph->NumberOfVertices() != mesh.NumberOfVertices())
+  {
+    GraphError = Status::Error("the saddle vertex graph was built for another mesh (" +
+      std::to_string(graph->NumberOfVertices()) + " vertices; the mesh has " +
+      std::to_string(mesh.NumberOfVertices()) + ")");
+  }
+  else if (graph)
   {
     Svg.reset(new SVGGeodesicSolver(mesh, *graph));
   }
@@ -40,7 +56,8 @@ double GeodesicPolarCoordinates::RawToTheta(double raw) const
   return Wrap((raw - Reference) * TwoPi / Turn);
 }
 
-bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius, double referenceAngle)
+Status GeodesicPolarCoordinates::Compute(
+  const SurfacePoint& source, double radius, double referenceAngle)
 {
   for (int v : InsideList)
   {
@@ -50,9 +67,17 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
   InsideList.clear();
   CurveMode = false;
   IsoAngles = false;
-  if (!(radius > 0.0) || !std::isfinite(referenceAngle))
+  if (!GraphError.Ok())
   {
-    return false;
+    return GraphError;
+  }
+  if (!(radius > 0.0))
+  {
+    return RadiusError(radius);
+  }
+  if (!std::isfinite(referenceAngle))
+  {
+    return Status::Error("the reference angle is not finite");
   }
   const double maxDistance = std::isfinite(radius) ? radius : 0.0;
   Turn = source.IsVertex() && source.Vertex >= 0 && source.Vertex < Mesh.NumberOfVertices()
@@ -66,7 +91,7 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
     options.Angles = true;
     if (!Svg->Solve({ source }, options))
     {
-      return false;
+      return SourceError();
     }
     for (int v : Svg->Reached())
     {
@@ -85,7 +110,7 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
     options.MaximumDistance = maxDistance;
     if (!Solver.Solve({ source }, options))
     {
-      return false;
+      return SourceError();
     }
     InsideList = Solver.FinalVertices();
   }
@@ -97,11 +122,10 @@ bool GeodesicPolarCoordinates::Compute(const SurfacePoint& source, double radius
     // The source vertex itself is the pole: angle 0 by convention.
     VertexTheta[v] = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
   }
-  return true;
+  return Status();
 }
 
-const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
-  const std::vector<SurfacePoint>& curve, double radius)
+Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& curve, double radius)
 {
   for (int v : InsideList)
   {
@@ -110,23 +134,32 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
   }
   InsideList.clear();
   CurveMode = true;
-  Curve.Length = 0.0;
-  Curve.Offset.assign(Mesh.NumberOfVertices(), NaN);
-  Curve.ArcLength.assign(Mesh.NumberOfVertices(), NaN);
+  CurveResult.Length = 0.0;
+  CurveResult.Offset.assign(Mesh.NumberOfVertices(), NaN);
+  CurveResult.ArcLength.assign(Mesh.NumberOfVertices(), NaN);
   Foot.assign(Mesh.NumberOfVertices(), NaN);
   Across.assign(Mesh.NumberOfVertices(), NaN);
-  if (!(radius > 0.0) || curve.empty())
+  if (!GraphError.Ok())
   {
-    return nullptr;
+    return GraphError;
   }
-  for (const SurfacePoint& p : curve)
+  if (!(radius > 0.0))
   {
+    return RadiusError(radius);
+  }
+  if (curve.empty())
+  {
+    return Status::Error("the curve has no point");
+  }
+  for (std::size_t k = 0; k < curve.size(); ++k)
+  {
+    const SurfacePoint& p = curve[k];
     const bool valid = p.IsVertex()
       ? p.Vertex < Mesh.NumberOfVertices()
       : p.Face >= 0 && p.Face < Mesh.NumberOfFaces() && std::isfinite(p.Bary[0] + p.Bary[1] + p.Bary[2]);
     if (!valid)
     {
-      return nullptr;
+      return Status::Error("curve point " + std::to_string(k) + " is not a point of the mesh");
     }
   }
   CurvePieces = TraceSurfaceCurve(Mesh, curve);
@@ -155,18 +188,18 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
     const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing)));
     for (int i = 0; i <= steps; ++i)
     {
-      arc.push_back(Curve.Length + length * i / steps);
+      arc.push_back(CurveResult.Length + length * i / steps);
       direction.push_back(piece.B - piece.A);
       if (length == 0.0)
       {
         break;
       }
     }
-    Curve.Length += length;
+    CurveResult.Length += length;
   }
-  if (!(Curve.Length > 0.0) || arc.size() != samples.size())
+  if (!(CurveResult.Length > 0.0) || arc.size() != samples.size())
   {
-    return nullptr;
+    return Status::Error("the curve has zero length");
   }
   // A zero-length piece (a point of the curve alone) takes the direction of its nearest
   // neighbour along the curve. Then each direction becomes a tangent angle in the convention
@@ -194,7 +227,7 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
   // Straight runs of the curve: consecutive samples whose directions agree. A foot that
   // projects past the end of its run, where the curve turns, is the turning point itself (the
   // offset curve goes round it on the outer side).
-  std::vector<double> runStart(samples.size(), 0.0), runEnd(samples.size(), Curve.Length);
+  std::vector<double> runStart(samples.size(), 0.0), runEnd(samples.size(), CurveResult.Length);
   {
     std::size_t first = 0;
     Vec3 runDirection;
@@ -230,7 +263,7 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
   options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * Mesh.MeanEdgeLength() : 0.0;
   if (!Solver.Solve(samples, options))
   {
-    return nullptr;
+    return SourceError();
   }
   InsideList = Solver.FinalVertices();
   for (int v : InsideList)
@@ -242,7 +275,7 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
     // (angles in the foot face's frame: samples are face points of their piece's face).
     if (root < 0)
     {
-      Curve.Offset[v] = Curve.ArcLength[v] = NaN;
+      CurveResult.Offset[v] = CurveResult.ArcLength[v] = NaN;
       continue;
     }
     double side = 1.0, along = 0.0, across = d;
@@ -258,15 +291,16 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
     }
     double foot = arc[root] + along;
     // Past a turn of the curve: the foot is the turning point, the offset the distance to it.
-    if ((foot > runEnd[root] && runEnd[root] < Curve.Length) || (foot < runStart[root] && runStart[root] > 0.0))
+    if ((foot > runEnd[root] && runEnd[root] < CurveResult.Length) ||
+      (foot < runStart[root] && runStart[root] > 0.0))
     {
       foot = foot > runEnd[root] ? runEnd[root] : runStart[root];
       across = d;
     }
     // Beyond an end of the curve the closest point is that end: the distance itself.
-    const bool cap = foot < 0.0 || foot > Curve.Length;
-    Curve.Offset[v] = d == 0.0 ? 0.0 : side * (cap ? d : across);
-    Curve.ArcLength[v] = std::min(1.0, std::max(0.0, foot / Curve.Length));
+    const bool cap = foot < 0.0 || foot > CurveResult.Length;
+    CurveResult.Offset[v] = d == 0.0 ? 0.0 : side * (cap ? d : across);
+    CurveResult.ArcLength[v] = std::min(1.0, std::max(0.0, foot / CurveResult.Length));
     Foot[v] = foot; // unclamped: continues past the ends along the end's direction
     Across[v] = d == 0.0 ? 0.0 : side * across; // offset from the (extended) curve's line
   }
@@ -282,7 +316,7 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
     for (int k = 0; length > tiny && k < 3; ++k)
     {
       const int v = Mesh.Face(piece.Face)[k];
-      if (!std::isfinite(Curve.Offset[v]))
+      if (!std::isfinite(CurveResult.Offset[v]))
       {
         continue;
       }
@@ -290,15 +324,16 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
       const double t = std::min(1.0, std::max(0.0, Dot(p - piece.A, ab) / (length * length)));
       const Vec3 foot = piece.A + ab * t;
       const double d = Norm(p - foot);
-      if (d < std::abs(Curve.Offset[v]))
+      if (d < std::abs(CurveResult.Offset[v]))
       {
-        Curve.Offset[v] = Dot(Cross(ab, p - foot), n) < 0.0 ? -d : d;
-        Curve.ArcLength[v] = std::min(1.0, std::max(0.0, (start + t * length) / Curve.Length));
+        CurveResult.Offset[v] = Dot(Cross(ab, p - foot), n) < 0.0 ? -d : d;
+        CurveResult.ArcLength[v] =
+          std::min(1.0, std::max(0.0, (start + t * length) / CurveResult.Length));
         // (A foot clamped to the piece's end keeps the solver's unclamped value.)
         if (t > 0.0 && t < 1.0)
         {
           Foot[v] = start + t * length;
-          Across[v] = Curve.Offset[v];
+          Across[v] = CurveResult.Offset[v];
         }
       }
     }
@@ -311,13 +346,14 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
   for (std::size_t i = 0; i < InsideList.size(); ++i)
   {
     const int v = InsideList[i];
-    if (!(std::abs(Curve.Offset[v]) <= radius) || Curve.Offset[v] == 0.0 || !(Curve.ArcLength[v] > 0.0 && Curve.ArcLength[v] < 1.0))
+    if (!(std::abs(CurveResult.Offset[v]) <= radius) || CurveResult.Offset[v] == 0.0 ||
+      !(CurveResult.ArcLength[v] > 0.0 && CurveResult.ArcLength[v] < 1.0))
     {
       continue;
     }
     // Walking with the curve on the left runs towards the start for points on the left.
-    const double towardsStart = WalkOffsetCurve(v, Curve.Offset[v] > 0.0, 0.0);
-    const double towardsEnd = WalkOffsetCurve(v, Curve.Offset[v] < 0.0, 1.0);
+    const double towardsStart = WalkOffsetCurve(v, CurveResult.Offset[v] > 0.0, 0.0);
+    const double towardsEnd = WalkOffsetCurve(v, CurveResult.Offset[v] < 0.0, 1.0);
     if (towardsStart >= 0.0 && towardsEnd >= 0.0 && towardsStart + towardsEnd > 0.0)
     {
       offsetU[i] = towardsStart / (towardsStart + towardsEnd);
@@ -328,21 +364,21 @@ const CurveCoordinates* GeodesicPolarCoordinates::ComputeCurve(
   for (std::size_t i = 0; i < InsideList.size(); ++i)
   {
     const int v = InsideList[i];
-    if (std::abs(Curve.Offset[v]) <= radius)
+    if (std::abs(CurveResult.Offset[v]) <= radius)
     {
       if (std::isfinite(offsetU[i]))
       {
-        Curve.ArcLength[v] = offsetU[i];
+        CurveResult.ArcLength[v] = offsetU[i];
       }
       inside.push_back(v);
     }
     else
     {
-      Curve.Offset[v] = Curve.ArcLength[v] = NaN;
+      CurveResult.Offset[v] = CurveResult.ArcLength[v] = NaN;
     }
   }
   InsideList = std::move(inside);
-  return &Curve;
+  return Status();
 }
 
 double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double stopAt) const
@@ -354,14 +390,14 @@ double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double
   // linear across the curve, where |delta| has a kink).
   // Beyond the curve's ends the offset from the extended end lines keeps the level sets
   // straight up to where they are cut off.
-  const double side = Curve.Offset[v] < 0.0 ? -1.0 : 1.0;
+  const double side = CurveResult.Offset[v] < 0.0 ? -1.0 : 1.0;
   const double c = side * Across[v];
   auto level = [&](int w) { return w == v ? c : side * Across[w]; };
   auto below = [&](int w) { return w != v && side * Across[w] < c; };
   auto valid = [&](int w) { return w == v || (std::isfinite(Across[w]) && std::isfinite(Foot[w])); };
   // The foot's arc length, unclamped: linear across the ends of straight curves, so that where
   // an offset curve leaves the curve's span is found exactly.
-  const double end = stopAt * Curve.Length;
+  const double end = stopAt * CurveResult.Length;
   int h = -1;
   for (int out : Mesh.OutgoingHalfedges(v))
   {
@@ -428,17 +464,20 @@ bool GeodesicPolarCoordinates::CurveCoordinatesAt(
   // piece; interpolated.
   if (q.IsVertex())
   {
-    offset = Curve.Offset[q.Vertex];
-    arcLength = Curve.ArcLength[q.Vertex];
+    offset = CurveResult.Offset[q.Vertex];
+    arcLength = CurveResult.ArcLength[q.Vertex];
     return std::isfinite(offset);
   }
   const auto& t = Mesh.Face(q.Face);
-  if (!std::isfinite(Curve.Offset[t[0]]) || !std::isfinite(Curve.Offset[t[1]]) || !std::isfinite(Curve.Offset[t[2]]))
+  if (!std::isfinite(CurveResult.Offset[t[0]]) || !std::isfinite(CurveResult.Offset[t[1]]) ||
+    !std::isfinite(CurveResult.Offset[t[2]]))
   {
     return false;
   }
-  offset = q.Bary[0] * Curve.Offset[t[0]] + q.Bary[1] * Curve.Offset[t[1]] + q.Bary[2] * Curve.Offset[t[2]];
-  arcLength = q.Bary[0] * Curve.ArcLength[t[0]] + q.Bary[1] * Curve.ArcLength[t[1]] + q.Bary[2] * Curve.ArcLength[t[2]];
+  offset = q.Bary[0] * CurveResult.Offset[t[0]] + q.Bary[1] * CurveResult.Offset[t[1]] +
+    q.Bary[2] * CurveResult.Offset[t[2]];
+  arcLength = q.Bary[0] * CurveResult.ArcLength[t[0]] + q.Bary[1] * CurveResult.ArcLength[t[1]] +
+    q.Bary[2] * CurveResult.ArcLength[t[2]];
   return true;
 }
 
@@ -653,12 +692,12 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
 
 SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta) const
 {
-  if (!CurveMode || !(Curve.Length > 0.0) || !std::isfinite(u) || !std::isfinite(delta))
+  if (!CurveMode || !(CurveResult.Length > 0.0) || !std::isfinite(u) || !std::isfinite(delta))
   {
     return SurfacePoint();
   }
   // The curve point at arc length u L, and the curve's direction there.
-  const double target = std::min(1.0, std::max(0.0, u)) * Curve.Length;
+  const double target = std::min(1.0, std::max(0.0, u)) * CurveResult.Length;
   const double tiny = 1e-6 * Mesh.MeanEdgeLength();
   double start = 0.0;
   const CurvePiece* at = nullptr;

@@ -16,6 +16,7 @@
 #include "ExactGeodesic.h"
 #include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
+#include "Status.h"
 #include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
@@ -42,14 +43,15 @@ struct CurveCoordinates
 class GeodesicPolarCoordinates
 {
 public:
-  // The mesh (and graph) must outlive this object. Without a graph: the exact engine.
+  // The mesh (and graph) must outlive this object. Without a graph: the exact engine. A graph
+  // built for another mesh (another number of vertices) makes Compute and ComputeCurve fail.
   explicit GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph = nullptr);
 
   // Coordinates about `source` of every vertex closer than `radius` (> 0; infinity: the whole
   // reachable surface). `referenceAngle` is theta's zero, as a tangent angle at the source (see
-  // TangentAngle in GeodesicShooting.h; 0: the source's first edge). False for an invalid source
-  // or radius.
-  bool Compute(const SurfacePoint& source, double radius, double referenceAngle = 0.0);
+  // TangentAngle in GeodesicShooting.h; 0: the source's first edge). Fails for an invalid source,
+  // radius or reference angle.
+  Status Compute(const SurfacePoint& source, double radius, double referenceAngle = 0.0);
 
   // Coordinates about a curve (a polyline of surface points, consecutive points joined by the
   // straight surface path; the paper's Fig. 3 and 4): for every vertex closer than `radius` to
@@ -60,12 +62,14 @@ public:
   // beyond the ends (in the caps) get 0 or 1. Exact solver from the curve sampled every
   // ExactCurveSampleSpacing edge (SurfaceCurve.h); each point's foot (where its geodesic leaves
   // the curve perpendicularly) is placed by the departure angle, exact for straight pieces on
-  // developable surfaces. Null for an empty or zero-length curve, an invalid point or radius;
-  // the coordinates stay valid until the next Compute or ComputeCurve. In this mode Rho() and
-  // Theta() are NaN, PolarAt is false, ToSurface and UseIsoCurveAngles do nothing (use
+  // developable surfaces. Fails for an empty or zero-length curve, an invalid point or radius.
+  // The coordinates (Curve()) stay valid until the next Compute or ComputeCurve. In this mode
+  // Rho() and Theta() are NaN, PolarAt is false, ToSurface and UseIsoCurveAngles do nothing (use
   // CurveCoordinatesAt, ToSurfaceFromCurve).
-  const CurveCoordinates* ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
+  Status ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
   bool IsCurve() const { return CurveMode; }
+  // The coordinates of the last successful ComputeCurve.
+  const CurveCoordinates& Curve() const { return CurveResult; }
   // Curve coordinates of any surface point (interpolated inside its face: both vary linearly
   // across a face beside a straight piece). False outside the radius or after Compute.
   bool CurveCoordinatesAt(const SurfacePoint& q, double& offset, double& arcLength) const;
@@ -128,7 +132,8 @@ private:
   std::vector<CurvePiece> CurvePieces;
   std::vector<double> Foot;   // curve mode: arc length of each vertex's foot, unclamped
   std::vector<double> Across; // curve mode: signed offset from the foot's tangent line
-  CurveCoordinates Curve; // ComputeCurve's result
+  CurveCoordinates CurveResult; // ComputeCurve's
+  Status GraphError;            // a graph of another mesh was given
 };
 
 } // namespace gs

@@ -23,24 +23,24 @@ void ShapeDistributor::Impl::ComputeLattices()
   // pairs of boundary samples, smallest cell area first. Greedy then proposes the lattice
   // neighbours of each placed shape, so that a cluster grows as one crystal instead of grains
   // of two-contact growth that leave gaps where they meet.
-  ClassLattice.assign(T.Classes.size(), {});
-  if (O.Mode != DistributionMode::Greedy || CircleMode)
+  ClassLattice.assign(Tables.Classes.size(), {});
+  if (Options.Mode != DistributionMode::Greedy || CircleMode)
   {
     return;
   }
-  for (std::size_t c = 0; c < T.Classes.size(); ++c)
+  for (std::size_t c = 0; c < Tables.Classes.size(); ++c)
   {
-    if (T.Classes[c].Parts.size() != 1)
+    if (Tables.Classes[c].Parts.size() != 1)
     {
       continue;
     }
-    const int p = T.Classes[c].Parts[0];
+    const int p = Tables.Classes[c].Parts[0];
     Hasher h;
-    h.AddValue(T.AngleBins);
-    h.AddValue(T.Parts[p].Radius);
-    const std::size_t ka = static_cast<std::size_t>(T.AngleBins);
-    const std::size_t pair = static_cast<std::size_t>(p) * T.Parts.size() + p;
-    h.Add(T.Values.data() + pair * ka * ka, ka * ka * sizeof(double));
+    h.AddValue(Tables.AngleBins);
+    h.AddValue(Tables.Parts[p].Radius);
+    const std::size_t ka = static_cast<std::size_t>(Tables.AngleBins);
+    const std::size_t pair = static_cast<std::size_t>(p) * Tables.Parts.size() + p;
+    h.Add(Tables.Values.data() + pair * ka * ka, ka * ka * sizeof(double));
     auto it = LatticeCache.find(h.H);
     if (it == LatticeCache.end())
     {
@@ -62,11 +62,11 @@ std::vector<Vec2> ShapeDistributor::Impl::PartLattice(int p) const
     double d = 0.0;
     for (const double b : { beta - 2e-3, beta, beta + 2e-3 })
     {
-      d = std::max({ d, T.Lookup(p, p, -b, -b), T.Lookup(p, p, -b - Pi, -b - Pi) });
+      d = std::max({ d, Tables.Lookup(p, p, -b, -b), Tables.Lookup(p, p, -b - Pi, -b - Pi) });
     }
     return d;
   };
-  const double cap = 2.0 * T.Parts[p].Radius; // no table value exceeds r_A + r_B
+  const double cap = 2.0 * Tables.Parts[p].Radius; // no table value exceeds r_A + r_B
   auto admissible = [&](const Vec2& u, const Vec2& v, int range) {
     for (int i = -range; i <= range; ++i)
     {
@@ -87,7 +87,7 @@ std::vector<Vec2> ShapeDistributor::Impl::PartLattice(int p) const
     return true;
   };
   // Boundary samples: four per angle bin, 256 to 512 (the search is quadratic in them).
-  const int n = std::min(512, std::max(256, 4 * T.AngleBins));
+  const int n = std::min(512, std::max(256, 4 * Tables.AngleBins));
   std::vector<Vec2> boundary(n);
   for (int k = 0; k < n; ++k)
   {
@@ -138,16 +138,17 @@ struct ShapeDistributor::Impl::Contact
   // Safe distance of the new shape (turned like A) in direction beta from A (A's frame).
   double Reach(double beta) const
   {
-    return Tabled ? I.T.Lookup(Pa, Pc, -beta, -beta) * Unit
+    return Tabled ? I.Tables.Lookup(Pa, Pc, -beta, -beta) * Unit
                   : (I.CircleMode ? 1.0 : 0.75) * RadiusSum * Unit;
   }
   Vec2 At(double beta) const { return Vec2{ std::cos(beta), std::sin(beta) } * Reach(beta); }
   // Clearance of a new shape at P (turned like A) from neighbour b: > 0 when free.
   double Clearance(const Vec2& P, const Neighbour& b) const
   {
-    const Vec2 w = P - b.Q;
+    const Vec2 w = P - b.Centre;
     const double dist = Norm(w), line = std::atan2(w.y, w.x);
-    const double safe = I.CircleMode ? (I.PartRadius(b.Part) + I.PartRadius(Pc)) : I.T.Lookup(b.Part, Pc, b.Axis - line, -line);
+    const double safe = I.CircleMode ? (I.PartRadius(b.Part) + I.PartRadius(Pc))
+                                     : I.Tables.Lookup(b.Part, Pc, b.Axis - line, -line);
     return dist - safe * b.Unit;
   }
   bool FreeOfAll(double beta) const
@@ -169,18 +170,18 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
 {
   std::vector<Proposal> out;
   const Record& A = Accepted[parentId];
-  Random rng(O.Seed, 2, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(slot));
+  Random rng(Options.Seed, 2, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(slot));
   const int cls = RandomClass(rng);
-  const SafeDistanceClass& ac = T.Classes[A.S.ClassId];
-  const SafeDistanceClass& cc = T.Classes[cls];
-  const double unit = O.ShapeSize * A.S.Scale * (1.0 + O.SafetyMargin);
-  const double a0 = TangentAngle(M, A.S.Centre, A.S.Direction);
+  const SafeDistanceClass& ac = Tables.Classes[A.Shape.ClassId];
+  const SafeDistanceClass& cc = Tables.Classes[cls];
+  const double unit = Options.ShapeSize * A.Shape.Scale * (1.0 + Options.SafetyMargin);
+  const double a0 = TangentAngle(Mesh, A.Shape.Centre, A.Shape.Direction);
   if (!std::isfinite(a0))
   {
     return out;
   }
   const bool tabled = !CircleMode && ac.Parts.size() == 1 && cc.Parts.size() == 1;
-  const int pa = CircleMode ? A.S.ClassId : ac.Parts[0];
+  const int pa = CircleMode ? A.Shape.ClassId : ac.Parts[0];
   const int pc = CircleMode ? cls : cc.Parts[0];
   Contact contact{ *this, tabled, pa, pc, unit, ac.Radius + cc.Radius, {} };
   if (tabled || CircleMode)
@@ -190,16 +191,16 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
   // lengths: the lattice vectors' lengths; empty: each proposal lies on A's contact curve
   // (reach(beta)).
   std::vector<double> betas, lengths;
-  if (cls == A.S.ClassId && !ClassLattice[cls].empty())
+  if (cls == A.Shape.ClassId && !ClassLattice[cls].empty())
   {
     LatticeDirections(contact, cls, betas, lengths);
   }
   else if (contact.Near.empty())
   {
     const double offset = rng.Uniform();
-    for (int j = 0; j < O.GreedyDirections; ++j)
+    for (int j = 0; j < Options.GreedyDirections; ++j)
     {
-      betas.push_back(TwoPi * (j + offset) / O.GreedyDirections);
+      betas.push_back(TwoPi * (j + offset) / Options.GreedyDirections);
     }
   }
   else
@@ -220,7 +221,7 @@ std::vector<ShapeDistributor::Impl::Neighbour> ShapeDistributor::Impl::Neighbour
   {
     for (const ChartEntry& e : A.Charts[0].Entries)
     {
-      ids.insert(ids.end(), CentreIndex[e.V].begin(), CentreIndex[e.V].end());
+      ids.insert(ids.end(), CentreIndex[e.Vertex].begin(), CentreIndex[e.Vertex].end());
     }
   }
   SortUnique(ids);
@@ -231,12 +232,12 @@ std::vector<ShapeDistributor::Impl::Neighbour> ShapeDistributor::Impl::Neighbour
       continue;
     }
     const Record& B = Accepted[id];
-    if (B.S.Parts.size() != 1)
+    if (B.Shape.Parts.size() != 1)
     {
       continue;
     }
-    const PlacedPart& pb = B.S.Parts[0];
-    const auto& corners = M.Face(pb.Centre.Face);
+    const PlacedPart& pb = B.Shape.Parts[0];
+    const auto& corners = Mesh.Face(pb.Centre.Face);
     const ChartEntry* e[3];
     bool all = true;
     for (int k = 0; k < 3 && all; ++k)
@@ -254,10 +255,10 @@ std::vector<ShapeDistributor::Impl::Neighbour> ShapeDistributor::Impl::Neighbour
       P[k] = Vec2{ e[k]->X, e[k]->Y };
     }
     Neighbour b;
-    b.Q = P[0] * pb.Centre.Bary[0] + P[1] * pb.Centre.Bary[1] + P[2] * pb.Centre.Bary[2];
+    b.Centre = P[0] * pb.Centre.Bary[0] + P[1] * pb.Centre.Bary[1] + P[2] * pb.Centre.Bary[2];
     // B's axis carried into the chart by the face's affine map.
-    const Vec3 x0 = M.Position(corners[0]);
-    const Vec3 e1 = M.Position(corners[1]) - x0, e2 = M.Position(corners[2]) - x0;
+    const Vec3 x0 = Mesh.Position(corners[0]);
+    const Vec3 e1 = Mesh.Position(corners[1]) - x0, e2 = Mesh.Position(corners[2]) - x0;
     const double g11 = Dot(e1, e1), g12 = Dot(e1, e2), g22 = Dot(e2, e2);
     const double det = g11 * g22 - g12 * g12;
     if (!(det > 0.0))
@@ -269,8 +270,9 @@ std::vector<ShapeDistributor::Impl::Neighbour> ShapeDistributor::Impl::Neighbour
     const Vec2 axis = (P[1] - P[0]) * u + (P[2] - P[0]) * v;
     b.Axis = std::atan2(axis.y, axis.x);
     b.Part = pb.Part;
-    b.Unit = O.ShapeSize * std::max(B.S.Scale, A.S.Scale) * (1.0 + O.SafetyMargin);
-    if (Norm(b.Q) < (PartRadius(pa) + 2.0 * PartRadius(pc) + PartRadius(b.Part)) * b.Unit)
+    b.Unit =
+      Options.ShapeSize * std::max(B.Shape.Scale, A.Shape.Scale) * (1.0 + Options.SafetyMargin);
+    if (Norm(b.Centre) < (PartRadius(pa) + 2.0 * PartRadius(pc) + PartRadius(b.Part)) * b.Unit)
     {
       near.push_back(b);
     }
@@ -303,7 +305,7 @@ void ShapeDistributor::Impl::ContactDirections(const Contact& contact, std::vect
 {
   // Touching A and a neighbour: where the clearance from that neighbour changes sign along
   // A's contact curve (the side with clearance >= 0, refined by bisection).
-  const int samples = 4 * O.GreedyDirections;
+  const int samples = 4 * Options.GreedyDirections;
   for (const Neighbour& b : contact.Near)
   {
     double previous = contact.Clearance(contact.At(0.0), b);
@@ -336,12 +338,12 @@ void ShapeDistributor::Impl::ShootProposals(const Record& A, int cls, const Cont
   const std::vector<double>& betas, const std::vector<double>& lengths, double a0,
   std::vector<Proposal>& out) const
 {
-  const SafeDistanceClass& ac = T.Classes[A.S.ClassId];
+  const SafeDistanceClass& ac = Tables.Classes[A.Shape.ClassId];
   for (std::size_t k = 0; k < betas.size(); ++k)
   {
     const double beta = betas[k];
     const double d = (k < lengths.size() ? lengths[k] : contact.Reach(beta)) * (1.0 + 1e-6) + 1e-9 * MaxEdge;
-    const GeodesicShot shot = ShootGeodesic(M, A.S.Centre, a0 + beta, d);
+    const GeodesicShot shot = ShootGeodesic(Mesh, A.Shape.Centre, a0 + beta, d);
     if (shot.ReachedBoundary || shot.End.Face < 0 || !(FaceWeight[shot.End.Face] > 0.0) ||
       DeadForClass(cls, shot.End.Face))
     {
@@ -350,13 +352,13 @@ void ShapeDistributor::Impl::ShootProposals(const Record& A, int cls, const Cont
     Proposal p;
     p.Centre = shot.End;
     p.Class = cls;
-    p.Prefer = FaceDirection[A.S.Centre.Face];
-    if (O.Symmetry > 1)
+    p.Prefer = FaceDirection[A.Shape.Centre.Face];
+    if (Options.Symmetry > 1)
     {
       // The parent's own choice among the N directions (its class axis for short shapes).
-      p.Prefer = ac.Parts.size() <= 1 ? A.S.Direction : p.Prefer;
+      p.Prefer = ac.Parts.size() <= 1 ? A.Shape.Direction : p.Prefer;
     }
-    p.Key = Norm(M.Interpolate(p.Centre.Face, p.Centre.Bary) - Accepted[0].S.Position);
+    p.Key = Norm(Mesh.Interpolate(p.Centre.Face, p.Centre.Bary) - Accepted[0].Shape.Position);
     out.push_back(p);
   }
 }

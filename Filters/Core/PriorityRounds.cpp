@@ -16,8 +16,8 @@ bool ShapeDistributor::Impl::RunRounds(
   int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
 {
   RunState run;
-  run.FailuresToStop = O.MaximalFailures > 0 ? O.MaximalFailures : 10000;
-  const bool greedyMode = O.Mode == DistributionMode::Greedy;
+  run.FailuresToStop = Options.MaximalFailures > 0 ? Options.MaximalFailures : 10000;
+  const bool greedyMode = Options.Mode == DistributionMode::Greedy;
   for (int round = 0; !run.Stop; ++round)
   {
     const bool greedy = greedyMode && !run.Front.empty();
@@ -109,9 +109,9 @@ bool ShapeDistributor::Impl::RunRounds(
     lap(stats.RoundSeconds);
     stats.Rounds = round + 1;
     double fraction = static_cast<double>(run.Consecutive) / static_cast<double>(run.FailuresToStop);
-    if (O.MaximumShapes > 0)
+    if (Options.MaximumShapes > 0)
     {
-      fraction = std::max(fraction, static_cast<double>(Accepted.size()) / O.MaximumShapes);
+      fraction = std::max(fraction, static_cast<double>(Accepted.size()) / Options.MaximumShapes);
     }
     run.Reported = std::max(run.Reported, std::min(0.99, fraction));
     if (progress && !progress(run.Reported))
@@ -145,8 +145,8 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (int i = 0; i < n; ++i)
   {
-    Random rng(O.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-    batch[i].Valid = MakeShape(all[i].Centre, all[i].Class, rng, batch[i].S, &all[i].Prefer);
+    Random rng(Options.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+    batch[i].Valid = MakeShape(all[i].Centre, all[i].Class, rng, batch[i].Shape, &all[i].Prefer);
   }
 }
 
@@ -190,7 +190,8 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
   // Parts closer in space than the sum of their circumradii (the geodesic distance is never
   // shorter), found on a grid of cells as large as the largest such sum.
   std::vector<std::vector<int>> above(batch.size());
-  const double cell = 2.0 * RMax * O.ShapeSize * MaxFaceDensity * (1.0 + O.SafetyMargin);
+  const double cell =
+    2.0 * RMax * Options.ShapeSize * MaxFaceDensity * (1.0 + Options.SafetyMargin);
   auto key = [cell](const Vec3& x) {
     return std::array<long long, 3>{ static_cast<long long>(std::floor(x.x / cell)),
       static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
@@ -198,7 +199,7 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
   std::vector<std::pair<std::array<long long, 3>, int>> grid; // (cell, candidate)
   for (int i : survivors)
   {
-    for (const PlacedPart& p : batch[i].S.Parts)
+    for (const PlacedPart& p : batch[i].Shape.Parts)
     {
       grid.emplace_back(key(p.Position), i);
     }
@@ -211,7 +212,7 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
     const int i = survivors[k];
     const Record& r = batch[i];
     std::vector<int>& list = above[i];
-    for (const PlacedPart& p : r.S.Parts)
+    for (const PlacedPart& p : r.Shape.Parts)
     {
       const std::array<long long, 3> c = key(p.Position);
       for (long long dx = -1; dx <= 1; ++dx)
@@ -223,8 +224,9 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
             for (; it != grid.end() && it->first == q && it->second < i; ++it)
             {
               const Record& o = batch[it->second];
-              const double unit = O.ShapeSize * std::max(r.S.Scale, o.S.Scale) * (1.0 + O.SafetyMargin);
-              for (const PlacedPart& op : o.S.Parts)
+              const double unit = Options.ShapeSize * std::max(r.Shape.Scale, o.Shape.Scale) *
+                (1.0 + Options.SafetyMargin);
+              for (const PlacedPart& op : o.Shape.Parts)
               {
                 if (Norm(op.Position - p.Position) <=
                   (PartRadius(p.Part) + PartRadius(op.Part)) * unit * (1.0 + 1e-9))
@@ -359,7 +361,7 @@ int ShapeDistributor::Impl::CutRound(const std::vector<char>& state, int roundSt
     }
     run.Consecutive = 0;
     ++total;
-    if (O.MaximumShapes > 0 && total >= O.MaximumShapes)
+    if (Options.MaximumShapes > 0 && total >= Options.MaximumShapes)
     {
       run.Stop = true;
       cut = i + 1;

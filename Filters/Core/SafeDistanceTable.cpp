@@ -250,24 +250,51 @@ void AddSegment(const Vec2& a, const Vec2& b, double delta, double Y, double h, 
     lastRow = std::max(lastRow, r);
   }
 }
+// The options ComputeSafeDistanceParts looks at.
+Status CheckAspectRatio(const SafeDistanceOptions& options)
+{
+  if (!(options.MaximumAspectRatio >= 1.0))
+  {
+    return Status::Error(
+      "MaximumAspectRatio must be at least 1, got " + std::to_string(options.MaximumAspectRatio));
+  }
+  return Status();
+}
+
+// The options ComputeSafeDistanceValues looks at.
+Status CheckTableOptions(const SafeDistanceOptions& options)
+{
+  const int ka = options.AngleBins, kr = options.DistanceSteps;
+  if (ka < 1 || ka > 4096)
+  {
+    return Status::Error("AngleBins must be in [1, 4096], got " + std::to_string(ka));
+  }
+  if (kr < 1 || kr > 1 << 20)
+  {
+    return Status::Error("DistanceSteps must be in [1, 1048576], got " + std::to_string(kr));
+  }
+  if (options.Rows < 2 || options.Rows > 1 << 20 || options.RotationSamples < 0 ||
+    options.RotationSamples > 4096)
+  {
+    return Status::Error("Rows must be in [2, 1048576] and RotationSamples in [0, 4096]");
+  }
+  return Status();
+}
 } // namespace
 
 //------------------------------------------------------------------------------
-SafeDistanceResult ComputeSafeDistanceParts(
+Result<SafeDistanceTables> ComputeSafeDistanceParts(
   const std::vector<SafeDistanceInput>& shapes, const SafeDistanceOptions& options)
 {
-  SafeDistanceResult result;
   if (shapes.empty())
   {
-    result.Error = "no shape";
-    return result;
+    return Status::Error("no shape");
   }
-  if (!(options.MaximumAspectRatio >= 1.0))
+  if (Status aspect = CheckAspectRatio(options); !aspect.Ok())
   {
-    result.Error = "MaximumAspectRatio must be at least 1";
-    return result;
+    return aspect;
   }
-  SafeDistanceTables& T = result.Tables;
+  SafeDistanceTables tables;
 
   // Classes: circles, normalization, moments, parts.
   for (std::size_t c = 0; c < shapes.size(); ++c)
@@ -280,32 +307,30 @@ SafeDistanceResult ComputeSafeDistanceParts(
       {
         if (!std::isfinite(p.x) || !std::isfinite(p.y))
         {
-          result.Error = "shape '" + shapes[c].Name + "' has non-finite coordinates";
-          return result;
+          return Status::Error("shape '" + shapes[c].Name + "' has non-finite coordinates");
         }
         points.push_back(p);
       }
     }
     if (points.size() < 3 || !(std::abs(shape.Area()) > 0.0))
     {
-      result.Error = "shape '" + shapes[c].Name + "' is empty (no area)";
-      return result;
+      return Status::Error("shape '" + shapes[c].Name + "' is empty (no area)");
     }
     SafeDistanceClass cls;
     cls.Name = shapes[c].Name;
     cls.SourceCircle = SmallestEnclosingCircle(points);
     if (c == 0)
     {
-      T.Scale = cls.SourceCircle.Radius;
+      tables.Scale = cls.SourceCircle.Radius;
     }
-    cls.Radius = cls.SourceCircle.Radius / T.Scale;
+    cls.Radius = cls.SourceCircle.Radius / tables.Scale;
     for (const auto& ring : shape.Rings)
     {
       std::vector<Vec2> r;
       r.reserve(ring.size());
       for (const Vec2& p : ring)
       {
-        r.push_back((p - cls.SourceCircle.Centre) * (1.0 / T.Scale));
+        r.push_back((p - cls.SourceCircle.Centre) * (1.0 / tables.Scale));
       }
       cls.Outline.Rings.push_back(std::move(r));
     }
@@ -371,88 +396,81 @@ SafeDistanceResult ComputeSafeDistanceParts(
         part.Radius = std::max({ part.Radius, Norm(e.A), Norm(e.B) });
       }
       part.Edges = std::move(edges);
-      cls.Parts.push_back(static_cast<int>(T.Parts.size()));
-      T.Parts.push_back(std::move(part));
+      cls.Parts.push_back(static_cast<int>(tables.Parts.size()));
+      tables.Parts.push_back(std::move(part));
     }
-    T.Classes.push_back(std::move(cls));
+    tables.Classes.push_back(std::move(cls));
   }
-  result.Ok = true;
-  return result;
+  return tables;
 }
 
 //------------------------------------------------------------------------------
-std::string SafeDistanceTableSizeError(int parts, int angleBins)
+Status CheckSafeDistanceTableSize(int parts, int angleBins)
 {
   const double bytes =
     static_cast<double>(parts) * parts * angleBins * angleBins * sizeof(double);
   if (bytes <= MaximumSafeDistanceTableBytes)
   {
-    return std::string();
+    return Status();
   }
-  return std::to_string(parts) + " parts at " + std::to_string(angleBins) + " angle bins need " +
-    std::to_string(static_cast<long long>(bytes / 1e6)) + " MB of tables (limit " +
+  return Status::Error(std::to_string(parts) + " parts at " + std::to_string(angleBins) +
+    " angle bins need " + std::to_string(static_cast<long long>(bytes / 1e6)) +
+    " MB of tables (limit " +
     std::to_string(static_cast<long long>(MaximumSafeDistanceTableBytes / 1e6)) +
-    " MB): use fewer shapes, parts or AngleBins";
+    " MB): use fewer shapes, parts or AngleBins");
 }
 
 //------------------------------------------------------------------------------
-SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
+Status CheckSafeDistanceOptions(const SafeDistanceOptions& options)
+{
+  if (Status table = CheckTableOptions(options); !table.Ok())
+  {
+    return table;
+  }
+  return CheckAspectRatio(options);
+}
+
+//------------------------------------------------------------------------------
+Result<SafeDistanceTables> ComputeSafeDistanceValues(SafeDistanceTables parts,
   const SafeDistanceOptions& options, const std::function<bool(double)>& progress)
 {
-  SafeDistanceResult result;
   const int ka = options.AngleBins, kr = options.DistanceSteps;
   if (parts.Parts.empty())
   {
-    result.Error = "no shape";
-    return result;
+    return Status::Error("no shape");
   }
-  if (ka < 1 || ka > 4096)
+  if (Status table = CheckTableOptions(options); !table.Ok())
   {
-    result.Error = "AngleBins must be in [1, 4096], got " + std::to_string(ka);
-    return result;
+    return table;
   }
-  if (kr < 1 || kr > 1 << 20)
+  if (Status size = CheckSafeDistanceTableSize(parts.NumberOfParts(), ka); !size.Ok())
   {
-    result.Error = "DistanceSteps must be in [1, 1048576], got " + std::to_string(kr);
-    return result;
-  }
-  if (options.Rows < 2 || options.Rows > 1 << 20 || options.RotationSamples < 0 ||
-    options.RotationSamples > 4096)
-  {
-    result.Error = "Rows must be in [2, 1048576] and RotationSamples in [0, 4096]";
-    return result;
-  }
-  result.Error = SafeDistanceTableSizeError(parts.NumberOfParts(), ka);
-  if (!result.Error.empty())
-  {
-    return result;
+    return size;
   }
   auto report = [&](double value) { return !progress || progress(value); };
   if (!report(0.05))
   {
-    result.Error = "aborted";
-    return result;
+    return Status::Aborted();
   }
 
-  SafeDistanceTables& T = result.Tables;
-  T = std::move(parts);
-  T.AngleBins = ka;
-  T.DistanceSteps = kr;
-  T.Conservative = options.Conservative;
-  T.RotationSamples = !options.Conservative
+  SafeDistanceTables tables = std::move(parts);
+  tables.AngleBins = ka;
+  tables.DistanceSteps = kr;
+  tables.Conservative = options.Conservative;
+  tables.RotationSamples = !options.Conservative
     ? 1
     : (options.RotationSamples > 0
           ? options.RotationSamples
           : std::max(1, static_cast<int>(std::ceil(8.0 * Pi * kr / ka - 1e-9))));
-  T.Values.clear();
+  tables.Values.clear();
 
   // 2. Extent profiles of every part at every angle bin, on one row grid over [-Y, Y].
-  const int P = T.NumberOfParts();
-  const int s = T.RotationSamples;
+  const int P = tables.NumberOfParts();
+  const int s = tables.RotationSamples;
   const double w = 2.0 * Pi / ka;
   const double dilation = options.Conservative ? 2.0 * std::sin(w / (4.0 * s)) : 0.0;
   double maxRadius = 0.0;
-  for (const auto& part : T.Parts)
+  for (const auto& part : tables.Parts)
   {
     maxRadius = std::max(maxRadius, part.Radius);
   }
@@ -476,7 +494,7 @@ SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
     if (aborted.load(std::memory_order_relaxed))
       continue;
     const int pi = static_cast<int>(job / ka), bin = static_cast<int>(job % ka);
-    const SafeDistancePart& part = T.Parts[pi];
+    const SafeDistancePart& part = tables.Parts[pi];
     Profile& prof = profiles[pi];
     double* right = &prof.Right[static_cast<std::size_t>(bin) * rows];
     double* left = &prof.Left[static_cast<std::size_t>(bin) * rows];
@@ -506,14 +524,13 @@ SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
   }
   if (aborted)
   {
-    result.Error = "aborted";
-    return result;
+    return Status::Aborted();
   }
 
   // 3. Tables: D = max over rows of (right extent of A - left extent of B), rounded up to the
   //    step grid and capped at r_a + r_b (the circles cannot overlap beyond).
   const std::size_t tableSize = static_cast<std::size_t>(ka) * ka;
-  T.Values.assign(static_cast<std::size_t>(P) * P * tableSize, 0.0);
+  tables.Values.assign(static_cast<std::size_t>(P) * P * tableSize, 0.0);
   const long long tableJobs = static_cast<long long>(P) * P * ka; // one job per table row j
 #pragma omp parallel for schedule(dynamic, 4)
   for (long long job = 0; job < tableJobs; ++job)
@@ -524,10 +541,10 @@ SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
     const int a = pair / P, b = pair % P;
     const Profile& A = profiles[a];
     const Profile& B = profiles[b];
-    const double maxD = T.Parts[a].Radius + T.Parts[b].Radius;
+    const double maxD = tables.Parts[a].Radius + tables.Parts[b].Radius;
     const double step = maxD / kr;
     const double* left = &B.Left[static_cast<std::size_t>(j) * rows];
-    double* out = &T.Values[pair * tableSize + static_cast<std::size_t>(j) * ka];
+    double* out = &tables.Values[pair * tableSize + static_cast<std::size_t>(j) * ka];
     for (int i = 0; i < ka; ++i)
     {
       const double* right = &A.Right[static_cast<std::size_t>(i) * rows];
@@ -550,24 +567,22 @@ SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
   }
   if (aborted)
   {
-    result.Error = "aborted";
-    return result;
+    return Status::Aborted();
   }
   report(1.0);
-  result.Ok = true;
-  return result;
+  return tables;
 }
 
 //------------------------------------------------------------------------------
-SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,
+Result<SafeDistanceTables> ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,
   const SafeDistanceOptions& options, const std::function<bool(double)>& progress)
 {
-  SafeDistanceResult parts = ComputeSafeDistanceParts(shapes, options);
-  if (!parts.Ok)
+  Result<SafeDistanceTables> parts = ComputeSafeDistanceParts(shapes, options);
+  if (!parts.Ok())
   {
     return parts;
   }
-  return ComputeSafeDistanceValues(std::move(parts.Tables), options, progress);
+  return ComputeSafeDistanceValues(std::move(*parts), options, progress);
 }
 
 } // namespace gs

@@ -32,6 +32,7 @@
 #pragma once
 
 #include "Silhouette.h"
+#include "Status.h"
 #include "Vector.h"
 
 #include <functional>
@@ -138,36 +139,33 @@ struct SafeDistanceTables
   }
 };
 
-struct SafeDistanceResult
-{
-  bool Ok = false;
-  std::string Error;
-  SafeDistanceTables Tables;
-};
-
 /// Step 1 alone: the classes (circles, normalization, aspect ratio) and parts, without table
 /// values. Cheap (no rotation): a pipeline's information pass uses it to know the number of
 /// parts. Only options.MaximumAspectRatio matters here.
-SafeDistanceResult ComputeSafeDistanceParts(
+Result<SafeDistanceTables> ComputeSafeDistanceParts(
   const std::vector<SafeDistanceInput>& shapes, const SafeDistanceOptions& options = {});
 
 /// Largest memory the P^2 tables may take: a request beyond it is refused before allocation.
 constexpr double MaximumSafeDistanceTableBytes = 2e9;
 
-/// Why tables of `parts` parts at `angleBins` bins would not be computed (their memory above
-/// MaximumSafeDistanceTableBytes), or an empty string.
-std::string SafeDistanceTableSizeError(int parts, int angleBins);
+/// An error when tables of `parts` parts at `angleBins` bins would not be computed (their memory
+/// above MaximumSafeDistanceTableBytes).
+Status CheckSafeDistanceTableSize(int parts, int angleBins);
+
+/// An error naming the first option out of its range (AngleBins, DistanceSteps, Rows,
+/// RotationSamples, MaximumAspectRatio): what the computations below check first. Cheap, for
+/// callers that want to refuse bad options before they read any shape.
+Status CheckSafeDistanceOptions(const SafeDistanceOptions& options);
 
 /// Step 2: the P^2 tables of the classes and parts made by ComputeSafeDistanceParts (its
 /// MaximumAspectRatio is not looked at again). Progress and abort as below.
-SafeDistanceResult ComputeSafeDistanceValues(SafeDistanceTables parts,
+Result<SafeDistanceTables> ComputeSafeDistanceValues(SafeDistanceTables parts,
   const SafeDistanceOptions& options = {}, const std::function<bool(double)>& progress = nullptr);
 
-/// Both steps: builds the classes, parts and all P^2 tables. OpenMP-parallel (profiles over angle bins,
-/// tables over rows) and deterministic. `progress` (optional) is called from the calling
-/// thread with values in [0, 1]; returning false aborts (the result is then not Ok).
-SafeDistanceResult ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,
-  const SafeDistanceOptions& options = {},
-  const std::function<bool(double)>& progress = nullptr);
+/// Both steps: builds the classes, parts and all P^2 tables. OpenMP-parallel (profiles over angle
+/// bins, tables over rows) and deterministic. `progress` (optional) is called from the calling
+/// thread with values in [0, 1]; returning false aborts (the result IsAborted()).
+Result<SafeDistanceTables> ComputeSafeDistanceTables(const std::vector<SafeDistanceInput>& shapes,
+  const SafeDistanceOptions& options = {}, const std::function<bool(double)>& progress = nullptr);
 
 } // namespace gs

@@ -14,37 +14,39 @@ using namespace distribution;
 
 void ShapeDistributor::Impl::PrepareChartMeasures()
 {
-  const int nv = M.NumberOfVertices();
+  const int nv = Mesh.NumberOfVertices();
   MaxEdge = 0.0;
   {
     double longest = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : longest) num_threads(ThreadCount(O.NumberOfThreads))
-    for (int h = 0; h < M.NumberOfHalfedges(); ++h)
+#pragma omp parallel for schedule(static) reduction(max                                            \
+                                                    : longest)                                     \
+  num_threads(ThreadCount(Options.NumberOfThreads))
+    for (int h = 0; h < Mesh.NumberOfHalfedges(); ++h)
     {
-      longest = std::max(longest, M.EdgeLength(h));
+      longest = std::max(longest, Mesh.EdgeLength(h));
     }
     MaxEdge = longest;
   }
-  ChartMargin = 2.0 * M.MeanEdgeLength();
+  ChartMargin = 2.0 * Mesh.MeanEdgeLength();
   if (static_cast<int>(Defect.size()) != nv)
   {
     Defect.assign(nv, 0.0);
     for (int v = 0; v < nv; ++v)
     {
-      Defect[v] = M.IsBoundaryVertex(v) ? 0.0 : std::abs(TwoPi - M.TotalAngle(v));
+      Defect[v] = Mesh.IsBoundaryVertex(v) ? 0.0 : std::abs(TwoPi - Mesh.TotalAngle(v));
     }
   }
   RMax = 0.0;
   if (CircleMode)
   {
-    for (const SafeDistanceClass& c : T.Classes)
+    for (const SafeDistanceClass& c : Tables.Classes)
     {
       RMax = std::max(RMax, c.Radius);
     }
   }
   else
   {
-    for (const SafeDistancePart& p : T.Parts)
+    for (const SafeDistancePart& p : Tables.Parts)
     {
       RMax = std::max(RMax, p.Radius);
     }
@@ -53,7 +55,7 @@ void ShapeDistributor::Impl::PrepareChartMeasures()
 
 void ShapeDistributor::Impl::EnsureEngines(int threads)
 {
-  const int nv = M.NumberOfVertices();
+  const int nv = Mesh.NumberOfVertices();
   if (static_cast<int>(Marks.size()) < threads)
   {
     Marks.resize(threads);
@@ -74,19 +76,19 @@ void ShapeDistributor::Impl::EnsureEngines(int threads)
 #pragma omp parallel for schedule(static, 1) num_threads(threads)
   for (int t = have; t < threads; ++t)
   {
-    Engines[t].reset(new GeodesicPolarCoordinates(M, G));
+    Engines[t].reset(new GeodesicPolarCoordinates(Mesh, Graph));
   }
 }
 
 void ShapeDistributor::Impl::ComputeCharts(Record& r, GeodesicPolarCoordinates& engine) const
 {
-  r.Charts.assign(r.S.Parts.size(), Chart());
-  for (std::size_t k = 0; k < r.S.Parts.size(); ++k)
+  r.Charts.assign(r.Shape.Parts.size(), Chart());
+  for (std::size_t k = 0; k < r.Shape.Parts.size(); ++k)
   {
-    const PlacedPart& p = r.S.Parts[k];
-    const double reference = TangentAngle(M, p.Centre, p.Axis);
+    const PlacedPart& p = r.Shape.Parts[k];
+    const double reference = TangentAngle(Mesh, p.Centre, p.Axis);
     if (!std::isfinite(reference) ||
-      !engine.Compute(p.Centre, ChartRadius(r.S, p), reference))
+      !engine.Compute(p.Centre, ChartRadius(r.Shape, p), reference).Ok())
     {
       continue; // an empty chart: this part is evaluated from the other side only
     }
@@ -99,13 +101,13 @@ void ShapeDistributor::Impl::ComputeCharts(Record& r, GeodesicPolarCoordinates& 
         static_cast<float>(rho * std::sin(theta)) });
     }
     std::sort(c.Entries.begin(), c.Entries.end(),
-      [](const ChartEntry& a, const ChartEntry& b) { return a.V < b.V; });
+      [](const ChartEntry& a, const ChartEntry& b) { return a.Vertex < b.Vertex; });
     double defects = 0.0;
     for (const ChartEntry& e : c.Entries)
     {
-      defects += Defect[e.V];
+      defects += Defect[e.Vertex];
     }
-    const double radius = ChartRadius(r.S, p);
+    const double radius = ChartRadius(r.Shape, p);
     c.Roughness = static_cast<float>(defects / (Pi * radius * radius));
   }
 }
@@ -117,7 +119,7 @@ std::vector<int> ShapeDistributor::Impl::ChartVertices(const Record& r)
   {
     for (const ChartEntry& e : c.Entries)
     {
-      vs.push_back(e.V);
+      vs.push_back(e.Vertex);
     }
   }
   SortUnique(vs);
@@ -127,9 +129,9 @@ std::vector<int> ShapeDistributor::Impl::ChartVertices(const Record& r)
 std::vector<int> ShapeDistributor::Impl::CentreCorners(const Record& r) const
 {
   std::vector<int> vs;
-  for (const PlacedPart& p : r.S.Parts)
+  for (const PlacedPart& p : r.Shape.Parts)
   {
-    for (int v : M.Face(p.Centre.Face))
+    for (int v : Mesh.Face(p.Centre.Face))
     {
       vs.push_back(v);
     }
@@ -151,11 +153,11 @@ bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& 
     p = Vec2{ e->X * inverse, e->Y * inverse };
     return true;
   }
-  if (x.Face < 0 || x.Face >= M.NumberOfFaces())
+  if (x.Face < 0 || x.Face >= Mesh.NumberOfFaces())
   {
     return false;
   }
-  const auto& corners = M.Face(x.Face);
+  const auto& corners = Mesh.Face(x.Face);
   Vec2 q{ 0.0, 0.0 };
   for (int k = 0; k < 3; ++k)
   {
@@ -172,11 +174,11 @@ bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& 
 
 bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const
 {
-  if (!r.S.Curve.empty() || r.Charts.empty() || r.Charts[0].Entries.empty())
+  if (!r.Shape.Curve.empty() || r.Charts.empty() || r.Charts[0].Entries.empty())
   {
     return false;
   }
-  return ChartPoint(r.Charts[0], x, O.ShapeSize * r.S.Scale, p);
+  return ChartPoint(r.Charts[0], x, Options.ShapeSize * r.Shape.Scale, p);
 }
 
 void ShapeDistributor::Impl::PrepareCommit(Record& r, std::vector<char>& mark, std::vector<int>& marked) const
@@ -206,7 +208,7 @@ void ShapeDistributor::Impl::Commit(Record&& r)
   r.Kills.clear();
   r.Kills.shrink_to_fit();
   r.Prepared = false;
-  Placed.push_back(r.S);
+  Placed.push_back(r.Shape);
   Accepted.push_back(std::move(r));
 }
 
@@ -238,7 +240,8 @@ ShapeDistributor::Impl::Record ShapeDistributor::Impl::Uncommit()
     }
     else
     {
-      DeadFor[static_cast<std::size_t>(Killed[k].first) * M.NumberOfFaces() + Killed[k].second] = 0;
+      DeadFor[static_cast<std::size_t>(Killed[k].first) * Mesh.NumberOfFaces() + Killed[k].second] =
+        0;
     }
   }
   Killed.resize(KilledBy[id]);

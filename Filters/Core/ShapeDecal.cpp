@@ -93,8 +93,8 @@ namespace
 // texels that draw, the long shape's grid and the values read on it once per vertex and edge.
 struct DecalBuilder
 {
-  const TriangleMesh& M;
-  const SafeDistanceClass& C;
+  const TriangleMesh& Mesh;
+  const SafeDistanceClass& ShapeClass;
   std::shared_ptr<const CurveGrid> Grid; // long shapes
   double TolUV = 0.0;                    // texture units per circumradius
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
@@ -104,8 +104,8 @@ struct DecalBuilder
   std::unordered_map<std::uint64_t, std::pair<bool, Vec2>> Midpoints; // face edges' midpoints
 
   DecalBuilder(const TriangleMesh& mesh, const SafeDistanceClass& c, double tolerance)
-    : M(mesh)
-    , C(c)
+    : Mesh(mesh)
+    , ShapeClass(c)
     , TolUV(tolerance > 0.0 ? 0.5 * tolerance : 0.0)
   {
   }
@@ -119,7 +119,7 @@ struct DecalBuilder
 
   Vec2 ToTexture(const Vec2& q) const
   {
-    return Vec2{ 0.5 * (q.x / C.Radius + 1.0), 0.5 * (q.y / C.Radius + 1.0) };
+    return Vec2{ 0.5 * (q.x / ShapeClass.Radius + 1.0), 0.5 * (q.y / ShapeClass.Radius + 1.0) };
   }
 
   // Sorts the vertices; the texels that draw: the silhouette's bounding box (2% of the
@@ -129,7 +129,7 @@ struct DecalBuilder
   {
     std::sort(Local.begin(), Local.end(),
       [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
-    for (const auto& ring : C.Outline.Rings)
+    for (const auto& ring : ShapeClass.Outline.Rings)
     {
       for (const Vec2& p : ring)
       {
@@ -168,7 +168,7 @@ struct DecalBuilder
     {
       Hint = FirstValid;
     }
-    return Grid->Locate(M.Interpolate(f, b), Hint, q, nullptr, &Hint);
+    return Grid->Locate(Mesh.Interpolate(f, b), Hint, q, nullptr, &Hint);
   }
 
   // Faces checked for splitting: a long shape's faces wider than its grid's step (on smaller
@@ -179,9 +179,10 @@ struct DecalBuilder
     {
       return false;
     }
-    const auto& v = M.Face(f);
-    const double longest = std::max({ Norm(M.Position(v[1]) - M.Position(v[0])),
-      Norm(M.Position(v[2]) - M.Position(v[1])), Norm(M.Position(v[0]) - M.Position(v[2])) });
+    const auto& v = Mesh.Face(f);
+    const double longest = std::max({ Norm(Mesh.Position(v[1]) - Mesh.Position(v[0])),
+      Norm(Mesh.Position(v[2]) - Mesh.Position(v[1])),
+      Norm(Mesh.Position(v[0]) - Mesh.Position(v[2])) });
     return longest > Grid->Step;
   }
 
@@ -211,9 +212,9 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
   std::vector<int> faces;
   for (const auto& e : Local)
   {
-    for (int h : M.OutgoingHalfedges(e.first))
+    for (int h : Mesh.OutgoingHalfedges(e.first))
     {
-      const auto& corners = M.Face(h / 3);
+      const auto& corners = Mesh.Face(h / 3);
       if (e.first == std::min(corners[0], std::min(corners[1], corners[2])))
       {
         faces.push_back(h / 3);
@@ -229,7 +230,7 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
     bool all = true;
     for (int k = 0; k < 3 && all; ++k)
     {
-      const int v = M.Face(f)[k];
+      const int v = Mesh.Face(f)[k];
       const Vec2* q = Find(v);
       all = q != nullptr;
       if (all)
@@ -262,7 +263,7 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
 double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
   std::array<Vec2, 3>& trueUV)
 {
-  const auto& corners = M.Face(f);
+  const auto& corners = Mesh.Face(f);
   double error = 0.0;
   for (int k = 0; k < 3; ++k)
   {
@@ -312,8 +313,9 @@ double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<
 void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal)
 {
   const int maxDepth = 5;
-  const auto& corners = M.Face(f);
-  const Vec3 X[3] = { M.Position(corners[0]), M.Position(corners[1]), M.Position(corners[2]) };
+  const auto& corners = Mesh.Face(f);
+  const Vec3 X[3] = { Mesh.Position(corners[0]), Mesh.Position(corners[1]),
+    Mesh.Position(corners[2]) };
   const bool split = Splits(f);
   std::vector<Piece> stack;
   stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, uv, 0 });
@@ -378,10 +380,10 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
 {
   ShapeDecal decal;
   const PlacedShape& s = Placed.at(shape);
-  const SafeDistanceClass& c = T.Classes[s.ClassId];
-  const double scale = O.ShapeSize * s.Scale;
+  const SafeDistanceClass& c = Tables.Classes[s.ClassId];
+  const double scale = Options.ShapeSize * s.Scale;
   const double reach = c.Radius * scale + MaxEdge;
-  DecalBuilder b(M, c, tolerance);
+  DecalBuilder b(Mesh, c, tolerance);
   // Class-frame coordinates (normalized) of the vertices near the shape.
   if (s.Curve.empty())
   {
@@ -395,7 +397,7 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
       const Vec2 q{ e.X, e.Y };
       if (Norm(q) <= reach)
       {
-        b.Local.emplace_back(e.V, q * (1.0 / scale));
+        b.Local.emplace_back(e.Vertex, q * (1.0 / scale));
       }
     }
   }
@@ -422,7 +424,7 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
 
 ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
 {
-  return P->DecalOf(shape, tolerance);
+  return Internal->DecalOf(shape, tolerance);
 }
 
 } // namespace gs

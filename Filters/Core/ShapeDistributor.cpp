@@ -13,31 +13,29 @@ namespace gs
 {
 using namespace distribution;
 
-std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
+Status ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
   const ShapeDistributionOptions& options)
 {
-  T = tables;
-  O = options;
-  CircleMode = O.Mode == DistributionMode::CircumcirclePoissonDisk;
-  std::string error = CheckTablesAndOptions();
-  if (!error.empty())
+  Tables = tables;
+  Options = options;
+  CircleMode = Options.Mode == DistributionMode::CircumcirclePoissonDisk;
+  if (Status checked = CheckTablesAndOptions(); !checked.Ok())
   {
-    return error;
+    return checked;
   }
   ComputeLattices();
-  error = PrepareClassWeights();
-  if (error.empty())
+  if (Status weights = PrepareClassWeights(); !weights.Ok())
   {
-    error = PrepareDirections(faceDirections);
+    return weights;
   }
-  if (error.empty())
+  if (Status directions = PrepareDirections(faceDirections); !directions.Ok())
   {
-    error = PrepareFaceWeights(vertexDensity);
+    return directions;
   }
-  if (!error.empty())
+  if (Status density = PrepareFaceWeights(vertexDensity); !density.Ok())
   {
-    return error;
+    return density;
   }
   PrepareChartMeasures();
   PrepareDeadFaces();
@@ -45,74 +43,92 @@ std::string ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   PrepareClassRegions();
   Accepted.clear();
   Placed.clear();
-  CoverIndex.assign(M.NumberOfVertices(), {});
-  CentreIndex.assign(M.NumberOfVertices(), {});
-  return std::string();
+  CoverIndex.assign(Mesh.NumberOfVertices(), {});
+  CentreIndex.assign(Mesh.NumberOfVertices(), {});
+  return Status();
 }
 
-std::string ShapeDistributor::Impl::CheckTablesAndOptions() const
+Status ShapeDistributor::Impl::CheckTablesAndOptions() const
 {
-  if (M.NumberOfFaces() == 0)
+  if (Mesh.NumberOfFaces() == 0)
   {
-    return "the mesh has no faces";
+    return Status::Error("the mesh has no faces");
   }
-  if (T.Classes.empty() || T.Parts.empty())
+  if (Graph && Graph->NumberOfVertices() != Mesh.NumberOfVertices())
   {
-    return "the tables hold no shape class";
+    return Status::Error("the saddle vertex graph was built for another mesh (" +
+      std::to_string(Graph->NumberOfVertices()) + " vertices; the mesh has " +
+      std::to_string(Mesh.NumberOfVertices()) + ")");
   }
-  const std::size_t ka = static_cast<std::size_t>(std::max(T.AngleBins, 0));
-  if (T.AngleBins < 1 || T.Values.size() != T.Parts.size() * T.Parts.size() * ka * ka)
+  if (Tables.Classes.empty() || Tables.Parts.empty())
   {
-    return "the tables are inconsistent (" + std::to_string(T.Values.size()) +
-      " values for " + std::to_string(T.Parts.size()) + " parts and " +
-      std::to_string(T.AngleBins) + " angle bins)";
+    return Status::Error("the tables hold no shape class");
   }
-  for (const SafeDistanceClass& c : T.Classes)
+  const std::size_t ka = static_cast<std::size_t>(std::max(Tables.AngleBins, 0));
+  if (Tables.AngleBins < 1 ||
+    Tables.Values.size() != Tables.Parts.size() * Tables.Parts.size() * ka * ka)
+  {
+    return Status::Error("the tables are inconsistent (" + std::to_string(Tables.Values.size()) +
+      " values for " + std::to_string(Tables.Parts.size()) + " parts and " +
+      std::to_string(Tables.AngleBins) + " angle bins)");
+  }
+  for (const SafeDistanceClass& c : Tables.Classes)
   {
     if (c.Parts.empty() || !(c.Radius > 0.0) || !std::isfinite(c.Radius))
     {
-      return "class '" + c.Name + "' has no part or no valid radius";
+      return Status::Error("class '" + c.Name + "' has no part or no valid radius");
     }
   }
-  for (double v : T.Values)
+  for (double v : Tables.Values)
   {
     if (!std::isfinite(v) || v < 0.0)
     {
-      return "the tables hold a negative or non-finite safe distance";
+      return Status::Error("the tables hold a negative or non-finite safe distance");
     }
   }
-  if (!(O.ShapeSize > 0.0) || !std::isfinite(O.ShapeSize))
+  if (!(Options.ShapeSize > 0.0) || !std::isfinite(Options.ShapeSize))
   {
-    return "ShapeSize must be a positive finite number (it is " + std::to_string(O.ShapeSize) + ")";
+    return Status::Error("ShapeSize must be a positive finite number (it is " +
+      std::to_string(Options.ShapeSize) + ")");
   }
-  if (O.ShapeSize * 1e7 < M.MeanEdgeLength())
+  if (Options.ShapeSize * 1e7 < Mesh.MeanEdgeLength())
   {
-    return "ShapeSize " + std::to_string(O.ShapeSize) +
-      " is absurdly small for this mesh (mean edge length " + std::to_string(M.MeanEdgeLength()) +
-      "): it would take more than 1e14 shapes";
+    return Status::Error("ShapeSize " + std::to_string(Options.ShapeSize) +
+      " is absurdly small for this mesh (mean edge length " +
+      std::to_string(Mesh.MeanEdgeLength()) + "): it would take more than 1e14 shapes");
   }
-  if (O.Symmetry != 1 && O.Symmetry != 2 && O.Symmetry != 4)
+  if (Options.Symmetry != 1 && Options.Symmetry != 2 && Options.Symmetry != 4)
   {
-    return "the direction field's symmetry must be 1, 2 or 4 (it is " + std::to_string(O.Symmetry) + ")";
+    return Status::Error("the direction field's symmetry must be 1, 2 or 4 (it is " +
+      std::to_string(Options.Symmetry) + ")");
   }
-  if (O.MaximumShapes < 0 || O.MaximalFailures < 0 || O.GreedyDirections < 1 ||
-    O.GreedyDirections > 1024 || !(O.SafetyMargin >= 0.0) || O.SafetyMargin > 10.0 ||
-    !(O.DistortionLimit >= 0.0) || !(O.HolonomyMargin >= 0.0) || O.HolonomyMargin > 100.0)
+  if (Options.Mode != DistributionMode::Random && Options.Mode != DistributionMode::Greedy &&
+    Options.Mode != DistributionMode::CircumcirclePoissonDisk)
   {
-    return "invalid MaximumShapes, MaximalFailures, GreedyDirections (1..1024), SafetyMargin "
-           "(0..10), DistortionLimit (>= 0) or HolonomyMargin (0..100)";
+    return Status::Error("unknown Mode " + std::to_string(static_cast<int>(Options.Mode)) +
+      ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk)");
   }
-  return std::string();
+  if (Options.MaximumShapes < 0 || Options.MaximalFailures < 0 || Options.NumberOfThreads < 0 ||
+    Options.GreedyDirections < 1 || Options.GreedyDirections > 1024 ||
+    !(Options.SafetyMargin >= 0.0) || Options.SafetyMargin > 10.0 ||
+    !(Options.DistortionLimit >= 0.0) || !(Options.HolonomyMargin >= 0.0) ||
+    Options.HolonomyMargin > 100.0)
+  {
+    return Status::Error("invalid MaximumShapes, MaximalFailures, NumberOfThreads (>= 0), "
+                         "GreedyDirections (1..1024), SafetyMargin (0..10), DistortionLimit "
+                         "(>= 0) or HolonomyMargin (0..100)");
+  }
+  return Status();
 }
 
 double ShapeDistributor::OutlineSpacing() const
 {
-  return P->OutlineSpacing();
+  return Internal->OutlineSpacing();
 }
 
 std::shared_ptr<const CurveGrid> ShapeDistributor::Frame(int shape) const
 {
-  return P->FrameOf(shape);
+  return Internal->FrameOf(shape);
 }
 
 double ShapeDistributor::ExpectedCount(const TriangleMesh& mesh, const SafeDistanceTables& tables,
@@ -146,7 +162,7 @@ double ShapeDistributor::ExpectedCount(const TriangleMesh& mesh, const SafeDista
 }
 
 ShapeDistributor::ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
-  : P(new Impl(mesh, graph && graph->NumberOfVertices() == mesh.NumberOfVertices() ? graph : nullptr))
+  : Internal(new Impl(mesh, graph))
 {
 }
 
@@ -154,58 +170,55 @@ ShapeDistributor::~ShapeDistributor() = default;
 
 const std::vector<PlacedShape>& ShapeDistributor::Shapes() const
 {
-  return P->Placed;
+  return Internal->Placed;
 }
 
 const TriangleMesh& ShapeDistributor::Mesh() const
 {
-  return P->M;
+  return Internal->Mesh;
 }
 
 const SafeDistanceTables& ShapeDistributor::Tables() const
 {
-  return P->T;
+  return Internal->Tables;
 }
 
 const ShapeDistributionOptions& ShapeDistributor::Options() const
 {
-  return P->O;
+  return Internal->Options;
 }
 
 bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const
 {
-  return P->ClassPointOf(P->Accepted.at(shape), x, p);
+  return Internal->ClassPointOf(Internal->Accepted.at(shape), x, p);
 }
 
-ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
+Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables,
   const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
   const ShapeDistributionOptions& options, const std::function<bool(double)>& progress)
 {
   const auto start = std::chrono::steady_clock::now();
-  ShapeDistributionResult result;
-  Impl& I = *P;
-  result.Error = I.Prepare(tables, faceDirections, vertexDensity, options);
-  if (!result.Error.empty())
+  ShapeDistribution result;
+  Impl& I = *Internal;
+  if (Status prepared = I.Prepare(tables, faceDirections, vertexDensity, options); !prepared.Ok())
   {
     I.Accepted.clear();
     I.Placed.clear();
-    return result;
+    return prepared;
   }
-  const int threads = ThreadCount(I.O.NumberOfThreads);
+  const int threads = ThreadCount(I.Options.NumberOfThreads);
   I.EnsureEngines(threads);
   result.Statistics.PrepareSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!I.RunRounds(threads, progress, result.Statistics))
   {
-    result.Error = "aborted";
     I.Accepted.clear();
     I.Placed.clear();
-    return result;
+    return Status::Aborted();
   }
   result.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.Shapes = I.Placed;
-  result.Ok = true;
   if (progress)
   {
     progress(1.0);
@@ -215,12 +228,12 @@ ShapeDistributionResult ShapeDistributor::Run(const SafeDistanceTables& tables,
 
 double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
 {
-  Impl& I = *P;
+  Impl& I = *Internal;
   if (probes <= 0 || I.AllCdf.empty())
   {
     return 0.0;
   }
-  const int threads = ThreadCount(I.O.NumberOfThreads);
+  const int threads = ThreadCount(I.Options.NumberOfThreads);
   I.EnsureEngines(threads);
   long long fits = 0;
 #pragma omp parallel num_threads(threads) reduction(+ : fits)
@@ -233,7 +246,7 @@ double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
       Impl::Record r;
       const int cls = I.RandomClass(rng);
       const SurfacePoint centre = I.RandomPoint(rng, false);
-      if (!I.MakeShape(centre, cls, rng, r.S) || I.CheapConflict(r, scratch))
+      if (!I.MakeShape(centre, cls, rng, r.Shape) || I.CheapConflict(r, scratch))
       {
         continue;
       }
@@ -254,17 +267,17 @@ SurfacePoint ShapeDistributor::MapToSurface(int shape, const Vec2& p) const
 
 MappedPoint ShapeDistributor::Map(int shape, const Vec2& p) const
 {
-  return P->MapShape(P->Placed.at(shape), p);
+  return Internal->MapShape(Internal->Placed.at(shape), p);
 }
 
 std::vector<OutlinePiece> ShapeDistributor::Outline(int shape, double spacing) const
 {
-  const Impl::Record& r = P->Accepted.at(shape);
-  if (r.HasDrawn && spacing == P->OutlineSpacing())
+  const Impl::Record& r = Internal->Accepted.at(shape);
+  if (r.HasDrawn && spacing == Internal->OutlineSpacing())
   {
     return r.Drawn; // drawn when the shape was checked
   }
-  return P->OutlineOf(P->Placed.at(shape), spacing);
+  return Internal->OutlineOf(Internal->Placed.at(shape), spacing);
 }
 
 } // namespace gs

@@ -51,6 +51,7 @@
 
 #include "SafeDistanceTable.h"
 #include "ShapeOutline.h"
+#include "Status.h"
 #include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
@@ -150,10 +151,9 @@ struct ShapeDistributionStatistics
   double PrepareSeconds = 0.0;  ///< checks, sampling weights, per-thread geodesic engines
 };
 
-struct ShapeDistributionResult
+/// What a Run placed.
+struct ShapeDistribution
 {
-  bool Ok = false;
-  std::string Error;
   std::vector<PlacedShape> Shapes;
   ShapeDistributionStatistics Statistics;
 };
@@ -184,8 +184,8 @@ struct CurveGrid
   {
     bool Valid = false;
     SurfacePoint At;
-    Vec3 X; ///< position
-    Vec2 P; ///< class point (normalized units)
+    Vec3 Position;
+    Vec2 ClassPoint; ///< normalized units
   };
   const TriangleMesh* Mesh = nullptr;
   int Columns = 0, Rows = 0;
@@ -216,14 +216,11 @@ class ShapeDistributor
 {
 public:
   /// The mesh (and the graph, optional: without it the charts use the exact solver) must outlive
-  /// the distributor. The graph must be built for this mesh.
+  /// the distributor. A graph built for another mesh (another number of vertices) makes Run
+  /// fail.
   explicit ShapeDistributor(const TriangleMesh& mesh, const SaddleVertexGraph* graph = nullptr);
   ~ShapeDistributor();
 
-  /// `faceDirections`: one tangent vector per face (zero or non-finite: no direction there, the
-  /// shape gets a random orientation). `vertexDensity`: empty (f = 1) or one factor per vertex;
-  /// faces touching a vertex whose factor is not a positive finite number get no shape.
-  /// `progress` (optional) receives values in [0, 1]; returning false aborts.
   /// The order of magnitude of the number of shapes a run places (dart throwing covers about
   /// half the surface with the shapes' circles): the sum over the faces carrying shapes of
   /// area / (pi (ShapeSize f r)^2) / 2, r the classes' mean circumradius, f the smallest
@@ -231,10 +228,15 @@ public:
   static double ExpectedCount(const TriangleMesh& mesh, const SafeDistanceTables& tables,
     const std::vector<double>& vertexDensity, double shapeSize);
 
-  ShapeDistributionResult Run(const SafeDistanceTables& tables,
+  /// `faceDirections`: one tangent vector per face (zero or non-finite: no direction there, the
+  /// shape gets a random orientation). `vertexDensity`: empty (f = 1) or one factor per vertex;
+  /// faces touching a vertex whose factor is not a positive finite number get no shape.
+  /// `progress` (optional) receives values in [0, 1]; returning false aborts (the result is then
+  /// IsAborted()). Fails, saying why, on a graph of another mesh and on inconsistent tables,
+  /// options, directions or densities: every option is checked here, callers need not.
+  Result<ShapeDistribution> Run(const SafeDistanceTables& tables,
     const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
-    const ShapeDistributionOptions& options,
-    const std::function<bool(double)>& progress = nullptr);
+    const ShapeDistributionOptions& options, const std::function<bool(double)>& progress = nullptr);
 
   /// After Run: the fraction of `probes` random candidates (drawn like the run's, with
   /// field-aligned orientation) that would fit among the placed shapes.
@@ -280,7 +282,7 @@ public:
 
 private:
   struct Impl;
-  std::unique_ptr<Impl> P;
+  std::unique_ptr<Impl> Internal;
 };
 
 } // namespace gs

@@ -89,7 +89,7 @@ inline int ThreadId()
 
 struct ChartEntry
 {
-  int V;
+  int Vertex;
   float X, Y;
 };
 
@@ -104,8 +104,8 @@ struct Chart
   const ChartEntry* Find(int v) const
   {
     auto it = std::lower_bound(Entries.begin(), Entries.end(), v,
-      [](const ChartEntry& e, int value) { return e.V < value; });
-    return it != Entries.end() && it->V == v ? &*it : nullptr;
+      [](const ChartEntry& e, int value) { return e.Vertex < value; });
+    return it != Entries.end() && it->Vertex == v ? &*it : nullptr;
   }
 };
 
@@ -122,19 +122,19 @@ struct ShapeDistributor::Impl
   using Chart = distribution::Chart;
   using ChartEntry = distribution::ChartEntry;
 
-  const TriangleMesh& M;
-  const SaddleVertexGraph* G;
+  const TriangleMesh& Mesh;
+  const SaddleVertexGraph* Graph;
 
   Impl(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
-    : M(mesh)
-    , G(graph)
+    : Mesh(mesh)
+    , Graph(graph)
   {
   }
 
   /// A candidate or an accepted shape: its placement and the charts of its parts.
   struct Record
   {
-    PlacedShape S;
+    PlacedShape Shape;
     std::vector<Chart> Charts; // one per part (empty before the chart step)
     bool Valid = false;
     bool Rejected = false;
@@ -150,23 +150,23 @@ struct ShapeDistributor::Impl
   };
 
   // ---- The run's inputs (Prepare) --------------------------------------------------------
-  SafeDistanceTables T;
-  ShapeDistributionOptions O;
+  SafeDistanceTables Tables;
+  ShapeDistributionOptions Options;
   bool CircleMode = false;
   std::vector<Vec3> FaceDirection; // unit, in the face plane; zero: none
   std::vector<double> Density;     // per vertex (empty: 1)
   int NumberOfClasses = 0;
   double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
 
-  /// Checks the inputs and sets up every concept's state for a run; the error, or empty.
-  std::string Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
+  /// Checks the inputs and sets up every concept's state for a run.
+  Status Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
     const std::vector<double>& vertexDensity, const ShapeDistributionOptions& options);
-  /// The tables' and options' consistency (Prepare's first step); the error, or empty.
-  std::string CheckTablesAndOptions() const;
+  /// The consistency of the mesh, graph, tables and options (Prepare's first step).
+  Status CheckTablesAndOptions() const;
 
   double PartRadius(int part) const
   {
-    return CircleMode ? T.Classes[part].Radius : T.Parts[part].Radius;
+    return CircleMode ? Tables.Classes[part].Radius : Tables.Parts[part].Radius;
   }
 
   // ---- Candidate sampling (CandidateSampling.cpp) ---------------------------------------
@@ -186,12 +186,12 @@ struct ShapeDistributor::Impl
   std::unique_ptr<DirectionFieldSolver> Field; // long classes: streamlines
   std::vector<double> FieldAngles;
 
-  /// ClassWeights as a distribution; the error, or empty.
-  std::string PrepareClassWeights();
-  /// The face directions projected to the faces' planes; the error, or empty.
-  std::string PrepareDirections(const std::vector<Vec3>& faceDirections);
-  /// The density, the face weights area / f^2 and the masks (nothing dead); the error, or empty.
-  std::string PrepareFaceWeights(const std::vector<double>& vertexDensity);
+  /// ClassWeights as a distribution.
+  Status PrepareClassWeights();
+  /// The face directions projected to the faces' planes.
+  Status PrepareDirections(const std::vector<Vec3>& faceDirections);
+  /// The density, the face weights area / f^2 and the masks (nothing dead).
+  Status PrepareFaceWeights(const std::vector<double>& vertexDensity);
   /// KillRadius and KillReach: per (part, class), the smallest safe distance of the part against
   /// any part of the class (2% less, for the charts' approximations); per class, its reach.
   void PrepareDeadFaces();
@@ -204,7 +204,7 @@ struct ShapeDistributor::Impl
     {
       return 1.0;
     }
-    const auto& f = M.Face(p.Face);
+    const auto& f = Mesh.Face(p.Face);
     return p.Bary[0] * Density[f[0]] + p.Bary[1] * Density[f[1]] + p.Bary[2] * Density[f[2]];
   }
   /// Rebuilds the sampling distribution over the faces still alive.
@@ -212,7 +212,7 @@ struct ShapeDistributor::Impl
   bool AnyLiveFace() const { return FaceCdf.back() > 0.0; }
   bool DeadForClass(int c, int f) const
   {
-    return DeadFor[static_cast<std::size_t>(c) * M.NumberOfFaces() + f] != 0;
+    return DeadFor[static_cast<std::size_t>(c) * Mesh.NumberOfFaces() + f] != 0;
   }
   /// A face drawn with probability area / f^2 (live faces only, or all), a uniform point in it.
   SurfacePoint RandomPoint(Random& rng, bool live = true) const;
@@ -256,7 +256,8 @@ struct ShapeDistributor::Impl
   /// chart margin, enough to hold every centre the part could conflict with.
   double ChartRadius(const PlacedShape& s, const PlacedPart& p) const
   {
-    return (PartRadius(p.Part) + RMax) * O.ShapeSize * s.Scale * (1.0 + O.SafetyMargin) +
+    return (PartRadius(p.Part) + RMax) * Options.ShapeSize * s.Scale *
+      (1.0 + Options.SafetyMargin) +
       ChartMargin;
   }
   /// The charts of the record's parts (log map about each part centre, x axis the part's axis).
@@ -297,9 +298,9 @@ struct ShapeDistributor::Impl
   {
     if (CircleMode)
     {
-      return T.Classes[a].Radius + T.Classes[b].Radius;
+      return Tables.Classes[a].Radius + Tables.Classes[b].Radius;
     }
-    return T.Lookup(a, b, alphaA, alphaB);
+    return Tables.Lookup(a, b, alphaA, alphaB);
   }
   /// Does shape Y conflict with shape X, judged in X's charts?
   bool ConflictInCharts(const Record& X, const Record& Y) const;
@@ -396,7 +397,7 @@ struct ShapeDistributor::Impl
   /// and the unit of the pair.
   struct Neighbour
   {
-    Vec2 Q;
+    Vec2 Centre;
     double Axis;
     int Part;
     double Unit;
@@ -422,7 +423,7 @@ struct ShapeDistributor::Impl
   /// Shape s's outline as drawn (see ShapeDistributor::Outline).
   std::vector<OutlinePiece> OutlineOf(const PlacedShape& s, double spacing) const;
   /// Between outline points: half a mean edge (what the filter draws).
-  double OutlineSpacing() const { return 0.5 * M.MeanEdgeLength(); }
+  double OutlineSpacing() const { return 0.5 * Mesh.MeanEdgeLength(); }
   /// Point at arc length u along curve pieces (clamped), with the unit tangent there.
   static bool PointOnCurve(const TriangleMesh& m, const std::vector<CurvePiece>& curve, double u,
     int& face, Vec3& x, Vec3& tangent);

@@ -83,25 +83,25 @@ bool ShapeDistributor::Impl::Across(int face, const Vec3& x, const Vec3& t, doub
   Vec3& endTangent, bool* boundary) const
 {
   end = SurfacePoint::InFace(face, 0, 0, 0);
-  end.Bary = M.ClampedBarycentric(face, x);
+  end.Bary = Mesh.ClampedBarycentric(face, x);
   endTangent = t;
   if (std::abs(across) <= 0.0)
   {
     return true;
   }
   const double side = across > 0.0 ? 1.0 : -1.0;
-  const double angle = TangentAngle(M, end, t);
+  const double angle = TangentAngle(Mesh, end, t);
   if (!std::isfinite(angle))
   {
     return false;
   }
-  const GeodesicShot shot = ShootGeodesic(M, end, angle + side * 0.5 * Pi, std::abs(across));
+  const GeodesicShot shot = ShootGeodesic(Mesh, end, angle + side * 0.5 * Pi, std::abs(across));
   if (boundary)
   {
     *boundary = shot.ReachedBoundary;
   }
   end = shot.End;
-  Vec3 dir = Unit(RotateTangent(t, M.FaceNormal(face), side * 0.5 * Pi));
+  Vec3 dir = Unit(RotateTangent(t, Mesh.FaceNormal(face), side * 0.5 * Pi));
   for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
   {
     if (Norm(it->B - it->A) > 0.0)
@@ -110,7 +110,7 @@ bool ShapeDistributor::Impl::Across(int face, const Vec3& x, const Vec3& t, doub
       break;
     }
   }
-  const Vec3 n = M.FaceNormal(end.Face);
+  const Vec3 n = Mesh.FaceNormal(end.Face);
   endTangent = Unit(RotateTangent(dir, n, -side * 0.5 * Pi));
   return true;
 }
@@ -118,8 +118,8 @@ bool ShapeDistributor::Impl::Across(int face, const Vec3& x, const Vec3& t, doub
 MappedPoint ShapeDistributor::Impl::MapShape(const PlacedShape& s, const Vec2& p) const
 {
   const Impl& I = *this;
-  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
-  const double scale = I.O.ShapeSize * s.Scale;
+  const SafeDistanceClass& c = I.Tables.Classes[s.ClassId];
+  const double scale = I.Options.ShapeSize * s.Scale;
   MappedPoint m;
   if (s.Curve.empty())
   {
@@ -129,8 +129,8 @@ MappedPoint ShapeDistributor::Impl::MapShape(const PlacedShape& s, const Vec2& p
       m.End = s.Centre;
       return m;
     }
-    const double a = TangentAngle(I.M, s.Centre, s.Direction);
-    const GeodesicShot shot = ShootGeodesic(I.M, s.Centre, a + std::atan2(p.y, p.x), rho);
+    const double a = TangentAngle(I.Mesh, s.Centre, s.Direction);
+    const GeodesicShot shot = ShootGeodesic(I.Mesh, s.Centre, a + std::atan2(p.y, p.x), rho);
     m.End = shot.End;
     m.Reached = !shot.ReachedBoundary;
     m.Reach = m.Reached ? 1.0 : std::min(1.0, shot.Length / rho);
@@ -138,13 +138,14 @@ MappedPoint ShapeDistributor::Impl::MapShape(const PlacedShape& s, const Vec2& p
   }
   int face = -1;
   Vec3 x, tangent;
-  Impl::PointOnCurve(I.M, s.Curve, s.CurveCentre + Dot(p, c.MajorAxis) * scale, face, x, tangent);
+  Impl::PointOnCurve(
+    I.Mesh, s.Curve, s.CurveCentre + Dot(p, c.MajorAxis) * scale, face, x, tangent);
   Vec3 endTangent;
   bool boundary = false;
   if (!I.Across(face, x, tangent, Cross(c.MajorAxis, p) * scale, m.End, endTangent, &boundary))
   {
     m.End = SurfacePoint::InFace(face, 0, 0, 0);
-    m.End.Bary = I.M.ClampedBarycentric(face, x);
+    m.End.Bary = I.Mesh.ClampedBarycentric(face, x);
     m.Reached = false;
     m.Reach = 0.0;
   }
@@ -159,8 +160,8 @@ MappedPoint ShapeDistributor::Impl::MapShape(const PlacedShape& s, const Vec2& p
 std::vector<OutlinePiece> ShapeDistributor::Impl::OutlineOf(const PlacedShape& s, double spacing) const
 {
   const Impl& I = *this;
-  const SafeDistanceClass& c = I.T.Classes[s.ClassId];
-  const double unit = I.O.ShapeSize * s.Scale;
+  const SafeDistanceClass& c = I.Tables.Classes[s.ClassId];
+  const double unit = I.Options.ShapeSize * s.Scale;
   if (!(spacing > 0.0) || !(unit > 0.0))
   {
     return {};
@@ -184,34 +185,34 @@ bool ShapeDistributor::Impl::CurveGridFoot(
   // exactly as long as its circle's diameter and the margin is the radius: a "beyond" geodesic a
   // few 1e-17 long took its direction from rounding noise and turned the column, folding the
   // grid).
-  const double snap = 1e-9 * std::max(length, M.MeanEdgeLength());
+  const double snap = 1e-9 * std::max(length, Mesh.MeanEdgeLength());
   if (u >= -snap && u <= length + snap)
   {
     u = std::min(length, std::max(0.0, u));
-    if (!PointOnCurve(M, s.Curve, u, face, x, tangent))
+    if (!PointOnCurve(Mesh, s.Curve, u, face, x, tangent))
     {
       return false;
     }
     foot = SurfacePoint::InFace(face, 0, 0, 0);
-    foot.Bary = M.ClampedBarycentric(face, x);
+    foot.Bary = Mesh.ClampedBarycentric(face, x);
   }
   else
   {
     // Beyond an end: the geodesic continuing the curve's end.
     const bool after = u > length;
-    if (!PointOnCurve(M, s.Curve, after ? length : 0.0, face, x, tangent))
+    if (!PointOnCurve(Mesh, s.Curve, after ? length : 0.0, face, x, tangent))
     {
       return false;
     }
     SurfacePoint end = SurfacePoint::InFace(face, 0, 0, 0);
-    end.Bary = M.ClampedBarycentric(face, x);
-    const double angle = TangentAngle(M, end, after ? tangent : tangent * -1.0);
+    end.Bary = Mesh.ClampedBarycentric(face, x);
+    const double angle = TangentAngle(Mesh, end, after ? tangent : tangent * -1.0);
     if (!std::isfinite(angle))
     {
       return false;
     }
     const double beyond = after ? u - length : -u;
-    const GeodesicShot shot = ShootGeodesic(M, end, angle, beyond);
+    const GeodesicShot shot = ShootGeodesic(Mesh, end, angle, beyond);
     if (shot.ReachedBoundary || shot.Pieces.empty())
     {
       return false;
@@ -220,7 +221,7 @@ bool ShapeDistributor::Impl::CurveGridFoot(
     Vec3 dir = after ? tangent : tangent * -1.0;
     for (auto it = shot.Pieces.rbegin(); it != shot.Pieces.rend(); ++it)
     {
-      if (Norm(it->B - it->A) > 1e-9 * M.MeanEdgeLength()) // (never a rounding-length piece)
+      if (Norm(it->B - it->A) > 1e-9 * Mesh.MeanEdgeLength()) // (never a rounding-length piece)
       {
         dir = Unit(it->B - it->A);
         break;
@@ -234,8 +235,8 @@ bool ShapeDistributor::Impl::CurveGridFoot(
 CurveGrid ShapeDistributor::Impl::BuildCurveGrid(const PlacedShape& s, const SafeDistanceClass& c) const
 {
   CurveGrid grid;
-  grid.Mesh = &M;
-  const double scale = O.ShapeSize * s.Scale;
+  grid.Mesh = &Mesh;
+  const double scale = Options.ShapeSize * s.Scale;
   double length = 0.0;
   for (const CurvePiece& piece : s.Curve)
   {
@@ -256,8 +257,8 @@ CurveGrid ShapeDistributor::Impl::BuildCurveGrid(const PlacedShape& s, const Saf
   }
   // Margin beyond the silhouette's extent (two mean edges): a face with a corner in the shape
   // has its others within about an edge; a longer edge reaches into the affine extension.
-  const double margin = std::min(2.0 * M.MeanEdgeLength(), c.Radius * scale);
-  const double h0 = std::min(M.MeanEdgeLength(), c.Radius * scale / 12.0);
+  const double margin = std::min(2.0 * Mesh.MeanEdgeLength(), c.Radius * scale);
+  const double h0 = std::min(Mesh.MeanEdgeLength(), c.Radius * scale / 12.0);
   const int columns = std::max(2, std::min(1024, static_cast<int>(std::ceil((length + 2.0 * margin) / h0)) + 1));
   const int half = std::max(1, std::min(256, static_cast<int>(std::ceil((across + margin) / h0))));
   const int rows = 2 * half + 1;
@@ -297,26 +298,26 @@ CurveGrid ShapeDistributor::Impl::BuildCurveGrid(const PlacedShape& s, const Saf
     CurveGrid::Node& mid = nodes[static_cast<std::size_t>(i) * rows + centreRow];
     mid.Valid = true;
     mid.At = foot;
-    mid.X = M.Interpolate(foot.Face, foot.Bary);
-    mid.P = m * a;
-    const double angle = TangentAngle(M, foot, tangent);
+    mid.Position = Mesh.Interpolate(foot.Face, foot.Bary);
+    mid.ClassPoint = m * a;
+    const double angle = TangentAngle(Mesh, foot, tangent);
     if (!std::isfinite(angle))
     {
       continue;
     }
     for (const double side : { 1.0, -1.0 })
     {
-      const GeodesicShot shot = ShootGeodesic(M, foot, angle + side * 0.5 * Pi, across + margin);
+      const GeodesicShot shot = ShootGeodesic(Mesh, foot, angle + side * 0.5 * Pi, across + margin);
       for (int j = 1; j <= half; ++j)
       {
         CurveGrid::Node& node = nodes[static_cast<std::size_t>(i) * rows + centreRow + (side > 0.0 ? j : -j)];
-        if (!walk(shot, db * j * (1.0 - 1e-12), node.At, M))
+        if (!walk(shot, db * j * (1.0 - 1e-12), node.At, Mesh))
         {
           break;
         }
         node.Valid = true;
-        node.X = M.Interpolate(node.At.Face, node.At.Bary);
-        node.P = m * a + perp * (side * db * j / scale);
+        node.Position = Mesh.Interpolate(node.At.Face, node.At.Bary);
+        node.ClassPoint = m * a + perp * (side * db * j / scale);
       }
     }
   }
@@ -331,9 +332,9 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   // (Each vertex once: marks per thread, stamped per call.)
   thread_local std::vector<unsigned> mark;
   thread_local unsigned stamp = 0;
-  if (mark.size() != static_cast<std::size_t>(M.NumberOfVertices()) || stamp == ~0u)
+  if (mark.size() != static_cast<std::size_t>(Mesh.NumberOfVertices()) || stamp == ~0u)
   {
-    mark.assign(M.NumberOfVertices(), 0u);
+    mark.assign(Mesh.NumberOfVertices(), 0u);
     stamp = 0;
   }
   ++stamp;
@@ -342,7 +343,7 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   {
     if (nodes[k].Valid)
     {
-      for (int v : M.Face(nodes[k].At.Face))
+      for (int v : Mesh.Face(nodes[k].At.Face))
       {
         if (mark[v] != stamp)
         {
@@ -354,9 +355,9 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   }
   for (std::size_t k = 0, n = seeds.size(); k < n; ++k)
   {
-    for (int he : M.OutgoingHalfedges(seeds[k].first))
+    for (int he : Mesh.OutgoingHalfedges(seeds[k].first))
     {
-      for (int w : M.Face(he / 3))
+      for (int w : Mesh.Face(he / 3))
       {
         if (mark[w] != stamp)
         {
@@ -371,7 +372,7 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   {
     const int v = seed.first;
     Vec2 point;
-    if (grid.Locate(M.Position(v), seed.second, point, nullptr))
+    if (grid.Locate(Mesh.Position(v), seed.second, point, nullptr))
     {
       local.emplace_back(v, point);
     }
@@ -389,7 +390,7 @@ std::shared_ptr<const CurveGrid> ShapeDistributor::Impl::FrameOf(int shape) cons
   {
     return Accepted.at(shape).Frame;
   }
-  auto grid = std::make_shared<CurveGrid>(BuildCurveGrid(s, T.Classes[s.ClassId]));
+  auto grid = std::make_shared<CurveGrid>(BuildCurveGrid(s, Tables.Classes[s.ClassId]));
   grid->Index();
   return grid;
 }
@@ -405,7 +406,7 @@ bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance, int*
     const Vec3 d = y - X;
     return Dot(d, d);
   };
-  double best = distance2(Nodes[nearest].X);
+  double best = distance2(Nodes[nearest].Position);
   for (bool moved = true; moved;)
   {
     moved = false;
@@ -419,7 +420,7 @@ bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance, int*
         {
           continue;
         }
-        const double d = distance2(Nodes[i1 * Rows + j1].X);
+        const double d = distance2(Nodes[i1 * Rows + j1].Position);
         if (d < best)
         {
           best = d;
@@ -454,11 +455,11 @@ bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance, int*
           continue;
         }
         double lambda[3] = { 0.0, 0.0, 0.0 };
-        const double d = TriangleDistance(A.X, B.X, C.X, X, lambda);
+        const double d = TriangleDistance(A.Position, B.Position, C.Position, X, lambda);
         if (d < bestDistance)
         {
           bestDistance = d;
-          p = A.P * lambda[0] + B.P * lambda[1] + C.P * lambda[2];
+          p = A.ClassPoint * lambda[0] + B.ClassPoint * lambda[1] + C.ClassPoint * lambda[2];
         }
       }
     }
@@ -482,8 +483,10 @@ void CurveGrid::Index()
     if (n.Valid)
     {
       any = true;
-      lo = Vec3{ std::min(lo.x, n.X.x), std::min(lo.y, n.X.y), std::min(lo.z, n.X.z) };
-      hi = Vec3{ std::max(hi.x, n.X.x), std::max(hi.y, n.X.y), std::max(hi.z, n.X.z) };
+      lo = Vec3{ std::min(lo.x, n.Position.x), std::min(lo.y, n.Position.y),
+        std::min(lo.z, n.Position.z) };
+      hi = Vec3{ std::max(hi.x, n.Position.x), std::max(hi.y, n.Position.y),
+        std::max(hi.z, n.Position.z) };
     }
   }
   if (!any)
@@ -511,7 +514,7 @@ void CurveGrid::Index()
   {
     if (n.Valid)
     {
-      ++CellStart[cellOf(n.X) + 1];
+      ++CellStart[cellOf(n.Position) + 1];
     }
   }
   for (std::size_t c = 0; c < cells; ++c)
@@ -524,7 +527,7 @@ void CurveGrid::Index()
   {
     if (Nodes[k].Valid)
     {
-      CellNodes[fill[cellOf(Nodes[k].X)]++] = k;
+      CellNodes[fill[cellOf(Nodes[k].Position)]++] = k;
     }
   }
 }
@@ -561,7 +564,7 @@ bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p, int* hint) const
         const std::size_t c = (static_cast<std::size_t>(k) * Dims[1] + j) * Dims[0] + i;
         for (int q = CellStart[c]; q < CellStart[c + 1]; ++q)
         {
-          const Vec3 d = Nodes[CellNodes[q]].X - X;
+          const Vec3 d = Nodes[CellNodes[q]].Position - X;
           const double d2 = Dot(d, d);
           if (d2 < best)
           {

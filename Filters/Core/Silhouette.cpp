@@ -15,15 +15,14 @@ std::size_t SilhouetteMask::Count() const
 }
 
 //------------------------------------------------------------------------------
-SilhouetteReadResult MakeSilhouette(const float* pixels, int width, int height, int channels,
+Result<SilhouetteImage> MakeSilhouette(const float* pixels, int width, int height, int channels,
   int alphaChannel, const SilhouetteThresholds& thresholds)
 {
-  SilhouetteReadResult result;
   if (width <= 0 || height <= 0 || channels <= 0 || !pixels)
   {
-    result.Error = "empty image";
-    return result;
+    return Status::Error("empty image");
   }
+  SilhouetteImage result;
   result.FromAlpha = alphaChannel >= 0 && alphaChannel < channels;
   SilhouetteMask& mask = result.Mask;
   mask.Width = width;
@@ -54,39 +53,33 @@ SilhouetteReadResult MakeSilhouette(const float* pixels, int width, int height, 
   const std::size_t count = mask.Count();
   if (count == 0)
   {
-    result.Error = result.FromAlpha
-      ? "no pixel has alpha >= AlphaThreshold (all transparent): empty silhouette"
-      : "no pixel has luminance < LuminanceThreshold (all light): empty silhouette";
-    return result;
+    return Status::Error(result.FromAlpha
+        ? "no pixel has alpha >= AlphaThreshold (all transparent): empty silhouette"
+        : "no pixel has luminance < LuminanceThreshold (all light): empty silhouette");
   }
   if (count == mask.Inside.size())
   {
-    result.Error = result.FromAlpha
-      ? "every pixel has alpha >= AlphaThreshold (all opaque): the silhouette is the whole image"
-      : "every pixel has luminance < LuminanceThreshold (all dark): the silhouette is the whole "
-        "image";
-    return result;
+    return Status::Error(result.FromAlpha
+        ? "every pixel has alpha >= AlphaThreshold (all opaque): the silhouette is the whole image"
+        : "every pixel has luminance < LuminanceThreshold (all dark): the silhouette is the whole "
+          "image");
   }
-  result.Ok = true;
   return result;
 }
 
 //------------------------------------------------------------------------------
-SilhouetteReadResult ReadSilhouetteImage(
+Result<SilhouetteImage> ReadSilhouetteImage(
   const std::string& fileName, const SilhouetteThresholds& thresholds)
 {
-  SilhouetteReadResult result;
   auto input = OIIO::ImageInput::open(fileName);
   if (!input)
   {
-    result.Error = "cannot read image '" + fileName + "': " + OIIO::geterror();
-    return result;
+    return Status::Error("cannot read image '" + fileName + "': " + OIIO::geterror());
   }
   const OIIO::ImageSpec spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
   {
-    result.Error = "image '" + fileName + "' is empty";
-    return result;
+    return Status::Error("image '" + fileName + "' is empty");
   }
   // Read a strip of `factor` rows at a time; large images are box-reduced by that integer
   // factor on the way (factor 1: the rows as they are).
@@ -103,8 +96,7 @@ SilhouetteReadResult ReadSilhouetteImage(
     const int y1 = std::min(y0 + factor, spec.y + spec.height);
     if (!input->read_scanlines(0, 0, y0, y1, 0, 0, channels, OIIO::TypeDesc::FLOAT, strip.data()))
     {
-      result.Error = "cannot read the pixels of '" + fileName + "': " + input->geterror();
-      return result;
+      return Status::Error("cannot read the pixels of '" + fileName + "': " + input->geterror());
     }
     const int rows = y1 - y0;
     float* out = &pixels[static_cast<std::size_t>(row) * width * channels];
@@ -134,36 +126,29 @@ SilhouetteReadResult ReadSilhouetteImage(
     }
   }
   input->close();
-  result = MakeSilhouette(pixels.data(), width, height, channels, spec.alpha_channel, thresholds);
-  result.ReductionFactor = factor;
-  result.ImageWidth = spec.width;
-  result.ImageHeight = spec.height;
-  if (!result.Ok)
+  Result<SilhouetteImage> result =
+    MakeSilhouette(pixels.data(), width, height, channels, spec.alpha_channel, thresholds);
+  if (!result.Ok())
   {
-    result.Error = "image '" + fileName + "': " + result.Error;
+    return Status::Error("image '" + fileName + "': " + result.Message());
   }
+  result->ReductionFactor = factor;
+  result->ImageWidth = spec.width;
+  result->ImageHeight = spec.height;
   return result;
 }
 
 //------------------------------------------------------------------------------
-bool WriteSilhouetteImage(
-  const SilhouetteMask& mask, const std::string& fileName, bool withAlpha, std::string* error)
+Status WriteSilhouetteImage(const SilhouetteMask& mask, const std::string& fileName, bool withAlpha)
 {
-  auto fail = [&](const std::string& message) {
-    if (error)
-    {
-      *error = message;
-    }
-    return false;
-  };
   if (mask.Width <= 0 || mask.Height <= 0)
   {
-    return fail("empty mask");
+    return Status::Error("empty mask");
   }
   auto output = OIIO::ImageOutput::create(fileName);
   if (!output)
   {
-    return fail("cannot create '" + fileName + "': " + OIIO::geterror());
+    return Status::Error("cannot create '" + fileName + "': " + OIIO::geterror());
   }
   const int channels = withAlpha ? 4 : 1;
   OIIO::ImageSpec spec(mask.Width, mask.Height, channels, OIIO::TypeDesc::UINT8);
@@ -193,9 +178,9 @@ bool WriteSilhouetteImage(
   if (!output->open(fileName, spec) ||
     !output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !output->close())
   {
-    return fail("cannot write '" + fileName + "': " + output->geterror());
+    return Status::Error("cannot write '" + fileName + "': " + output->geterror());
   }
-  return true;
+  return Status();
 }
 
 //------------------------------------------------------------------------------

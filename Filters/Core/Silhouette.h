@@ -6,6 +6,7 @@
 // [x, x+1] x [y, y+1] and row y = 0 is the BOTTOM row of the image (the file's last row).
 #pragma once
 
+#include "Status.h"
 #include "Vector.h"
 
 #include <cstdint>
@@ -40,10 +41,9 @@ struct SilhouetteThresholds
   double LuminanceThreshold = 0.5;
 };
 
-struct SilhouetteReadResult
+/// A thresholded image (ReadSilhouetteImage, MakeSilhouette).
+struct SilhouetteImage
 {
-  bool Ok = false;
-  std::string Error; // when !Ok: why (unreadable, empty image, no inside pixel, all inside)
   SilhouetteMask Mask;
   bool FromAlpha = false; // the alpha channel was used (else the luminance)
   // Images larger than MaximumSilhouetteImageSide on a side are reduced while reading by this
@@ -61,19 +61,19 @@ constexpr int MaximumSilhouetteImageSide = 4096;
 /// Reads an image with OpenImageIO (PNG, JPEG, TIFF, EXR, ... whatever it reads) and thresholds
 /// it. Fails (with a message) on unreadable or empty images, and on images whose silhouette is
 /// empty (all transparent / all light) or fills the whole image (all opaque / all dark).
-SilhouetteReadResult ReadSilhouetteImage(
+Result<SilhouetteImage> ReadSilhouetteImage(
   const std::string& fileName, const SilhouetteThresholds& thresholds = {});
 
 /// Thresholds pixels given top row first (as in image files), `channels` floats per pixel in
 /// [0, 1]; `alphaChannel` is the index of the alpha channel or -1. Same checks as above.
-SilhouetteReadResult MakeSilhouette(const float* pixels, int width, int height, int channels,
+Result<SilhouetteImage> MakeSilhouette(const float* pixels, int width, int height, int channels,
   int alphaChannel, const SilhouetteThresholds& thresholds = {});
 
 /// Writes a mask as an 8-bit PNG (or any format OpenImageIO writes, chosen by extension): RGBA
 /// black with alpha 255 inside, 0 outside when `withAlpha`, else one channel, 0 inside and 255
-/// outside. Returns false with `error` set on failure. Used by tests and tools.
-bool WriteSilhouetteImage(const SilhouetteMask& mask, const std::string& fileName, bool withAlpha,
-  std::string* error = nullptr);
+/// outside. Used by tests and tools.
+Status WriteSilhouetteImage(
+  const SilhouetteMask& mask, const std::string& fileName, bool withAlpha);
 
 /// A 2D region bounded by closed rings (even-odd rule). Each ring lists its vertices once (the
 /// closing edge from the last vertex back to the first is implied). Rings are oriented with the

@@ -147,7 +147,9 @@ inline int CountSurfaceOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDist
         if (!computed)
         {
           const double reference = gs::TangentAngle(mesh, A.Centre, A.Direction);
-          chart.Compute(A.Centre, ra + 4.0 * rmax * shapeSize * fmax + 2.0 * mesh.MeanEdgeLength(), reference);
+          // A chart that fails holds no point: PolarAt then skips A's pairs.
+          static_cast<void>(chart.Compute(
+            A.Centre, ra + 4.0 * rmax * shapeSize * fmax + 2.0 * mesh.MeanEdgeLength(), reference));
           computed = true;
         }
         // Rigorous on any surface: geodesic disks of radii r_A, r_B hold the shapes (their

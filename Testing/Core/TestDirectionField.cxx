@@ -2,6 +2,7 @@
 // fields on flat and developable meshes, hard stroke constraints, curvature alignment.
 #include "DirectionField.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include <algorithm>
 #include <cmath>
@@ -115,8 +116,7 @@ TEST(DirectionField, PoincareHopfOnClosedMeshes)
     for (int n : { 1, 2, 4 })
     {
       std::vector<double> angles;
-      std::string error;
-      ASSERT_TRUE(solver.SolveSmoothest(n, 0.0, {}, angles, error)) << error;
+      ASSERT_TRUE(gs_test::Succeeded(solver.SolveSmoothest(n, 0.0, {}, angles)));
       ExpectIntegerIndices(solver, n, angles);
       const std::vector<double> index = solver.RoundedVertexIndices(n, angles);
       EXPECT_NEAR(Sum(index), m->EulerCharacteristic(), 1e-9) << "N = " << n;
@@ -143,8 +143,7 @@ TEST(DirectionField, FlatDiscIsConstantAndBoundaryConventionHolds)
   for (int n : { 1, 2, 4 })
   {
     std::vector<double> angles;
-    std::string error;
-    ASSERT_TRUE(solver.SolveSmoothest(n, 0.0, {}, angles, error)) << error;
+    ASSERT_TRUE(gs_test::Succeeded(solver.SolveSmoothest(n, 0.0, {}, angles)));
     EXPECT_LT(solver.Energy(n, angles), 1e-12);
     const gs::Vec3 d0 = solver.DirectionInFace(0, angles[0]);
     for (int f = 0; f < disc.NumberOfFaces(); ++f)
@@ -182,8 +181,7 @@ TEST(DirectionField, StrokeConstraintsAreHardAndPropagate)
   for (int n : { 1, 2, 4 })
   {
     std::vector<double> angles;
-    std::string error;
-    ASSERT_TRUE(solver.SolveSmoothest(n, 0.0, c, angles, error)) << error;
+    ASSERT_TRUE(gs_test::Succeeded(solver.SolveSmoothest(n, 0.0, c, angles)));
     for (int f = 0; f < plane.NumberOfFaces(); ++f)
     {
       const gs::Vec3 d = solver.DirectionInFace(f, angles[f]);
@@ -200,8 +198,7 @@ TEST(DirectionField, StrokeConstraintsAreHardAndPropagate)
     c2.push_back({ f, e });
   }
   std::vector<double> a1, a2;
-  std::string error;
-  ASSERT_TRUE(s2.SolveSmoothest(4, 0.0, c2, a1, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(s2.SolveSmoothest(4, 0.0, c2, a1)));
   for (const auto& k : c2)
   {
     EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(a1[k.Face] - s2.AngleInFace(k.Face, k.Direction), 4), 0.0, 1e-9);
@@ -212,16 +209,17 @@ TEST(DirectionField, StrokeConstraintsAreHardAndPropagate)
   {
     k.Direction = gs::Cross(sphere.FaceNormal(k.Face), k.Direction);
   }
-  ASSERT_TRUE(s2.SolveSmoothest(4, 0.0, c2, a2, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(s2.SolveSmoothest(4, 0.0, c2, a2)));
   for (const auto& k : c2)
   {
     EXPECT_NEAR(gs::DirectionFieldSolver::WrapSymmetric(a2[k.Face] - s2.AngleInFace(k.Face, k.Direction), 4), 0.0, 1e-9);
   }
   // Invalid constraints are refused with a message.
   std::vector<double> a3;
-  EXPECT_FALSE(s2.SolveSmoothest(4, 0.0, { { sphere.NumberOfFaces(), dir } }, a3, error));
-  EXPECT_FALSE(error.empty());
-  EXPECT_FALSE(s2.SolveSmoothest(3, 0.0, {}, a3, error));
+  const gs::Status outside = s2.SolveSmoothest(4, 0.0, { { sphere.NumberOfFaces(), dir } }, a3);
+  EXPECT_FALSE(outside.Ok());
+  EXPECT_FALSE(outside.Message().empty());
+  EXPECT_FALSE(s2.SolveSmoothest(3, 0.0, {}, a3).Ok());
 }
 
 TEST(DirectionField, CurvatureAlignmentOnCylinder)
@@ -233,8 +231,7 @@ TEST(DirectionField, CurvatureAlignmentOnCylinder)
   for (int n : { 2, 4 })
   {
     std::vector<double> angles;
-    std::string error;
-    ASSERT_TRUE(solver.SolveSmoothest(n, 10.0, {}, angles, error)) << error;
+    ASSERT_TRUE(gs_test::Succeeded(solver.SolveSmoothest(n, 10.0, {}, angles)));
     double worst = 0.0;
     for (int f = 0; f < cyl.NumberOfFaces(); ++f)
     {
@@ -298,38 +295,39 @@ TEST(DirectionField, PrescribedSingularitiesAppearExactlyWherePlaced)
 {
   const gs::TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 11u, 0.05));
   gs::DirectionFieldSolver solver(sphere);
-  std::string error;
   std::vector<double> angles;
   // Two +1 (a vector field), four +1/2 (a line field), eight +1/4 at the cube's corners.
   const std::vector<gs::VertexSingularity> two{ { ClosestVertex(sphere, { 0, 0, 1 }), 1.0 },
     { ClosestVertex(sphere, { 0, 0, -1 }), 1.0 } };
-  ASSERT_TRUE(solver.SolvePrescribed(1, two, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolvePrescribed(1, two, {}, angles)));
   ExpectExactly(solver, 1, angles, two);
   std::vector<gs::VertexSingularity> four, eight;
   for (const gs::Vec3& p : { gs::Vec3(1, 0, 0), gs::Vec3(-1, 0, 0), gs::Vec3(0, 1, 0), gs::Vec3(0, -1, 0) })
   {
     four.push_back({ ClosestVertex(sphere, p), 0.5 });
   }
-  ASSERT_TRUE(solver.SolvePrescribed(2, four, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolvePrescribed(2, four, {}, angles)));
   ExpectExactly(solver, 2, angles, four);
   for (int i = 0; i < 8; ++i)
   {
     const gs::Vec3 p((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1);
     eight.push_back({ ClosestVertex(sphere, p / std::sqrt(3.0)), 0.25 });
   }
-  ASSERT_TRUE(solver.SolvePrescribed(4, eight, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolvePrescribed(4, eight, {}, angles)));
   ExpectExactly(solver, 4, angles, eight);
   // A +2 and a 0 + ... : one vertex carrying the whole characteristic.
   const std::vector<gs::VertexSingularity> one{ { 5, 2.0 } };
-  ASSERT_TRUE(solver.SolvePrescribed(1, one, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolvePrescribed(1, one, {}, angles)));
   ExpectExactly(solver, 1, angles, one);
 
   // Wrong sums are refused with the sums in the message.
-  EXPECT_FALSE(solver.SolvePrescribed(1, { { 3, 1.0 } }, {}, angles, error));
-  EXPECT_NE(error.find("sum to 1"), std::string::npos) << error;
-  EXPECT_NE(error.find("Euler characteristic 2"), std::string::npos) << error;
-  EXPECT_FALSE(solver.SolvePrescribed(4, { { 3, 0.3 }, { 4, 1.7 } }, {}, angles, error));
-  EXPECT_NE(error.find("multiple of 1/4"), std::string::npos) << error;
+  const gs::Status wrongSum = solver.SolvePrescribed(1, { { 3, 1.0 } }, {}, angles);
+  EXPECT_FALSE(wrongSum.Ok());
+  EXPECT_NE(wrongSum.Message().find("sum to 1"), std::string::npos) << wrongSum.Message();
+  EXPECT_NE(wrongSum.Message().find("Euler characteristic 2"), std::string::npos) << wrongSum.Message();
+  const gs::Status notMultiple = solver.SolvePrescribed(4, { { 3, 0.3 }, { 4, 1.7 } }, {}, angles);
+  EXPECT_FALSE(notMultiple.Ok());
+  EXPECT_NE(notMultiple.Message().find("multiple of 1/4"), std::string::npos) << notMultiple.Message();
 }
 
 TEST(DirectionField, PrescribedOnTorusGenus3AndDisc)
@@ -337,15 +335,14 @@ TEST(DirectionField, PrescribedOnTorusGenus3AndDisc)
   const gs::TriangleMesh torus = gs_test::BuildMesh(gs::MakeTorus(1.0, 0.35, 40, 16));
   gs::DirectionFieldSolver ts(torus);
   std::vector<double> angles;
-  std::string error;
   for (int n : { 1, 2, 4 })
   {
-    ASSERT_TRUE(ts.SolvePrescribed(n, {}, {}, angles, error)) << error;
+    ASSERT_TRUE(gs_test::Succeeded(ts.SolvePrescribed(n, {}, {}, angles)));
     ExpectExactly(ts, n, angles, {});
   }
   // A +1/-1 pair on the torus.
   const std::vector<gs::VertexSingularity> pair{ { 10, 1.0 }, { 300, -1.0 } };
-  ASSERT_TRUE(ts.SolvePrescribed(1, pair, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(ts.SolvePrescribed(1, pair, {}, angles)));
   ExpectExactly(ts, 1, angles, pair);
 
   const gs::TriangleMesh slab = gs_test::BuildMesh(HoledSlab(3));
@@ -355,7 +352,7 @@ TEST(DirectionField, PrescribedOnTorusGenus3AndDisc)
   {
     saddles.push_back({ ClosestVertex(slab, { 1.0 + 4.0 * i, 4.0, 1.0 }), -1.0 });
   }
-  ASSERT_TRUE(ss.SolvePrescribed(1, saddles, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(ss.SolvePrescribed(1, saddles, {}, angles)));
   ExpectExactly(ss, 1, angles, saddles);
 
   // Rectangle: a cross field turning by 1/4 at each corner is the constant grid-aligned field.
@@ -366,7 +363,7 @@ TEST(DirectionField, PrescribedOnTorusGenus3AndDisc)
   {
     corners.push_back({ ClosestVertex(disc, p), 0.25 });
   }
-  ASSERT_TRUE(ds.SolvePrescribed(4, corners, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(ds.SolvePrescribed(4, corners, {}, angles)));
   for (int f = 0; f < disc.NumberOfFaces(); ++f)
   {
     const gs::Vec3 d = ds.DirectionInFace(f, angles[f]);
@@ -378,10 +375,11 @@ TEST(DirectionField, PrescribedOnTorusGenus3AndDisc)
     EXPECT_NEAR(index[v], std::abs(disc.TotalAngle(v) - Pi / 2) < 1e-9 ? 0.25 : 0.0, 1e-9);
   }
   // Without the corners a boundary-aligned field needs a +1 inside.
-  EXPECT_FALSE(ds.SolvePrescribed(4, {}, {}, angles, error));
-  EXPECT_NE(error.find("Euler characteristic 1"), std::string::npos) << error;
+  const gs::Status noCorners = ds.SolvePrescribed(4, {}, {}, angles);
+  EXPECT_FALSE(noCorners.Ok());
+  EXPECT_NE(noCorners.Message().find("Euler characteristic 1"), std::string::npos) << noCorners.Message();
   const std::vector<gs::VertexSingularity> centre{ { ClosestVertex(disc, { 0.6, 0.45, 0 }), 1.0 } };
-  ASSERT_TRUE(ds.SolvePrescribed(1, centre, {}, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(ds.SolvePrescribed(1, centre, {}, angles)));
   ExpectExactly(ds, 1, angles, centre);
 }
 
@@ -412,7 +410,6 @@ TEST(DirectionField, PrescribedWithStrokes)
     stroke.push_back({ best, gs::Vec3(-std::sin(a), std::cos(a), 0.0) });
   }
   std::vector<double> angles;
-  std::string error;
   for (int n : { 1, 4 })
   {
     const std::vector<gs::VertexSingularity> s = n == 1 ? two : std::vector<gs::VertexSingularity>{};
@@ -425,7 +422,7 @@ TEST(DirectionField, PrescribedWithStrokes)
         sing.push_back({ ClosestVertex(sphere, p / std::sqrt(3.0)), 0.25 });
       }
     }
-    ASSERT_TRUE(solver.SolvePrescribed(n, sing, stroke, angles, error)) << error;
+    ASSERT_TRUE(gs_test::Succeeded(solver.SolvePrescribed(n, sing, stroke, angles)));
     for (const auto& c : stroke)
     {
       const double dev = gs::DirectionFieldSolver::WrapSymmetric(angles[c.Face] - solver.AngleInFace(c.Face, c.Direction), n);
@@ -442,8 +439,7 @@ TEST(DirectionField, StreamlineTracer)
   gs::DirectionFieldSolver solver(plane);
   const gs::Vec3 dir = gs::Vec3(1.0, 2.0, 0.0) / std::sqrt(5.0);
   std::vector<double> angles;
-  std::string error;
-  ASSERT_TRUE(solver.SolveSmoothest(4, 0.0, { { 0, dir } }, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolveSmoothest(4, 0.0, { { 0, dir } }, angles)));
   const int f0 = 2 * (10 * 20 + 10);
   const gs::SurfacePoint start = gs::SurfacePoint::InFace(f0, 0.2, 0.3, 0.5);
   const gs::Vec3 p0 = plane.Interpolate(f0, start.Bary);
@@ -492,7 +488,7 @@ TEST(DirectionField, StreamlineTracer)
     }
   }
   const gs::Vec3 up = gs::Vec3(0, 0, 1);
-  ASSERT_TRUE(s2.SolvePrescribed(1, { { north, 1.0 }, { south, 1.0 } }, { { fe, up } }, angles, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(s2.SolvePrescribed(1, { { north, 1.0 }, { south, 1.0 } }, { { fe, up } }, angles)));
   const std::vector<double> index = s2.RoundedVertexIndices(1, angles);
   const gs::Streamline pole = s2.TraceStreamline(1, angles, gs::SurfacePoint::InFace(fe, 1.0 / 3, 1.0 / 3, 1.0 / 3),
     s2.AngleInFace(fe, up), 5.0, &index);

@@ -4,6 +4,7 @@
 #include "SaddleVertexGraph.h"
 #include "TriangleMesh.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -56,7 +57,7 @@ TEST(GeodesicPolarCoordinates, PlaneIsPolarCoordinates)
   const Vec3 ps = m.Position(s);
   // Reference: +y, given as a tangent angle.
   const double ref = TangentAngle(m, SurfacePoint::AtVertex(s), Vec3(0, 1, 0));
-  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 0.8, ref));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(s), 0.8, ref)));
   int inside = 0;
   for (int v = 0; v < m.NumberOfVertices(); ++v)
   {
@@ -80,7 +81,7 @@ TEST(GeodesicPolarCoordinates, PlaneIsPolarCoordinates)
   const SurfacePoint fp = SurfacePoint::InFace(300, 0.3, 0.3, 0.4);
   const Vec3 pf = m.Interpolate(fp.Face, fp.Bary);
   const Vec3 e0 = m.Position(m.Face(300)[1]) - m.Position(m.Face(300)[0]);
-  ASSERT_TRUE(pc.Compute(fp, 0.7));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(fp, 0.7)));
   for (int f : { 300, 301, 250, 340 })
   {
     const SurfacePoint q = SurfacePoint::InFace(f, 0.2, 0.5, 0.3);
@@ -98,7 +99,7 @@ TEST(GeodesicPolarCoordinates, ConeApexAnglesAreScaledToAFullTurn)
   const int rings = 8, sectors = 24;
   const TriangleMesh m = BuildMesh(MakeCone(0.4, 2.0, rings, sectors));
   GeodesicPolarCoordinates pc(m);
-  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(0), 10.0));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(0), 10.0)));
   EXPECT_LT(pc.SourceAngleSum(), 2 * Pi);
   // Ring vertices of sector j sit at azimuth 2 pi j / sectors (up to a common offset, in the
   // direction the generator's orientation gives).
@@ -140,7 +141,7 @@ TEST(GeodesicPolarCoordinates, ConeAwayFromTheApexMatchesTheDevelopment)
   const Vec2 ps = developed(s, around);
   const Vec2 first = developed(m.Destination(m.VertexHalfedge(s)), around) - ps;
   GeodesicPolarCoordinates pc(m);
-  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 0.9));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(s), 0.9)));
   int checked = 0;
   for (int v : pc.Inside())
   {
@@ -160,7 +161,7 @@ TEST(GeodesicPolarCoordinates, SphereCapAgainstAnalyticPolarCoordinates)
   const TriangleMesh m = BuildMesh(MakeIcosphere(1.0, 4));
   GeodesicPolarCoordinates pc(m);
   const int s = 0;
-  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 0.7));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(s), 0.7)));
   const Vec3 n = m.Position(s) / Norm(m.Position(s));
   // Analytic azimuth about the axis, from the direction of the source's first edge.
   auto tangent = [&](const Vec3& p) { return p - n * Dot(n, p); };
@@ -197,13 +198,37 @@ TEST(GeodesicPolarCoordinates, RejectsBadArguments)
 {
   const TriangleMesh m = BuildMesh(MakePlanarGrid(4, 4, 1.0, 1.0));
   GeodesicPolarCoordinates pc(m);
-  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), 0.0));
-  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), -1.0));
-  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), NAN));
-  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(999), 1.0));
-  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), 1.0, NAN));
-  EXPECT_TRUE(pc.Compute(SurfacePoint::AtVertex(3), INFINITY));
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), 0.0).Ok());
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), -1.0).Ok());
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), NAN).Ok());
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(999), 1.0).Ok());
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(3), 1.0, NAN).Ok());
+  EXPECT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(3), INFINITY)));
   EXPECT_TRUE(std::isfinite(pc.Rho(24)));
+  EXPECT_NE(pc.Compute(SurfacePoint::AtVertex(3), -1.0).Message().find("Radius must be > 0"),
+    std::string::npos);
+}
+
+namespace
+{
+SaddleVertexGraph Graph(const TriangleMesh& m)
+{
+  SaddleVertexGraph g;
+  std::string error;
+  EXPECT_TRUE(g.Build(m, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  return g;
+}
+} // namespace
+
+TEST(GeodesicPolarCoordinates, RefusesAGraphOfAnotherMesh)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(4, 4, 1.0, 1.0));
+  const TriangleMesh other = BuildMesh(MakePlanarGrid(5, 5, 1.0, 1.0));
+  const SaddleVertexGraph graph = Graph(other);
+  GeodesicPolarCoordinates pc(m, &graph);
+  const Status point = pc.Compute(SurfacePoint::AtVertex(3), 1.0);
+  EXPECT_NE(point.Message().find("another mesh"), std::string::npos) << point.Message();
+  EXPECT_FALSE(pc.ComputeCurve({ SurfacePoint::AtVertex(0), SurfacePoint::AtVertex(3) }, 1.0).Ok());
 }
 
 namespace
@@ -224,8 +249,8 @@ void CompareEngines(const TriangleMesh& m, const SurfacePoint& source, double ra
   std::string error;
   ASSERT_TRUE(g.Build(m, o, nullptr, error)) << error;
   GeodesicPolarCoordinates exact(m), svg(m, &g);
-  ASSERT_TRUE(exact.Compute(source, radius));
-  ASSERT_TRUE(svg.Compute(source, radius));
+  ASSERT_TRUE(gs_test::Succeeded(exact.Compute(source, radius)));
+  ASSERT_TRUE(gs_test::Succeeded(svg.Compute(source, radius)));
   double worstRho = 0, worstTheta = 0;
   std::vector<double> thetas;
   for (int v : exact.Inside())
@@ -282,7 +307,7 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesOnAPlane)
   const TriangleMesh m = BuildMesh(MakePlanarGrid(40, 40, 4.0, 4.0));
   GeodesicPolarCoordinates pc(m);
   const int s = 20 * 41 + 20;
-  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(s), 1.5));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(s), 1.5)));
   std::vector<double> geodesic(m.NumberOfVertices());
   for (int v : pc.Inside())
     geodesic[v] = pc.Theta(v);
@@ -309,7 +334,7 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
   // A bumpy sphere: saddles everywhere; a radius well past the first cut loci.
   const TriangleMesh m = BuildMesh(gs_test::BumpySoup(3, 4, 0.08));
   GeodesicPolarCoordinates pc(m);
-  ASSERT_TRUE(pc.Compute(SurfacePoint::AtVertex(7), 1.2));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(7), 1.2)));
   const int geodesicFlips = FlippedFaces(m, pc, 7);
   EXPECT_EQ(pc.UseIsoCurveAngles(), 0);
   const int isoFlips = FlippedFaces(m, pc, 7);
@@ -331,7 +356,7 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
   const TriangleMesh torus = BuildMesh(MakeTorus(2.0, 0.7, 48, 24));
   GeodesicPolarCoordinates tp(torus);
   const int inner = 12; // i = 0, j = 12: the inner equator
-  ASSERT_TRUE(tp.Compute(SurfacePoint::AtVertex(inner), 1.8));
+  ASSERT_TRUE(gs_test::Succeeded(tp.Compute(SurfacePoint::AtVertex(inner), 1.8)));
   const int torusGeodesicFlips = FlippedFaces(torus, tp, inner);
   EXPECT_EQ(tp.UseIsoCurveAngles(), 0);
   std::printf("torus: flipped faces geodesic direction %d, iso-curve %d\n", torusGeodesicFlips,
@@ -358,10 +383,10 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
   // A straight segment: delta is the signed distance to the line, u the projection's fraction,
   // for points beside the segment.
   const Vec3 a(1.03, 1.51, 0), b(2.97, 2.23, 0);
-  const CurveCoordinates* segment = pc.ComputeCurve({ locate(a), locate(b) }, 0.6);
-  ASSERT_TRUE(segment);
+  ASSERT_TRUE(gs_test::Succeeded(pc.ComputeCurve({ locate(a), locate(b) }, 0.6)));
+  const CurveCoordinates& segment = pc.Curve();
   EXPECT_TRUE(pc.IsCurve());
-  EXPECT_NEAR(segment->Length, Norm(b - a), 1e-9);
+  EXPECT_NEAR(segment.Length, Norm(b - a), 1e-9);
   EXPECT_TRUE(std::isnan(pc.Rho(pc.Inside().front()))); // not polar coordinates
   const Vec3 dir = (b - a) / Norm(b - a);
   int beside = 0, queried = 0;
@@ -373,18 +398,18 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
       continue;
     ++beside;
     const double signedDistance = Cross(dir, d).z; // > 0 on the left (normal +z)
-    EXPECT_NEAR(segment->Offset[v], signedDistance, 1e-9) << v;
-    EXPECT_NEAR(segment->ArcLength[v], along, 1e-9) << v;
+    EXPECT_NEAR(segment.Offset[v], signedDistance, 1e-9) << v;
+    EXPECT_NEAR(segment.ArcLength[v], along, 1e-9) << v;
     // Inverse map: back to the vertex.
-    const SurfacePoint back = pc.ToSurfaceFromCurve(segment->ArcLength[v], segment->Offset[v]);
+    const SurfacePoint back = pc.ToSurfaceFromCurve(segment.ArcLength[v], segment.Offset[v]);
     // And the coordinates of that surface point (inside a face, all of whose corners are in the
     // band) are the vertex's.
     double offset = 0, u = 0;
     if (pc.CurveCoordinatesAt(back, offset, u))
     {
       ++queried;
-      EXPECT_NEAR(offset, segment->Offset[v], 1e-6 * m.MeanEdgeLength());
-      EXPECT_NEAR(u, segment->ArcLength[v], 1e-6);
+      EXPECT_NEAR(offset, segment.Offset[v], 1e-6 * m.MeanEdgeLength());
+      EXPECT_NEAR(u, segment.ArcLength[v], 1e-6);
     }
     EXPECT_LT(Norm(m.Interpolate(back.Face, back.Bary) - m.Position(v)), 1e-6 * m.MeanEdgeLength()) << v;
   }
@@ -399,8 +424,8 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     const double t = a0 + (a1 - a0) * i / 40.0;
     arc.push_back(locate(Vec3(2 + r0 * std::cos(t), 2 + r0 * std::sin(t), 0)));
   }
-  const CurveCoordinates* onArc = pc.ComputeCurve(arc, 0.4);
-  ASSERT_TRUE(onArc);
+  ASSERT_TRUE(gs_test::Succeeded(pc.ComputeCurve(arc, 0.4)));
+  const CurveCoordinates& onArc = pc.Curve();
   int checked = 0;
   for (int v : pc.Inside())
   {
@@ -409,19 +434,19 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     if (angle < a0 + 0.05 || angle > a1 - 0.05)
       continue;
     ++checked;
-    EXPECT_NEAR(onArc->Offset[v], r0 - Norm(d), 2e-3) << v; // the arc is a polyline of 40 chords
-    EXPECT_NEAR(onArc->ArcLength[v], (angle - a0) / (a1 - a0), 1e-2) << v; // chords, not the arc
+    EXPECT_NEAR(onArc.Offset[v], r0 - Norm(d), 2e-3) << v; // the arc is a polyline of 40 chords
+    EXPECT_NEAR(onArc.ArcLength[v], (angle - a0) / (a1 - a0), 1e-2) << v; // chords, not the arc
   }
   EXPECT_GT(checked, 50);
-  EXPECT_FALSE(pc.ComputeCurve({}, 1.0));
-  EXPECT_FALSE(pc.ComputeCurve({ locate(a), locate(a) }, 1.0)); // zero length
+  EXPECT_FALSE(pc.ComputeCurve({}, 1.0).Ok());
+  EXPECT_FALSE(pc.ComputeCurve({ locate(a), locate(a) }, 1.0).Ok()); // zero length
   // Along mesh edges and through mesh vertices (points on edges, some exactly on vertices, as
   // face points): the side is still the side.
   std::vector<SurfacePoint> grid;
   for (int k = 0; k <= 42; ++k)
     grid.push_back(locate(Vec3(1.0 + 2.0 * k / 42.0, 2.0, 0)));
-  const CurveCoordinates* alongEdges = pc.ComputeCurve(grid, 0.5);
-  ASSERT_TRUE(alongEdges);
+  ASSERT_TRUE(gs_test::Succeeded(pc.ComputeCurve(grid, 0.5)));
+  const CurveCoordinates& alongEdges = pc.Curve();
   int wrong = 0, near = 0;
   for (int v : pc.Inside())
   {
@@ -429,7 +454,7 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     if (p.x < 1.05 || p.x > 2.95)
       continue;
     ++near;
-    wrong += std::abs(alongEdges->Offset[v] - (p.y - 2.0)) > 1e-6;
+    wrong += std::abs(alongEdges.Offset[v] - (p.y - 2.0)) > 1e-6;
   }
   EXPECT_GT(near, 100);
   EXPECT_EQ(wrong, 0);
@@ -446,19 +471,19 @@ TEST(GeodesicPolarCoordinates, CurveArcLengthAlongEachOffsetCurve)
     return SurfacePoint::AtVertex(static_cast<int>(std::lround(y * 10) * 41 + std::lround(x * 10)));
   };
   GeodesicPolarCoordinates pc(m);
-  const CurveCoordinates* turn = pc.ComputeCurve({ vertexAt(1, 1), vertexAt(2, 1), vertexAt(2, 2) }, 0.35);
-  ASSERT_TRUE(turn);
-  EXPECT_NEAR(turn->Length, 2.0, 1e-12);
+  ASSERT_TRUE(gs_test::Succeeded(pc.ComputeCurve({ vertexAt(1, 1), vertexAt(2, 1), vertexAt(2, 2) }, 0.35)));
+  const CurveCoordinates& turn = pc.Curve();
+  EXPECT_NEAR(turn.Length, 2.0, 1e-12);
   const double d = 0.2;
   for (int i = 11; i <= 17; ++i)
   {
     const double x = 0.1 * i;
     const SurfacePoint outer = vertexAt(x, 1 - d), inner = vertexAt(x, 1 + d);
-    EXPECT_NEAR(turn->Offset[outer.Vertex], -d, 1e-9);
-    EXPECT_NEAR(turn->Offset[inner.Vertex], d, 1e-9);
+    EXPECT_NEAR(turn.Offset[outer.Vertex], -d, 1e-9);
+    EXPECT_NEAR(turn.Offset[inner.Vertex], d, 1e-9);
     // (The quarter circle is traced as chords across the faces: 0.2% shorter.)
-    EXPECT_NEAR(turn->ArcLength[outer.Vertex], (x - 1) / (2 + Pi * d / 2), 3e-3 * (x - 1) / 2) << x;
-    EXPECT_GT(std::abs(turn->ArcLength[outer.Vertex] - (x - 1) / 2), 0.05 * (x - 1) / 2) << x;
-    EXPECT_NEAR(turn->ArcLength[inner.Vertex], (x - 1) / (2 - 2 * d), 1e-6) << x;
+    EXPECT_NEAR(turn.ArcLength[outer.Vertex], (x - 1) / (2 + Pi * d / 2), 3e-3 * (x - 1) / 2) << x;
+    EXPECT_GT(std::abs(turn.ArcLength[outer.Vertex] - (x - 1) / 2), 0.05 * (x - 1) / 2) << x;
+    EXPECT_NEAR(turn.ArcLength[inner.Vertex], (x - 1) / (2 - 2 * d), 1e-6) << x;
   }
 }

@@ -49,9 +49,9 @@ inline gs::SafeDistanceTables PolygonTables(const std::vector<std::vector<gs::Ve
   o.AngleBins = 32;
   o.DistanceSteps = 64;
   o.Rows = 512;
-  gs::SafeDistanceResult r = gs::ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  gs::Result<gs::SafeDistanceTables> r = gs::ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return *r;
 }
 
 } // namespace gs_test

@@ -31,9 +31,9 @@ SafeDistanceTables StarAndTile()
   in.push_back({ "tile", ShapeFromPolygons({ tile }) });
   SafeDistanceOptions o;
   o.AngleBins = 32;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return *r;
 }
 
 SafeDistanceTables Shrunk(SafeDistanceTables t, double factor)
@@ -72,22 +72,22 @@ TEST(OverlapCheck, FindsThePlanarOraclesOverlapsAndNoOther)
     o.MaximalFailures = 2000;
     o.DrawnCheck = factor == 1.0; // shrunk tables: the tables alone decide (and fail)
     ShapeDistributor d(mesh);
-    const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
-    ASSERT_TRUE(r.Ok) << r.Error;
+    const Result<ShapeDistribution> r = d.Run(Shrunk(t, factor), directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
     // The oracle: drawn outlines (cut at the square's sides) sharing area.
     std::vector<double> radius;
-    for (const PlacedShape& s : r.Shapes)
+    for (const PlacedShape& s : r->Shapes)
       radius.push_back(t.Classes[s.ClassId].Radius * o.ShapeSize * s.Scale * (1.0 + 1e-9));
     std::vector<std::pair<int, int>> expected;
     gs_test::CountDrawnOverlaps(
-      r.Shapes, gs_test::DrawnPlanarOutlines(mesh, d, spacing), radius, 1e-5, &expected);
+      r->Shapes, gs_test::DrawnPlanarOutlines(mesh, d, spacing), radius, 1e-5, &expected);
     const auto outlines = Outlines(d, spacing);
     OverlapCheckOptions co;
     co.NumberOfThreads = 2;
     const OverlapCheckResult found = CheckOverlaps(d, outlines, co);
     co.NumberOfThreads = 1;
     EXPECT_EQ(CheckOverlaps(d, outlines, co).Pairs, found.Pairs) << "any thread count";
-    EXPECT_GT(found.PairsExamined, static_cast<long long>(r.Shapes.size()) / 2);
+    EXPECT_GT(found.PairsExamined, static_cast<long long>(r->Shapes.size()) / 2);
     if (factor == 1.0)
     {
       EXPECT_TRUE(expected.empty());
@@ -136,8 +136,8 @@ TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
       o.DrawnCheck = false;
     }
     ShapeDistributor d(mesh, &graph);
-    const ShapeDistributionResult r = d.Run(Shrunk(t, factor), directions, {}, o);
-    ASSERT_TRUE(r.Ok) << r.Error;
+    const Result<ShapeDistribution> r = d.Run(Shrunk(t, factor), directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
     const OverlapCheckResult found = CheckOverlaps(d, Outlines(d, spacing));
     const int oracle = gs_test::CountSurfaceOverlaps(mesh, t, d, o.ShapeSize, 0.02);
     if (factor == 1.0)
@@ -170,9 +170,9 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
   std::vector<SafeDistanceInput> in;
   for (const char* name : { "star", "gull", "leaf", "fish" })
   {
-    SilhouetteReadResult image = ReadSilhouetteImage(std::string(GS_TEST_DATA_DIR) + "/shapes/" + name + ".png");
-    ASSERT_TRUE(image.Ok) << name;
-    Shape2D shape = ShapeFromMask(image.Mask);
+    Result<SilhouetteImage> image = ReadSilhouetteImage(std::string(GS_TEST_DATA_DIR) + "/shapes/" + name + ".png");
+    ASSERT_TRUE(image.Ok()) << name;
+    Shape2D shape = ShapeFromMask(image->Mask);
     std::vector<Vec2> all;
     for (const auto& ring : shape.Rings)
       all.insert(all.end(), ring.begin(), ring.end());
@@ -185,8 +185,8 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
   SafeDistanceOptions so;
   so.AngleBins = 64;
   so.DistanceSteps = 64;
-  SafeDistanceResult tables = ComputeSafeDistanceTables(in, so);
-  ASSERT_TRUE(tables.Ok) << tables.Error;
+  Result<SafeDistanceTables> tables = ComputeSafeDistanceTables(in, so);
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
   const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
   int oracleWithout = 0, oracleWith = 0, checkWithout = 0, checkWith = 0;
   std::size_t shapesWithout = 0, shapesWith = 0;
@@ -199,11 +199,11 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
       o.Seed = seed;
       o.DrawnCheck = drawn;
       ShapeDistributor d(mesh, &graph);
-      const ShapeDistributionResult r = d.Run(tables.Tables, directions, {}, o);
-      ASSERT_TRUE(r.Ok) << r.Error;
-      const int oracle = gs_test::CountSurfaceOverlaps(mesh, tables.Tables, d, o.ShapeSize, 0.02);
+      const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+      ASSERT_TRUE(r.Ok()) << r.Message();
+      const int oracle = gs_test::CountSurfaceOverlaps(mesh, *tables, d, o.ShapeSize, 0.02);
       (drawn ? oracleWith : oracleWithout) += oracle;
-      (drawn ? shapesWith : shapesWithout) += r.Shapes.size();
+      (drawn ? shapesWith : shapesWithout) += r->Shapes.size();
       // VerifyOverlaps' check, which also reads long shapes through their frames (pairs of two
       // long shapes included): nothing with the drawn check, at least the oracle's without.
       const OverlapCheckResult found = CheckOverlaps(d, Outlines(d, 0.5 * mesh.MeanEdgeLength()));
@@ -254,17 +254,17 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
   std::vector<SafeDistanceInput> in;
   in.push_back({ "star", ShapeFromPolygons({ MakeStarPolygon(5, 1.0, 0.4) }) });
   in.push_back({ "banana", ShapeFromPolygons({ banana }) });
-  const SafeDistanceResult tables = ComputeSafeDistanceTables(in);
-  ASSERT_TRUE(tables.Ok) << tables.Error;
+  const Result<SafeDistanceTables> tables = ComputeSafeDistanceTables(in);
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
   ShapeDistributor d(mesh);
   ShapeDistributionOptions o;
   o.ShapeSize = 0.04;
   o.Seed = 4;
   o.MaximumShapes = 600;
-  const ShapeDistributionResult r = d.Run(tables.Tables, directions, {}, o);
-  ASSERT_TRUE(r.Ok) << r.Error;
+  const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+  ASSERT_TRUE(r.Ok()) << r.Message();
   int longShapes = 0, folded = 0;
-  for (int s = 0; s < static_cast<int>(r.Shapes.size()); ++s)
+  for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
   {
     const std::shared_ptr<const CurveGrid> grid = d.Frame(s);
     if (!grid)
@@ -275,16 +275,16 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
       for (int j = 0; j < grid->Rows && regular; ++j)
       {
         const CurveGrid::Node &a = grid->Nodes[i * grid->Rows + j], &b = grid->Nodes[(i + 1) * grid->Rows + j];
-        regular = !(a.Valid && b.Valid && Norm(b.X - a.X) > 4.0 * grid->Step);
+        regular = !(a.Valid && b.Valid && Norm(b.Position - a.Position) > 4.0 * grid->Step);
       }
     folded += regular ? 0 : 1;
   }
-  std::vector<std::vector<OutlinePiece>> outlines(r.Shapes.size());
+  std::vector<std::vector<OutlinePiece>> outlines(r->Shapes.size());
   for (std::size_t s = 0; s < outlines.size(); ++s)
     outlines[s] = d.Outline(static_cast<int>(s), d.OutlineSpacing());
   const OverlapCheckResult check = CheckOverlaps(d, outlines);
   std::printf("small bananas on a torus: %zu shapes, %d long, %d with a folded grid, %zu overlapping pairs\n",
-    r.Shapes.size(), longShapes, folded, check.Pairs.size());
+    r->Shapes.size(), longShapes, folded, check.Pairs.size());
   EXPECT_GT(longShapes, 100);
   EXPECT_EQ(folded, 0);
   EXPECT_EQ(check.Pairs.size(), 0u);

@@ -5,6 +5,7 @@
 #include "SafeDistanceTable.h"
 #include "ShapeOverlapOracle.h"
 #include "Silhouette.h"
+#include "TestStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -229,16 +230,15 @@ TEST(Silhouette, MaskContoursAreExactPixelBoundaries)
 TEST(Silhouette, ReadsAlphaAndLuminanceImages)
 {
   const SilhouetteMask disk = DiskMask(64, 20.0);
-  std::string error;
   const std::string rgba = TempFile("disk_rgba.png"), grey = TempFile("disk_grey.png");
-  ASSERT_TRUE(WriteSilhouetteImage(disk, rgba, true, &error)) << error;
-  ASSERT_TRUE(WriteSilhouetteImage(disk, grey, false, &error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(WriteSilhouetteImage(disk, rgba, true)));
+  ASSERT_TRUE(gs_test::Succeeded(WriteSilhouetteImage(disk, grey, false)));
   for (const std::string& file : { rgba, grey })
   {
-    const SilhouetteReadResult read = ReadSilhouetteImage(file);
-    ASSERT_TRUE(read.Ok) << read.Error;
-    EXPECT_EQ(read.FromAlpha, file == rgba);
-    EXPECT_EQ(read.Mask.Inside, disk.Inside);
+    const Result<SilhouetteImage> read = ReadSilhouetteImage(file);
+    ASSERT_TRUE(read.Ok()) << read.Message();
+    EXPECT_EQ(read->FromAlpha, file == rgba);
+    EXPECT_EQ(read->Mask.Inside, disk.Inside);
   }
   // y is up: a mask with only its bottom row set reads back the same (not flipped).
   SilhouetteMask bottom;
@@ -247,63 +247,63 @@ TEST(Silhouette, ReadsAlphaAndLuminanceImages)
   bottom.Inside.assign(32, 0);
   for (int x = 0; x < 8; ++x)
     bottom.Inside[x] = 1;
-  ASSERT_TRUE(WriteSilhouetteImage(bottom, TempFile("bottom.tif"), true, &error)) << error;
-  const SilhouetteReadResult b = ReadSilhouetteImage(TempFile("bottom.tif"));
-  ASSERT_TRUE(b.Ok) << b.Error;
-  EXPECT_TRUE(b.Mask.At(3, 0));
-  EXPECT_FALSE(b.Mask.At(3, 3));
+  ASSERT_TRUE(gs_test::Succeeded(WriteSilhouetteImage(bottom, TempFile("bottom.tif"), true)));
+  const Result<SilhouetteImage> b = ReadSilhouetteImage(TempFile("bottom.tif"));
+  ASSERT_TRUE(b.Ok()) << b.Message();
+  EXPECT_TRUE(b->Mask.At(3, 0));
+  EXPECT_FALSE(b->Mask.At(3, 3));
   // Thresholds: half-transparent pixels.
   const float pixels[] = { 0, 0, 0, 0.3f, 0, 0, 0, 0.7f };
-  const SilhouetteReadResult half = MakeSilhouette(pixels, 2, 1, 4, 3, { 0.5, 0.5 });
-  ASSERT_TRUE(half.Ok) << half.Error;
-  EXPECT_FALSE(half.Mask.At(0, 0));
-  EXPECT_TRUE(half.Mask.At(1, 0));
-  EXPECT_FALSE(MakeSilhouette(pixels, 2, 1, 4, 3, { 0.2, 0.5 }).Ok); // all opaque
+  const Result<SilhouetteImage> half = MakeSilhouette(pixels, 2, 1, 4, 3, { 0.5, 0.5 });
+  ASSERT_TRUE(half.Ok()) << half.Message();
+  EXPECT_FALSE(half->Mask.At(0, 0));
+  EXPECT_TRUE(half->Mask.At(1, 0));
+  EXPECT_FALSE(MakeSilhouette(pixels, 2, 1, 4, 3, { 0.2, 0.5 }).Ok()); // all opaque
   const float grey2[] = { 0.2f, 0.8f };
-  const SilhouetteReadResult l = MakeSilhouette(grey2, 2, 1, 1, -1, { 0.5, 0.5 });
-  ASSERT_TRUE(l.Ok) << l.Error;
-  EXPECT_TRUE(l.Mask.At(0, 0));
-  EXPECT_FALSE(l.Mask.At(1, 0));
+  const Result<SilhouetteImage> l = MakeSilhouette(grey2, 2, 1, 1, -1, { 0.5, 0.5 });
+  ASSERT_TRUE(l.Ok()) << l.Message();
+  EXPECT_TRUE(l->Mask.At(0, 0));
+  EXPECT_FALSE(l->Mask.At(1, 0));
 }
 
 TEST(Silhouette, ImageErrorsAreClear)
 {
-  SilhouetteReadResult r = ReadSilhouetteImage(TempFile("does_not_exist.png"));
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("cannot read"), std::string::npos) << r.Error;
+  Result<SilhouetteImage> r = ReadSilhouetteImage(TempFile("does_not_exist.png"));
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("cannot read"), std::string::npos) << r.Message();
   {
     std::ofstream garbage(TempFile("garbage.png"), std::ios::binary);
     garbage << "this is not an image";
   }
   r = ReadSilhouetteImage(TempFile("garbage.png"));
-  EXPECT_FALSE(r.Ok);
-  EXPECT_FALSE(r.Error.empty());
+  EXPECT_FALSE(r.Ok());
+  EXPECT_FALSE(r.Message().empty());
   SilhouetteMask none;
   none.Width = none.Height = 8;
   none.Inside.assign(64, 0);
-  ASSERT_TRUE(WriteSilhouetteImage(none, TempFile("transparent.png"), true));
+  ASSERT_TRUE(gs_test::Succeeded(WriteSilhouetteImage(none, TempFile("transparent.png"), true)));
   r = ReadSilhouetteImage(TempFile("transparent.png"));
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("all transparent"), std::string::npos) << r.Error;
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("all transparent"), std::string::npos) << r.Message();
   SilhouetteMask all = none;
   all.Inside.assign(64, 1);
-  ASSERT_TRUE(WriteSilhouetteImage(all, TempFile("opaque.png"), true));
+  ASSERT_TRUE(gs_test::Succeeded(WriteSilhouetteImage(all, TempFile("opaque.png"), true)));
   r = ReadSilhouetteImage(TempFile("opaque.png"));
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("all opaque"), std::string::npos) << r.Error;
-  ASSERT_TRUE(WriteSilhouetteImage(all, TempFile("dark.png"), false));
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("all opaque"), std::string::npos) << r.Message();
+  ASSERT_TRUE(gs_test::Succeeded(WriteSilhouetteImage(all, TempFile("dark.png"), false)));
   r = ReadSilhouetteImage(TempFile("dark.png"));
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("all dark"), std::string::npos) << r.Error;
-  EXPECT_FALSE(MakeSilhouette(nullptr, 0, 0, 4, 3).Ok);
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("all dark"), std::string::npos) << r.Message();
+  EXPECT_FALSE(MakeSilhouette(nullptr, 0, 0, 4, 3).Ok());
 }
 
 TEST(SafeDistanceTable, DiskIsConstantTwo)
 {
-  const SafeDistanceResult r =
+  const Result<SafeDistanceTables> r =
     ComputeSafeDistanceTables({ { "disk", ShapeFromMask(DiskMask(100, 40.0)) } });
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const SafeDistanceTables& T = r.Tables;
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  const SafeDistanceTables& T = *r;
   ASSERT_EQ(T.NumberOfPairs(), 1);
   EXPECT_DOUBLE_EQ(T.Classes[0].Radius, 1.0);
   EXPECT_NEAR(T.Scale, 40.0, 1.0);
@@ -324,10 +324,10 @@ TEST(SafeDistanceTable, SquareMatchesAnalyticDistances)
   SafeDistanceOptions options;
   options.AngleBins = 32;
   options.DistanceSteps = 48;
-  const SafeDistanceResult r =
+  const Result<SafeDistanceTables> r =
     ComputeSafeDistanceTables({ { "square", ShapeFromPolygons({ square }) } }, options);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const SafeDistanceTables& T = r.Tables;
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  const SafeDistanceTables& T = *r;
   EXPECT_NEAR(T.Scale, std::sqrt(2.0), 1e-12);
   const double s = 1.0 / std::sqrt(2.0);
   const std::vector<Vec2> unit{ { -s, -s }, { s, -s }, { s, s }, { -s, s } };
@@ -355,29 +355,29 @@ TEST(SafeDistanceTable, SquareMatchesAnalyticDistances)
   // Faces parallel to the joining line: d = side = 2 / sqrt 2 in normalized units.
   SafeDistanceOptions plain = options;
   plain.Conservative = false;
-  const SafeDistanceResult p =
+  const Result<SafeDistanceTables> p =
     ComputeSafeDistanceTables({ { "square", ShapeFromPolygons({ square }) } }, plain);
-  ASSERT_TRUE(p.Ok);
-  EXPECT_NEAR(p.Tables.Value(0, 0, 0, 0), std::sqrt(2.0), step);
+  ASSERT_TRUE(p.Ok());
+  EXPECT_NEAR(p->Value(0, 0, 0, 0), std::sqrt(2.0), step);
   // Corner against corner (both at 45 degrees): d = 2 (the circles touch).
-  EXPECT_NEAR(p.Tables.Value(0, 0, 4, 4), 2.0, step);
+  EXPECT_NEAR(p->Value(0, 0, 4, 4), 2.0, step);
 }
 
 TEST(SafeDistanceTable, ConservativeAndTightOnPixelStar)
 {
   const Shape2D star = PixelStar(128);
-  const SafeDistanceResult r = ComputeSafeDistanceTables({ { "star", star } });
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const SafeDistanceTables& T = r.Tables;
+  const Result<SafeDistanceTables> r = ComputeSafeDistanceTables({ { "star", star } });
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  const SafeDistanceTables& T = *r;
   ASSERT_EQ(T.NumberOfParts(), 1);
   const gs_test::OverlapOracle oracle(RingsAround(T.Classes[0].Outline, { 0, 0 }), T.Parts[0].Radius);
   EXPECT_EQ(CountOverlaps(T, 0, 0, oracle, oracle, 40000, 11), 0);
 
   SafeDistanceOptions plainOptions;
   plainOptions.Conservative = false;
-  const SafeDistanceResult p = ComputeSafeDistanceTables({ { "star", star } }, plainOptions);
-  ASSERT_TRUE(p.Ok);
-  const double ratio = Mean(T.Values) / Mean(p.Tables.Values);
+  const Result<SafeDistanceTables> p = ComputeSafeDistanceTables({ { "star", star } }, plainOptions);
+  ASSERT_TRUE(p.Ok());
+  const double ratio = Mean(T.Values) / Mean(p->Values);
   EXPECT_GE(ratio, 1.0);
   EXPECT_LE(ratio, 1.05);
   // The oracle is not blind: well below the sampled-angle value, bin-centre copies overlap.
@@ -386,7 +386,7 @@ TEST(SafeDistanceTable, ConservativeAndTightOnPixelStar)
   for (int i = 0; i < T.AngleBins; i += 4)
     for (int j = 0; j < T.AngleBins; j += 4)
     {
-      const double d = p.Tables.Value(0, 0, i, j) - 1.5 * T.Step(0, 0);
+      const double d = p->Value(0, 0, i, j) - 1.5 * T.Step(0, 0);
       if (d > 0)
       {
         ++tested;
@@ -411,9 +411,9 @@ TEST(SafeDistanceTable, PolygonsWithHolesAndOrientation)
   EXPECT_TRUE(frame.Contains({ 1.2, 0 }));
   // A small square in the frame's hole still counts as overlapping: the table is beyond it.
   const Shape2D small = ShapeFromPolygons({ RegularPolygon(4, 0.3, Pi / 4) });
-  const SafeDistanceResult r = ComputeSafeDistanceTables({ { "frame", frame }, { "small", small } });
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const SafeDistanceTables& T = r.Tables;
+  const Result<SafeDistanceTables> r = ComputeSafeDistanceTables({ { "frame", frame }, { "small", small } });
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  const SafeDistanceTables& T = *r;
   ASSERT_EQ(T.NumberOfPairs(), 4);
   EXPECT_NEAR(T.Classes[1].Radius, 0.15, 1e-12);
   // Both axis-aligned (bin 0): d >= frame half-width + small half-width (normalized by the
@@ -454,9 +454,9 @@ TEST(SafeDistanceTable, LongShapesAreSplitAlongTheirMajorAxis)
   SafeDistanceOptions options;
   options.AngleBins = 32;
   options.DistanceSteps = 32;
-  const SafeDistanceResult r = ComputeSafeDistanceTables({ { "ellipse", shape } }, options);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const SafeDistanceTables& T = r.Tables;
+  const Result<SafeDistanceTables> r = ComputeSafeDistanceTables({ { "ellipse", shape } }, options);
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  const SafeDistanceTables& T = *r;
   const SafeDistanceClass& c = T.Classes[0];
   EXPECT_NEAR(c.AspectRatio, 5.0, 0.01);
   EXPECT_NEAR(std::abs(Dot(c.MajorAxis, { std::cos(tilt), std::sin(tilt) })), 1.0, 1e-6);
@@ -507,9 +507,9 @@ TEST(SafeDistanceTable, LongShapesAreSplitAlongTheirMajorAxis)
       EXPECT_EQ(CountOverlaps(T, a, b, oracles[a], oracles[b], 4000, 100 + 3 * a + b), 0);
   // A large MaximumAspectRatio keeps it whole.
   options.MaximumAspectRatio = 10;
-  const SafeDistanceResult whole = ComputeSafeDistanceTables({ { "ellipse", shape } }, options);
-  ASSERT_TRUE(whole.Ok);
-  EXPECT_EQ(whole.Tables.NumberOfParts(), 1);
+  const Result<SafeDistanceTables> whole = ComputeSafeDistanceTables({ { "ellipse", shape } }, options);
+  ASSERT_TRUE(whole.Ok());
+  EXPECT_EQ(whole->NumberOfParts(), 1);
 }
 
 TEST(SafeDistanceTable, NonConvexSplitPartsAreConservative)
@@ -529,16 +529,16 @@ TEST(SafeDistanceTable, NonConvexSplitPartsAreConservative)
   SafeDistanceOptions options;
   options.AngleBins = 24;
   options.DistanceSteps = 24;
-  const SafeDistanceResult r =
+  const Result<SafeDistanceTables> r =
     ComputeSafeDistanceTables({ { "comb", ShapeFromPolygons({ comb, hole }) } }, options);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const SafeDistanceTables& T = r.Tables;
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  const SafeDistanceTables& T = *r;
   ASSERT_GE(T.NumberOfParts(), 2);
   SafeDistanceOptions sampledOptions = options;
   sampledOptions.Conservative = false;
-  const SafeDistanceResult sampled =
+  const Result<SafeDistanceTables> sampled =
     ComputeSafeDistanceTables({ { "comb", ShapeFromPolygons({ comb, hole }) } }, sampledOptions);
-  ASSERT_TRUE(sampled.Ok);
+  ASSERT_TRUE(sampled.Ok());
 
   std::vector<gs_test::OverlapOracle> oracles;
   double area = 0.0;
@@ -583,7 +583,7 @@ TEST(SafeDistanceTable, NonConvexSplitPartsAreConservative)
       for (int i = 0; i < T.AngleBins; i += 2)
         for (int j = 0; j < T.AngleBins; j += 2)
         {
-          const double d = sampled.Tables.Value(a, b, i, j) - 1.5 * T.Step(a, b);
+          const double d = sampled->Value(a, b, i, j) - 1.5 * T.Step(a, b);
           if (d <= 0)
             continue;
           ++tested;
@@ -596,17 +596,17 @@ TEST(SafeDistanceTable, NonConvexSplitPartsAreConservative)
 TEST(SafeDistanceTable, DeterministicAcrossThreadCounts)
 {
   const Shape2D star = PixelStar(64);
-  const SafeDistanceResult a = ComputeSafeDistanceTables({ { "s", star }, { "d", ShapeFromMask(DiskMask(50, 12)) } });
+  const Result<SafeDistanceTables> a = ComputeSafeDistanceTables({ { "s", star }, { "d", ShapeFromMask(DiskMask(50, 12)) } });
 #ifdef _OPENMP
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
 #endif
-  const SafeDistanceResult b = ComputeSafeDistanceTables({ { "s", star }, { "d", ShapeFromMask(DiskMask(50, 12)) } });
+  const Result<SafeDistanceTables> b = ComputeSafeDistanceTables({ { "s", star }, { "d", ShapeFromMask(DiskMask(50, 12)) } });
 #ifdef _OPENMP
   omp_set_num_threads(threads);
 #endif
-  ASSERT_TRUE(a.Ok && b.Ok);
-  EXPECT_EQ(a.Tables.Values, b.Tables.Values);
+  ASSERT_TRUE(a.Ok() && b.Ok());
+  EXPECT_EQ(a->Values, b->Values);
 }
 
 TEST(SafeDistanceTable, RejectsBadParametersAndAborts)
@@ -614,20 +614,19 @@ TEST(SafeDistanceTable, RejectsBadParametersAndAborts)
   const Shape2D star = PixelStar(32);
   SafeDistanceOptions o;
   o.AngleBins = 0;
-  EXPECT_FALSE(ComputeSafeDistanceTables({ { "s", star } }, o).Ok);
+  EXPECT_FALSE(ComputeSafeDistanceTables({ { "s", star } }, o).Ok());
   o = {};
   o.DistanceSteps = 0;
-  EXPECT_FALSE(ComputeSafeDistanceTables({ { "s", star } }, o).Ok);
+  EXPECT_FALSE(ComputeSafeDistanceTables({ { "s", star } }, o).Ok());
   o = {};
   o.MaximumAspectRatio = 0.5;
-  EXPECT_FALSE(ComputeSafeDistanceTables({ { "s", star } }, o).Ok);
-  EXPECT_FALSE(ComputeSafeDistanceTables({}, {}).Ok);
-  EXPECT_FALSE(ComputeSafeDistanceTables({ { "empty", Shape2D{} } }, {}).Ok);
+  EXPECT_FALSE(ComputeSafeDistanceTables({ { "s", star } }, o).Ok());
+  EXPECT_FALSE(ComputeSafeDistanceTables({}, {}).Ok());
+  EXPECT_FALSE(ComputeSafeDistanceTables({ { "empty", Shape2D{} } }, {}).Ok());
   int calls = 0;
-  const SafeDistanceResult aborted = ComputeSafeDistanceTables(
+  const Result<SafeDistanceTables> aborted = ComputeSafeDistanceTables(
     { { "s", star } }, {}, [&](double) { return ++calls < 2; });
-  EXPECT_FALSE(aborted.Ok);
-  EXPECT_EQ(aborted.Error, "aborted");
+  EXPECT_TRUE(aborted.IsAborted());
 }
 
 TEST(SafeDistanceTable, AngleBinsWrap)
@@ -642,8 +641,8 @@ TEST(SafeDistanceTable, AngleBinsWrap)
 
 TEST(SafeDistanceTable, TablesTooLargeForMemoryAreRefusedBeforeAllocation)
 {
-  EXPECT_TRUE(SafeDistanceTableSizeError(100, 64).empty()); // 328 MB
-  const std::string error = SafeDistanceTableSizeError(400, 128); // 21 GB
+  EXPECT_TRUE(CheckSafeDistanceTableSize(100, 64).Ok()); // 328 MB
+  const std::string error = CheckSafeDistanceTableSize(400, 128).Message(); // 21 GB
   EXPECT_NE(error.find("MB of tables"), std::string::npos) << error;
   // 400 classes: the parts are cheap, the values are refused with that message.
   std::vector<SafeDistanceInput> classes;
@@ -653,9 +652,9 @@ TEST(SafeDistanceTable, TablesTooLargeForMemoryAreRefusedBeforeAllocation)
   }
   SafeDistanceOptions options;
   options.AngleBins = 128;
-  const SafeDistanceResult parts = ComputeSafeDistanceParts(classes, options);
-  ASSERT_TRUE(parts.Ok) << parts.Error;
-  const SafeDistanceResult values = ComputeSafeDistanceValues(parts.Tables, options);
-  EXPECT_FALSE(values.Ok);
-  EXPECT_EQ(values.Error, error);
+  const Result<SafeDistanceTables> parts = ComputeSafeDistanceParts(classes, options);
+  ASSERT_TRUE(parts.Ok()) << parts.Message();
+  const Result<SafeDistanceTables> values = ComputeSafeDistanceValues(*parts, options);
+  EXPECT_FALSE(values.Ok());
+  EXPECT_EQ(values.Message(), error);
 }

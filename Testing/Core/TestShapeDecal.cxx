@@ -112,8 +112,8 @@ TEST(ShapeDecal, DecalsAgreeWithOutlinesOnAPlane)
     o.MaximalFailures = 1000;
     o.KeepInside = true; // (an outline cut by the boundary is not the silhouette there)
     ShapeDistributor d(plane);
-    const ShapeDistributionResult r = d.Run(t, directions, {}, o);
-    ASSERT_TRUE(r.Ok) << r.Error;
+    const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
     for (const bool longShapes : { false, true })
     {
       const Agreement a = Check(d, plane, t, longShapes);
@@ -151,8 +151,8 @@ TEST(ShapeDecal, DecalsAgreeWithOutlinesOnASphere)
   o.Seed = 1;
   o.MaximalFailures = 1000;
   ShapeDistributor d(sphere, &graph);
-  const ShapeDistributionResult r = d.Run(t, directions, {}, o);
-  ASSERT_TRUE(r.Ok) << r.Error;
+  const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+  ASSERT_TRUE(r.Ok()) << r.Message();
   for (const bool longShapes : { false, true })
   {
     // (Near the poles, the field's singularities, a long shape's curve turns tighter than its
@@ -282,9 +282,9 @@ TEST(ShapeDecal, SplitDecalsDrawABentShapeNarrowerThanTheTriangles)
   o.MaximalFailures = 500;
   o.KeepInside = true;
   ShapeDistributor d(plane);
-  const ShapeDistributionResult r = d.Run(t, directions, {}, o);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  ASSERT_GT(r.Shapes.size(), 5u);
+  const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  ASSERT_GT(r->Shapes.size(), 5u);
   // All samples (most lie within half a radius of a kink of the curve: triangles of 1.5 against
   // a shape of length 2.4), and those farther from the kinks.
   const Drawn whole = CompareDrawn(d, plane, t, o.ShapeSize, 0.0, 0.0);
@@ -294,7 +294,7 @@ TEST(ShapeDecal, SplitDecalsDrawABentShapeNarrowerThanTheTriangles)
               "of the radius from where the map puts it, %lld of %lld samples more than 5%% off), "
               "split %lld (up to %.4f, %lld of %lld; beyond half a radius from the kinks: up to %.4f, "
               "%lld of %lld)\n",
-    r.Shapes.size(), whole.Triangles, whole.Max, whole.Wrong, whole.Samples, split.Triangles, split.Max,
+    r->Shapes.size(), whole.Triangles, whole.Max, whole.Wrong, whole.Samples, split.Triangles, split.Max,
     split.Wrong, split.Samples, splitFar.Max, splitFar.Wrong, splitFar.Samples);
   EXPECT_GT(whole.Max, 0.15);
   EXPECT_GT(whole.Wrong, whole.Samples / 5);
@@ -327,9 +327,9 @@ TEST(ShapeDrawing, DrawsEveryShapeAsItsOwnCallsAndLiftsAlongTheNormals)
   o.MaximalFailures = 500;
   o.NumberOfThreads = 2;
   ShapeDistributor d(plane);
-  const ShapeDistributionResult r = d.Run(t, directions, {}, o);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const int n = static_cast<int>(r.Shapes.size());
+  const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  const int n = static_cast<int>(r->Shapes.size());
   ASSERT_GT(n, 5);
   for (const int threads : { 1, 2 })
   {

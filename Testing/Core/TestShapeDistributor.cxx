@@ -38,9 +38,9 @@ SafeDistanceTables Tables(const std::vector<std::vector<Vec2>>& classes, int bin
   o.AngleBins = bins;
   o.DistanceSteps = 64;
   o.Rows = 512;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return *r;
 }
 
 struct Plane
@@ -57,12 +57,12 @@ Plane MakePlane(int n, double size, Vec3 direction = { 1.0, 0.0, 0.0 })
   return p;
 }
 
-ShapeDistributionResult Distribute(ShapeDistributor& d, const Plane& p, const SafeDistanceTables& t,
+ShapeDistribution Distribute(ShapeDistributor& d, const Plane& p, const SafeDistanceTables& t,
   ShapeDistributionOptions o, const std::vector<double>& density = {})
 {
-  ShapeDistributionResult r = d.Run(t, p.Directions, density, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r;
+  Result<ShapeDistribution> r = d.Run(t, p.Directions, density, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return std::move(*r);
 }
 } // namespace
 
@@ -80,7 +80,7 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
   {
     o.Mode = mode;
     ShapeDistributor d(plane.Mesh);
-    const ShapeDistributionResult r = Distribute(d, plane, t, o);
+    const ShapeDistribution r = Distribute(d, plane, t, o);
     int pairs = 0;
     EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize, &pairs), 0)
       << "mode " << static_cast<int>(mode);
@@ -122,7 +122,7 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
   const SafeDistanceTables fine = Tables({ Star(1.0, 0.4) }, 128);
   o.Mode = DistributionMode::Greedy;
   ShapeDistributor greedy(plane.Mesh);
-  const ShapeDistributionResult r = Distribute(greedy, plane, fine, o);
+  const ShapeDistribution r = Distribute(greedy, plane, fine, o);
   EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, fine, r.Shapes, o.ShapeSize), 0);
   EXPECT_GE(static_cast<double>(r.Shapes.size()), 0.98 * counts[DistributionMode::Greedy]);
 }
@@ -212,7 +212,7 @@ TEST(ShapeDistributor, MultipleClassesFollowTheirWeightsWithoutConflicts)
   o.ClassWeights = { 1.0, 3.0, 0.0 };
   o.MaximumShapes = 150;
   ShapeDistributor d(plane.Mesh);
-  const ShapeDistributionResult r = Distribute(d, plane, t, o);
+  const ShapeDistribution r = Distribute(d, plane, t, o);
   ASSERT_EQ(r.Shapes.size(), 150u);
   EXPECT_FALSE(r.Statistics.Maximal);
   int perClass[3] = { 0, 0, 0 };
@@ -226,7 +226,7 @@ TEST(ShapeDistributor, MultipleClassesFollowTheirWeightsWithoutConflicts)
   o.MaximumShapes = 0;
   o.MaximalFailures = 3000;
   o.ClassWeights = { 1.0, 1.0, 1.0 };
-  const ShapeDistributionResult full = Distribute(d, plane, t, o);
+  const ShapeDistribution full = Distribute(d, plane, t, o);
   EXPECT_GT(full.Shapes.size(), 150u);
   EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, full.Shapes, o.ShapeSize), 0);
 }
@@ -248,7 +248,7 @@ TEST(ShapeDistributor, DensityScalesShapesAndCounts)
   o.Seed = 5;
   o.MaximalFailures = 4000;
   ShapeDistributor d(plane.Mesh);
-  const ShapeDistributionResult r = Distribute(d, plane, t, o, density);
+  const ShapeDistribution r = Distribute(d, plane, t, o, density);
   EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize), 0);
   int left = 0, right = 0;
   for (const PlacedShape& s : r.Shapes)
@@ -265,7 +265,7 @@ TEST(ShapeDistributor, DensityScalesShapesAndCounts)
   // A zero factor masks a region.
   for (int v = 0; v < plane.Mesh.NumberOfVertices(); ++v)
     density[v] = plane.Mesh.Position(v).x < 6.0 ? 0.0 : 1.0;
-  const ShapeDistributionResult masked = Distribute(d, plane, t, o, density);
+  const ShapeDistribution masked = Distribute(d, plane, t, o, density);
   ASSERT_FALSE(masked.Shapes.empty());
   for (const PlacedShape& s : masked.Shapes)
     EXPECT_GT(s.Position.x, 6.0 - 1e-9);
@@ -282,7 +282,7 @@ TEST(ShapeDistributor, LongShapesFollowTheFieldInParts)
   o.Seed = 2;
   o.MaximalFailures = 3000;
   ShapeDistributor d(plane.Mesh);
-  const ShapeDistributionResult r = Distribute(d, plane, t, o);
+  const ShapeDistribution r = Distribute(d, plane, t, o);
   ASSERT_GT(r.Shapes.size(), 10u);
   EXPECT_EQ(gs_test::CountPlanarOverlaps(plane.Mesh, t, r.Shapes, o.ShapeSize), 0);
   double reach = 0.0; // the bar's half length (normalized)
@@ -328,22 +328,22 @@ TEST(ShapeDistributor, CurvedSurfaceWithGraphAndDecals)
   o.Seed = 1;
   o.MaximalFailures = 2000;
   ShapeDistributor d(sphere, &graph);
-  const ShapeDistributionResult r = d.Run(t, directions, {}, o);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  ASSERT_GT(r.Shapes.size(), 100u);
+  const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+  ASSERT_TRUE(r.Ok()) << r.Message();
+  ASSERT_GT(r->Shapes.size(), 100u);
   // Every pair of centres keeps at least the smallest safe distance of the table (Euclidean
   // distance is a lower bound of the geodesic one: allow its 0.2% curvature gap).
   double smallest = 1e300;
   for (double v : t.Values)
     smallest = std::min(smallest, v);
-  for (std::size_t a = 0; a < r.Shapes.size(); ++a)
-    for (std::size_t b = a + 1; b < r.Shapes.size(); ++b)
-      EXPECT_GT(Norm(r.Shapes[a].Position - r.Shapes[b].Position), smallest * o.ShapeSize * 0.99);
+  for (std::size_t a = 0; a < r->Shapes.size(); ++a)
+    for (std::size_t b = a + 1; b < r->Shapes.size(); ++b)
+      EXPECT_GT(Norm(r->Shapes[a].Position - r->Shapes[b].Position), smallest * o.ShapeSize * 0.99);
   // Decals: faces around each shape with texture coordinates centred on the shape.
   const ShapeDecal decal = d.Decal(0);
   ASSERT_GT(decal.Faces.size(), 3u);
   Vec2 uv{ 0, 0 };
-  const bool centreCovered = decal.TextureCoordinate(r.Shapes[0].Centre, uv);
+  const bool centreCovered = decal.TextureCoordinate(r->Shapes[0].Centre, uv);
   EXPECT_NEAR(uv.x, 0.5, 1e-3);
   EXPECT_NEAR(uv.y, 0.5, 1e-3);
   EXPECT_TRUE(centreCovered);
@@ -357,36 +357,47 @@ TEST(ShapeDistributor, BadInputGetsClearErrors)
   ShapeDistributionOptions o;
   o.ShapeSize = -1.0;
   auto r = d.Run(t, plane.Directions, {}, o);
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("ShapeSize"), std::string::npos);
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("ShapeSize"), std::string::npos);
   o.ShapeSize = 1e-12;
   r = d.Run(t, plane.Directions, {}, o);
-  EXPECT_FALSE(r.Ok);
+  EXPECT_FALSE(r.Ok());
   o.ShapeSize = 0.2;
   r = d.Run(t, std::vector<Vec3>(3), {}, o);
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("direction"), std::string::npos);
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("direction"), std::string::npos);
   r = d.Run(t, plane.Directions, std::vector<double>(plane.Mesh.NumberOfVertices(), -1.0), o);
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("density"), std::string::npos);
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("density"), std::string::npos);
   o.ClassWeights = { 1.0, 2.0 };
   r = d.Run(t, plane.Directions, {}, o);
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("ClassWeights"), std::string::npos);
+  EXPECT_FALSE(r.Ok());
+  EXPECT_NE(r.Message().find("ClassWeights"), std::string::npos);
   o.ClassWeights.clear();
   r = d.Run(SafeDistanceTables(), plane.Directions, {}, o);
-  EXPECT_FALSE(r.Ok);
+  EXPECT_FALSE(r.Ok());
+  o.Mode = static_cast<DistributionMode>(7);
+  r = d.Run(t, plane.Directions, {}, o);
+  EXPECT_NE(r.Message().find("Mode 7"), std::string::npos) << r.Message();
+  o.Mode = DistributionMode::Random;
+  // A saddle vertex graph built for another mesh is refused (not silently dropped).
+  const Plane other = MakePlane(5, 1.0);
+  SaddleVertexGraph otherGraph;
+  std::string error;
+  ASSERT_TRUE(otherGraph.Build(other.Mesh, {}, nullptr, error)) << error;
+  ShapeDistributor mismatched(plane.Mesh, &otherGraph);
+  r = mismatched.Run(t, plane.Directions, {}, o);
+  EXPECT_NE(r.Message().find("another mesh"), std::string::npos) << r.Message();
   // A shape larger than the mesh: at most one fits; a NaN direction gets a random orientation.
   o.ShapeSize = 5.0;
   std::vector<Vec3> nan(plane.Directions.size(), Vec3{ NAN, 0, 0 });
   r = d.Run(t, nan, {}, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  EXPECT_LE(r.Shapes.size(), 1u);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  EXPECT_LE(r->Shapes.size(), 1u);
   // Abort.
   o.ShapeSize = 0.05;
   r = d.Run(t, plane.Directions, {}, o, [](double) { return false; });
-  EXPECT_FALSE(r.Ok);
-  EXPECT_EQ(r.Error, "aborted");
+  EXPECT_TRUE(r.IsAborted());
 }
 
 TEST(ShapeDistributor, KeepInsideKeepsCirclesOnTheSurface)
@@ -398,13 +409,13 @@ TEST(ShapeDistributor, KeepInsideKeepsCirclesOnTheSurface)
   o.Seed = 3;
   o.MaximalFailures = 3000;
   ShapeDistributor d(plane.Mesh);
-  const ShapeDistributionResult loose = Distribute(d, plane, t, o);
+  const ShapeDistribution loose = Distribute(d, plane, t, o);
   bool overhang = false;
   for (const PlacedShape& s : loose.Shapes)
     overhang = overhang || s.Position.x < 0.5 || s.Position.x > 9.5 || s.Position.y < 0.5 || s.Position.y > 9.5;
   EXPECT_TRUE(overhang) << "without KeepInside some stars should hang over the sides";
   o.KeepInside = true;
-  const ShapeDistributionResult inside = Distribute(d, plane, t, o);
+  const ShapeDistribution inside = Distribute(d, plane, t, o);
   ASSERT_GT(inside.Shapes.size(), 40u);
   for (const PlacedShape& s : inside.Shapes)
   {
@@ -433,7 +444,7 @@ TEST(ShapeDistributor, ExpectedCountIsTheOrderOfMagnitude)
     o.Seed = 5;
     o.MaximalFailures = 2000;
     ShapeDistributor d(plane.Mesh);
-    const ShapeDistributionResult r = Distribute(d, plane, t, o, density);
+    const ShapeDistribution r = Distribute(d, plane, t, o, density);
     const double expected = ShapeDistributor::ExpectedCount(plane.Mesh, t, density, o.ShapeSize);
     std::printf("density %.1f: %zu shapes, expected %.0f\n", f, r.Shapes.size(), expected);
     EXPECT_GT(static_cast<double>(r.Shapes.size()), 0.5 * expected);

@@ -57,9 +57,9 @@ SafeDistanceTables StarAndTile(int bins)
   in.push_back({ "tile", ShapeFromPolygons({ tile }) });
   SafeDistanceOptions o;
   o.AngleBins = bins;
-  SafeDistanceResult r = ComputeSafeDistanceTables(in, o);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Tables;
+  Result<SafeDistanceTables> r = ComputeSafeDistanceTables(in, o);
+  EXPECT_TRUE(r.Ok()) << r.Message();
+  return *r;
 }
 
 // The class outline of shape s placed rigidly in the plane (its circle centre at the shape's
@@ -165,18 +165,18 @@ TEST(ShapeDistributorBoundary, ShapesOverTheBoundaryAreDrawnCutAndDoNotOverlap)
     o.Seed = c.Seed;
     o.KeepInside = c.KeepInside;
     ShapeDistributor d(mesh, &graph);
-    const ShapeDistributionResult r = d.Run(t, directions, density, o);
-    ASSERT_TRUE(r.Ok) << r.Error;
-    ASSERT_GT(r.Shapes.size(), 300u);
+    const Result<ShapeDistribution> r = d.Run(t, directions, density, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
+    ASSERT_GT(r->Shapes.size(), 300u);
     const std::string name = "mode " + std::to_string(static_cast<int>(c.Mode)) + " seed " +
       std::to_string(c.Seed) + (c.KeepInside ? " KeepInside" : "");
-    EXPECT_EQ(gs_test::CountPlanarOverlaps(mesh, t, r.Shapes, o.ShapeSize), 0) << name;
+    EXPECT_EQ(gs_test::CountPlanarOverlaps(mesh, t, r->Shapes, o.ShapeSize), 0) << name;
     const auto drawn = gs_test::DrawnPlanarOutlines(mesh, d, spacing);
     std::vector<double> radius;
-    std::vector<std::vector<std::vector<Vec2>>> clamped(r.Shapes.size());
-    for (std::size_t s = 0; s < r.Shapes.size(); ++s)
+    std::vector<std::vector<std::vector<Vec2>>> clamped(r->Shapes.size());
+    for (std::size_t s = 0; s < r->Shapes.size(); ++s)
     {
-      const PlacedShape& shape = r.Shapes[s];
+      const PlacedShape& shape = r->Shapes[s];
       const double unit = o.ShapeSize * shape.Scale;
       radius.push_back(t.Classes[shape.ClassId].Radius * unit * (1.0 + 1e-9));
       // Drawn = the rigid shape within the square (the plane's exponential map is rigid).
@@ -204,8 +204,8 @@ TEST(ShapeDistributorBoundary, ShapesOverTheBoundaryAreDrawnCutAndDoNotOverlap)
         clamped[s].push_back(line);
       }
     }
-    EXPECT_EQ(gs_test::CountDrawnOverlaps(r.Shapes, drawn, radius), 0) << name;
-    clampedOverlaps += gs_test::CountDrawnOverlaps(r.Shapes, clamped, radius);
+    EXPECT_EQ(gs_test::CountDrawnOverlaps(r->Shapes, drawn, radius), 0) << name;
+    clampedOverlaps += gs_test::CountDrawnOverlaps(r->Shapes, clamped, radius);
   }
   EXPECT_GT(cutShapes, 100) << "shapes hang over the boundary";
   EXPECT_GE(clampedOverlaps, 2) << "the oracle finds the former drawing's overlaps";
@@ -234,9 +234,9 @@ TEST(ShapeDistributorBoundary, LongBentShapesOverTheBoundaryDoNotOverlap)
   in.push_back({ "banana", ShapeFromPolygons({ banana }) });
   SafeDistanceOptions so;
   so.AngleBins = 64;
-  SafeDistanceResult tables = ComputeSafeDistanceTables(in, so);
-  ASSERT_TRUE(tables.Ok) << tables.Error;
-  ASSERT_GT(tables.Tables.Classes[1].Parts.size(), 1u);
+  Result<SafeDistanceTables> tables = ComputeSafeDistanceTables(in, so);
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
+  ASSERT_GT(tables->Classes[1].Parts.size(), 1u);
   std::vector<Vec3> directions(mesh.NumberOfFaces());
   for (int f = 0; f < mesh.NumberOfFaces(); ++f)
   {
@@ -255,13 +255,13 @@ TEST(ShapeDistributorBoundary, LongBentShapesOverTheBoundaryDoNotOverlap)
       o.MaximalFailures = 2000;
       o.DrawnCheck = drawnCheck;
       ShapeDistributor d(mesh);
-      const ShapeDistributionResult r = d.Run(tables.Tables, directions, {}, o);
-      ASSERT_TRUE(r.Ok) << r.Error;
+      const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+      ASSERT_TRUE(r.Ok()) << r.Message();
       std::vector<double> radius;
-      for (const PlacedShape& s : r.Shapes)
-        radius.push_back(tables.Tables.Classes[s.ClassId].Radius * o.ShapeSize * s.Scale);
+      for (const PlacedShape& s : r->Shapes)
+        radius.push_back(tables->Classes[s.ClassId].Radius * o.ShapeSize * s.Scale);
       const auto drawn = gs_test::DrawnPlanarOutlines(mesh, d, 0.25 * mesh.MeanEdgeLength());
-      (drawnCheck ? with : without) += gs_test::CountDrawnOverlaps(r.Shapes, drawn, radius, 1e-3);
+      (drawnCheck ? with : without) += gs_test::CountDrawnOverlaps(r->Shapes, drawn, radius, 1e-3);
     }
   }
   std::printf("drawn overlaps over 3 seeds: tables alone %d, with the drawn check %d\n", without, with);

@@ -44,10 +44,10 @@ struct Hashes
 
 // Placements (what DistributionBenchmark hashes, and the scale, parts and curves), every decal
 // (faces, corners, texture coordinates) and every outline at the drawn check's spacing.
-Hashes Hash(const ShapeDistributor& d, const ShapeDistributionResult& r)
+Hashes Hash(const ShapeDistributor& d, const Result<ShapeDistribution>& r)
 {
   Hasher placements, decals, outlines;
-  for (const PlacedShape& s : r.Shapes)
+  for (const PlacedShape& s : r->Shapes)
   {
     placements.AddValue(s.Position);
     placements.AddValue(s.Direction);
@@ -67,7 +67,7 @@ Hashes Hash(const ShapeDistributor& d, const ShapeDistributionResult& r)
     }
     placements.AddValue(s.CurveCentre);
   }
-  for (int s = 0; s < static_cast<int>(r.Shapes.size()); ++s)
+  for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
   {
     const ShapeDecal decal = d.Decal(s);
     decals.AddVector(decal.Faces);
@@ -83,7 +83,7 @@ Hashes Hash(const ShapeDistributor& d, const ShapeDistributionResult& r)
       outlines.AddValue(piece.Closed);
     }
   }
-  return { placements.H, decals.H, outlines.H, static_cast<int>(r.Shapes.size()), 0.0 };
+  return { placements.H, decals.H, outlines.H, static_cast<int>(r->Shapes.size()), 0.0 };
 }
 
 struct Case
@@ -159,8 +159,8 @@ TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
     {
       o.NumberOfThreads = threads;
       ShapeDistributor d(mesh, c.Graph ? (c.Sphere ? &sphereGraph : &planeGraph) : nullptr);
-      const ShapeDistributionResult r = d.Run(t, directions, density, o);
-      ASSERT_TRUE(r.Ok) << r.Error;
+      const Result<ShapeDistribution> r = d.Run(t, directions, density, o);
+      ASSERT_TRUE(r.Ok()) << r.Message();
       Hashes h = Hash(d, r);
       h.Probe = d.ProbeFitFraction(200, 1);
       std::printf("%s, %d thread(s): %d shapes, { 0x%016" PRIx64 "ull, 0x%016" PRIx64 "ull, 0x%016" PRIx64
@@ -171,7 +171,7 @@ TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
         first = h;
         EXPECT_GT(h.Shapes, 10) << c.Name;
         int longShapes = 0;
-        for (const PlacedShape& s : r.Shapes)
+        for (const PlacedShape& s : r->Shapes)
         {
           longShapes += s.Curve.empty() ? 0 : 1;
         }

@@ -44,12 +44,11 @@ int main(int argc, char* argv[])
     star.emplace_back(64 + r * std::cos(a), 64 + r * std::sin(a));
   }
   const std::string file = temp + "/msdt_star.png";
-  std::string error;
-  if (!gs::WriteSilhouetteImage(gs::RasterizeShape(gs::ShapeFromPolygons({ star }), 128, 128,
-                                  { 0.0, 0.0 }, 1.0),
-        file, true, &error))
+  if (const gs::Status written = gs::WriteSilhouetteImage(
+        gs::RasterizeShape(gs::ShapeFromPolygons({ star }), 128, 128, { 0.0, 0.0 }, 1.0), file, true);
+      !written.Ok())
   {
-    std::cerr << error << "\n";
+    std::cerr << written.Message() << "\n";
     return 1;
   }
 

@@ -86,15 +86,17 @@ int main(int argc, char* argv[])
   const std::string diskRGBA = temp + "/msdt_disk_rgba.png";
   const std::string diskGrey = temp + "/msdt_disk_grey.jpg";
   const std::string empty = temp + "/msdt_empty.png";
-  std::string error;
-  if (!gs::WriteSilhouetteImage(Disk(80, 30), diskRGBA, true, &error) ||
-    !gs::WriteSilhouetteImage(Disk(80, 15), diskGrey, false, &error))
+  gs::SilhouetteMask none = Disk(16, 0.1); // all transparent
+  for (const gs::Status written : { gs::WriteSilhouetteImage(Disk(80, 30), diskRGBA, true),
+         gs::WriteSilhouetteImage(Disk(80, 15), diskGrey, false),
+         gs::WriteSilhouetteImage(none, empty, true) })
   {
-    std::cerr << error << "\n";
-    return 1;
+    if (!written.Ok())
+    {
+      std::cerr << written.Message() << "\n";
+      return 1;
+    }
   }
-  gs::SilhouetteMask none = Disk(16, 0.1);
-  gs::WriteSilhouetteImage(none, empty, true, &error);
 
   vtkNew<vtkCallbackCommand> onError;
   onError->SetCallback(CountError);

@@ -84,13 +84,15 @@ int main(int argc, char* argv[])
       temp = argv[i + 1];
   const std::string square = temp + "/msdt_pipeline_square.png";
   const std::string bar = temp + "/msdt_pipeline_bar.png";
-  std::string error;
   // A square (1 part) and a 5:1 bar (aspect 5 > 2: 3 parts): P = 4 parts, 16 tables.
-  if (!gs::WriteSilhouetteImage(Rectangle(64, 20, 20), square, true, &error) ||
-    !gs::WriteSilhouetteImage(Rectangle(64, 50, 10), bar, true, &error))
+  for (const gs::Status written : { gs::WriteSilhouetteImage(Rectangle(64, 20, 20), square, true),
+         gs::WriteSilhouetteImage(Rectangle(64, 50, 10), bar, true) })
   {
-    std::cerr << error << "\n";
-    return 1;
+    if (!written.Ok())
+    {
+      std::cerr << written.Message() << "\n";
+      return 1;
+    }
   }
 
   vtkNew<vtkMSDTSource> source;
@@ -179,9 +181,10 @@ int main(int argc, char* argv[])
   // Rewriting a file (new size, later modification time) re-reads it once Modified() is called
   // (a pipeline only re-executes when something is modified).
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  if (!gs::WriteSilhouetteImage(Rectangle(64, 60, 6), bar, true, &error))
+  if (const gs::Status rewritten = gs::WriteSilhouetteImage(Rectangle(64, 60, 6), bar, true);
+      !rewritten.Ok())
   {
-    std::cerr << error << "\n";
+    std::cerr << rewritten.Message() << "\n";
     return 1;
   }
   source->Modified();

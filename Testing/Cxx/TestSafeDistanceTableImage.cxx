@@ -82,22 +82,21 @@ int main()
   gs::SafeDistanceOptions options;
   options.AngleBins = 16;
   options.DistanceSteps = 32;
-  const gs::SafeDistanceResult computed = gs::ComputeSafeDistanceTables(in, options);
-  Check(computed.Ok, "core tables: " + computed.Error);
-  Check(computed.Tables.NumberOfParts() > 2, "the bar is split into parts");
+  const gs::Result<gs::SafeDistanceTables> computed = gs::ComputeSafeDistanceTables(in, options);
+  Check(computed.Ok(), "core tables: " + computed.Message());
+  Check(computed->NumberOfParts() > 2, "the bar is split into parts");
   vtkNew<vtkImageData> image;
-  vtkSafeDistanceTableImage::ToImage(computed.Tables, image);
+  vtkSafeDistanceTableImage::ToImage(*computed, image);
   int dims[3];
   image->GetDimensions(dims);
-  const int P = computed.Tables.NumberOfParts();
+  const int P = computed->NumberOfParts();
   Check(dims[0] == 16 && dims[1] == 16 && dims[2] == P * P, "image dimensions");
   Check(image->GetPointData()->GetScalars() &&
       std::string(image->GetPointData()->GetScalars()->GetName()) == vtkSafeDistanceTableImage::SafeDistance,
     "SafeDistance is the active scalars");
-  gs::SafeDistanceTables back;
-  std::string error;
-  Check(vtkSafeDistanceTableImage::FromImage(image, back, error), "read back: " + error);
-  Compare(computed.Tables, back, "core -> image -> core");
+  const gs::Result<gs::SafeDistanceTables> back = vtkSafeDistanceTableImage::FromImage(image);
+  Check(back.Ok(), "read back: " + back.Message());
+  Compare(*computed, *back, "core -> image -> core");
 
   // 2. MSDT Source's output (polygons with a ClassId) reads back and writes again identically.
   vtkNew<vtkPolyData> polygons;
@@ -120,31 +119,36 @@ int main()
   source->SetDistanceSteps(16);
   source->Update();
   vtkImageData* produced = vtkImageData::SafeDownCast(source->GetOutputDataObject(0));
-  gs::SafeDistanceTables fromSource, again;
-  Check(produced && vtkSafeDistanceTableImage::FromImage(produced, fromSource, error), "MSDT Source's output: " + error);
+  const gs::Result<gs::SafeDistanceTables> read = vtkSafeDistanceTableImage::FromImage(produced);
+  Check(produced && read.Ok(), "MSDT Source's output: " + read.Message());
+  const gs::SafeDistanceTables& fromSource = *read;
   vtkNew<vtkImageData> rewritten;
   vtkSafeDistanceTableImage::ToImage(fromSource, rewritten);
-  Check(vtkSafeDistanceTableImage::FromImage(rewritten, again, error), "rewritten: " + error);
-  Compare(fromSource, again, "MSDT Source -> core -> image -> core");
+  const gs::Result<gs::SafeDistanceTables> again = vtkSafeDistanceTableImage::FromImage(rewritten);
+  Check(again.Ok(), "rewritten: " + again.Message());
+  Compare(fromSource, *again, "MSDT Source -> core -> image -> core");
   Check(fromSource.AngleBins == 8 && fromSource.Classes.size() == 1 && fromSource.Scale > 9.0,
     "MSDT Source's tables: 8 bins, one class, scale = the star's radius in polygon units");
 
   // 3. Not MSDT Source's: refused with a message.
   vtkNew<vtkImageData> plain;
   plain->SetDimensions(4, 4, 1);
-  Check(!vtkSafeDistanceTableImage::FromImage(plain, back, error) && error.find("MSDT Source") != std::string::npos,
-    "a plain image is refused: " + error);
+  const gs::Result<gs::SafeDistanceTables> fromPlain = vtkSafeDistanceTableImage::FromImage(plain);
+  Check(!fromPlain.Ok() && fromPlain.Message().find("MSDT Source") != std::string::npos,
+    "a plain image is refused: " + fromPlain.Message());
   vtkNew<vtkImageData> broken;
   broken->DeepCopy(image);
   broken->GetFieldData()->RemoveArray(vtkSafeDistanceTableImage::PartRadius);
-  Check(!vtkSafeDistanceTableImage::FromImage(broken, back, error), "missing PartRadius is refused");
+  Check(!vtkSafeDistanceTableImage::FromImage(broken).Ok(), "missing PartRadius is refused");
   vtkNew<vtkImageData> inconsistent;
   inconsistent->DeepCopy(image);
   vtkDataArray* values = inconsistent->GetPointData()->GetArray(vtkSafeDistanceTableImage::SafeDistance);
   values->SetNumberOfTuples(values->GetNumberOfTuples() - 1);
-  Check(!vtkSafeDistanceTableImage::FromImage(inconsistent, back, error) && error.find("inconsistent") != std::string::npos,
-    "too few values are refused: " + error);
+  const gs::Result<gs::SafeDistanceTables> fromInconsistent =
+    vtkSafeDistanceTableImage::FromImage(inconsistent);
+  Check(!fromInconsistent.Ok() && fromInconsistent.Message().find("inconsistent") != std::string::npos,
+    "too few values are refused: " + fromInconsistent.Message());
 
-  std::printf("%s (%d part(s), %zu values)\n", failures ? "FAILED" : "OK", P, computed.Tables.Values.size());
+  std::printf("%s (%d part(s), %zu values)\n", failures ? "FAILED" : "OK", P, computed->Values.size());
   return failures ? 1 : 0;
 }

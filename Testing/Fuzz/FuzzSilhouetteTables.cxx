@@ -24,13 +24,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     pixels[i] = data[3 + i] / 255.0f;
   }
-  const gs::SilhouetteReadResult read =
+  const gs::Result<gs::SilhouetteImage> read =
     gs::MakeSilhouette(pixels.data(), width, height, channels, alpha);
-  if (!read.Ok)
+  if (!read.Ok())
   {
     return 0;
   }
-  const gs::Shape2D shape = gs::ShapeFromMask(read.Mask);
+  const gs::Shape2D shape = gs::ShapeFromMask(read->Mask);
   gs::SafeDistanceOptions options;
   options.AngleBins = 4 + data[2] % 5;
   options.DistanceSteps = 8;
@@ -41,10 +41,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     classes.push_back({ "b", gs::ShapeFromPolygons(shape.Rings) });
   }
-  const gs::SafeDistanceResult r = gs::ComputeSafeDistanceTables(classes, options);
-  if (r.Ok)
+  const gs::Result<gs::SafeDistanceTables> r = gs::ComputeSafeDistanceTables(classes, options);
+  if (r.Ok())
   {
-    for (double v : r.Tables.Values)
+    for (double v : r->Values)
     {
       if (!(v >= 0.0) || v > 1e9)
       {
