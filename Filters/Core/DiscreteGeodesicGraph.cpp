@@ -50,7 +50,9 @@ DGGPropagation::DGGPropagation(const TriangleMesh& mesh)
   const int nv = M.NumberOfVertices();
   Dist.assign(nv, Inf);
   IsCovered.assign(nv, 0);
-  Angle.assign(nv, 0.0);
+  AnglePhi.assign(nv, 0.0);
+  AngleX.assign(nv, 1.0);
+  AngleY.assign(nv, 0.0);
   CrossHalfedge.assign(nv, -1);
   CrossX.assign(nv, 0.0);
   Tolerance = 1e-11 * std::max(M.BoundingBoxDiagonal(), 1e-300);
@@ -69,7 +71,8 @@ void DGGPropagation::Reset()
   Stats = DGGStatistics();
 }
 
-void DGGPropagation::Reach(int v, double d, bool covered, double angle, int via, double crossing)
+void DGGPropagation::Reach(
+  int v, double d, bool covered, double phi, double dx, double dy, int via, double crossing)
 {
   if (d < Dist[v] - Tolerance)
   {
@@ -79,7 +82,9 @@ void DGGPropagation::Reach(int v, double d, bool covered, double angle, int via,
     }
     Dist[v] = d;
     IsCovered[v] = covered;
-    Angle[v] = angle;
+    AnglePhi[v] = phi;
+    AngleX[v] = dx;
+    AngleY[v] = dy;
     CrossHalfedge[v] = via;
     CrossX[v] = crossing;
   }
@@ -141,116 +146,102 @@ void DGGPropagation::AddAnchor(Window& w, double x, double y)
 
 bool DGGPropagation::Covered(const Window& w, double epsilon) const
 {
-  int n = w.NumAnchors;
+  const int n = w.NumAnchors;
   if (n == 0)
   {
     return false;
   }
-  Anchor anchors[MaxAnchors];
-  std::copy(w.Anchors, w.Anchors + n, anchors);
   const double ix = w.Ix, iy = w.Iy;
-  // Slack of anchor k at the edge point (t, 0); covered where some anchor's slack is >= 0.
   const double grow = 1.0 + epsilon;
-  auto slack = [&](int k, double t) {
-    return grow * Hypot(t - ix, iy) - Hypot(t - anchors[k].X, anchors[k].Y) - anchors[k].D;
-  };
-  // A piece [t0, t1] is covered by anchor k when (slack(t0) + slack(t1) - L (t1 - t0)) / 2 >= 0,
-  // L a Lipschitz constant of the slack on the piece: its derivative is
-  // (1 + epsilon) cos(aI) - cos(aA), aI and aA the angles of x - I and x - a to the edge, so
-  // |derivative| <= epsilon + min(2, theta), theta the angle I x a. Where that angle is acute (x
-  // outside the circle on [I, a]), theta <= pi/2 sin(theta) = pi/2 |(a - I) x (x - I)| / (|x - I|
-  // |x - a|), bounded over the piece by its ends and its distances to I and a. Pieces neither
-  // proven covered nor uncovered at an end are halved, up to a depth.
-  auto lipschitz = [&](int k, double t0, double t1) {
-    const Anchor& a = anchors[k];
-    const double ax = a.X - ix, ay = a.Y - iy;
-    const double mx = 0.5 * (a.X + ix), my = 0.5 * (a.Y + iy);
-    if (!(window_geometry::SegmentDistance(mx, my, t0, t1) > 0.5 * a.D))
-    {
-      return epsilon + 2.0;
-    }
-    const double c0 = std::abs(ax * (-iy) - ay * (t0 - ix));
-    const double c1 = std::abs(ax * (-iy) - ay * (t1 - ix));
-    const double p = window_geometry::SegmentDistance(ix, iy, t0, t1);
-    const double q = window_geometry::SegmentDistance(a.X, a.Y, t0, t1);
-    const double theta = 1.5707963267948966 * std::max(c0, c1) / std::max(p * q, 1e-300);
-    return epsilon + std::min(2.0, theta);
-  };
-  // Most windows are not covered: rejected by one sample, the interval's middle. Otherwise the
-  // two anchors with the most slack there are tried.
+  // Anchor k covers the edge point (t, 0) when its slack
+  //   s(t) = (1 + epsilon) p(t) - q(t) - D,  p = |x - I|, q = |x - a|, D = |a - I|,
+  // is >= 0. Most windows are not covered: rejected by one sample, the interval's middle, where
+  // the anchor with the most slack is also chosen (with the runner-up).
+  const double mid = 0.5 * (w.B0 + w.B1);
+  const double pMid = Hypot(mid - ix, iy);
   int best0 = 0, best1 = -1;
-  {
-    const double mid = 0.5 * (w.B0 + w.B1);
-    double atMiddle[MaxAnchors] = {};
-    for (int k = 0; k < n; ++k)
-    {
-      atMiddle[k] = slack(k, mid);
-      if (atMiddle[k] > atMiddle[best0])
-      {
-        best0 = k;
-      }
-    }
-    for (int k = 0; k < n; ++k)
-    {
-      if (k != best0 && (best1 < 0 || atMiddle[k] > atMiddle[best1]))
-      {
-        best1 = k;
-      }
-    }
-    if (!(atMiddle[best0] >= 0.0))
-    {
-      return false;
-    }
-    const Anchor best[2] = { anchors[best0], anchors[best1 >= 0 ? best1 : best0] };
-    n = std::min(n, 2);
-    std::copy(best, best + n, anchors);
-  }
-  struct Piece
-  {
-    double T0, T1, S0[MaxAnchors], S1[MaxAnchors];
-    int Depth;
-  };
-  Piece stack[24];
-  int top = 0;
-  Piece first{ w.B0, w.B1, {}, {}, 0 };
+  double atMiddle[MaxAnchors] = {};
   for (int k = 0; k < n; ++k)
   {
-    first.S0[k] = slack(k, w.B0);
-    first.S1[k] = slack(k, w.B1);
+    atMiddle[k] = grow * pMid - Hypot(mid - w.Anchors[k].X, w.Anchors[k].Y) - w.Anchors[k].D;
+    if (atMiddle[k] > atMiddle[best0])
+    {
+      best0 = k;
+    }
   }
-  stack[top++] = first;
+  if (!(atMiddle[best0] >= 0.0))
+  {
+    return false;
+  }
+  for (int k = 0; k < n; ++k)
+  {
+    if (k != best0 && (best1 < 0 || atMiddle[k] > atMiddle[best1]))
+    {
+      best1 = k;
+    }
+  }
+  const Anchor* use[2] = { &w.Anchors[best0], &w.Anchors[best1 >= 0 ? best1 : best0] };
+  const int m = best1 >= 0 ? 2 : 1;
+  // Over a piece [t0, t1]: p is convex, so it lies above its tangent at the middle; q is
+  // convex, so it lies below its chord. Hence s is above the line
+  //   (1 + epsilon) (p(tm) + p'(tm) (t - tm)) - chord of q - D,
+  // and the piece is covered by the anchor when that line is >= 0 at both ends. Pieces neither
+  // proven covered nor shown uncovered at an end are halved, up to a depth.
+  struct Piece
+  {
+    double T0, T1, P0, P1, Q0[2], Q1[2];
+    int Depth;
+  };
+  auto q = [&](int k, double t) { return Hypot(t - use[k]->X, use[k]->Y); };
+  Piece stack[24];
+  int top = 0;
+  {
+    Piece first{ w.B0, w.B1, Hypot(w.B0 - ix, iy), Hypot(w.B1 - ix, iy), {}, {}, 0 };
+    for (int k = 0; k < m; ++k)
+    {
+      first.Q0[k] = q(k, w.B0);
+      first.Q1[k] = q(k, w.B1);
+    }
+    stack[top++] = first;
+  }
   while (top > 0)
   {
     const Piece p = stack[--top];
-    bool end0 = false, end1 = false, whole = false;
-    for (int k = 0; k < n; ++k)
+    bool end0 = false, end1 = false;
+    for (int k = 0; k < m; ++k)
     {
-      end0 = end0 || p.S0[k] >= 0.0;
-      end1 = end1 || p.S1[k] >= 0.0;
-    }
-    for (int k = 0; k < n && end0 && end1 && !whole; ++k)
-    {
-      whole = p.S0[k] + p.S1[k] >= 0.0 && p.S0[k] + p.S1[k] >= lipschitz(k, p.T0, p.T1) * (p.T1 - p.T0);
+      end0 = end0 || grow * p.P0 - p.Q0[k] - use[k]->D >= 0.0;
+      end1 = end1 || grow * p.P1 - p.Q1[k] - use[k]->D >= 0.0;
     }
     if (!end0 || !end1)
     {
       return false;
     }
+    const double tm = 0.5 * (p.T0 + p.T1);
+    const double pm = Hypot(tm - ix, iy);
+    const double slope = pm > 0.0 ? (tm - ix) / pm : 0.0;
+    const double tangent0 = grow * (pm + slope * (p.T0 - tm));
+    const double tangent1 = grow * (pm + slope * (p.T1 - tm));
+    bool whole = false;
+    for (int k = 0; k < m && !whole; ++k)
+    {
+      whole = tangent0 - p.Q0[k] - use[k]->D >= 0.0 && tangent1 - p.Q1[k] - use[k]->D >= 0.0;
+    }
     if (whole)
     {
       continue;
     }
-    if (p.Depth >= 10 || top + 2 > 24)
+    if (p.Depth >= 12 || top + 2 > 24)
     {
       return false;
     }
-    const double mid = 0.5 * (p.T0 + p.T1);
     Piece a = p, b = p;
-    a.T1 = b.T0 = mid;
+    a.T1 = b.T0 = tm;
+    a.P1 = b.P0 = pm;
     a.Depth = b.Depth = p.Depth + 1;
-    for (int k = 0; k < n; ++k)
+    for (int k = 0; k < m; ++k)
     {
-      a.S1[k] = b.S0[k] = slack(k, mid);
+      a.Q1[k] = b.Q0[k] = q(k, tm);
     }
     stack[top++] = a;
     stack[top++] = b;
@@ -307,7 +298,8 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
         covered = a.D + Hypot(cx - a.X, cy - a.Y) <= (1.0 + epsilon) * dC &&
           CrossesWithin(a, cx, cy, w.B0, w.B1, cover);
       }
-      Reach(vC, dC, covered, w.Phi + std::atan2(cy - iy, cx - ix), h, xc);
+      const double ux = cx - ix, uy = cy - iy;
+      Reach(vC, dC, covered, w.Phi, w.Rc * ux - w.Rs * uy, w.Rs * ux + w.Rc * uy, h, xc);
     }
     else if (dC > Dist[vC] + Tolerance && CrossHalfedge[vC] == h)
     {
@@ -323,8 +315,7 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
     }
   }
   // The children through A -> C (left) and C -> B (right), with the anchors they keep.
-  auto child = [&](int t, const auto& frame, double length, bool wholeLow, bool wholeHigh,
-                 double turn) {
+  auto child = [&](int t, const auto& frame, double length, bool wholeLow, bool wholeHigh) {
     const window_geometry::ChildWindow made =
       window_geometry::MakeChild(frame, length, ix, iy, w.B0, w.B1, wholeLow, wholeHigh);
     if (!(made.B1 > made.B0))
@@ -337,7 +328,9 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
     c.B0 = made.B0;
     c.B1 = made.B1;
     c.H = t;
-    c.Phi = w.Phi + turn;
+    c.Phi = w.Phi;
+    c.Rc = w.Rc * frame.Ux - w.Rs * frame.Uy;
+    c.Rs = w.Rs * frame.Ux + w.Rc * frame.Uy;
     InheritAnchors(w, c, frame, cover);
     Push(c, epsilon);
   };
@@ -345,13 +338,12 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
   if (left && leftEdge >= 0)
   {
     const double b = M.EdgeLength(leftEdge);
-    child(leftEdge, window_geometry::LeftFrame(cx, cy, b), b, false, right, std::atan2(cy, cx));
+    child(leftEdge, window_geometry::LeftFrame(cx, cy, b), b, false, right);
   }
   if (right && rightEdge >= 0)
   {
     const double a = M.EdgeLength(rightEdge);
-    child(rightEdge, window_geometry::RightFrame(cx, cy, L, a), a, left, false,
-      std::atan2(-cy, L - cx));
+    child(rightEdge, window_geometry::RightFrame(cx, cy, L, a), a, left, false);
   }
 }
 
@@ -370,8 +362,8 @@ bool DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::i
     const int a = M.Destination(h);
     const int b = M.Origin(TriangleMesh::Prev(h));
     const double p0 = FanAngle[h];
-    Reach(a, M.EdgeLength(h), false, p0, -1, 0.0);
-    Reach(b, M.EdgeLength(TriangleMesh::Prev(h)), false, p0 + M.CornerAngle(h), -1, 0.0);
+    Reach(a, M.EdgeLength(h), false, p0, 1.0, 0.0, -1, 0.0);
+    Reach(b, M.EdgeLength(TriangleMesh::Prev(h)), false, p0 + M.CornerAngle(h), 1.0, 0.0, -1, 0.0);
     const int t = M.Twin(opp);
     if (t >= 0)
     {
@@ -384,6 +376,8 @@ bool DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::i
       w.Ix = ab - Cx[opp];
       w.Iy = -Cy[opp];
       w.Phi = p0 - std::atan2(Cy[opp], Cx[opp]);
+      w.Rc = 1.0;
+      w.Rs = 0.0;
       w.NumAnchors = 0; // (the edge's ends, added by Push)
       Push(w, epsilon);
     }
@@ -409,7 +403,7 @@ bool DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::i
   {
     if (v != s && !IsCovered[v])
     {
-      links.push_back({ v, Dist[v], Angle[v] });
+      links.push_back({ v, Dist[v], AnglePhi[v] + std::atan2(AngleY[v], AngleX[v]) });
     }
   }
   return complete;

@@ -74,7 +74,11 @@ private:
     double Key;    // smallest distance over the interval
     double B0, B1; // interval along half-edge H from Origin(H)
     double Ix, Iy; // unfolded source in H's frame (Iy < 0)
-    double Phi;    // departure angle = Phi + angle of (x - I) in this frame
+    // Departure angle of the ray towards x: Phi + the angle of R (x - I), R (a unit complex
+    // number, Rc + i Rs) turning this frame into that of the first window, where the angle is
+    // in (0, pi): the turns are multiplied rather than their angles added (no atan2 per window).
+    double Phi;
+    double Rc, Rs;
     Anchor Anchors[MaxAnchors]; // sorted by distance
     int NumAnchors;
     int H;
@@ -82,7 +86,9 @@ private:
   static void AddAnchor(Window& w, double x, double y);
 
   void Reset();
-  void Reach(int v, double d, bool covered, double angle, int via, double crossing);
+  // v reached at distance d, leaving the source at phi + the angle of (dx, dy).
+  void Reach(int v, double d, bool covered, double phi, double dx, double dy, int via,
+    double crossing);
   bool Trim(Window& w) const;
   bool Covered(const Window& w, double epsilon) const;
   void Push(Window& w, double epsilon);
@@ -93,7 +99,7 @@ private:
   std::vector<double> FanAngle;  // half-edge direction about its origin (as in the exact solver)
   std::vector<double> Dist;      // best direct distance found
   std::vector<unsigned char> IsCovered; // whether that best arrival is covered
-  std::vector<double> Angle;     // its departure angle
+  std::vector<double> AnglePhi, AngleX, AngleY; // its departure angle (as Reach's arguments)
   std::vector<int> CrossHalfedge;
   std::vector<double> CrossX;
   std::vector<int> Touched;
