@@ -169,9 +169,9 @@ int main(int argc, char** argv)
     for (const auto& opt : configurations)
     {
       graphs.push_back(std::make_unique<gs::SaddleVertexGraph>());
-      if (!graphs.back()->Build(m, opt, nullptr, error))
+      if (const gs::Status built = graphs.back()->Build(m, opt, nullptr); !built.Ok())
       {
-        std::fprintf(stderr, "%s\n", error.c_str());
+        std::fprintf(stderr, "%s\n", built.Message().c_str());
         graphs.pop_back();
         continue;
       }

@@ -55,7 +55,11 @@ int main(int argc, char** argv)
     const TriangleMesh& m = r.Mesh;
     const int nv = m.NumberOfVertices();
     SaddleVertexGraph graph;
-    graph.Build(m, SaddleVertexGraphOptions(), nullptr, error);
+    if (const Status built = graph.Build(m, SaddleVertexGraphOptions(), nullptr); !built.Ok())
+    {
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), built.Message().c_str());
+      continue;
+    }
     GeodesicPolarCoordinates pc(m), fast(m, &graph);
     double seconds = 0, fastSeconds = 0, radiusSum = 0, worst = 0, rhoErr = 0;
     std::vector<double> thetaErr;

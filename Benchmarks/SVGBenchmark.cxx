@@ -169,9 +169,9 @@ int main(int argc, char** argv)
       // Peak memory of the build: the process's peak resident size is reset first (Linux).
       std::ofstream("/proc/self/clear_refs") << "5";
       const double rssBefore = StatusBytes("VmRSS:");
-      if (!g.Build(m, opt, nullptr, error))
+      if (const Status built = g.Build(m, opt, nullptr); !built.Ok())
       {
-        std::fprintf(stderr, "%s: %s\n", name.c_str(), error.c_str());
+        std::fprintf(stderr, "%s: %s\n", name.c_str(), built.Message().c_str());
         continue;
       }
       const double peakPerVertex = (StatusBytes("VmHWM:") - rssBefore) / nv;

@@ -8,6 +8,7 @@
 #include "SurfaceCurve.h"
 #include "SaddleVertexGraph.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -29,8 +30,7 @@ SaddleVertexGraph BuildDGG(const TriangleMesh& m, double accuracy, int threads =
   o.Construction = GraphConstruction::DiscreteGeodesic;
   o.Accuracy = accuracy;
   o.NumberOfThreads = threads;
-  std::string error;
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   return g;
 }
 
@@ -199,9 +199,7 @@ TEST(DiscreteGeodesicGraph, RejectsAccuracyOutOfRange)
     SaddleVertexGraphOptions o;
     o.Construction = GraphConstruction::DiscreteGeodesic;
     o.Accuracy = accuracy;
-    std::string error;
-    EXPECT_FALSE(g.Build(m, o, nullptr, error)) << accuracy;
-    EXPECT_NE(error.find("accuracy"), std::string::npos) << error;
+    EXPECT_TRUE(gs_test::FailedWith(g.Build(m, o, nullptr), "accuracy")) << accuracy;
     EXPECT_TRUE(g.Empty());
   }
 }
@@ -212,30 +210,26 @@ TEST(DiscreteGeodesicGraph, CacheFilesOfTheirOwnFormat)
   const std::uint64_t hash = SaddleVertexGraph::HashMesh(m);
   const SaddleVertexGraph g = BuildDGG(m, 5e-3);
   const std::string path = std::string(::testing::TempDir()) + "dgg_cache.svgg";
-  std::string error;
-  ASSERT_TRUE(g.Save(path, hash, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(g.Save(path, hash)));
   SaddleVertexGraphOptions same;
   same.Construction = GraphConstruction::DiscreteGeodesic;
   same.Accuracy = 5e-3;
   SaddleVertexGraph loaded;
-  ASSERT_TRUE(loaded.Load(path, hash, same, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(loaded.Load(path, hash, same)));
   EXPECT_TRUE(loaded == g);
   EXPECT_EQ(loaded.GetAccuracy(), 5e-3);
   SaddleVertexGraphOptions other = same;
   other.Accuracy = 1e-3;
-  EXPECT_FALSE(loaded.Load(path, hash, other, error));
-  EXPECT_NE(error.find("accuracy"), std::string::npos) << error;
-  EXPECT_FALSE(loaded.Load(path, hash + 1, same, error));
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, other), "accuracy"));
+  EXPECT_FALSE(loaded.Load(path, hash + 1, same).Ok());
   // A saddle vertex graph request does not take a discrete geodesic graph's file, nor the
   // reverse.
-  EXPECT_FALSE(loaded.Load(path, hash, 50, error));
-  EXPECT_NE(error.find("discrete geodesic graph"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 50), "discrete geodesic graph"));
   SaddleVertexGraph svg;
   SaddleVertexGraphOptions svgOptions;
   svgOptions.K = 20;
-  ASSERT_TRUE(svg.Build(m, svgOptions, nullptr, error)) << error;
-  ASSERT_TRUE(svg.Save(path, hash, error)) << error;
-  EXPECT_FALSE(loaded.Load(path, hash, same, error));
-  EXPECT_NE(error.find("saddle vertex graph"), std::string::npos) << error;
+  ASSERT_TRUE(gs_test::Succeeded(svg.Build(m, svgOptions, nullptr)));
+  ASSERT_TRUE(gs_test::Succeeded(svg.Save(path, hash)));
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, same), "saddle vertex graph"));
   std::remove(path.c_str());
 }

@@ -6,6 +6,7 @@
 #include "SaddleVertexGraph.h"
 #include "TriangleMesh.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -31,11 +32,10 @@ TriangleMesh Bumpy(int level, unsigned seed)
 SaddleVertexGraph BuildGraph(const TriangleMesh& m, int k, int threads = 0)
 {
   SaddleVertexGraph g;
-  std::string error;
   SaddleVertexGraphOptions o;
   o.K = k;
   o.NumberOfThreads = threads;
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   return g;
 }
 
@@ -126,13 +126,11 @@ TEST(SaddleVertexGraph, RejectsBadK)
 {
   const TriangleMesh m = Bumpy(1, 1);
   SaddleVertexGraph g;
-  std::string error;
   SaddleVertexGraphOptions o;
   o.K = 0;
-  EXPECT_FALSE(g.Build(m, o, nullptr, error));
-  EXPECT_NE(error.find("K must be"), std::string::npos);
+  EXPECT_TRUE(gs_test::FailedWith(g.Build(m, o, nullptr), "K must be"));
   o.K = 1000000; // clamped to the vertex count
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   EXPECT_EQ(g.GetK(), m.NumberOfVertices());
 }
 
@@ -147,10 +145,9 @@ TEST(SaddleVertexGraph, RefusesWhatMemoryCannotHold)
     SaddleVertexGraph::EstimatedBuildBytes(10, 10)); // K is clamped as Build clamps it
   const TriangleMesh m = Bumpy(2, 1);
   SaddleVertexGraph g;
-  std::string error;
   SaddleVertexGraphOptions o;
   o.K = 50;
-  ASSERT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   EXPECT_LT(static_cast<double>(g.MemoryBytes()),
     SaddleVertexGraph::EstimatedBuildBytes(m.NumberOfVertices(), 50));
   EXPECT_GT(SaddleVertexGraph::AvailableMemoryBytes(), 0.0); // Linux: /proc/meminfo
@@ -159,21 +156,20 @@ TEST(SaddleVertexGraph, RefusesWhatMemoryCannotHold)
   const double needed = SaddleVertexGraph::EstimatedBuildBytes(m.NumberOfVertices(), 50);
   ASSERT_GT(needed, 0.8 * 1048576.0);
   setenv("GS_AVAILABLE_MEMORY", "1048576", 1);
-  EXPECT_FALSE(g.Build(m, o, nullptr, error));
+  const Status refused = g.Build(m, o, nullptr);
   unsetenv("GS_AVAILABLE_MEMORY");
   EXPECT_TRUE(g.Empty());
-  EXPECT_NE(error.find("MiB available; lower K"), std::string::npos) << error;
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::FailedWith(refused, "MiB available; lower K"));
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
 }
 
 TEST(SaddleVertexGraph, ProgressCanAbort)
 {
   const TriangleMesh m = Bumpy(4, 1);
   SaddleVertexGraph g;
-  std::string error;
   int calls = 0;
-  EXPECT_FALSE(g.Build(m, SaddleVertexGraphOptions(), [&](double) { return ++calls < 2; }, error));
-  EXPECT_EQ(error, "aborted");
+  const auto abortSecond = [&](double) { return ++calls < 2; };
+  EXPECT_TRUE(g.Build(m, SaddleVertexGraphOptions(), abortSecond).IsAborted());
   EXPECT_TRUE(g.Empty());
 }
 
@@ -417,19 +413,16 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
   const SaddleVertexGraph g = BuildGraph(m, 20);
   const std::uint64_t hash = SaddleVertexGraph::HashMesh(m);
   const std::string path = TempPath("gs_cache_test.svgg");
-  std::string error;
-  ASSERT_TRUE(g.Save(path, hash, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(g.Save(path, hash)));
   SaddleVertexGraph loaded;
-  ASSERT_TRUE(loaded.Load(path, hash, 20, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(loaded.Load(path, hash, 20)));
   EXPECT_TRUE(loaded == g);
   ExpectLinksIndexStencils(loaded);
   EXPECT_EQ(loaded.BuildSeconds(), g.BuildSeconds());
-  EXPECT_FALSE(loaded.Load(path, hash + 1, 20, error));
-  EXPECT_NE(error.find("another mesh"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash + 1, 20), "another mesh"));
   EXPECT_TRUE(loaded.Empty());
-  EXPECT_FALSE(loaded.Load(path, hash, 21, error));
-  EXPECT_NE(error.find("K ="), std::string::npos) << error;
-  EXPECT_FALSE(loaded.Load(TempPath("does_not_exist.svgg"), hash, 20, error));
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 21), "K ="));
+  EXPECT_FALSE(loaded.Load(TempPath("does_not_exist.svgg"), hash, 20).Ok());
 
   // A stale file: the mesh moved a little.
   TriangleSoup s = MakeIcosphere(1.0, 2);
@@ -449,20 +442,18 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x10;
   writeFile(flipped);
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
-  EXPECT_NE(error.find("corrupt"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 20), "corrupt"));
   writeFile(bytes.substr(0, bytes.size() - 100));
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_FALSE(loaded.Load(path, hash, 20).Ok());
   // A file of the previous format (no node order) is recognised as such.
   std::string previous = bytes;
   previous[7] = '3';
   writeFile(previous);
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
-  EXPECT_NE(error.find("another format version"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 20), "another format version"));
   writeFile("not a graph at all");
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_FALSE(loaded.Load(path, hash, 20).Ok());
   writeFile("");
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_FALSE(loaded.Load(path, hash, 20).Ok());
   // A forged file with a valid checksum whose node order is not a permutation (the last node
   // repeats the first's vertex): rejected by the structural checks, not read out of range.
   {
@@ -473,12 +464,11 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
     sum.Add(forged.data() + 8, forged.size() - 16);
     std::memcpy(&forged[forged.size() - 8], &sum.H, 8);
     writeFile(forged);
-    EXPECT_FALSE(loaded.Load(path, hash, 20, error));
-    EXPECT_NE(error.find("node order"), std::string::npos) << error;
+    EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 20), "node order"));
     EXPECT_TRUE(loaded.Empty());
   }
   writeFile(bytes);
-  EXPECT_TRUE(loaded.Load(path, hash, 20, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(loaded.Load(path, hash, 20)));
   std::remove(path.c_str());
 }
 

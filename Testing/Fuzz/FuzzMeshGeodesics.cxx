@@ -64,8 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   gs::SaddleVertexGraphOptions options;
   options.K = 6;
   options.NumberOfThreads = 1;
-  std::string error;
-  if (graph.Build(mesh, options, nullptr, error))
+  if (graph.Build(mesh, options, nullptr).Ok())
   {
     gs::SVGGeodesicSolver svg(mesh, graph);
     svg.Solve({ gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5) });
