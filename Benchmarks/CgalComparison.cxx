@@ -63,13 +63,13 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "%s\n", path.empty() ? "no mesh given (try --help)" : error.c_str());
     return 2;
   }
-  const gs::MeshBuildResult r = gs::TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-  if (!r.Ok)
+  const gs::Result<gs::MeshBuild> r = gs::TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+  if (!r.Ok())
   {
-    std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+    std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
     return 2;
   }
-  const gs::TriangleMesh& m = r.Mesh;
+  const gs::TriangleMesh& m = r->Mesh;
 
   CgalMesh cm;
   std::vector<CgalMesh::Vertex_index> vi(m.NumberOfVertices());

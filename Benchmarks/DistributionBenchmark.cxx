@@ -226,13 +226,13 @@ SafeDistanceTables Tables(const std::vector<SafeDistanceInput>& in)
 
 TriangleMesh Build(const TriangleSoup& s)
 {
-  MeshBuildResult r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
-  if (!r.Ok)
+  Result<MeshBuild> r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
+  if (!r.Ok())
   {
-    std::fprintf(stderr, "mesh: %s\n", r.Error.c_str());
+    std::fprintf(stderr, "mesh: %s\n", r.Message().c_str());
     std::exit(1);
   }
-  return r.Mesh;
+  return std::move(r->Mesh);
 }
 
 const char* ModeName(DistributionMode m)

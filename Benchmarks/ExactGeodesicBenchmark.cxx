@@ -100,14 +100,14 @@ int main(int argc, char** argv)
       ++failures;
       continue;
     }
-    MeshBuildResult r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    Result<MeshBuild> r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       ++failures;
       continue;
     }
-    const TriangleMesh& m = r.Mesh;
+    const TriangleMesh& m = r->Mesh;
     int saddles = 0;
     for (int v = 0; v < m.NumberOfVertices(); ++v)
       saddles += m.IsSaddleVertex(v);

@@ -137,13 +137,13 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "%s\n", error.c_str());
       continue;
     }
-    const gs::MeshBuildResult r = gs::TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    const gs::Result<gs::MeshBuild> r = gs::TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       continue;
     }
-    const gs::TriangleMesh& m = r.Mesh;
+    const gs::TriangleMesh& m = r->Mesh;
     const int nv = m.NumberOfVertices();
     std::vector<int> sources;
     for (int s = 0; s < numSources; ++s)

@@ -46,13 +46,13 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "%s\n", error.c_str());
       continue;
     }
-    const MeshBuildResult r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    const Result<MeshBuild> r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       continue;
     }
-    const TriangleMesh& m = r.Mesh;
+    const TriangleMesh& m = r->Mesh;
     const int nv = m.NumberOfVertices();
     SaddleVertexGraph graph;
     if (const Status built = graph.Build(m, SaddleVertexGraphOptions(), nullptr); !built.Ok())

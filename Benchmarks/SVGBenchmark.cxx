@@ -114,13 +114,13 @@ int main(int argc, char** argv)
     }
     for (int level = 0; level < subdivisions; ++level)
       soup = SubdivideAtMidpoints(soup);
-    MeshBuildResult r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    Result<MeshBuild> r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       continue;
     }
-    const TriangleMesh& m = r.Mesh;
+    const TriangleMesh& m = r->Mesh;
     const int nv = m.NumberOfVertices();
     std::vector<int> sources;
     for (int k = 0; k < numSources; ++k)

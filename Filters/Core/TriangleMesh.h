@@ -9,6 +9,7 @@
 // Algorithms that keep a reference to a mesh (solvers) must not outlive it.
 #pragma once
 
+#include "Status.h"
 #include "Vector.h"
 
 #include <array>
@@ -123,11 +124,9 @@ private:
   Vec3 BoxMin, BoxMax;
 };
 
-// The result of building a mesh from caller data.
-struct MeshBuildResult
+// A mesh built from caller data.
+struct MeshBuild
 {
-  bool Ok = false;
-  std::string Error;                 // why it failed (empty when Ok)
   std::vector<std::string> Warnings; // e.g. faces re-oriented
   TriangleMesh Mesh;
   // For every input point: the mesh vertex it became (after welding), or -1 when no triangle
@@ -146,7 +145,7 @@ public:
   // non-finite coordinates of a referenced point, degenerate (repeated index or zero-area)
   // triangles, duplicate triangles, non-manifold edges or vertices, non-orientable components.
   // Inconsistently oriented faces are flipped (a warning says how many).
-  static MeshBuildResult Build(
+  static Result<MeshBuild> Build(
     const std::vector<Vec3>& points, const std::vector<std::array<long long, 3>>& triangles);
 };
 

@@ -44,12 +44,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     };
     triangles.push_back({ index(), index(), index() });
   }
-  const gs::MeshBuildResult built = gs::TriangleMeshBuilder::Build(points, triangles);
-  if (!built.Ok)
+  const gs::Result<gs::MeshBuild> built = gs::TriangleMeshBuilder::Build(points, triangles);
+  if (!built.Ok())
   {
     return 0; // rejected with a message: fine
   }
-  const gs::TriangleMesh& mesh = built.Mesh;
+  const gs::TriangleMesh& mesh = built->Mesh;
   gs::ExactGeodesicSolver exact(mesh);
   exact.Solve({ gs::SurfacePoint::AtVertex(0) }, gs::ExactGeodesicOptions());
   for (int v = 0; v < mesh.NumberOfVertices(); ++v)
