@@ -159,6 +159,17 @@ std::uint64_t SaddleVertexGraph::HashMesh(const TriangleMesh& mesh)
   return h.H;
 }
 
+Status SaddleVertexGraph::CheckMesh(const TriangleMesh& mesh) const
+{
+  if (NumberOfVertices() != mesh.NumberOfVertices())
+  {
+    return Status::Error("the saddle vertex graph was built for another mesh (" +
+      std::to_string(NumberOfVertices()) + " vertices; the mesh has " +
+      std::to_string(mesh.NumberOfVertices()) + ")");
+  }
+  return Status();
+}
+
 Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
   const ProgressCallback& progress)
 {
@@ -235,7 +246,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       }
       else
       {
-        solver.Solve(s, opt);
+        static_cast<void>(solver.Solve(s, opt)); // s is a vertex of the mesh: accepted
         for (int v : solver.FinalVertices())
         {
           if (v != s && solver.IsDirect(v))

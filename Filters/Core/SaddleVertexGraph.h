@@ -173,6 +173,9 @@ public:
 
   // A hash of the mesh geometry and connectivity (positions bit for bit, faces).
   static std::uint64_t HashMesh(const TriangleMesh& mesh);
+  // Ok when the graph may serve `mesh` (it has as many vertices); otherwise an error saying that
+  // it was built for another mesh.
+  Status CheckMesh(const TriangleMesh& mesh) const;
   // Cache files: Save writes the graph with the mesh hash, K and its build time; Load accepts a
   // file only if it is intact (checksum), for the same mesh hash and K (clamped to the vertex
   // count, as Build does), and well-formed; otherwise it returns an error saying why and leaves

@@ -91,6 +91,60 @@ std::array<double, 3> TriangleMesh::ClampedBarycentric(int f, const Vec3& x) con
   return { { w0 / sum, w1 / sum, w2 / sum } };
 }
 
+Status TriangleMesh::CheckPoint(const SurfacePoint& p) const
+{
+  if (p.IsVertex())
+  {
+    if (p.Vertex >= NumberOfVertices())
+    {
+      return Status::Error("vertex " + std::to_string(p.Vertex) + " does not exist (the mesh has " +
+        std::to_string(NumberOfVertices()) + " vertices)");
+    }
+    return Status();
+  }
+  if (p.Face < 0 || p.Face >= NumberOfFaces())
+  {
+    return Status::Error("face " + std::to_string(p.Face) + " does not exist (the mesh has " +
+      std::to_string(NumberOfFaces()) + " faces)");
+  }
+  const double sum = p.Bary[0] + p.Bary[1] + p.Bary[2];
+  const bool finite = std::isfinite(sum);
+  const bool unit = finite && std::abs(sum - 1.0) <= 1e-6;
+  if (unit && p.Bary[0] >= -1e-6 && p.Bary[1] >= -1e-6 && p.Bary[2] >= -1e-6)
+  {
+    return Status();
+  }
+  std::ostringstream msg;
+  msg << "the barycentric coordinates (" << p.Bary[0] << ", " << p.Bary[1] << ", " << p.Bary[2]
+      << ") in face " << p.Face;
+  if (!finite)
+  {
+    msg << " are not finite";
+  }
+  else if (!unit)
+  {
+    msg << " sum to " << sum << ", not 1";
+  }
+  else
+  {
+    msg << " are not all >= 0";
+  }
+  return Status::Error(msg.str());
+}
+
+Status TriangleMesh::CheckPoints(
+  const std::vector<SurfacePoint>& points, const std::string& name) const
+{
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    if (const Status valid = CheckPoint(points[i]); !valid.Ok())
+    {
+      return Status::Error(name + " " + std::to_string(i) + " is invalid: " + valid.Message());
+    }
+  }
+  return Status();
+}
+
 void TriangleMesh::ComputeDerivedData()
 {
   const int nf = NumberOfFaces();

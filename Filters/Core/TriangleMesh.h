@@ -10,6 +10,7 @@
 #pragma once
 
 #include "Status.h"
+#include "SurfacePoint.h"
 #include "Vector.h"
 
 #include <array>
@@ -97,6 +98,13 @@ public:
   // The inverse of Interpolate for a point lying in face f up to rounding: its barycentric
   // coordinates, clamped to the face and normalized to sum 1.
   std::array<double, 3> ClampedBarycentric(int f, const Vec3& x) const;
+  // Ok when p is a point of this mesh: an existing vertex, or an existing face with finite
+  // barycentric coordinates, none below -1e-6, summing to 1 within 1e-6; otherwise an error
+  // saying what is wrong with it.
+  Status CheckPoint(const SurfacePoint& p) const;
+  // Ok when each of `points` is a point of this mesh; otherwise an error on the first that is
+  // not: "<name> <index> is invalid: <what CheckPoint says>".
+  Status CheckPoints(const std::vector<SurfacePoint>& points, const std::string& name) const;
 
 private:
   friend class TriangleMeshBuilder;

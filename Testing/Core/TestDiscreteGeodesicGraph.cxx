@@ -77,13 +77,13 @@ void Measure(const TriangleMesh& m, const SaddleVertexGraph& g, Errors& graph, E
   const int nv = m.NumberOfVertices();
   for (int s : { 0, nv / 3, (2 * nv) / 3 + 1 })
   {
-    ASSERT_TRUE(exact.Solve(s));
+    ASSERT_TRUE(gs_test::Succeeded(exact.Solve(s)));
     SVGSolveOptions plain;
     plain.Refine = false;
-    ASSERT_TRUE(solver.Solve({ SurfacePoint::AtVertex(s) }, plain));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ SurfacePoint::AtVertex(s) }, plain)));
     for (int v = 0; v < nv; ++v)
       graph.Add(solver.Distance(v), exact.Distance(v));
-    ASSERT_TRUE(solver.Solve({ SurfacePoint::AtVertex(s) }));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ SurfacePoint::AtVertex(s) })));
     for (int v = 0; v < nv; ++v)
       refined.Add(solver.Distance(v), exact.Distance(v));
   }
@@ -139,8 +139,8 @@ TEST(DiscreteGeodesicGraph, PointAndCurveSourcesWithinTheAccuracy)
   for (int f : { 11, 2000, 4321 })
   {
     const SurfacePoint p = SurfacePoint::InFace(f, 0.2, 0.5, 0.3);
-    ASSERT_TRUE(exact.Solve({ p }));
-    ASSERT_TRUE(solver.Solve({ p }));
+    ASSERT_TRUE(gs_test::Succeeded(exact.Solve({ p })));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ p })));
     for (int v = 0; v < m.NumberOfVertices(); ++v)
       point.Add(solver.Distance(v), exact.Distance(v));
   }
@@ -148,10 +148,10 @@ TEST(DiscreteGeodesicGraph, PointAndCurveSourcesWithinTheAccuracy)
   // A curve: the exact reference from dense samples of the same traced curve.
   const std::vector<SurfacePoint> curve = { SurfacePoint::InFace(100, 0.3, 0.3, 0.4),
     SurfacePoint::InFace(140, 0.3, 0.3, 0.4), SurfacePoint::InFace(190, 0.3, 0.3, 0.4) };
-  ASSERT_TRUE(solver.SolveCurve(curve));
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolveCurve(curve)));
   const std::vector<SurfacePoint> samples = SampleCurvePieces(
     m, TraceSurfaceCurve(m, curve), ExactCurveSampleSpacing * m.MeanEdgeLength());
-  ASSERT_TRUE(exact.Solve(samples));
+  ASSERT_TRUE(gs_test::Succeeded(exact.Solve(samples)));
   Errors fromCurve;
   for (int v = 0; v < m.NumberOfVertices(); ++v)
     fromCurve.Add(solver.Distance(v), exact.Distance(v));

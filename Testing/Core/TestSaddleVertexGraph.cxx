@@ -173,6 +173,24 @@ TEST(SaddleVertexGraph, ProgressCanAbort)
   EXPECT_TRUE(g.Empty());
 }
 
+TEST(SaddleVertexGraph, SolverSaysWhichSourceIsInvalid)
+{
+  const TriangleMesh m = Bumpy(1, 1);
+  const SaddleVertexGraph g = BuildGraph(m, 20);
+  SVGGeodesicSolver svg(m, g);
+  const SurfacePoint vertex = SurfacePoint::AtVertex(0);
+  EXPECT_TRUE(gs_test::FailedWith(svg.Solve({}), "no source"));
+  const SurfacePoint beyond = SurfacePoint::AtVertex(m.NumberOfVertices());
+  EXPECT_TRUE(gs_test::FailedWith(svg.Solve({ vertex, beyond }),
+    "source 1 is invalid: vertex " + std::to_string(m.NumberOfVertices()) + " does not exist"));
+  EXPECT_TRUE(std::isinf(svg.Distance(0))); // a rejected solve leaves every vertex unreached
+  EXPECT_TRUE(gs_test::FailedWith(svg.SolveCurves({}), "no curve"));
+  EXPECT_TRUE(gs_test::FailedWith(svg.SolveCurves({ { vertex }, {} }), "curve 1 has no point"));
+  const SurfacePoint overweight = SurfacePoint::InFace(0, 0.5, 0.5, 0.5);
+  EXPECT_TRUE(gs_test::FailedWith(svg.SolveCurve({ vertex, overweight }),
+    "curve 0, point 1 is invalid: the barycentric coordinates (0.5, 0.5, 0.5) in face 0 sum to"));
+}
+
 TEST(SaddleVertexGraph, LabelCorrectingEqualsDijkstra)
 {
   const TriangleMesh m = Bumpy(3, 2);
@@ -235,8 +253,8 @@ TEST(SaddleVertexGraph, AccuracyAgainstExactSolver)
       ErrorStats total;
       for (int s : { 7, 1234, 2000 })
       {
-        exact.Solve(s);
-        ASSERT_TRUE(svg.Solve({ SurfacePoint::AtVertex(s) }));
+        EXPECT_TRUE(gs_test::Succeeded(exact.Solve(s)));
+        ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ SurfacePoint::AtVertex(s) })));
         const ErrorStats e = Compare(svg.Distances(), exact.Distances());
         total.Mean += e.Mean / 3;
         total.Max = std::max(total.Max, e.Max);
@@ -255,13 +273,13 @@ TEST(SaddleVertexGraph, FacePointSourceExactInsideItsDiskOnAPlane)
   const SaddleVertexGraph g = BuildGraph(m, 50);
   SVGGeodesicSolver svg(m, g);
   const SurfacePoint src = SurfacePoint::InFace(901, 0.2, 0.3, 0.5);
-  ASSERT_TRUE(svg.Solve({ src }));
+  ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ src })));
   const Vec3 s = m.Interpolate(src.Face, src.Bary);
   // The source's own K-disk: the exact solver's K nearest vertices.
   ExactGeodesicSolver exact(m);
   ExactGeodesicOptions opt;
   opt.MaximumFinalVertices = 50;
-  exact.Solve({ src }, opt);
+  EXPECT_TRUE(gs_test::Succeeded(exact.Solve({ src }, opt)));
   const double radius = exact.Distance(exact.FinalVertices().back());
   for (int v : exact.FinalVertices())
     EXPECT_NEAR(svg.Distance(v), Norm(m.Position(v) - s), 1e-9 * (1 + radius));
@@ -310,8 +328,8 @@ TEST(SaddleVertexGraph, ArbitraryPointsAgainstExactSolver)
   {
     const double a = u(rng), b = (1 - a) * u(rng);
     const SurfacePoint src = SurfacePoint::InFace(face(rng), a, b, 1 - a - b);
-    ASSERT_TRUE(svg.Solve({ src }));
-    exact.Solve({ src });
+    ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ src })));
+    EXPECT_TRUE(gs_test::Succeeded(exact.Solve({ src })));
     const ErrorStats e = Compare(svg.Distances(), exact.Distances());
     mean += e.Mean;
     ++n;
@@ -329,7 +347,7 @@ TEST(SaddleVertexGraph, ArbitraryPointsAgainstExactSolver)
     split.Triangles.push_back({ t[2], t[0], qv });
     const TriangleMesh ms = BuildMesh(split);
     ExactGeodesicSolver reference(ms);
-    reference.Solve({ src });
+    EXPECT_TRUE(gs_test::Succeeded(reference.Solve({ src })));
     const double ref = reference.Distance(static_cast<int>(qv));
     const double got = svg.DistanceAt(q);
     // Unfolding assumes the geodesic triangle is flat: on this deliberately rough surface a point
@@ -381,7 +399,7 @@ TEST(SaddleVertexGraph, CurveSourceOnAPlane)
   std::vector<SurfacePoint> curve;
   for (int i = 0; i <= 60; ++i)
     curve.push_back(locate(a + (b - a) * (i / 60.0)));
-  ASSERT_TRUE(svg.SolveCurve(curve));
+  ASSERT_TRUE(gs_test::Succeeded(svg.SolveCurve(curve)));
   EXPECT_GT(svg.NumberOfCurvePieces(), 60);
   double mean = 0, worst = 0;
   int n = 0;
@@ -532,8 +550,8 @@ TEST(SaddleVertexGraph, NodesAreTheVerticesInSpatialOrder)
   const TriangleMesh plain = BuildMesh(soup);
   const SaddleVertexGraph gp = BuildGraph(plain, 20);
   SVGGeodesicSolver a(plain, gp), b(m, g);
-  ASSERT_TRUE(a.Solve({ SurfacePoint::AtVertex(7) }));
-  ASSERT_TRUE(b.Solve({ SurfacePoint::AtVertex(shuffle[7]) }));
+  ASSERT_TRUE(gs_test::Succeeded(a.Solve({ SurfacePoint::AtVertex(7) })));
+  ASSERT_TRUE(gs_test::Succeeded(b.Solve({ SurfacePoint::AtVertex(shuffle[7]) })));
   const std::vector<double> da = a.Distances(), db = b.Distances();
   for (int v = 0; v < nv; ++v)
   {
@@ -555,13 +573,13 @@ TEST(SaddleVertexGraph, UnfoldingRefinementOnDevelopableSurfaces)
     ExactGeodesicSolver exact(m);
     for (int s : { 0, 77, 301 })
     {
-      exact.Solve(s);
+      EXPECT_TRUE(gs_test::Succeeded(exact.Solve(s)));
       SVGSolveOptions plain, refined;
       plain.Refine = false;
       refined.Refine = true;
-      svg.Solve({ SurfacePoint::AtVertex(s) }, plain);
+      EXPECT_TRUE(gs_test::Succeeded(svg.Solve({ SurfacePoint::AtVertex(s) }, plain)));
       const ErrorStats before = Compare(svg.Distances(), exact.Distances());
-      svg.Solve({ SurfacePoint::AtVertex(s) }, refined);
+      EXPECT_TRUE(gs_test::Succeeded(svg.Solve({ SurfacePoint::AtVertex(s) }, refined)));
       const ErrorStats after = Compare(svg.Distances(), exact.Distances());
       EXPECT_GT(before.Mean, 5e-4);
       // Exact up to rounding: every geodesic triangle of a developable surface unfolds.
@@ -585,9 +603,9 @@ TEST(SaddleVertexGraph, AnglesWithoutRefinementKeepGraphDistances)
     plain.Refine = false;
     withAngles.Refine = false;
     withAngles.Angles = true;
-    ASSERT_TRUE(svg.Solve({ s }, plain));
+    ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ s }, plain)));
     const std::vector<double> expected = svg.Distances();
-    ASSERT_TRUE(svg.Solve({ s }, withAngles));
+    ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ s }, withAngles)));
     int angles = 0;
     for (int v = 0; v < m.NumberOfVertices(); ++v)
     {
