@@ -55,12 +55,12 @@ int main(int argc, char* argv[])
       return 1;
     }
     auto built = gs::TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!built.Ok)
+    if (!built.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", argv[i], built.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", argv[i], built.Message().c_str());
       return 1;
     }
-    const gs::TriangleMesh& mesh = built.Mesh;
+    const gs::TriangleMesh& mesh = built->Mesh;
     const int chi = mesh.EulerCharacteristic();
     // A stroke: 40 faces walked across edges from face 0.
     std::vector<gs::FaceDirectionConstraint> stroke;

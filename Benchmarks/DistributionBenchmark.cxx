@@ -226,13 +226,13 @@ SafeDistanceTables Tables(const std::vector<SafeDistanceInput>& in)
 
 TriangleMesh Build(const TriangleSoup& s)
 {
-  MeshBuildResult r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
-  if (!r.Ok)
+  Result<MeshBuild> r = TriangleMeshBuilder::Build(s.Points, s.Triangles);
+  if (!r.Ok())
   {
-    std::fprintf(stderr, "mesh: %s\n", r.Error.c_str());
+    std::fprintf(stderr, "mesh: %s\n", r.Message().c_str());
     std::exit(1);
   }
-  return r.Mesh;
+  return std::move(r->Mesh);
 }
 
 const char* ModeName(DistributionMode m)
@@ -495,8 +495,11 @@ void BumpySphere(const std::vector<SafeDistanceInput>& classes, int seeds)
   const TriangleMesh sphere = Build(soup);
   SaddleVertexGraph graph;
   SaddleVertexGraphOptions go;
-  std::string error;
-  graph.Build(sphere, go, nullptr, error);
+  if (const Status built = graph.Build(sphere, go, nullptr); !built.Ok())
+  {
+    std::fprintf(stderr, "graph: %s\n", built.Message().c_str());
+    return;
+  }
   const SafeDistanceTables t = Tables(classes);
   std::vector<Vec3> dirs(sphere.NumberOfFaces());
   for (int f = 0; f < sphere.NumberOfFaces(); ++f)
@@ -575,19 +578,19 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
     classes.size(), longClasses, size, ModeName(mode));
   const std::uint64_t meshHash = SaddleVertexGraph::HashMesh(mesh);
   SaddleVertexGraph graph;
-  if (cache.empty() || !graph.Load(cache, meshHash, 50, error))
+  if (cache.empty() || !graph.Load(cache, meshHash, 50).Ok())
   {
     const double t0 = Now();
     SaddleVertexGraphOptions go;
     go.K = 50;
-    if (!graph.Build(mesh, go, nullptr, error))
+    if (const Status built = graph.Build(mesh, go, nullptr); !built.Ok())
     {
-      std::fprintf(stderr, "graph: %s\n", error.c_str());
+      std::fprintf(stderr, "graph: %s\n", built.Message().c_str());
       return 1;
     }
     std::printf("  graph build (K = 50, 2 threads): %.2f s\n", Now() - t0);
-    if (!cache.empty() && !graph.Save(cache, meshHash, error))
-      std::fprintf(stderr, "graph cache: %s\n", error.c_str());
+    if (const Status saved = cache.empty() ? Status() : graph.Save(cache, meshHash); !saved.Ok())
+      std::fprintf(stderr, "graph cache: %s\n", saved.Message().c_str());
   }
   const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
   ShapeDistributor d(mesh, &graph);
@@ -929,9 +932,9 @@ int main(int argc, char* argv[])
       graphs[m].reset(new SaddleVertexGraph());
       SaddleVertexGraphOptions go;
       go.K = 50;
-      if (!graphs[m]->Build(*m, go, nullptr, error))
+      if (const Status built = graphs[m]->Build(*m, go, nullptr); !built.Ok())
       {
-        std::fprintf(stderr, "graph: %s\n", error.c_str());
+        std::fprintf(stderr, "graph: %s\n", built.Message().c_str());
         return 1;
       }
       std::printf("  graph build (K = 50, 2 threads), %d faces: %.2f s\n", m->NumberOfFaces(), Now() - t0);

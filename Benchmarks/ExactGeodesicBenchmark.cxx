@@ -100,14 +100,14 @@ int main(int argc, char** argv)
       ++failures;
       continue;
     }
-    MeshBuildResult r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    Result<MeshBuild> r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       ++failures;
       continue;
     }
-    const TriangleMesh& m = r.Mesh;
+    const TriangleMesh& m = r->Mesh;
     int saddles = 0;
     for (int v = 0; v < m.NumberOfVertices(); ++v)
       saddles += m.IsSaddleVertex(v);
@@ -117,7 +117,7 @@ int main(int argc, char** argv)
     for (int k = 0; k < numSources; ++k)
     {
       const int source = static_cast<int>((static_cast<long long>(k) * 7919 + 13) % m.NumberOfVertices());
-      exact += Seconds([&] { solver.Solve(source); });
+      exact += Seconds([&] { static_cast<void>(solver.Solve(source)); }); // a vertex: accepted
       windows += static_cast<double>(solver.Statistics().WindowsPropagated);
       dijkstra += Seconds([&] { GraphDijkstra(m, source, graph); });
       for (int v = 0; v < m.NumberOfVertices(); ++v)

@@ -137,13 +137,13 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "%s\n", error.c_str());
       continue;
     }
-    const gs::MeshBuildResult r = gs::TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    const gs::Result<gs::MeshBuild> r = gs::TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       continue;
     }
-    const gs::TriangleMesh& m = r.Mesh;
+    const gs::TriangleMesh& m = r->Mesh;
     const int nv = m.NumberOfVertices();
     std::vector<int> sources;
     for (int s = 0; s < numSources; ++s)
@@ -152,7 +152,7 @@ int main(int argc, char** argv)
     std::vector<std::vector<double>> ref;
     for (int s : sources)
     {
-      exact.Solve(s);
+      static_cast<void>(exact.Solve(s)); // sources are vertices of the mesh: accepted
       ref.push_back(exact.Distances());
     }
     // The graphs: SVG with K, then a discrete geodesic graph per accuracy.
@@ -169,9 +169,9 @@ int main(int argc, char** argv)
     for (const auto& opt : configurations)
     {
       graphs.push_back(std::make_unique<gs::SaddleVertexGraph>());
-      if (!graphs.back()->Build(m, opt, nullptr, error))
+      if (const gs::Status built = graphs.back()->Build(m, opt, nullptr); !built.Ok())
       {
-        std::fprintf(stderr, "%s\n", error.c_str());
+        std::fprintf(stderr, "%s\n", built.Message().c_str());
         graphs.pop_back();
         continue;
       }
@@ -204,7 +204,7 @@ int main(int argc, char** argv)
       ours.Label = label;
       ours.Setup = graph.BuildSeconds();
       ours.Solve = [&solver, &sources](std::size_t i) {
-        solver.Solve({ gs::SurfacePoint::AtVertex(sources[i]) });
+        static_cast<void>(solver.Solve({ gs::SurfacePoint::AtVertex(sources[i]) })); // accepted
       };
       ours.Distance = [&solver](int v) { return solver.Distance(v); };
       methods.push_back(std::move(ours));

@@ -46,16 +46,20 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "%s\n", error.c_str());
       continue;
     }
-    const MeshBuildResult r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    const Result<MeshBuild> r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       continue;
     }
-    const TriangleMesh& m = r.Mesh;
+    const TriangleMesh& m = r->Mesh;
     const int nv = m.NumberOfVertices();
     SaddleVertexGraph graph;
-    graph.Build(m, SaddleVertexGraphOptions(), nullptr, error);
+    if (const Status built = graph.Build(m, SaddleVertexGraphOptions(), nullptr); !built.Ok())
+    {
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), built.Message().c_str());
+      continue;
+    }
     GeodesicPolarCoordinates pc(m), fast(m, &graph);
     double seconds = 0, fastSeconds = 0, radiusSum = 0, worst = 0, rhoErr = 0;
     std::vector<double> thetaErr;

@@ -114,13 +114,13 @@ int main(int argc, char** argv)
     }
     for (int level = 0; level < subdivisions; ++level)
       soup = SubdivideAtMidpoints(soup);
-    MeshBuildResult r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
-    if (!r.Ok)
+    Result<MeshBuild> r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
+    if (!r.Ok())
     {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Error.c_str());
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Message().c_str());
       continue;
     }
-    const TriangleMesh& m = r.Mesh;
+    const TriangleMesh& m = r->Mesh;
     const int nv = m.NumberOfVertices();
     std::vector<int> sources;
     for (int k = 0; k < numSources; ++k)
@@ -132,7 +132,7 @@ int main(int argc, char** argv)
     for (int s : sources)
     {
       const double t0 = Now();
-      exact.Solve(s);
+      static_cast<void>(exact.Solve(s)); // sources are vertices of the mesh: accepted
       exactTime += Now() - t0;
       ref.push_back(exact.Distances());
     }
@@ -145,7 +145,7 @@ int main(int argc, char** argv)
     for (int k = 0; k < 3; ++k)
     {
       points.push_back(SurfacePoint::InFace(face(rng), 0.2, 0.5, 0.3));
-      exact.Solve({ points.back() });
+      static_cast<void>(exact.Solve({ points.back() })); // a point of a face: accepted
       pointRef.push_back(exact.Distances());
     }
     const std::string name = path.substr(path.find_last_of('/') + 1);
@@ -169,9 +169,9 @@ int main(int argc, char** argv)
       // Peak memory of the build: the process's peak resident size is reset first (Linux).
       std::ofstream("/proc/self/clear_refs") << "5";
       const double rssBefore = StatusBytes("VmRSS:");
-      if (!g.Build(m, opt, nullptr, error))
+      if (const Status built = g.Build(m, opt, nullptr); !built.Ok())
       {
-        std::fprintf(stderr, "%s: %s\n", name.c_str(), error.c_str());
+        std::fprintf(stderr, "%s: %s\n", name.c_str(), built.Message().c_str());
         continue;
       }
       const double peakPerVertex = (StatusBytes("VmHWM:") - rssBefore) / nv;
@@ -220,7 +220,7 @@ int main(int argc, char** argv)
         const int reps = 5;
         const double t0 = Now();
         for (int rep = 0; rep < reps; ++rep)
-          svg.Solve({ SurfacePoint::AtVertex(sources[i]) });
+          static_cast<void>(svg.Solve({ SurfacePoint::AtVertex(sources[i]) })); // accepted
         refined += (Now() - t0) / reps;
         for (int v = 0; v < nv; ++v)
         {
@@ -242,7 +242,7 @@ int main(int argc, char** argv)
       long long pointCount = 0;
       for (std::size_t i = 0; i < points.size(); ++i)
       {
-        svg.Solve({ points[i] });
+        static_cast<void>(svg.Solve({ points[i] })); // accepted by the exact solver above
         for (int v = 0; v < nv; ++v)
         {
           if (pointRef[i][v] > 0 && std::isfinite(pointRef[i][v]))

@@ -306,7 +306,7 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
 {
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   const bool useGraph = this->Solver != EXACT;
-  bool solved = false;
+  gs::Status solved;
   if (useGraph)
   {
     gs::SVGSolveOptions options;
@@ -347,9 +347,9 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
     options.MaximumDistance = this->MaximumDistance;
     solved = cache.Exact->Solve(exactSources, options);
   }
-  if (!solved)
+  if (!solved.Ok())
   {
-    vtkErrorMacro("The geodesic solver rejected the sources.");
+    vtkErrorMacro("The geodesic solver rejected the sources: " << solved.Message());
     return false;
   }
   return true;

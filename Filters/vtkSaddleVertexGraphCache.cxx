@@ -103,10 +103,10 @@ void SaveIfNeeded(const GraphPointer& graph, std::uint64_t hash, const GraphKey&
       return;
     }
   }
-  std::string error;
-  if (!graph->Save(fileName, hash, error))
+  const gs::Status saved = graph->Save(fileName, hash);
+  if (!saved.Ok())
   {
-    warnings.push_back("could not save the graph to the cache file: " + error);
+    warnings.push_back("could not save the graph to the cache file: " + saved.Message());
     return;
   }
   std::lock_guard<std::mutex> lock(store.Mutex);
@@ -209,35 +209,21 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   if (validK && !fileName.empty() && FileExists(fileName))
   {
     auto graph = std::make_shared<gs::SaddleVertexGraph>();
-    std::string error;
-    if (graph->Load(fileName, meshHash, options, error))
+    const gs::Status loaded = graph->Load(fileName, meshHash, options);
+    if (loaded.Ok())
     {
       result.Graph = Insert(graph, meshHash, key, fileName);
       result.From = Origin::File;
       return result;
     }
-    result.Warnings.push_back("cache file not used (" + error + "); rebuilding");
+    result.Warnings.push_back("cache file not used (" + loaded.Message() + "); rebuilding");
   }
 
-  // 3. Build. The core ignores the callback's answer to its final call (1.0): remember any
-  // abort request so that a graph completed after it is not handed out or cached.
-  bool abortRequested = false;
-  gs::ProgressCallback watch = [&](double fraction) {
-    const bool go = !progress || progress(fraction);
-    abortRequested = abortRequested || !go;
-    return go;
-  };
+  // 3. Build (any false from the callback, its final call included, aborts it).
   auto graph = std::make_shared<gs::SaddleVertexGraph>();
-  std::string error;
-  const bool built = graph->Build(mesh, options, watch, error);
-  if (abortRequested)
+  result.Status = graph->Build(mesh, options, progress);
+  if (!result.Status.Ok())
   {
-    result.Aborted = true;
-    return result;
-  }
-  if (!built)
-  {
-    result.Error = error.empty() ? "the graph could not be built" : error;
     return result;
   }
   result.Graph = Insert(graph, meshHash, key, std::string());
@@ -279,9 +265,9 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::GetFor(vtkAlgorithm
     vtkWarningWithObjectMacro(algorithm,
       "" << GraphName(options) << " (CacheFileName " << fileName << "): " << warning);
   }
-  if (!found.Graph && !found.Aborted)
+  if (!found.Status.Ok() && !found.Status.IsAborted())
   {
-    vtkErrorWithObjectMacro(algorithm, "" << GraphName(options) << ": " << found.Error);
+    vtkErrorWithObjectMacro(algorithm, "" << GraphName(options) << ": " << found.Status.Message());
   }
   return found;
 }

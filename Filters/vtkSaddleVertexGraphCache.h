@@ -49,8 +49,7 @@ public:
   {
     std::shared_ptr<const gs::SaddleVertexGraph> Graph; // null on error or abort
     Origin From = Origin::Built;
-    bool Aborted = false;
-    std::string Error;                 // why there is no graph (empty on abort)
+    gs::Status Status;                 // why there is no graph: the core's error, or aborted
     std::vector<std::string> Warnings; // stale/corrupt cache file, failed save
   };
 

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <sstream>
+#include <utility>
 
 vtkSurfaceMeshConverter::Result vtkSurfaceMeshConverter::Convert(vtkPolyData* input)
 {
@@ -120,15 +121,16 @@ vtkSurfaceMeshConverter::Result vtkSurfaceMeshConverter::Convert(vtkPolyData* in
     return result;
   }
 
-  result.Build = gs::TriangleMeshBuilder::Build(positions, triangles);
+  gs::Result<gs::MeshBuild> built = gs::TriangleMeshBuilder::Build(positions, triangles);
+  if (!built.Ok())
+  {
+    result.Error = built.Message();
+    return result;
+  }
+  result.Build = std::move(*built);
   for (const std::string& w : result.Build.Warnings)
   {
     result.Warnings.push_back(w);
-  }
-  if (!result.Build.Ok)
-  {
-    result.Error = result.Build.Error.empty() ? "invalid mesh" : result.Build.Error;
-    return result;
   }
   result.Ok = true;
   return result;

@@ -37,7 +37,7 @@ public:
     // Only the triangles of Surface, cell i = core face i (for vtkStaticCellLocator).
     vtkSmartPointer<vtkPolyData> Triangles;
     // The core mesh plus the maps input point <-> mesh vertex.
-    gs::MeshBuildResult Build;
+    gs::MeshBuild Build;
     // Surface is the input's triangulation (not a shallow copy of the input).
     bool Triangulated = false;
   };

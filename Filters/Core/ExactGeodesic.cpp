@@ -428,36 +428,17 @@ void ExactGeodesicSolver::FinalizeUpTo(double key)
   }
 }
 
-bool ExactGeodesicSolver::Solve(
+Status ExactGeodesicSolver::Solve(
   const std::vector<SurfacePoint>& sources, const ExactGeodesicOptions& options)
 {
   Reset();
-  const int nv = M.NumberOfVertices();
-  const int nf = M.NumberOfFaces();
-  for (const SurfacePoint& s : sources)
-  {
-    if (s.IsVertex())
-    {
-      if (s.Vertex >= nv)
-      {
-        return false;
-      }
-      continue;
-    }
-    if (s.Face < 0 || s.Face >= nf)
-    {
-      return false;
-    }
-    const double sum = s.Bary[0] + s.Bary[1] + s.Bary[2];
-    if (!std::isfinite(sum) || std::abs(sum - 1.0) > 1e-6 || s.Bary[0] < -1e-6 ||
-      s.Bary[1] < -1e-6 || s.Bary[2] < -1e-6)
-    {
-      return false;
-    }
-  }
   if (sources.empty())
   {
-    return false;
+    return Status::Error("no source given");
+  }
+  if (const Status valid = M.CheckPoints(sources, "source"); !valid.Ok())
+  {
+    return valid;
   }
 
   const double maxDistance =
@@ -557,7 +538,7 @@ bool ExactGeodesicSolver::Solve(
     }
     FinalOrder.resize(maxFinal);
   }
-  return true;
+  return Status();
 }
 
 } // namespace gs

@@ -53,11 +53,11 @@ public:
   // The mesh must outlive the solver.
   explicit ExactGeodesicSolver(const TriangleMesh& mesh);
 
-  // Multi-source solve. Returns false (and leaves every distance unreachable) when a source is
-  // invalid (out of range, barycentric coordinates not finite or not summing to about 1).
-  bool Solve(const std::vector<SurfacePoint>& sources,
+  // Multi-source solve. Fails (and leaves every distance unreachable) when there is no source or
+  // a source is invalid (see TriangleMesh::CheckPoint), the message saying which and why.
+  Status Solve(const std::vector<SurfacePoint>& sources,
     const ExactGeodesicOptions& options = ExactGeodesicOptions());
-  bool Solve(int sourceVertex, const ExactGeodesicOptions& options = ExactGeodesicOptions())
+  Status Solve(int sourceVertex, const ExactGeodesicOptions& options = ExactGeodesicOptions())
   {
     return this->Solve(std::vector<SurfacePoint>{ SurfacePoint::AtVertex(sourceVertex) }, options);
   }

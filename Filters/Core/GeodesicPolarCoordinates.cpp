@@ -27,23 +27,14 @@ Status RadiusError(double radius)
   return Status::Error("Radius must be > 0 (it is " + std::to_string(radius) + ")");
 }
 
-Status SourceError()
-{
-  return Status::Error("the geodesic solver rejected the source");
-}
 } // namespace
 
 GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
   : Mesh(mesh)
   , Solver(mesh)
 {
-  if (graph && graph->NumberOfVertices() != mesh.NumberOfVertices())
-  {
-    GraphError = Status::Error("the saddle vertex graph was built for another mesh (" +
-      std::to_string(graph->NumberOfVertices()) + " vertices; the mesh has " +
-      std::to_string(mesh.NumberOfVertices()) + ")");
-  }
-  else if (graph)
+  GraphError = graph ? graph->CheckMesh(mesh) : Status();
+  if (graph && GraphError.Ok())
   {
     Svg.reset(new SVGGeodesicSolver(mesh, *graph));
   }
@@ -89,9 +80,9 @@ Status GeodesicPolarCoordinates::Compute(
     SVGSolveOptions options;
     options.MaximumDistance = maxDistance;
     options.Angles = true;
-    if (!Svg->Solve({ source }, options))
+    if (const Status solved = Svg->Solve({ source }, options); !solved.Ok())
     {
-      return SourceError();
+      return solved;
     }
     for (int v : Svg->Reached())
     {
@@ -108,9 +99,9 @@ Status GeodesicPolarCoordinates::Compute(
   {
     ExactGeodesicOptions options;
     options.MaximumDistance = maxDistance;
-    if (!Solver.Solve({ source }, options))
+    if (const Status solved = Solver.Solve({ source }, options); !solved.Ok())
     {
-      return SourceError();
+      return solved;
     }
     InsideList = Solver.FinalVertices();
   }
@@ -261,9 +252,9 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
   }
   ExactGeodesicOptions options;
   options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * Mesh.MeanEdgeLength() : 0.0;
-  if (!Solver.Solve(samples, options))
+  if (const Status solved = Solver.Solve(samples, options); !solved.Ok())
   {
-    return SourceError();
+    return solved;
   }
   InsideList = Solver.FinalVertices();
   for (int v : InsideList)
@@ -665,7 +656,7 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
   const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, radius * 1.01 + Mesh.MeanEdgeLength());
   ExactGeodesicOptions beyond;
   beyond.MaximumDistance = radius + 3.0 * Mesh.MeanEdgeLength();
-  Solver.Solve({ Source }, beyond);
+  static_cast<void>(Solver.Solve({ Source }, beyond)); // Compute accepted Source
   for (const CurvePiece& piece : ray.Pieces)
   {
     reference[piece.Face].push_back({ piece.A, piece.B });

@@ -477,19 +477,10 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
   }
 }
 
-bool SVGGeodesicSolver::ValidPoint(const SurfacePoint& p) const
+Status SVGGeodesicSolver::Reject(Status why, GraphAlgorithm algorithm)
 {
-  if (p.IsVertex())
-  {
-    return p.Vertex < M.NumberOfVertices();
-  }
-  if (p.Face < 0 || p.Face >= M.NumberOfFaces())
-  {
-    return false;
-  }
-  const double sum = p.Bary[0] + p.Bary[1] + p.Bary[2];
-  return std::isfinite(sum) && std::abs(sum - 1.0) <= 1e-6 && p.Bary[0] >= -1e-6 &&
-    p.Bary[1] >= -1e-6 && p.Bary[2] >= -1e-6;
+  Graph.Solve({}, algorithm);
+  return why;
 }
 
 Vec3 SVGGeodesicSolver::PositionOf(const SurfacePoint& p) const
@@ -497,7 +488,7 @@ Vec3 SVGGeodesicSolver::PositionOf(const SurfacePoint& p) const
   return p.IsVertex() ? M.Position(p.Vertex) : M.Interpolate(p.Face, p.Bary);
 }
 
-bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSources,
+Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSources,
   int finalVertices, const SVGSolveOptions& options)
 {
   std::sort(Pieces.begin(), Pieces.end(), [](const Piece& a, const Piece& b) { return a.Face < b.Face; });
@@ -507,9 +498,9 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
     ExactGeodesicOptions local;
     local.MaximumFinalVertices = std::min(finalVertices, M.NumberOfVertices());
     local.MaximumDistance = options.MaximumDistance;
-    if (!Local.Solve(exactSources, local))
+    if (const Status solved = Local.Solve(exactSources, local); !solved.Ok())
     {
-      return false;
+      return solved;
     }
     for (int v : Local.FinalVertices())
     {
@@ -551,7 +542,7 @@ bool SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSo
       Exact[G.Node(v)] = 0;
     }
   }
-  return true;
+  return Status();
 }
 
 void SVGGeodesicSolver::ClearAngles()
@@ -563,24 +554,27 @@ void SVGGeodesicSolver::ClearAngles()
   AngleSet.clear();
 }
 
-bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SVGSolveOptions& options)
+Status SVGGeodesicSolver::Solve(
+  const std::vector<SurfacePoint>& sources, const SVGSolveOptions& options)
 {
   Pieces.clear();
   ClearAngles();
-  if (sources.empty() || G.NumberOfVertices() != M.NumberOfVertices())
+  if (sources.empty())
   {
-    Graph.Solve({}, options.Algorithm);
-    return false;
+    return Reject(Status::Error("no source given"), options.Algorithm);
+  }
+  if (const Status fits = G.CheckMesh(M); !fits.Ok())
+  {
+    return Reject(fits, options.Algorithm);
+  }
+  if (const Status valid = M.CheckPoints(sources, "source"); !valid.Ok())
+  {
+    return Reject(valid, options.Algorithm);
   }
   std::vector<SurfacePoint> facePoints;
   std::vector<std::pair<int, double>> vertexSeeds;
   for (const SurfacePoint& s : sources)
   {
-    if (!ValidPoint(s))
-    {
-      Graph.Solve({}, options.Algorithm);
-      return false;
-    }
     if (s.IsVertex())
     {
       vertexSeeds.emplace_back(G.Node(s.Vertex), 0.0);
@@ -608,7 +602,7 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
         Exact[v.first] = 0;
       }
     }
-    return true;
+    return Status();
   }
   // Vertex sources join the exact local solve so that its truncation sees all sources.
   for (const auto& v : vertexSeeds)
@@ -619,26 +613,32 @@ bool SVGGeodesicSolver::Solve(const std::vector<SurfacePoint>& sources, const SV
   return SolveFromPieces(facePoints, k * static_cast<int>(facePoints.size()), options);
 }
 
-bool SVGGeodesicSolver::SolveCurves(
+Status SVGGeodesicSolver::SolveCurves(
   const std::vector<std::vector<SurfacePoint>>& curves, const SVGSolveOptions& options)
 {
   Pieces.clear();
   ClearAngles();
-  std::vector<CurvePiece> pieces;
-  bool valid = !curves.empty() && G.NumberOfVertices() == M.NumberOfVertices();
-  for (const auto& curve : curves)
+  if (curves.empty())
   {
-    valid = valid && !curve.empty();
-    for (const SurfacePoint& s : curve)
+    return Reject(Status::Error("no curve given"), options.Algorithm);
+  }
+  if (const Status fits = G.CheckMesh(M); !fits.Ok())
+  {
+    return Reject(fits, options.Algorithm);
+  }
+  for (std::size_t c = 0; c < curves.size(); ++c)
+  {
+    const std::string curve = "curve " + std::to_string(c);
+    if (curves[c].empty())
     {
-      valid = valid && ValidPoint(s);
+      return Reject(Status::Error(curve + " has no point"), options.Algorithm);
+    }
+    if (const Status valid = M.CheckPoints(curves[c], curve + ", point"); !valid.Ok())
+    {
+      return Reject(valid, options.Algorithm);
     }
   }
-  if (!valid)
-  {
-    Graph.Solve({}, options.Algorithm);
-    return false;
-  }
+  std::vector<CurvePiece> pieces;
   for (const auto& curve : curves)
   {
     const std::vector<CurvePiece> traced = TraceSurfaceCurve(M, curve);
@@ -664,7 +664,7 @@ bool SVGGeodesicSolver::SolveCurves(
 
 double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
 {
-  if (!ValidPoint(q))
+  if (!M.CheckPoint(q).Ok())
   {
     return Inf;
   }
@@ -714,7 +714,7 @@ const std::vector<int>& SVGGeodesicSolver::Reached() const
 
 double SVGGeodesicSolver::Distance(const SurfacePoint& a, const SurfacePoint& b)
 {
-  if (!Solve({ a }))
+  if (!Solve({ a }).Ok())
   {
     return Inf;
   }
@@ -725,7 +725,7 @@ std::vector<double> SVGGeodesicSolver::DistancesTo(
   const SurfacePoint& a, const std::vector<SurfacePoint>& targets)
 {
   std::vector<double> out(targets.size(), Inf);
-  if (!Solve({ a }))
+  if (!Solve({ a }).Ok())
   {
     return out;
   }

@@ -43,12 +43,15 @@ public:
   // sizes its arrays and derives per-node data from it) must outlive the solver.
   SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVertexGraph& graph);
 
-  // Distances from the sources to every vertex. False when a source is invalid.
-  bool Solve(const std::vector<SurfacePoint>& sources, const SVGSolveOptions& options = {});
-  // Distances from curves (see the class comment) to every vertex. False when a point is
-  // invalid or a curve is empty.
-  bool SolveCurves(const std::vector<std::vector<SurfacePoint>>& curves, const SVGSolveOptions& options = {});
-  bool SolveCurve(const std::vector<SurfacePoint>& curve, const SVGSolveOptions& options = {})
+  // Distances from the sources to every vertex. Fails (every vertex unreached) when there is no
+  // source, a source is invalid (TriangleMesh::CheckPoint) or the graph is of another mesh; the
+  // message says which source and why.
+  Status Solve(const std::vector<SurfacePoint>& sources, const SVGSolveOptions& options = {});
+  // Distances from curves (see the class comment) to every vertex. Fails likewise when there is
+  // no curve, a curve has no point or a point is invalid.
+  Status SolveCurves(
+    const std::vector<std::vector<SurfacePoint>>& curves, const SVGSolveOptions& options = {});
+  Status SolveCurve(const std::vector<SurfacePoint>& curve, const SVGSolveOptions& options = {})
   {
     return SolveCurves({ curve }, options);
   }
@@ -87,12 +90,13 @@ private:
     int Face;
     Vec3 A, B; // a segment (A == B for a point source) inside Face
   };
-  bool ValidPoint(const SurfacePoint& p) const;
   Vec3 PositionOf(const SurfacePoint& p) const;
   // Geodesic triangle unfolding over the polar stencils, in order of distance.
   void Refine(double maxDistance, bool unfold, bool angles);
   void ClearAngles();
-  bool SolveFromPieces(const std::vector<SurfacePoint>& exactSources, int finalVertices,
+  // Leaves every vertex unreached and returns `why` (a failed Status).
+  Status Reject(Status why, GraphAlgorithm algorithm);
+  Status SolveFromPieces(const std::vector<SurfacePoint>& exactSources, int finalVertices,
     const SVGSolveOptions& options);
 
   const TriangleMesh& M;

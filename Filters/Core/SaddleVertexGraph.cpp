@@ -159,28 +159,37 @@ std::uint64_t SaddleVertexGraph::HashMesh(const TriangleMesh& mesh)
   return h.H;
 }
 
-bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
-  const ProgressCallback& progress, std::string& error)
+Status SaddleVertexGraph::CheckMesh(const TriangleMesh& mesh) const
+{
+  if (NumberOfVertices() != mesh.NumberOfVertices())
+  {
+    return Status::Error("the saddle vertex graph was built for another mesh (" +
+      std::to_string(NumberOfVertices()) + " vertices; the mesh has " +
+      std::to_string(mesh.NumberOfVertices()) + ")");
+  }
+  return Status();
+}
+
+Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+  const ProgressCallback& progress)
 {
   const auto t0 = std::chrono::steady_clock::now();
   Clear();
   const int nv = mesh.NumberOfVertices();
   if (nv == 0)
   {
-    error = "the mesh has no vertices";
-    return false;
+    return Status::Error("the mesh has no vertices");
   }
   const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
   if (!dgg && options.K < 1)
   {
-    error = "K must be at least 1 (got " + std::to_string(options.K) + ")";
-    return false;
+    return Status::Error("K must be at least 1 (got " + std::to_string(options.K) + ")");
   }
   if (dgg && !(options.Accuracy >= 1e-5 && options.Accuracy <= 0.1))
   {
-    error = "the accuracy of a discrete geodesic graph must be within 1e-5 .. 0.1 (got " +
-      std::to_string(options.Accuracy) + ")";
-    return false;
+    return Status::Error(
+      "the accuracy of a discrete geodesic graph must be within 1e-5 .. 0.1 (got " +
+      std::to_string(options.Accuracy) + ")");
   }
   const int k = std::min(options.K, nv);
   // Refuse before allocating what the machine cannot give now.
@@ -188,15 +197,15 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   const double available = AvailableMemoryBytes();
   if (available > 0 && estimate > 0.8 * available)
   {
-    error = (dgg ? "a discrete geodesic graph with the accuracy " + std::to_string(options.Accuracy)
-                 : "a saddle vertex graph with K = " + std::to_string(k)) +
+    return Status::Error(
+      (dgg ? "a discrete geodesic graph with the accuracy " + std::to_string(options.Accuracy)
+           : "a saddle vertex graph with K = " + std::to_string(k)) +
       " on " + std::to_string(nv) + " vertices needs about " +
       std::to_string(static_cast<long long>(estimate / 1048576.0)) +
       " MiB while building, more than the " +
       std::to_string(static_cast<long long>(available / 1048576.0)) + " MiB available; " +
       (dgg ? "ask for a coarser accuracy (memory grows as 1 / sqrt(accuracy))"
-           : "lower K (memory grows linearly with K)");
-    return false;
+           : "lower K (memory grows linearly with K)"));
   }
 
   // Nodes: the vertices in Z-order (see OrderNodes).
@@ -237,7 +246,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
       }
       else
       {
-        solver.Solve(s, opt);
+        static_cast<void>(solver.Solve(s, opt)); // s is a vertex of the mesh: accepted
         for (int v : solver.FinalVertices())
         {
           if (v != s && solver.IsDirect(v))
@@ -262,8 +271,7 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   }
   if (aborted)
   {
-    error = "aborted";
-    return false;
+    return Status::Aborted();
   }
 
   // Everything below is laid out by node (the vertices in Z-order, see OrderNodes).
@@ -384,14 +392,13 @@ bool SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphO
   if (progress && !progress(1.0))
   {
     Clear();
-    error = "aborted";
-    return false;
+    return Status::Aborted();
   }
   Construction = options.Construction;
   K = dgg ? 0 : k;
   Accuracy = dgg ? options.Accuracy : 0.0;
   Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return true;
+  return Status();
 }
 
 void SaddleVertexGraph::OrderNodes(const TriangleMesh& mesh)
@@ -447,14 +454,12 @@ void SaddleVertexGraph::IndexLinksInStencils()
   }
 }
 
-bool SaddleVertexGraph::Save(
-  const std::string& path, std::uint64_t meshHash, std::string& error) const
+Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) const
 {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out)
   {
-    error = "cannot write " + path;
-    return false;
+    return Status::Error("cannot write " + path);
   }
   const std::int64_t nv = NumberOfVertices(), ne = NumberOfEntries();
   const bool dgg = Construction == GraphConstruction::DiscreteGeodesic;
@@ -499,21 +504,20 @@ bool SaddleVertexGraph::Save(
   out.write(reinterpret_cast<const char*>(&sum.H), sizeof(sum.H));
   if (!out)
   {
-    error = "error while writing " + path;
-    return false;
+    return Status::Error("error while writing " + path);
   }
-  return true;
+  return Status();
 }
 
-bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error)
+Status SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash, int k)
 {
   SaddleVertexGraphOptions options;
   options.K = k;
-  return Load(path, meshHash, options, error);
+  return Load(path, meshHash, options);
 }
 
-bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
-  const SaddleVertexGraphOptions& options, std::string& error)
+Status SaddleVertexGraph::Load(
+  const std::string& path, std::uint64_t meshHash, const SaddleVertexGraphOptions& options)
 {
   const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
   const int k = options.K;
@@ -521,8 +525,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    error = "cannot open " + path;
-    return false;
+    return Status::Error("cannot open " + path);
   }
   in.seekg(0, std::ios::end);
   const std::int64_t fileSize = static_cast<std::int64_t>(in.tellg());
@@ -540,9 +543,9 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   if (in && std::memcmp(magic, expected, 5) != 0 &&
     (std::memcmp(magic, Magic, 5) == 0 || std::memcmp(magic, DGGMagic, 5) == 0))
   {
-    error = path + (dgg ? " holds a saddle vertex graph, not a discrete geodesic graph"
-                        : " holds a discrete geodesic graph, not a saddle vertex graph");
-    return false;
+    return Status::Error(path +
+      (dgg ? " holds a saddle vertex graph, not a discrete geodesic graph"
+           : " holds a discrete geodesic graph, not a saddle vertex graph"));
   }
   in.read(reinterpret_cast<char*>(&hash), sizeof(hash));
   in.read(static_cast<char*>(key), keySize);
@@ -552,27 +555,24 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   if (!in || std::memcmp(magic, expected, sizeof(Magic)) != 0)
   {
     // (Format 004 added the node order; earlier files are rebuilt.)
-    error = in && std::memcmp(magic, expected, 5) == 0
+    return Status::Error(in && std::memcmp(magic, expected, 5) == 0
       ? path + " is a geodesic graph cache file of another format version"
-      : path + " is not a geodesic graph cache file";
-    return false;
+      : path + " is not a geodesic graph cache file");
   }
   if (hash != meshHash)
   {
-    error = path + " was made for another mesh";
-    return false;
+    return Status::Error(path + " was made for another mesh");
   }
   // K is clamped to the vertex count when building: compare the clamped request.
   if (dgg && fileAccuracy != options.Accuracy)
   {
-    error = path + " was made for the accuracy " + std::to_string(fileAccuracy) + ", not " +
-      std::to_string(options.Accuracy);
-    return false;
+    return Status::Error(path + " was made for the accuracy " + std::to_string(fileAccuracy) +
+      ", not " + std::to_string(options.Accuracy));
   }
   if (!dgg && nv >= 1 && static_cast<std::int64_t>(fileK) != std::min<std::int64_t>(k, nv))
   {
-    error = path + " was made with K = " + std::to_string(fileK) + ", not " + std::to_string(k);
-    return false;
+    return Status::Error(
+      path + " was made with K = " + std::to_string(fileK) + ", not " + std::to_string(k));
   }
   const std::int64_t header =
     sizeof(Magic) + sizeof(hash) + keySize + sizeof(seconds) + 2 * sizeof(std::int64_t);
@@ -580,8 +580,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   const std::int64_t linksEnd = header + (nv + 1) * 8 + ne * 12;
   if (nv < 1 || ne < 0 || nv > (1LL << 31) || ne > (1LL << 40) || fileSize < linksEnd + 16)
   {
-    error = path + " is truncated or corrupt (size does not match its header)";
-    return false;
+    return Status::Error(path + " is truncated or corrupt (size does not match its header)");
   }
   std::vector<std::int64_t> offsets(nv + 1);
   std::vector<int> targets(ne);
@@ -594,8 +593,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   if (!in || ns < 0 || ns > (1LL << 40) ||
     fileSize != linksEnd + 8 + (nv + 1) * 8 + ns * (4 + 8 + 16) + 16 * nv + 4 * nv + 8)
   {
-    error = path + " is truncated or corrupt (size does not match its header)";
-    return false;
+    return Status::Error(path + " is truncated or corrupt (size does not match its header)");
   }
   std::vector<std::int64_t> stencilOffsets(nv + 1);
   std::vector<int> stencilTargets(ns);
@@ -611,8 +609,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
   if (!in)
   {
-    error = path + " is truncated";
-    return false;
+    return Status::Error(path + " is truncated");
   }
   Hasher sum;
   sum.Add(&hash, sizeof(hash));
@@ -632,8 +629,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   sum.AddVector(vertexOf);
   if (sum.H != stored)
   {
-    error = path + " is corrupt (checksum mismatch)";
-    return false;
+    return Status::Error(path + " is corrupt (checksum mismatch)");
   }
   // Structural checks, so that even a forged file with a valid checksum cannot cause
   // out-of-range reads.
@@ -647,15 +643,13 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   };
   if (!validOffsets(offsets, ne) || !validOffsets(stencilOffsets, ns))
   {
-    error = path + " is corrupt (bad offsets)";
-    return false;
+    return Status::Error(path + " is corrupt (bad offsets)");
   }
   for (std::int64_t e = 0; e < ne; ++e)
   {
     if (targets[e] < 0 || targets[e] >= nv || !(weights[e] >= 0.0) || !std::isfinite(weights[e]))
     {
-      error = path + " is corrupt (bad link)";
-      return false;
+      return Status::Error(path + " is corrupt (bad link)");
     }
   }
   for (std::int64_t e = 0; e < ns; ++e)
@@ -663,16 +657,14 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
     if (stencilTargets[e] < 0 || stencilTargets[e] >= nv || !std::isfinite(stencilR[e]) ||
       !std::isfinite(stencilXY[2 * e]) || !std::isfinite(stencilXY[2 * e + 1]))
     {
-      error = path + " is corrupt (bad stencil)";
-      return false;
+      return Status::Error(path + " is corrupt (bad stencil)");
     }
   }
   for (double w : wrapXY)
   {
     if (!std::isfinite(w))
     {
-      error = path + " is corrupt (bad stencil)";
-      return false;
+      return Status::Error(path + " is corrupt (bad stencil)");
     }
   }
   // The node order must be a permutation of the vertices.
@@ -682,8 +674,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
     const int v = vertexOf[n];
     if (v < 0 || v >= nv || nodeOf[v] >= 0)
     {
-      error = path + " is corrupt (bad node order)";
-      return false;
+      return Status::Error(path + " is corrupt (bad node order)");
     }
     nodeOf[v] = static_cast<int>(n);
   }
@@ -702,7 +693,7 @@ bool SaddleVertexGraph::Load(const std::string& path, std::uint64_t meshHash,
   K = dgg ? 0 : fileK;
   Accuracy = dgg ? fileAccuracy : 0.0;
   Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;
-  return true;
+  return Status();
 }
 
 GraphDistanceSolver::GraphDistanceSolver(const SaddleVertexGraph& graph)

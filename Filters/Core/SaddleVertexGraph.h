@@ -9,6 +9,7 @@
 // file keyed by a hash of the mesh geometry.
 #pragma once
 
+#include "Status.h"
 #include "TriangleMesh.h"
 
 #include <algorithm>
@@ -57,11 +58,11 @@ struct SaddleVertexGraphOptions
 class SaddleVertexGraph
 {
 public:
-  // Builds the graph. Returns false when aborted by the progress callback (its last call, with
-  // 1.0, may still abort) or when the request is invalid (error says why); the graph is then
+  // Builds the graph. Returns Status::Aborted() when the progress callback aborts (its last
+  // call, with 1.0, may still abort) and an error when the request is invalid; the graph is then
   // empty. The calling thread reports progress every 16 of the vertices it solves.
-  bool Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
-    const ProgressCallback& progress, std::string& error);
+  Status Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+    const ProgressCallback& progress);
 
   bool Empty() const { return Offsets.size() <= 1; }
   int NumberOfVertices() const { return Offsets.empty() ? 0 : static_cast<int>(Offsets.size()) - 1; }
@@ -172,16 +173,19 @@ public:
 
   // A hash of the mesh geometry and connectivity (positions bit for bit, faces).
   static std::uint64_t HashMesh(const TriangleMesh& mesh);
+  // Ok when the graph may serve `mesh` (it has as many vertices); otherwise an error saying that
+  // it was built for another mesh.
+  Status CheckMesh(const TriangleMesh& mesh) const;
   // Cache files: Save writes the graph with the mesh hash, K and its build time; Load accepts a
   // file only if it is intact (checksum), for the same mesh hash and K (clamped to the vertex
-  // count, as Build does), and well-formed; otherwise it returns false with the reason and leaves
+  // count, as Build does), and well-formed; otherwise it returns an error saying why and leaves
   // the graph empty. BuildSeconds() of a loaded graph is the original build's.
-  bool Save(const std::string& path, std::uint64_t meshHash, std::string& error) const;
-  bool Load(const std::string& path, std::uint64_t meshHash, int k, std::string& error);
+  Status Save(const std::string& path, std::uint64_t meshHash) const;
+  Status Load(const std::string& path, std::uint64_t meshHash, int k);
   // The same for any construction: a discrete geodesic graph's file (its own format) must have
   // been saved for exactly the same accuracy.
-  bool Load(const std::string& path, std::uint64_t meshHash,
-    const SaddleVertexGraphOptions& options, std::string& error);
+  Status Load(
+    const std::string& path, std::uint64_t meshHash, const SaddleVertexGraphOptions& options);
 
   bool operator==(const SaddleVertexGraph& o) const
   {

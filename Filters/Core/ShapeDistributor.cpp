@@ -54,11 +54,9 @@ Status ShapeDistributor::Impl::CheckTablesAndOptions() const
   {
     return Status::Error("the mesh has no faces");
   }
-  if (Graph && Graph->NumberOfVertices() != Mesh.NumberOfVertices())
+  if (const Status graphFits = Graph ? Graph->CheckMesh(Mesh) : Status(); !graphFits.Ok())
   {
-    return Status::Error("the saddle vertex graph was built for another mesh (" +
-      std::to_string(Graph->NumberOfVertices()) + " vertices; the mesh has " +
-      std::to_string(Mesh.NumberOfVertices()) + ")");
+    return graphFits;
   }
   if (Tables.Classes.empty() || Tables.Parts.empty())
   {

@@ -91,6 +91,60 @@ std::array<double, 3> TriangleMesh::ClampedBarycentric(int f, const Vec3& x) con
   return { { w0 / sum, w1 / sum, w2 / sum } };
 }
 
+Status TriangleMesh::CheckPoint(const SurfacePoint& p) const
+{
+  if (p.IsVertex())
+  {
+    if (p.Vertex >= NumberOfVertices())
+    {
+      return Status::Error("vertex " + std::to_string(p.Vertex) + " does not exist (the mesh has " +
+        std::to_string(NumberOfVertices()) + " vertices)");
+    }
+    return Status();
+  }
+  if (p.Face < 0 || p.Face >= NumberOfFaces())
+  {
+    return Status::Error("face " + std::to_string(p.Face) + " does not exist (the mesh has " +
+      std::to_string(NumberOfFaces()) + " faces)");
+  }
+  const double sum = p.Bary[0] + p.Bary[1] + p.Bary[2];
+  const bool finite = std::isfinite(sum);
+  const bool unit = finite && std::abs(sum - 1.0) <= 1e-6;
+  if (unit && p.Bary[0] >= -1e-6 && p.Bary[1] >= -1e-6 && p.Bary[2] >= -1e-6)
+  {
+    return Status();
+  }
+  std::ostringstream msg;
+  msg << "the barycentric coordinates (" << p.Bary[0] << ", " << p.Bary[1] << ", " << p.Bary[2]
+      << ") in face " << p.Face;
+  if (!finite)
+  {
+    msg << " are not finite";
+  }
+  else if (!unit)
+  {
+    msg << " sum to " << sum << ", not 1";
+  }
+  else
+  {
+    msg << " are not all >= 0";
+  }
+  return Status::Error(msg.str());
+}
+
+Status TriangleMesh::CheckPoints(
+  const std::vector<SurfacePoint>& points, const std::string& name) const
+{
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    if (const Status valid = CheckPoint(points[i]); !valid.Ok())
+    {
+      return Status::Error(name + " " + std::to_string(i) + " is invalid: " + valid.Message());
+    }
+  }
+  return Status();
+}
+
 void TriangleMesh::ComputeDerivedData()
 {
   const int nf = NumberOfFaces();
@@ -233,20 +287,18 @@ void TriangleMesh::ComputeDerivedData()
   }
 }
 
-MeshBuildResult TriangleMeshBuilder::Build(
+Result<MeshBuild> TriangleMeshBuilder::Build(
   const std::vector<Vec3>& points, const std::vector<std::array<long long, 3>>& triangles)
 {
-  MeshBuildResult r;
+  MeshBuild r;
   const std::size_t np = points.size();
   if (triangles.empty())
   {
-    r.Error = "the input has no triangles";
-    return r;
+    return Status::Error("the input has no triangles");
   }
   if (np > static_cast<std::size_t>(0x3fffffff) || triangles.size() > static_cast<std::size_t>(0x2aaaaaaa))
   {
-    r.Error = "the input is too large (more than 2^30 points or 7e8 triangles)";
-    return r;
+    return Status::Error("the input is too large (more than 2^30 points or 7e8 triangles)");
   }
 
   // 1. Check indices and coordinates of referenced points; weld exactly coincident points.
@@ -261,8 +313,8 @@ MeshBuildResult TriangleMeshBuilder::Build(
       const long long p = triangles[i][k];
       if (p < 0 || static_cast<std::size_t>(p) >= np)
       {
-        r.Error = FaceLabel(i) + " refers to point " + std::to_string(p) + ", which does not exist";
-        return r;
+        return Status::Error(
+          FaceLabel(i) + " refers to point " + std::to_string(p) + ", which does not exist");
       }
       if (weldTarget[p] >= 0)
       {
@@ -270,15 +322,13 @@ MeshBuildResult TriangleMeshBuilder::Build(
       }
       if (!IsFinite(points[p]))
       {
-        r.Error = "point " + std::to_string(p) + " (used by " + FaceLabel(i) +
-          ") has a NaN or infinite coordinate";
-        return r;
+        return Status::Error("point " + std::to_string(p) + " (used by " + FaceLabel(i) +
+          ") has a NaN or infinite coordinate");
       }
       if (std::max({ std::abs(points[p].x), std::abs(points[p].y), std::abs(points[p].z) }) > 1e100)
       {
-        r.Error = "point " + std::to_string(p) + " (used by " + FaceLabel(i) +
-          ") has a coordinate beyond 1e100: rescale the mesh";
-        return r;
+        return Status::Error("point " + std::to_string(p) + " (used by " + FaceLabel(i) +
+          ") has a coordinate beyond 1e100: rescale the mesh");
       }
       auto it = firstAt.emplace(points[p], static_cast<int>(p)).first;
       weldTarget[p] = it->second;
@@ -324,9 +374,8 @@ MeshBuildResult TriangleMeshBuilder::Build(
     }
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
     {
-      r.Error = FaceLabel(i) + " is degenerate: it uses the same point twice (after welding "
-                               "coincident points)";
-      return r;
+      return Status::Error(FaceLabel(i) +
+        " is degenerate: it uses the same point twice (after welding coincident points)");
     }
     const Vec3 e1 = m.Positions[t[1]] - m.Positions[t[0]];
     const Vec3 e2 = m.Positions[t[2]] - m.Positions[t[0]];
@@ -337,8 +386,7 @@ MeshBuildResult TriangleMeshBuilder::Build(
     // double precision can resolve at this coordinate magnitude.
     if (!(twiceArea > 1e-12 * longest * longest) || !(longest > 1e-13 * scale))
     {
-      r.Error = FaceLabel(i) + " is degenerate (zero area)";
-      return r;
+      return Status::Error(FaceLabel(i) + " is degenerate (zero area)");
     }
   }
   {
@@ -354,8 +402,8 @@ MeshBuildResult TriangleMeshBuilder::Build(
     {
       if (sorted[i].first == sorted[i - 1].first)
       {
-        r.Error = FaceLabel(sorted[i].second) + " duplicates " + FaceLabel(sorted[i - 1].second);
-        return r;
+        return Status::Error(
+          FaceLabel(sorted[i].second) + " duplicates " + FaceLabel(sorted[i - 1].second));
       }
     }
   }
@@ -386,10 +434,9 @@ MeshBuildResult TriangleMeshBuilder::Build(
     if (j - i > 2)
     {
       const int a = m.Origin(uses[i].H), b = m.Destination(uses[i].H);
-      r.Error = "non-manifold edge between points " + std::to_string(r.VertexToPoint[a]) + " and " +
-        std::to_string(r.VertexToPoint[b]) + ": it is shared by " + std::to_string(j - i) +
-        " triangles";
-      return r;
+      return Status::Error("non-manifold edge between points " +
+        std::to_string(r.VertexToPoint[a]) + " and " + std::to_string(r.VertexToPoint[b]) +
+        ": it is shared by " + std::to_string(j - i) + " triangles");
     }
     if (j - i == 2)
     {
@@ -433,9 +480,8 @@ MeshBuildResult TriangleMeshBuilder::Build(
         }
         else if (flip[t / 3] != want)
         {
-          r.Error = "the surface is not orientable (a Moebius-like strip contains " +
-            FaceLabel(f) + ")";
-          return r;
+          return Status::Error("the surface is not orientable (a Moebius-like strip contains " +
+            FaceLabel(f) + ")");
         }
       }
     }
@@ -589,9 +635,8 @@ MeshBuildResult TriangleMeshBuilder::Build(
         const int v = m.Faces[i][corner];
         if (seen[p] >= 0 && seen[p] != v)
         {
-          r.Error = "non-manifold vertex at point " + std::to_string(p) +
-            ": its triangles form more than one fan";
-          return r;
+          return Status::Error("non-manifold vertex at point " + std::to_string(p) +
+            ": its triangles form more than one fan");
         }
         seen[p] = v;
       }
@@ -616,7 +661,6 @@ MeshBuildResult TriangleMeshBuilder::Build(
   }
 
   m.ComputeDerivedData();
-  r.Ok = true;
   return r;
 }
 

@@ -9,6 +9,8 @@
 // Algorithms that keep a reference to a mesh (solvers) must not outlive it.
 #pragma once
 
+#include "Status.h"
+#include "SurfacePoint.h"
 #include "Vector.h"
 
 #include <array>
@@ -96,6 +98,13 @@ public:
   // The inverse of Interpolate for a point lying in face f up to rounding: its barycentric
   // coordinates, clamped to the face and normalized to sum 1.
   std::array<double, 3> ClampedBarycentric(int f, const Vec3& x) const;
+  // Ok when p is a point of this mesh: an existing vertex, or an existing face with finite
+  // barycentric coordinates, none below -1e-6, summing to 1 within 1e-6; otherwise an error
+  // saying what is wrong with it.
+  Status CheckPoint(const SurfacePoint& p) const;
+  // Ok when each of `points` is a point of this mesh; otherwise an error on the first that is
+  // not: "<name> <index> is invalid: <what CheckPoint says>".
+  Status CheckPoints(const std::vector<SurfacePoint>& points, const std::string& name) const;
 
 private:
   friend class TriangleMeshBuilder;
@@ -123,11 +132,9 @@ private:
   Vec3 BoxMin, BoxMax;
 };
 
-// The result of building a mesh from caller data.
-struct MeshBuildResult
+// A mesh built from caller data.
+struct MeshBuild
 {
-  bool Ok = false;
-  std::string Error;                 // why it failed (empty when Ok)
   std::vector<std::string> Warnings; // e.g. faces re-oriented
   TriangleMesh Mesh;
   // For every input point: the mesh vertex it became (after welding), or -1 when no triangle
@@ -146,7 +153,7 @@ public:
   // non-finite coordinates of a referenced point, degenerate (repeated index or zero-area)
   // triangles, duplicate triangles, non-manifold edges or vertices, non-orientable components.
   // Inconsistently oriented faces are flipped (a warning says how many).
-  static MeshBuildResult Build(
+  static Result<MeshBuild> Build(
     const std::vector<Vec3>& points, const std::vector<std::array<long long, 3>>& triangles);
 };
 

@@ -8,6 +8,7 @@
 #include "SurfaceCurve.h"
 #include "SaddleVertexGraph.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -29,8 +30,7 @@ SaddleVertexGraph BuildDGG(const TriangleMesh& m, double accuracy, int threads =
   o.Construction = GraphConstruction::DiscreteGeodesic;
   o.Accuracy = accuracy;
   o.NumberOfThreads = threads;
-  std::string error;
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   return g;
 }
 
@@ -77,13 +77,13 @@ void Measure(const TriangleMesh& m, const SaddleVertexGraph& g, Errors& graph, E
   const int nv = m.NumberOfVertices();
   for (int s : { 0, nv / 3, (2 * nv) / 3 + 1 })
   {
-    ASSERT_TRUE(exact.Solve(s));
+    ASSERT_TRUE(gs_test::Succeeded(exact.Solve(s)));
     SVGSolveOptions plain;
     plain.Refine = false;
-    ASSERT_TRUE(solver.Solve({ SurfacePoint::AtVertex(s) }, plain));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ SurfacePoint::AtVertex(s) }, plain)));
     for (int v = 0; v < nv; ++v)
       graph.Add(solver.Distance(v), exact.Distance(v));
-    ASSERT_TRUE(solver.Solve({ SurfacePoint::AtVertex(s) }));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ SurfacePoint::AtVertex(s) })));
     for (int v = 0; v < nv; ++v)
       refined.Add(solver.Distance(v), exact.Distance(v));
   }
@@ -139,8 +139,8 @@ TEST(DiscreteGeodesicGraph, PointAndCurveSourcesWithinTheAccuracy)
   for (int f : { 11, 2000, 4321 })
   {
     const SurfacePoint p = SurfacePoint::InFace(f, 0.2, 0.5, 0.3);
-    ASSERT_TRUE(exact.Solve({ p }));
-    ASSERT_TRUE(solver.Solve({ p }));
+    ASSERT_TRUE(gs_test::Succeeded(exact.Solve({ p })));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ p })));
     for (int v = 0; v < m.NumberOfVertices(); ++v)
       point.Add(solver.Distance(v), exact.Distance(v));
   }
@@ -148,10 +148,10 @@ TEST(DiscreteGeodesicGraph, PointAndCurveSourcesWithinTheAccuracy)
   // A curve: the exact reference from dense samples of the same traced curve.
   const std::vector<SurfacePoint> curve = { SurfacePoint::InFace(100, 0.3, 0.3, 0.4),
     SurfacePoint::InFace(140, 0.3, 0.3, 0.4), SurfacePoint::InFace(190, 0.3, 0.3, 0.4) };
-  ASSERT_TRUE(solver.SolveCurve(curve));
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolveCurve(curve)));
   const std::vector<SurfacePoint> samples = SampleCurvePieces(
     m, TraceSurfaceCurve(m, curve), ExactCurveSampleSpacing * m.MeanEdgeLength());
-  ASSERT_TRUE(exact.Solve(samples));
+  ASSERT_TRUE(gs_test::Succeeded(exact.Solve(samples)));
   Errors fromCurve;
   for (int v = 0; v < m.NumberOfVertices(); ++v)
     fromCurve.Add(solver.Distance(v), exact.Distance(v));
@@ -199,9 +199,7 @@ TEST(DiscreteGeodesicGraph, RejectsAccuracyOutOfRange)
     SaddleVertexGraphOptions o;
     o.Construction = GraphConstruction::DiscreteGeodesic;
     o.Accuracy = accuracy;
-    std::string error;
-    EXPECT_FALSE(g.Build(m, o, nullptr, error)) << accuracy;
-    EXPECT_NE(error.find("accuracy"), std::string::npos) << error;
+    EXPECT_TRUE(gs_test::FailedWith(g.Build(m, o, nullptr), "accuracy")) << accuracy;
     EXPECT_TRUE(g.Empty());
   }
 }
@@ -212,30 +210,26 @@ TEST(DiscreteGeodesicGraph, CacheFilesOfTheirOwnFormat)
   const std::uint64_t hash = SaddleVertexGraph::HashMesh(m);
   const SaddleVertexGraph g = BuildDGG(m, 5e-3);
   const std::string path = std::string(::testing::TempDir()) + "dgg_cache.svgg";
-  std::string error;
-  ASSERT_TRUE(g.Save(path, hash, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(g.Save(path, hash)));
   SaddleVertexGraphOptions same;
   same.Construction = GraphConstruction::DiscreteGeodesic;
   same.Accuracy = 5e-3;
   SaddleVertexGraph loaded;
-  ASSERT_TRUE(loaded.Load(path, hash, same, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(loaded.Load(path, hash, same)));
   EXPECT_TRUE(loaded == g);
   EXPECT_EQ(loaded.GetAccuracy(), 5e-3);
   SaddleVertexGraphOptions other = same;
   other.Accuracy = 1e-3;
-  EXPECT_FALSE(loaded.Load(path, hash, other, error));
-  EXPECT_NE(error.find("accuracy"), std::string::npos) << error;
-  EXPECT_FALSE(loaded.Load(path, hash + 1, same, error));
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, other), "accuracy"));
+  EXPECT_FALSE(loaded.Load(path, hash + 1, same).Ok());
   // A saddle vertex graph request does not take a discrete geodesic graph's file, nor the
   // reverse.
-  EXPECT_FALSE(loaded.Load(path, hash, 50, error));
-  EXPECT_NE(error.find("discrete geodesic graph"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 50), "discrete geodesic graph"));
   SaddleVertexGraph svg;
   SaddleVertexGraphOptions svgOptions;
   svgOptions.K = 20;
-  ASSERT_TRUE(svg.Build(m, svgOptions, nullptr, error)) << error;
-  ASSERT_TRUE(svg.Save(path, hash, error)) << error;
-  EXPECT_FALSE(loaded.Load(path, hash, same, error));
-  EXPECT_NE(error.find("saddle vertex graph"), std::string::npos) << error;
+  ASSERT_TRUE(gs_test::Succeeded(svg.Build(m, svgOptions, nullptr)));
+  ASSERT_TRUE(gs_test::Succeeded(svg.Save(path, hash)));
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, same), "saddle vertex graph"));
   std::remove(path.c_str());
 }

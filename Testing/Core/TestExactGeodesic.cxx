@@ -2,6 +2,7 @@
 #include "MeshGenerators.h"
 #include "TriangleMesh.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -74,7 +75,7 @@ TEST(ExactGeodesic, PlanarGridFromVertexIsEuclidean)
   ExactGeodesicSolver solver(m);
   for (int source : { 0, 7 * 21 + 9, 20 })
   {
-    ASSERT_TRUE(solver.Solve(source));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve(source)));
     const Vec3 s = m.Position(source);
     EXPECT_LT(MaxRelativeError(solver, [&](int v) { return Norm(m.Position(v) - s); }), 1e-9);
     EXPECT_EQ(solver.FinalVertices().size(), static_cast<std::size_t>(m.NumberOfVertices()));
@@ -94,7 +95,7 @@ TEST(ExactGeodesic, PlanarGridFromFacePointAndEdgePoint)
   for (auto sp : { SurfacePoint::InFace(37, 0.2, 0.5, 0.3), SurfacePoint::InFace(100, 0.6, 0.4, 0.0),
          SurfacePoint::InFace(3, 1.0, 0.0, 0.0) })
   {
-    ASSERT_TRUE(solver.Solve({ sp }));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ sp })));
     const Vec3 s = m.Interpolate(sp.Face, sp.Bary);
     EXPECT_LT(MaxRelativeError(solver, [&](int v) { return Norm(m.Position(v) - s); }), 1e-9);
   }
@@ -118,7 +119,7 @@ TEST(ExactGeodesic, LShapeBendsAroundReentrantCorner)
   };
   for (int source = 0; source < m.NumberOfVertices(); source += 37)
   {
-    ASSERT_TRUE(solver.Solve(source));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve(source)));
     const Vec3 s = m.Position(source);
     int bent = 0;
     const double err = MaxRelativeError(solver, [&](int v) {
@@ -149,11 +150,11 @@ TEST(ExactGeodesic, DevelopableConeMatchesUnrolledSector)
     return std::make_pair(slant * i / rings, j);
   };
   ExactGeodesicSolver solver(m);
-  ASSERT_TRUE(solver.Solve(0));
+  ASSERT_TRUE(gs_test::Succeeded(solver.Solve(0)));
   EXPECT_LT(MaxRelativeError(solver, [&](int v) { return v == 0 ? 0.0 : polar(v).first; }), 1e-9);
   for (int source : { 1 + 3 * sectors + 5, 1 + (rings - 1) * sectors, 1 + 5 })
   {
-    ASSERT_TRUE(solver.Solve(source));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve(source)));
     const auto [rs, js] = polar(source);
     const double err = MaxRelativeError(solver, [&](int v) {
       if (v == 0)
@@ -176,7 +177,7 @@ TEST(ExactGeodesic, DevelopableCylinderMatchesUnrolledStrip)
   ExactGeodesicSolver solver(m);
   for (int source : { 0, 4 * sectors + 7, rings * sectors + 3 })
   {
-    ASSERT_TRUE(solver.Solve(source));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve(source)));
     const int is = source / sectors, js = source % sectors;
     const double err = MaxRelativeError(solver, [&](int v) {
       const int i = v / sectors, j = v % sectors;
@@ -196,7 +197,7 @@ TEST(ExactGeodesic, SphereConvergesToGreatCircleDistance)
   {
     const TriangleMesh m = BuildMesh(MakeIcosphere(1.0, level));
     ExactGeodesicSolver solver(m);
-    ASSERT_TRUE(solver.Solve(0));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve(0)));
     const Vec3 s = m.Position(0);
     double worst = 0;
     for (int v = 0; v < m.NumberOfVertices(); ++v)
@@ -222,7 +223,7 @@ TEST(ExactGeodesic, NonDevelopableSurfaceIsSymmetricAndBounded)
   std::vector<std::vector<double>> d;
   for (int s : sources)
   {
-    ASSERT_TRUE(solver.Solve(s));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve(s)));
     d.push_back(solver.Distances());
     const std::vector<double> graph = GraphDistances(m, s);
     for (int v = 0; v < nv; ++v)
@@ -254,12 +255,12 @@ TEST(ExactGeodesic, MultiSourceIsTheMinimum)
   std::vector<double> expected(m.NumberOfVertices(), INFINITY);
   for (int s : { 5, 60, 121 })
   {
-    solver.Solve(s);
+    EXPECT_TRUE(gs_test::Succeeded(solver.Solve(s)));
     for (int v = 0; v < m.NumberOfVertices(); ++v)
       expected[v] = std::min(expected[v], solver.Distance(v));
   }
-  ASSERT_TRUE(solver.Solve({ SurfacePoint::AtVertex(5), SurfacePoint::AtVertex(60),
-    SurfacePoint::AtVertex(121) }));
+  ASSERT_TRUE(gs_test::Succeeded(solver.Solve(
+    { SurfacePoint::AtVertex(5), SurfacePoint::AtVertex(60), SurfacePoint::AtVertex(121) })));
   for (int v = 0; v < m.NumberOfVertices(); ++v)
   {
     EXPECT_NEAR(solver.Distance(v), expected[v], 1e-10);
@@ -273,9 +274,9 @@ TEST(ExactGeodesic, FacePointSourceIsSymmetricWithVertexQueries)
   // that a source at a corner matches the vertex source.
   const TriangleMesh m = BumpyMesh(2, 11);
   ExactGeodesicSolver solver(m);
-  solver.Solve(m.Face(10)[1]);
+  EXPECT_TRUE(gs_test::Succeeded(solver.Solve(m.Face(10)[1])));
   const std::vector<double> ref = solver.Distances();
-  solver.Solve({ SurfacePoint::InFace(10, 0.0, 1.0, 0.0) });
+  EXPECT_TRUE(gs_test::Succeeded(solver.Solve({ SurfacePoint::InFace(10, 0.0, 1.0, 0.0) })));
   for (int v = 0; v < m.NumberOfVertices(); ++v)
   {
     EXPECT_NEAR(solver.Distance(v), ref[v], 1e-12);
@@ -286,11 +287,11 @@ TEST(ExactGeodesic, MaximumDistanceStopsEarly)
 {
   const TriangleMesh m = BumpyMesh(3, 5);
   ExactGeodesicSolver solver(m);
-  solver.Solve(42);
+  EXPECT_TRUE(gs_test::Succeeded(solver.Solve(42)));
   const std::vector<double> full = solver.Distances();
   ExactGeodesicOptions opt;
   opt.MaximumDistance = 0.8;
-  ASSERT_TRUE(solver.Solve(42, opt));
+  ASSERT_TRUE(gs_test::Succeeded(solver.Solve(42, opt)));
   int inside = 0;
   for (int v = 0; v < m.NumberOfVertices(); ++v)
   {
@@ -314,14 +315,14 @@ TEST(ExactGeodesic, TruncatedToKNearestVertices)
   ExactGeodesicSolver solver(m);
   for (int source : { 0, 100, 400 })
   {
-    solver.Solve(source);
+    EXPECT_TRUE(gs_test::Succeeded(solver.Solve(source)));
     std::vector<double> full = solver.Distances();
     std::vector<double> sorted = full;
     std::sort(sorted.begin(), sorted.end());
     const std::int64_t fullWork = solver.Statistics().WindowsPropagated;
     ExactGeodesicOptions opt;
     opt.MaximumFinalVertices = 50;
-    ASSERT_TRUE(solver.Solve(source, opt));
+    ASSERT_TRUE(gs_test::Succeeded(solver.Solve(source, opt)));
     ASSERT_EQ(solver.FinalVertices().size(), 50u);
     double last = 0;
     for (int v : solver.FinalVertices())
@@ -346,7 +347,7 @@ TEST(ExactGeodesic, DisconnectedComponentStaysUnreachable)
     a.Triangles.push_back({ t[0] + offset, t[1] + offset, t[2] + offset });
   const TriangleMesh m = BuildMesh(a);
   ExactGeodesicSolver solver(m);
-  ASSERT_TRUE(solver.Solve(0));
+  ASSERT_TRUE(gs_test::Succeeded(solver.Solve(0)));
   for (int v = 0; v < m.NumberOfVertices(); ++v)
   {
     EXPECT_EQ(std::isfinite(solver.Distance(v)), v < offset);
@@ -369,7 +370,7 @@ TEST(ExactGeodesic, DirectPathsAndPseudoSources)
   }
   ASSERT_GE(source, 0);
   ASSERT_GE(target, 0);
-  ASSERT_TRUE(solver.Solve(source));
+  ASSERT_TRUE(gs_test::Succeeded(solver.Solve(source)));
   EXPECT_FALSE(solver.IsDirect(target));
   EXPECT_LT(solver.PathOrigin(target), 0);
   EXPECT_NEAR(solver.Distance(target), std::sqrt(2.0) + std::hypot(1.0, 0.5), 1e-12);
@@ -379,11 +380,18 @@ TEST(ExactGeodesic, RejectsInvalidSources)
 {
   const TriangleMesh m = BuildMesh(MakePlanarGrid(3, 3, 1.0, 1.0));
   ExactGeodesicSolver solver(m);
-  EXPECT_FALSE(solver.Solve(std::vector<SurfacePoint>{}));
-  EXPECT_FALSE(solver.Solve(1000));
-  EXPECT_FALSE(solver.Solve({ SurfacePoint::InFace(99, 1, 0, 0) }));
-  EXPECT_FALSE(solver.Solve({ SurfacePoint::InFace(0, 0.5, 0.5, 0.5) }));
-  EXPECT_FALSE(solver.Solve({ SurfacePoint::InFace(0, NAN, 0.5, 0.5) }));
+  EXPECT_TRUE(gs_test::FailedWith(solver.Solve(std::vector<SurfacePoint>{}), "no source"));
+  EXPECT_TRUE(
+    gs_test::FailedWith(solver.Solve(1000), "source 0 is invalid: vertex 1000 does not exist"));
+  EXPECT_TRUE(gs_test::FailedWith(
+    solver.Solve({ SurfacePoint::AtVertex(0), SurfacePoint::InFace(99, 1, 0, 0) }),
+    "source 1 is invalid: face 99 does not exist"));
+  EXPECT_TRUE(gs_test::FailedWith(
+    solver.Solve({ SurfacePoint::InFace(0, 0.5, 0.5, 0.5) }), "sum to 1.5, not 1"));
+  EXPECT_TRUE(
+    gs_test::FailedWith(solver.Solve({ SurfacePoint::InFace(0, NAN, 0.5, 0.5) }), "not finite"));
+  EXPECT_TRUE(
+    gs_test::FailedWith(solver.Solve({ SurfacePoint::InFace(0, 1.5, -0.5, 0) }), "not all >= 0"));
   EXPECT_EQ(solver.Distance(0), ExactGeodesicSolver::Unreachable);
 }
 
@@ -401,7 +409,7 @@ TEST(ExactGeodesic, DepartureAnglesAreTheLogMapAngles)
   };
   // Vertex source in the interior: angles from the direction of its VertexHalfedge.
   const int s = 8 * 17 + 8;
-  ASSERT_TRUE(solver.Solve(s));
+  ASSERT_TRUE(gs_test::Succeeded(solver.Solve(s)));
   const Vec3 ps = m.Position(s);
   const Vec3 ref = m.Position(m.Destination(m.VertexHalfedge(s))) - ps;
   const double ref0 = std::atan2(ref.y, ref.x);
@@ -418,7 +426,7 @@ TEST(ExactGeodesic, DepartureAnglesAreTheLogMapAngles)
   EXPECT_EQ(checked, m.NumberOfVertices() - 1);
   // Face point source: angles from the face's first edge.
   const SurfacePoint fp = SurfacePoint::InFace(200, 0.3, 0.3, 0.4);
-  ASSERT_TRUE(solver.Solve({ fp }));
+  ASSERT_TRUE(gs_test::Succeeded(solver.Solve({ fp })));
   const Vec3 p = m.Interpolate(fp.Face, fp.Bary);
   const Vec3 e0 = m.Position(m.Face(fp.Face)[1]) - m.Position(m.Face(fp.Face)[0]);
   for (int v = 0; v < m.NumberOfVertices(); ++v)
@@ -434,7 +442,7 @@ TEST(ExactGeodesic, DepartureAnglesAreTheLogMapAngles)
     if (l.Position(v).x == 0.0 && l.Position(v).y == 2.0)
       top = v;
   ASSERT_GE(top, 0);
-  ls.Solve(top);
+  EXPECT_TRUE(gs_test::Succeeded(ls.Solve(top)));
   int hidden = 0;
   const Vec3 corner(1, 1, 0);
   const Vec3 toCorner = corner - l.Position(top);

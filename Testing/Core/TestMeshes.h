@@ -4,12 +4,14 @@
 #include "MeshGenerators.h"
 #include "SafeDistanceTable.h"
 #include "Silhouette.h"
+#include "TestStatus.h"
 #include "TriangleMesh.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gs_test
@@ -17,9 +19,9 @@ namespace gs_test
 
 inline gs::TriangleMesh BuildMesh(const gs::TriangleSoup& s)
 {
-  auto r = gs::TriangleMeshBuilder::Build(s.Points, s.Triangles);
-  EXPECT_TRUE(r.Ok) << r.Error;
-  return r.Mesh;
+  gs::Result<gs::MeshBuild> r = gs::TriangleMeshBuilder::Build(s.Points, s.Triangles);
+  EXPECT_TRUE(Succeeded(r));
+  return std::move(r->Mesh);
 }
 
 // An icosphere whose vertices are pushed in and out by up to `amplitude` (relative): saddles

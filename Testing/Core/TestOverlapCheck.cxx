@@ -4,6 +4,7 @@
 // find them. The drawn check (the same test, made as each shape is placed) against the oracle.
 #include "DistributionChecks.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include "MeshGenerators.h"
 #include "MeshIO.h"
@@ -111,8 +112,7 @@ TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
 {
   const TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(4, 3, 0.01));
   SaddleVertexGraph graph;
-  std::string error;
-  ASSERT_TRUE(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr)));
   std::vector<Vec3> directions(mesh.NumberOfFaces());
   for (int f = 0; f < mesh.NumberOfFaces(); ++f)
   {
@@ -166,7 +166,7 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
   const TriangleSoup fine = SubdivideAtMidpoints(soup); // the same surface, 4x the faces
   const TriangleMesh mesh = gs_test::BuildMesh(fine);
   SaddleVertexGraph graph;
-  ASSERT_TRUE(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr)));
   std::vector<SafeDistanceInput> in;
   for (const char* name : { "star", "gull", "leaf", "fish" })
   {

@@ -6,6 +6,7 @@
 #include "SaddleVertexGraph.h"
 #include "TriangleMesh.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -31,11 +32,10 @@ TriangleMesh Bumpy(int level, unsigned seed)
 SaddleVertexGraph BuildGraph(const TriangleMesh& m, int k, int threads = 0)
 {
   SaddleVertexGraph g;
-  std::string error;
   SaddleVertexGraphOptions o;
   o.K = k;
   o.NumberOfThreads = threads;
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   return g;
 }
 
@@ -126,13 +126,11 @@ TEST(SaddleVertexGraph, RejectsBadK)
 {
   const TriangleMesh m = Bumpy(1, 1);
   SaddleVertexGraph g;
-  std::string error;
   SaddleVertexGraphOptions o;
   o.K = 0;
-  EXPECT_FALSE(g.Build(m, o, nullptr, error));
-  EXPECT_NE(error.find("K must be"), std::string::npos);
+  EXPECT_TRUE(gs_test::FailedWith(g.Build(m, o, nullptr), "K must be"));
   o.K = 1000000; // clamped to the vertex count
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   EXPECT_EQ(g.GetK(), m.NumberOfVertices());
 }
 
@@ -147,10 +145,9 @@ TEST(SaddleVertexGraph, RefusesWhatMemoryCannotHold)
     SaddleVertexGraph::EstimatedBuildBytes(10, 10)); // K is clamped as Build clamps it
   const TriangleMesh m = Bumpy(2, 1);
   SaddleVertexGraph g;
-  std::string error;
   SaddleVertexGraphOptions o;
   o.K = 50;
-  ASSERT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   EXPECT_LT(static_cast<double>(g.MemoryBytes()),
     SaddleVertexGraph::EstimatedBuildBytes(m.NumberOfVertices(), 50));
   EXPECT_GT(SaddleVertexGraph::AvailableMemoryBytes(), 0.0); // Linux: /proc/meminfo
@@ -159,22 +156,39 @@ TEST(SaddleVertexGraph, RefusesWhatMemoryCannotHold)
   const double needed = SaddleVertexGraph::EstimatedBuildBytes(m.NumberOfVertices(), 50);
   ASSERT_GT(needed, 0.8 * 1048576.0);
   setenv("GS_AVAILABLE_MEMORY", "1048576", 1);
-  EXPECT_FALSE(g.Build(m, o, nullptr, error));
+  const Status refused = g.Build(m, o, nullptr);
   unsetenv("GS_AVAILABLE_MEMORY");
   EXPECT_TRUE(g.Empty());
-  EXPECT_NE(error.find("MiB available; lower K"), std::string::npos) << error;
-  EXPECT_TRUE(g.Build(m, o, nullptr, error)) << error;
+  EXPECT_TRUE(gs_test::FailedWith(refused, "MiB available; lower K"));
+  EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
 }
 
 TEST(SaddleVertexGraph, ProgressCanAbort)
 {
   const TriangleMesh m = Bumpy(4, 1);
   SaddleVertexGraph g;
-  std::string error;
   int calls = 0;
-  EXPECT_FALSE(g.Build(m, SaddleVertexGraphOptions(), [&](double) { return ++calls < 2; }, error));
-  EXPECT_EQ(error, "aborted");
+  const auto abortSecond = [&](double) { return ++calls < 2; };
+  EXPECT_TRUE(g.Build(m, SaddleVertexGraphOptions(), abortSecond).IsAborted());
   EXPECT_TRUE(g.Empty());
+}
+
+TEST(SaddleVertexGraph, SolverSaysWhichSourceIsInvalid)
+{
+  const TriangleMesh m = Bumpy(1, 1);
+  const SaddleVertexGraph g = BuildGraph(m, 20);
+  SVGGeodesicSolver svg(m, g);
+  const SurfacePoint vertex = SurfacePoint::AtVertex(0);
+  EXPECT_TRUE(gs_test::FailedWith(svg.Solve({}), "no source"));
+  const SurfacePoint beyond = SurfacePoint::AtVertex(m.NumberOfVertices());
+  EXPECT_TRUE(gs_test::FailedWith(svg.Solve({ vertex, beyond }),
+    "source 1 is invalid: vertex " + std::to_string(m.NumberOfVertices()) + " does not exist"));
+  EXPECT_TRUE(std::isinf(svg.Distance(0))); // a rejected solve leaves every vertex unreached
+  EXPECT_TRUE(gs_test::FailedWith(svg.SolveCurves({}), "no curve"));
+  EXPECT_TRUE(gs_test::FailedWith(svg.SolveCurves({ { vertex }, {} }), "curve 1 has no point"));
+  const SurfacePoint overweight = SurfacePoint::InFace(0, 0.5, 0.5, 0.5);
+  EXPECT_TRUE(gs_test::FailedWith(svg.SolveCurve({ vertex, overweight }),
+    "curve 0, point 1 is invalid: the barycentric coordinates (0.5, 0.5, 0.5) in face 0 sum to"));
 }
 
 TEST(SaddleVertexGraph, LabelCorrectingEqualsDijkstra)
@@ -239,8 +253,8 @@ TEST(SaddleVertexGraph, AccuracyAgainstExactSolver)
       ErrorStats total;
       for (int s : { 7, 1234, 2000 })
       {
-        exact.Solve(s);
-        ASSERT_TRUE(svg.Solve({ SurfacePoint::AtVertex(s) }));
+        EXPECT_TRUE(gs_test::Succeeded(exact.Solve(s)));
+        ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ SurfacePoint::AtVertex(s) })));
         const ErrorStats e = Compare(svg.Distances(), exact.Distances());
         total.Mean += e.Mean / 3;
         total.Max = std::max(total.Max, e.Max);
@@ -259,13 +273,13 @@ TEST(SaddleVertexGraph, FacePointSourceExactInsideItsDiskOnAPlane)
   const SaddleVertexGraph g = BuildGraph(m, 50);
   SVGGeodesicSolver svg(m, g);
   const SurfacePoint src = SurfacePoint::InFace(901, 0.2, 0.3, 0.5);
-  ASSERT_TRUE(svg.Solve({ src }));
+  ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ src })));
   const Vec3 s = m.Interpolate(src.Face, src.Bary);
   // The source's own K-disk: the exact solver's K nearest vertices.
   ExactGeodesicSolver exact(m);
   ExactGeodesicOptions opt;
   opt.MaximumFinalVertices = 50;
-  exact.Solve({ src }, opt);
+  EXPECT_TRUE(gs_test::Succeeded(exact.Solve({ src }, opt)));
   const double radius = exact.Distance(exact.FinalVertices().back());
   for (int v : exact.FinalVertices())
     EXPECT_NEAR(svg.Distance(v), Norm(m.Position(v) - s), 1e-9 * (1 + radius));
@@ -314,8 +328,8 @@ TEST(SaddleVertexGraph, ArbitraryPointsAgainstExactSolver)
   {
     const double a = u(rng), b = (1 - a) * u(rng);
     const SurfacePoint src = SurfacePoint::InFace(face(rng), a, b, 1 - a - b);
-    ASSERT_TRUE(svg.Solve({ src }));
-    exact.Solve({ src });
+    ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ src })));
+    EXPECT_TRUE(gs_test::Succeeded(exact.Solve({ src })));
     const ErrorStats e = Compare(svg.Distances(), exact.Distances());
     mean += e.Mean;
     ++n;
@@ -333,7 +347,7 @@ TEST(SaddleVertexGraph, ArbitraryPointsAgainstExactSolver)
     split.Triangles.push_back({ t[2], t[0], qv });
     const TriangleMesh ms = BuildMesh(split);
     ExactGeodesicSolver reference(ms);
-    reference.Solve({ src });
+    EXPECT_TRUE(gs_test::Succeeded(reference.Solve({ src })));
     const double ref = reference.Distance(static_cast<int>(qv));
     const double got = svg.DistanceAt(q);
     // Unfolding assumes the geodesic triangle is flat: on this deliberately rough surface a point
@@ -385,7 +399,7 @@ TEST(SaddleVertexGraph, CurveSourceOnAPlane)
   std::vector<SurfacePoint> curve;
   for (int i = 0; i <= 60; ++i)
     curve.push_back(locate(a + (b - a) * (i / 60.0)));
-  ASSERT_TRUE(svg.SolveCurve(curve));
+  ASSERT_TRUE(gs_test::Succeeded(svg.SolveCurve(curve)));
   EXPECT_GT(svg.NumberOfCurvePieces(), 60);
   double mean = 0, worst = 0;
   int n = 0;
@@ -417,19 +431,16 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
   const SaddleVertexGraph g = BuildGraph(m, 20);
   const std::uint64_t hash = SaddleVertexGraph::HashMesh(m);
   const std::string path = TempPath("gs_cache_test.svgg");
-  std::string error;
-  ASSERT_TRUE(g.Save(path, hash, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(g.Save(path, hash)));
   SaddleVertexGraph loaded;
-  ASSERT_TRUE(loaded.Load(path, hash, 20, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(loaded.Load(path, hash, 20)));
   EXPECT_TRUE(loaded == g);
   ExpectLinksIndexStencils(loaded);
   EXPECT_EQ(loaded.BuildSeconds(), g.BuildSeconds());
-  EXPECT_FALSE(loaded.Load(path, hash + 1, 20, error));
-  EXPECT_NE(error.find("another mesh"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash + 1, 20), "another mesh"));
   EXPECT_TRUE(loaded.Empty());
-  EXPECT_FALSE(loaded.Load(path, hash, 21, error));
-  EXPECT_NE(error.find("K ="), std::string::npos) << error;
-  EXPECT_FALSE(loaded.Load(TempPath("does_not_exist.svgg"), hash, 20, error));
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 21), "K ="));
+  EXPECT_FALSE(loaded.Load(TempPath("does_not_exist.svgg"), hash, 20).Ok());
 
   // A stale file: the mesh moved a little.
   TriangleSoup s = MakeIcosphere(1.0, 2);
@@ -449,20 +460,18 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x10;
   writeFile(flipped);
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
-  EXPECT_NE(error.find("corrupt"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 20), "corrupt"));
   writeFile(bytes.substr(0, bytes.size() - 100));
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_FALSE(loaded.Load(path, hash, 20).Ok());
   // A file of the previous format (no node order) is recognised as such.
   std::string previous = bytes;
   previous[7] = '3';
   writeFile(previous);
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
-  EXPECT_NE(error.find("another format version"), std::string::npos) << error;
+  EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 20), "another format version"));
   writeFile("not a graph at all");
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_FALSE(loaded.Load(path, hash, 20).Ok());
   writeFile("");
-  EXPECT_FALSE(loaded.Load(path, hash, 20, error));
+  EXPECT_FALSE(loaded.Load(path, hash, 20).Ok());
   // A forged file with a valid checksum whose node order is not a permutation (the last node
   // repeats the first's vertex): rejected by the structural checks, not read out of range.
   {
@@ -473,12 +482,11 @@ TEST(SaddleVertexGraph, CacheRoundTripAndRejections)
     sum.Add(forged.data() + 8, forged.size() - 16);
     std::memcpy(&forged[forged.size() - 8], &sum.H, 8);
     writeFile(forged);
-    EXPECT_FALSE(loaded.Load(path, hash, 20, error));
-    EXPECT_NE(error.find("node order"), std::string::npos) << error;
+    EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, 20), "node order"));
     EXPECT_TRUE(loaded.Empty());
   }
   writeFile(bytes);
-  EXPECT_TRUE(loaded.Load(path, hash, 20, error)) << error;
+  EXPECT_TRUE(gs_test::Succeeded(loaded.Load(path, hash, 20)));
   std::remove(path.c_str());
 }
 
@@ -542,8 +550,8 @@ TEST(SaddleVertexGraph, NodesAreTheVerticesInSpatialOrder)
   const TriangleMesh plain = BuildMesh(soup);
   const SaddleVertexGraph gp = BuildGraph(plain, 20);
   SVGGeodesicSolver a(plain, gp), b(m, g);
-  ASSERT_TRUE(a.Solve({ SurfacePoint::AtVertex(7) }));
-  ASSERT_TRUE(b.Solve({ SurfacePoint::AtVertex(shuffle[7]) }));
+  ASSERT_TRUE(gs_test::Succeeded(a.Solve({ SurfacePoint::AtVertex(7) })));
+  ASSERT_TRUE(gs_test::Succeeded(b.Solve({ SurfacePoint::AtVertex(shuffle[7]) })));
   const std::vector<double> da = a.Distances(), db = b.Distances();
   for (int v = 0; v < nv; ++v)
   {
@@ -565,13 +573,13 @@ TEST(SaddleVertexGraph, UnfoldingRefinementOnDevelopableSurfaces)
     ExactGeodesicSolver exact(m);
     for (int s : { 0, 77, 301 })
     {
-      exact.Solve(s);
+      EXPECT_TRUE(gs_test::Succeeded(exact.Solve(s)));
       SVGSolveOptions plain, refined;
       plain.Refine = false;
       refined.Refine = true;
-      svg.Solve({ SurfacePoint::AtVertex(s) }, plain);
+      EXPECT_TRUE(gs_test::Succeeded(svg.Solve({ SurfacePoint::AtVertex(s) }, plain)));
       const ErrorStats before = Compare(svg.Distances(), exact.Distances());
-      svg.Solve({ SurfacePoint::AtVertex(s) }, refined);
+      EXPECT_TRUE(gs_test::Succeeded(svg.Solve({ SurfacePoint::AtVertex(s) }, refined)));
       const ErrorStats after = Compare(svg.Distances(), exact.Distances());
       EXPECT_GT(before.Mean, 5e-4);
       // Exact up to rounding: every geodesic triangle of a developable surface unfolds.
@@ -595,9 +603,9 @@ TEST(SaddleVertexGraph, AnglesWithoutRefinementKeepGraphDistances)
     plain.Refine = false;
     withAngles.Refine = false;
     withAngles.Angles = true;
-    ASSERT_TRUE(svg.Solve({ s }, plain));
+    ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ s }, plain)));
     const std::vector<double> expected = svg.Distances();
-    ASSERT_TRUE(svg.Solve({ s }, withAngles));
+    ASSERT_TRUE(gs_test::Succeeded(svg.Solve({ s }, withAngles)));
     int angles = 0;
     for (int v = 0; v < m.NumberOfVertices(); ++v)
     {

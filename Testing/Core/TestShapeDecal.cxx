@@ -3,6 +3,7 @@
 // of the centre; long shapes: arc length along the curve and the perpendicular geodesic, the map
 // the outline and the parts use).
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include "MeshGenerators.h"
 #include "SaddleVertexGraph.h"
@@ -136,8 +137,7 @@ TEST(ShapeDecal, DecalsAgreeWithOutlinesOnASphere)
   SaddleVertexGraph graph;
   SaddleVertexGraphOptions go;
   go.K = 50;
-  std::string error;
-  ASSERT_TRUE(graph.Build(sphere, go, nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(graph.Build(sphere, go, nullptr)));
   std::vector<Vec3> directions(sphere.NumberOfFaces());
   for (int f = 0; f < sphere.NumberOfFaces(); ++f)
   {

@@ -2,6 +2,7 @@
 // thread counts, modes, density, multiple classes, long shapes, maximality, bad input.
 #include "DistributionChecks.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include "MeshGenerators.h"
 #include "SaddleVertexGraph.h"
@@ -313,8 +314,7 @@ TEST(ShapeDistributor, CurvedSurfaceWithGraphAndDecals)
   SaddleVertexGraph graph;
   SaddleVertexGraphOptions go;
   go.K = 50;
-  std::string error;
-  ASSERT_TRUE(graph.Build(sphere, go, nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(graph.Build(sphere, go, nullptr)));
   std::vector<Vec3> directions(sphere.NumberOfFaces());
   for (int f = 0; f < sphere.NumberOfFaces(); ++f)
   {
@@ -383,8 +383,7 @@ TEST(ShapeDistributor, BadInputGetsClearErrors)
   // A saddle vertex graph built for another mesh is refused (not silently dropped).
   const Plane other = MakePlane(5, 1.0);
   SaddleVertexGraph otherGraph;
-  std::string error;
-  ASSERT_TRUE(otherGraph.Build(other.Mesh, {}, nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(otherGraph.Build(other.Mesh, {}, nullptr)));
   ShapeDistributor mismatched(plane.Mesh, &otherGraph);
   r = mismatched.Run(t, plane.Directions, {}, o);
   EXPECT_NE(r.Message().find("another mesh"), std::string::npos) << r.Message();

@@ -3,6 +3,7 @@
 // turning field and a density gradient), judged by the shapes' drawn silhouettes.
 #include "DistributionChecks.h"
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include "MeshGenerators.h"
 #include "SaddleVertexGraph.h"
@@ -132,8 +133,7 @@ TEST(ShapeDistributorBoundary, ShapesOverTheBoundaryAreDrawnCutAndDoNotOverlap)
 {
   const TriangleMesh mesh = JitteredSquare(101, 0.3, 5);
   SaddleVertexGraph graph;
-  std::string error;
-  ASSERT_TRUE(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr)));
   const SafeDistanceTables t = StarAndTile(64);
   std::vector<Vec3> directions(mesh.NumberOfFaces());
   for (int f = 0; f < mesh.NumberOfFaces(); ++f)

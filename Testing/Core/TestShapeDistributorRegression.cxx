@@ -5,6 +5,7 @@
 // the distributor was split into files. A change of any bit fails; when a change of results is
 // intended, the test prints the new hashes to record.
 #include "TestMeshes.h"
+#include "TestStatus.h"
 
 #include "Hash.h"
 #include "MeshGenerators.h"
@@ -125,9 +126,8 @@ TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
   SaddleVertexGraph planeGraph, sphereGraph;
   SaddleVertexGraphOptions go;
   go.K = 20;
-  std::string error;
-  ASSERT_TRUE(planeGraph.Build(plane, go, nullptr, error)) << error;
-  ASSERT_TRUE(sphereGraph.Build(sphere, go, nullptr, error)) << error;
+  ASSERT_TRUE(gs_test::Succeeded(planeGraph.Build(plane, go, nullptr)));
+  ASSERT_TRUE(gs_test::Succeeded(sphereGraph.Build(sphere, go, nullptr)));
   for (const Case& c : Cases)
   {
     const TriangleMesh& mesh = c.Sphere ? sphere : plane;

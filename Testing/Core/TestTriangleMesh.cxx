@@ -1,4 +1,5 @@
 #include "MeshGenerators.h"
+#include "TestStatus.h"
 #include "TriangleMesh.h"
 
 #include <gtest/gtest.h>
@@ -12,7 +13,7 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-MeshBuildResult Build(const TriangleSoup& s)
+Result<MeshBuild> Build(const TriangleSoup& s)
 {
   return TriangleMeshBuilder::Build(s.Points, s.Triangles);
 }
@@ -22,9 +23,9 @@ TEST(TriangleMesh, PlanarGridCounts)
 {
   const int nx = 6, ny = 4;
   auto r = Build(MakePlanarGrid(nx, ny, 3.0, 2.0));
-  ASSERT_TRUE(r.Ok) << r.Error;
-  EXPECT_TRUE(r.Warnings.empty());
-  const TriangleMesh& m = r.Mesh;
+  ASSERT_TRUE(gs_test::Succeeded(r));
+  EXPECT_TRUE(r->Warnings.empty());
+  const TriangleMesh& m = r->Mesh;
   EXPECT_EQ(m.NumberOfVertices(), (nx + 1) * (ny + 1));
   EXPECT_EQ(m.NumberOfFaces(), 2 * nx * ny);
   EXPECT_EQ(m.NumberOfEdges(), nx * (ny + 1) + ny * (nx + 1) + nx * ny);
@@ -53,8 +54,8 @@ TEST(TriangleMesh, PlanarGridCounts)
 TEST(TriangleMesh, HalfedgeNavigation)
 {
   auto r = Build(MakeIcosphere(1.0, 1));
-  ASSERT_TRUE(r.Ok) << r.Error;
-  const TriangleMesh& m = r.Mesh;
+  ASSERT_TRUE(gs_test::Succeeded(r));
+  const TriangleMesh& m = r->Mesh;
   for (int h = 0; h < m.NumberOfHalfedges(); ++h)
   {
     const int t = m.Twin(h);
@@ -87,59 +88,59 @@ TEST(TriangleMesh, TopologyOfGeneratedSurfaces)
 {
   {
     auto r = Build(MakeTorus(2.0, 0.7, 24, 12));
-    ASSERT_TRUE(r.Ok) << r.Error;
-    EXPECT_TRUE(r.Warnings.empty());
-    EXPECT_EQ(r.Mesh.EulerCharacteristic(), 0);
-    EXPECT_EQ(r.Mesh.Genus(), 1);
-    EXPECT_TRUE(r.Mesh.BoundaryLoops().empty());
+    ASSERT_TRUE(gs_test::Succeeded(r));
+    EXPECT_TRUE(r->Warnings.empty());
+    EXPECT_EQ(r->Mesh.EulerCharacteristic(), 0);
+    EXPECT_EQ(r->Mesh.Genus(), 1);
+    EXPECT_TRUE(r->Mesh.BoundaryLoops().empty());
     int saddles = 0;
-    for (int v = 0; v < r.Mesh.NumberOfVertices(); ++v)
+    for (int v = 0; v < r->Mesh.NumberOfVertices(); ++v)
     {
-      saddles += r.Mesh.IsSaddleVertex(v);
+      saddles += r->Mesh.IsSaddleVertex(v);
     }
     // The inner half of a torus has negative curvature.
     EXPECT_GT(saddles, 0);
   }
   {
     auto r = Build(MakeIcosphere(2.0, 2));
-    ASSERT_TRUE(r.Ok) << r.Error;
-    EXPECT_EQ(r.Mesh.EulerCharacteristic(), 2);
-    EXPECT_EQ(r.Mesh.Genus(), 0);
-    EXPECT_EQ(r.Mesh.NumberOfFaces(), 320);
+    ASSERT_TRUE(gs_test::Succeeded(r));
+    EXPECT_EQ(r->Mesh.EulerCharacteristic(), 2);
+    EXPECT_EQ(r->Mesh.Genus(), 0);
+    EXPECT_EQ(r->Mesh.NumberOfFaces(), 320);
   }
   {
     auto r = Build(MakeCylinder(1.0, 2.0, 16, 5));
-    ASSERT_TRUE(r.Ok) << r.Error;
-    EXPECT_TRUE(r.Warnings.empty());
-    EXPECT_EQ(r.Mesh.EulerCharacteristic(), 0);
-    EXPECT_EQ(r.Mesh.Genus(), 0);
-    EXPECT_EQ(r.Mesh.BoundaryLoops().size(), 2u);
+    ASSERT_TRUE(gs_test::Succeeded(r));
+    EXPECT_TRUE(r->Warnings.empty());
+    EXPECT_EQ(r->Mesh.EulerCharacteristic(), 0);
+    EXPECT_EQ(r->Mesh.Genus(), 0);
+    EXPECT_EQ(r->Mesh.BoundaryLoops().size(), 2u);
   }
   {
     auto r = Build(MakeCone(0.5, 2.0, 6, 20));
-    ASSERT_TRUE(r.Ok) << r.Error;
-    EXPECT_TRUE(r.Warnings.empty());
-    EXPECT_EQ(r.Mesh.EulerCharacteristic(), 1);
-    EXPECT_EQ(r.Mesh.BoundaryLoops().size(), 1u);
-    EXPECT_LT(r.Mesh.TotalAngle(0), 2 * Pi); // apex: positive curvature
-    EXPECT_FALSE(r.Mesh.IsSaddleVertex(0));
+    ASSERT_TRUE(gs_test::Succeeded(r));
+    EXPECT_TRUE(r->Warnings.empty());
+    EXPECT_EQ(r->Mesh.EulerCharacteristic(), 1);
+    EXPECT_EQ(r->Mesh.BoundaryLoops().size(), 1u);
+    EXPECT_LT(r->Mesh.TotalAngle(0), 2 * Pi); // apex: positive curvature
+    EXPECT_FALSE(r->Mesh.IsSaddleVertex(0));
   }
   {
     auto r = Build(MakeLShape(4));
-    ASSERT_TRUE(r.Ok) << r.Error;
-    EXPECT_EQ(r.Mesh.EulerCharacteristic(), 1);
-    ASSERT_EQ(r.Mesh.BoundaryLoops().size(), 1u);
-    EXPECT_EQ(r.Mesh.BoundaryLoops()[0].size(), 32u);
+    ASSERT_TRUE(gs_test::Succeeded(r));
+    EXPECT_EQ(r->Mesh.EulerCharacteristic(), 1);
+    ASSERT_EQ(r->Mesh.BoundaryLoops().size(), 1u);
+    EXPECT_EQ(r->Mesh.BoundaryLoops()[0].size(), 32u);
     int reentrant = 0;
-    for (int v = 0; v < r.Mesh.NumberOfVertices(); ++v)
+    for (int v = 0; v < r->Mesh.NumberOfVertices(); ++v)
     {
-      if (std::abs(r.Mesh.TotalAngle(v) - 1.5 * Pi) < 1e-12)
+      if (std::abs(r->Mesh.TotalAngle(v) - 1.5 * Pi) < 1e-12)
       {
         ++reentrant;
-        EXPECT_TRUE(r.Mesh.IsPseudoSourceVertex(v));
-        EXPECT_TRUE(r.Mesh.IsBoundaryVertex(v));
-        EXPECT_NEAR(r.Mesh.Position(v).x, 1.0, 1e-15);
-        EXPECT_NEAR(r.Mesh.Position(v).y, 1.0, 1e-15);
+        EXPECT_TRUE(r->Mesh.IsPseudoSourceVertex(v));
+        EXPECT_TRUE(r->Mesh.IsBoundaryVertex(v));
+        EXPECT_NEAR(r->Mesh.Position(v).x, 1.0, 1e-15);
+        EXPECT_NEAR(r->Mesh.Position(v).y, 1.0, 1e-15);
       }
     }
     EXPECT_EQ(reentrant, 1);
@@ -161,12 +162,12 @@ TEST(TriangleMesh, SaddleVertex)
     s.Triangles.push_back({ 0, 1 + k, 1 + (k + 1) % 6 });
   }
   auto r = Build(s);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  EXPECT_TRUE(r.Mesh.IsSaddleVertex(0));
-  EXPECT_GT(r.Mesh.TotalAngle(0), 2 * Pi);
-  EXPECT_TRUE(r.Mesh.IsPseudoSourceVertex(0));
-  EXPECT_FALSE(r.Mesh.IsSaddleVertex(1));
-  EXPECT_FALSE(r.Mesh.IsPseudoSourceVertex(1)); // boundary, but convex
+  ASSERT_TRUE(gs_test::Succeeded(r));
+  EXPECT_TRUE(r->Mesh.IsSaddleVertex(0));
+  EXPECT_GT(r->Mesh.TotalAngle(0), 2 * Pi);
+  EXPECT_TRUE(r->Mesh.IsPseudoSourceVertex(0));
+  EXPECT_FALSE(r->Mesh.IsSaddleVertex(1));
+  EXPECT_FALSE(r->Mesh.IsPseudoSourceVertex(1)); // boundary, but convex
 }
 
 TEST(TriangleMesh, WeldsSplitVerticesAndKeepsUnreferencedPoints)
@@ -186,15 +187,15 @@ TEST(TriangleMesh, WeldsSplitVerticesAndKeepsUnreferencedPoints)
   }
   split.Points.emplace_back(std::numeric_limits<double>::quiet_NaN(), 0, 0); // unreferenced NaN
   auto r = Build(split);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  EXPECT_EQ(r.Mesh.NumberOfVertices(), 16);
-  EXPECT_EQ(r.Mesh.NumberOfComponents(), 1);
-  EXPECT_EQ(r.PointToVertex.front(), -1);
-  EXPECT_EQ(r.PointToVertex.back(), -1);
-  EXPECT_EQ(r.NumberOfWeldedPoints, static_cast<int>(split.Points.size()) - 2 - 16);
+  ASSERT_TRUE(gs_test::Succeeded(r));
+  EXPECT_EQ(r->Mesh.NumberOfVertices(), 16);
+  EXPECT_EQ(r->Mesh.NumberOfComponents(), 1);
+  EXPECT_EQ(r->PointToVertex.front(), -1);
+  EXPECT_EQ(r->PointToVertex.back(), -1);
+  EXPECT_EQ(r->NumberOfWeldedPoints, static_cast<int>(split.Points.size()) - 2 - 16);
   for (std::size_t p = 1; p + 1 < split.Points.size(); ++p)
   {
-    const Vec3 q = r.Mesh.Position(r.PointToVertex[p]);
+    const Vec3 q = r->Mesh.Position(r->PointToVertex[p]);
     EXPECT_EQ(q.x, split.Points[p].x);
     EXPECT_EQ(q.y, split.Points[p].y);
   }
@@ -206,11 +207,11 @@ TEST(TriangleMesh, ReorientsInconsistentFaces)
   std::swap(s.Triangles[5][0], s.Triangles[5][1]);
   std::swap(s.Triangles[9][1], s.Triangles[9][2]);
   auto r = Build(s);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  ASSERT_EQ(r.Warnings.size(), 1u);
-  for (int f = 0; f < r.Mesh.NumberOfFaces(); ++f)
+  ASSERT_TRUE(gs_test::Succeeded(r));
+  ASSERT_EQ(r->Warnings.size(), 1u);
+  for (int f = 0; f < r->Mesh.NumberOfFaces(); ++f)
   {
-    EXPECT_GT(r.Mesh.FaceNormal(f).z, 0.5);
+    EXPECT_GT(r->Mesh.FaceNormal(f).z, 0.5);
   }
 }
 
@@ -228,10 +229,10 @@ TEST(TriangleMesh, ComponentsAndGenusAreSummed)
     a.Triangles.push_back({ t[0] + offset, t[1] + offset, t[2] + offset });
   }
   auto r = Build(a);
-  ASSERT_TRUE(r.Ok) << r.Error;
-  EXPECT_EQ(r.Mesh.NumberOfComponents(), 2);
-  EXPECT_EQ(r.Mesh.EulerCharacteristic(), 2);
-  EXPECT_EQ(r.Mesh.Genus(), 1);
+  ASSERT_TRUE(gs_test::Succeeded(r));
+  EXPECT_EQ(r->Mesh.NumberOfComponents(), 2);
+  EXPECT_EQ(r->Mesh.EulerCharacteristic(), 2);
+  EXPECT_EQ(r->Mesh.Genus(), 1);
 }
 
 TEST(TriangleMesh, RejectsBadInput)
@@ -240,9 +241,7 @@ TEST(TriangleMesh, RejectsBadInput)
   std::vector<Vec3> pts = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 0 } };
   auto fails = [](const std::vector<Vec3>& p, const std::vector<std::array<long long, 3>>& t,
                  const std::string& needle) {
-    auto r = TriangleMeshBuilder::Build(p, t);
-    EXPECT_FALSE(r.Ok);
-    EXPECT_NE(r.Error.find(needle), std::string::npos) << "message was: " << r.Error;
+    EXPECT_TRUE(gs_test::FailedWith(TriangleMeshBuilder::Build(p, t), needle));
   };
   fails(pts, {}, "no triangles");
   fails(pts, { { 0, 1, 7 } }, "does not exist");
@@ -266,17 +265,17 @@ TEST(TriangleMesh, KeepsApartCoincidentPointsThatWouldPinch)
   auto r = TriangleMeshBuilder::Build(
     { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { -1, 0, 0 }, { -1, -1, 0 }, { 0, 0, 0 } },
     { { 0, 1, 2 }, { 5, 3, 4 } });
-  ASSERT_TRUE(r.Ok) << r.Error;
-  EXPECT_EQ(r.Mesh.NumberOfVertices(), 6);
-  EXPECT_EQ(r.Mesh.NumberOfComponents(), 2);
-  EXPECT_NE(r.PointToVertex[0], r.PointToVertex[5]);
-  ASSERT_EQ(r.Warnings.size(), 1u);
-  EXPECT_EQ(r.Mesh.Face(0)[0], r.PointToVertex[0]);
-  EXPECT_EQ(r.Mesh.Face(1)[0], r.PointToVertex[5]);
+  ASSERT_TRUE(gs_test::Succeeded(r));
+  EXPECT_EQ(r->Mesh.NumberOfVertices(), 6);
+  EXPECT_EQ(r->Mesh.NumberOfComponents(), 2);
+  EXPECT_NE(r->PointToVertex[0], r->PointToVertex[5]);
+  ASSERT_EQ(r->Warnings.size(), 1u);
+  EXPECT_EQ(r->Mesh.Face(0)[0], r->PointToVertex[0]);
+  EXPECT_EQ(r->Mesh.Face(1)[0], r->PointToVertex[5]);
   for (int v = 0; v < 6; ++v)
   {
-    EXPECT_EQ(r.PointToVertex[r.VertexToPoint[v]], v);
-    EXPECT_TRUE(r.Mesh.IsBoundaryVertex(v));
+    EXPECT_EQ(r->PointToVertex[r->VertexToPoint[v]], v);
+    EXPECT_TRUE(r->Mesh.IsBoundaryVertex(v));
   }
 }
 
@@ -305,7 +304,5 @@ TEST(TriangleMesh, RejectsMoebiusStrip)
     s.Triangles.push_back({ a, c, d });
     s.Triangles.push_back({ a, d, b });
   }
-  auto r = Build(s);
-  EXPECT_FALSE(r.Ok);
-  EXPECT_NE(r.Error.find("not orientable"), std::string::npos) << r.Error;
+  EXPECT_TRUE(gs_test::FailedWith(Build(s), "not orientable"));
 }

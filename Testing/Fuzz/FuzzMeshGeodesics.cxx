@@ -44,14 +44,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     };
     triangles.push_back({ index(), index(), index() });
   }
-  const gs::MeshBuildResult built = gs::TriangleMeshBuilder::Build(points, triangles);
-  if (!built.Ok)
+  const gs::Result<gs::MeshBuild> built = gs::TriangleMeshBuilder::Build(points, triangles);
+  if (!built.Ok())
   {
     return 0; // rejected with a message: fine
   }
-  const gs::TriangleMesh& mesh = built.Mesh;
+  const gs::TriangleMesh& mesh = built->Mesh;
   gs::ExactGeodesicSolver exact(mesh);
-  exact.Solve({ gs::SurfacePoint::AtVertex(0) }, gs::ExactGeodesicOptions());
+  static_cast<void>(exact.Solve({ gs::SurfacePoint::AtVertex(0) }, gs::ExactGeodesicOptions()));
   for (int v = 0; v < mesh.NumberOfVertices(); ++v)
   {
     const double d = exact.Distance(v);
@@ -64,11 +64,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   gs::SaddleVertexGraphOptions options;
   options.K = 6;
   options.NumberOfThreads = 1;
-  std::string error;
-  if (graph.Build(mesh, options, nullptr, error))
+  if (graph.Build(mesh, options, nullptr).Ok())
   {
     gs::SVGGeodesicSolver svg(mesh, graph);
-    svg.Solve({ gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5) });
+    static_cast<void>(svg.Solve({ gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5) }));
     gs::GeodesicPolarCoordinates polar(mesh, &graph);
     // Only crashes matter: a source the solver rejects is an answer too.
     static_cast<void>(polar.Compute(gs::SurfacePoint::InFace(0, 1.0 / 3, 1.0 / 3, 1.0 / 3), 2.0, 0.0));
