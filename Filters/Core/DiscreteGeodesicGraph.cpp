@@ -347,7 +347,7 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
   }
 }
 
-bool DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::int64_t maxWindows)
+void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links)
 {
   Reset();
   links.clear();
@@ -384,14 +384,8 @@ bool DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::i
     h = M.RotateCCW(h);
   } while (h >= 0 && h != start);
 
-  bool complete = true;
   while (!Queue.Empty())
   {
-    if (maxWindows > 0 && Stats.WindowsPropagated >= maxWindows)
-    {
-      complete = false;
-      break;
-    }
     Window w = Queue.Pop();
     // Vertex distances may have dropped since the window was queued.
     if (Trim(w))
@@ -406,7 +400,6 @@ bool DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::i
       links.push_back({ v, Dist[v], AnglePhi[v] + std::atan2(AngleY[v], AngleX[v]) });
     }
   }
-  return complete;
 }
 
 } // namespace gs

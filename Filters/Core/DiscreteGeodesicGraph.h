@@ -55,9 +55,9 @@ public:
     double Angle;    // direction it leaves the source (as ExactGeodesicSolver::DepartureAngle)
   };
   // The links of vertex s for epsilon (> 0): its mesh neighbours (always) and every vertex whose
-  // shortest direct geodesic from s is not covered. Stops early (returns false, `links` partial)
-  // when more than maxWindows windows were propagated (0: no limit).
-  bool Run(int s, double epsilon, std::vector<Link>& links, std::int64_t maxWindows = 0);
+  // shortest direct geodesic from s is not covered. The propagation ends by itself once every
+  // window is covered, trimmed away or has left the mesh.
+  void Run(int s, double epsilon, std::vector<Link>& links);
 
   const DGGStatistics& Statistics() const { return Stats; }
 
