@@ -5,6 +5,11 @@
 // the surface is a chain of direct geodesics between pseudo-source vertices, so graph distances
 // are exact whenever each link is shorter than the K-disk radius, and near-exact otherwise.
 //
+// The same class holds a discrete geodesic graph (GraphConstruction::DiscreteGeodesic,
+// DiscreteGeodesicGraph.h): direct geodesics too, but only those that no route through another
+// vertex approximates within the accuracy asked for, however long; its distances are within
+// that accuracy of the geodesic distance (measured, see the README).
+//
 // Built in parallel (OpenMP), identical for any thread count, stored as CSR, savable to a cache
 // file keyed by a hash of the mesh geometry.
 #pragma once
