@@ -2,7 +2,8 @@
 // Bytes -> up to 24 points (coordinates from signed bytes, some repeated or degenerate) and up
 // to 40 triangles (indices modulo the point count, possibly out of range or repeated) ->
 // TriangleMeshBuilder (must reject bad input with a message, never crash) -> exact geodesics,
-// a saddle vertex graph (K = 6) and SVG distances, polar coordinates and a streamline.
+// a saddle vertex graph (K = 6) and SVG distances, polar coordinates, a discrete geodesic graph
+// (accuracy 0.05) and its distances, and a streamline.
 #include "DirectionField.h"
 #include "ExactGeodesic.h"
 #include "GeodesicPolarCoordinates.h"
@@ -71,6 +72,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     gs::GeodesicPolarCoordinates polar(mesh, &graph);
     // Only crashes matter: a source the solver rejects is an answer too.
     static_cast<void>(polar.Compute(gs::SurfacePoint::InFace(0, 1.0 / 3, 1.0 / 3, 1.0 / 3), 2.0, 0.0));
+  }
+  // The discrete geodesic graph's propagation (anchors, coverage) on the same mesh.
+  gs::SaddleVertexGraph dgg;
+  options.Construction = gs::GraphConstruction::DiscreteGeodesic;
+  options.Accuracy = 0.05;
+  if (dgg.Build(mesh, options, nullptr).Ok())
+  {
+    gs::SVGGeodesicSolver solver(mesh, dgg);
+    if (solver.Solve({ gs::SurfacePoint::AtVertex(0) }).Ok())
+    {
+      for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+      {
+        if (std::isnan(solver.Distance(v)))
+        {
+          __builtin_trap();
+        }
+      }
+    }
   }
   gs::DirectionFieldSolver field(mesh);
   std::vector<double> angles(mesh.NumberOfFaces(), 0.3);
