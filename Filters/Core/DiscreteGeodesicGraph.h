@@ -5,18 +5,21 @@
 //
 // How (our formulation of the papers' idea). Window propagation as in the exact solver, from s
 // only and along direct geodesics only (windows behind saddle and boundary vertices are those
-// vertices' own business: their links continue the path). Each window also carries the
-// vertices its rays were split at on its two sides ("anchors"): an anchor a seen from the
-// window's unfolded source I lies in the window's wedge, behind its edge, so the straight
-// segment from a to any point x the window will reach stays in the unfolded strip of faces and
-// is a path on the surface: d(a, x) <= |a x|. A point x is covered when
+// vertices' own business: their links continue the path). Each window also carries up to six
+// "anchors": vertices its rays passed exactly (the ends of an edge its interval reached, split
+// points), kept by a child while the segments from the anchor to both ends of the child's
+// interval cross the parent's edge inside the parent's interval. By induction the straight
+// segment from an anchor a to any point x the window reaches stays in the unfolded strip of
+// faces and is a path on the surface: d(a, x) <= |a x|. A point x is covered when
 //     d(s, a) + |a x| <= (1 + epsilon) d(s, x),
-// the route through a being then at most epsilon longer. Along any ray from I the slack
-// (1 + epsilon)|I x| - |a x| - |I a| grows (its derivative is at least epsilon), so a window
-// whose whole interval is covered stays covered beyond: it is dropped, and the propagation
-// dies out by itself once every direction has passed close enough to a vertex (on a flat
-// region after about 1 / sqrt(epsilon) edges in the worst directions). A reached vertex whose
-// best arrival is not covered becomes a link, with the length of its direct geodesic.
+// the route through a being then at most epsilon longer. Along any ray from I (the window's
+// unfolded source) the slack (1 + epsilon)|I x| - |a x| - |I a| grows (its derivative is at
+// least epsilon), so a window whose whole interval is covered stays covered beyond: it is
+// dropped, and the propagation dies out by itself once every direction has passed close enough
+// to a vertex (on a flat region after about 1 / sqrt(epsilon) edges in the worst directions).
+// Coverage of an interval is proven, not sampled (Covered: |I x| is convex along the edge, so
+// above its tangent; |a x| is convex, so below its chord). A reached vertex whose best arrival
+// is not covered becomes a link, with the length of its direct geodesic.
 //
 // Every link is the length of a real surface path, so graph distances never fall below the
 // geodesic distance; the route that replaces a dropped link is at most epsilon longer per step
