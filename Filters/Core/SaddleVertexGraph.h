@@ -255,7 +255,7 @@ private:
   void SolveLabelCorrecting(double maxDistance);
   void SolveDijkstra(double maxDistance);
 
-  const SaddleVertexGraph& G;
+  const SaddleVertexGraph& Graph;
   std::vector<double> Dist;
   struct PredLink
   {
