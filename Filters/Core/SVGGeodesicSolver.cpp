@@ -185,24 +185,24 @@ double NearestUnfolding2(const PairBatch& b)
 } // namespace
 
 SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVertexGraph& graph)
-  : M(mesh)
+  : Mesh(mesh)
   , G(graph)
   , Local(mesh)
   , Graph(graph)
 {
-  Exact.assign(M.NumberOfVertices(), 0);
-  Angle.assign(M.NumberOfVertices(), NaN);
+  Exact.assign(Mesh.NumberOfVertices(), 0);
+  Angle.assign(Mesh.NumberOfVertices(), NaN);
   if (G.GetConstruction() == GraphConstruction::DiscreteGeodesic)
   {
     RefinementFloor = 1.0 / (1.0 + G.GetAccuracy());
   }
   // Per node (the sweep's numbering): whether the vertex's stencil closes into a full fan.
-  if (G.NumberOfVertices() == M.NumberOfVertices())
+  if (G.NumberOfVertices() == Mesh.NumberOfVertices())
   {
-    Interior.resize(M.NumberOfVertices());
-    for (int n = 0; n < M.NumberOfVertices(); ++n)
+    Interior.resize(Mesh.NumberOfVertices());
+    for (int n = 0; n < Mesh.NumberOfVertices(); ++n)
     {
-      Interior[n] = !M.IsBoundaryVertex(G.Vertex(n));
+      Interior[n] = !Mesh.IsBoundaryVertex(G.Vertex(n));
     }
   }
 }
@@ -485,7 +485,7 @@ Status SVGGeodesicSolver::Reject(Status why, GraphAlgorithm algorithm)
 
 Vec3 SVGGeodesicSolver::PositionOf(const SurfacePoint& p) const
 {
-  return p.IsVertex() ? M.Position(p.Vertex) : M.Interpolate(p.Face, p.Bary);
+  return p.IsVertex() ? Mesh.Position(p.Vertex) : Mesh.Interpolate(p.Face, p.Bary);
 }
 
 Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSources,
@@ -496,7 +496,7 @@ Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exact
   if (!exactSources.empty())
   {
     ExactGeodesicOptions local;
-    local.MaximumFinalVertices = std::min(finalVertices, M.NumberOfVertices());
+    local.MaximumFinalVertices = std::min(finalVertices, Mesh.NumberOfVertices());
     local.MaximumDistance = options.MaximumDistance;
     if (const Status solved = Local.Solve(exactSources, local); !solved.Ok())
     {
@@ -510,10 +510,10 @@ Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exact
   // Corners of faces holding a piece: the exact in-face distance to the piece.
   for (const Piece& p : Pieces)
   {
-    const auto& t = M.Face(p.Face);
+    const auto& t = Mesh.Face(p.Face);
     for (int k = 0; k < 3; ++k)
     {
-      seeds.emplace_back(G.Node(t[k]), PointSegmentDistance(M.Position(t[k]), p.A, p.B));
+      seeds.emplace_back(G.Node(t[k]), PointSegmentDistance(Mesh.Position(t[k]), p.A, p.B));
     }
   }
   Graph.Solve(seeds, options.Algorithm, options.MaximumDistance);
@@ -534,7 +534,7 @@ Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exact
     if (angles)
     {
       const SurfacePoint& s = exactSources.front();
-      AnglePeriod = s.IsVertex() ? M.TotalAngle(s.Vertex) : 2.0 * 3.14159265358979323846;
+      AnglePeriod = s.IsVertex() ? Mesh.TotalAngle(s.Vertex) : 2.0 * 3.14159265358979323846;
     }
     Refine(options.MaximumDistance, options.Refine, angles);
     for (int v : Local.FinalVertices())
@@ -563,11 +563,11 @@ Status SVGGeodesicSolver::Solve(
   {
     return Reject(Status::Error("no source given"), options.Algorithm);
   }
-  if (const Status fits = G.CheckMesh(M); !fits.Ok())
+  if (const Status fits = G.CheckMesh(Mesh); !fits.Ok())
   {
     return Reject(fits, options.Algorithm);
   }
-  if (const Status valid = M.CheckPoints(sources, "source"); !valid.Ok())
+  if (const Status valid = Mesh.CheckPoints(sources, "source"); !valid.Ok())
   {
     return Reject(valid, options.Algorithm);
   }
@@ -622,7 +622,7 @@ Status SVGGeodesicSolver::SolveCurves(
   {
     return Reject(Status::Error("no curve given"), options.Algorithm);
   }
-  if (const Status fits = G.CheckMesh(M); !fits.Ok())
+  if (const Status fits = G.CheckMesh(Mesh); !fits.Ok())
   {
     return Reject(fits, options.Algorithm);
   }
@@ -633,7 +633,7 @@ Status SVGGeodesicSolver::SolveCurves(
     {
       return Reject(Status::Error(curve + " has no point"), options.Algorithm);
     }
-    if (const Status valid = M.CheckPoints(curves[c], curve + ", point"); !valid.Ok())
+    if (const Status valid = Mesh.CheckPoints(curves[c], curve + ", point"); !valid.Ok())
     {
       return Reject(valid, options.Algorithm);
     }
@@ -641,14 +641,14 @@ Status SVGGeodesicSolver::SolveCurves(
   std::vector<CurvePiece> pieces;
   for (const auto& curve : curves)
   {
-    const std::vector<CurvePiece> traced = TraceSurfaceCurve(M, curve);
+    const std::vector<CurvePiece> traced = TraceSurfaceCurve(Mesh, curve);
     pieces.insert(pieces.end(), traced.begin(), traced.end());
   }
   // The exact local solve starts from samples along the pieces, dense enough that the sampled
   // curve is within a small fraction of an edge of the true one; the pieces themselves give the
   // exact in-face distances.
   const std::vector<SurfacePoint> samples =
-    SampleCurvePieces(M, pieces, CurveSampleSpacing * M.MeanEdgeLength());
+    SampleCurvePieces(Mesh, pieces, CurveSampleSpacing * Mesh.MeanEdgeLength());
   std::vector<int> faces;
   for (const CurvePiece& p : pieces)
   {
@@ -659,12 +659,12 @@ Status SVGGeodesicSolver::SolveCurves(
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   const long long wanted = static_cast<long long>(G.LocalDiskSize()) * static_cast<long long>(faces.size());
   return SolveFromPieces(
-    samples, static_cast<int>(std::min<long long>(wanted, M.NumberOfVertices())), options);
+    samples, static_cast<int>(std::min<long long>(wanted, Mesh.NumberOfVertices())), options);
 }
 
 double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
 {
-  if (!M.CheckPoint(q).Ok())
+  if (!Mesh.CheckPoint(q).Ok())
   {
     return Inf;
   }
@@ -672,9 +672,9 @@ double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
   {
     return Distance(q.Vertex);
   }
-  const auto& t = M.Face(q.Face);
+  const auto& t = Mesh.Face(q.Face);
   double best =
-    UnfoldedDistance(M, q.Face, q.Bary, { { Distance(t[0]), Distance(t[1]), Distance(t[2]) } });
+    UnfoldedDistance(Mesh, q.Face, q.Bary, { { Distance(t[0]), Distance(t[1]), Distance(t[2]) } });
   // Sources in the same face: the straight segment inside the face.
   auto it = std::lower_bound(Pieces.begin(), Pieces.end(), q.Face,
     [](const Piece& p, int f) { return p.Face < f; });
@@ -691,10 +691,10 @@ double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
 
 std::vector<double> SVGGeodesicSolver::Distances() const
 {
-  std::vector<double> d(M.NumberOfVertices(), Inf);
-  if (G.NumberOfVertices() == M.NumberOfVertices())
+  std::vector<double> d(Mesh.NumberOfVertices(), Inf);
+  if (G.NumberOfVertices() == Mesh.NumberOfVertices())
   {
-    for (int n = 0; n < M.NumberOfVertices(); ++n)
+    for (int n = 0; n < Mesh.NumberOfVertices(); ++n)
     {
       d[G.Vertex(n)] = Graph.Distance(n);
     }

@@ -99,7 +99,7 @@ private:
   Status SolveFromPieces(const std::vector<SurfacePoint>& exactSources, int finalVertices,
     const SVGSolveOptions& options);
 
-  const TriangleMesh& M;
+  const TriangleMesh& Mesh;
   const SaddleVertexGraph& G;
   ExactGeodesicSolver Local;
   GraphDistanceSolver Graph;
