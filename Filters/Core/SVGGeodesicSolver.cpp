@@ -648,7 +648,7 @@ Status SVGGeodesicSolver::SolveCurves(
   // curve is within a small fraction of an edge of the true one; the pieces themselves give the
   // exact in-face distances.
   const std::vector<SurfacePoint> samples =
-    SampleCurvePieces(Mesh, pieces, CurveSampleSpacing * Mesh.MeanEdgeLength());
+    SampleCurvePieces(Mesh, pieces, CurveSeedSpacing * Mesh.MeanEdgeLength());
   std::vector<int> faces;
   for (const CurvePiece& p : pieces)
   {

@@ -62,7 +62,7 @@ public:
   // mean and 20% larger maximum errors on armadillo.)
   static constexpr double ConeCosine = 0.966;
   // Spacing of the samples seeding the exact solve near a curve, in mean edge lengths.
-  static constexpr double CurveSampleSpacing = 0.125;
+  static constexpr double CurveSeedSpacing = 0.125;
 
   double Distance(int v) const { return GraphSolver.Distance(Graph.Node(v)); }
   // With SVGSolveOptions::Angles: the departure angle at the source of v's geodesic, in the
