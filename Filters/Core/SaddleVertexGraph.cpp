@@ -170,16 +170,8 @@ Status SaddleVertexGraph::CheckMesh(const TriangleMesh& mesh) const
   return Status();
 }
 
-Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
-  const ProgressCallback& progress)
+Status SaddleVertexGraph::CheckOptions(const SaddleVertexGraphOptions& options)
 {
-  const auto t0 = std::chrono::steady_clock::now();
-  Clear();
-  const int nv = mesh.NumberOfVertices();
-  if (nv == 0)
-  {
-    return Status::Error("the mesh has no vertices");
-  }
   const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
   if (!dgg && options.K < 1)
   {
@@ -191,6 +183,31 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       "the accuracy of a discrete geodesic graph must be within 1e-5 .. 0.1 (got " +
       std::to_string(options.Accuracy) + ")");
   }
+  return Status();
+}
+
+int SaddleVertexGraph::EffectiveK(const SaddleVertexGraphOptions& options, int numberOfVertices)
+{
+  return options.Construction == GraphConstruction::DiscreteGeodesic
+    ? 0
+    : std::min(options.K, numberOfVertices);
+}
+
+Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+  const ProgressCallback& progress)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  Clear();
+  const int nv = mesh.NumberOfVertices();
+  if (nv == 0)
+  {
+    return Status::Error("the mesh has no vertices");
+  }
+  if (Status valid = CheckOptions(options); !valid.Ok())
+  {
+    return valid;
+  }
+  const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
   const int k = std::min(options.K, nv);
   // Refuse before allocating what the machine cannot give now.
   const double estimate = EstimatedBuildBytes(nv, options);
