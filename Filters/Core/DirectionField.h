@@ -19,8 +19,6 @@
 #include "TriangleMesh.h"
 #include "Vector.h"
 
-#include <Eigen/Core>
-
 #include <memory>
 #include <vector>
 
@@ -162,7 +160,6 @@ private:
   struct Factorization;
   Status SolvePrescribedUnique(int n, const std::vector<double>& index,
     const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles);
-  Eigen::VectorXd SmallestEigenvector(const Factorization& cache, int nf) const;
   std::vector<Vec3> VertexNormals() const;
   void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
 
