@@ -70,13 +70,14 @@ public:
   /// Inside the region dilated by `distance` (0 <= distance <= maximumDepth): inside, or within
   /// `distance` of its outline.
   bool Within(const Vec2& p, double distance) const;
-  double Radius() const { return R; }
+  double Radius() const { return HalfWidth; }
 
 private:
   int CellOf(double v) const;
-  double R = 0.0, CellSize = 1.0;
+  double HalfWidth = 0.0; // the grid covers [-HalfWidth, HalfWidth]^2 (radius, a hair more)
+  double CellSize = 1.0;
   int Cells = 1;
-  std::vector<Vec2> A, B;                 // edges
+  std::vector<Vec2> EdgeStart, EdgeEnd;   // the rings' edges
   std::vector<std::vector<int>> Rows;     // per row of cells: edges spanning it in y
   std::vector<std::vector<int>> Near;     // per cell: edges within the cell's reach
   std::vector<char> State;                // per cell: 0 mixed, 1 all outside, 2 all deep inside
