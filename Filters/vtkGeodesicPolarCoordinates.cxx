@@ -149,8 +149,9 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
   // 4. Theta's zero as a tangent angle at the source.
   this->ResolveReferenceAngle(cache, run);
 
-  // 5. Solve: exact geodesics truncated at the radius (K = 0), or the saddle vertex graph of K
-  //    from the process-wide cache (built with progress 0.3 .. 0.7 when new).
+  // 5. Solve: exact geodesics truncated at the radius (K = 0), or on a geodesic graph from the
+  //    process-wide cache (built with progress 0.3 .. 0.7 when new): the saddle vertex graph of
+  //    K, or with a GraphAccuracy the discrete geodesic graph of that accuracy.
   if (!this->Solve(cache, run))
   {
     return 1;

@@ -498,7 +498,8 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
   run.Lap("Input");
 
-  // 4. Saddle vertex graph (shared, cached) and the distributor.
+  // 4. The geodesic graph of the charts (shared, cached: the saddle vertex graph of K, or with a
+  //    GraphAccuracy the discrete geodesic graph; none for K = 0) and the distributor.
   bool graphChanged = false;
   if (this->K == 0)
   {
