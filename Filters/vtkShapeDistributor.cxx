@@ -549,13 +549,20 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   {
     gs::OverlapCheckOptions check;
     check.NumberOfThreads = this->NumberOfThreads;
-    const gs::OverlapCheckResult found = gs::CheckOverlaps(distributor, outlineOf, check);
-    WriteOverlaps(found, ns, placements);
-    if (!found.Pairs.empty())
+    const gs::Result<gs::OverlapCheckResult> found =
+      gs::CheckOverlaps(distributor, outlineOf, check);
+    if (!found.Ok())
     {
-      vtkWarningMacro("VerifyOverlaps: " << found.Pairs.size() << " pair(s) of shapes overlap "
-                                         << "(first: shapes " << found.Pairs[0].first << " and "
-                                         << found.Pairs[0].second
+      vtkErrorMacro("VerifyOverlaps: " << found.Message() << ".");
+      placements->Initialize();
+      return 1;
+    }
+    WriteOverlaps(*found, ns, placements);
+    if (!found->Pairs.empty())
+    {
+      vtkWarningMacro("VerifyOverlaps: " << found->Pairs.size() << " pair(s) of shapes overlap "
+                                         << "(first: shapes " << found->Pairs[0].first << " and "
+                                         << found->Pairs[0].second
                                          << "); see the Overlaps array of Placements.");
     }
     run.Lap("VerifyOverlaps");

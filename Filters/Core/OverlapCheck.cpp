@@ -213,7 +213,7 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
   return false;
 }
 
-OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
+Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options)
 {
   const auto start = std::chrono::steady_clock::now();
@@ -222,8 +222,13 @@ OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
   const SafeDistanceTables& tables = distributor.Tables();
   const double size = distributor.Options().ShapeSize;
   const int n = static_cast<int>(shapes.size());
+  if (outlines.size() != shapes.size())
+  {
+    return Status::Error("the overlap check needs one outline per shape: " +
+      std::to_string(outlines.size()) + " outline(s) for " + std::to_string(n) + " shape(s)");
+  }
   result.Overlaps.assign(n, 0);
-  if (n == 0 || static_cast<int>(outlines.size()) != n)
+  if (n == 0)
   {
     return result;
   }

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "ShapeOutline.h"
+#include "Status.h"
 #include "Vector.h"
 
 #include <functional>
@@ -52,8 +53,8 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
 
 /// Checks the shapes of `distributor` (after its Run) against their drawn outlines
 /// (`outlines[s]`: ShapeDistributor::Outline of shape s). Deterministic: the same pairs whatever
-/// the number of threads.
-OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
+/// the number of threads. Fails when `outlines` does not hold one entry per shape.
+Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options = {});
 
 /// A class silhouette (even-odd rings, normalized class frame) with a grid for point queries.
