@@ -340,10 +340,15 @@ bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
   }
   if (this->AngleMode == ISO_CURVE_ARC_LENGTH && !run.CurveSource)
   {
-    const int kept = polar.UseIsoCurveAngles();
-    if (kept > 0)
+    const gs::Result<int> kept = polar.UseIsoCurveAngles();
+    if (!kept.Ok())
     {
-      vtkWarningMacro(<< kept
+      vtkErrorMacro("Iso-curve angles: " << kept.Message() << ".");
+      return false;
+    }
+    if (*kept > 0)
+    {
+      vtkWarningMacro(<< *kept
                       << " point(s) whose iso-distance curve is not a closed loop round the source "
                          "(it meets the mesh boundary or misses the reference geodesic) keep the "
                          "geodesic-direction angle.");
