@@ -717,7 +717,15 @@ bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache,
           atVertex[v] = gs::Vec3{ x[0], x[1], x[2] };
         }
       }
-      directions = gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
+      gs::Result<std::vector<gs::Vec3>> perFace =
+        gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
+      if (!perFace.Ok())
+      {
+        vtkErrorMacro("The DirectionArray \"" << directionName << "\": " << perFace.Message()
+                                               << ".");
+        return false;
+      }
+      directions = std::move(*perFace);
     }
     else
     {

@@ -201,16 +201,22 @@ void AddStrokeConstraints(const TriangleMesh& mesh, const std::vector<SurfacePoi
   }
 }
 
-std::vector<Vec3> FaceDirectionsFromVertices(
+Result<std::vector<Vec3>> FaceDirectionsFromVertices(
   const TriangleMesh& mesh, const std::vector<Vec3>& atVertex, int symmetry)
 {
-  const int nf = mesh.NumberOfFaces();
-  const int n = symmetry == 2 || symmetry == 4 ? symmetry : 1;
-  std::vector<Vec3> out(nf, Vec3{ 0, 0, 0 });
-  if (static_cast<int>(atVertex.size()) != mesh.NumberOfVertices())
+  if (Status valid = CheckSymmetry(symmetry); !valid.Ok())
   {
-    return out;
+    return valid;
   }
+  if (atVertex.size() != static_cast<std::size_t>(mesh.NumberOfVertices()))
+  {
+    return Status::Error("the direction field at the vertices needs one vector per vertex: " +
+      std::to_string(atVertex.size()) + " given for " + std::to_string(mesh.NumberOfVertices()) +
+      " vertices");
+  }
+  const int nf = mesh.NumberOfFaces();
+  const int n = symmetry;
+  std::vector<Vec3> out(nf, Vec3{ 0, 0, 0 });
   const std::vector<Vec3> vertexNormals = AreaWeightedVertexNormals(mesh);
   for (int f = 0; f < nf; ++f)
   {
