@@ -42,8 +42,8 @@ vtkStandardNewMacro(vtkMSDTSource);
 struct vtkMSDTSource::ShapeCache
 {
   std::string Key;
-  bool Ok = false;
-  std::string Error;   // when !Ok, the message (already reported when the read happened)
+  // Ok, or why the shapes could not be read (reported when the read happened).
+  gs::Status Status = gs::Status::Error("the shapes have not been read");
   // No file name and no polygons: a new source whose properties are not set yet. Not reported
   // by RequestInformation (which the GUI and pvpython run as soon as the proxy exists), only
   // when the output is asked for.
@@ -132,12 +132,12 @@ vtkSmartPointer<vtkIntArray> IntArray(const char* name)
   return a.GetPointer();
 }
 
-// Closed rings per class from polygon / polyline cells (z ignored). `openPolylines` counts the
-// polyline cells whose last point differs from their first (they are closed all the same).
-bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& classes,
-  std::string& error, vtkIdType& openPolylines)
+// Closed rings per class from polygon / polyline cells (z ignored), appended to `classes` (the
+// core checks them: coordinates, area). Returns the number of polyline cells whose last point
+// differs from their first (they are closed all the same).
+vtkIdType PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& classes)
 {
-  openPolylines = 0;
+  vtkIdType openPolylines = 0;
   vtkDataArray* ids = input->GetCellData()->GetArray("ClassId");
   std::map<long long, std::vector<std::vector<gs::Vec2>>> byClass;
   std::vector<long long> order;
@@ -156,11 +156,6 @@ bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& clas
       {
         double p[3];
         input->GetPoint(pts[k], p);
-        if (!std::isfinite(p[0]) || !std::isfinite(p[1]))
-        {
-          error = "polygon cell " + std::to_string(cellId) + " has non-finite coordinates";
-          return false;
-        }
         ring.emplace_back(p[0], p[1]);
       }
       if (cells == input->GetLines() && n > 0 &&
@@ -179,14 +174,9 @@ bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& clas
     gs::SafeDistanceInput in;
     in.Name = (ids ? "polygons ClassId " : "polygon cell ") + std::to_string(key);
     in.Shape = gs::ShapeFromPolygons(byClass[key]);
-    if (in.Shape.Rings.empty() || !(std::abs(in.Shape.Area()) > 0.0))
-    {
-      error = in.Name + " has no area";
-      return false;
-    }
     classes.push_back(std::move(in));
   }
-  return true;
+  return openPolylines;
 }
 
 // What the classes and parts depend on: file names with modification times and sizes, the
@@ -280,7 +270,8 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     const gs::Result<gs::SilhouetteImage> read = gs::ReadSilhouetteImage(file, thresholds);
     if (!read.Ok())
     {
-      cache.Error = "Shape " + std::to_string(classes.size()) + ": " + read.Message() + ".";
+      cache.Status =
+        gs::Status::Error("Shape " + std::to_string(classes.size()) + ": " + read.Message());
       return;
     }
     if (read->ReductionFactor > 1)
@@ -302,17 +293,11 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     if (polygons->GetNumberOfPoints() > 0 &&
       bounds[5] - bounds[4] > 1e-9 * std::max({ 1.0, bounds[1] - bounds[0], bounds[3] - bounds[2] }))
     {
-      cache.Error = "Polygons input: the points are not in a plane of constant z (a surface "
-                    "mesh connected by mistake?)";
+      cache.Status = gs::Status::Error("Polygons input: the points are not in a plane of constant "
+                                       "z (a surface mesh connected by mistake?)");
       return;
     }
-    std::string error;
-    vtkIdType open = 0;
-    if (!PolygonClasses(polygons, classes, error, open))
-    {
-      cache.Error = "Polygons input: " + error + ".";
-      return;
-    }
+    const vtkIdType open = PolygonClasses(polygons, classes);
     if (open > 0)
     {
       vtkWarningMacro("Polygons input: " << open << " open polyline(s) (last point not equal to "
@@ -321,7 +306,8 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
   }
   if (classes.empty())
   {
-    cache.Error = "No shape: set ShapeFileNames (images) or use MSDT From Polygons.";
+    cache.Status =
+      gs::Status::Error("No shape: set ShapeFileNames (images) or use MSDT From Polygons");
     cache.NoShape = true;
     return;
   }
@@ -329,10 +315,10 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     gs::ComputeSafeDistanceParts(classes, TableOptions(this));
   if (!parts.Ok())
   {
-    cache.Error = "Safe distance tables: " + parts.Message() + ".";
+    cache.Status = gs::Status::Error("Safe distance tables: " + parts.Message());
     return;
   }
-  cache.Ok = true;
+  cache.Status = gs::Status();
   cache.Parts = std::move(*parts);
 }
 
@@ -353,11 +339,11 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
     return 1;
   }
   this->UpdateShapes(inputVector);
-  if (!this->Shapes->Ok)
+  if (!this->Shapes->Status.Ok())
   {
     if (!this->Shapes->NoShape)
     {
-      vtkErrorMacro(<< this->Shapes->Error);
+      vtkErrorMacro(<< this->Shapes->Status.Message() << ".");
     }
     return 1;
   }
@@ -426,11 +412,11 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   }
   const int loads = this->NumberOfShapeLoads;
   this->UpdateShapes(inputVector); // normally a cache hit
-  if (!this->Shapes->Ok)
+  if (!this->Shapes->Status.Ok())
   {
     if (this->NumberOfShapeLoads != loads || this->Shapes->NoShape)
     {
-      vtkErrorMacro(<< this->Shapes->Error);
+      vtkErrorMacro(<< this->Shapes->Status.Message() << ".");
     }
     return 1;
   }
