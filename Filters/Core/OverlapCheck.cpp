@@ -8,10 +8,6 @@
 #include <chrono>
 #include <cmath>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace gs
 {
 namespace
@@ -262,9 +258,8 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   long long examined = 0;
   // Long shapes: the inverse of their drawing map near them.
   std::vector<std::shared_ptr<const CurveGrid>> frames(n);
-#ifdef _OPENMP
-  const int threads = options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
-#endif
+  const int threads = ThreadCount(options.NumberOfThreads);
+  (void)threads;
 #pragma omp parallel for schedule(dynamic, 8) num_threads(threads)
   for (int s = 0; s < n; ++s)
   {
