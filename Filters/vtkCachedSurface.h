@@ -41,8 +41,9 @@ public:
   gs::Result<std::vector<gs::SurfacePoint>> SnapCurve(
     vtkPoints* points, vtkIdType n, const vtkIdType* ids);
 
-  // The core mesh vertex of input point `pointId` (a filter's source vertex id). Fails, saying
-  // why, when the id is out of range or the point is used by no triangle.
+  // The core mesh vertex of input point `pointId` (a filter's source vertex id). Fails when the
+  // id is out of range or the point is used by no triangle, with a message that follows the
+  // property's name: "<pointId> is out of range [0, n)", "<pointId> is not used by any triangle".
   gs::Result<int> VertexOfPoint(vtkIdType pointId) const;
 
   // gs::SaddleVertexGraph::HashMesh of the converted mesh; computed on first use.
