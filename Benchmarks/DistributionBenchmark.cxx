@@ -651,7 +651,13 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       const double t3 = Now();
       OverlapCheckOptions co;
       co.NumberOfThreads = threads;
-      const OverlapCheckResult check = CheckOverlaps(d, outlines, co);
+      const Result<OverlapCheckResult> checked = CheckOverlaps(d, outlines, co);
+      if (!checked.Ok())
+      {
+        std::fprintf(stderr, "overlap check: %s\n", checked.Message().c_str());
+        return 1;
+      }
+      const OverlapCheckResult& check = *checked;
       const double t4 = Now();
       if (threads == 1)
       {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -102,8 +103,9 @@ int main(int argc, char** argv)
         const int v = pc.Inside()[i];
         if (v == s)
           continue;
-        const SurfacePoint q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
-        worst = std::max(worst, Norm(m.Interpolate(q.Face, q.Bary) - m.Position(v)));
+        const Result<SurfacePoint> q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
+        worst = std::max(worst, q.Ok() ? Norm(m.Interpolate(q->Face, q->Bary) - m.Position(v))
+                                       : std::numeric_limits<double>::infinity());
       }
     }
     std::nth_element(thetaErr.begin(), thetaErr.begin() + thetaErr.size() / 2, thetaErr.end());

@@ -21,10 +21,28 @@ vtkSurfacePointLocator& vtkCachedSurface::Locator()
 }
 
 //------------------------------------------------------------------------------
-bool vtkCachedSurface::SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
-  std::vector<gs::SurfacePoint>& curve, std::string& error)
+gs::Result<std::vector<gs::SurfacePoint>> vtkCachedSurface::SnapCurve(
+  vtkPoints* points, vtkIdType n, const vtkIdType* ids)
 {
-  return this->Locator().SnapCurve(points, n, ids, curve, error);
+  return this->Locator().SnapCurve(points, n, ids);
+}
+
+//------------------------------------------------------------------------------
+gs::Result<int> vtkCachedSurface::VertexOfPoint(vtkIdType pointId) const
+{
+  const std::vector<int>& pointToVertex = this->Mesh.Build.PointToVertex;
+  const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
+  if (pointId < 0 || pointId >= numberOfPoints)
+  {
+    return gs::Status::Error(std::to_string(pointId) + " is out of range [0, " +
+      std::to_string(numberOfPoints) + ")");
+  }
+  int v = pointToVertex[static_cast<size_t>(pointId)];
+  if (v < 0)
+  {
+    return gs::Status::Error(std::to_string(pointId) + " is not used by any triangle");
+  }
+  return v;
 }
 
 //------------------------------------------------------------------------------

@@ -12,6 +12,7 @@
 #include "vtkSaddleVertexGraphCache.h"
 #include "vtkSurfaceMeshConverter.h"
 
+#include "Status.h"
 #include "SurfacePoint.h"
 
 #include <vtkType.h>
@@ -37,8 +38,13 @@ public:
 
   // A polyline of `points` (ids[0 .. n)) snapped as a curve on the surface, sampled every
   // vtkSurfacePointLocator::CurveSampleSpacing mean edge lengths (see SnapCurve there).
-  bool SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
-    std::vector<gs::SurfacePoint>& curve, std::string& error);
+  gs::Result<std::vector<gs::SurfacePoint>> SnapCurve(
+    vtkPoints* points, vtkIdType n, const vtkIdType* ids);
+
+  // The core mesh vertex of input point `pointId` (a filter's source vertex id). Fails when the
+  // id is out of range or the point is used by no triangle, with a message that follows the
+  // property's name: "<pointId> is out of range [0, n)", "<pointId> is not used by any triangle".
+  gs::Result<int> VertexOfPoint(vtkIdType pointId) const;
 
   // gs::SaddleVertexGraph::HashMesh of the converted mesh; computed on first use.
   std::uint64_t MeshHash();

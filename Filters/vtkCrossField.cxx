@@ -215,13 +215,13 @@ bool vtkCrossField::FindSingularities(Cache& cache, vtkPointSet* singularities, 
     {
       double x[3];
       singularities->GetPoint(i, x);
-      gs::SurfacePoint p;
-      std::string reason;
-      if (!cache.Locator().Snap(x, p, reason))
+      const gs::Result<gs::SurfacePoint> snapped = cache.Locator().Snap(x);
+      if (!snapped.Ok())
       {
-        vtkErrorMacro("Singularity " << i << ": " << reason << ".");
+        vtkErrorMacro("Singularity " << i << ": " << snapped.Message() << ".");
         return false;
       }
+      const gs::SurfacePoint& p = *snapped;
       const auto corner = std::max_element(p.Bary.begin(), p.Bary.end());
       const int v = mesh.Face(p.Face)[static_cast<size_t>(corner - p.Bary.begin())];
       placed.push_back({ v, index->GetComponent(i, 0) });
@@ -244,13 +244,14 @@ bool vtkCrossField::ReadStrokes(Cache& cache, vtkPolyData* strokes, Run& run)
       vtkIdType npts = 0;
       const vtkIdType* pts = nullptr;
       it->GetCurrentCell(npts, pts);
-      std::vector<gs::SurfacePoint> curve;
-      std::string reason;
-      if (!cache.SnapCurve(strokes->GetPoints(), npts, pts, curve, reason))
+      const gs::Result<std::vector<gs::SurfacePoint>> snapped =
+        cache.SnapCurve(strokes->GetPoints(), npts, pts);
+      if (!snapped.Ok())
       {
-        vtkErrorMacro("Stroke " << cellId << ": " << reason << ".");
+        vtkErrorMacro("Stroke " << cellId << ": " << snapped.Message() << ".");
         return false;
       }
+      const std::vector<gs::SurfacePoint>& curve = *snapped;
       if (curve.size() < 2)
       {
         vtkWarningMacro("Stroke " << cellId << " has fewer than two distinct points on the "

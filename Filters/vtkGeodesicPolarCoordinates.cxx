@@ -149,8 +149,9 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
   // 4. Theta's zero as a tangent angle at the source.
   this->ResolveReferenceAngle(cache, run);
 
-  // 5. Solve: exact geodesics truncated at the radius (K = 0), or the saddle vertex graph of K
-  //    from the process-wide cache (built with progress 0.3 .. 0.7 when new).
+  // 5. Solve: exact geodesics truncated at the radius (K = 0), or on a geodesic graph from the
+  //    process-wide cache (built with progress 0.3 .. 0.7 when new): the saddle vertex graph of
+  //    K, or with a GraphAccuracy the discrete geodesic graph of that accuracy.
   if (!this->Solve(cache, run))
   {
     return 1;
@@ -194,7 +195,6 @@ bool vtkGeodesicPolarCoordinates::CheckParameters()
 bool vtkGeodesicPolarCoordinates::FindSource(Cache& cache, vtkPointSet* source, Run& run)
 {
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
   vtkPolyData* polySource = vtkPolyData::SafeDownCast(source);
   std::vector<gs::SurfacePoint>& curve = run.Curve;
   gs::SurfacePoint& sourcePoint = run.Point;
@@ -210,12 +210,14 @@ bool vtkGeodesicPolarCoordinates::FindSource(Cache& cache, vtkPointSet* source, 
     auto it = vtk::TakeSmartPointer(polySource->GetLines()->NewIterator());
     it->GoToFirstCell();
     it->GetCurrentCell(npts, pts);
-    std::string reason;
-    if (!cache.SnapCurve(polySource->GetPoints(), npts, pts, curve, reason))
+    gs::Result<std::vector<gs::SurfacePoint>> snapped =
+      cache.SnapCurve(polySource->GetPoints(), npts, pts);
+    if (!snapped.Ok())
     {
-      vtkErrorMacro("Source curve: " << reason << ".");
+      vtkErrorMacro("Source curve: " << snapped.Message() << ".");
       return false;
     }
+    curve = std::move(*snapped);
     if (curve.size() < 2)
     {
       vtkErrorMacro("The Source curve has fewer than two distinct points on the surface.");
@@ -239,12 +241,13 @@ bool vtkGeodesicPolarCoordinates::FindSource(Cache& cache, vtkPointSet* source, 
     }
     double x[3];
     source->GetPoint(0, x);
-    std::string reason;
-    if (!cache.Locator().Snap(x, sourcePoint, reason))
+    const gs::Result<gs::SurfacePoint> snapped = cache.Locator().Snap(x);
+    if (!snapped.Ok())
     {
-      vtkErrorMacro("Source point 0: " << reason << ".");
+      vtkErrorMacro("Source point 0: " << snapped.Message() << ".");
       return false;
     }
+    sourcePoint = *snapped;
     const auto corner = std::max_element(sourcePoint.Bary.begin(), sourcePoint.Bary.end());
     if (*corner >= 1.0 - VertexSnapTolerance)
     {
@@ -254,21 +257,13 @@ bool vtkGeodesicPolarCoordinates::FindSource(Cache& cache, vtkPointSet* source, 
   }
   else
   {
-    const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
-    if (this->SourceVertexId < 0 || this->SourceVertexId >= numberOfPoints)
+    const gs::Result<int> v = cache.VertexOfPoint(this->SourceVertexId);
+    if (!v.Ok())
     {
-      vtkErrorMacro("SourceVertexId " << this->SourceVertexId << " is out of range [0, "
-                                      << numberOfPoints << ").");
+      vtkErrorMacro("SourceVertexId " << v.Message() << ".");
       return false;
     }
-    const int v = pointToVertex[static_cast<size_t>(this->SourceVertexId)];
-    if (v < 0)
-    {
-      vtkErrorMacro("SourceVertexId " << this->SourceVertexId
-                                      << " is not used by any triangle.");
-      return false;
-    }
-    sourcePoint = gs::SurfacePoint::AtVertex(v);
+    sourcePoint = gs::SurfacePoint::AtVertex(*v);
   }
   return true;
 }
@@ -339,10 +334,15 @@ bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
   }
   if (this->AngleMode == ISO_CURVE_ARC_LENGTH && !run.CurveSource)
   {
-    const int kept = polar.UseIsoCurveAngles();
-    if (kept > 0)
+    const gs::Result<int> kept = polar.UseIsoCurveAngles();
+    if (!kept.Ok())
     {
-      vtkWarningMacro(<< kept
+      vtkErrorMacro("Iso-curve angles: " << kept.Message() << ".");
+      return false;
+    }
+    if (*kept > 0)
+    {
+      vtkWarningMacro(<< *kept
                       << " point(s) whose iso-distance curve is not a closed loop round the source "
                          "(it meets the mesh boundary or misses the reference geodesic) keep the "
                          "geodesic-direction angle.");

@@ -16,7 +16,6 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
-#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -42,8 +41,8 @@ vtkStandardNewMacro(vtkMSDTSource);
 struct vtkMSDTSource::ShapeCache
 {
   std::string Key;
-  bool Ok = false;
-  std::string Error;   // when !Ok, the message (already reported when the read happened)
+  // Ok, or why the shapes could not be read (reported when the read happened).
+  gs::Status Status = gs::Status::Error("the shapes have not been read");
   // No file name and no polygons: a new source whose properties are not set yet. Not reported
   // by RequestInformation (which the GUI and pvpython run as soon as the proxy exists), only
   // when the output is asked for.
@@ -132,12 +131,12 @@ vtkSmartPointer<vtkIntArray> IntArray(const char* name)
   return a.GetPointer();
 }
 
-// Closed rings per class from polygon / polyline cells (z ignored). `openPolylines` counts the
-// polyline cells whose last point differs from their first (they are closed all the same).
-bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& classes,
-  std::string& error, vtkIdType& openPolylines)
+// Closed rings per class from polygon / polyline cells (z ignored), appended to `classes` (the
+// core checks them: coordinates, area). Returns the number of polyline cells whose last point
+// differs from their first (they are closed all the same).
+vtkIdType PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& classes)
 {
-  openPolylines = 0;
+  vtkIdType openPolylines = 0;
   vtkDataArray* ids = input->GetCellData()->GetArray("ClassId");
   std::map<long long, std::vector<std::vector<gs::Vec2>>> byClass;
   std::vector<long long> order;
@@ -156,11 +155,6 @@ bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& clas
       {
         double p[3];
         input->GetPoint(pts[k], p);
-        if (!std::isfinite(p[0]) || !std::isfinite(p[1]))
-        {
-          error = "polygon cell " + std::to_string(cellId) + " has non-finite coordinates";
-          return false;
-        }
         ring.emplace_back(p[0], p[1]);
       }
       if (cells == input->GetLines() && n > 0 &&
@@ -179,14 +173,9 @@ bool PolygonClasses(vtkPolyData* input, std::vector<gs::SafeDistanceInput>& clas
     gs::SafeDistanceInput in;
     in.Name = (ids ? "polygons ClassId " : "polygon cell ") + std::to_string(key);
     in.Shape = gs::ShapeFromPolygons(byClass[key]);
-    if (in.Shape.Rings.empty() || !(std::abs(in.Shape.Area()) > 0.0))
-    {
-      error = in.Name + " has no area";
-      return false;
-    }
     classes.push_back(std::move(in));
   }
-  return true;
+  return openPolylines;
 }
 
 // What the classes and parts depend on: file names with modification times and sizes, the
@@ -220,6 +209,76 @@ gs::SafeDistanceOptions TableOptions(vtkMSDTSource* source)
   options.DistanceSteps = source->GetDistanceSteps();
   options.MaximumAspectRatio = source->GetMaximumAspectRatio();
   return options;
+}
+
+// The silhouettes image (port 2): TextureSize^2 texels over the square [-1, 1]^2 around a class's
+// circle (class units, normalized by its radius), one component per class.
+struct SilhouetteImageGeometry
+{
+  int Extent[6];
+  double Spacing[3];
+  double Origin[3];
+  explicit SilhouetteImageGeometry(int ts)
+    : Extent{ 0, ts - 1, 0, ts - 1, 0, 0 }
+    , Spacing{ 2.0 / ts, 2.0 / ts, 1.0 }
+    , Origin{ -1.0 + 1.0 / ts, -1.0 + 1.0 / ts, 0.0 }
+  {
+  }
+};
+
+// Port 1: each class's outline rings as closed polylines (class frame, z = 0), cell array ClassId.
+void WriteOutlines(const gs::SafeDistanceTables& tables, vtkPolyData* outlines)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  auto classId = IntArray("ClassId");
+  for (std::size_t c = 0; c < tables.Classes.size(); ++c)
+  {
+    for (const auto& ring : tables.Classes[c].Outline.Rings)
+    {
+      const vtkIdType first = points->GetNumberOfPoints();
+      for (const gs::Vec2& p : ring)
+      {
+        points->InsertNextPoint(p.x, p.y, 0.0);
+      }
+      lines->InsertNextCell(static_cast<vtkIdType>(ring.size() + 1));
+      for (std::size_t k = 0; k <= ring.size(); ++k)
+      {
+        lines->InsertCellPoint(first + static_cast<vtkIdType>(k % ring.size()));
+      }
+      classId->InsertNextValue(static_cast<int>(c));
+    }
+  }
+  outlines->SetPoints(points);
+  outlines->SetLines(lines);
+  outlines->GetCellData()->AddArray(classId);
+}
+
+// Port 2: the point array Silhouette, one component per class: 255 inside the class, 0 outside
+// (SilhouetteImageGeometry of `ts`).
+void WriteSilhouettes(const gs::SafeDistanceTables& tables, int ts, vtkImageData* silhouettes)
+{
+  const int m = static_cast<int>(tables.Classes.size());
+  SilhouetteImageGeometry geometry(ts);
+  silhouettes->SetExtent(geometry.Extent);
+  silhouettes->SetSpacing(geometry.Spacing);
+  silhouettes->SetOrigin(geometry.Origin);
+  vtkNew<vtkUnsignedCharArray> texels;
+  texels->SetName("Silhouette");
+  texels->SetNumberOfComponents(m);
+  texels->SetNumberOfTuples(static_cast<vtkIdType>(ts) * ts);
+  for (int c = 0; c < m; ++c)
+  {
+    const double r = tables.Classes[c].Radius;
+    const gs::SilhouetteMask mask =
+      gs::RasterizeShape(tables.Classes[c].Outline, ts, ts, { -r, -r }, 2.0 * r / ts);
+    for (std::size_t k = 0; k < mask.Inside.size(); ++k)
+    {
+      texels->SetTypedComponent(static_cast<vtkIdType>(k), c, mask.Inside[k] ? 255 : 0);
+    }
+  }
+  silhouettes->GetPointData()->SetScalars(texels);
 }
 
 // The first invalid parameter: the tables' options (checked by the core), the thresholds and
@@ -280,7 +339,8 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     const gs::Result<gs::SilhouetteImage> read = gs::ReadSilhouetteImage(file, thresholds);
     if (!read.Ok())
     {
-      cache.Error = "Shape " + std::to_string(classes.size()) + ": " + read.Message() + ".";
+      cache.Status =
+        gs::Status::Error("Shape " + std::to_string(classes.size()) + ": " + read.Message());
       return;
     }
     if (read->ReductionFactor > 1)
@@ -302,17 +362,11 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     if (polygons->GetNumberOfPoints() > 0 &&
       bounds[5] - bounds[4] > 1e-9 * std::max({ 1.0, bounds[1] - bounds[0], bounds[3] - bounds[2] }))
     {
-      cache.Error = "Polygons input: the points are not in a plane of constant z (a surface "
-                    "mesh connected by mistake?)";
+      cache.Status = gs::Status::Error("Polygons input: the points are not in a plane of constant "
+                                       "z (a surface mesh connected by mistake?)");
       return;
     }
-    std::string error;
-    vtkIdType open = 0;
-    if (!PolygonClasses(polygons, classes, error, open))
-    {
-      cache.Error = "Polygons input: " + error + ".";
-      return;
-    }
+    const vtkIdType open = PolygonClasses(polygons, classes);
     if (open > 0)
     {
       vtkWarningMacro("Polygons input: " << open << " open polyline(s) (last point not equal to "
@@ -321,7 +375,8 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
   }
   if (classes.empty())
   {
-    cache.Error = "No shape: set ShapeFileNames (images) or use MSDT From Polygons.";
+    cache.Status =
+      gs::Status::Error("No shape: set ShapeFileNames (images) or use MSDT From Polygons");
     cache.NoShape = true;
     return;
   }
@@ -329,10 +384,10 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
     gs::ComputeSafeDistanceParts(classes, TableOptions(this));
   if (!parts.Ok())
   {
-    cache.Error = "Safe distance tables: " + parts.Message() + ".";
+    cache.Status = gs::Status::Error("Safe distance tables: " + parts.Message());
     return;
   }
-  cache.Ok = true;
+  cache.Status = gs::Status();
   cache.Parts = std::move(*parts);
 }
 
@@ -353,16 +408,17 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
     return 1;
   }
   this->UpdateShapes(inputVector);
-  if (!this->Shapes->Ok)
+  if (!this->Shapes->Status.Ok())
   {
     if (!this->Shapes->NoShape)
     {
-      vtkErrorMacro(<< this->Shapes->Error);
+      vtkErrorMacro(<< this->Shapes->Status.Message() << ".");
     }
     return 1;
   }
-  const gs::SafeDistanceTables& T = this->Shapes->Parts;
-  const int ka = this->AngleBins, P = T.NumberOfParts(), m = static_cast<int>(T.Classes.size());
+  const gs::SafeDistanceTables& parts = this->Shapes->Parts;
+  const int ka = this->AngleBins, P = parts.NumberOfParts();
+  const int m = static_cast<int>(parts.Classes.size());
   // Tables that would not fit in memory are refused before any allocation (the core checks
   // the same when it computes them).
   if (const gs::Status size = gs::CheckSafeDistanceTableSize(P, ka); !size.Ok())
@@ -371,26 +427,15 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
     return 1;
   }
 
-  // Port 0: ka x ka x P^2 tables.
-  vtkInformation* info = outputVector->GetInformationObject(0);
-  const int tablesExtent[6] = { 0, ka - 1, 0, ka - 1, 0, P * P - 1 };
-  const double w = 2.0 * vtkMath::Pi() / ka;
-  const double tablesSpacing[3] = { w, w, 1.0 };
-  const double zero[3] = { 0.0, 0.0, 0.0 };
-  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), tablesExtent, 6);
-  info->Set(vtkDataObject::SPACING(), tablesSpacing, 3);
-  info->Set(vtkDataObject::ORIGIN(), zero, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_DOUBLE, 1);
+  // Port 0: ka x ka x P^2 tables (vtkSafeDistanceTableImage, as ToImage will write them).
+  vtkSafeDistanceTableImage::SetInformation(ka, P, outputVector->GetInformationObject(0));
 
   // Port 2: TextureSize^2 silhouettes, one component per class.
-  const int ts = this->TextureSize;
-  info = outputVector->GetInformationObject(2);
-  const int texturesExtent[6] = { 0, ts - 1, 0, ts - 1, 0, 0 };
-  const double texturesSpacing[3] = { 2.0 / ts, 2.0 / ts, 1.0 };
-  const double texturesOrigin[3] = { -1.0 + 1.0 / ts, -1.0 + 1.0 / ts, 0.0 };
-  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), texturesExtent, 6);
-  info->Set(vtkDataObject::SPACING(), texturesSpacing, 3);
-  info->Set(vtkDataObject::ORIGIN(), texturesOrigin, 3);
+  const SilhouetteImageGeometry geometry(this->TextureSize);
+  vtkInformation* info = outputVector->GetInformationObject(2);
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), geometry.Extent, 6);
+  info->Set(vtkDataObject::SPACING(), geometry.Spacing, 3);
+  info->Set(vtkDataObject::ORIGIN(), geometry.Origin, 3);
   vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_UNSIGNED_CHAR, m);
   return 1;
 }
@@ -399,15 +444,15 @@ int vtkMSDTSource::RequestInformation(vtkInformation* vtkNotUsed(request),
 int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkImageData* tables = vtkImageData::GetData(outputVector, 0);
+  vtkImageData* tableImage = vtkImageData::GetData(outputVector, 0);
   vtkPolyData* outlines = vtkPolyData::GetData(outputVector, 1);
   vtkImageData* silhouettes = vtkImageData::GetData(outputVector, 2);
-  if (!tables || !outlines || !silhouettes)
+  if (!tableImage || !outlines || !silhouettes)
   {
     vtkErrorMacro("Missing outputs.");
     return 0;
   }
-  tables->Initialize();
+  tableImage->Initialize();
   outlines->Initialize();
   silhouettes->Initialize();
   // Under MPI the tables are computed once, on process 0 (its polygon input, if any, is read
@@ -419,18 +464,20 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
   }
   this->UpdateProgress(0.0);
 
-  // Errors were reported by RequestInformation (same parameters, same cached shapes).
+  // 1. Parameters and shapes (classes and parts). Their errors were reported by
+  //    RequestInformation (same parameters, same cached shapes) unless the shapes were read
+  //    again since.
   if (!CheckParameters(this).Ok())
   {
     return 1;
   }
   const int loads = this->NumberOfShapeLoads;
   this->UpdateShapes(inputVector); // normally a cache hit
-  if (!this->Shapes->Ok)
+  if (!this->Shapes->Status.Ok())
   {
     if (this->NumberOfShapeLoads != loads || this->Shapes->NoShape)
     {
-      vtkErrorMacro(<< this->Shapes->Error);
+      vtkErrorMacro(<< this->Shapes->Status.Message() << ".");
     }
     return 1;
   }
@@ -450,60 +497,17 @@ int vtkMSDTSource::RequestData(vtkInformation* vtkNotUsed(request),
     }
     return 1;
   }
-  const gs::SafeDistanceTables& T = *result;
-  const int ka = T.AngleBins, P = T.NumberOfParts();
+  const gs::SafeDistanceTables& tables = *result;
 
   // 3. Port 0: the tables and their description (vtkSafeDistanceTableImage: the one definition
-  // of that image, read back by Shape Distributor).
-  vtkSafeDistanceTableImage::ToImage(T, tables);
+  //    of that image, read back by Shape Distributor).
+  vtkSafeDistanceTableImage::ToImage(tables, tableImage);
 
-  // 4. Port 1: outlines.
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> lines;
-  auto classId = IntArray("ClassId");
-  for (std::size_t c = 0; c < T.Classes.size(); ++c)
-  {
-    for (const auto& ring : T.Classes[c].Outline.Rings)
-    {
-      const vtkIdType first = points->GetNumberOfPoints();
-      for (const gs::Vec2& p : ring)
-      {
-        points->InsertNextPoint(p.x, p.y, 0.0);
-      }
-      lines->InsertNextCell(static_cast<vtkIdType>(ring.size() + 1));
-      for (std::size_t k = 0; k <= ring.size(); ++k)
-      {
-        lines->InsertCellPoint(first + static_cast<vtkIdType>(k % ring.size()));
-      }
-      classId->InsertNextValue(static_cast<int>(c));
-    }
-  }
-  outlines->SetPoints(points);
-  outlines->SetLines(lines);
-  outlines->GetCellData()->AddArray(classId);
+  // 4. Port 1: the class outlines.
+  WriteOutlines(tables, outlines);
 
   // 5. Port 2: silhouettes as decal textures (the square around each class's circle).
-  const int ts = this->TextureSize;
-  const int m = static_cast<int>(T.Classes.size());
-  silhouettes->SetDimensions(ts, ts, 1);
-  silhouettes->SetSpacing(2.0 / ts, 2.0 / ts, 1.0);
-  silhouettes->SetOrigin(-1.0 + 1.0 / ts, -1.0 + 1.0 / ts, 0.0);
-  vtkNew<vtkUnsignedCharArray> texels;
-  texels->SetName("Silhouette");
-  texels->SetNumberOfComponents(m);
-  texels->SetNumberOfTuples(static_cast<vtkIdType>(ts) * ts);
-  for (int c = 0; c < m; ++c)
-  {
-    const double r = T.Classes[c].Radius;
-    const gs::SilhouetteMask mask =
-      gs::RasterizeShape(T.Classes[c].Outline, ts, ts, { -r, -r }, 2.0 * r / ts);
-    for (std::size_t k = 0; k < mask.Inside.size(); ++k)
-    {
-      texels->SetTypedComponent(static_cast<vtkIdType>(k), c, mask.Inside[k] ? 255 : 0);
-    }
-  }
-  silhouettes->GetPointData()->SetScalars(texels);
+  WriteSilhouettes(tables, this->TextureSize, silhouettes);
   this->UpdateProgress(1.0);
   return 1;
 }

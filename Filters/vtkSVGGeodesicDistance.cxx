@@ -193,18 +193,18 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
 //------------------------------------------------------------------------------
 bool vtkSVGGeodesicDistance::FindSources(Cache& cache, vtkPointSet* sources, Run& run)
 {
-  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
   std::vector<gs::SurfacePoint>& pointSources = run.PointSources;
   std::vector<std::vector<gs::SurfacePoint>>& curveSources = run.CurveSources;
   if (sources)
   {
-    std::string reason;
     auto snap = [&](const double x[3], gs::SurfacePoint& p, vtkIdType pointId) {
-      if (!cache.Locator().Snap(x, p, reason))
+      const gs::Result<gs::SurfacePoint> snapped = cache.Locator().Snap(x);
+      if (!snapped.Ok())
       {
-        vtkErrorMacro("Source point " << pointId << ": " << reason << ".");
+        vtkErrorMacro("Source point " << pointId << ": " << snapped.Message() << ".");
         return false;
       }
+      p = *snapped;
       return true;
     };
     std::vector<unsigned char> onCurve(static_cast<size_t>(sources->GetNumberOfPoints()), 0);
@@ -217,19 +217,20 @@ bool vtkSVGGeodesicDistance::FindSources(Cache& cache, vtkPointSet* sources, Run
       for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
       {
         it->GetCurrentCell(npts, pts);
-        std::vector<gs::SurfacePoint> curve;
-        if (!cache.SnapCurve(sources->GetPoints(), npts, pts, curve, reason))
+        gs::Result<std::vector<gs::SurfacePoint>> curve =
+          cache.SnapCurve(sources->GetPoints(), npts, pts);
+        if (!curve.Ok())
         {
-          vtkErrorMacro("Source curve: " << reason << ".");
+          vtkErrorMacro("Source curve: " << curve.Message() << ".");
           return false;
         }
         for (vtkIdType i = 0; i < npts; ++i)
         {
           onCurve[static_cast<size_t>(pts[i])] = 1;
         }
-        if (!curve.empty())
+        if (!curve->empty())
         {
-          curveSources.push_back(std::move(curve));
+          curveSources.push_back(std::move(*curve));
         }
       }
     }
@@ -251,22 +252,15 @@ bool vtkSVGGeodesicDistance::FindSources(Cache& cache, vtkPointSet* sources, Run
   }
   else
   {
-    const vtkIdType numberOfPoints = static_cast<vtkIdType>(pointToVertex.size());
     for (vtkIdType id : this->SourceVertexIds)
     {
-      if (id < 0 || id >= numberOfPoints)
+      const gs::Result<int> v = cache.VertexOfPoint(id);
+      if (!v.Ok())
       {
-        vtkErrorMacro("Source vertex id " << id << " is out of range [0, " << numberOfPoints
-                                          << ").");
+        vtkErrorMacro("Source vertex id " << v.Message() << ".");
         return false;
       }
-      const int v = pointToVertex[static_cast<size_t>(id)];
-      if (v < 0)
-      {
-        vtkErrorMacro("Source vertex id " << id << " is not used by any triangle.");
-        return false;
-      }
-      pointSources.push_back(gs::SurfacePoint::AtVertex(v));
+      pointSources.push_back(gs::SurfacePoint::AtVertex(*v));
     }
   }
   if (pointSources.empty() && curveSources.empty())

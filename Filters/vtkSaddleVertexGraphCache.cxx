@@ -170,15 +170,14 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   const int nv = mesh.NumberOfVertices();
   const bool dgg = options.Construction == gs::GraphConstruction::DiscreteGeodesic;
   // Invalid requests go straight to the build, whose error says why.
-  const bool validK = nv > 0 &&
-    (dgg ? options.Accuracy >= 1e-5 && options.Accuracy <= 0.1 : options.K >= 1);
+  const bool validOptions = nv > 0 && gs::SaddleVertexGraph::CheckOptions(options).Ok();
   GraphKey key;
   key.Construction = options.Construction;
-  key.K = dgg ? 0 : std::min(options.K, std::max(nv, 1)); // the core clamps K to the vertex count
+  key.K = gs::SaddleVertexGraph::EffectiveK(options, nv);
   key.Accuracy = dgg ? options.Accuracy : 0.0;
 
   // 1. Memory.
-  if (validK)
+  if (validOptions)
   {
     GraphPointer graph;
     {
@@ -206,7 +205,7 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   }
 
   // 2. The cache file.
-  if (validK && !fileName.empty() && FileExists(fileName))
+  if (validOptions && !fileName.empty() && FileExists(fileName))
   {
     auto graph = std::make_shared<gs::SaddleVertexGraph>();
     const gs::Status loaded = graph->Load(fileName, meshHash, options);

@@ -5,9 +5,9 @@
 //
 // Not a vtkObject and not wrapped (a private class of the GeodesicShapes::Filters module).
 //  - Graphs are keyed by (gs::SaddleVertexGraph::HashMesh(mesh), construction, effective K or
-//    accuracy), where the effective K is K clamped to the vertex count (the core does the same). A pipeline that
-//    re-executes and produces a new vtkPolyData with identical points and cells hashes to the
-//    same key: the graph is not rebuilt.
+//    accuracy), the effective K being gs::SaddleVertexGraph::EffectiveK (K clamped to the vertex
+//    count). A pipeline that re-executes and produces a new vtkPolyData with identical points
+//    and cells hashes to the same key: the graph is not rebuilt.
 //  - The Capacity most recently used graphs are kept alive by the cache; any graph still held by
 //    a filter (a shared_ptr) is found as well, however old.
 //  - With a file name: a graph found in memory is written there once (so the file exists for

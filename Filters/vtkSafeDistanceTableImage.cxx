@@ -4,10 +4,13 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkIntArray.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
 #include <initializer_list>
@@ -36,6 +39,19 @@ vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
   vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
   return a && a->GetNumberOfComponents() == components ? a : nullptr;
 }
+
+// The image's geometry: x and y the angle bins of the pair's two parts (an angle bin wide), z
+// the ordered pair of parts; at the origin.
+struct TableImageGeometry
+{
+  int Extent[6];
+  double Spacing[3];
+  TableImageGeometry(int angleBins, int numberOfParts)
+    : Extent{ 0, angleBins - 1, 0, angleBins - 1, 0, numberOfParts * numberOfParts - 1 }
+    , Spacing{ 2.0 * vtkMath::Pi() / angleBins, 2.0 * vtkMath::Pi() / angleBins, 1.0 }
+  {
+  }
+};
 } // namespace
 
 using Names = vtkSafeDistanceTableImage;
@@ -45,8 +61,9 @@ void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& tables, vt
 {
   image->Initialize();
   const int ka = tables.AngleBins, P = tables.NumberOfParts();
-  image->SetDimensions(ka, ka, P * P);
-  image->SetSpacing(tables.BinWidth(), tables.BinWidth(), 1.0);
+  TableImageGeometry geometry(ka, P);
+  image->SetExtent(geometry.Extent);
+  image->SetSpacing(geometry.Spacing);
   image->SetOrigin(0.0, 0.0, 0.0);
   vtkNew<vtkDoubleArray> values;
   values->SetName(Names::SafeDistance);
@@ -127,6 +144,18 @@ void vtkSafeDistanceTableImage::ToImage(const gs::SafeDistanceTables& tables, vt
   single(IntArray(Names::DistanceSteps), tables.DistanceSteps);
   single(IntArray(Names::RotationSamples), tables.RotationSamples);
   single(DoubleArray(Names::Scale, 1), tables.Scale);
+}
+
+//------------------------------------------------------------------------------
+void vtkSafeDistanceTableImage::SetInformation(
+  int angleBins, int numberOfParts, vtkInformation* info)
+{
+  const TableImageGeometry geometry(angleBins, numberOfParts);
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), geometry.Extent, 6);
+  info->Set(vtkDataObject::SPACING(), geometry.Spacing, 3);
+  info->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_DOUBLE, 1);
 }
 
 //------------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include "Status.h"            // for gs::Result
 
 class vtkImageData;
+class vtkInformation;
 
 class vtkSafeDistanceTableImage
 {
@@ -50,6 +51,11 @@ public:
 
   /// Writes `tables` into `image` (its previous content is replaced).
   static void ToImage(const gs::SafeDistanceTables& tables, vtkImageData* image);
+
+  /// Describes the image that ToImage will write for tables of `angleBins` bins and
+  /// `numberOfParts` parts in an output port's information (whole extent, spacing, origin, scalar
+  /// type), for a RequestInformation pass, before the tables are computed.
+  static void SetInformation(int angleBins, int numberOfParts, vtkInformation* info);
 
   /// Reads `image` back; fails, naming what is missing or inconsistent, when it is not such an
   /// image.

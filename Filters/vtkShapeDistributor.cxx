@@ -37,10 +37,6 @@
 #include <string>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 vtkStandardNewMacro(vtkShapeDistributor);
 
 // The converted mesh and what is derived from it (vtkCachedSurface), and the distributor
@@ -498,24 +494,12 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
   run.Lap("Input");
 
-  // 4. Saddle vertex graph (shared, cached) and the distributor.
-  bool graphChanged = false;
-  if (this->K == 0)
+  // 4. The geodesic graph of the charts (shared, cached: the saddle vertex graph of K, or with a
+  //    GraphAccuracy the discrete geodesic graph; none for K = 0) and the distributor.
+  if (!this->UseGraph(cache))
   {
-    graphChanged = cache.UseNoSaddleVertexGraph();
+    return 1;
   }
-  else if (!cache.UseSaddleVertexGraph(this,
-             vtkCachedSurface::GraphOptions(this->K, this->GraphAccuracy), this->CacheFileName,
-             0.05, 0.35, graphChanged))
-  {
-    return 1; // aborted, or the error is reported
-  }
-  if (!cache.Distributor || graphChanged)
-  {
-    cache.Distributor.reset();
-    cache.Distributor.reset(new gs::ShapeDistributor(cache.Mesh.Build.Mesh, cache.Graph()));
-  }
-  gs::ShapeDistributor& distributor = *cache.Distributor;
   run.Lap("Graph");
 
   // 5. Distribution.
@@ -534,44 +518,85 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     return 1;
   }
 
-  // 7. Decals and outlines, computed per shape in parallel (the outlines as the drawn check drew
-  // them), checked for overlaps if asked, and assembled in order, lifted off the surface.
-  const std::vector<gs::PlacedShape>& shapes = run.Distribution.Shapes;
-  const int ns = static_cast<int>(shapes.size());
+  // 7. Decals and outlines, checked for overlaps if asked.
+  if (!this->DrawShapes(cache, run, placements, decals, outlines))
+  {
+    placements->Initialize();
+    return 1;
+  }
+  run.WritePhaseSeconds(placements);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::UseGraph(Cache& cache)
+{
+  bool graphChanged = false;
+  if (this->K == 0)
+  {
+    graphChanged = cache.UseNoSaddleVertexGraph();
+  }
+  else if (!cache.UseSaddleVertexGraph(this,
+             vtkCachedSurface::GraphOptions(this->K, this->GraphAccuracy), this->CacheFileName,
+             0.05, 0.35, graphChanged))
+  {
+    return false; // aborted, or the error is reported
+  }
+  if (!cache.Distributor || graphChanged)
+  {
+    cache.Distributor.reset();
+    cache.Distributor.reset(new gs::ShapeDistributor(cache.Mesh.Build.Mesh, cache.Graph()));
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::DrawShapes(
+  const Cache& cache, Run& run, vtkPolyData* placements, vtkPolyData* decals, vtkPolyData* outlines)
+{
+  // Every shape's decal and outline, computed per shape in parallel (the outlines as the drawn
+  // check drew them).
+  const gs::ShapeDistributor& distributor = *cache.Distributor;
   const std::vector<gs::ShapeDecal> decalOf =
     gs::DrawDecals(distributor, this->DecalTolerance, this->NumberOfThreads);
   run.Lap("Decals");
   const std::vector<std::vector<gs::OutlinePiece>> outlineOf =
     gs::DrawOutlines(distributor, this->NumberOfThreads);
   run.Lap("Outlines");
+
+  // VerifyOverlaps: the drawn outlines checked against each other, independently of the tables.
+  const std::vector<gs::PlacedShape>& shapes = run.Distribution.Shapes;
   if (this->VerifyOverlaps)
   {
     gs::OverlapCheckOptions check;
     check.NumberOfThreads = this->NumberOfThreads;
-    const gs::OverlapCheckResult found = gs::CheckOverlaps(distributor, outlineOf, check);
-    WriteOverlaps(found, ns, placements);
-    if (!found.Pairs.empty())
+    const gs::Result<gs::OverlapCheckResult> found =
+      gs::CheckOverlaps(distributor, outlineOf, check);
+    if (!found.Ok())
     {
-      vtkWarningMacro("VerifyOverlaps: " << found.Pairs.size() << " pair(s) of shapes overlap "
-                                         << "(first: shapes " << found.Pairs[0].first << " and "
-                                         << found.Pairs[0].second
+      vtkErrorMacro("VerifyOverlaps: " << found.Message() << ".");
+      return false;
+    }
+    WriteOverlaps(*found, static_cast<int>(shapes.size()), placements);
+    if (!found->Pairs.empty())
+    {
+      vtkWarningMacro("VerifyOverlaps: " << found->Pairs.size() << " pair(s) of shapes overlap "
+                                         << "(first: shapes " << found->Pairs[0].first << " and "
+                                         << found->Pairs[0].second
                                          << "); see the Overlaps array of Placements.");
     }
     run.Lap("VerifyOverlaps");
   }
-#ifdef _OPENMP
-  const int threads = this->NumberOfThreads > 0 ? this->NumberOfThreads : omp_get_max_threads();
-#else
-  const int threads = 1;
-#endif
+
+  // Assembled in shape order, lifted off the surface.
+  const int threads = gs::ThreadCount(this->NumberOfThreads);
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   const double lift = Lift * run.ShapeSize;
   WriteDecals(mesh, shapes, decalOf, lift, threads, decals);
   WriteOutlines(mesh, shapes, outlineOf, lift, threads, outlines);
   run.Lap("Assembly");
-  run.WritePhaseSeconds(placements);
-  this->UpdateProgress(1.0);
-  return 1;
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -709,7 +734,15 @@ bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache,
           atVertex[v] = gs::Vec3{ x[0], x[1], x[2] };
         }
       }
-      directions = gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
+      gs::Result<std::vector<gs::Vec3>> perFace =
+        gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
+      if (!perFace.Ok())
+      {
+        vtkErrorMacro("The DirectionArray \"" << directionName << "\": " << perFace.Message()
+                                               << ".");
+        return false;
+      }
+      directions = std::move(*perFace);
     }
     else
     {

@@ -241,7 +241,10 @@ private:
   bool ResolveShapeSize(const Cache& cache, Run& run);
   bool ReadDirections(vtkPolyData* input, const Cache& cache, Run& run);
   bool ReadDensity(const Cache& cache, Run& run);
+  bool UseGraph(Cache& cache);
   bool Distribute(Cache& cache, Run& run);
+  bool DrawShapes(const Cache& cache, Run& run, vtkPolyData* placements, vtkPolyData* decals,
+    vtkPolyData* outlines);
 };
 
 #endif

@@ -25,7 +25,7 @@ vtkSurfaceMeshConverter::Result vtkSurfaceMeshConverter::Convert(vtkPolyData* in
   Result result;
   if (!input || input->GetNumberOfPoints() == 0)
   {
-    result.Error = "the input mesh is empty (no points)";
+    result.Status = gs::Status::Error("the input mesh is empty (no points)");
     return result;
   }
 
@@ -56,7 +56,7 @@ vtkSurfaceMeshConverter::Result vtkSurfaceMeshConverter::Convert(vtkPolyData* in
   {
     std::ostringstream msg;
     msg << numberOfSmallPolygons << " polygon(s) have fewer than 3 points (degenerate)";
-    result.Error = msg.str();
+    result.Status = gs::Status::Error(msg.str());
     return result;
   }
 
@@ -117,14 +117,14 @@ vtkSurfaceMeshConverter::Result vtkSurfaceMeshConverter::Convert(vtkPolyData* in
     msg << "the input mesh has no triangles or polygons (" << numberOfPoints << " points, "
         << input->GetNumberOfVerts() << " vertex cells, " << input->GetNumberOfLines()
         << " line cells; vertices and lines are ignored)";
-    result.Error = msg.str();
+    result.Status = gs::Status::Error(msg.str());
     return result;
   }
 
   gs::Result<gs::MeshBuild> built = gs::TriangleMeshBuilder::Build(positions, triangles);
   if (!built.Ok())
   {
-    result.Error = built.Message();
+    result.Status = built;
     return result;
   }
   result.Build = std::move(*built);
@@ -132,7 +132,7 @@ vtkSurfaceMeshConverter::Result vtkSurfaceMeshConverter::Convert(vtkPolyData* in
   {
     result.Warnings.push_back(w);
   }
-  result.Ok = true;
+  result.Status = gs::Status();
   return result;
 }
 
@@ -233,9 +233,9 @@ bool vtkSurfaceMeshConverter::Report(const Result& result, vtkObject* algorithm)
   {
     vtkWarningWithObjectMacro(algorithm, "Input mesh: " << warning);
   }
-  if (!result.Ok)
+  if (!result.Status.Ok())
   {
-    vtkErrorWithObjectMacro(algorithm, "Invalid input mesh: " << result.Error);
+    vtkErrorWithObjectMacro(algorithm, "Invalid input mesh: " << result.Status.Message());
     return false;
   }
   return true;

@@ -10,6 +10,7 @@
 #ifndef vtkSurfaceMeshConverter_h
 #define vtkSurfaceMeshConverter_h
 
+#include "Status.h"
 #include "TriangleMesh.h"
 
 #include <vtkPolyData.h> // Update() reads its modification times
@@ -29,8 +30,8 @@ class vtkSurfaceMeshConverter
 public:
   struct Result
   {
-    bool Ok = false;
-    std::string Error;                 // why the input was rejected (empty when Ok)
+    // Ok, or why the input was rejected (then only Warnings may hold something).
+    gs::Status Status = gs::Status::Error("not converted");
     std::vector<std::string> Warnings; // triangulation, re-oriented faces, ...
     // The mesh to output: the input (shallow copy) or its triangulation, same point ids.
     vtkSmartPointer<vtkPolyData> Surface;
@@ -42,7 +43,7 @@ public:
     bool Triangulated = false;
   };
 
-  // Converts `input`; never throws on bad input (Result::Ok false, Result::Error set).
+  // Converts `input`; never throws on bad input (Result::Status says why it is rejected).
   static Result Convert(vtkPolyData* input);
 
   // A conversion kept while its input's points and cells are unchanged (same object, same

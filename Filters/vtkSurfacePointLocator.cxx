@@ -25,13 +25,11 @@ vtkSurfacePointLocator::vtkSurfacePointLocator(const vtkSurfaceMeshConverter::Re
 vtkSurfacePointLocator::~vtkSurfacePointLocator() = default;
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePointLocator::Snap(
-  const double x[3], gs::SurfacePoint& point, std::string& error, bool anyDistance)
+gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::Snap(const double x[3], bool anyDistance)
 {
   if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
   {
-    error = "non-finite coordinates";
-    return false;
+    return gs::Status::Error("non-finite coordinates");
   }
   const gs::TriangleMesh& mesh = this->Mesh.Build.Mesh;
   const std::vector<int>& pointToVertex = this->Mesh.Build.PointToVertex;
@@ -41,15 +39,13 @@ bool vtkSurfacePointLocator::Snap(
   this->Locator->FindClosestPoint(x, closest, this->Cell, cellId, subId, dist2);
   if (cellId < 0 || cellId >= mesh.NumberOfFaces())
   {
-    error = "could not be snapped to the surface";
-    return false;
+    return gs::Status::Error("could not be snapped to the surface");
   }
   if (!anyDistance && std::sqrt(dist2) > this->MaximumDistance)
   {
-    error = "it lies " + std::to_string(std::sqrt(dist2)) +
+    return gs::Status::Error("it lies " + std::to_string(std::sqrt(dist2)) +
       " from the surface, more than a quarter of the mesh's bounding box diagonal (" +
-      std::to_string(this->MaximumDistance) + "): check its coordinates";
-    return false;
+      std::to_string(this->MaximumDistance) + "): check its coordinates");
   }
   // Barycentric coordinates in the triangle's point order, then matched to the core face's
   // corners by vertex (the mesh builder may have re-oriented the face). The locator used
@@ -75,51 +71,49 @@ bool vtkSurfacePointLocator::Snap(
   const double sum = bary[0] + bary[1] + bary[2];
   if (matched != 3 || !(sum > 0.0))
   {
-    error = "internal error: triangle " + std::to_string(cellId) + " does not match its core face";
-    return false;
+    return gs::Status::Error(
+      "internal error: triangle " + std::to_string(cellId) + " does not match its core face");
   }
-  point = gs::SurfacePoint::InFace(
+  return gs::SurfacePoint::InFace(
     static_cast<int>(cellId), bary[0] / sum, bary[1] / sum, bary[2] / sum);
-  return true;
 }
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePointLocator::SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
-  std::vector<gs::SurfacePoint>& curve, std::string& error)
+gs::Result<std::vector<gs::SurfacePoint>> vtkSurfacePointLocator::SnapCurve(
+  vtkPoints* points, vtkIdType n, const vtkIdType* ids)
 {
   const double spacing = CurveSampleSpacing * this->Mesh.Build.Mesh.MeanEdgeLength();
   // At most this many samples per segment (a segment far longer than the mesh).
   constexpr vtkIdType MaximumSamplesPerSegment = 1 << 20;
-  curve.clear();
+  std::vector<gs::SurfacePoint> curve;
   // The polyline's own points must be near the surface; the samples between them (a chord of a
   // curved surface) may be farther.
   auto add = [&](const double x[3], vtkIdType pointId, bool sample) {
-    gs::SurfacePoint p;
-    std::string reason;
-    if (!this->Snap(x, p, reason, sample))
+    const gs::Result<gs::SurfacePoint> snapped = this->Snap(x, sample);
+    if (!snapped.Ok())
     {
-      error = "point " + std::to_string(pointId) + ": " + reason;
-      return false;
+      return gs::Status::Error("point " + std::to_string(pointId) + ": " + snapped.Message());
     }
+    const gs::SurfacePoint& p = *snapped;
     const gs::SurfacePoint& last = curve.empty() ? p : curve.back();
     if (curve.empty() || last.Vertex != p.Vertex || last.Face != p.Face || last.Bary != p.Bary)
     {
       curve.push_back(p);
     }
-    return true;
+    return gs::Status();
   };
   for (vtkIdType i = 0; i < n; ++i)
   {
     if (ids[i] < 0 || ids[i] >= points->GetNumberOfPoints())
     {
-      error = "a line cell refers to point " + std::to_string(ids[i]) + ", out of range";
-      return false;
+      return gs::Status::Error(
+        "a line cell refers to point " + std::to_string(ids[i]) + ", out of range");
     }
     double a[3];
     points->GetPoint(ids[i], a);
-    if (!add(a, ids[i], false))
+    if (gs::Status added = add(a, ids[i], false); !added.Ok())
     {
-      return false;
+      return added;
     }
     if (i + 1 == n)
     {
@@ -130,8 +124,8 @@ bool vtkSurfacePointLocator::SnapCurve(vtkPoints* points, vtkIdType n, const vtk
     const double length = std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
     if (!std::isfinite(length))
     {
-      error = "point " + std::to_string(ids[i + 1]) + ": non-finite coordinates";
-      return false;
+      return gs::Status::Error(
+        "point " + std::to_string(ids[i + 1]) + ": non-finite coordinates");
     }
     const vtkIdType steps = static_cast<vtkIdType>(
       std::min<double>(MaximumSamplesPerSegment, std::ceil(length / spacing)));
@@ -140,11 +134,11 @@ bool vtkSurfacePointLocator::SnapCurve(vtkPoints* points, vtkIdType n, const vtk
       const double t = static_cast<double>(s) / static_cast<double>(steps);
       const double x[3] = { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]),
         a[2] + t * (b[2] - a[2]) };
-      if (!add(x, ids[i], true))
+      if (gs::Status added = add(x, ids[i], true); !added.Ok())
       {
-        return false;
+        return added;
       }
     }
   }
-  return true;
+  return curve;
 }

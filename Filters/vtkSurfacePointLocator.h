@@ -10,12 +10,12 @@
 
 #include "vtkSurfaceMeshConverter.h"
 
+#include "Status.h"
 #include "SurfacePoint.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 
-#include <string>
 #include <vector>
 
 class vtkGenericCell;
@@ -30,21 +30,20 @@ public:
   ~vtkSurfacePointLocator();
 
   // The closest surface point to x (on a vertex, an edge or inside a face; always returned as a
-  // face point with barycentric coordinates in the core face's corner order). False, with the
-  // reason in `error`, for non-finite coordinates, when x cannot be snapped, or (unless
-  // `anyDistance`) when x is farther from the surface than MaximumDistanceFraction of the mesh's
-  // bounding box diagonal (a point in the wrong units or frame, not a point on this surface).
-  bool Snap(const double x[3], gs::SurfacePoint& point, std::string& error,
-    bool anyDistance = false);
+  // face point with barycentric coordinates in the core face's corner order). Fails, saying why,
+  // for non-finite coordinates, when x cannot be snapped, or (unless `anyDistance`) when x is
+  // farther from the surface than MaximumDistanceFraction of the mesh's bounding box diagonal (a
+  // point in the wrong units or frame, not a point on this surface).
+  gs::Result<gs::SurfacePoint> Snap(const double x[3], bool anyDistance = false);
   static constexpr double MaximumDistanceFraction = 0.25;
 
   // A polyline of `points` (ids[0 .. n)) as a curve on the surface: each segment is sampled at
   // most CurveSampleSpacing mean edge lengths apart in space and every sample snapped
-  // (consecutive duplicates dropped), so that consecutive surface points are close. False, with
-  // the reason, for an id out of range, non-finite coordinates or a point that cannot be
+  // (consecutive duplicates dropped), so that consecutive surface points are close. Fails,
+  // saying why, for an id out of range, non-finite coordinates or a point that cannot be
   // snapped. (Every filter's curve sources and strokes.)
-  bool SnapCurve(vtkPoints* points, vtkIdType n, const vtkIdType* ids,
-    std::vector<gs::SurfacePoint>& curve, std::string& error);
+  gs::Result<std::vector<gs::SurfacePoint>> SnapCurve(
+    vtkPoints* points, vtkIdType n, const vtkIdType* ids);
   static constexpr double CurveSampleSpacing = 0.25;
 
   vtkSurfacePointLocator(const vtkSurfacePointLocator&) = delete;

@@ -43,14 +43,17 @@ double WrapPi(double a)
 
 struct DirectionFieldSolver::Factorization
 {
-  int N = 0;
+  int Symmetry = 0;
   double Alignment = -1.0;
   std::vector<int> Constrained; // sorted constrained faces
   std::vector<int> FreeIndex;   // face -> row block among free faces, -1 if constrained
-  Eigen::SparseMatrix<double> B;   // full 2F x 2F system matrix
+  Eigen::SparseMatrix<double> System; // full 2F x 2F system matrix (B in the comments)
   Eigen::SparseMatrix<double> Bfc; // free rows x constrained columns
   Eigen::SparseMatrix<double> Bff; // free rows x free columns (the factorized matrix)
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
+
+  // The smallest eigenvector of (Bff, M), M the face areas of `surface` (Rayleigh-Ritz).
+  Eigen::VectorXd SmallestEigenvector(const TriangleMesh& surface, int nf) const;
 };
 
 struct DirectionFieldSolver::ConnectionFactorization
@@ -65,7 +68,8 @@ struct DirectionFieldSolver::ConnectionFactorization
   std::vector<std::vector<int>> Paths;  // between consecutive constrained faces
   std::vector<std::pair<int, int>> PathEnds; // constraint indices joined by each path
   Eigen::VectorXd InverseWeight;
-  Eigen::SparseMatrix<double> C;
+  // Per row (RowVertices, then Cycles, then Paths): the edges its holonomy crosses.
+  Eigen::SparseMatrix<double> Holonomy;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
   std::vector<double> ComponentEuler;
 };
@@ -197,16 +201,22 @@ void AddStrokeConstraints(const TriangleMesh& mesh, const std::vector<SurfacePoi
   }
 }
 
-std::vector<Vec3> FaceDirectionsFromVertices(
+Result<std::vector<Vec3>> FaceDirectionsFromVertices(
   const TriangleMesh& mesh, const std::vector<Vec3>& atVertex, int symmetry)
 {
-  const int nf = mesh.NumberOfFaces();
-  const int n = symmetry == 2 || symmetry == 4 ? symmetry : 1;
-  std::vector<Vec3> out(nf, Vec3{ 0, 0, 0 });
-  if (static_cast<int>(atVertex.size()) != mesh.NumberOfVertices())
+  if (Status valid = CheckSymmetry(symmetry); !valid.Ok())
   {
-    return out;
+    return valid;
   }
+  if (atVertex.size() != static_cast<std::size_t>(mesh.NumberOfVertices()))
+  {
+    return Status::Error("the direction field at the vertices needs one vector per vertex: " +
+      std::to_string(atVertex.size()) + " given for " + std::to_string(mesh.NumberOfVertices()) +
+      " vertices");
+  }
+  const int nf = mesh.NumberOfFaces();
+  const int n = symmetry;
+  std::vector<Vec3> out(nf, Vec3{ 0, 0, 0 });
   const std::vector<Vec3> vertexNormals = AreaWeightedVertexNormals(mesh);
   for (int f = 0; f < nf; ++f)
   {
@@ -399,7 +409,8 @@ void DirectionFieldSolver::ComputeCurvatureTarget(
   }
 }
 
-Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& cache, int nf) const
+Eigen::VectorXd DirectionFieldSolver::Factorization::SmallestEigenvector(
+  const TriangleMesh& surface, int nf) const
 {
   // Rayleigh-Ritz accelerated inverse iteration: the subspace spanned by the iterates
   // (M-orthonormalised) is searched for the smallest Ritz pair of (B, M), and the next iterate is
@@ -410,8 +421,8 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
   double area = 0.0;
   for (int f = 0; f < nf; ++f)
   {
-    mass[2 * f] = mass[2 * f + 1] = Surface.FaceArea(f);
-    area += Surface.FaceArea(f);
+    mass[2 * f] = mass[2 * f + 1] = surface.FaceArea(f);
+    area += surface.FaceArea(f);
   }
   std::mt19937 rng(12345u);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -442,7 +453,7 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
       break; // the space is invariant: the Ritz vector is exact
     }
     basis.push_back(v / norm);
-    image.push_back(cache.Bff * basis.back());
+    image.push_back(Bff * basis.back());
     const int k = static_cast<int>(basis.size());
     Eigen::MatrixXd h(k, k);
     for (int i = 0; i < k; ++i)
@@ -466,7 +477,7 @@ Eigen::VectorXd DirectionFieldSolver::SmallestEigenvector(const Factorization& c
       break;
     }
     previous = value;
-    v = cache.Solver.solve(mass.cwiseProduct(ritz));
+    v = Solver.solve(mass.cwiseProduct(ritz));
     if (!v.allFinite())
     {
       break;
@@ -544,10 +555,11 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
   const double sigma = sumA > 0 ? sumW / sumA : 1.0; // energy / area scale
   const double eps = 1e-10 * sigma;
 
-  if (!Cache || Cache->N != n || Cache->Alignment != alignment || Cache->Constrained != constrained)
+  if (!Cache || Cache->Symmetry != n || Cache->Alignment != alignment ||
+    Cache->Constrained != constrained)
   {
     Cache = std::make_unique<Factorization>();
-    Cache->N = n;
+    Cache->Symmetry = n;
     Cache->Alignment = alignment;
     Cache->Constrained = constrained;
     std::vector<Eigen::Triplet<double>> trip;
@@ -584,8 +596,8 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
       trip.emplace_back(2 * f, 2 * f, d);
       trip.emplace_back(2 * f + 1, 2 * f + 1, d);
     }
-    Cache->B.resize(2 * nf, 2 * nf);
-    Cache->B.setFromTriplets(trip.begin(), trip.end());
+    Cache->System.resize(2 * nf, 2 * nf);
+    Cache->System.setFromTriplets(trip.begin(), trip.end());
     Cache->FreeIndex.assign(nf, -1);
     int nfree = 0;
     for (int f = 0; f < nf; ++f)
@@ -602,9 +614,9 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     {
       conIndex[constrained[i]] = static_cast<int>(i);
     }
-    for (int k = 0; k < Cache->B.outerSize(); ++k)
+    for (int k = 0; k < Cache->System.outerSize(); ++k)
     {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(Cache->B, k); it; ++it)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(Cache->System, k); it; ++it)
       {
         const int rf = static_cast<int>(it.row()) / 2, cf = static_cast<int>(it.col()) / 2;
         const int rr = static_cast<int>(it.row()) % 2, cc = static_cast<int>(it.col()) % 2;
@@ -683,7 +695,7 @@ Status DirectionFieldSolver::SolveSmoothest(int n, double alignment,
     }
     else if (ncomp == 1 && constrained.empty() && alignment == 0.0)
     {
-      u = SmallestEigenvector(*Cache, nf);
+      u = Cache->SmallestEigenvector(Surface, nf);
     }
     else
     {
@@ -1071,10 +1083,10 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
       }
       ++row;
     }
-    cf->C.resize(row, ne);
-    cf->C.setFromTriplets(trip.begin(), trip.end());
+    cf->Holonomy.resize(row, ne);
+    cf->Holonomy.setFromTriplets(trip.begin(), trip.end());
     const Eigen::SparseMatrix<double> k =
-      cf->C * cf->InverseWeight.asDiagonal() * cf->C.transpose();
+      cf->Holonomy * cf->InverseWeight.asDiagonal() * cf->Holonomy.transpose();
     cf->Solver.compute(k);
     if (cf->Solver.info() != Eigen::Success)
     {
@@ -1119,7 +1131,7 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     }
   }
   // Right-hand side.
-  const int rows = static_cast<int>(cf.C.rows());
+  const int rows = static_cast<int>(cf.Holonomy.rows());
   Eigen::VectorXd b(rows);
   int row = 0;
   for (const std::vector<int>& vertices : cf.RowVertices)
@@ -1154,8 +1166,8 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
     b[row++] = WrapSymmetric(AngleInFace(c.Face, c.Direction) - AngleInFace(a.Face, a.Direction) - hol, n);
   }
   const Eigen::VectorXd lambda = cf.Solver.solve(b);
-  const Eigen::VectorXd x = cf.InverseWeight.asDiagonal() * (cf.C.transpose() * lambda);
-  const double residual = (cf.C * x - b).norm();
+  const Eigen::VectorXd x = cf.InverseWeight.asDiagonal() * (cf.Holonomy.transpose() * lambda);
+  const double residual = (cf.Holonomy * x - b).norm();
   if (!x.allFinite() || residual > 1e-7 * (1.0 + b.norm()))
   {
     return Status::Error("the singularities and direction constraints are incompatible (a "

@@ -19,8 +19,6 @@
 #include "TriangleMesh.h"
 #include "Vector.h"
 
-#include <Eigen/Core>
-
 #include <memory>
 #include <vector>
 
@@ -73,8 +71,9 @@ std::vector<Vec3> AreaWeightedVertexNormals(const TriangleMesh& mesh);
 // equivalent directions the one closest to the first usable corner's is returned, with unit length.
 // N = 1 is the plain sum; N = 2 lines up opposite vectors; N = 4 also vectors a quarter turn apart
 // (a cross given by any of its arms). Zero where no corner has a finite, nonzero tangent vector or
-// where they cancel (a singular face). `atVertex` has one vector per vertex.
-std::vector<Vec3> FaceDirectionsFromVertices(
+// where they cancel (a singular face). Fails unless `atVertex` has one vector per vertex and the
+// symmetry is 1, 2 or 4.
+Result<std::vector<Vec3>> FaceDirectionsFromVertices(
   const TriangleMesh& mesh, const std::vector<Vec3>& atVertex, int symmetry);
 
 // Direction constraints from a stroke drawn on the surface: `curve` is the stroke snapped to the
@@ -162,7 +161,6 @@ private:
   struct Factorization;
   Status SolvePrescribedUnique(int n, const std::vector<double>& index,
     const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles);
-  Eigen::VectorXd SmallestEigenvector(const Factorization& cache, int nf) const;
   std::vector<Vec3> VertexNormals() const;
   void ComputeCurvatureTarget(int n, std::vector<double>& re, std::vector<double>& im) const;
 

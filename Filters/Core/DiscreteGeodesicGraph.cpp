@@ -44,10 +44,10 @@ void InheritAnchors(const Window& w, Window& c, const Frame& frame, double slack
 } // namespace
 
 DGGPropagation::DGGPropagation(const TriangleMesh& mesh)
-  : M(mesh)
+  : Mesh(mesh)
 {
-  window_geometry::HalfedgeFrames(M, Cx, Cy, FanAngle);
-  const int nv = M.NumberOfVertices();
+  window_geometry::HalfedgeFrames(Mesh, Cx, Cy, FanAngle);
+  const int nv = Mesh.NumberOfVertices();
   Dist.assign(nv, Inf);
   IsCovered.assign(nv, 0);
   AnglePhi.assign(nv, 0.0);
@@ -55,7 +55,7 @@ DGGPropagation::DGGPropagation(const TriangleMesh& mesh)
   AngleY.assign(nv, 0.0);
   CrossHalfedge.assign(nv, -1);
   CrossX.assign(nv, 0.0);
-  Tolerance = 1e-11 * std::max(M.BoundingBoxDiagonal(), 1e-300);
+  Tolerance = 1e-11 * std::max(Mesh.BoundingBoxDiagonal(), 1e-300);
 }
 
 void DGGPropagation::Reset()
@@ -97,8 +97,9 @@ void DGGPropagation::Reach(
 bool DGGPropagation::Trim(Window& w) const
 {
   const int h = w.H;
-  if (!window_geometry::TrimWindow(M.EdgeLength(h), w.Ix, w.Iy, 0.0, Cx[h], Cy[h],
-        Dist[M.Origin(h)], Dist[M.Destination(h)], Dist[M.Opposite(h)], Tolerance, w.B0, w.B1))
+  if (!window_geometry::TrimWindow(Mesh.EdgeLength(h), w.Ix, w.Iy, 0.0, Cx[h], Cy[h],
+        Dist[Mesh.Origin(h)], Dist[Mesh.Destination(h)], Dist[Mesh.Opposite(h)], Tolerance, w.B0,
+        w.B1))
   {
     return false;
   }
@@ -256,7 +257,7 @@ void DGGPropagation::Push(Window& w, double epsilon)
     return;
   }
   // A window reaching an end of its edge has that vertex on its boundary ray: a new anchor.
-  const double L = M.EdgeLength(w.H);
+  const double L = Mesh.EdgeLength(w.H);
   if (w.B0 <= 1e-12 * L)
   {
     AddAnchor(w, 0.0, 0.0);
@@ -277,7 +278,7 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
 {
   ++Stats.WindowsPropagated;
   const int h = w.H;
-  const double L = M.EdgeLength(h);
+  const double L = Mesh.EdgeLength(h);
   const double cx = Cx[h], cy = Cy[h];
   const double ix = w.Ix, iy = w.Iy;
   const double xc = ix + (cx - ix) * (-iy) / (cy - iy);
@@ -286,7 +287,7 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
   const double cover = 1e-10 * L;
   if (xc >= w.B0 - cover && xc <= w.B1 + cover)
   {
-    const int vC = M.Opposite(h);
+    const int vC = Mesh.Opposite(h);
     const double dC = Hypot(cx - ix, cy - iy);
     if (dC < Dist[vC] + Tolerance)
     {
@@ -334,15 +335,16 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
     InheritAnchors(w, c, frame, cover);
     Push(c, epsilon);
   };
-  const int leftEdge = M.Twin(TriangleMesh::Prev(h)), rightEdge = M.Twin(TriangleMesh::Next(h));
+  const int leftEdge = Mesh.Twin(TriangleMesh::Prev(h)),
+            rightEdge = Mesh.Twin(TriangleMesh::Next(h));
   if (left && leftEdge >= 0)
   {
-    const double b = M.EdgeLength(leftEdge);
+    const double b = Mesh.EdgeLength(leftEdge);
     child(leftEdge, window_geometry::LeftFrame(cx, cy, b), b, false, right);
   }
   if (right && rightEdge >= 0)
   {
-    const double a = M.EdgeLength(rightEdge);
+    const double a = Mesh.EdgeLength(rightEdge);
     child(rightEdge, window_geometry::RightFrame(cx, cy, L, a), a, left, false);
   }
 }
@@ -353,22 +355,23 @@ void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links)
   links.clear();
   Dist[s] = 0.0;
   Touched.push_back(s);
-  const int start = M.VertexHalfedge(s);
+  const int start = Mesh.VertexHalfedge(s);
   int h = start;
   do
   {
     // Face(h) with h: s -> a, Next(h): a -> b, Prev(h): b -> s.
     const int opp = TriangleMesh::Next(h);
-    const int a = M.Destination(h);
-    const int b = M.Origin(TriangleMesh::Prev(h));
+    const int a = Mesh.Destination(h);
+    const int b = Mesh.Origin(TriangleMesh::Prev(h));
     const double p0 = FanAngle[h];
-    Reach(a, M.EdgeLength(h), false, p0, 1.0, 0.0, -1, 0.0);
-    Reach(b, M.EdgeLength(TriangleMesh::Prev(h)), false, p0 + M.CornerAngle(h), 1.0, 0.0, -1, 0.0);
-    const int t = M.Twin(opp);
+    Reach(a, Mesh.EdgeLength(h), false, p0, 1.0, 0.0, -1, 0.0);
+    Reach(b, Mesh.EdgeLength(TriangleMesh::Prev(h)), false, p0 + Mesh.CornerAngle(h), 1.0, 0.0, -1,
+      0.0);
+    const int t = Mesh.Twin(opp);
     if (t >= 0)
     {
       // t runs b -> a; s lies below it at the mirror of its place in opp's frame.
-      const double ab = M.EdgeLength(t);
+      const double ab = Mesh.EdgeLength(t);
       Window w;
       w.H = t;
       w.B0 = 0.0;
@@ -381,7 +384,7 @@ void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links)
       w.NumAnchors = 0; // (the edge's ends, added by Push)
       Push(w, epsilon);
     }
-    h = M.RotateCCW(h);
+    h = Mesh.RotateCCW(h);
   } while (h >= 0 && h != start);
 
   while (!Queue.Empty())

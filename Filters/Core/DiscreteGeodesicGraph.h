@@ -97,7 +97,7 @@ private:
   void Push(Window& w, double epsilon);
   void Propagate(const Window& w, double epsilon);
 
-  const TriangleMesh& M;
+  const TriangleMesh& Mesh;
   std::vector<double> Cx, Cy;    // opposite vertex of each half-edge in its frame
   std::vector<double> FanAngle;  // half-edge direction about its origin (as in the exact solver)
   std::vector<double> Dist;      // best direct distance found

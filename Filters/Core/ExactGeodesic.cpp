@@ -15,10 +15,10 @@ using window_geometry::SegmentDistance;
 } // namespace
 
 ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
-  : M(mesh)
+  : Surface(mesh)
 {
-  window_geometry::HalfedgeFrames(M, Cx, Cy, FanAngle);
-  const int nv = M.NumberOfVertices();
+  window_geometry::HalfedgeFrames(Surface, Cx, Cy, FanAngle);
+  const int nv = Surface.NumberOfVertices();
   InAngle.assign(nv, LazyAngle());
   Departure.assign(nv, LazyAngle());
   Root.assign(nv, -1);
@@ -30,7 +30,7 @@ ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
   Propagated.assign(nv, 0);
   // Distances are compared with an absolute tolerance well above rounding noise and far below
   // any meaningful length of the mesh.
-  Tolerance = 1e-11 * std::max(M.BoundingBoxDiagonal(), 1e-300);
+  Tolerance = 1e-11 * std::max(Surface.BoundingBoxDiagonal(), 1e-300);
 }
 
 void ExactGeodesicSolver::Reset()
@@ -55,7 +55,7 @@ void ExactGeodesicSolver::Reset()
 
 std::vector<double> ExactGeodesicSolver::Distances() const
 {
-  std::vector<double> d(M.NumberOfVertices(), Unreachable);
+  std::vector<double> d(Surface.NumberOfVertices(), Unreachable);
   for (int v : FinalOrder)
   {
     d[v] = Dist[v];
@@ -100,7 +100,7 @@ void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, dou
   VertexQueue.push_back({ d, v });
   std::push_heap(VertexQueue.begin(), VertexQueue.end(),
     [](const VertexKey& a, const VertexKey& b) { return a.D > b.D; });
-  if (M.IsPseudoSourceVertex(v) && !Propagated[v])
+  if (Surface.IsPseudoSourceVertex(v) && !Propagated[v])
   {
     Window e;
     e.Key = d;
@@ -117,8 +117,9 @@ void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, dou
 bool ExactGeodesicSolver::Trim(Window& w) const
 {
   const int h = w.H;
-  if (!window_geometry::TrimWindow(M.EdgeLength(h), w.Ix, w.Iy, w.Sigma, Cx[h], Cy[h],
-        Dist[M.Origin(h)], Dist[M.Destination(h)], Dist[M.Opposite(h)], Tolerance, w.B0, w.B1))
+  if (!window_geometry::TrimWindow(Surface.EdgeLength(h), w.Ix, w.Iy, w.Sigma, Cx[h], Cy[h],
+        Dist[Surface.Origin(h)], Dist[Surface.Destination(h)], Dist[Surface.Opposite(h)], Tolerance,
+        w.B0, w.B1))
   {
     return false;
   }
@@ -156,7 +157,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
   // from where it arrived, on both sides (on the surface side for a boundary vertex): only that
   // shadow needs windows. A real source, or an unknown/ambiguous arrival, spreads everywhere.
   constexpr double Pi = 3.14159265358979323846;
-  const double theta = M.TotalAngle(v);
+  const double theta = Surface.TotalAngle(v);
   const double in = InAngle[v].Value();
   const double departureHere = Departure[v].Value();
   const double margin = 1e-9;
@@ -167,7 +168,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
     intervals[numIntervals][0] = -1.0;
     intervals[numIntervals++][1] = theta + 1.0;
   }
-  else if (M.IsBoundaryVertex(v))
+  else if (Surface.IsBoundaryVertex(v))
   {
     intervals[numIntervals][0] = -1.0;
     intervals[numIntervals++][1] = in - Pi + margin;
@@ -192,16 +193,16 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
     }
   }
 
-  const int start = M.VertexHalfedge(v);
+  const int start = Surface.VertexHalfedge(v);
   int h = start;
   do
   {
     // Face f = face(h) with h: v -> a, Next(h): a -> b, Prev(h): b -> v; its corner at v spans
     // [FanAngle[h], FanAngle[h] + beta] about v.
     const int opp = TriangleMesh::Next(h);
-    const int a = M.Destination(h);
-    const int b = M.Origin(TriangleMesh::Prev(h));
-    const double p0 = FanAngle[h], beta = M.CornerAngle(h);
+    const int a = Surface.Destination(h);
+    const int b = Surface.Origin(TriangleMesh::Prev(h));
+    const double p0 = FanAngle[h], beta = Surface.CornerAngle(h);
     for (int i = 0; i < numIntervals; ++i)
     {
       const bool fromStart = intervals[i][0] <= p0;
@@ -214,18 +215,18 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       }
       if (fromStart)
       {
-        const int back = M.Twin(h);
-        UpdateVertex(a, sigma + M.EdgeLength(h), src, -1, 0.0,
-          LazyAngle::Exactly(back >= 0 ? FanAngle[back] : M.TotalAngle(a)),
+        const int back = Surface.Twin(h);
+        UpdateVertex(a, sigma + Surface.EdgeLength(h), src, -1, 0.0,
+          LazyAngle::Exactly(back >= 0 ? FanAngle[back] : Surface.TotalAngle(a)),
           LazyAngle::Exactly(src >= 0 ? p0 : departureHere), root);
       }
       if (toEnd)
       {
-        UpdateVertex(b, sigma + M.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0,
+        UpdateVertex(b, sigma + Surface.EdgeLength(TriangleMesh::Prev(h)), src, -1, 0.0,
           LazyAngle::Exactly(FanAngle[TriangleMesh::Prev(h)]),
           LazyAngle::Exactly(src >= 0 ? p0 + beta : departureHere), root);
       }
-      const int t = M.Twin(opp);
+      const int t = Surface.Twin(opp);
       if (t < 0)
       {
         continue;
@@ -233,9 +234,9 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       // v is the opposite vertex of opp, at (Cx, Cy) in opp's frame; t's frame is opp's turned
       // by half a turn about the edge's midpoint. The ray from v at angle r from v->a meets the
       // opposite edge at |va| sin r / sin(r + alpha_a) from a (law of sines).
-      const double ab = M.EdgeLength(t);
-      const double va = M.EdgeLength(h);
-      const double alphaA = M.CornerAngle(opp);
+      const double ab = Surface.EdgeLength(t);
+      const double va = Surface.EdgeLength(h);
+      const double alphaA = Surface.CornerAngle(opp);
       auto fromA = [&](double r) { return va * std::sin(r) / std::sin(r + alphaA); };
       Window w;
       w.H = t;
@@ -253,7 +254,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
         PushWindow(w);
       }
     }
-    h = M.RotateCCW(h);
+    h = Surface.RotateCCW(h);
   } while (h >= 0 && h != start);
 }
 
@@ -261,10 +262,11 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src, in
 {
   // Departure angles are measured in the source face's plane from its first edge; a neighbour
   // face (source on an edge) is unfolded about the shared edge into that plane.
-  const Vec3 n0 = M.FaceNormal(sourceFace);
-  const Vec3 e0 = M.Position(M.Face(sourceFace)[1]) - M.Position(M.Face(sourceFace)[0]);
+  const Vec3 n0 = Surface.FaceNormal(sourceFace);
+  const Vec3 e0 = Surface.Position(Surface.Face(sourceFace)[1]) -
+    Surface.Position(Surface.Face(sourceFace)[0]);
   const Vec3 x0 = e0 / Norm(e0), y0 = Cross(n0, x0);
-  const Vec3 nf = M.FaceNormal(f);
+  const Vec3 nf = Surface.FaceNormal(f);
   // Angle of a direction d lying in face f, expressed in the source face's frame.
   auto angleOf = [&](const Vec3& d) {
     Vec3 u = d;
@@ -285,14 +287,14 @@ void ExactGeodesicSolver::AddFaceSourceWindows(int f, const Vec3& p, int src, in
   for (int k = 0; k < 3; ++k)
   {
     const int e = 3 * f + k;
-    const Vec3& X = M.Position(M.Origin(e));
-    const Vec3& Y = M.Position(M.Destination(e));
+    const Vec3& X = Surface.Position(Surface.Origin(e));
+    const Vec3& Y = Surface.Position(Surface.Destination(e));
     const Vec3 toP = p - X, toY = Y - X;
-    UpdateVertex(M.Origin(e), Norm(toP), src, -1, 0.0,
+    UpdateVertex(Surface.Origin(e), Norm(toP), src, -1, 0.0,
       LazyAngle{ FanAngle[e], Dot(toY, toP), Norm(Cross(toY, toP)) },
       LazyAngle::Exactly(angleOf(X - p)), src);
-    const int t = M.Twin(e);
-    const double len = M.EdgeLength(e);
+    const int t = Surface.Twin(e);
+    const double len = Surface.EdgeLength(e);
     // t runs Y -> X; in its frame the source lies below the edge (on f's side).
     const Vec3 u = (X - Y) / len;
     const Vec3 d = p - Y;
@@ -321,7 +323,7 @@ void ExactGeodesicSolver::Propagate(Window w)
 {
   ++Stats.WindowsPropagated;
   const int h = w.H;
-  const double L = M.EdgeLength(h);
+  const double L = Surface.EdgeLength(h);
   const double cx = Cx[h], cy = Cy[h];
   const double ix = w.Ix, iy = w.Iy;
   // Where the ray from I through C crosses the edge.
@@ -331,7 +333,7 @@ void ExactGeodesicSolver::Propagate(Window w)
   const double cover = 1e-10 * L;
   if (xc >= w.B0 - cover && xc <= w.B1 + cover)
   {
-    const int vC = M.Opposite(h);
+    const int vC = Surface.Opposite(h);
     const double dC = w.Sigma + Hypot(cx - ix, cy - iy);
     if (dC < Dist[vC] + Tolerance)
     {
@@ -359,11 +361,11 @@ void ExactGeodesicSolver::Propagate(Window w)
 
   if (left)
   {
-    const int t = M.Twin(TriangleMesh::Prev(h));
+    const int t = Surface.Twin(TriangleMesh::Prev(h));
     if (t >= 0)
     {
       // New frame: origin A, x along A -> C.
-      const double b = M.EdgeLength(t);
+      const double b = Surface.EdgeLength(t);
       const window_geometry::LeftFrame frame(cx, cy, b);
       const window_geometry::ChildWindow child =
         window_geometry::MakeChild(frame, b, ix, iy, w.B0, w.B1, false, right);
@@ -385,11 +387,11 @@ void ExactGeodesicSolver::Propagate(Window w)
   }
   if (right)
   {
-    const int t = M.Twin(TriangleMesh::Next(h));
+    const int t = Surface.Twin(TriangleMesh::Next(h));
     if (t >= 0)
     {
       // New frame: origin C, x along C -> B.
-      const double a = M.EdgeLength(t);
+      const double a = Surface.EdgeLength(t);
       const window_geometry::RightFrame frame(cx, cy, L, a);
       const window_geometry::ChildWindow child =
         window_geometry::MakeChild(frame, a, ix, iy, w.B0, w.B1, left, false);
@@ -436,7 +438,7 @@ Status ExactGeodesicSolver::Solve(
   {
     return Status::Error("no source given");
   }
-  if (const Status valid = M.CheckPoints(sources, "source"); !valid.Ok())
+  if (const Status valid = Surface.CheckPoints(sources, "source"); !valid.Ok())
   {
     return valid;
   }
@@ -467,21 +469,21 @@ Status ExactGeodesicSolver::Solve(
       {
         if (b[k] > 1.0 - 1e-12)
         {
-          s = SurfacePoint::AtVertex(M.Face(s.Face)[k]);
+          s = SurfacePoint::AtVertex(Surface.Face(s.Face)[k]);
           break;
         }
       }
       if (!s.IsVertex())
       {
-        const Vec3 p = M.Interpolate(s.Face, b);
+        const Vec3 p = Surface.Interpolate(s.Face, b);
         AddFaceSourceWindows(s.Face, p, i, s.Face);
         for (int k = 0; k < 3; ++k)
         {
           // On an edge: the face across it holds the source too.
           const int e = 3 * s.Face + (k + 1) % 3; // edge opposite corner k
-          if (b[k] < 1e-12 && M.Twin(e) >= 0)
+          if (b[k] < 1e-12 && Surface.Twin(e) >= 0)
           {
-            AddFaceSourceWindows(M.Twin(e) / 3, p, i, s.Face);
+            AddFaceSourceWindows(Surface.Twin(e) / 3, p, i, s.Face);
           }
         }
         continue;

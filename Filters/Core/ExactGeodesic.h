@@ -93,7 +93,7 @@ public:
   int SourceOf(int v) const { return Final[v] ? Root[v] : -1; }
 
   const ExactGeodesicStatistics& Statistics() const { return Stats; }
-  const TriangleMesh& Mesh() const { return M; }
+  const TriangleMesh& Mesh() const { return Surface; }
 
 private:
   struct Window
@@ -131,7 +131,7 @@ private:
   bool Trim(Window& w) const;
   void FinalizeUpTo(double key);
 
-  const TriangleMesh& M;
+  const TriangleMesh& Surface; // (Mesh() returns it)
   // Position of the opposite vertex of each half-edge in the half-edge's frame.
   std::vector<double> Cx, Cy;
   // Angle of each half-edge's direction about its origin, counter-clockwise from the origin's

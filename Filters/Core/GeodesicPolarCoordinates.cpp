@@ -58,6 +58,7 @@ Status GeodesicPolarCoordinates::Compute(
   InsideList.clear();
   CurveMode = false;
   IsoAngles = false;
+  Solved = false;
   if (!GraphError.Ok())
   {
     return GraphError;
@@ -113,6 +114,7 @@ Status GeodesicPolarCoordinates::Compute(
     // The source vertex itself is the pole: angle 0 by convention.
     VertexTheta[v] = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
   }
+  Solved = true;
   return Status();
 }
 
@@ -125,6 +127,7 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
   }
   InsideList.clear();
   CurveMode = true;
+  Solved = false;
   CurveResult.Length = 0.0;
   CurveResult.Offset.assign(Mesh.NumberOfVertices(), NaN);
   CurveResult.ArcLength.assign(Mesh.NumberOfVertices(), NaN);
@@ -142,16 +145,9 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
   {
     return Status::Error("the curve has no point");
   }
-  for (std::size_t k = 0; k < curve.size(); ++k)
+  if (const Status valid = Mesh.CheckPoints(curve, "curve point"); !valid.Ok())
   {
-    const SurfacePoint& p = curve[k];
-    const bool valid = p.IsVertex()
-      ? p.Vertex < Mesh.NumberOfVertices()
-      : p.Face >= 0 && p.Face < Mesh.NumberOfFaces() && std::isfinite(p.Bary[0] + p.Bary[1] + p.Bary[2]);
-    if (!valid)
-    {
-      return Status::Error("curve point " + std::to_string(k) + " is not a point of the mesh");
-    }
+    return valid;
   }
   CurvePieces = TraceSurfaceCurve(Mesh, curve);
   const std::vector<CurvePiece>& pieces = CurvePieces;
@@ -369,6 +365,7 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
     }
   }
   InsideList = std::move(inside);
+  Solved = true;
   return Status();
 }
 
@@ -639,11 +636,12 @@ bool GeodesicPolarCoordinates::TraceIsoCurve(int v,
   return false;
 }
 
-int GeodesicPolarCoordinates::UseIsoCurveAngles()
+Result<int> GeodesicPolarCoordinates::UseIsoCurveAngles()
 {
-  if (CurveMode)
+  if (!Solved || CurveMode)
   {
-    return 0;
+    return Status::Error("iso-curve angles need the coordinates about a point (a successful "
+                         "Compute, not ComputeCurve)");
   }
   IsoAngles = true;
   // The reference geodesic: from the source in direction theta = 0 to the radius.
@@ -681,11 +679,17 @@ int GeodesicPolarCoordinates::UseIsoCurveAngles()
   return kept;
 }
 
-SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta) const
+Result<SurfacePoint> GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta) const
 {
-  if (!CurveMode || !(CurveResult.Length > 0.0) || !std::isfinite(u) || !std::isfinite(delta))
+  if (!Solved || !CurveMode)
   {
-    return SurfacePoint();
+    return Status::Error("the inverse map of curve coordinates needs the coordinates about a "
+                         "curve (a successful ComputeCurve)");
+  }
+  if (!std::isfinite(u) || !std::isfinite(delta))
+  {
+    return Status::Error("curve coordinates (" + std::to_string(u) + ", " +
+      std::to_string(delta) + ") are not finite");
   }
   // The curve point at arc length u L, and the curve's direction there.
   const double target = std::min(1.0, std::max(0.0, u)) * CurveResult.Length;
@@ -709,7 +713,7 @@ SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta
   }
   if (!at)
   {
-    return SurfacePoint();
+    return Status::Error("the curve has no piece longer than a millionth of an edge");
   }
   const Vec3 x = at->A + (at->B - at->A) * t;
   SurfacePoint foot = SurfacePoint::InFace(at->Face, 0, 0, 0);
@@ -724,11 +728,21 @@ SurfacePoint GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, double delta
   return ShootGeodesic(Mesh, foot, tangentAngle + (delta > 0.0 ? quarter : -quarter), std::abs(delta)).End;
 }
 
-SurfacePoint GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
+Result<SurfacePoint> GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
 {
-  if (rho <= 0.0 || CurveMode)
+  if (!Solved || CurveMode)
   {
-    return Source;
+    return Status::Error("the inverse map of polar coordinates needs the coordinates about a "
+                         "point (a successful Compute, not ComputeCurve)");
+  }
+  if (!std::isfinite(rho) || !std::isfinite(theta))
+  {
+    return Status::Error("polar coordinates (" + std::to_string(rho) + ", " +
+      std::to_string(theta) + ") are not finite");
+  }
+  if (rho <= 0.0)
+  {
+    return SurfacePoint(Source);
   }
   if (IsoAngles)
   {

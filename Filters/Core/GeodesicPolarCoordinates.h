@@ -50,7 +50,8 @@ public:
   // Coordinates about `source` of every vertex closer than `radius` (> 0; infinity: the whole
   // reachable surface). `referenceAngle` is theta's zero, as a tangent angle at the source (see
   // TangentAngle in GeodesicShooting.h; 0: the source's first edge). Fails for an invalid source,
-  // radius or reference angle.
+  // radius or reference angle (then every vertex is outside, and ToSurface and
+  // UseIsoCurveAngles fail until the next successful Compute).
   Status Compute(const SurfacePoint& source, double radius, double referenceAngle = 0.0);
 
   // Coordinates about a curve (a polyline of surface points, consecutive points joined by the
@@ -62,10 +63,11 @@ public:
   // beyond the ends (in the caps) get 0 or 1. Exact solver from the curve sampled every
   // ExactCurveSampleSpacing edge (SurfaceCurve.h); each point's foot (where its geodesic leaves
   // the curve perpendicularly) is placed by the departure angle, exact for straight pieces on
-  // developable surfaces. Fails for an empty or zero-length curve, an invalid point or radius.
-  // The coordinates (Curve()) stay valid until the next Compute or ComputeCurve. In this mode
-  // Rho() and Theta() are NaN, PolarAt is false, ToSurface and UseIsoCurveAngles do nothing (use
-  // CurveCoordinatesAt, ToSurfaceFromCurve).
+  // developable surfaces. Fails for an empty or zero-length curve, an invalid point
+  // (TriangleMesh::CheckPoints: "curve point k is invalid: ...") or radius. The coordinates
+  // (Curve()) stay valid until the next Compute or ComputeCurve. In this mode Rho() and Theta()
+  // are NaN, PolarAt is false, ToSurface and UseIsoCurveAngles fail (use CurveCoordinatesAt,
+  // ToSurfaceFromCurve).
   Status ComputeCurve(const std::vector<SurfacePoint>& curve, double radius);
   bool IsCurve() const { return CurveMode; }
   // The coordinates of the last successful ComputeCurve.
@@ -76,8 +78,9 @@ public:
   // The inverse map of curve coordinates: the surface point at signed offset delta from the
   // curve point at normalized arc length u along the curve, along the geodesic leaving it
   // perpendicularly (the exact inverse where the offset curves are parallel to the curve:
-  // straight curves, circular arcs).
-  SurfacePoint ToSurfaceFromCurve(double u, double delta) const;
+  // straight curves, circular arcs). Fails unless the last Compute or ComputeCurve was a
+  // successful ComputeCurve, or for non-finite coordinates.
+  Result<SurfacePoint> ToSurfaceFromCurve(double u, double delta) const;
 
   // Per vertex, NaN outside the radius (or unreachable).
   double Rho(int v) const { return VertexRho[v]; }
@@ -90,8 +93,10 @@ public:
   bool PolarAt(const SurfacePoint& q, double& rho, double& theta) const;
 
   // The inverse map: the surface point at (rho, theta): geodesic shooting, or after
-  // UseIsoCurveAngles, the point at the fraction theta / 2 pi along the level loop rho.
-  SurfacePoint ToSurface(double rho, double theta) const;
+  // UseIsoCurveAngles, the point at the fraction theta / 2 pi along the level loop rho (the
+  // source itself for rho <= 0). Fails unless the last Compute or ComputeCurve was a
+  // successful Compute, or for non-finite coordinates.
+  Result<SurfacePoint> ToSurface(double rho, double theta) const;
 
   // Full turn of raw tangent angles at the source (its angle sum, or 2 pi for a face point).
   double SourceAngleSum() const { return Turn; }
@@ -102,11 +107,12 @@ public:
   // reference geodesic, over the curve's length. Vertices whose iso-curve is not a closed loop
   // (it meets the mesh boundary) or does not go round the source (it misses the reference
   // geodesic, e.g. a level set split around a limb) keep their
-  // geodesic-direction angle; the count is returned. Unlike the geodesic direction, it does not
+  // geodesic-direction angle; the count is returned. Fails, changing nothing, unless the last
+  // Compute or ComputeCurve was a successful Compute. Unlike the geodesic direction, it does not
   // fold past saddles and cut loci wherever the level sets are single loops around the source
   // (tested on a bumpy sphere and a torus); on a plane it equals the polar angle. Costs one loop
   // trace per vertex (O(n sqrt n) for a patch of n vertices).
-  int UseIsoCurveAngles();
+  Result<int> UseIsoCurveAngles();
 
 private:
   double RawToTheta(double raw) const;
@@ -128,6 +134,7 @@ private:
   double Turn = 0.0;
   std::vector<double> VertexRho, VertexTheta; // per vertex (Compute)
   bool CurveMode = false;
+  bool Solved = false; // the last Compute or ComputeCurve succeeded
   bool IsoAngles = false;
   std::vector<CurvePiece> CurvePieces;
   std::vector<double> Foot;   // curve mode: arc length of each vertex's foot, unclamped

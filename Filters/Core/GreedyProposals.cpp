@@ -128,7 +128,7 @@ std::vector<Vec2> ShapeDistributor::Impl::PartLattice(int p) const
 // neighbours (as its chart sees them).
 struct ShapeDistributor::Impl::Contact
 {
-  const Impl& I;
+  const Impl& Distributor; // the distributor it serves
   bool Tabled; // both single-part classes: the tables (otherwise a fraction of the radii)
   int Pa, Pc;  // the parent's part, the new shape's
   double Unit;
@@ -138,8 +138,8 @@ struct ShapeDistributor::Impl::Contact
   // Safe distance of the new shape (turned like A) in direction beta from A (A's frame).
   double Reach(double beta) const
   {
-    return Tabled ? I.Tables.Lookup(Pa, Pc, -beta, -beta) * Unit
-                  : (I.CircleMode ? 1.0 : 0.75) * RadiusSum * Unit;
+    return Tabled ? Distributor.Tables.Lookup(Pa, Pc, -beta, -beta) * Unit
+                  : (Distributor.CircleMode ? 1.0 : 0.75) * RadiusSum * Unit;
   }
   Vec2 At(double beta) const { return Vec2{ std::cos(beta), std::sin(beta) } * Reach(beta); }
   // Clearance of a new shape at P (turned like A) from neighbour b: > 0 when free.
@@ -147,8 +147,9 @@ struct ShapeDistributor::Impl::Contact
   {
     const Vec2 w = P - b.Centre;
     const double dist = Norm(w), line = std::atan2(w.y, w.x);
-    const double safe = I.CircleMode ? (I.PartRadius(b.Part) + I.PartRadius(Pc))
-                                     : I.Tables.Lookup(b.Part, Pc, b.Axis - line, -line);
+    const double safe = Distributor.CircleMode
+      ? (Distributor.PartRadius(b.Part) + Distributor.PartRadius(Pc))
+      : Distributor.Tables.Lookup(b.Part, Pc, b.Axis - line, -line);
     return dist - safe * b.Unit;
   }
   bool FreeOfAll(double beta) const

@@ -8,10 +8,6 @@
 #include <chrono>
 #include <cmath>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace gs
 {
 namespace
@@ -27,38 +23,41 @@ double SegmentDistance(const Vec2& a, const Vec2& b, const Vec2& p)
 } // namespace
 
 ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double radius, double maximumDepth)
-  : R(radius * (1.0 + 1e-9))
+  : HalfWidth(radius * (1.0 + 1e-9))
 {
   for (const auto& ring : rings)
   {
     for (std::size_t k = 0, n = ring.size(); k < n && n >= 3; ++k)
     {
-      A.push_back(ring[k]);
-      B.push_back(ring[(k + 1) % n]);
+      EdgeStart.push_back(ring[k]);
+      EdgeEnd.push_back(ring[(k + 1) % n]);
     }
   }
-  Cells = std::max(8, std::min(128, static_cast<int>(2.0 * std::sqrt(static_cast<double>(A.size())))));
-  CellSize = 2.0 * R / Cells;
+  const double edges = static_cast<double>(EdgeStart.size());
+  Cells = std::max(8, std::min(128, static_cast<int>(2.0 * std::sqrt(edges))));
+  CellSize = 2.0 * HalfWidth / Cells;
   Rows.assign(Cells, {});
   Near.assign(static_cast<std::size_t>(Cells) * Cells, {});
   State.assign(static_cast<std::size_t>(Cells) * Cells, 0);
   const double reach = 0.5 * std::sqrt(2.0) * CellSize + std::max(0.0, maximumDepth);
-  for (int e = 0; e < static_cast<int>(A.size()); ++e)
+  for (int e = 0; e < static_cast<int>(EdgeStart.size()); ++e)
   {
-    const int y0 = CellOf(std::min(A[e].y, B[e].y)), y1 = CellOf(std::max(A[e].y, B[e].y));
+    const Vec2& a = EdgeStart[e];
+    const Vec2& b = EdgeEnd[e];
+    const int y0 = CellOf(std::min(a.y, b.y)), y1 = CellOf(std::max(a.y, b.y));
     for (int y = y0; y <= y1; ++y)
     {
       Rows[y].push_back(e);
     }
     // Cells whose centre is within `reach` of the edge.
-    const int x0 = CellOf(std::min(A[e].x, B[e].x) - reach), x1 = CellOf(std::max(A[e].x, B[e].x) + reach);
-    const int z0 = CellOf(std::min(A[e].y, B[e].y) - reach), z1 = CellOf(std::max(A[e].y, B[e].y) + reach);
+    const int x0 = CellOf(std::min(a.x, b.x) - reach), x1 = CellOf(std::max(a.x, b.x) + reach);
+    const int z0 = CellOf(std::min(a.y, b.y) - reach), z1 = CellOf(std::max(a.y, b.y) + reach);
     for (int y = z0; y <= z1; ++y)
     {
       for (int x = x0; x <= x1; ++x)
       {
-        const Vec2 centre{ -R + (x + 0.5) * CellSize, -R + (y + 0.5) * CellSize };
-        if (SegmentDistance(A[e], B[e], centre) <= reach)
+        const Vec2 centre{ -HalfWidth + (x + 0.5) * CellSize, -HalfWidth + (y + 0.5) * CellSize };
+        if (SegmentDistance(a, b, centre) <= reach)
         {
           Near[static_cast<std::size_t>(y) * Cells + x].push_back(e);
         }
@@ -72,7 +71,7 @@ ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double rad
       const std::size_t c = static_cast<std::size_t>(y) * Cells + x;
       if (Near[c].empty())
       {
-        const Vec2 centre{ -R + (x + 0.5) * CellSize, -R + (y + 0.5) * CellSize };
+        const Vec2 centre{ -HalfWidth + (x + 0.5) * CellSize, -HalfWidth + (y + 0.5) * CellSize };
         State[c] = Inside(centre) ? 2 : 1;
       }
     }
@@ -81,21 +80,21 @@ ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double rad
 
 int ClassRegion::CellOf(double v) const
 {
-  const double c = std::floor((v + R) / CellSize);
+  const double c = std::floor((v + HalfWidth) / CellSize);
   return static_cast<int>(std::min(static_cast<double>(Cells - 1), std::max(0.0, c)));
 }
 
 bool ClassRegion::Inside(const Vec2& p) const
 {
-  if (!(std::abs(p.x) < R && std::abs(p.y) < R))
+  if (!(std::abs(p.x) < HalfWidth && std::abs(p.y) < HalfWidth))
   {
     return false;
   }
   bool in = false;
   for (int e : Rows[CellOf(p.y)])
   {
-    const Vec2& a = A[e];
-    const Vec2& b = B[e];
+    const Vec2& a = EdgeStart[e];
+    const Vec2& b = EdgeEnd[e];
     if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (b.x - a.x) * (p.y - a.y) / (b.y - a.y))
     {
       in = !in;
@@ -106,7 +105,7 @@ bool ClassRegion::Inside(const Vec2& p) const
 
 bool ClassRegion::DeeplyInside(const Vec2& p, double depth) const
 {
-  if (!(std::abs(p.x) < R && std::abs(p.y) < R))
+  if (!(std::abs(p.x) < HalfWidth && std::abs(p.y) < HalfWidth))
   {
     return false;
   }
@@ -117,7 +116,7 @@ bool ClassRegion::DeeplyInside(const Vec2& p, double depth) const
   }
   for (int e : Near[c])
   {
-    if (SegmentDistance(A[e], B[e], p) <= depth)
+    if (SegmentDistance(EdgeStart[e], EdgeEnd[e], p) <= depth)
     {
       return false;
     }
@@ -127,11 +126,11 @@ bool ClassRegion::DeeplyInside(const Vec2& p, double depth) const
 
 bool ClassRegion::Within(const Vec2& p, double distance) const
 {
-  if (!(std::abs(p.x) < R + distance && std::abs(p.y) < R + distance))
+  if (!(std::abs(p.x) < HalfWidth + distance && std::abs(p.y) < HalfWidth + distance))
   {
     return false;
   }
-  const bool inGrid = std::abs(p.x) < R && std::abs(p.y) < R;
+  const bool inGrid = std::abs(p.x) < HalfWidth && std::abs(p.y) < HalfWidth;
   const std::size_t c = static_cast<std::size_t>(CellOf(p.y)) * Cells + CellOf(p.x);
   if (inGrid && State[c] != 0)
   {
@@ -146,16 +145,16 @@ bool ClassRegion::Within(const Vec2& p, double distance) const
   {
     for (int e : Near[c])
     {
-      if (SegmentDistance(A[e], B[e], p) <= distance)
+      if (SegmentDistance(EdgeStart[e], EdgeEnd[e], p) <= distance)
       {
         return true;
       }
     }
     return false;
   }
-  for (std::size_t e = 0; e < A.size(); ++e)
+  for (std::size_t e = 0; e < EdgeStart.size(); ++e)
   {
-    if (SegmentDistance(A[e], B[e], p) <= distance)
+    if (SegmentDistance(EdgeStart[e], EdgeEnd[e], p) <= distance)
     {
       return true;
     }
@@ -210,7 +209,7 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
   return false;
 }
 
-OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
+Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options)
 {
   const auto start = std::chrono::steady_clock::now();
@@ -219,8 +218,13 @@ OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
   const SafeDistanceTables& tables = distributor.Tables();
   const double size = distributor.Options().ShapeSize;
   const int n = static_cast<int>(shapes.size());
+  if (outlines.size() != shapes.size())
+  {
+    return Status::Error("the overlap check needs one outline per shape: " +
+      std::to_string(outlines.size()) + " outline(s) for " + std::to_string(n) + " shape(s)");
+  }
   result.Overlaps.assign(n, 0);
-  if (n == 0 || static_cast<int>(outlines.size()) != n)
+  if (n == 0)
   {
     return result;
   }
@@ -254,9 +258,8 @@ OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
   long long examined = 0;
   // Long shapes: the inverse of their drawing map near them.
   std::vector<std::shared_ptr<const CurveGrid>> frames(n);
-#ifdef _OPENMP
-  const int threads = options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
-#endif
+  const int threads = ThreadCount(options.NumberOfThreads);
+  (void)threads;
 #pragma omp parallel for schedule(dynamic, 8) num_threads(threads)
   for (int s = 0; s < n; ++s)
   {

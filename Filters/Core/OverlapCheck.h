@@ -15,6 +15,7 @@
 #pragma once
 
 #include "ShapeOutline.h"
+#include "Status.h"
 #include "Vector.h"
 
 #include <functional>
@@ -52,8 +53,8 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
 
 /// Checks the shapes of `distributor` (after its Run) against their drawn outlines
 /// (`outlines[s]`: ShapeDistributor::Outline of shape s). Deterministic: the same pairs whatever
-/// the number of threads.
-OverlapCheckResult CheckOverlaps(const ShapeDistributor& distributor,
+/// the number of threads. Fails when `outlines` does not hold one entry per shape.
+Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options = {});
 
 /// A class silhouette (even-odd rings, normalized class frame) with a grid for point queries.
@@ -70,13 +71,14 @@ public:
   /// Inside the region dilated by `distance` (0 <= distance <= maximumDepth): inside, or within
   /// `distance` of its outline.
   bool Within(const Vec2& p, double distance) const;
-  double Radius() const { return R; }
+  double Radius() const { return HalfWidth; }
 
 private:
   int CellOf(double v) const;
-  double R = 0.0, CellSize = 1.0;
+  double HalfWidth = 0.0; // the grid covers [-HalfWidth, HalfWidth]^2 (radius, a hair more)
+  double CellSize = 1.0;
   int Cells = 1;
-  std::vector<Vec2> A, B;                 // edges
+  std::vector<Vec2> EdgeStart, EdgeEnd;   // the rings' edges
   std::vector<std::vector<int>> Rows;     // per row of cells: edges spanning it in y
   std::vector<std::vector<int>> Near;     // per cell: edges within the cell's reach
   std::vector<char> State;                // per cell: 0 mixed, 1 all outside, 2 all deep inside

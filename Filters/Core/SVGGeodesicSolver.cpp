@@ -185,24 +185,24 @@ double NearestUnfolding2(const PairBatch& b)
 } // namespace
 
 SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVertexGraph& graph)
-  : M(mesh)
-  , G(graph)
-  , Local(mesh)
+  : Mesh(mesh)
   , Graph(graph)
+  , Local(mesh)
+  , GraphSolver(graph)
 {
-  Exact.assign(M.NumberOfVertices(), 0);
-  Angle.assign(M.NumberOfVertices(), NaN);
-  if (G.GetConstruction() == GraphConstruction::DiscreteGeodesic)
+  Exact.assign(Mesh.NumberOfVertices(), 0);
+  Angle.assign(Mesh.NumberOfVertices(), NaN);
+  if (Graph.GetConstruction() == GraphConstruction::DiscreteGeodesic)
   {
-    RefinementFloor = 1.0 / (1.0 + G.GetAccuracy());
+    RefinementFloor = 1.0 / (1.0 + Graph.GetAccuracy());
   }
   // Per node (the sweep's numbering): whether the vertex's stencil closes into a full fan.
-  if (G.NumberOfVertices() == M.NumberOfVertices())
+  if (Graph.NumberOfVertices() == Mesh.NumberOfVertices())
   {
-    Interior.resize(M.NumberOfVertices());
-    for (int n = 0; n < M.NumberOfVertices(); ++n)
+    Interior.resize(Mesh.NumberOfVertices());
+    for (int n = 0; n < Mesh.NumberOfVertices(); ++n)
     {
-      Interior[n] = !M.IsBoundaryVertex(G.Vertex(n));
+      Interior[n] = !Mesh.IsBoundaryVertex(Graph.Vertex(n));
     }
   }
 }
@@ -218,42 +218,42 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
   // Exact on developable surfaces; on curved ones it removes most of the graph's polyline
   // error (graph paths bend at every vertex they pass).
   const double limit = maxDistance > 0.0 ? maxDistance : Inf;
-  const std::vector<int>& reached = Graph.Reached();
+  const std::vector<int>& reached = GraphSolver.Reached();
   Order.clear();
   Order.reserve(reached.size());
   for (int v : reached)
   {
-    Order.push_back({ SortKey(Graph.Distance(v)), v });
+    Order.push_back({ SortKey(GraphSolver.Distance(v)), v });
   }
   RadixSort(Order, OrderScratch);
   // The sweep's order is random in memory: the stencils of the vertices a few steps ahead are
   // prefetched, first the offsets and the predecessor's place in the stencil, then the entries
   // about it (a third of the sweep's time on 26K-vertex meshes).
   auto predIndex = [&](int v) {
-    const std::int64_t link = Graph.PredecessorLink(v);
-    return link >= 0 ? G.LinkStencilIndex(link) : -1;
+    const std::int64_t link = GraphSolver.PredecessorLink(v);
+    return link >= 0 ? Graph.LinkStencilIndex(link) : -1;
   };
   constexpr std::size_t ahead = 6;
   const std::size_t count = Order.size();
   for (std::size_t k = 0; k < std::min(count, ahead); ++k)
   {
-    G.PrefetchStencil(Order[k].second, predIndex(Order[k].second));
+    Graph.PrefetchStencil(Order[k].second, predIndex(Order[k].second));
   }
   for (std::size_t i = 0; i < count; ++i)
   {
     if (i + 3 * ahead < count)
     {
-      Graph.PrefetchPredecessor(Order[i + 3 * ahead].second);
+      GraphSolver.PrefetchPredecessor(Order[i + 3 * ahead].second);
     }
     if (i + 2 * ahead < count)
     {
       const int v = Order[i + 2 * ahead].second;
-      G.PrefetchStencilOffsets(v, Graph.PredecessorLink(v));
+      Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
     }
     if (i + ahead < count)
     {
       const int v = Order[i + ahead].second;
-      G.PrefetchStencil(v, predIndex(v));
+      Graph.PrefetchStencil(v, predIndex(v));
     }
     const int x = Order[i].second;
     if (Exact[x])
@@ -261,15 +261,15 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       continue;
     }
     // The angle that goes with the current distance: the graph predecessor's.
-    const int graphPred = Graph.Predecessor(x);
+    const int graphPred = GraphSolver.Predecessor(x);
     double bestAngle = angles && graphPred >= 0 ? Angle[graphPred] : NaN;
     double unfolded = Inf, unfoldedAngle = NaN;
-    const std::int64_t begin = G.StencilBegin(x), end = G.StencilEnd(x);
+    const std::int64_t begin = Graph.StencilBegin(x), end = Graph.StencilEnd(x);
     if (end - begin < 1)
     {
       continue;
     }
-    double best = Graph.Distance(x);
+    double best = GraphSolver.Distance(x);
     // The direction towards the source: the graph predecessor's place in the stencil; without
     // one, the stencil neighbour giving the best distance.
     const int stencilIndex = predIndex(x);
@@ -279,7 +279,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       double arrivalDistance = Inf;
       for (std::int64_t e = begin; e < end; ++e)
       {
-        const double c = Graph.Distance(G.StencilTarget(e)) + G.StencilDistance(e);
+        const double c = GraphSolver.Distance(Graph.StencilTarget(e)) + Graph.StencilDistance(e);
         if (c < arrivalDistance)
         {
           arrivalDistance = c;
@@ -289,7 +289,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     }
     // No stencil neighbour reached (x was reached through a graph link from outside its
     // stencil): nothing to unfold from.
-    if (arrival < 0 || !(Graph.Distance(G.StencilTarget(arrival)) < Inf))
+    if (arrival < 0 || !(GraphSolver.Distance(Graph.StencilTarget(arrival)) < Inf))
     {
       continue;
     }
@@ -297,11 +297,11 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     // graph's angular error): the straddling pair is among them.
     const std::int64_t n = end - begin;
     const bool closed = Interior[x] != 0;
-    const double ax = G.StencilX(arrival), ay = G.StencilY(arrival);
+    const double ax = Graph.StencilX(arrival), ay = Graph.StencilY(arrival);
     // Within the cone: dot >= cos * |a| |e|, without a square root.
     const double ar2 = ax * ax + ay * ay, cone2 = ConeCosine * ConeCosine;
     auto within = [&](std::int64_t e) {
-      const double ex = G.StencilX(e), ey = G.StencilY(e);
+      const double ex = Graph.StencilX(e), ey = Graph.StencilY(e);
       const double dot = ax * ex + ay * ey;
       return dot >= 0.0 && dot * dot >= cone2 * ar2 * (ex * ex + ey * ey);
     };
@@ -335,13 +335,13 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       }
       const std::int64_t e1 = begin + i1;
       const std::int64_t e2 = wraps ? begin : e1 + 1;
-      const double d1 = Graph.Distance(G.StencilTarget(e1));
-      const double d2 = Graph.Distance(G.StencilTarget(e2));
+      const double d1 = GraphSolver.Distance(Graph.StencilTarget(e1));
+      const double d2 = GraphSolver.Distance(Graph.StencilTarget(e2));
       // Graph relaxation with the (refined) distances of the cone's stencil vertices.
-      const double c1 = d1 + G.StencilDistance(e1), c2 = d2 + G.StencilDistance(e2);
-      const double p1x = G.StencilX(e1), p1y = G.StencilY(e1);
-      const double p2x = wraps ? G.StencilWrapX(x) : G.StencilX(e2);
-      const double p2y = wraps ? G.StencilWrapY(x) : G.StencilY(e2);
+      const double c1 = d1 + Graph.StencilDistance(e1), c2 = d2 + Graph.StencilDistance(e2);
+      const double p1x = Graph.StencilX(e1), p1y = Graph.StencilY(e1);
+      const double p2x = wraps ? Graph.StencilWrapX(x) : Graph.StencilX(e2);
+      const double p2y = wraps ? Graph.StencilWrapY(x) : Graph.StencilY(e2);
       if (!angles)
       {
         // Distances only: the pairs are collected and unfolded together (NearestUnfolding2).
@@ -367,13 +367,13 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
         if (unfold && c < best)
         {
           best = c;
-          bestAngle = Angle[G.StencilTarget(e)];
+          bestAngle = Angle[Graph.StencilTarget(e)];
         }
         // A neighbour whose angle is known stands in when the predecessor's is not (the
         // source itself has none).
-        if (!std::isfinite(bestAngle) && std::isfinite(Angle[G.StencilTarget(e)]))
+        if (!std::isfinite(bestAngle) && std::isfinite(Angle[Graph.StencilTarget(e)]))
         {
-          bestAngle = Angle[G.StencilTarget(e)];
+          bestAngle = Angle[Graph.StencilTarget(e)];
         }
       }
       // Only a shorter candidate matters (its angle included).
@@ -392,7 +392,7 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       if (candidate < unfolded)
       {
         // Interpolated along u1 u2 where the unfolded geodesic crosses it.
-        const double a1 = Angle[G.StencilTarget(e1)], a2 = Angle[G.StencilTarget(e2)];
+        const double a1 = Angle[Graph.StencilTarget(e1)], a2 = Angle[Graph.StencilTarget(e2)];
         if (std::isfinite(a1) && std::isfinite(a2))
         {
           // In the development, the angle at the unfolded source from u_i's direction to x's is
@@ -435,8 +435,8 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
           continue;
         }
         const std::int64_t e = begin + index(a + k);
-        const int u = G.StencilTarget(e);
-        const double c = Graph.Distance(u) + G.StencilDistance(e);
+        const int u = Graph.StencilTarget(e);
+        const double c = GraphSolver.Distance(u) + Graph.StencilDistance(e);
         if (std::isfinite(Angle[u]) && c < viaDistance)
         {
           viaDistance = c;
@@ -445,9 +445,9 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       }
       if (via >= 0)
       {
-        const double px = G.StencilX(via), py = G.StencilY(via);
+        const double px = Graph.StencilX(via), py = Graph.StencilY(via);
         const double L = std::sqrt(px * px + py * py);
-        const double du = Graph.Distance(G.StencilTarget(via));
+        const double du = GraphSolver.Distance(Graph.StencilTarget(via));
         // |S| = best, |S - p| = du.
         const double along = (best * best - du * du + L * L) / (2.0 * L);
         const double h = std::sqrt(std::max(0.0, best * best - along * along));
@@ -459,15 +459,15 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
           sy = uy * along - ux * h;
         }
         const double qx = -sx, qy = -sy, bx = px - sx, by = py - sy;
-        bestAngle = Angle[G.StencilTarget(via)] + std::atan2(bx * qy - by * qx, bx * qx + by * qy);
+        bestAngle = Angle[Graph.StencilTarget(via)] + std::atan2(bx * qy - by * qx, bx * qx + by * qy);
       }
     }
     // A discrete geodesic graph's distance is within its accuracy above the geodesic distance:
     // refinement may not go lower than that bound (unfolding across a hole or a saddle could).
-    best = std::max(best, RefinementFloor * Graph.Distance(x));
-    if (best < Graph.Distance(x) && best <= limit)
+    best = std::max(best, RefinementFloor * GraphSolver.Distance(x));
+    if (best < GraphSolver.Distance(x) && best <= limit)
     {
-      Graph.Lower(x, best);
+      GraphSolver.Lower(x, best);
     }
     if (angles)
     {
@@ -479,13 +479,13 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
 
 Status SVGGeodesicSolver::Reject(Status why, GraphAlgorithm algorithm)
 {
-  Graph.Solve({}, algorithm);
+  GraphSolver.Solve({}, algorithm);
   return why;
 }
 
 Vec3 SVGGeodesicSolver::PositionOf(const SurfacePoint& p) const
 {
-  return p.IsVertex() ? M.Position(p.Vertex) : M.Interpolate(p.Face, p.Bary);
+  return p.IsVertex() ? Mesh.Position(p.Vertex) : Mesh.Interpolate(p.Face, p.Bary);
 }
 
 Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSources,
@@ -496,7 +496,7 @@ Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exact
   if (!exactSources.empty())
   {
     ExactGeodesicOptions local;
-    local.MaximumFinalVertices = std::min(finalVertices, M.NumberOfVertices());
+    local.MaximumFinalVertices = std::min(finalVertices, Mesh.NumberOfVertices());
     local.MaximumDistance = options.MaximumDistance;
     if (const Status solved = Local.Solve(exactSources, local); !solved.Ok())
     {
@@ -504,19 +504,19 @@ Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exact
     }
     for (int v : Local.FinalVertices())
     {
-      seeds.emplace_back(G.Node(v), Local.Distance(v));
+      seeds.emplace_back(Graph.Node(v), Local.Distance(v));
     }
   }
   // Corners of faces holding a piece: the exact in-face distance to the piece.
   for (const Piece& p : Pieces)
   {
-    const auto& t = M.Face(p.Face);
+    const auto& t = Mesh.Face(p.Face);
     for (int k = 0; k < 3; ++k)
     {
-      seeds.emplace_back(G.Node(t[k]), PointSegmentDistance(M.Position(t[k]), p.A, p.B));
+      seeds.emplace_back(Graph.Node(t[k]), PointSegmentDistance(Mesh.Position(t[k]), p.A, p.B));
     }
   }
-  Graph.Solve(seeds, options.Algorithm, options.MaximumDistance);
+  GraphSolver.Solve(seeds, options.Algorithm, options.MaximumDistance);
   // Departure angles only make sense from a single point.
   const bool angles = options.Angles && exactSources.size() == 1 && Pieces.size() <= 1;
   if (options.Refine || angles)
@@ -524,22 +524,22 @@ Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exact
     // The exact local solve's vertices need no refinement, and their angles are exact.
     for (int v : Local.FinalVertices())
     {
-      Exact[G.Node(v)] = !exactSources.empty();
+      Exact[Graph.Node(v)] = !exactSources.empty();
       if (angles)
       {
-        Angle[G.Node(v)] = Local.DepartureAngle(v);
-        AngleSet.push_back(G.Node(v));
+        Angle[Graph.Node(v)] = Local.DepartureAngle(v);
+        AngleSet.push_back(Graph.Node(v));
       }
     }
     if (angles)
     {
       const SurfacePoint& s = exactSources.front();
-      AnglePeriod = s.IsVertex() ? M.TotalAngle(s.Vertex) : 2.0 * 3.14159265358979323846;
+      AnglePeriod = s.IsVertex() ? Mesh.TotalAngle(s.Vertex) : 2.0 * 3.14159265358979323846;
     }
     Refine(options.MaximumDistance, options.Refine, angles);
     for (int v : Local.FinalVertices())
     {
-      Exact[G.Node(v)] = 0;
+      Exact[Graph.Node(v)] = 0;
     }
   }
   return Status();
@@ -563,11 +563,11 @@ Status SVGGeodesicSolver::Solve(
   {
     return Reject(Status::Error("no source given"), options.Algorithm);
   }
-  if (const Status fits = G.CheckMesh(M); !fits.Ok())
+  if (const Status fits = Graph.CheckMesh(Mesh); !fits.Ok())
   {
     return Reject(fits, options.Algorithm);
   }
-  if (const Status valid = M.CheckPoints(sources, "source"); !valid.Ok())
+  if (const Status valid = Mesh.CheckPoints(sources, "source"); !valid.Ok())
   {
     return Reject(valid, options.Algorithm);
   }
@@ -577,7 +577,7 @@ Status SVGGeodesicSolver::Solve(
   {
     if (s.IsVertex())
     {
-      vertexSeeds.emplace_back(G.Node(s.Vertex), 0.0);
+      vertexSeeds.emplace_back(Graph.Node(s.Vertex), 0.0);
     }
     else
     {
@@ -589,7 +589,7 @@ Status SVGGeodesicSolver::Solve(
   // (A single vertex source with angles goes through the exact local solve, like a point.)
   if (facePoints.empty() && !(options.Angles && sources.size() == 1))
   {
-    Graph.Solve(vertexSeeds, options.Algorithm, options.MaximumDistance);
+    GraphSolver.Solve(vertexSeeds, options.Algorithm, options.MaximumDistance);
     if (options.Refine)
     {
       for (const auto& v : vertexSeeds)
@@ -607,9 +607,9 @@ Status SVGGeodesicSolver::Solve(
   // Vertex sources join the exact local solve so that its truncation sees all sources.
   for (const auto& v : vertexSeeds)
   {
-    facePoints.push_back(SurfacePoint::AtVertex(G.Vertex(v.first)));
+    facePoints.push_back(SurfacePoint::AtVertex(Graph.Vertex(v.first)));
   }
-  const int k = G.LocalDiskSize();
+  const int k = Graph.LocalDiskSize();
   return SolveFromPieces(facePoints, k * static_cast<int>(facePoints.size()), options);
 }
 
@@ -622,7 +622,7 @@ Status SVGGeodesicSolver::SolveCurves(
   {
     return Reject(Status::Error("no curve given"), options.Algorithm);
   }
-  if (const Status fits = G.CheckMesh(M); !fits.Ok())
+  if (const Status fits = Graph.CheckMesh(Mesh); !fits.Ok())
   {
     return Reject(fits, options.Algorithm);
   }
@@ -633,7 +633,7 @@ Status SVGGeodesicSolver::SolveCurves(
     {
       return Reject(Status::Error(curve + " has no point"), options.Algorithm);
     }
-    if (const Status valid = M.CheckPoints(curves[c], curve + ", point"); !valid.Ok())
+    if (const Status valid = Mesh.CheckPoints(curves[c], curve + ", point"); !valid.Ok())
     {
       return Reject(valid, options.Algorithm);
     }
@@ -641,14 +641,14 @@ Status SVGGeodesicSolver::SolveCurves(
   std::vector<CurvePiece> pieces;
   for (const auto& curve : curves)
   {
-    const std::vector<CurvePiece> traced = TraceSurfaceCurve(M, curve);
+    const std::vector<CurvePiece> traced = TraceSurfaceCurve(Mesh, curve);
     pieces.insert(pieces.end(), traced.begin(), traced.end());
   }
   // The exact local solve starts from samples along the pieces, dense enough that the sampled
   // curve is within a small fraction of an edge of the true one; the pieces themselves give the
   // exact in-face distances.
   const std::vector<SurfacePoint> samples =
-    SampleCurvePieces(M, pieces, CurveSampleSpacing * M.MeanEdgeLength());
+    SampleCurvePieces(Mesh, pieces, CurveSeedSpacing * Mesh.MeanEdgeLength());
   std::vector<int> faces;
   for (const CurvePiece& p : pieces)
   {
@@ -657,14 +657,14 @@ Status SVGGeodesicSolver::SolveCurves(
   }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  const long long wanted = static_cast<long long>(G.LocalDiskSize()) * static_cast<long long>(faces.size());
+  const long long wanted = static_cast<long long>(Graph.LocalDiskSize()) * static_cast<long long>(faces.size());
   return SolveFromPieces(
-    samples, static_cast<int>(std::min<long long>(wanted, M.NumberOfVertices())), options);
+    samples, static_cast<int>(std::min<long long>(wanted, Mesh.NumberOfVertices())), options);
 }
 
 double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
 {
-  if (!M.CheckPoint(q).Ok())
+  if (!Mesh.CheckPoint(q).Ok())
   {
     return Inf;
   }
@@ -672,9 +672,9 @@ double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
   {
     return Distance(q.Vertex);
   }
-  const auto& t = M.Face(q.Face);
+  const auto& t = Mesh.Face(q.Face);
   double best =
-    UnfoldedDistance(M, q.Face, q.Bary, { { Distance(t[0]), Distance(t[1]), Distance(t[2]) } });
+    UnfoldedDistance(Mesh, q.Face, q.Bary, { { Distance(t[0]), Distance(t[1]), Distance(t[2]) } });
   // Sources in the same face: the straight segment inside the face.
   auto it = std::lower_bound(Pieces.begin(), Pieces.end(), q.Face,
     [](const Piece& p, int f) { return p.Face < f; });
@@ -691,12 +691,12 @@ double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
 
 std::vector<double> SVGGeodesicSolver::Distances() const
 {
-  std::vector<double> d(M.NumberOfVertices(), Inf);
-  if (G.NumberOfVertices() == M.NumberOfVertices())
+  std::vector<double> d(Mesh.NumberOfVertices(), Inf);
+  if (Graph.NumberOfVertices() == Mesh.NumberOfVertices())
   {
-    for (int n = 0; n < M.NumberOfVertices(); ++n)
+    for (int n = 0; n < Mesh.NumberOfVertices(); ++n)
     {
-      d[G.Vertex(n)] = Graph.Distance(n);
+      d[Graph.Vertex(n)] = GraphSolver.Distance(n);
     }
   }
   return d;
@@ -705,9 +705,9 @@ std::vector<double> SVGGeodesicSolver::Distances() const
 const std::vector<int>& SVGGeodesicSolver::Reached() const
 {
   ReachedVertices.clear();
-  for (int n : Graph.Reached())
+  for (int n : GraphSolver.Reached())
   {
-    ReachedVertices.push_back(G.Vertex(n));
+    ReachedVertices.push_back(Graph.Vertex(n));
   }
   return ReachedVertices;
 }

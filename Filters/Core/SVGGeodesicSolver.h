@@ -62,13 +62,13 @@ public:
   // mean and 20% larger maximum errors on armadillo.)
   static constexpr double ConeCosine = 0.966;
   // Spacing of the samples seeding the exact solve near a curve, in mean edge lengths.
-  static constexpr double CurveSampleSpacing = 0.125;
+  static constexpr double CurveSeedSpacing = 0.125;
 
-  double Distance(int v) const { return Graph.Distance(G.Node(v)); }
+  double Distance(int v) const { return GraphSolver.Distance(Graph.Node(v)); }
   // With SVGSolveOptions::Angles: the departure angle at the source of v's geodesic, in the
   // convention of ExactGeodesicSolver::DepartureAngle (modulo the source's angle sum); NaN for
   // the source itself, unreached vertices, or when not computed.
-  double DepartureAngle(int v) const { return Angle[G.Node(v)]; }
+  double DepartureAngle(int v) const { return Angle[Graph.Node(v)]; }
   // Distances of all vertices (infinite where unreached), by mesh vertex.
   std::vector<double> Distances() const;
   // Mesh vertices reached by the last solve (unordered; translated from the graph's nodes by
@@ -99,10 +99,10 @@ private:
   Status SolveFromPieces(const std::vector<SurfacePoint>& exactSources, int finalVertices,
     const SVGSolveOptions& options);
 
-  const TriangleMesh& M;
-  const SaddleVertexGraph& G;
+  const TriangleMesh& Mesh;
+  const SaddleVertexGraph& Graph;
   ExactGeodesicSolver Local;
-  GraphDistanceSolver Graph;
+  GraphDistanceSolver GraphSolver;
   std::vector<Piece> Pieces; // sorted by face
   // Per graph node (SaddleVertexGraph::Node), like the graph solver's arrays:
   std::vector<unsigned char> Exact;    // seeds with exact distances (left alone by Refine)

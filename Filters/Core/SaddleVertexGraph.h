@@ -68,6 +68,12 @@ public:
   // empty. The calling thread reports progress every 16 of the vertices it solves.
   Status Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
     const ProgressCallback& progress);
+  // Ok when Build accepts `options`: K >= 1 for a saddle vertex graph, an accuracy within
+  // 1e-5 .. 0.1 for a discrete geodesic graph; otherwise an error saying which is wrong.
+  static Status CheckOptions(const SaddleVertexGraphOptions& options);
+  // The K that Build gives a saddle vertex graph of `options` on `numberOfVertices` vertices
+  // (K clamped to the vertex count, as Build does); 0 for a discrete geodesic graph.
+  static int EffectiveK(const SaddleVertexGraphOptions& options, int numberOfVertices);
 
   bool Empty() const { return Offsets.size() <= 1; }
   int NumberOfVertices() const { return Offsets.empty() ? 0 : static_cast<int>(Offsets.size()) - 1; }
@@ -255,7 +261,7 @@ private:
   void SolveLabelCorrecting(double maxDistance);
   void SolveDijkstra(double maxDistance);
 
-  const SaddleVertexGraph& G;
+  const SaddleVertexGraph& Graph;
   std::vector<double> Dist;
   struct PredLink
   {

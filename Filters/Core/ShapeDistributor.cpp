@@ -13,6 +13,16 @@ namespace gs
 {
 using namespace distribution;
 
+int ThreadCount(int requested)
+{
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
 Status ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
   const ShapeDistributionOptions& options)

@@ -76,6 +76,10 @@ enum class DistributionMode
   CircumcirclePoissonDisk = 2
 };
 
+/// The number of OpenMP threads that a NumberOfThreads of `requested` means: `requested` when
+/// > 0, otherwise OpenMP's default (1 without OpenMP).
+int ThreadCount(int requested);
+
 struct ShapeDistributionOptions
 {
   double ShapeSize = 1.0;           ///< circumradius of class 0 at density 1 (world units)

@@ -68,16 +68,6 @@ struct Random
   }
 };
 
-inline int ThreadCount(int requested)
-{
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
-
 inline int ThreadId()
 {
 #ifdef _OPENMP

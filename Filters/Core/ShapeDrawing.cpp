@@ -2,25 +2,8 @@
 
 #include <chrono>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace gs
 {
-
-namespace
-{
-int Threads(int numberOfThreads)
-{
-#ifdef _OPENMP
-  return numberOfThreads > 0 ? numberOfThreads : omp_get_max_threads();
-#else
-  (void)numberOfThreads;
-  return 1;
-#endif
-}
-} // namespace
 
 std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double tolerance,
   int numberOfThreads, std::vector<double>* seconds)
@@ -31,7 +14,7 @@ std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double t
   {
     seconds->assign(ns, 0.0);
   }
-  const int threads = Threads(numberOfThreads);
+  const int threads = ThreadCount(numberOfThreads);
   (void)threads;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (int s = 0; s < ns; ++s)
@@ -53,7 +36,7 @@ std::vector<std::vector<OutlinePiece>> DrawOutlines(
   const int ns = static_cast<int>(distributor.Shapes().size());
   std::vector<std::vector<OutlinePiece>> outlines(ns);
   const double spacing = distributor.OutlineSpacing();
-  const int threads = Threads(numberOfThreads);
+  const int threads = ThreadCount(numberOfThreads);
   (void)threads;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (int s = 0; s < ns; ++s)

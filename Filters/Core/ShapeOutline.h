@@ -8,10 +8,10 @@
 // is star-shaped about the centre: D = {rho < rho_max(theta)}, rho_max the distance at which the
 // ray meets the boundary. What is drawn is the region S of the shape within D; its outline
 // consists of the pieces of S's outline inside D and the pieces of D's boundary (the mesh
-// boundary) inside S. Mapping every outline point to its clamped ray end instead (what the
-// filter did before) draws chords between clamped points that leave S wherever S is not
-// star-shaped about its centre (an L tile whose circle centre lies in its notch): slivers that
-// overlap a neighbour the tables rightly allowed there.
+// boundary) inside S. (Mapping every outline point to its clamped ray end instead would draw
+// chords between clamped points that leave S wherever S is not star-shaped about its centre, an
+// L tile whose circle centre lies in its notch: slivers that overlap a neighbour the tables
+// rightly allowed there.)
 //
 // Long shapes are drawn by curve polar coordinates, whose reach is not star-shaped: their
 // outline is returned as open pieces, those of its samples that lie on the surface.

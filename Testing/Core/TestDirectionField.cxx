@@ -504,6 +504,19 @@ TEST(DirectionField, StreamlineTracer)
 // 2 pi / N (exactly, and to the wobble when the corners also wobble), and for N = 1 on a smooth
 // sphere the corners' mean. Aligning corners by sign only (N = 2's rule) gets crosses wrong by up
 // to 45 degrees.
+namespace
+{
+// FaceDirectionsFromVertices, expected to succeed.
+std::vector<gs::Vec3> FaceDirections(
+  const gs::TriangleMesh& mesh, const std::vector<gs::Vec3>& atVertex, int symmetry)
+{
+  gs::Result<std::vector<gs::Vec3>> directions =
+    gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
+  EXPECT_TRUE(gs_test::Succeeded(directions));
+  return std::move(*directions);
+}
+} // namespace
+
 TEST(DirectionField, PointDirectionsAreAveragedNSymmetrically)
 {
   const double pi = 3.14159265358979323846;
@@ -534,7 +547,7 @@ TEST(DirectionField, PointDirectionsAreAveragedNSymmetrically)
     for (int symmetry : { 1, 2, 4 })
     {
       const double period = 2.0 * pi / symmetry;
-      const std::vector<gs::Vec3> reference = gs::FaceDirectionsFromVertices(mesh, truth, symmetry);
+      const std::vector<gs::Vec3> reference = FaceDirections(mesh, truth, symmetry);
       std::vector<gs::Vec3> arms(nv), wobbly(nv);
       for (int v = 0; v < nv; ++v)
       {
@@ -542,8 +555,8 @@ TEST(DirectionField, PointDirectionsAreAveragedNSymmetrically)
         arms[v] = gs::RotateTangent(truth[v], normals[v], turn) * (1.0 + 0.5 * wobble(rng));
         wobbly[v] = gs::RotateTangent(truth[v], normals[v], turn + wobble(rng));
       }
-      const std::vector<gs::Vec3> fromArms = gs::FaceDirectionsFromVertices(mesh, arms, symmetry);
-      const std::vector<gs::Vec3> fromWobbly = gs::FaceDirectionsFromVertices(mesh, wobbly, symmetry);
+      const std::vector<gs::Vec3> fromArms = FaceDirections(mesh, arms, symmetry);
+      const std::vector<gs::Vec3> fromWobbly = FaceDirections(mesh, wobbly, symmetry);
       ASSERT_EQ(static_cast<int>(fromArms.size()), mesh.NumberOfFaces());
       double worstArms = 0.0, worstWobbly = 0.0, worstMean = 0.0;
       int checked = 0;
@@ -588,10 +601,17 @@ TEST(DirectionField, PointDirectionsAreAveragedNSymmetrically)
   atVertex[c[0]] = t;
   atVertex[c[1]] = t * -1.0;
   atVertex[c[2]] = gs::Vec3{ std::nan(""), 0, 0 };
-  EXPECT_EQ(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 1)[0]), 0.0);
-  EXPECT_NEAR(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 2)[0]), 1.0, 1e-12);
+  EXPECT_EQ(gs::Norm(FaceDirections(plane, atVertex, 1)[0]), 0.0);
+  EXPECT_NEAR(gs::Norm(FaceDirections(plane, atVertex, 2)[0]), 1.0, 1e-12);
   atVertex[c[1]] = gs::RotateTangent(t, n, 0.5 * pi);
-  EXPECT_EQ(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 2)[0]), 0.0);
-  EXPECT_NEAR(gs::Norm(gs::FaceDirectionsFromVertices(plane, atVertex, 4)[0]), 1.0, 1e-12);
-  EXPECT_NEAR(gs::Dot(gs::FaceDirectionsFromVertices(plane, atVertex, 4)[0], t), 1.0, 1e-12);
+  EXPECT_EQ(gs::Norm(FaceDirections(plane, atVertex, 2)[0]), 0.0);
+  EXPECT_NEAR(gs::Norm(FaceDirections(plane, atVertex, 4)[0]), 1.0, 1e-12);
+  EXPECT_NEAR(gs::Dot(FaceDirections(plane, atVertex, 4)[0], t), 1.0, 1e-12);
+  // Not one vector per vertex, or a symmetry other than 1, 2 and 4: an error.
+  atVertex.pop_back();
+  EXPECT_TRUE(gs_test::FailedWith(gs::FaceDirectionsFromVertices(plane, atVertex, 4),
+    "one vector per vertex: 8 given for 9 vertices"));
+  atVertex.emplace_back(0.0, 0.0, 0.0);
+  EXPECT_TRUE(gs_test::FailedWith(
+    gs::FaceDirectionsFromVertices(plane, atVertex, 3), "Symmetry must be 1 (vector field)"));
 }

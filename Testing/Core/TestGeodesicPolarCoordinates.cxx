@@ -188,8 +188,9 @@ TEST(GeodesicPolarCoordinates, SphereCapAgainstAnalyticPolarCoordinates)
   {
     if (v == s)
       continue;
-    const SurfacePoint q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
-    worst = std::max(worst, Norm(m.Interpolate(q.Face, q.Bary) - m.Position(v)));
+    const Result<SurfacePoint> q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
+    ASSERT_TRUE(gs_test::Succeeded(q));
+    worst = std::max(worst, Norm(m.Interpolate(q->Face, q->Bary) - m.Position(v)));
   }
   EXPECT_LT(worst, 1e-6 * m.MeanEdgeLength());
 }
@@ -207,6 +208,36 @@ TEST(GeodesicPolarCoordinates, RejectsBadArguments)
   EXPECT_TRUE(std::isfinite(pc.Rho(24)));
   EXPECT_NE(pc.Compute(SurfacePoint::AtVertex(3), -1.0).Message().find("Radius must be > 0"),
     std::string::npos);
+  // Curve points are checked as every solver checks its sources (TriangleMesh::CheckPoints).
+  EXPECT_TRUE(gs_test::FailedWith(
+    pc.ComputeCurve({ SurfacePoint::AtVertex(0), SurfacePoint::AtVertex(999) }, 1.0),
+    "curve point 1 is invalid: vertex 999 does not exist"));
+  EXPECT_TRUE(gs_test::FailedWith(
+    pc.ComputeCurve({ SurfacePoint::AtVertex(0), SurfacePoint::InFace(2, 0.7, 0.7, 0.0) }, 1.0),
+    "curve point 1 is invalid: the barycentric coordinates (0.7, 0.7, 0) in face 2 sum to 1.4"));
+}
+
+// The inverse maps and iso-curve angles fail unless the last Compute / ComputeCurve succeeded
+// and was of their kind.
+TEST(GeodesicPolarCoordinates, InverseMapsNeedTheirCoordinates)
+{
+  const TriangleMesh m = BuildMesh(MakePlanarGrid(4, 4, 1.0, 1.0));
+  GeodesicPolarCoordinates pc(m);
+  EXPECT_TRUE(gs_test::FailedWith(pc.ToSurface(0.1, 0.0), "a successful Compute"));
+  EXPECT_TRUE(gs_test::FailedWith(pc.UseIsoCurveAngles(), "a successful Compute"));
+  EXPECT_TRUE(gs_test::FailedWith(pc.ToSurfaceFromCurve(0.5, 0.1), "a successful ComputeCurve"));
+  ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(12), 0.5)));
+  EXPECT_TRUE(gs_test::Succeeded(pc.ToSurface(0.1, 0.0)));
+  EXPECT_TRUE(gs_test::FailedWith(pc.ToSurface(NAN, 0.0), "not finite"));
+  EXPECT_TRUE(gs_test::FailedWith(pc.ToSurfaceFromCurve(0.5, 0.1), "a successful ComputeCurve"));
+  ASSERT_TRUE(gs_test::Succeeded(
+    pc.ComputeCurve({ SurfacePoint::AtVertex(6), SurfacePoint::AtVertex(8) }, 0.5)));
+  EXPECT_TRUE(gs_test::Succeeded(pc.ToSurfaceFromCurve(0.5, 0.1)));
+  EXPECT_TRUE(gs_test::FailedWith(pc.ToSurfaceFromCurve(0.5, INFINITY), "not finite"));
+  EXPECT_TRUE(gs_test::FailedWith(pc.ToSurface(0.1, 0.0), "a successful Compute"));
+  EXPECT_TRUE(gs_test::FailedWith(pc.UseIsoCurveAngles(), "a successful Compute"));
+  EXPECT_FALSE(pc.Compute(SurfacePoint::AtVertex(12), -1.0).Ok()); // fails: nothing to invert
+  EXPECT_TRUE(gs_test::FailedWith(pc.ToSurface(0.1, 0.0), "a successful Compute"));
 }
 
 namespace
@@ -309,7 +340,9 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesOnAPlane)
   std::vector<double> geodesic(m.NumberOfVertices());
   for (int v : pc.Inside())
     geodesic[v] = pc.Theta(v);
-  EXPECT_EQ(pc.UseIsoCurveAngles(), 0); // every level is a closed loop crossing the reference
+  const Result<int> kept = pc.UseIsoCurveAngles();
+  ASSERT_TRUE(gs_test::Succeeded(kept));
+  EXPECT_EQ(*kept, 0); // every level is a closed loop crossing the reference
   double nearWorst = 0, farWorst = 0;
   for (int v : pc.Inside())
   {
@@ -334,7 +367,9 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
   GeodesicPolarCoordinates pc(m);
   ASSERT_TRUE(gs_test::Succeeded(pc.Compute(SurfacePoint::AtVertex(7), 1.2)));
   const int geodesicFlips = FlippedFaces(m, pc, 7);
-  EXPECT_EQ(pc.UseIsoCurveAngles(), 0);
+  const Result<int> kept = pc.UseIsoCurveAngles();
+  ASSERT_TRUE(gs_test::Succeeded(kept));
+  EXPECT_EQ(*kept, 0);
   const int isoFlips = FlippedFaces(m, pc, 7);
   std::printf("flipped faces: geodesic direction %d, iso-curve arc length %d\n", geodesicFlips, isoFlips);
   EXPECT_GT(geodesicFlips, 5); // the log map folds past the cut loci here
@@ -345,8 +380,9 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
   {
     if (pc.Rho(v) <= 0.0)
       continue;
-    const SurfacePoint q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
-    worst = std::max(worst, Norm(m.Interpolate(q.Face, q.Bary) - m.Position(v)));
+    const Result<SurfacePoint> q = pc.ToSurface(pc.Rho(v), pc.Theta(v));
+    ASSERT_TRUE(gs_test::Succeeded(q));
+    worst = std::max(worst, Norm(m.Interpolate(q->Face, q->Bary) - m.Position(v)));
   }
   EXPECT_LT(worst, 1e-6 * m.MeanEdgeLength());
   // The torus from its inner equator (negative curvature: saddles), well past the first
@@ -356,7 +392,9 @@ TEST(GeodesicPolarCoordinates, IsoCurveAnglesAreBijectivePastSaddles)
   const int inner = 12; // i = 0, j = 12: the inner equator
   ASSERT_TRUE(gs_test::Succeeded(tp.Compute(SurfacePoint::AtVertex(inner), 1.8)));
   const int torusGeodesicFlips = FlippedFaces(torus, tp, inner);
-  EXPECT_EQ(tp.UseIsoCurveAngles(), 0);
+  const Result<int> torusKept = tp.UseIsoCurveAngles();
+  ASSERT_TRUE(gs_test::Succeeded(torusKept));
+  EXPECT_EQ(*torusKept, 0);
   std::printf("torus: flipped faces geodesic direction %d, iso-curve %d\n", torusGeodesicFlips,
     FlippedFaces(torus, tp, inner));
   EXPECT_EQ(FlippedFaces(torus, tp, inner), 0);
@@ -399,7 +437,10 @@ TEST(GeodesicPolarCoordinates, CurveOffsetsAndArcLengthOnAPlane)
     EXPECT_NEAR(segment.Offset[v], signedDistance, 1e-9) << v;
     EXPECT_NEAR(segment.ArcLength[v], along, 1e-9) << v;
     // Inverse map: back to the vertex.
-    const SurfacePoint back = pc.ToSurfaceFromCurve(segment.ArcLength[v], segment.Offset[v]);
+    const Result<SurfacePoint> inverse =
+      pc.ToSurfaceFromCurve(segment.ArcLength[v], segment.Offset[v]);
+    ASSERT_TRUE(gs_test::Succeeded(inverse));
+    const SurfacePoint& back = *inverse;
     // And the coordinates of that surface point (inside a face, all of whose corners are in the
     // band) are the vertex's.
     double offset = 0, u = 0;

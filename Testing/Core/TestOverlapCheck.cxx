@@ -85,9 +85,13 @@ TEST(OverlapCheck, FindsThePlanarOraclesOverlapsAndNoOther)
     const auto outlines = Outlines(d, spacing);
     OverlapCheckOptions co;
     co.NumberOfThreads = 2;
-    const OverlapCheckResult found = CheckOverlaps(d, outlines, co);
+    const Result<OverlapCheckResult> checked = CheckOverlaps(d, outlines, co);
+    ASSERT_TRUE(gs_test::Succeeded(checked));
+    const OverlapCheckResult& found = *checked;
     co.NumberOfThreads = 1;
-    EXPECT_EQ(CheckOverlaps(d, outlines, co).Pairs, found.Pairs) << "any thread count";
+    EXPECT_EQ(CheckOverlaps(d, outlines, co)->Pairs, found.Pairs) << "any thread count";
+    const std::vector<std::vector<OutlinePiece>> oneTooMany(outlines.size() + 1);
+    EXPECT_TRUE(gs_test::FailedWith(CheckOverlaps(d, oneTooMany), "one outline per shape"));
     EXPECT_GT(found.PairsExamined, static_cast<long long>(r->Shapes.size()) / 2);
     if (factor == 1.0)
     {
@@ -138,7 +142,9 @@ TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
     ShapeDistributor d(mesh, &graph);
     const Result<ShapeDistribution> r = d.Run(Shrunk(t, factor), directions, {}, o);
     ASSERT_TRUE(r.Ok()) << r.Message();
-    const OverlapCheckResult found = CheckOverlaps(d, Outlines(d, spacing));
+    const Result<OverlapCheckResult> checked = CheckOverlaps(d, Outlines(d, spacing));
+    ASSERT_TRUE(gs_test::Succeeded(checked));
+    const OverlapCheckResult& found = *checked;
     const int oracle = gs_test::CountSurfaceOverlaps(mesh, t, d, o.ShapeSize, 0.02);
     if (factor == 1.0)
     {
@@ -206,8 +212,10 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
       (drawn ? shapesWith : shapesWithout) += r->Shapes.size();
       // VerifyOverlaps' check, which also reads long shapes through their frames (pairs of two
       // long shapes included): nothing with the drawn check, at least the oracle's without.
-      const OverlapCheckResult found = CheckOverlaps(d, Outlines(d, 0.5 * mesh.MeanEdgeLength()));
-      (drawn ? checkWith : checkWithout) += static_cast<int>(found.Pairs.size());
+      const Result<OverlapCheckResult> found =
+        CheckOverlaps(d, Outlines(d, 0.5 * mesh.MeanEdgeLength()));
+      ASSERT_TRUE(gs_test::Succeeded(found));
+      (drawn ? checkWith : checkWithout) += static_cast<int>(found->Pairs.size());
     }
   }
   std::printf("tables alone: %zu shapes, %d overlapping pairs (%d found by the check); with the drawn "
@@ -282,10 +290,11 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
   std::vector<std::vector<OutlinePiece>> outlines(r->Shapes.size());
   for (std::size_t s = 0; s < outlines.size(); ++s)
     outlines[s] = d.Outline(static_cast<int>(s), d.OutlineSpacing());
-  const OverlapCheckResult check = CheckOverlaps(d, outlines);
+  const Result<OverlapCheckResult> check = CheckOverlaps(d, outlines);
+  ASSERT_TRUE(gs_test::Succeeded(check));
   std::printf("small bananas on a torus: %zu shapes, %d long, %d with a folded grid, %zu overlapping pairs\n",
-    r->Shapes.size(), longShapes, folded, check.Pairs.size());
+    r->Shapes.size(), longShapes, folded, check->Pairs.size());
   EXPECT_GT(longShapes, 100);
   EXPECT_EQ(folded, 0);
-  EXPECT_EQ(check.Pairs.size(), 0u);
+  EXPECT_EQ(check->Pairs.size(), 0u);
 }

@@ -132,6 +132,28 @@ TEST(SaddleVertexGraph, RejectsBadK)
   o.K = 1000000; // clamped to the vertex count
   EXPECT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
   EXPECT_EQ(g.GetK(), m.NumberOfVertices());
+  EXPECT_EQ(SaddleVertexGraph::EffectiveK(o, m.NumberOfVertices()), g.GetK());
+}
+
+TEST(SaddleVertexGraph, CheckOptions)
+{
+  SaddleVertexGraphOptions o;
+  EXPECT_TRUE(gs_test::Succeeded(SaddleVertexGraph::CheckOptions(o)));
+  o.K = 0;
+  EXPECT_TRUE(gs_test::FailedWith(SaddleVertexGraph::CheckOptions(o), "K must be at least 1"));
+  o.Construction = GraphConstruction::DiscreteGeodesic; // K does not matter then
+  for (double accuracy : { 1e-5, 0.01, 0.1 })
+  {
+    o.Accuracy = accuracy;
+    EXPECT_TRUE(gs_test::Succeeded(SaddleVertexGraph::CheckOptions(o))) << accuracy;
+    EXPECT_EQ(SaddleVertexGraph::EffectiveK(o, 100), 0);
+  }
+  for (double accuracy : { 0.0, 0.2, std::nan("") })
+  {
+    o.Accuracy = accuracy;
+    EXPECT_TRUE(gs_test::FailedWith(SaddleVertexGraph::CheckOptions(o), "within 1e-5 .. 0.1"))
+      << accuracy;
+  }
 }
 
 TEST(SaddleVertexGraph, RefusesWhatMemoryCannotHold)

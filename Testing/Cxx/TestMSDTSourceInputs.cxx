@@ -310,6 +310,24 @@ int main(int argc, char* argv[])
     CHECK(LastError.find("plane of constant z") != std::string::npos);
     CHECK(guarded->GetTablesOutput()->GetNumberOfPoints() == 0);
 
+    // Polygons the core refuses (a ring without area, then a non-finite point): its message.
+    vtkNew<vtkPoints> flatPoints;
+    vtkNew<vtkCellArray> flatCells;
+    const vtkIdType flat[3] = { flatPoints->InsertNextPoint(0, 0, 0),
+      flatPoints->InsertNextPoint(1, 0, 0), flatPoints->InsertNextPoint(2, 0, 0) };
+    flatCells->InsertNextCell(3, flat);
+    vtkNew<vtkPolyData> flatPolygon;
+    flatPolygon->SetPoints(flatPoints);
+    flatPolygon->SetPolys(flatCells);
+    guarded->SetPolygonsData(flatPolygon);
+    CHECK(Run(guarded) >= 1);
+    CHECK(LastError.find("shape 'polygon cell 0' is empty (no area)") != std::string::npos);
+    flatPoints->SetPoint(2, std::nan(""), 1, 0);
+    flatPoints->Modified();
+    CHECK(Run(guarded) >= 1);
+    CHECK(LastError.find("shape 'polygon cell 0' has non-finite coordinates") != std::string::npos);
+    CHECK(guarded->GetTablesOutput()->GetNumberOfPoints() == 0);
+
     // 400 small squares, one class each, at 128 angle bins: 400^2 x 128^2 doubles = 21 GB.
     vtkNew<vtkPoints> squarePoints;
     vtkNew<vtkCellArray> squares;
