@@ -334,44 +334,87 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   }
 
   // Symmetrize and add the mesh edges; duplicates keep the smallest weight, so that both
-  // directions of a link carry the same value.
+  // directions of a link carry the same value. Each thread fills the buckets of its own range of
+  // nodes, reading every link in the same order (the buckets come out as a serial fill makes
+  // them, for any thread count; the random writes, most of the time, are shared out).
+  const int fillThreads = std::max(1, std::min(threads > 0 ? threads : omp_get_max_threads(), 8));
   std::vector<std::int64_t> count(nv + 1, 0);
-  for (int s = 0; s < nv; ++s)
+  std::vector<std::int64_t> fill;
+  std::vector<std::pair<int, double>> raw;
+#pragma omp parallel num_threads(fillThreads)
   {
-    count[NodeOf[s] + 1] += static_cast<std::int64_t>(direct[s].size());
-    for (const auto& e : direct[s])
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int lo = static_cast<int>(static_cast<long long>(nv) * t / nt);
+    const int hi = static_cast<int>(static_cast<long long>(nv) * (t + 1) / nt);
+    auto mine = [lo, hi](int node) { return node >= lo && node < hi; };
+    for (int s = 0; s < nv; ++s)
     {
-      count[NodeOf[e.first] + 1]++;
+      const int ns = NodeOf[s];
+      if (mine(ns))
+      {
+        count[ns + 1] += static_cast<std::int64_t>(direct[s].size());
+      }
+      for (const auto& e : direct[s])
+      {
+        const int target = NodeOf[e.first];
+        if (mine(target))
+        {
+          count[target + 1]++;
+        }
+      }
+    }
+    for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
+    {
+      const int a = NodeOf[mesh.Origin(h)], b = NodeOf[mesh.Destination(h)];
+      if (mine(a))
+      {
+        count[a + 1]++;
+      }
+      if (mine(b))
+      {
+        count[b + 1]++;
+      }
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int n = 0; n < nv; ++n)
+      {
+        count[n + 1] += count[n];
+      }
+      raw.resize(static_cast<std::size_t>(count[nv]));
+      fill.assign(count.begin(), count.end() - 1);
+    }
+    for (int s = 0; s < nv; ++s)
+    {
+      const int ns = NodeOf[s];
+      for (const auto& e : direct[s])
+      {
+        const int target = NodeOf[e.first];
+        if (mine(ns))
+        {
+          raw[fill[ns]++] = { target, e.second };
+        }
+        if (mine(target))
+        {
+          raw[fill[target]++] = { ns, e.second };
+        }
+      }
+    }
+    for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
+    {
+      const int a = NodeOf[mesh.Origin(h)], b = NodeOf[mesh.Destination(h)];
+      if (mine(a))
+      {
+        raw[fill[a]++] = { b, mesh.EdgeLength(h) };
+      }
+      if (mine(b))
+      {
+        raw[fill[b]++] = { a, mesh.EdgeLength(h) };
+      }
     }
   }
-  for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
-  {
-    count[NodeOf[mesh.Origin(h)] + 1]++;
-    count[NodeOf[mesh.Destination(h)] + 1]++;
-  }
-  for (int n = 0; n < nv; ++n)
-  {
-    count[n + 1] += count[n];
-  }
-  std::vector<std::pair<int, double>> raw(static_cast<std::size_t>(count[nv]));
-  std::vector<std::int64_t> fill(count.begin(), count.end() - 1);
-  for (int s = 0; s < nv; ++s)
-  {
-    const int ns = NodeOf[s];
-    for (const auto& e : direct[s])
-    {
-      const int nt = NodeOf[e.first];
-      raw[fill[ns]++] = { nt, e.second };
-      raw[fill[nt]++] = { ns, e.second };
-    }
-    std::vector<std::pair<int, double>>().swap(direct[s]);
-  }
-  for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
-  {
-    const int a = NodeOf[mesh.Origin(h)], b = NodeOf[mesh.Destination(h)];
-    raw[fill[a]++] = { b, mesh.EdgeLength(h) };
-    raw[fill[b]++] = { a, mesh.EdgeLength(h) };
-  }
+  std::vector<std::vector<std::pair<int, double>>>().swap(direct);
   std::vector<std::int64_t> kept(nv + 1, 0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
   for (int n = 0; n < nv; ++n)
@@ -396,6 +439,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   }
   Targets.resize(Offsets[nv]);
   Weights.resize(Offsets[nv]);
+#pragma omp parallel for schedule(static) num_threads(fillThreads)
   for (int n = 0; n < nv; ++n)
   {
     for (std::int64_t i = 0; i < kept[n + 1]; ++i)

@@ -122,6 +122,30 @@ TEST(SaddleVertexGraph, SymmetricSortedAndDeterministic)
   ExpectLinksIndexStencils(g);
 }
 
+// The links are gathered into per-node buckets by several threads, each filling its own range of
+// nodes: the graph must come out the same for any thread count and on every run (a race there,
+// a lost count, misaligns buckets: links then lose their twin or their weight).
+TEST(SaddleVertexGraph, IdenticalForAnyThreadCountOnEveryRun)
+{
+  const TriangleMesh m = Bumpy(3, 1);
+  SaddleVertexGraphOptions o;
+  o.Construction = GraphConstruction::DiscreteGeodesic;
+  o.Accuracy = 0.1;
+  o.NumberOfThreads = 1;
+  SaddleVertexGraph reference;
+  ASSERT_TRUE(gs_test::Succeeded(reference.Build(m, o, nullptr)));
+  for (int threads : { 2, 3, 4, 7 })
+  {
+    for (int run = 0; run < 4; ++run)
+    {
+      o.NumberOfThreads = threads;
+      SaddleVertexGraph g;
+      ASSERT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
+      EXPECT_TRUE(g == reference) << threads << " threads, run " << run;
+    }
+  }
+}
+
 TEST(SaddleVertexGraph, RejectsBadK)
 {
   const TriangleMesh m = Bumpy(1, 1);
