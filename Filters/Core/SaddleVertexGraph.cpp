@@ -122,8 +122,8 @@ int SaddleVertexGraph::LocalDiskSize() const
 std::size_t SaddleVertexGraph::MemoryBytes() const
 {
   return (Offsets.size() + StencilOffsets.size()) * sizeof(std::int64_t) +
-    (Targets.size() + StencilTargets.size()) * sizeof(int) +
-    (Weights.size() + StencilR.size() + StencilXY.size() + WrapXY.size()) * sizeof(double) +
+    Targets.size() * sizeof(int) + Stencil.size() * sizeof(StencilEntry) +
+    (Weights.size() + WrapXY.size()) * sizeof(double) +
     (LinkStencil.size() + NodeOf.size() + VertexOf.size()) * sizeof(int);
 }
 
@@ -133,9 +133,7 @@ void SaddleVertexGraph::Clear()
   Targets.clear();
   Weights.clear();
   StencilOffsets.clear();
-  StencilTargets.clear();
-  StencilR.clear();
-  StencilXY.clear();
+  Stencil.clear();
   WrapXY.clear();
   LinkStencil.clear();
   NodeOf.clear();
@@ -299,9 +297,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   {
     StencilOffsets[n + 1] = StencilOffsets[n] + static_cast<std::int64_t>(direct[VertexOf[n]].size());
   }
-  StencilTargets.resize(StencilOffsets[nv]);
-  StencilR.resize(StencilOffsets[nv]);
-  StencilXY.resize(2 * StencilOffsets[nv]);
+  Stencil.resize(StencilOffsets[nv]);
   WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
   for (int n = 0; n < nv; ++n)
@@ -319,10 +315,10 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
     {
       const std::int64_t e = StencilOffsets[n] + static_cast<std::int64_t>(i);
       const double r = direct[v][order[i]].second, a = angles[v][order[i]];
-      StencilTargets[e] = NodeOf[direct[v][order[i]].first];
-      StencilR[e] = r;
-      StencilXY[2 * e] = r * std::cos(a);
-      StencilXY[2 * e + 1] = r * std::sin(a);
+      Stencil[e].Target = NodeOf[direct[v][order[i]].first];
+      Stencil[e].R = r;
+      Stencil[e].X = r * std::cos(a);
+      Stencil[e].Y = r * std::sin(a);
       if (i == 0)
       {
         const double wrapped = a + mesh.TotalAngle(v);
@@ -504,7 +500,7 @@ void SaddleVertexGraph::IndexLinksInStencils()
   {
     for (std::int64_t s = StencilOffsets[x]; s < StencilOffsets[x + 1]; ++s)
     {
-      const int u = StencilTargets[s];
+      const int u = Stencil[s].Target;
       const auto first = Targets.begin() + Offsets[u], last = Targets.begin() + Offsets[u + 1];
       const auto it = std::lower_bound(first, last, x);
       if (it != last && *it == x)
@@ -538,12 +534,22 @@ Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) 
   sum.AddVector(Offsets);
   sum.AddVector(Targets);
   sum.AddVector(Weights);
-  const std::int64_t ns = static_cast<std::int64_t>(StencilTargets.size());
+  // The stencil as the file stores it: targets, distances and positions in arrays of their own.
+  const std::int64_t ns = static_cast<std::int64_t>(Stencil.size());
+  std::vector<int> stencilTargets(ns);
+  std::vector<double> stencilR(ns), stencilXY(2 * ns);
+  for (std::int64_t e = 0; e < ns; ++e)
+  {
+    stencilTargets[e] = Stencil[e].Target;
+    stencilR[e] = Stencil[e].R;
+    stencilXY[2 * e] = Stencil[e].X;
+    stencilXY[2 * e + 1] = Stencil[e].Y;
+  }
   sum.Add(&ns, sizeof(ns));
   sum.AddVector(StencilOffsets);
-  sum.AddVector(StencilTargets);
-  sum.AddVector(StencilR);
-  sum.AddVector(StencilXY);
+  sum.AddVector(stencilTargets);
+  sum.AddVector(stencilR);
+  sum.AddVector(stencilXY);
   sum.AddVector(WrapXY);
   sum.AddVector(VertexOf);
   out.write(dgg ? DGGMagic : Magic, sizeof(Magic));
@@ -557,9 +563,9 @@ Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) 
   out.write(reinterpret_cast<const char*>(Weights.data()), Weights.size() * sizeof(double));
   out.write(reinterpret_cast<const char*>(&ns), sizeof(ns));
   out.write(reinterpret_cast<const char*>(StencilOffsets.data()), StencilOffsets.size() * sizeof(std::int64_t));
-  out.write(reinterpret_cast<const char*>(StencilTargets.data()), StencilTargets.size() * sizeof(int));
-  out.write(reinterpret_cast<const char*>(StencilR.data()), StencilR.size() * sizeof(double));
-  out.write(reinterpret_cast<const char*>(StencilXY.data()), StencilXY.size() * sizeof(double));
+  out.write(reinterpret_cast<const char*>(stencilTargets.data()), stencilTargets.size() * sizeof(int));
+  out.write(reinterpret_cast<const char*>(stencilR.data()), stencilR.size() * sizeof(double));
+  out.write(reinterpret_cast<const char*>(stencilXY.data()), stencilXY.size() * sizeof(double));
   out.write(reinterpret_cast<const char*>(WrapXY.data()), WrapXY.size() * sizeof(double));
   out.write(reinterpret_cast<const char*>(VertexOf.data()), VertexOf.size() * sizeof(int));
   out.write(reinterpret_cast<const char*>(&sum.H), sizeof(sum.H));
@@ -743,9 +749,14 @@ Status SaddleVertexGraph::Load(
   Targets = std::move(targets);
   Weights = std::move(weights);
   StencilOffsets = std::move(stencilOffsets);
-  StencilTargets = std::move(stencilTargets);
-  StencilR = std::move(stencilR);
-  StencilXY = std::move(stencilXY);
+  Stencil.resize(ns);
+  for (std::int64_t e = 0; e < ns; ++e)
+  {
+    Stencil[e].Target = stencilTargets[e];
+    Stencil[e].R = stencilR[e];
+    Stencil[e].X = stencilXY[2 * e];
+    Stencil[e].Y = stencilXY[2 * e + 1];
+  }
   WrapXY = std::move(wrapXY);
   VertexOf = std::move(vertexOf);
   NodeOf = std::move(nodeOf);

