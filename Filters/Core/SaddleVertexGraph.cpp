@@ -229,8 +229,9 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   std::vector<std::vector<double>> angles(nv);
   std::atomic<int> done(0);
   std::atomic<bool> aborted(false);
-  const int threads = options.NumberOfThreads;
-#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
+  const int buildThreads =
+    options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
+#pragma omp parallel num_threads(buildThreads)
   {
     ExactGeodesicSolver solver(mesh);
     ExactGeodesicOptions opt;
@@ -299,7 +300,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   }
   Stencil.resize(StencilOffsets[nv]);
   WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
+#pragma omp parallel for schedule(dynamic, 256) num_threads(buildThreads)
   for (int n = 0; n < nv; ++n)
   {
     const int v = VertexOf[n];
@@ -331,46 +332,43 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
 
   // Symmetrize and add the mesh edges; duplicates keep the smallest weight, so that both
   // directions of a link carry the same value. Each thread fills the buckets of its own range of
-  // nodes, reading every link in the same order (the buckets come out as a serial fill makes
-  // them, for any thread count; the random writes, most of the time, are shared out).
-  const int fillThreads = std::max(1, std::min(threads > 0 ? threads : omp_get_max_threads(), 8));
+  // nodes, visiting every entry in the same order (the buckets come out as a serial fill makes
+  // them, for any thread count; the random writes, most of the time, are shared out). Counting
+  // and filling walk the entries with the same visitor, so that they agree.
+  const int fillThreads = std::min(buildThreads, 8);
   std::vector<std::int64_t> count(nv + 1, 0);
   std::vector<std::int64_t> fill;
   std::vector<std::pair<int, double>> raw;
-#pragma omp parallel num_threads(fillThreads)
-  {
-    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    const int lo = static_cast<int>(static_cast<long long>(nv) * t / nt);
-    const int hi = static_cast<int>(static_cast<long long>(nv) * (t + 1) / nt);
-    auto mine = [lo, hi](int node) { return node >= lo && node < hi; };
+  // Calls add(bucket node, other node, weight) for both directions of every link and mesh edge.
+  auto forEachEntry = [&](auto&& add) {
     for (int s = 0; s < nv; ++s)
     {
       const int ns = NodeOf[s];
-      if (mine(ns))
-      {
-        count[ns + 1] += static_cast<std::int64_t>(direct[s].size());
-      }
       for (const auto& e : direct[s])
       {
         const int target = NodeOf[e.first];
-        if (mine(target))
-        {
-          count[target + 1]++;
-        }
+        add(ns, target, e.second);
+        add(target, ns, e.second);
       }
     }
     for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
     {
       const int a = NodeOf[mesh.Origin(h)], b = NodeOf[mesh.Destination(h)];
-      if (mine(a))
-      {
-        count[a + 1]++;
-      }
-      if (mine(b))
-      {
-        count[b + 1]++;
-      }
+      add(a, b, mesh.EdgeLength(h));
+      add(b, a, mesh.EdgeLength(h));
     }
+  };
+#pragma omp parallel num_threads(fillThreads)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int lo = static_cast<int>(static_cast<long long>(nv) * t / nt);
+    const int hi = static_cast<int>(static_cast<long long>(nv) * (t + 1) / nt);
+    forEachEntry([&](int bucket, int, double) {
+      if (bucket >= lo && bucket < hi)
+      {
+        count[bucket + 1]++;
+      }
+    });
 #pragma omp barrier
 #pragma omp single
     {
@@ -381,38 +379,16 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       raw.resize(static_cast<std::size_t>(count[nv]));
       fill.assign(count.begin(), count.end() - 1);
     }
-    for (int s = 0; s < nv; ++s)
-    {
-      const int ns = NodeOf[s];
-      for (const auto& e : direct[s])
+    forEachEntry([&](int bucket, int other, double weight) {
+      if (bucket >= lo && bucket < hi)
       {
-        const int target = NodeOf[e.first];
-        if (mine(ns))
-        {
-          raw[fill[ns]++] = { target, e.second };
-        }
-        if (mine(target))
-        {
-          raw[fill[target]++] = { ns, e.second };
-        }
+        raw[fill[bucket]++] = { other, weight };
       }
-    }
-    for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
-    {
-      const int a = NodeOf[mesh.Origin(h)], b = NodeOf[mesh.Destination(h)];
-      if (mine(a))
-      {
-        raw[fill[a]++] = { b, mesh.EdgeLength(h) };
-      }
-      if (mine(b))
-      {
-        raw[fill[b]++] = { a, mesh.EdgeLength(h) };
-      }
-    }
+    });
   }
   std::vector<std::vector<std::pair<int, double>>>().swap(direct);
   std::vector<std::int64_t> kept(nv + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads > 0 ? threads : omp_get_max_threads())
+#pragma omp parallel for schedule(dynamic, 256) num_threads(buildThreads)
   for (int n = 0; n < nv; ++n)
   {
     auto first = raw.begin() + count[n], last = raw.begin() + count[n + 1];
@@ -452,7 +428,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
     return Status::Aborted();
   }
   Construction = options.Construction;
-  K = dgg ? 0 : k;
+  K = EffectiveK(options, nv);
   Accuracy = dgg ? options.Accuracy : 0.0;
   Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return Status();
