@@ -76,6 +76,93 @@ ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double rad
       }
     }
   }
+  BuildFineGrid();
+}
+
+void ClassRegion::BuildFineGrid()
+{
+  FineReachDepth = 0.005 * HalfWidth;
+  FineCells = std::max(64, std::min(512, 8 * Cells));
+  FineCellSize = 2.0 * HalfWidth / FineCells;
+  const std::size_t cells = static_cast<std::size_t>(FineCells) * FineCells;
+  // Every edge that can come within FineReachDepth of a point of the cell is within `reach` of
+  // its centre (a hair more: rounding, and points that FineCellOf puts in the cell by a hair).
+  const double reach = (0.5 * std::sqrt(2.0) * FineCellSize + FineReachDepth) * (1.0 + 1e-6) + 1e-6 * FineCellSize;
+  std::vector<std::pair<int, int>> links; // (cell, edge)
+  for (int e = 0; e < static_cast<int>(EdgeStart.size()); ++e)
+  {
+    const Vec2& a = EdgeStart[e];
+    const Vec2& b = EdgeEnd[e];
+    const int x0 = FineCellOf(std::min(a.x, b.x) - reach), x1 = FineCellOf(std::max(a.x, b.x) + reach);
+    const int y0 = FineCellOf(std::min(a.y, b.y) - reach), y1 = FineCellOf(std::max(a.y, b.y) + reach);
+    for (int y = y0; y <= y1; ++y)
+    {
+      for (int x = x0; x <= x1; ++x)
+      {
+        const Vec2 centre{ -HalfWidth + (x + 0.5) * FineCellSize, -HalfWidth + (y + 0.5) * FineCellSize };
+        if (SegmentDistance(a, b, centre) <= reach)
+        {
+          links.emplace_back(y * FineCells + x, e);
+        }
+      }
+    }
+  }
+  FineOffsets.assign(cells + 1, 0);
+  for (const auto& l : links)
+  {
+    ++FineOffsets[l.first + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c)
+  {
+    FineOffsets[c + 1] += FineOffsets[c];
+  }
+  FineEdges.assign(links.size(), 0);
+  {
+    std::vector<int> fill(FineOffsets.begin(), FineOffsets.end() - 1);
+    for (const auto& l : links) // (edges in increasing order within each cell, as Near)
+    {
+      FineEdges[fill[l.first]++] = l.second;
+    }
+  }
+  // Pure cells take the inside-ness of their centre, row by row: Inside(centre) counts the
+  // edges spanning the centre's y whose crossing lies beyond its x (the same expression).
+  FineState.assign(cells, 0);
+  std::vector<double> crossings;
+  for (int y = 0; y < FineCells; ++y)
+  {
+    const double py = -HalfWidth + (y + 0.5) * FineCellSize;
+    crossings.clear();
+    for (int e : Rows[CellOf(py)])
+    {
+      const Vec2& a = EdgeStart[e];
+      const Vec2& b = EdgeEnd[e];
+      if ((a.y > py) != (b.y > py))
+      {
+        crossings.push_back(a.x + (b.x - a.x) * (py - a.y) / (b.y - a.y));
+      }
+    }
+    std::sort(crossings.begin(), crossings.end());
+    std::size_t passed = 0; // crossings at or before the centre's x
+    for (int x = 0; x < FineCells; ++x)
+    {
+      const double px = -HalfWidth + (x + 0.5) * FineCellSize;
+      while (passed < crossings.size() && !(px < crossings[passed]))
+      {
+        ++passed;
+      }
+      const std::size_t c = static_cast<std::size_t>(y) * FineCells + x;
+      if (FineOffsets[c] == FineOffsets[c + 1])
+      {
+        FineState[c] = (crossings.size() - passed) % 2 == 1 ? 2 : 1;
+      }
+    }
+  }
+}
+
+int ClassRegion::FineCellOf(double v) const
+{
+  const double c = std::floor((v + HalfWidth) / FineCellSize);
+  return static_cast<int>(std::min(static_cast<double>(FineCells - 1), std::max(0.0, c)));
 }
 
 int ClassRegion::CellOf(double v) const
@@ -108,6 +195,23 @@ bool ClassRegion::DeeplyInside(const Vec2& p, double depth) const
   if (!(std::abs(p.x) < HalfWidth && std::abs(p.y) < HalfWidth))
   {
     return false;
+  }
+  if (depth <= FineReachDepth)
+  {
+    const std::size_t c = static_cast<std::size_t>(FineCellOf(p.y)) * FineCells + FineCellOf(p.x);
+    if (FineState[c] != 0)
+    {
+      return FineState[c] == 2;
+    }
+    for (int k = FineOffsets[c], end = FineOffsets[c + 1]; k < end; ++k)
+    {
+      const int e = FineEdges[k];
+      if (SegmentDistance(EdgeStart[e], EdgeEnd[e], p) <= depth)
+      {
+        return false;
+      }
+    }
+    return Inside(p);
   }
   const std::size_t c = static_cast<std::size_t>(CellOf(p.y)) * Cells + CellOf(p.x);
   if (State[c] != 0)

@@ -63,6 +63,8 @@ class ClassRegion
 public:
   /// `radius`: every ring point lies within it; `maximumDepth`: the largest depth that
   /// DeeplyInside will be asked for (cells farther than that from the outline answer at once).
+  /// Depths up to FineDepth() (the drawn check's and VerifyOverlaps') are answered on a finer
+  /// grid whose cells are pure unless within that depth of the outline: the same answers.
   ClassRegion(const std::vector<std::vector<Vec2>>& rings, double radius, double maximumDepth);
   /// Inside the region, and farther than `depth` (<= maximumDepth) from its outline.
   bool DeeplyInside(const Vec2& p, double depth) const;
@@ -72,9 +74,13 @@ public:
   /// `distance` of its outline.
   bool Within(const Vec2& p, double distance) const;
   double Radius() const { return HalfWidth; }
+  /// The largest depth that the fine grid answers (0.005 radius).
+  double FineDepth() const { return FineReachDepth; }
 
 private:
   int CellOf(double v) const;
+  int FineCellOf(double v) const;
+  void BuildFineGrid();
   double HalfWidth = 0.0; // the grid covers [-HalfWidth, HalfWidth]^2 (radius, a hair more)
   double CellSize = 1.0;
   int Cells = 1;
@@ -82,6 +88,14 @@ private:
   std::vector<std::vector<int>> Rows;     // per row of cells: edges spanning it in y
   std::vector<std::vector<int>> Near;     // per cell: edges within the cell's reach
   std::vector<char> State;                // per cell: 0 mixed, 1 all outside, 2 all deep inside
+  // The fine grid (FineCells^2 cells): per cell, the edges within its reach for depths up to
+  // FineReachDepth (CSR) and its state, as above. Most drawn-check samples fall in pure cells
+  // there, where the coarse grid (whose reach is the largest clearance) leaves them mixed.
+  double FineReachDepth = 0.0;
+  double FineCellSize = 1.0;
+  int FineCells = 1;
+  std::vector<int> FineOffsets, FineEdges;
+  std::vector<char> FineState;
 };
 
 } // namespace gs

@@ -298,3 +298,69 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
   EXPECT_EQ(folded, 0);
   EXPECT_EQ(check->Pairs.size(), 0u);
 }
+
+// ClassRegion answers DeeplyInside for small depths on its fine grid and for large ones on the
+// coarse grid: both must give what the definition gives (inside, and farther than the depth
+// from every edge), checked by brute force at random points, points next to the outline
+// included, for the star, the tile and a ring with a hole.
+TEST(OverlapCheck, ClassRegionAnswersAsTheDefinition)
+{
+  auto segmentDistance = [](const Vec2& a, const Vec2& b, const Vec2& p) {
+    const Vec2 ab = b - a;
+    const double l2 = Dot(ab, ab);
+    const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(p - a, ab) / l2)) : 0.0;
+    const Vec2 d = a + ab * t - p;
+    return std::sqrt(Dot(d, d));
+  };
+  std::vector<std::vector<std::vector<Vec2>>> shapes;
+  shapes.push_back({ MakeStarPolygon(5, 1.0, 0.382) });
+  shapes.push_back({ { { -0.7, -0.7 }, { 0.7, -0.7 }, { 0.7, -0.28 }, { -0.28, -0.28 }, { -0.28, 0.7 },
+    { -0.7, 0.7 } } });
+  std::vector<Vec2> outer, inner;
+  for (int k = 0; k < 200; ++k)
+  {
+    const double a = 2.0 * 3.14159265358979323846 * k / 200;
+    outer.push_back({ 0.95 * std::cos(a), 0.95 * std::sin(a) });
+    inner.push_back({ 0.4 * std::cos(a) + 0.1, 0.4 * std::sin(a) });
+  }
+  shapes.push_back({ outer, inner });
+  std::uint64_t state = 12345;
+  auto uniform = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (const auto& rings : shapes)
+  {
+    const ClassRegion region(rings, 1.0, 0.3);
+    ASSERT_NEAR(region.FineDepth(), 0.005, 1e-9);
+    std::vector<std::pair<Vec2, Vec2>> edges;
+    for (const auto& ring : rings)
+      for (std::size_t k = 0; k < ring.size(); ++k)
+        edges.push_back({ ring[k], ring[(k + 1) % ring.size()] });
+    int mismatches = 0, deep = 0, near = 0;
+    for (int i = 0; i < 200000; ++i)
+    {
+      Vec2 p{ 2.2 * uniform() - 1.1, 2.2 * uniform() - 1.1 };
+      if (i % 2 == 1) // next to the outline: an edge point moved by up to 0.02
+      {
+        const auto& e = edges[static_cast<std::size_t>(uniform() * edges.size()) % edges.size()];
+        p = e.first + (e.second - e.first) * uniform() + Vec2{ 0.04 * uniform() - 0.02, 0.04 * uniform() - 0.02 };
+      }
+      double nearest = 1e300;
+      for (const auto& e : edges)
+        nearest = std::min(nearest, segmentDistance(e.first, e.second, p));
+      const bool inside = region.Inside(p);
+      for (double depth : { 0.0, 0.00125, 0.004, 0.005, 0.02, 0.3 })
+      {
+        const bool expected = inside && nearest > depth && std::abs(p.x) < 1.0 && std::abs(p.y) < 1.0;
+        if (region.DeeplyInside(p, depth) != expected)
+          ++mismatches;
+        deep += expected ? 1 : 0;
+        near += inside && nearest <= depth ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(deep, 10000);
+    EXPECT_GT(near, 1000); // points inside but within the depth of the outline were asked about
+  }
+}
