@@ -80,6 +80,7 @@ if args.subdivisions > 0:
 temp = tempfile.mkdtemp()
 path = os.path.join(temp, "mesh.vtp")
 w = vtkXMLPolyDataWriter()
+w.SetDataModeToBinary()  # inline: Debian 12's expat (2.5.0-1+deb12u5) rejects large appended data
 w.SetFileName(path)
 w.SetInputData(poly)
 w.Write()
