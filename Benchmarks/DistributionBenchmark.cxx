@@ -609,6 +609,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       o.Mode = mode;
       if (const char* drawn = std::getenv("GS_DRAWN_CHECK"))
         o.DrawnCheck = std::atoi(drawn) != 0;
+      if (const char* failures = std::getenv("GS_MAXIMAL_FAILURES"))
+        o.MaximalFailures = std::atoi(failures); // (the speed / maximality trade-off)
       if (const char* limit = std::getenv("GS_DISTORTION_LIMIT"))
         o.DistortionLimit = std::atof(limit); // (0: every close pair judged by circumcircles)
       const double t0 = Now();
@@ -659,6 +661,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       }
       const OverlapCheckResult& check = *checked;
       const double t4 = Now();
+      if (threads == 1 && std::getenv("GS_PROBES"))
+        std::printf("    probes that still fit: %.4f%% of 100000\n", 100.0 * d.ProbeFitFraction(100000, 777));
       if (threads == 1)
       {
         const DecalOracleResult oracle = DecalOracle(t, r->Shapes, decals);
