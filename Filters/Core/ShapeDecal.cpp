@@ -212,14 +212,13 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
   std::vector<int> faces;
   for (const auto& e : Local)
   {
-    for (int h : Mesh.OutgoingHalfedges(e.first))
-    {
+    Mesh.ForEachOutgoingHalfedge(e.first, [&](int h) {
       const auto& corners = Mesh.Face(h / 3);
       if (e.first == std::min(corners[0], std::min(corners[1], corners[2])))
       {
         faces.push_back(h / 3);
       }
-    }
+    });
   }
   std::sort(faces.begin(), faces.end());
   std::vector<std::pair<int, std::array<Vec2, 3>>> whole;

@@ -355,17 +355,17 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   }
   for (std::size_t k = 0, n = seeds.size(); k < n; ++k)
   {
-    for (int he : Mesh.OutgoingHalfedges(seeds[k].first))
-    {
+    const int node = seeds[k].second;
+    Mesh.ForEachOutgoingHalfedge(seeds[k].first, [&](int he) {
       for (int w : Mesh.Face(he / 3))
       {
         if (mark[w] != stamp)
         {
           mark[w] = stamp;
-          seeds.emplace_back(w, seeds[k].second);
+          seeds.emplace_back(w, node);
         }
       }
-    }
+    });
   }
   local.reserve(local.size() + seeds.size());
   for (const auto& seed : seeds)

@@ -52,6 +52,19 @@ public:
   int VertexHalfedge(int v) const { return OutHalfedge[v]; }
   // The outgoing half-edges of v in counter-clockwise order.
   std::vector<int> OutgoingHalfedges(int v) const;
+  // The same, visited in the same order without building a vector (for loops run per vertex
+  // of a shape's region, where the allocation cost more than the visit).
+  template <class Visit>
+  void ForEachOutgoingHalfedge(int v, Visit&& visit) const
+  {
+    const int start = OutHalfedge[v];
+    int h = start;
+    do
+    {
+      visit(h);
+      h = RotateCCW(h);
+    } while (h >= 0 && h != start);
+  }
   // Counter-clockwise rotation about Origin(h): the next outgoing half-edge, or -1 at the boundary.
   int RotateCCW(int h) const
   {
