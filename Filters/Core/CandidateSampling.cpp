@@ -295,13 +295,34 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
       batch[i].Valid = !DeadForClass(cls, centre.Face) &&
         !(Tables.Classes[cls].Parts.size() > 1 &&
           CentreCovered(centre, cls, DensityAt(centre), scratch)) &&
-        MakeShape(centre, cls, rng, batch[i].Shape);
+        MakeShape(centre, cls, rng, batch[i].Shape, nullptr, &scratch);
     }
   }
 }
 
+bool ShapeDistributor::Impl::PlacePart(const std::vector<CurvePiece>& curve, double u, int part,
+  double across, double phiM, PlacedPart& p) const
+{
+  int face = -1;
+  Vec3 x, tangent;
+  if (!PointOnCurve(Mesh, curve, u, face, x, tangent))
+  {
+    return false;
+  }
+  p.Part = part;
+  Vec3 endTangent;
+  bool boundary = false;
+  if (!Across(face, x, tangent, across, p.Centre, endTangent, &boundary) || boundary)
+  {
+    return false;
+  }
+  p.Position = Mesh.Interpolate(p.Centre.Face, p.Centre.Bary);
+  p.Axis = Unit(RotateTangent(endTangent, Mesh.FaceNormal(p.Centre.Face), -phiM));
+  return true;
+}
+
 bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
-  const Vec3* prefer) const
+  const Vec3* prefer, std::vector<int>* precheck) const
 {
   s = PlacedShape();
   s.ClassId = cls;
@@ -351,9 +372,9 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     const int n = Options.Symmetry == 1 ? 2 : Options.Symmetry;
     const double a0 = Field->AngleInFace(f, dir);
     const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
-    const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
+    // (Behind first: a candidate whose parts there conflict needs no streamline ahead.)
     const Streamline behind = Field->TraceStreamline(n, FieldAngles, centre, a0 + Pi, backward);
-    if (ahead.Length < forward * (1.0 - 1e-9) || behind.Length < backward * (1.0 - 1e-9))
+    if (behind.Length < backward * (1.0 - 1e-9))
     {
       return false;
     }
@@ -361,8 +382,47 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     {
       s.Curve.push_back(CurvePiece{ it->Face, it->B, it->A });
     }
-    s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
     s.CurveCentre = behind.Length;
+    if (precheck && !CircleMode)
+    {
+      // The parts that PointOnCurve finds within the behind pieces: the same pieces, walked in
+      // the same order, as in the whole curve (a part it would find only past them is left to
+      // the whole shape's check).
+      double behindLength = 0.0;
+      for (const CurvePiece& piece : s.Curve)
+      {
+        const double len = Norm(piece.B - piece.A);
+        behindLength += len > 0.0 ? len : 0.0;
+      }
+      Record partial;
+      partial.Shape.ClassId = cls;
+      partial.Shape.Scale = s.Scale;
+      for (int part : c.Parts)
+      {
+        const Vec2& pc = Tables.Parts[part].Centre;
+        const double u = s.CurveCentre + Dot(pc, c.MajorAxis) * scale;
+        if (!(u < behindLength))
+        {
+          continue;
+        }
+        PlacedPart p;
+        if (!PlacePart(s.Curve, u, part, Cross(c.MajorAxis, pc) * scale, phiM, p))
+        {
+          return false; // (the whole shape stops at this part too)
+        }
+        partial.Shape.Parts.push_back(p);
+      }
+      if (!partial.Shape.Parts.empty() && CheapConflict(partial, *precheck))
+      {
+        return false;
+      }
+    }
+    const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
+    if (ahead.Length < forward * (1.0 - 1e-9))
+    {
+      return false;
+    }
+    s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
   }
   if (CircleMode || c.Parts.size() <= 1)
   {
@@ -380,22 +440,11 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     const Vec2& pc = Tables.Parts[part].Centre;
     const double along = Dot(pc, c.MajorAxis) * scale;
     const double across = Cross(c.MajorAxis, pc) * scale;
-    int face = -1;
-    Vec3 x, tangent;
-    if (!PointOnCurve(Mesh, s.Curve, s.CurveCentre + along, face, x, tangent))
-    {
-      return false;
-    }
     PlacedPart p;
-    p.Part = part;
-    Vec3 endTangent;
-    bool boundary = false;
-    if (!Across(face, x, tangent, across, p.Centre, endTangent, &boundary) || boundary)
+    if (!PlacePart(s.Curve, s.CurveCentre + along, part, across, phiM, p))
     {
       return false;
     }
-    p.Position = Mesh.Interpolate(p.Centre.Face, p.Centre.Bary);
-    p.Axis = Unit(RotateTangent(endTangent, Mesh.FaceNormal(p.Centre.Face), -phiM));
     s.Parts.push_back(p);
   }
   return true;

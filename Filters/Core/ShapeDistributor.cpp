@@ -254,7 +254,7 @@ double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
       Impl::Record r;
       const int cls = I.RandomClass(rng);
       const SurfacePoint centre = I.RandomPoint(rng, false);
-      if (!I.MakeShape(centre, cls, rng, r.Shape) || I.CheapConflict(r, scratch))
+      if (!I.MakeShape(centre, cls, rng, r.Shape, nullptr, &scratch) || I.CheapConflict(r, scratch))
       {
         continue;
       }

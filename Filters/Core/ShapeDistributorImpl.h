@@ -214,8 +214,17 @@ struct ShapeDistributor::Impl
   /// the curve of a long class and the parts. False when it does not fit (curve too short).
   /// `prefer` (optional): of the field's N directions in the face, take the one closest to it
   /// (greedy fronts keep neighbours turned alike in cross fields); otherwise the face's own.
+  /// `precheck` (optional, scratch for CheapConflict): a long class's streamline behind the
+  /// centre is traced first, and its parts there are checked as CheapConflict checks them; on a
+  /// conflict the candidate is given up (false) before the streamline ahead is traced. The same
+  /// decision as building the whole shape and checking it: those parts are computed bit for bit
+  /// as the whole shape computes them, and a conflict of some parts is a conflict of the shape.
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
-    const Vec3* prefer = nullptr) const;
+    const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr) const;
+  /// For MakeShape's precheck: places part `part` of class c at arc length `u` of `curve`
+  /// (PlacedPart fields), false when it leaves the surface.
+  bool PlacePart(const std::vector<CurvePiece>& curve, double u, int part, double across,
+    double phiM, PlacedPart& p) const;
   /// Faces where no candidate can fit any more: every candidate centred in them conflicts with
   /// part k of the new shape, because its distance from that part's centre is below the smallest
   /// safe distance against any part of any class, less the class's reach (its part centres'
