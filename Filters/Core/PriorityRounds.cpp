@@ -142,11 +142,16 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
     [](const Proposal& a, const Proposal& b) { return a.Key < b.Key; });
   const int n = static_cast<int>(all.size());
   batch.resize(n);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-  for (int i = 0; i < n; ++i)
+#pragma omp parallel num_threads(threads)
   {
-    Random rng(Options.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-    batch[i].Valid = MakeShape(all[i].Centre, all[i].Class, rng, batch[i].Shape, &all[i].Prefer);
+    std::vector<int> scratch; // (MakeShape's precheck of long shapes: the same decisions)
+#pragma omp for schedule(dynamic, 16)
+    for (int i = 0; i < n; ++i)
+    {
+      Random rng(Options.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+      batch[i].Valid =
+        MakeShape(all[i].Centre, all[i].Class, rng, batch[i].Shape, &all[i].Prefer, &scratch);
+    }
   }
 }
 
