@@ -20,6 +20,42 @@ double SegmentDistance(const Vec2& a, const Vec2& b, const Vec2& p)
   const Vec2 d = a + ab * t - p;
   return std::sqrt(Dot(d, d)); // (not Norm: std::hypot is several times slower, and this is the hot loop)
 }
+
+// The cell of coordinate v on a grid of `count` cells of `size` covering [-halfWidth, halfWidth]
+// (clamped to the grid).
+int GridCell(double v, double halfWidth, double size, int count)
+{
+  const double c = std::floor((v + halfWidth) / size);
+  return static_cast<int>(std::min(static_cast<double>(count - 1), std::max(0.0, c)));
+}
+
+// The centre of cell (x, y) of that grid.
+Vec2 CellCentre(int x, int y, double halfWidth, double size)
+{
+  return Vec2{ -halfWidth + (x + 0.5) * size, -halfWidth + (y + 0.5) * size };
+}
+
+// Calls visit(y * count + x) for each cell (x, y) of that grid whose centre is within `reach` of
+// the segment ab, row by row.
+template <class Visit>
+void ForEachCellNear(const Vec2& a, const Vec2& b, double reach, double halfWidth, double size, int count,
+  Visit&& visit)
+{
+  const int x0 = GridCell(std::min(a.x, b.x) - reach, halfWidth, size, count);
+  const int x1 = GridCell(std::max(a.x, b.x) + reach, halfWidth, size, count);
+  const int y0 = GridCell(std::min(a.y, b.y) - reach, halfWidth, size, count);
+  const int y1 = GridCell(std::max(a.y, b.y) + reach, halfWidth, size, count);
+  for (int y = y0; y <= y1; ++y)
+  {
+    for (int x = x0; x <= x1; ++x)
+    {
+      if (SegmentDistance(a, b, CellCentre(x, y, halfWidth, size)) <= reach)
+      {
+        visit(y * count + x);
+      }
+    }
+  }
+}
 } // namespace
 
 ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double radius, double maximumDepth)
@@ -49,20 +85,7 @@ ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double rad
     {
       Rows[y].push_back(e);
     }
-    // Cells whose centre is within `reach` of the edge.
-    const int x0 = CellOf(std::min(a.x, b.x) - reach), x1 = CellOf(std::max(a.x, b.x) + reach);
-    const int z0 = CellOf(std::min(a.y, b.y) - reach), z1 = CellOf(std::max(a.y, b.y) + reach);
-    for (int y = z0; y <= z1; ++y)
-    {
-      for (int x = x0; x <= x1; ++x)
-      {
-        const Vec2 centre{ -HalfWidth + (x + 0.5) * CellSize, -HalfWidth + (y + 0.5) * CellSize };
-        if (SegmentDistance(a, b, centre) <= reach)
-        {
-          Near[static_cast<std::size_t>(y) * Cells + x].push_back(e);
-        }
-      }
-    }
+    ForEachCellNear(a, b, reach, HalfWidth, CellSize, Cells, [&](int c) { Near[c].push_back(e); });
   }
   for (int y = 0; y < Cells; ++y)
   {
@@ -71,8 +94,7 @@ ClassRegion::ClassRegion(const std::vector<std::vector<Vec2>>& rings, double rad
       const std::size_t c = static_cast<std::size_t>(y) * Cells + x;
       if (Near[c].empty())
       {
-        const Vec2 centre{ -HalfWidth + (x + 0.5) * CellSize, -HalfWidth + (y + 0.5) * CellSize };
-        State[c] = Inside(centre) ? 2 : 1;
+        State[c] = Inside(CellCentre(x, y, HalfWidth, CellSize)) ? 2 : 1;
       }
     }
   }
@@ -91,21 +113,8 @@ void ClassRegion::BuildFineGrid()
   std::vector<std::pair<int, int>> links; // (cell, edge)
   for (int e = 0; e < static_cast<int>(EdgeStart.size()); ++e)
   {
-    const Vec2& a = EdgeStart[e];
-    const Vec2& b = EdgeEnd[e];
-    const int x0 = FineCellOf(std::min(a.x, b.x) - reach), x1 = FineCellOf(std::max(a.x, b.x) + reach);
-    const int y0 = FineCellOf(std::min(a.y, b.y) - reach), y1 = FineCellOf(std::max(a.y, b.y) + reach);
-    for (int y = y0; y <= y1; ++y)
-    {
-      for (int x = x0; x <= x1; ++x)
-      {
-        const Vec2 centre{ -HalfWidth + (x + 0.5) * FineCellSize, -HalfWidth + (y + 0.5) * FineCellSize };
-        if (SegmentDistance(a, b, centre) <= reach)
-        {
-          links.emplace_back(y * FineCells + x, e);
-        }
-      }
-    }
+    ForEachCellNear(EdgeStart[e], EdgeEnd[e], reach, HalfWidth, FineCellSize, FineCells,
+      [&](int c) { links.emplace_back(c, e); });
   }
   FineOffsets.assign(cells + 1, 0);
   for (const auto& l : links)
@@ -130,7 +139,7 @@ void ClassRegion::BuildFineGrid()
   std::vector<double> crossings;
   for (int y = 0; y < FineCells; ++y)
   {
-    const double py = -HalfWidth + (y + 0.5) * FineCellSize;
+    const double py = CellCentre(0, y, HalfWidth, FineCellSize).y;
     crossings.clear();
     for (int e : Rows[CellOf(py)])
     {
@@ -145,7 +154,7 @@ void ClassRegion::BuildFineGrid()
     std::size_t passed = 0; // crossings at or before the centre's x
     for (int x = 0; x < FineCells; ++x)
     {
-      const double px = -HalfWidth + (x + 0.5) * FineCellSize;
+      const double px = CellCentre(x, y, HalfWidth, FineCellSize).x;
       while (passed < crossings.size() && !(px < crossings[passed]))
       {
         ++passed;
@@ -161,14 +170,12 @@ void ClassRegion::BuildFineGrid()
 
 int ClassRegion::FineCellOf(double v) const
 {
-  const double c = std::floor((v + HalfWidth) / FineCellSize);
-  return static_cast<int>(std::min(static_cast<double>(FineCells - 1), std::max(0.0, c)));
+  return GridCell(v, HalfWidth, FineCellSize, FineCells);
 }
 
 int ClassRegion::CellOf(double v) const
 {
-  const double c = std::floor((v + HalfWidth) / CellSize);
-  return static_cast<int>(std::min(static_cast<double>(Cells - 1), std::max(0.0, c)));
+  return GridCell(v, HalfWidth, CellSize, Cells);
 }
 
 bool ClassRegion::Inside(const Vec2& p) const

@@ -221,8 +221,9 @@ struct ShapeDistributor::Impl
   /// as the whole shape computes them, and a conflict of some parts is a conflict of the shape.
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
     const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr) const;
-  /// For MakeShape's precheck: places part `part` of class c at arc length `u` of `curve`
-  /// (PlacedPart fields), false when it leaves the surface.
+  /// Places part `part` (MakeShape, and its precheck on the curve behind the centre): at arc
+  /// length `u` of `curve`, `across` off it, its axis turned by -phiM from the curve's
+  /// direction there; false when it leaves the surface.
   bool PlacePart(const std::vector<CurvePiece>& curve, double u, int part, double across,
     double phiM, PlacedPart& p) const;
   /// Faces where no candidate can fit any more: every candidate centred in them conflicts with

@@ -57,13 +57,7 @@ std::string FaceLabel(std::size_t i)
 std::vector<int> TriangleMesh::OutgoingHalfedges(int v) const
 {
   std::vector<int> out;
-  const int start = OutHalfedge[v];
-  int h = start;
-  do
-  {
-    out.push_back(h);
-    h = RotateCCW(h);
-  } while (h >= 0 && h != start);
+  ForEachOutgoingHalfedge(v, [&out](int h) { out.push_back(h); });
   return out;
 }
 
