@@ -609,6 +609,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       o.Mode = mode;
       if (const char* drawn = std::getenv("GS_DRAWN_CHECK"))
         o.DrawnCheck = std::atoi(drawn) != 0;
+      if (const char* early = std::getenv("GS_EARLY_REJECTION"))
+        o.EarlyRejection = std::atoi(early) != 0; // (0: whole long shapes built, the same placements)
       if (const char* failures = std::getenv("GS_MAXIMAL_FAILURES"))
         o.MaximalFailures = std::atoi(failures); // (the speed / maximality trade-off)
       if (const char* limit = std::getenv("GS_DISTORTION_LIMIT"))

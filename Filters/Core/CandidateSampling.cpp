@@ -383,7 +383,7 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
       s.Curve.push_back(CurvePiece{ it->Face, it->B, it->A });
     }
     s.CurveCentre = behind.Length;
-    if (precheck && !CircleMode)
+    if (precheck && Options.EarlyRejection && !CircleMode)
     {
       // The parts that PointOnCurve finds within the behind pieces: the same pieces, walked in
       // the same order, as in the whole curve (a part it would find only past them is left to

@@ -114,6 +114,11 @@ struct ShapeDistributionOptions
   /// with its curve, or a chart that is no isometry across a neighbour, are not. false: the
   /// tables alone.
   bool DrawnCheck = true;
+  /// Long candidates: the streamline behind the centre is traced first, and the candidate is
+  /// given up when its parts there conflict (as the cheap checks would find), before the
+  /// streamline ahead is traced. The same placements either way, bit for bit; false only to
+  /// compare the two (tests, DistributionBenchmark).
+  bool EarlyRejection = true;
 };
 
 /// One part of a placed shape (a short shape has one).

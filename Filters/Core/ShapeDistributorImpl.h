@@ -214,11 +214,12 @@ struct ShapeDistributor::Impl
   /// the curve of a long class and the parts. False when it does not fit (curve too short).
   /// `prefer` (optional): of the field's N directions in the face, take the one closest to it
   /// (greedy fronts keep neighbours turned alike in cross fields); otherwise the face's own.
-  /// `precheck` (optional, scratch for CheapConflict): a long class's streamline behind the
-  /// centre is traced first, and its parts there are checked as CheapConflict checks them; on a
-  /// conflict the candidate is given up (false) before the streamline ahead is traced. The same
-  /// decision as building the whole shape and checking it: those parts are computed bit for bit
-  /// as the whole shape computes them, and a conflict of some parts is a conflict of the shape.
+  /// `precheck` (optional, scratch for CheapConflict; with Options.EarlyRejection): a long
+  /// class's streamline behind the centre is traced first, and its parts there are checked as
+  /// CheapConflict checks them; on a conflict the candidate is given up (false) before the
+  /// streamline ahead is traced. The same decision as building the whole shape and checking it:
+  /// those parts are computed bit for bit as the whole shape computes them, and a conflict of
+  /// some parts is a conflict of the shape.
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
     const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr) const;
   /// Places part `part` (MakeShape, and its precheck on the curve behind the centre): at arc

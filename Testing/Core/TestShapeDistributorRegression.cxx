@@ -193,3 +193,55 @@ TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
     }
   }
 }
+
+// Long candidates given up early (EarlyRejection: the parts behind the centre checked before the
+// streamline ahead is traced) must leave every placement, decal and outline as building whole
+// shapes leaves them: runs with many rejected long candidates (long bent bars of three parts
+// and stars on a plane with a boundary and on a bumpy sphere, Random and Greedy), both ways.
+TEST(ShapeDistributorRegression, EarlyRejectionChangesNothing)
+{
+  const SafeDistanceTables t = gs_test::PolygonTables({ MakeStarPolygon(5, 1.0, 0.4),
+    { { -3.0, -0.45 }, { 3.0, -0.45 }, { 3.0, 0.45 }, { -3.0, 0.45 } } });
+  ASSERT_GE(t.Classes[1].Parts.size(), 3u);
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(50, 50, 10.0, 10.0));
+  const TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.03));
+  for (const bool onSphere : { false, true })
+  {
+    const TriangleMesh& mesh = onSphere ? sphere : plane;
+    std::vector<Vec3> directions(mesh.NumberOfFaces());
+    for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+    {
+      const auto& v = mesh.Face(f);
+      const Vec3 x = (mesh.Position(v[0]) + mesh.Position(v[1]) + mesh.Position(v[2])) / 3.0;
+      directions[f] = onSphere ? Cross(Vec3{ 0.2, 0.1, 1.0 }, x)
+                               : Vec3{ std::cos(0.5 * x.y), std::sin(0.5 * x.y), 0.0 };
+    }
+    for (const DistributionMode mode : { DistributionMode::Random, DistributionMode::Greedy })
+    {
+      ShapeDistributionOptions o;
+      o.ShapeSize = onSphere ? 0.1 : 0.3;
+      o.Mode = mode;
+      o.Seed = 7;
+      o.MaximalFailures = 2000;
+      Hashes h[2];
+      for (const bool early : { false, true })
+      {
+        o.EarlyRejection = early;
+        ShapeDistributor d(mesh);
+        const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+        ASSERT_TRUE(r.Ok()) << r.Message();
+        h[early] = Hash(d, r);
+        h[early].Probe = d.ProbeFitFraction(2000, 3);
+        int longShapes = 0;
+        for (const PlacedShape& s : r->Shapes)
+          longShapes += s.Curve.empty() ? 0 : 1;
+        EXPECT_GT(longShapes, 20) << onSphere << " " << static_cast<int>(mode);
+      }
+      EXPECT_EQ(h[1].Shapes, h[0].Shapes) << onSphere << " " << static_cast<int>(mode);
+      EXPECT_EQ(h[1].Placements, h[0].Placements) << onSphere << " " << static_cast<int>(mode);
+      EXPECT_EQ(h[1].Decals, h[0].Decals) << onSphere << " " << static_cast<int>(mode);
+      EXPECT_EQ(h[1].Outlines, h[0].Outlines) << onSphere << " " << static_cast<int>(mode);
+      EXPECT_EQ(h[1].Probe, h[0].Probe) << onSphere << " " << static_cast<int>(mode);
+    }
+  }
+}
