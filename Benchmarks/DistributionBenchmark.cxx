@@ -641,8 +641,15 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         // The cost of splitting faces where the map is not affine (DecalTolerance): the same
         // decals with whole faces only, in the same run.
         long long pieces = 0, wholeFaces = 0;
+        Hasher decalHash; // (for refactors: the same decals bit for bit)
         for (const ShapeDecal& decal : decals)
+        {
           pieces += static_cast<long long>(decal.Faces.size());
+          decalHash.AddVector(decal.Faces);
+          decalHash.AddVector(decal.Corners);
+          decalHash.AddVector(decal.TextureCoordinates);
+        }
+        std::printf("    decals hash %016llx\n", static_cast<unsigned long long>(decalHash.H));
         const double w0 = Now();
         for (int s = 0; s < n; ++s)
           wholeFaces += static_cast<long long>(d.Decal(s, 0.0).Faces.size());

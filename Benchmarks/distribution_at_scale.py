@@ -38,9 +38,9 @@ parser.add_argument("--runs", type=int, default=3, help="re-runs per thread coun
 parser.add_argument("--mode", default="Random")
 parser.add_argument("--cache", default="", help="CacheFileName of the saddle vertex graph")
 parser.add_argument("--verify", action="store_true", help="VerifyOverlaps on")
-parser.add_argument("--graph-accuracy", type=float, default=0.0,
-                    help="GraphAccuracy: 0 the saddle vertex graph of K = 50, else the discrete "
-                         "geodesic graph of that accuracy")
+parser.add_argument("--graph-accuracy", type=float, default=None,
+                    help="GraphAccuracy (default: the filter's, 0.1): 0 the saddle vertex graph "
+                         "of K = 50, else the discrete geodesic graph of that accuracy")
 parser.add_argument("--threads", type=int, nargs="+", default=[1, 2])
 args = parser.parse_args()
 
@@ -98,7 +98,8 @@ dist = ShapeDistributor(Input=field, Table=msdt, ShapeSize=args.size * diagonal,
 dist.DirectionArray = ["POINTS", "Dir"]
 dist.CacheFileName = args.cache
 dist.VerifyOverlaps = 1 if args.verify else 0
-dist.GraphAccuracy = args.graph_accuracy
+if args.graph_accuracy is not None:
+    dist.GraphAccuracy = args.graph_accuracy
 msdt.UpdatePipeline()
 field.UpdatePipeline()
 

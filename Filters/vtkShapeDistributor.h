@@ -183,9 +183,9 @@ public:
   ///@}
 
   ///@{
-  /// With K >= 1: 0 (default) uses the saddle vertex graph of K; an accuracy (1e-5 .. 0.1) uses
-  /// the discrete geodesic graph of that relative accuracy instead (as SVG Geodesic Distance's
-  /// DGG solver, sharing its cache). Other values are an error.
+  /// With K >= 1: an accuracy (1e-5 .. 0.1; default 0.1) uses the discrete geodesic graph of
+  /// that relative accuracy (as SVG Geodesic Distance's DGG solver, sharing its cache); 0 the
+  /// saddle vertex graph of K. Other values are an error.
   vtkSetMacro(GraphAccuracy, double);
   vtkGetMacro(GraphAccuracy, double);
   ///@}
@@ -225,7 +225,7 @@ protected:
   double DecalTolerance = 0.01;
   bool VerifyOverlaps = false;
   int K = 50;
-  double GraphAccuracy = 0.0;
+  double GraphAccuracy = 0.1;
   std::string CacheFileName;
 
 private:

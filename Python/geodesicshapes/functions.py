@@ -352,7 +352,8 @@ _MODES = {"random": vtkShapeDistributor.RANDOM, "greedy": vtkShapeDistributor.GR
 
 def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, density=None,
                       mode="random", seed=0, class_weights=None, maximum_shapes=0,
-                      keep_inside=False, verify_overlaps=False, threads=0, k=50):
+                      keep_inside=False, verify_overlaps=False, threads=0, k=50,
+                      graph_accuracy=0.1):
     """Places shapes on the surface without any two overlapping (Wang et al. 2016).
 
     mesh: a vtkPolyData (e.g. CrossField.vtk, whose cell array Direction is then used) or
@@ -370,7 +371,9 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
         (denser) or "circumcircle" (the baseline). seed: the result depends on it only.
     class_weights: relative frequencies of the classes. maximum_shapes: stop there (0: none).
     keep_inside: keep shapes off the mesh boundary. verify_overlaps: check the result by the
-    drawn outlines (Distribution.overlapping_pairs). threads: 0 all. k: the graph's K.
+    drawn outlines (Distribution.overlapping_pairs). threads: 0 all. k: 0 for exact charts
+    (no graph). graph_accuracy: the charts' discrete geodesic graph's accuracy (1e-5 .. 0.1,
+    default 0.1); 0: the saddle vertex graph of k instead.
     Returns a Distribution.
     """
     if mode not in _MODES:
@@ -425,6 +428,7 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
     f.SetVerifyOverlaps(bool(verify_overlaps))
     f.SetNumberOfThreads(int(threads))
     f.SetK(int(k))
+    f.SetGraphAccuracy(float(graph_accuracy))
     if class_weights is not None:
         weights = [float(w) for w in class_weights]
         f.SetNumberOfClassWeights(len(weights))
