@@ -16,7 +16,8 @@
 //
 // Usage: DistributionBenchmark <refined_elephant.off> [shape images dir] [--quick]
 //   or: DistributionBenchmark <mesh.off> --scale --image a.png [--image b.png ...] [--cache graph.svg]
-//       [--size 0.01] [--greedy] [--speed-rounds R] (see AtScale; environment: GS_DISTORTION_LIMIT
+//       [--size 0.01] [--greedy] [--speed-rounds R] [--graph-accuracy A (the charts' discrete geodesic
+//       graph, default 0.1 as the filter's; 0: the saddle vertex graph of K = 50)] (see AtScale; environment: GS_DISTORTION_LIMIT
 //       sets DistortionLimit, GS_DRAWN_CHECK=0 turns the drawn check off, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
 //       shape's drawn map departs from its rigid parts)
 //   [--square W [--seeds N] (section 1b alone, a square W circumradii wide, N seeds; environment:
@@ -548,7 +549,7 @@ void BumpySphere(const std::vector<SafeDistanceInput>& classes, int seeds)
 // `runs` re-runs with new seeds alternating 1 and 2 threads; per phase: distribution (set-up,
 // candidates, checks and charts, rounds), decals, outlines and the overlap check (VerifyOverlaps).
 int AtScale(const std::string& meshPath, const std::vector<std::string>& images, const std::string& cache,
-  int runs, double size, DistributionMode mode)
+  int runs, double size, DistributionMode mode, double graphAccuracy)
 {
   TriangleSoup soup;
   std::string error;
@@ -577,18 +578,28 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
               "the diagonal, %s\n", meshPath.c_str(), mesh.NumberOfVertices(), mesh.NumberOfFaces(),
     classes.size(), longClasses, size, ModeName(mode));
   const std::uint64_t meshHash = SaddleVertexGraph::HashMesh(mesh);
+  // The charts' graph: as the filter's default, the discrete geodesic graph of accuracy 0.1
+  // (--graph-accuracy 0: the saddle vertex graph of K = 50).
   SaddleVertexGraph graph;
-  if (cache.empty() || !graph.Load(cache, meshHash, 50).Ok())
+  SaddleVertexGraphOptions go;
+  go.K = 50;
+  if (graphAccuracy > 0.0)
+  {
+    go.Construction = GraphConstruction::DiscreteGeodesic;
+    go.Accuracy = graphAccuracy;
+  }
+  if (cache.empty() || !graph.Load(cache, meshHash, go).Ok())
   {
     const double t0 = Now();
-    SaddleVertexGraphOptions go;
-    go.K = 50;
     if (const Status built = graph.Build(mesh, go, nullptr); !built.Ok())
     {
       std::fprintf(stderr, "graph: %s\n", built.Message().c_str());
       return 1;
     }
-    std::printf("  graph build (K = 50, 2 threads): %.2f s\n", Now() - t0);
+    if (graphAccuracy > 0.0)
+      std::printf("  graph build (discrete geodesic graph, accuracy %g, 2 threads): %.2f s\n", graphAccuracy, Now() - t0);
+    else
+      std::printf("  graph build (saddle vertex graph, K = 50, 2 threads): %.2f s\n", Now() - t0);
     if (const Status saved = cache.empty() ? Status() : graph.Save(cache, meshHash); !saved.Ok())
       std::fprintf(stderr, "graph cache: %s\n", saved.Message().c_str());
   }
@@ -846,7 +857,7 @@ int main(int argc, char* argv[])
   double margin = -1.0, distortion = -1.0;
   std::vector<std::string> args, scaleImages;
   std::string scaleCache;
-  double scaleSize = 0.01;
+  double scaleSize = 0.01, scaleAccuracy = 0.1;
   bool scale = false;
   DistributionMode scaleMode = DistributionMode::Random;
   for (int i = 1; i < argc; ++i)
@@ -857,6 +868,8 @@ int main(int argc, char* argv[])
       scaleCache = argv[++i];
     else if (std::strcmp(argv[i], "--size") == 0 && i + 1 < argc)
       scaleSize = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--graph-accuracy") == 0 && i + 1 < argc)
+      scaleAccuracy = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--greedy") == 0)
       scaleMode = DistributionMode::Greedy;
     else if (std::strcmp(argv[i], "--image") == 0 && i + 1 < argc)
@@ -885,7 +898,7 @@ int main(int argc, char* argv[])
       args.push_back(argv[i]);
   }
   if (scale && !args.empty())
-    return AtScale(args[0], scaleImages, scaleCache, speedRounds, scaleSize, scaleMode);
+    return AtScale(args[0], scaleImages, scaleCache, speedRounds, scaleSize, scaleMode, scaleAccuracy);
   const std::string images = args.size() > 1 ? args[1] : "";
   std::vector<SafeDistanceInput> classes;
   classes.push_back({ "pentagram", ShapeFromPolygons({ Pentagram() }) });
