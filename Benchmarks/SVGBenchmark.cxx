@@ -234,6 +234,36 @@ int main(int argc, char** argv)
         }
       }
       refined /= numSources;
+      // The refinement on several threads (SVGSolveOptions::NumberOfThreads, same distances to
+      // the bit), alternating with the one-thread solve in the same run.
+      double parallelSeconds = 0.0, serialSeconds = 0.0;
+      bool same = true;
+      const int solveThreads = threads > 0 ? threads : 2;
+      if (solveThreads > 1)
+      {
+        SVGSolveOptions parallel;
+        parallel.NumberOfThreads = solveThreads;
+        std::vector<double> one(nv);
+        for (int i = 0; i < numSources; ++i)
+        {
+          for (int rep = 0; rep < 5; ++rep)
+          {
+            double t0 = Now();
+            static_cast<void>(svg.Solve({ SurfacePoint::AtVertex(sources[i]) }));
+            serialSeconds += Now() - t0;
+            for (int v = 0; v < nv; ++v)
+              one[v] = svg.Distance(v);
+            t0 = Now();
+            static_cast<void>(svg.Solve({ SurfacePoint::AtVertex(sources[i]) }, parallel));
+            parallelSeconds += Now() - t0;
+            for (int v = 0; v < nv; ++v)
+            {
+              const double d = svg.Distance(v);
+              same = same && std::memcmp(&one[v], &d, sizeof(double)) == 0;
+            }
+          }
+        }
+      }
       if (maxError > 0.0 && !(refinedErr / refinedCount <= maxError))
       {
         failed = true;
@@ -264,6 +294,11 @@ int main(int argc, char** argv)
         1e6 * g.BuildSeconds() * cores / nv, meanErr / count, maxErr, refinedErr / refinedCount,
         refinedMax, pointErr / pointCount, exactTime, 1e3 * lc, 1e3 * dij, 1e3 * refined,
         exactTime / refined, dij / lc, keptPerVertex, peakPerVertex, estimatePerVertex);
+      if (solveThreads > 1)
+        std::printf("  refined solve on %d threads: %.2f ms against %.2f ms on one (alternating, %d "
+                    "solves each): %.2fx; same distances to the bit: %s\n",
+          solveThreads, 1e3 * parallelSeconds / (5 * numSources), 1e3 * serialSeconds / (5 * numSources),
+          5 * numSources, serialSeconds / parallelSeconds, same ? "yes" : "NO");
       std::fflush(stdout);
     }
   }

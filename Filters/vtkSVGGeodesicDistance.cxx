@@ -308,6 +308,8 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
                                                      : gs::GraphAlgorithm::LabelCorrecting;
     options.MaximumDistance = this->MaximumDistance;
     options.Refine = this->UnfoldingRefinement;
+    // The refinement of large solves on every core (the same distances to the bit).
+    options.NumberOfThreads = 0;
     if (run.CurveSources.empty())
     {
       solved = cache.SVG->Solve(run.PointSources, options);

@@ -3,10 +3,16 @@
 #include "GeodesicUnfolding.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <thread>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -64,6 +70,57 @@ void RadixSort(std::vector<std::pair<std::uint32_t, int>>& a, std::vector<std::p
     for (const auto& x : a)
     {
       scratch[count[(x.first >> shift) & mask]++] = x;
+    }
+    a.swap(scratch);
+  }
+}
+
+// The same sort on `threads` threads (the same result: each thread counts and then scatters a
+// contiguous part of the input, at offsets that keep the parts in order within each digit).
+void ParallelRadixSort(std::vector<std::pair<std::uint32_t, int>>& a,
+  std::vector<std::pair<std::uint32_t, int>>& scratch, int threads)
+{
+  constexpr int digitBits = 11;
+  constexpr std::uint32_t mask = (1u << digitBits) - 1u;
+  constexpr std::size_t digits = mask + 1;
+  const std::size_t n = a.size();
+  scratch.resize(n);
+  std::vector<std::size_t> count(static_cast<std::size_t>(threads) * digits);
+  for (int shift = 0; shift < 32; shift += digitBits)
+  {
+#pragma omp parallel num_threads(threads)
+    {
+#if defined(_OPENMP)
+      const std::size_t team = static_cast<std::size_t>(omp_get_num_threads()),
+                        me = static_cast<std::size_t>(omp_get_thread_num());
+#else
+      const std::size_t team = 1, me = 0;
+#endif
+      const std::size_t begin = n * me / team, end = n * (me + 1) / team;
+      std::size_t* mine = count.data() + me * digits;
+      std::fill(mine, mine + digits, 0);
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        ++mine[(a[i].first >> shift) & mask];
+      }
+#pragma omp barrier
+#pragma omp single
+      {
+        std::size_t sum = 0;
+        for (std::size_t d = 0; d < digits; ++d)
+        {
+          for (std::size_t t = 0; t < team; ++t)
+          {
+            const std::size_t c = count[t * digits + d];
+            count[t * digits + d] = sum;
+            sum += c;
+          }
+        }
+      } // (implicit barrier)
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        scratch[mine[(a[i].first >> shift) & mask]++] = a[i];
+      }
     }
     a.swap(scratch);
   }
@@ -207,7 +264,8 @@ SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVerte
   }
 }
 
-void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
+void SVGGeodesicSolver::Refine(
+  double maxDistance, bool unfold, bool angles, int threads, std::int64_t parallelMinimum)
 {
   // Geodesic triangle unfolding over each vertex's polar stencil, swept in order of distance
   // (Gauss-Seidel), so that refined values feed the vertices beyond them. For a vertex x and two
@@ -219,6 +277,24 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
   // error (graph paths bend at every vertex they pass).
   const double limit = maxDistance > 0.0 ? maxDistance : Inf;
   const std::vector<int>& reached = GraphSolver.Reached();
+#if defined(_OPENMP)
+  threads = threads > 0 ? threads : omp_get_max_threads();
+#else
+  threads = 1;
+#endif
+  if (unfold && !angles && threads > 1 && static_cast<std::int64_t>(reached.size()) >= parallelMinimum)
+  {
+    const std::int64_t n = static_cast<std::int64_t>(reached.size());
+    Order.resize(reached.size());
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      Order[i] = { SortKey(GraphSolver.Distance(reached[i])), reached[i] };
+    }
+    ParallelRadixSort(Order, OrderScratch, threads);
+    RefineInParallel(limit, threads);
+    return;
+  }
   Order.clear();
   Order.reserve(reached.size());
   for (int v : reached)
@@ -229,16 +305,15 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
   // The sweep's order is random in memory: the stencils of the vertices a few steps ahead are
   // prefetched, first the offsets and the predecessor's place in the stencil, then the entries
   // about it (a third of the sweep's time on 26K-vertex meshes).
-  auto predIndex = [&](int v) {
-    const std::int64_t link = GraphSolver.PredecessorLink(v);
-    return link >= 0 ? Graph.LinkStencilIndex(link) : -1;
-  };
   constexpr std::size_t ahead = 6;
   const std::size_t count = Order.size();
   for (std::size_t k = 0; k < std::min(count, ahead); ++k)
   {
-    Graph.PrefetchStencil(Order[k].second, predIndex(Order[k].second));
+    Graph.PrefetchStencil(Order[k].second, StencilIndexOfPredecessor(Order[k].second));
   }
+  // (In place: a vertex's distance changes at its turn only, so that the vertices before it in
+  // the order give their refined distances, those after it their graph distances.)
+  auto distanceOf = [this](int u) { return GraphSolver.Distance(u); };
   for (std::size_t i = 0; i < count; ++i)
   {
     if (i + 3 * ahead < count)
@@ -253,214 +328,17 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
     if (i + ahead < count)
     {
       const int v = Order[i + ahead].second;
-      Graph.PrefetchStencil(v, predIndex(v));
+      Graph.PrefetchStencil(v, StencilIndexOfPredecessor(v));
     }
     const int x = Order[i].second;
     if (Exact[x])
     {
       continue;
     }
-    // The angle that goes with the current distance: the graph predecessor's.
-    const int graphPred = GraphSolver.Predecessor(x);
-    double bestAngle = angles && graphPred >= 0 ? Angle[graphPred] : NaN;
-    double unfolded = Inf, unfoldedAngle = NaN;
-    const std::int64_t begin = Graph.StencilBegin(x), end = Graph.StencilEnd(x);
-    if (end - begin < 1)
+    double best = Inf, bestAngle = NaN;
+    if (!RefineVertex(x, unfold, angles, distanceOf, best, bestAngle))
     {
       continue;
-    }
-    double best = GraphSolver.Distance(x);
-    // The direction towards the source: the graph predecessor's place in the stencil; without
-    // one, the stencil neighbour giving the best distance.
-    const int stencilIndex = predIndex(x);
-    std::int64_t arrival = stencilIndex >= 0 ? begin + stencilIndex : -1;
-    if (arrival < 0)
-    {
-      double arrivalDistance = Inf;
-      for (std::int64_t e = begin; e < end; ++e)
-      {
-        const double c = GraphSolver.Distance(Graph.StencilTarget(e)) + Graph.StencilDistance(e);
-        if (c < arrivalDistance)
-        {
-          arrivalDistance = c;
-          arrival = e;
-        }
-      }
-    }
-    // No stencil neighbour reached (x was reached through a graph link from outside its
-    // stencil): nothing to unfold from.
-    if (arrival < 0 || !(GraphSolver.Distance(Graph.StencilTarget(arrival)) < Inf))
-    {
-      continue;
-    }
-    // Unfold only the geodesic triangles around that direction (within a wide margin of the
-    // graph's angular error): the straddling pair is among them.
-    const std::int64_t n = end - begin;
-    const bool closed = Interior[x] != 0;
-    const double ax = Graph.StencilX(arrival), ay = Graph.StencilY(arrival);
-    // Within the cone: dot >= cos * |a| |e|, without a square root.
-    const double ar2 = ax * ax + ay * ay, cone2 = ConeCosine * ConeCosine;
-    auto within = [&](std::int64_t e) {
-      const double ex = Graph.StencilX(e), ey = Graph.StencilY(e);
-      const double dot = ax * ex + ay * ey;
-      return dot >= 0.0 && dot * dot >= cone2 * ar2 * (ex * ex + ey * ey);
-    };
-    // Offsets (relative to arrival, in stencil order) of the first and last pair to try. (Stencil
-    // indices wrap by comparison: a 64-bit % per step cost more than the unfolding itself.)
-    const std::int64_t a = arrival - begin;
-    auto index = [n](std::int64_t i) { return i < 0 ? i + n : (i >= n ? i - n : i); };
-    std::int64_t lo = 0, hi = 0;
-    while (lo > -(n - 1) && (closed || a + lo > 0) && within(begin + index(a + lo - 1)))
-    {
-      --lo;
-    }
-    while (hi < n - 1 && (closed || a + hi < n - 1) && within(begin + index(a + hi + 1)))
-    {
-      ++hi;
-    }
-    // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too.
-    double relaxed = Inf, nearest2 = Inf; // without angles: the minima over the pairs
-    PairBatch batch;
-    for (std::int64_t k = lo - 1; k <= hi; ++k)
-    {
-      if (!closed && (a + k < 0 || a + k + 1 > n - 1))
-      {
-        continue;
-      }
-      const std::int64_t i1 = index(a + k);
-      const bool wraps = i1 == n - 1;
-      if (wraps && !closed)
-      {
-        continue;
-      }
-      const std::int64_t e1 = begin + i1;
-      const std::int64_t e2 = wraps ? begin : e1 + 1;
-      const double d1 = GraphSolver.Distance(Graph.StencilTarget(e1));
-      const double d2 = GraphSolver.Distance(Graph.StencilTarget(e2));
-      // Graph relaxation with the (refined) distances of the cone's stencil vertices.
-      const double c1 = d1 + Graph.StencilDistance(e1), c2 = d2 + Graph.StencilDistance(e2);
-      const double p1x = Graph.StencilX(e1), p1y = Graph.StencilY(e1);
-      const double p2x = wraps ? Graph.StencilWrapX(x) : Graph.StencilX(e2);
-      const double p2y = wraps ? Graph.StencilWrapY(x) : Graph.StencilY(e2);
-      if (!angles)
-      {
-        // Distances only: the pairs are collected and unfolded together (NearestUnfolding2).
-        relaxed = std::min(relaxed, std::min(c1, c2));
-        if (batch.Count == PairBatch::Capacity)
-        {
-          nearest2 = std::min(nearest2, NearestUnfolding2(batch));
-          batch.Count = 0;
-        }
-        const int j = batch.Count++;
-        batch.P1x[j] = p1x;
-        batch.P1y[j] = p1y;
-        batch.P2x[j] = p2x;
-        batch.P2y[j] = p2y;
-        batch.D1[j] = d1;
-        batch.D2[j] = d2;
-        continue;
-      }
-      const Unfolding u = UnfoldAcross(p1x, p1y, p2x, p2y, d1, d2);
-      for (const std::int64_t e : { e1, e2 })
-      {
-        const double c = e == e1 ? c1 : c2;
-        if (unfold && c < best)
-        {
-          best = c;
-          bestAngle = Angle[Graph.StencilTarget(e)];
-        }
-        // A neighbour whose angle is known stands in when the predecessor's is not (the
-        // source itself has none).
-        if (!std::isfinite(bestAngle) && std::isfinite(Angle[Graph.StencilTarget(e)]))
-        {
-          bestAngle = Angle[Graph.StencilTarget(e)];
-        }
-      }
-      // Only a shorter candidate matters (its angle included).
-      const double s2 = u.S2;
-      if (!u.Valid || (!(s2 < best * best) && !(s2 < unfolded * unfolded)))
-      {
-        continue;
-      }
-      const double sx = u.Sx, sy = u.Sy, qx = -sx, qy = -sy, num = u.Num, den = u.Den;
-      const double t = num / den;
-      const double candidate = std::sqrt(s2);
-      if (unfold)
-      {
-        best = std::min(best, candidate);
-      }
-      if (candidate < unfolded)
-      {
-        // Interpolated along u1 u2 where the unfolded geodesic crosses it.
-        const double a1 = Angle[Graph.StencilTarget(e1)], a2 = Angle[Graph.StencilTarget(e2)];
-        if (std::isfinite(a1) && std::isfinite(a2))
-        {
-          // In the development, the angle at the unfolded source from u_i's direction to x's is
-          // the difference of their departure angles: exact on developable surfaces. The two
-          // estimates are blended by where the geodesic crosses u1 u2.
-          auto turn = [&](double px, double py) {
-            const double tx = px - sx, ty = py - sy;
-            return std::atan2(tx * qy - ty * qx, tx * qx + ty * qy);
-          };
-          const double w = std::min(1.0, std::max(0.0, t));
-          const double b1 = a1 + turn(p1x, p1y), b2 = a2 + turn(p2x, p2y);
-          double d = b2 - b1;
-          d -= AnglePeriod * std::round(d / AnglePeriod);
-          unfolded = candidate;
-          unfoldedAngle = b1 + w * d;
-        }
-      }
-    }
-    if (unfold && !angles)
-    {
-      nearest2 = std::min(nearest2, NearestUnfolding2(batch));
-      best = std::min(best, std::min(relaxed, std::sqrt(nearest2)));
-    }
-    // The unfolded geodesic's angle when it is (one of) the shortest. Otherwise the source is
-    // placed in x's tangent plane from x's distance and that of the cone neighbour with a known
-    // angle and the shortest path through it (two circles; the intersection on the arrival
-    // side), and the angle is carried over from that neighbour.
-    if (angles && unfolded <= best * (1.0 + 1e-9))
-    {
-      bestAngle = unfoldedAngle;
-    }
-    else if (angles)
-    {
-      std::int64_t via = -1;
-      double viaDistance = Inf;
-      for (std::int64_t k = lo - 1; k <= hi + 1; ++k)
-      {
-        if (!closed && (a + k < 0 || a + k > n - 1))
-        {
-          continue;
-        }
-        const std::int64_t e = begin + index(a + k);
-        const int u = Graph.StencilTarget(e);
-        const double c = GraphSolver.Distance(u) + Graph.StencilDistance(e);
-        if (std::isfinite(Angle[u]) && c < viaDistance)
-        {
-          viaDistance = c;
-          via = e;
-        }
-      }
-      if (via >= 0)
-      {
-        const double px = Graph.StencilX(via), py = Graph.StencilY(via);
-        const double L = std::sqrt(px * px + py * py);
-        const double du = GraphSolver.Distance(Graph.StencilTarget(via));
-        // |S| = best, |S - p| = du.
-        const double along = (best * best - du * du + L * L) / (2.0 * L);
-        const double h = std::sqrt(std::max(0.0, best * best - along * along));
-        const double ux = px / L, uy = py / L;
-        double sx = ux * along - uy * h, sy = uy * along + ux * h;
-        if ((-uy) * ax + ux * ay < 0.0) // the arrival direction is on the other side
-        {
-          sx = ux * along + uy * h;
-          sy = uy * along - ux * h;
-        }
-        const double qx = -sx, qy = -sy, bx = px - sx, by = py - sy;
-        bestAngle = Angle[Graph.StencilTarget(via)] + std::atan2(bx * qy - by * qx, bx * qx + by * qy);
-      }
     }
     // A discrete geodesic graph's distance is within its accuracy above the geodesic distance:
     // refinement may not go lower than that bound (unfolding across a hole or a saddle could).
@@ -475,6 +353,348 @@ void SVGGeodesicSolver::Refine(double maxDistance, bool unfold, bool angles)
       AngleSet.push_back(x);
     }
   }
+}
+
+void SVGGeodesicSolver::RefineInParallel(double limit, int threads)
+{
+  // The sequential sweep's result to the bit, on several threads: each takes blocks of the
+  // order in turn, and a vertex reads the refined distance of the stencil neighbours before it
+  // in the order (waiting for it when another thread has not yet reached it) and the graph
+  // distance of those after it, as the sweep in place does. Refined distances go to their own
+  // array (NaN: not yet refined) until every thread is done, so that no thread sees a later
+  // vertex's refined distance. Before or after: by the sort key, and by the place in the order
+  // for vertices of equal keys (both reached then: places of earlier solves are never read).
+  const std::int64_t count = static_cast<std::int64_t>(Order.size());
+  const std::size_t nodes = Graph.NumberOfVertices();
+  if (!Refined || RefinedCount != nodes)
+  {
+    Refined.reset(new std::atomic<double>[nodes]);
+    RefinedCount = nodes;
+    for (std::size_t v = 0; v < nodes; ++v)
+    {
+      Refined[v].store(NaN, std::memory_order_relaxed);
+    }
+    Position.assign(nodes, 0);
+  }
+  constexpr std::int64_t block = 256;
+  constexpr std::int64_t ahead = 6;
+#pragma omp parallel num_threads(threads)
+  {
+#if defined(_OPENMP)
+    const std::int64_t team = omp_get_num_threads(), me = omp_get_thread_num();
+#else
+    const std::int64_t team = 1, me = 0;
+#endif
+    // This thread's positions: blocks me, me + team, ...
+    auto next = [team](std::int64_t k) {
+      ++k;
+      return k % block == 0 ? k + (team - 1) * block : k;
+    };
+    for (std::int64_t k = me * block; k < count; k = next(k))
+    {
+      Position[Order[k].second] = k;
+    }
+#pragma omp barrier
+    std::int64_t i = 0;
+    std::uint32_t key = 0;
+    auto distanceOf = [this, &i, &key](int u) {
+      const double graph = GraphSolver.Distance(u);
+      const std::uint32_t k = SortKey(graph);
+      if (k > key || (k == key && Position[u] >= i)) // after x in the order, or unreached
+      {
+        return graph;
+      }
+      double d = Refined[u].load(std::memory_order_acquire);
+      for (int spins = 0; std::isnan(d); ++spins)
+      {
+        if (spins > 64)
+        {
+          std::this_thread::yield();
+        }
+        d = Refined[u].load(std::memory_order_acquire);
+      }
+      return d;
+    };
+    // Prefetched as the sweep in place does: the predecessors 3 * ahead positions ahead (of
+    // this thread's), the stencil offsets 2 * ahead, the stencils ahead.
+    std::int64_t p1 = me * block, p2 = p1, p3 = p1;
+    for (std::int64_t k = 0; k < 3 * ahead && p3 < count; ++k)
+    {
+      if (k < ahead)
+      {
+        Graph.PrefetchStencil(Order[p3].second, StencilIndexOfPredecessor(Order[p3].second));
+        p1 = next(p1);
+      }
+      if (k < 2 * ahead)
+      {
+        const int v = Order[p3].second;
+        Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
+        p2 = next(p2);
+      }
+      GraphSolver.PrefetchPredecessor(Order[p3].second);
+      p3 = next(p3);
+    }
+    for (i = me * block; i < count; i = next(i))
+    {
+      if (p3 < count)
+      {
+        GraphSolver.PrefetchPredecessor(Order[p3].second);
+        p3 = next(p3);
+      }
+      if (p2 < count)
+      {
+        const int v = Order[p2].second;
+        Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
+        p2 = next(p2);
+      }
+      if (p1 < count)
+      {
+        Graph.PrefetchStencil(Order[p1].second, StencilIndexOfPredecessor(Order[p1].second));
+        p1 = next(p1);
+      }
+      const int x = Order[i].second;
+      key = Order[i].first;
+      const double graph = GraphSolver.Distance(x);
+      double value = graph;
+      double best = Inf, angle = NaN;
+      if (!Exact[x] && RefineVertex(x, true, false, distanceOf, best, angle))
+      {
+        best = std::max(best, RefinementFloor * graph);
+        if (best < graph && best <= limit)
+        {
+          value = best;
+        }
+      }
+      Refined[x].store(value, std::memory_order_release);
+    }
+#pragma omp barrier
+    // Every vertex is refined: the distances in place, the array back to NaN.
+    for (std::int64_t k = me * block; k < count; k = next(k))
+    {
+      const int x = Order[k].second;
+      const double value = Refined[x].load(std::memory_order_relaxed);
+      if (value < GraphSolver.Distance(x))
+      {
+        GraphSolver.Lower(x, value);
+      }
+      Refined[x].store(NaN, std::memory_order_relaxed);
+    }
+  }
+}
+
+int SVGGeodesicSolver::StencilIndexOfPredecessor(int v) const
+{
+  const std::int64_t link = GraphSolver.PredecessorLink(v);
+  return link >= 0 ? Graph.LinkStencilIndex(link) : -1;
+}
+
+template <class DistanceOf>
+bool SVGGeodesicSolver::RefineVertex(
+  int x, bool unfold, bool angles, const DistanceOf& distanceOf, double& best, double& bestAngle) const
+{
+  // The angle that goes with the current distance: the graph predecessor's.
+  const int graphPred = GraphSolver.Predecessor(x);
+  bestAngle = angles && graphPred >= 0 ? Angle[graphPred] : NaN;
+  double unfolded = Inf, unfoldedAngle = NaN;
+  const std::int64_t begin = Graph.StencilBegin(x), end = Graph.StencilEnd(x);
+  if (end - begin < 1)
+  {
+    return false;
+  }
+  best = GraphSolver.Distance(x);
+  // The direction towards the source: the graph predecessor's place in the stencil; without
+  // one, the stencil neighbour giving the best distance.
+  const int stencilIndex = StencilIndexOfPredecessor(x);
+  std::int64_t arrival = stencilIndex >= 0 ? begin + stencilIndex : -1;
+  if (arrival < 0)
+  {
+    double arrivalDistance = Inf;
+    for (std::int64_t e = begin; e < end; ++e)
+    {
+      const double c = distanceOf(Graph.StencilTarget(e)) + Graph.StencilDistance(e);
+      if (c < arrivalDistance)
+      {
+        arrivalDistance = c;
+        arrival = e;
+      }
+    }
+  }
+  // No stencil neighbour reached (x was reached through a graph link from outside its
+  // stencil): nothing to unfold from.
+  if (arrival < 0 || !(distanceOf(Graph.StencilTarget(arrival)) < Inf))
+  {
+    return false;
+  }
+  // Unfold only the geodesic triangles around that direction (within a wide margin of the
+  // graph's angular error): the straddling pair is among them.
+  const std::int64_t n = end - begin;
+  const bool closed = Interior[x] != 0;
+  const double ax = Graph.StencilX(arrival), ay = Graph.StencilY(arrival);
+  // Within the cone: dot >= cos * |a| |e|, without a square root.
+  const double ar2 = ax * ax + ay * ay, cone2 = ConeCosine * ConeCosine;
+  auto within = [&](std::int64_t e) {
+    const double ex = Graph.StencilX(e), ey = Graph.StencilY(e);
+    const double dot = ax * ex + ay * ey;
+    return dot >= 0.0 && dot * dot >= cone2 * ar2 * (ex * ex + ey * ey);
+  };
+  // Offsets (relative to arrival, in stencil order) of the first and last pair to try. (Stencil
+  // indices wrap by comparison: a 64-bit % per step cost more than the unfolding itself.)
+  const std::int64_t a = arrival - begin;
+  auto index = [n](std::int64_t i) { return i < 0 ? i + n : (i >= n ? i - n : i); };
+  std::int64_t lo = 0, hi = 0;
+  while (lo > -(n - 1) && (closed || a + lo > 0) && within(begin + index(a + lo - 1)))
+  {
+    --lo;
+  }
+  while (hi < n - 1 && (closed || a + hi < n - 1) && within(begin + index(a + hi + 1)))
+  {
+    ++hi;
+  }
+  // Pairs (k, k+1) for k from lo - 1 to hi: the ones straddling the cone's edges too.
+  double relaxed = Inf, nearest2 = Inf; // without angles: the minima over the pairs
+  PairBatch batch;
+  for (std::int64_t k = lo - 1; k <= hi; ++k)
+  {
+    if (!closed && (a + k < 0 || a + k + 1 > n - 1))
+    {
+      continue;
+    }
+    const std::int64_t i1 = index(a + k);
+    const bool wraps = i1 == n - 1;
+    if (wraps && !closed)
+    {
+      continue;
+    }
+    const std::int64_t e1 = begin + i1;
+    const std::int64_t e2 = wraps ? begin : e1 + 1;
+    const double d1 = distanceOf(Graph.StencilTarget(e1));
+    const double d2 = distanceOf(Graph.StencilTarget(e2));
+    // Graph relaxation with the (refined) distances of the cone's stencil vertices.
+    const double c1 = d1 + Graph.StencilDistance(e1), c2 = d2 + Graph.StencilDistance(e2);
+    const double p1x = Graph.StencilX(e1), p1y = Graph.StencilY(e1);
+    const double p2x = wraps ? Graph.StencilWrapX(x) : Graph.StencilX(e2);
+    const double p2y = wraps ? Graph.StencilWrapY(x) : Graph.StencilY(e2);
+    if (!angles)
+    {
+      // Distances only: the pairs are collected and unfolded together (NearestUnfolding2).
+      relaxed = std::min(relaxed, std::min(c1, c2));
+      if (batch.Count == PairBatch::Capacity)
+      {
+        nearest2 = std::min(nearest2, NearestUnfolding2(batch));
+        batch.Count = 0;
+      }
+      const int j = batch.Count++;
+      batch.P1x[j] = p1x;
+      batch.P1y[j] = p1y;
+      batch.P2x[j] = p2x;
+      batch.P2y[j] = p2y;
+      batch.D1[j] = d1;
+      batch.D2[j] = d2;
+      continue;
+    }
+    const Unfolding u = UnfoldAcross(p1x, p1y, p2x, p2y, d1, d2);
+    for (const std::int64_t e : { e1, e2 })
+    {
+      const double c = e == e1 ? c1 : c2;
+      if (unfold && c < best)
+      {
+        best = c;
+        bestAngle = Angle[Graph.StencilTarget(e)];
+      }
+      // A neighbour whose angle is known stands in when the predecessor's is not (the
+      // source itself has none).
+      if (!std::isfinite(bestAngle) && std::isfinite(Angle[Graph.StencilTarget(e)]))
+      {
+        bestAngle = Angle[Graph.StencilTarget(e)];
+      }
+    }
+    // Only a shorter candidate matters (its angle included).
+    const double s2 = u.S2;
+    if (!u.Valid || (!(s2 < best * best) && !(s2 < unfolded * unfolded)))
+    {
+      continue;
+    }
+    const double sx = u.Sx, sy = u.Sy, qx = -sx, qy = -sy, num = u.Num, den = u.Den;
+    const double t = num / den;
+    const double candidate = std::sqrt(s2);
+    if (unfold)
+    {
+      best = std::min(best, candidate);
+    }
+    if (candidate < unfolded)
+    {
+      // Interpolated along u1 u2 where the unfolded geodesic crosses it.
+      const double a1 = Angle[Graph.StencilTarget(e1)], a2 = Angle[Graph.StencilTarget(e2)];
+      if (std::isfinite(a1) && std::isfinite(a2))
+      {
+        // In the development, the angle at the unfolded source from u_i's direction to x's is
+        // the difference of their departure angles: exact on developable surfaces. The two
+        // estimates are blended by where the geodesic crosses u1 u2.
+        auto turn = [&](double px, double py) {
+          const double tx = px - sx, ty = py - sy;
+          return std::atan2(tx * qy - ty * qx, tx * qx + ty * qy);
+        };
+        const double w = std::min(1.0, std::max(0.0, t));
+        const double b1 = a1 + turn(p1x, p1y), b2 = a2 + turn(p2x, p2y);
+        double d = b2 - b1;
+        d -= AnglePeriod * std::round(d / AnglePeriod);
+        unfolded = candidate;
+        unfoldedAngle = b1 + w * d;
+      }
+    }
+  }
+  if (unfold && !angles)
+  {
+    nearest2 = std::min(nearest2, NearestUnfolding2(batch));
+    best = std::min(best, std::min(relaxed, std::sqrt(nearest2)));
+  }
+  // The unfolded geodesic's angle when it is (one of) the shortest. Otherwise the source is
+  // placed in x's tangent plane from x's distance and that of the cone neighbour with a known
+  // angle and the shortest path through it (two circles; the intersection on the arrival
+  // side), and the angle is carried over from that neighbour.
+  if (angles && unfolded <= best * (1.0 + 1e-9))
+  {
+    bestAngle = unfoldedAngle;
+  }
+  else if (angles)
+  {
+    std::int64_t via = -1;
+    double viaDistance = Inf;
+    for (std::int64_t k = lo - 1; k <= hi + 1; ++k)
+    {
+      if (!closed && (a + k < 0 || a + k > n - 1))
+      {
+        continue;
+      }
+      const std::int64_t e = begin + index(a + k);
+      const int u = Graph.StencilTarget(e);
+      const double c = distanceOf(u) + Graph.StencilDistance(e);
+      if (std::isfinite(Angle[u]) && c < viaDistance)
+      {
+        viaDistance = c;
+        via = e;
+      }
+    }
+    if (via >= 0)
+    {
+      const double px = Graph.StencilX(via), py = Graph.StencilY(via);
+      const double L = std::sqrt(px * px + py * py);
+      const double du = distanceOf(Graph.StencilTarget(via));
+      // |S| = best, |S - p| = du.
+      const double along = (best * best - du * du + L * L) / (2.0 * L);
+      const double h = std::sqrt(std::max(0.0, best * best - along * along));
+      const double ux = px / L, uy = py / L;
+      double sx = ux * along - uy * h, sy = uy * along + ux * h;
+      if ((-uy) * ax + ux * ay < 0.0) // the arrival direction is on the other side
+      {
+        sx = ux * along + uy * h;
+        sy = uy * along - ux * h;
+      }
+      const double qx = -sx, qy = -sy, bx = px - sx, by = py - sy;
+      bestAngle = Angle[Graph.StencilTarget(via)] + std::atan2(bx * qy - by * qx, bx * qx + by * qy);
+    }
+  }
+  return true;
 }
 
 Status SVGGeodesicSolver::Reject(Status why, GraphAlgorithm algorithm)
@@ -536,7 +756,8 @@ Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exact
       const SurfacePoint& s = exactSources.front();
       AnglePeriod = s.IsVertex() ? Mesh.TotalAngle(s.Vertex) : 2.0 * 3.14159265358979323846;
     }
-    Refine(options.MaximumDistance, options.Refine, angles);
+    Refine(options.MaximumDistance, options.Refine, angles, options.NumberOfThreads,
+      options.ParallelRefinementMinimum);
     for (int v : Local.FinalVertices())
     {
       Exact[Graph.Node(v)] = 0;
@@ -596,7 +817,8 @@ Status SVGGeodesicSolver::Solve(
       {
         Exact[v.first] = 1;
       }
-      Refine(options.MaximumDistance, true, false);
+      Refine(options.MaximumDistance, true, false, options.NumberOfThreads,
+        options.ParallelRefinementMinimum);
       for (const auto& v : vertexSeeds)
       {
         Exact[v.first] = 0;

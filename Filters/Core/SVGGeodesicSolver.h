@@ -17,6 +17,9 @@
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
+#include <atomic>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace gs
@@ -34,6 +37,12 @@ struct SVGSolveOptions
   // beyond it along the graph and interpolated across the unfolded geodesic triangles.
   bool Angles = false;
   double MaximumDistance = 0.0; // > 0: vertices farther stay unreached (infinite)
+  // Threads for the refinement of distances (without Angles) when it reaches at least
+  // ParallelRefinementMinimum vertices (below, waiting for the other threads costs more than
+  // it saves); the distances are the same to the bit whatever the number (0: OpenMP's
+  // default, 1: none).
+  int NumberOfThreads = 1;
+  std::int64_t ParallelRefinementMinimum = 50000;
 };
 
 class SVGGeodesicSolver
@@ -92,7 +101,18 @@ private:
   };
   Vec3 PositionOf(const SurfacePoint& p) const;
   // Geodesic triangle unfolding over the polar stencils, in order of distance.
-  void Refine(double maxDistance, bool unfold, bool angles);
+  void Refine(double maxDistance, bool unfold, bool angles, int threads = 1,
+    std::int64_t parallelMinimum = 0);
+  // The same sweep (distances only) on several threads, with the same result.
+  void RefineInParallel(double limit, int threads);
+  // Vertex x's refined distance (`best`) and, with `angles`, its departure angle, from its
+  // stencil neighbours' distances as `distanceOf` gives them; false when x has nothing to
+  // unfold from (it keeps its graph distance).
+  template <class DistanceOf>
+  bool RefineVertex(int x, bool unfold, bool angles, const DistanceOf& distanceOf, double& best,
+    double& bestAngle) const;
+  // The place of v's graph predecessor in v's stencil (-1: none).
+  int StencilIndexOfPredecessor(int v) const;
   void ClearAngles();
   // Leaves every vertex unreached and returns `why` (a failed Status).
   Status Reject(Status why, GraphAlgorithm algorithm);
@@ -117,6 +137,11 @@ private:
   double RefinementFloor = 0.0;
   // The sweep's order: reached nodes sorted by distance (radix sort on 32-bit keys).
   std::vector<std::pair<std::uint32_t, int>> Order, OrderScratch;
+  // RefineInParallel, per node: its refined distance (NaN until its thread has refined it, and
+  // between solves) and its place in Order (read for equal sort keys only).
+  std::unique_ptr<std::atomic<double>[]> Refined;
+  std::size_t RefinedCount = 0;
+  std::vector<std::int64_t> Position;
 };
 
 } // namespace gs

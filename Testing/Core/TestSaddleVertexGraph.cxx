@@ -661,3 +661,73 @@ TEST(SaddleVertexGraph, AnglesWithoutRefinementKeepGraphDistances)
     EXPECT_GT(angles, m.NumberOfVertices() - 2);
   }
 }
+
+// The refinement on several threads (SVGSolveOptions::NumberOfThreads, forced below its size
+// threshold) gives the one-thread distances to the bit: vertex, face-point, multi-vertex and
+// curve sources, with and without a distance limit, on both graphs, on a curved mesh and on a
+// regular grid (whose symmetric distances tie in the sweep's order), every run.
+TEST(SaddleVertexGraph, ParallelRefinementGivesTheSameDistances)
+{
+  const TriangleMesh bumpy = Bumpy(4, 3);
+  const TriangleMesh grid = BuildMesh(MakePlanarGrid(60, 60, 1.0, 1.0));
+  int meshIndex = 0;
+  for (const TriangleMesh* m : { &bumpy, &grid })
+  {
+    ++meshIndex;
+    SaddleVertexGraphOptions dgg;
+    dgg.Construction = GraphConstruction::DiscreteGeodesic;
+    dgg.Accuracy = 0.1;
+    SaddleVertexGraph graphs[2];
+    graphs[0] = BuildGraph(*m, 20);
+    ASSERT_TRUE(gs_test::Succeeded(graphs[1].Build(*m, dgg, nullptr)));
+    const int nv = m->NumberOfVertices();
+    const std::vector<std::vector<SurfacePoint>> sources = { { SurfacePoint::AtVertex(nv / 2) },
+      { SurfacePoint::InFace(m->NumberOfFaces() / 3, 0.2, 0.3, 0.5) },
+      { SurfacePoint::AtVertex(1), SurfacePoint::AtVertex(nv - 2) } };
+    for (const SaddleVertexGraph& g : graphs)
+    {
+      SVGGeodesicSolver solver(*m, g);
+      for (double limit : { 0.0, 0.4 })
+      {
+        for (std::size_t s = 0; s <= sources.size(); ++s)
+        {
+          SVGSolveOptions one;
+          one.MaximumDistance = limit;
+          auto solve = [&](const SVGSolveOptions& o) {
+            if (s < sources.size())
+              return solver.Solve(sources[s], o);
+            return solver.SolveCurve({ SurfacePoint::AtVertex(nv / 4), SurfacePoint::AtVertex(nv / 4 + 7) }, o);
+          };
+          ASSERT_TRUE(gs_test::Succeeded(solve(one)));
+          std::vector<double> reference(nv);
+          int reached = 0;
+          for (int v = 0; v < nv; ++v)
+          {
+            reference[v] = solver.Distance(v);
+            reached += std::isfinite(reference[v]) ? 1 : 0;
+          }
+          EXPECT_GT(reached, limit > 0.0 ? 10 : nv - 1);
+          for (int threads : { 2, 3, 4 })
+          {
+            for (int run = 0; run < 3; ++run)
+            {
+              SVGSolveOptions parallel = one;
+              parallel.NumberOfThreads = threads;
+              parallel.ParallelRefinementMinimum = 0;
+              ASSERT_TRUE(gs_test::Succeeded(solve(parallel)));
+              int different = 0;
+              for (int v = 0; v < nv; ++v)
+              {
+                const double d = solver.Distance(v);
+                different += std::memcmp(&d, &reference[v], sizeof d) != 0 ? 1 : 0;
+              }
+              EXPECT_EQ(different, 0) << "mesh " << meshIndex << ", " << (&g == &graphs[0] ? "SVG" : "DGG")
+                                      << ", source " << s << ", limit " << limit << ", " << threads
+                                      << " threads, run " << run;
+            }
+          }
+        }
+      }
+    }
+  }
+}
