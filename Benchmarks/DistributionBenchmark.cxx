@@ -558,7 +558,10 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
     std::fprintf(stderr, "%s: %s\n", meshPath.c_str(), error.c_str());
     return 1;
   }
-  const TriangleMesh mesh = Build(SubdivideAtMidpoints(soup));
+  const TriangleSoup subdivided = SubdivideAtMidpoints(soup);
+  const double tb0 = Now();
+  const TriangleMesh mesh = Build(subdivided);
+  std::printf("  mesh build: %.3f s\n", Now() - tb0);
   std::vector<SafeDistanceInput> classes;
   for (const std::string& file : images)
   {

@@ -1,6 +1,7 @@
 #include "TriangleMesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <cmath>
@@ -45,6 +46,45 @@ struct PointEqual
     return a.x == b.x && a.y == b.y && a.z == b.z;
   }
 };
+
+// The half-edges of `faces` grouped by undirected edge, in the order of (smaller vertex, larger
+// vertex, half-edge): a counting sort by the smaller vertex, then each vertex's few half-edges
+// by the larger one (the order a sort by that key gives, without sorting 3 nf items).
+struct EdgeGroups
+{
+  std::vector<int> Start;                     // per smaller vertex, into Entries (nv + 1)
+  std::vector<std::pair<int, int>> Entries;   // (larger vertex, half-edge)
+};
+EdgeGroups GroupEdges(const std::vector<std::array<int, 3>>& faces, int nv)
+{
+  EdgeGroups g;
+  const std::size_t nh = 3 * faces.size();
+  g.Start.assign(static_cast<std::size_t>(nv) + 1, 0);
+  for (const auto& t : faces)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++g.Start[static_cast<std::size_t>(std::min(t[k], t[(k + 1) % 3])) + 1];
+    }
+  }
+  for (int v = 0; v < nv; ++v)
+  {
+    g.Start[v + 1] += g.Start[v];
+  }
+  g.Entries.resize(nh);
+  std::vector<int> fill(g.Start.begin(), g.Start.end() - 1);
+  for (std::size_t h = 0; h < nh; ++h)
+  {
+    const auto& t = faces[h / 3];
+    const int a = t[h % 3], b = t[(h % 3 + 1) % 3];
+    g.Entries[fill[std::min(a, b)]++] = { std::max(a, b), static_cast<int>(h) };
+  }
+  for (int v = 0; v < nv; ++v)
+  {
+    std::sort(g.Entries.begin() + g.Start[v], g.Entries.begin() + g.Start[v + 1]);
+  }
+  return g;
+}
 
 std::string FaceLabel(std::size_t i)
 {
@@ -147,7 +187,7 @@ void TriangleMesh::ComputeDerivedData()
   Angles.assign(3 * nf, 0.0);
   Areas.assign(nf, 0.0);
   Normals.assign(nf, Vec3(0, 0, 0));
-  double sum = 0.0;
+#pragma omp parallel for schedule(static) if (nf > 20000)
   for (int f = 0; f < nf; ++f)
   {
     const auto& t = Faces[f];
@@ -158,11 +198,15 @@ void TriangleMesh::ComputeDerivedData()
       const Vec3& c = Positions[t[(k + 2) % 3]];
       Lengths[3 * f + k] = Norm(b - a);
       Angles[3 * f + k] = AngleBetween(b - a, c - a);
-      sum += Lengths[3 * f + k];
     }
     const Vec3 n = Cross(Positions[t[1]] - Positions[t[0]], Positions[t[2]] - Positions[t[0]]);
     Areas[f] = 0.5 * Norm(n);
     Normals[f] = Areas[f] > 0 ? n / (2.0 * Areas[f]) : Vec3(0, 0, 0);
+  }
+  double sum = 0.0; // (in order: the same mean whatever the number of threads)
+  for (const double l : Lengths)
+  {
+    sum += l;
   }
   MeanEdge = nf > 0 ? sum / (3.0 * nf) : 0.0;
 
@@ -384,60 +428,71 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
     }
   }
   {
-    std::vector<std::pair<std::array<int, 3>, int>> sorted(m.Faces.size());
+    // Faces in the order of (their sorted corners, index), bucketed by the smallest corner:
+    // a duplicate follows its twin.
+    std::vector<int> start(static_cast<std::size_t>(nv) + 1, 0);
+    std::vector<std::array<int, 3>> corners(m.Faces.size());
     for (std::size_t i = 0; i < m.Faces.size(); ++i)
     {
-      auto t = m.Faces[i];
-      std::sort(t.begin(), t.end());
-      sorted[i] = { t, static_cast<int>(i) };
+      corners[i] = m.Faces[i];
+      std::sort(corners[i].begin(), corners[i].end());
+      ++start[static_cast<std::size_t>(corners[i][0]) + 1];
     }
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t i = 1; i < sorted.size(); ++i)
+    for (int v = 0; v < nv; ++v)
     {
-      if (sorted[i].first == sorted[i - 1].first)
+      start[v + 1] += start[v];
+    }
+    std::vector<std::pair<std::pair<int, int>, int>> sorted(m.Faces.size()); // ((c1, c2), face)
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < m.Faces.size(); ++i)
+    {
+      sorted[fill[corners[i][0]]++] = { { corners[i][1], corners[i][2] }, static_cast<int>(i) };
+    }
+    for (int v = 0; v < nv; ++v)
+    {
+      std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1]);
+      for (int i = start[v] + 1; i < start[v + 1]; ++i)
       {
-        return Status::Error(
-          FaceLabel(sorted[i].second) + " duplicates " + FaceLabel(sorted[i - 1].second));
+        if (sorted[i].first == sorted[i - 1].first)
+        {
+          return Status::Error(
+            FaceLabel(sorted[i].second) + " duplicates " + FaceLabel(sorted[i - 1].second));
+        }
       }
     }
   }
 
   // 3. Undirected edge adjacency: at most two faces per edge.
   const int nf = m.NumberOfFaces();
-  struct EdgeUse
-  {
-    long long Key;
-    int H;
-  };
-  std::vector<EdgeUse> uses(3 * static_cast<std::size_t>(nf));
-  for (int h = 0; h < 3 * nf; ++h)
-  {
-    const long long a = m.Origin(h), b = m.Destination(h);
-    uses[h] = { std::min(a, b) * nv + std::max(a, b), h };
-  }
-  std::sort(uses.begin(), uses.end(),
-    [](const EdgeUse& x, const EdgeUse& y) { return x.Key < y.Key || (x.Key == y.Key && x.H < y.H); });
   std::vector<int> partner(3 * nf, -1);
-  for (std::size_t i = 0; i < uses.size();)
   {
-    std::size_t j = i;
-    while (j < uses.size() && uses[j].Key == uses[i].Key)
+    const EdgeGroups groups = GroupEdges(m.Faces, nv);
+    const auto& uses = groups.Entries;
+    for (int v = 0; v < nv; ++v)
     {
-      ++j;
+      // (An edge's half-edges are consecutive in its smaller vertex's bucket.)
+      for (int i = groups.Start[v]; i < groups.Start[v + 1];)
+      {
+        int j = i;
+        while (j < groups.Start[v + 1] && uses[j].first == uses[i].first)
+        {
+          ++j;
+        }
+        if (j - i > 2)
+        {
+          const int a = m.Origin(uses[i].second), b = m.Destination(uses[i].second);
+          return Status::Error("non-manifold edge between points " +
+            std::to_string(r.VertexToPoint[a]) + " and " + std::to_string(r.VertexToPoint[b]) +
+            ": it is shared by " + std::to_string(j - i) + " triangles");
+        }
+        if (j - i == 2)
+        {
+          partner[uses[i].second] = uses[i + 1].second;
+          partner[uses[i + 1].second] = uses[i].second;
+        }
+        i = j;
+      }
     }
-    if (j - i > 2)
-    {
-      const int a = m.Origin(uses[i].H), b = m.Destination(uses[i].H);
-      return Status::Error("non-manifold edge between points " +
-        std::to_string(r.VertexToPoint[a]) + " and " + std::to_string(r.VertexToPoint[b]) +
-        ": it is shared by " + std::to_string(j - i) + " triangles");
-    }
-    if (j - i == 2)
-    {
-      partner[uses[i].H] = uses[i + 1].H;
-      partner[uses[i + 1].H] = uses[i].H;
-    }
-    i = j;
   }
 
   // 4. Consistent orientation: flip faces by breadth-first search over each component.
@@ -509,20 +564,21 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
 
   // 5. Twins (recomputed after flips).
   m.Twins.assign(3 * nf, -1);
-  for (int h = 0; h < 3 * nf; ++h)
   {
-    const long long a = m.Origin(h), b = m.Destination(h);
-    uses[h] = { std::min(a, b) * nv + std::max(a, b), h };
-  }
-  std::sort(uses.begin(), uses.end(),
-    [](const EdgeUse& x, const EdgeUse& y) { return x.Key < y.Key || (x.Key == y.Key && x.H < y.H); });
-  for (std::size_t i = 0; i + 1 < uses.size(); ++i)
-  {
-    if (uses[i].Key == uses[i + 1].Key)
+    const EdgeGroups groups = GroupEdges(m.Faces, nv);
+    for (int v = 0; v < nv; ++v)
     {
-      m.Twins[uses[i].H] = uses[i + 1].H;
-      m.Twins[uses[i + 1].H] = uses[i].H;
-      ++i;
+      for (int i = groups.Start[v]; i + 1 < groups.Start[v + 1]; ++i)
+      {
+        const auto& e = groups.Entries[i];
+        const auto& next = groups.Entries[i + 1];
+        if (e.first == next.first)
+        {
+          m.Twins[e.second] = next.second;
+          m.Twins[next.second] = e.second;
+          ++i;
+        }
+      }
     }
   }
 
