@@ -4,6 +4,8 @@
 //
 //   SVGBenchmark mesh.off|mesh.ply [...] [--k 50,100,200] [--dgg 1e-2,1e-3] [--sources N]
 //                [--threads T] [--subdivide S (midpoint subdivisions of each mesh first)]
+//   (--k "": no saddle vertex graph. The refined solve is also timed on T threads (2 by default)
+//   against one; GS_PARALLEL_MINIMUM=N sets SVGSolveOptions::ParallelRefinementMinimum there.)
 #include "BenchmarkSupport.h"
 #include "ExactGeodesic.h"
 #include "MeshGenerators.h"
@@ -243,6 +245,8 @@ int main(int argc, char** argv)
       {
         SVGSolveOptions parallel;
         parallel.NumberOfThreads = solveThreads;
+        if (const char* minimum = std::getenv("GS_PARALLEL_MINIMUM"))
+          parallel.ParallelRefinementMinimum = std::atoll(minimum);
         std::vector<double> one(nv);
         for (int i = 0; i < numSources; ++i)
         {
