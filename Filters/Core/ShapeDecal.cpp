@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 namespace gs
 {
@@ -89,6 +88,80 @@ bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
 
 namespace
 {
+// Values known per key (a vertex, or an edge's two vertices packed in 64 bits; never ~0): open
+// addressing with linear probing (the unordered_maps it replaces allocated a node per entry,
+// a tenth of the decals' time).
+template <class Value>
+class KeyedValues
+{
+public:
+  Value* Find(std::uint64_t key)
+  {
+    if (Keys.empty())
+    {
+      return nullptr;
+    }
+    for (std::size_t i = Slot(key);; i = (i + 1) & (Keys.size() - 1))
+    {
+      if (Keys[i] == key)
+      {
+        return &Values[i];
+      }
+      if (Keys[i] == Empty)
+      {
+        return nullptr;
+      }
+    }
+  }
+  Value& Insert(std::uint64_t key, const Value& value) // (key not there yet)
+  {
+    if (2 * (Count + 1) > Keys.size())
+    {
+      Grow();
+    }
+    std::size_t i = Slot(key);
+    while (Keys[i] != Empty)
+    {
+      i = (i + 1) & (Keys.size() - 1);
+    }
+    Keys[i] = key;
+    Values[i] = value;
+    ++Count;
+    return Values[i];
+  }
+
+private:
+  static constexpr std::uint64_t Empty = ~std::uint64_t(0);
+  std::size_t Slot(std::uint64_t key) const
+  {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> Shift);
+  }
+  void Grow()
+  {
+    std::vector<std::uint64_t> keys(std::max<std::size_t>(64, 2 * Keys.size()), Empty);
+    std::vector<Value> values(keys.size());
+    Shift = 64;
+    for (std::size_t n = keys.size(); n > 1; n >>= 1)
+    {
+      --Shift;
+    }
+    keys.swap(Keys);
+    values.swap(Values);
+    Count = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+    {
+      if (keys[i] != Empty)
+      {
+        Insert(keys[i], values[i]);
+      }
+    }
+  }
+  std::vector<std::uint64_t> Keys;
+  std::vector<Value> Values;
+  std::size_t Count = 0;
+  int Shift = 64;
+};
+
 // The state of one decal as it is built: the class points of the vertices near the shape, the
 // texels that draw, the long shape's grid and the values read on it once per vertex and edge.
 struct DecalBuilder
@@ -100,8 +173,8 @@ struct DecalBuilder
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
   Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
   int Hint = -1, FirstValid = -1;
-  std::unordered_map<int, Vec2> CornerValues; // vertices of faces to split, on the grid
-  std::unordered_map<std::uint64_t, std::pair<bool, Vec2>> Midpoints; // face edges' midpoints
+  KeyedValues<Vec2> CornerValues; // vertices of faces to split, on the grid
+  KeyedValues<std::pair<bool, Vec2>> Midpoints; // face edges' midpoints
 
   DecalBuilder(const TriangleMesh& mesh, const SafeDistanceClass& c, double tolerance)
     : Mesh(mesh)
@@ -201,6 +274,7 @@ struct DecalBuilder
     std::array<Vec2, 3> U;
     int Depth;
   };
+  std::vector<Piece> Stack; // AddFace's (kept across faces)
   // The map at the piece's edge midpoints (mid, trueUV; linear where it is not known) and the
   // largest departure from the affine map there.
   double MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
@@ -239,13 +313,14 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
         Vec2 value = *q;
         if (Splits(f))
         {
-          auto known = CornerValues.find(v);
-          if (known == CornerValues.end())
+          const Vec2* known = CornerValues.Find(static_cast<std::uint64_t>(v));
+          if (!known)
           {
             Vec2 onGrid;
-            known = CornerValues.emplace(v, Grid->ClassPoint(SurfacePoint::AtVertex(v), onGrid) ? onGrid : *q).first;
+            known = &CornerValues.Insert(
+              static_cast<std::uint64_t>(v), Grid->ClassPoint(SurfacePoint::AtVertex(v), onGrid) ? onGrid : *q);
           }
-          value = known->second;
+          value = *known;
         }
         uv[k] = ToTexture(value);
       }
@@ -275,20 +350,20 @@ double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<
       ? (static_cast<std::uint64_t>(std::min(corners[k], corners[(k + 1) % 3])) << 32) |
         static_cast<std::uint32_t>(std::max(corners[k], corners[(k + 1) % 3]))
       : 0;
-    const auto known = t.Depth == 0 ? Midpoints.find(edge) : Midpoints.end();
+    const std::pair<bool, Vec2>* known = t.Depth == 0 ? Midpoints.Find(edge) : nullptr;
     Vec2 q;
     bool found = false;
-    if (known != Midpoints.end())
+    if (known)
     {
-      found = known->second.first;
-      q = known->second.second;
+      found = known->first;
+      q = known->second;
     }
     else
     {
       found = ClassAt(f, mid[k], q);
       if (t.Depth == 0)
       {
-        Midpoints.emplace(edge, std::make_pair(found, q));
+        Midpoints.Insert(edge, std::make_pair(found, q));
       }
     }
     if (found)
@@ -316,7 +391,8 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
   const Vec3 X[3] = { Mesh.Position(corners[0]), Mesh.Position(corners[1]),
     Mesh.Position(corners[2]) };
   const bool split = Splits(f);
-  std::vector<Piece> stack;
+  std::vector<Piece>& stack = Stack;
+  stack.clear();
   stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, uv, 0 });
   while (!stack.empty())
   {
