@@ -45,83 +45,63 @@ std::uint32_t SortKey(double d)
   return bits;
 }
 
-// Stable LSD radix sort by key, 11 bits per pass (3x faster than std::sort on the 26K-vertex
-// sweeps; the stable order keeps ties deterministic).
-void RadixSort(std::vector<std::pair<std::uint32_t, int>>& a, std::vector<std::pair<std::uint32_t, int>>& scratch)
+// Calls f(0), ..., f(parts - 1), on `parts` threads when there are several.
+template <class F>
+void ForEachPart(int parts, const F& f)
 {
-  constexpr int digitBits = 11;
-  constexpr std::uint32_t mask = (1u << digitBits) - 1u;
-  scratch.resize(a.size());
-  std::size_t count[mask + 1];
-  for (int shift = 0; shift < 32; shift += digitBits)
+  if (parts <= 1)
   {
-    std::fill(count, count + mask + 1, 0);
-    for (const auto& x : a)
-    {
-      ++count[(x.first >> shift) & mask];
-    }
-    std::size_t sum = 0;
-    for (std::size_t& c : count)
-    {
-      const std::size_t n = c;
-      c = sum;
-      sum += n;
-    }
-    for (const auto& x : a)
-    {
-      scratch[count[(x.first >> shift) & mask]++] = x;
-    }
-    a.swap(scratch);
+    f(0);
+    return;
+  }
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int t = 0; t < parts; ++t)
+  {
+    f(t);
   }
 }
 
-// The same sort on `threads` threads (the same result: each thread counts and then scatters a
-// contiguous part of the input, at offsets that keep the parts in order within each digit).
-void ParallelRadixSort(std::vector<std::pair<std::uint32_t, int>>& a,
-  std::vector<std::pair<std::uint32_t, int>>& scratch, int threads)
+// Stable LSD radix sort by key, 11 bits per pass (3x faster than std::sort on the 26K-vertex
+// sweeps; the stable order keeps ties deterministic). With `parts` > 1, on as many threads: each
+// part of the input is counted, then scattered, by its own thread, at offsets that keep the
+// parts in order within each digit (the same result). `count`: scratch.
+void RadixSort(std::vector<std::pair<std::uint32_t, int>>& a,
+  std::vector<std::pair<std::uint32_t, int>>& scratch, std::vector<std::size_t>& count, int parts)
 {
   constexpr int digitBits = 11;
   constexpr std::uint32_t mask = (1u << digitBits) - 1u;
   constexpr std::size_t digits = mask + 1;
   const std::size_t n = a.size();
+  const std::size_t p = static_cast<std::size_t>(parts);
   scratch.resize(n);
-  std::vector<std::size_t> count(static_cast<std::size_t>(threads) * digits);
+  count.resize(p * digits);
   for (int shift = 0; shift < 32; shift += digitBits)
   {
-#pragma omp parallel num_threads(threads)
-    {
-#if defined(_OPENMP)
-      const std::size_t team = static_cast<std::size_t>(omp_get_num_threads()),
-                        me = static_cast<std::size_t>(omp_get_thread_num());
-#else
-      const std::size_t team = 1, me = 0;
-#endif
-      const std::size_t begin = n * me / team, end = n * (me + 1) / team;
-      std::size_t* mine = count.data() + me * digits;
+    ForEachPart(parts, [&](int t) {
+      std::size_t* mine = count.data() + t * digits;
       std::fill(mine, mine + digits, 0);
-      for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t i = n * t / p, end = n * (t + 1) / p; i < end; ++i)
       {
         ++mine[(a[i].first >> shift) & mask];
       }
-#pragma omp barrier
-#pragma omp single
+    });
+    std::size_t sum = 0;
+    for (std::size_t d = 0; d < digits; ++d)
+    {
+      for (std::size_t t = 0; t < p; ++t)
       {
-        std::size_t sum = 0;
-        for (std::size_t d = 0; d < digits; ++d)
-        {
-          for (std::size_t t = 0; t < team; ++t)
-          {
-            const std::size_t c = count[t * digits + d];
-            count[t * digits + d] = sum;
-            sum += c;
-          }
-        }
-      } // (implicit barrier)
-      for (std::size_t i = begin; i < end; ++i)
+        const std::size_t c = count[t * digits + d];
+        count[t * digits + d] = sum;
+        sum += c;
+      }
+    }
+    ForEachPart(parts, [&](int t) {
+      std::size_t* mine = count.data() + t * digits;
+      for (std::size_t i = n * t / p, end = n * (t + 1) / p; i < end; ++i)
       {
         scratch[mine[(a[i].first >> shift) & mask]++] = a[i];
       }
-    }
+    });
     a.swap(scratch);
   }
 }
@@ -282,54 +262,32 @@ void SVGGeodesicSolver::Refine(
 #else
   threads = 1;
 #endif
-  if (unfold && !angles && threads > 1 && static_cast<std::int64_t>(reached.size()) >= parallelMinimum)
-  {
-    const std::int64_t n = static_cast<std::int64_t>(reached.size());
-    Order.resize(reached.size());
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::int64_t i = 0; i < n; ++i)
+  const bool parallel =
+    unfold && !angles && threads > 1 && static_cast<std::int64_t>(reached.size()) >= parallelMinimum;
+  const int parts = parallel ? threads : 1;
+  const std::size_t n = reached.size();
+  Order.resize(n);
+  ForEachPart(parts, [&](int t) {
+    for (std::size_t i = n * t / parts, end = n * (t + 1) / parts; i < end; ++i)
     {
       Order[i] = { SortKey(GraphSolver.Distance(reached[i])), reached[i] };
     }
-    ParallelRadixSort(Order, OrderScratch, threads);
+  });
+  RadixSort(Order, OrderScratch, OrderCounts, parts);
+  if (parallel)
+  {
     RefineInParallel(limit, threads);
     return;
   }
-  Order.clear();
-  Order.reserve(reached.size());
-  for (int v : reached)
-  {
-    Order.push_back({ SortKey(GraphSolver.Distance(v)), v });
-  }
-  RadixSort(Order, OrderScratch);
-  // The sweep's order is random in memory: the stencils of the vertices a few steps ahead are
-  // prefetched, first the offsets and the predecessor's place in the stencil, then the entries
-  // about it (a third of the sweep's time on 26K-vertex meshes).
-  constexpr std::size_t ahead = 6;
-  const std::size_t count = Order.size();
-  for (std::size_t k = 0; k < std::min(count, ahead); ++k)
-  {
-    Graph.PrefetchStencil(Order[k].second, StencilIndexOfPredecessor(Order[k].second));
-  }
+  const std::int64_t count = static_cast<std::int64_t>(Order.size());
+  auto next = [](std::int64_t k) { return k + 1; };
+  SweepPrefetch prefetch = StartPrefetch(0, count, next);
   // (In place: a vertex's distance changes at its turn only, so that the vertices before it in
   // the order give their refined distances, those after it their graph distances.)
   auto distanceOf = [this](int u) { return GraphSolver.Distance(u); };
-  for (std::size_t i = 0; i < count; ++i)
+  for (std::int64_t i = 0; i < count; ++i)
   {
-    if (i + 3 * ahead < count)
-    {
-      GraphSolver.PrefetchPredecessor(Order[i + 3 * ahead].second);
-    }
-    if (i + 2 * ahead < count)
-    {
-      const int v = Order[i + 2 * ahead].second;
-      Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
-    }
-    if (i + ahead < count)
-    {
-      const int v = Order[i + ahead].second;
-      Graph.PrefetchStencil(v, StencilIndexOfPredecessor(v));
-    }
+    Prefetch(prefetch, count, next);
     const int x = Order[i].second;
     if (Exact[x])
     {
@@ -340,9 +298,6 @@ void SVGGeodesicSolver::Refine(
     {
       continue;
     }
-    // A discrete geodesic graph's distance is within its accuracy above the geodesic distance:
-    // refinement may not go lower than that bound (unfolding across a hole or a saddle could).
-    best = std::max(best, RefinementFloor * GraphSolver.Distance(x));
     if (best < GraphSolver.Distance(x) && best <= limit)
     {
       GraphSolver.Lower(x, best);
@@ -377,7 +332,6 @@ void SVGGeodesicSolver::RefineInParallel(double limit, int threads)
     Position.assign(nodes, 0);
   }
   constexpr std::int64_t block = 256;
-  constexpr std::int64_t ahead = 6;
 #pragma omp parallel num_threads(threads)
   {
 #if defined(_OPENMP)
@@ -415,55 +369,19 @@ void SVGGeodesicSolver::RefineInParallel(double limit, int threads)
       }
       return d;
     };
-    // Prefetched as the sweep in place does: the predecessors 3 * ahead positions ahead (of
-    // this thread's), the stencil offsets 2 * ahead, the stencils ahead.
-    std::int64_t p1 = me * block, p2 = p1, p3 = p1;
-    for (std::int64_t k = 0; k < 3 * ahead && p3 < count; ++k)
-    {
-      if (k < ahead)
-      {
-        Graph.PrefetchStencil(Order[p3].second, StencilIndexOfPredecessor(Order[p3].second));
-        p1 = next(p1);
-      }
-      if (k < 2 * ahead)
-      {
-        const int v = Order[p3].second;
-        Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
-        p2 = next(p2);
-      }
-      GraphSolver.PrefetchPredecessor(Order[p3].second);
-      p3 = next(p3);
-    }
+    SweepPrefetch prefetch = StartPrefetch(me * block, count, next);
     for (i = me * block; i < count; i = next(i))
     {
-      if (p3 < count)
-      {
-        GraphSolver.PrefetchPredecessor(Order[p3].second);
-        p3 = next(p3);
-      }
-      if (p2 < count)
-      {
-        const int v = Order[p2].second;
-        Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
-        p2 = next(p2);
-      }
-      if (p1 < count)
-      {
-        Graph.PrefetchStencil(Order[p1].second, StencilIndexOfPredecessor(Order[p1].second));
-        p1 = next(p1);
-      }
+      Prefetch(prefetch, count, next);
       const int x = Order[i].second;
       key = Order[i].first;
       const double graph = GraphSolver.Distance(x);
       double value = graph;
       double best = Inf, angle = NaN;
-      if (!Exact[x] && RefineVertex(x, true, false, distanceOf, best, angle))
+      if (!Exact[x] && RefineVertex(x, true, false, distanceOf, best, angle) && best < graph &&
+        best <= limit)
       {
-        best = std::max(best, RefinementFloor * graph);
-        if (best < graph && best <= limit)
-        {
-          value = best;
-        }
+        value = best;
       }
       Refined[x].store(value, std::memory_order_release);
     }
@@ -486,6 +404,51 @@ int SVGGeodesicSolver::StencilIndexOfPredecessor(int v) const
 {
   const std::int64_t link = GraphSolver.PredecessorLink(v);
   return link >= 0 ? Graph.LinkStencilIndex(link) : -1;
+}
+
+template <class Next>
+SVGGeodesicSolver::SweepPrefetch SVGGeodesicSolver::StartPrefetch(
+  std::int64_t first, std::int64_t count, const Next& next) const
+{
+  SweepPrefetch p{ first, first, first };
+  for (int k = 0; k < 3 * SweepAhead && p.Predecessor < count; ++k)
+  {
+    if (k < SweepAhead)
+    {
+      Graph.PrefetchStencil(Order[p.Predecessor].second, StencilIndexOfPredecessor(Order[p.Predecessor].second));
+      p.Stencil = next(p.Stencil);
+    }
+    if (k < 2 * SweepAhead)
+    {
+      const int v = Order[p.Predecessor].second;
+      Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
+      p.Offsets = next(p.Offsets);
+    }
+    GraphSolver.PrefetchPredecessor(Order[p.Predecessor].second);
+    p.Predecessor = next(p.Predecessor);
+  }
+  return p;
+}
+
+template <class Next>
+void SVGGeodesicSolver::Prefetch(SweepPrefetch& p, std::int64_t count, const Next& next) const
+{
+  if (p.Predecessor < count)
+  {
+    GraphSolver.PrefetchPredecessor(Order[p.Predecessor].second);
+    p.Predecessor = next(p.Predecessor);
+  }
+  if (p.Offsets < count)
+  {
+    const int v = Order[p.Offsets].second;
+    Graph.PrefetchStencilOffsets(v, GraphSolver.PredecessorLink(v));
+    p.Offsets = next(p.Offsets);
+  }
+  if (p.Stencil < count)
+  {
+    Graph.PrefetchStencil(Order[p.Stencil].second, StencilIndexOfPredecessor(Order[p.Stencil].second));
+    p.Stencil = next(p.Stencil);
+  }
 }
 
 template <class DistanceOf>
@@ -694,6 +657,9 @@ bool SVGGeodesicSolver::RefineVertex(
       bestAngle = Angle[Graph.StencilTarget(via)] + std::atan2(bx * qy - by * qx, bx * qx + by * qy);
     }
   }
+  // A discrete geodesic graph's distance is within its accuracy above the geodesic distance:
+  // refinement may not go lower than that bound (unfolding across a hole or a saddle could).
+  best = std::max(best, RefinementFloor * GraphSolver.Distance(x));
   return true;
 }
 

@@ -106,14 +106,29 @@ private:
     std::int64_t parallelMinimum = 0);
   // The same sweep (distances only) on several threads, with the same result.
   void RefineInParallel(double limit, int threads);
-  // Vertex x's refined distance (`best`) and, with `angles`, its departure angle, from its
-  // stencil neighbours' distances as `distanceOf` gives them; false when x has nothing to
-  // unfold from (it keeps its graph distance).
+  // Vertex x's refined distance (`best`, never below the floor a discrete geodesic graph
+  // guarantees) and, with `angles`, its departure angle, from its stencil neighbours' distances
+  // as `distanceOf` gives them; false when x has nothing to unfold from (it keeps its graph
+  // distance).
   template <class DistanceOf>
   bool RefineVertex(int x, bool unfold, bool angles, const DistanceOf& distanceOf, double& best,
     double& bestAngle) const;
   // The place of v's graph predecessor in v's stencil (-1: none).
   int StencilIndexOfPredecessor(int v) const;
+  // A sweep follows the distance order, random in memory: for the positions of Order it visits
+  // in the order `next` gives, the graph predecessor is prefetched 3 * SweepAhead positions
+  // ahead, the stencil offsets 2 * SweepAhead and the stencil about the predecessor's place
+  // SweepAhead (a third of the sweep's time on 26K-vertex meshes). StartPrefetch from the
+  // sweep's first position, then Prefetch before each.
+  static constexpr int SweepAhead = 6;
+  struct SweepPrefetch
+  {
+    std::int64_t Stencil, Offsets, Predecessor; // the next positions to fetch
+  };
+  template <class Next>
+  SweepPrefetch StartPrefetch(std::int64_t first, std::int64_t count, const Next& next) const;
+  template <class Next>
+  void Prefetch(SweepPrefetch& p, std::int64_t count, const Next& next) const;
   void ClearAngles();
   // Leaves every vertex unreached and returns `why` (a failed Status).
   Status Reject(Status why, GraphAlgorithm algorithm);
@@ -138,6 +153,7 @@ private:
   double RefinementFloor = 0.0;
   // The sweep's order: reached nodes sorted by distance (radix sort on 32-bit keys).
   std::vector<std::pair<std::uint32_t, int>> Order, OrderScratch;
+  std::vector<std::size_t> OrderCounts; // the sort's digit counts
   // RefineInParallel, per node: its refined distance (NaN until its thread has refined it, and
   // between solves) and its place in Order (read for equal sort keys only).
   std::unique_ptr<std::atomic<double>[]> Refined;
