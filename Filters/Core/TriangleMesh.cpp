@@ -47,43 +47,51 @@ struct PointEqual
   }
 };
 
-// The half-edges of `faces` grouped by undirected edge, in the order of (smaller vertex, larger
-// vertex, half-edge): a counting sort by the smaller vertex, then each vertex's few half-edges
-// by the larger one (the order a sort by that key gives, without sorting 3 nf items).
-struct EdgeGroups
+// Items bucketed by a vertex (a counting sort), then each bucket sorted by its entries: the order
+// of a sort by (vertex, entry) without sorting all the items. `item(i)`: item i's (vertex,
+// entry).
+template <class Entry>
+struct VertexBuckets
 {
-  std::vector<int> Start;                     // per smaller vertex, into Entries (nv + 1)
-  std::vector<std::pair<int, int>> Entries;   // (larger vertex, half-edge)
+  std::vector<int> Start;     // per vertex, into Entries (nv + 1)
+  std::vector<Entry> Entries; // by vertex, each bucket sorted
 };
-EdgeGroups GroupEdges(const std::vector<std::array<int, 3>>& faces, int nv)
+template <class Entry, class Item>
+VertexBuckets<Entry> BucketByVertex(std::size_t n, int nv, const Item& item)
 {
-  EdgeGroups g;
-  const std::size_t nh = 3 * faces.size();
-  g.Start.assign(static_cast<std::size_t>(nv) + 1, 0);
-  for (const auto& t : faces)
+  VertexBuckets<Entry> b;
+  b.Start.assign(static_cast<std::size_t>(nv) + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      ++g.Start[static_cast<std::size_t>(std::min(t[k], t[(k + 1) % 3])) + 1];
-    }
+    ++b.Start[static_cast<std::size_t>(item(i).first) + 1];
   }
   for (int v = 0; v < nv; ++v)
   {
-    g.Start[v + 1] += g.Start[v];
+    b.Start[v + 1] += b.Start[v];
   }
-  g.Entries.resize(nh);
-  std::vector<int> fill(g.Start.begin(), g.Start.end() - 1);
-  for (std::size_t h = 0; h < nh; ++h)
+  b.Entries.resize(n);
+  std::vector<int> fill(b.Start.begin(), b.Start.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
   {
+    const auto it = item(i);
+    b.Entries[fill[it.first]++] = it.second;
+  }
+  for (int v = 0; v < nv; ++v)
+  {
+    std::sort(b.Entries.begin() + b.Start[v], b.Entries.begin() + b.Start[v + 1]);
+  }
+  return b;
+}
+
+// The half-edges of `faces` grouped by undirected edge, in the order of (smaller vertex, larger
+// vertex, half-edge): entries (larger vertex, half-edge) by smaller vertex.
+VertexBuckets<std::pair<int, int>> GroupEdges(const std::vector<std::array<int, 3>>& faces, int nv)
+{
+  return BucketByVertex<std::pair<int, int>>(3 * faces.size(), nv, [&faces](std::size_t h) {
     const auto& t = faces[h / 3];
     const int a = t[h % 3], b = t[(h % 3 + 1) % 3];
-    g.Entries[fill[std::min(a, b)]++] = { std::max(a, b), static_cast<int>(h) };
-  }
-  for (int v = 0; v < nv; ++v)
-  {
-    std::sort(g.Entries.begin() + g.Start[v], g.Entries.begin() + g.Start[v + 1]);
-  }
-  return g;
+    return std::make_pair(std::min(a, b), std::make_pair(std::max(a, b), static_cast<int>(h)));
+  });
 }
 
 std::string FaceLabel(std::size_t i)
@@ -430,33 +438,25 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
   {
     // Faces in the order of (their sorted corners, index), bucketed by the smallest corner:
     // a duplicate follows its twin.
-    std::vector<int> start(static_cast<std::size_t>(nv) + 1, 0);
     std::vector<std::array<int, 3>> corners(m.Faces.size());
     for (std::size_t i = 0; i < m.Faces.size(); ++i)
     {
       corners[i] = m.Faces[i];
       std::sort(corners[i].begin(), corners[i].end());
-      ++start[static_cast<std::size_t>(corners[i][0]) + 1];
     }
+    const auto sorted = BucketByVertex<std::pair<std::pair<int, int>, int>>(
+      m.Faces.size(), nv, [&corners](std::size_t i) {
+        const auto& c = corners[i];
+        return std::make_pair(c[0], std::make_pair(std::make_pair(c[1], c[2]), static_cast<int>(i)));
+      });
     for (int v = 0; v < nv; ++v)
     {
-      start[v + 1] += start[v];
-    }
-    std::vector<std::pair<std::pair<int, int>, int>> sorted(m.Faces.size()); // ((c1, c2), face)
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < m.Faces.size(); ++i)
-    {
-      sorted[fill[corners[i][0]]++] = { { corners[i][1], corners[i][2] }, static_cast<int>(i) };
-    }
-    for (int v = 0; v < nv; ++v)
-    {
-      std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1]);
-      for (int i = start[v] + 1; i < start[v + 1]; ++i)
+      for (int i = sorted.Start[v] + 1; i < sorted.Start[v + 1]; ++i)
       {
-        if (sorted[i].first == sorted[i - 1].first)
+        if (sorted.Entries[i].first == sorted.Entries[i - 1].first)
         {
-          return Status::Error(
-            FaceLabel(sorted[i].second) + " duplicates " + FaceLabel(sorted[i - 1].second));
+          return Status::Error(FaceLabel(sorted.Entries[i].second) + " duplicates " +
+            FaceLabel(sorted.Entries[i - 1].second));
         }
       }
     }
@@ -466,7 +466,7 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
   const int nf = m.NumberOfFaces();
   std::vector<int> partner(3 * nf, -1);
   {
-    const EdgeGroups groups = GroupEdges(m.Faces, nv);
+    const auto groups = GroupEdges(m.Faces, nv);
     const auto& uses = groups.Entries;
     for (int v = 0; v < nv; ++v)
     {
@@ -565,7 +565,7 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
   // 5. Twins (recomputed after flips).
   m.Twins.assign(3 * nf, -1);
   {
-    const EdgeGroups groups = GroupEdges(m.Faces, nv);
+    const auto groups = GroupEdges(m.Faces, nv);
     for (int v = 0; v < nv; ++v)
     {
       for (int i = groups.Start[v]; i + 1 < groups.Start[v + 1]; ++i)
