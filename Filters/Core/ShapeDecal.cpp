@@ -188,13 +188,12 @@ struct DecalBuilder
   // time).
   const Vec2* Find(int v) const
   {
-    return Slots.Stamp[v] == Slots.Current ? &Local[Slots.Index[v]].second : nullptr;
+    return Slots.Stamps.Marked(v) ? &Local[Slots.Index[v]].second : nullptr;
   }
   struct SlotTable
   {
-    std::vector<unsigned> Stamp; // == Current: Index holds the vertex's place in Local
+    VertexStamps Stamps; // marked: Index holds the vertex's place in Local
     std::vector<int> Index;
-    unsigned Current = 0;
   };
   static SlotTable& ThreadSlots()
   {
@@ -216,20 +215,13 @@ struct DecalBuilder
     std::sort(Local.begin(), Local.end(),
       [](const std::pair<int, Vec2>& a, const std::pair<int, Vec2>& b) { return a.first < b.first; });
     const std::size_t nv = static_cast<std::size_t>(Mesh.NumberOfVertices());
-    if (Slots.Stamp.size() != nv || Slots.Current == ~0u)
-    {
-      Slots.Stamp.assign(nv, 0u);
-      Slots.Index.assign(nv, 0);
-      Slots.Current = 0;
-    }
-    ++Slots.Current;
+    Slots.Stamps.Begin(nv);
+    Slots.Index.resize(nv);
     for (std::size_t i = 0; i < Local.size(); ++i)
     {
-      const int v = Local[i].first;
-      if (Slots.Stamp[v] != Slots.Current) // (the first of equal vertices, as a search finds)
+      if (Slots.Stamps.Mark(Local[i].first)) // (the first of equal vertices, as a search finds)
       {
-        Slots.Stamp[v] = Slots.Current;
-        Slots.Index[v] = static_cast<int>(i);
+        Slots.Index[Local[i].first] = static_cast<int>(i);
       }
     }
     for (const auto& ring : ShapeClass.Outline.Rings)

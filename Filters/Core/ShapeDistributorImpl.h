@@ -99,6 +99,34 @@ struct Chart
   }
 };
 
+/// Marks on the mesh's vertices that Begin clears at once (a new stamp per use): for loops over
+/// a shape's region that visit each vertex once, one per thread.
+struct VertexStamps
+{
+  std::vector<unsigned> Stamp;
+  unsigned Current = 0;
+  void Begin(std::size_t vertices)
+  {
+    if (Stamp.size() != vertices || Current == ~0u)
+    {
+      Stamp.assign(vertices, 0u);
+      Current = 0;
+    }
+    ++Current;
+  }
+  bool Marked(int v) const { return Stamp[v] == Current; }
+  /// Marks v; false when it was marked already.
+  bool Mark(int v)
+  {
+    if (Stamp[v] == Current)
+    {
+      return false;
+    }
+    Stamp[v] = Current;
+    return true;
+  }
+};
+
 inline void SortUnique(std::vector<int>& v)
 {
   std::sort(v.begin(), v.end());

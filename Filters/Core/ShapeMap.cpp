@@ -330,14 +330,8 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   // The vertices of the nodes' faces and their neighbours, each with a node to start from;
   // the nearest node by descent over the grid (the map is smooth at the grid's scale).
   // (Each vertex once: marks per thread, stamped per call.)
-  thread_local std::vector<unsigned> mark;
-  thread_local unsigned stamp = 0;
-  if (mark.size() != static_cast<std::size_t>(Mesh.NumberOfVertices()) || stamp == ~0u)
-  {
-    mark.assign(Mesh.NumberOfVertices(), 0u);
-    stamp = 0;
-  }
-  ++stamp;
+  thread_local VertexStamps marks;
+  marks.Begin(static_cast<std::size_t>(Mesh.NumberOfVertices()));
   std::vector<std::pair<int, int>> seeds; // (vertex, node)
   for (int k = 0; k < static_cast<int>(nodes.size()); ++k)
   {
@@ -345,9 +339,8 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
     {
       for (int v : Mesh.Face(nodes[k].At.Face))
       {
-        if (mark[v] != stamp)
+        if (marks.Mark(v))
         {
-          mark[v] = stamp;
           seeds.emplace_back(v, k);
         }
       }
@@ -359,9 +352,8 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
     Mesh.ForEachOutgoingHalfedge(seeds[k].first, [&](int he) {
       for (int w : Mesh.Face(he / 3))
       {
-        if (mark[w] != stamp)
+        if (marks.Mark(w))
         {
-          mark[w] = stamp;
           seeds.emplace_back(w, node);
         }
       }
