@@ -6,6 +6,7 @@
 
 #include "GeodesicShooting.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -193,6 +194,7 @@ void ShapeDistributor::Impl::PrepareLongClasses()
   const int nf = Mesh.NumberOfFaces();
   ClassExtentMin.assign(Tables.Classes.size(), 0.0);
   ClassExtentMax.assign(Tables.Classes.size(), 0.0);
+  BehindParts.assign(Tables.Classes.size(), {});
   bool anyLong = false;
   for (std::size_t k = 0; k < Tables.Classes.size(); ++k)
   {
@@ -219,6 +221,16 @@ void ShapeDistributor::Impl::PrepareLongClasses()
     }
     ClassExtentMin[k] = lo;
     ClassExtentMax[k] = hi;
+    for (int part : c.Parts)
+    {
+      if (Dot(Tables.Parts[part].Centre, c.MajorAxis) < 0.0)
+      {
+        BehindParts[k].push_back(part);
+      }
+    }
+    std::stable_sort(BehindParts[k].begin(), BehindParts[k].end(), [&](int a, int b) {
+      return Dot(Tables.Parts[a].Centre, c.MajorAxis) > Dot(Tables.Parts[b].Centre, c.MajorAxis);
+    });
   }
   if (anyLong)
   {
@@ -300,15 +312,42 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
   }
 }
 
-bool ShapeDistributor::Impl::PlacePart(const std::vector<CurvePiece>& curve, double u, int part,
-  double across, double phiM, PlacedPart& p) const
+bool ShapeDistributor::Impl::PointFromCentre(
+  const std::vector<CurvePiece>& pieces, double distance, bool behind, int& face, Vec3& x, Vec3& tangent)
 {
-  int face = -1;
-  Vec3 x, tangent;
-  if (!PointOnCurve(Mesh, curve, u, face, x, tangent))
+  double walked = 0.0;
+  const CurvePiece* last = nullptr;
+  for (const CurvePiece& piece : pieces)
+  {
+    const double len = Norm(piece.B - piece.A);
+    if (len <= 0.0)
+    {
+      continue;
+    }
+    last = &piece;
+    if (walked + len >= distance)
+    {
+      const double t = std::max(0.0, (distance - walked) / len);
+      face = piece.Face;
+      x = piece.A + (piece.B - piece.A) * t;
+      tangent = (behind ? piece.A - piece.B : piece.B - piece.A) * (1.0 / len);
+      return true;
+    }
+    walked += len;
+  }
+  if (!last)
   {
     return false;
   }
+  face = last->Face;
+  x = last->B;
+  tangent = Unit(behind ? last->A - last->B : last->B - last->A);
+  return true;
+}
+
+bool ShapeDistributor::Impl::PlacePart(
+  int face, const Vec3& x, const Vec3& tangent, int part, double across, double phiM, PlacedPart& p) const
+{
   p.Part = part;
   Vec3 endTangent;
   bool boundary = false;
@@ -366,15 +405,72 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
   }
   else
   {
-    // The major axis follows the field: trace the streamline both ways.
+    // The major axis follows the field: trace the streamline both ways. A part is placed by
+    // walking its curve from the centre, so that the part nearest behind the centre is placed
+    // (and checked, below) as soon as the streamline reaches it.
     const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
     s.Direction = Unit(RotateTangent(dir, s.Normal, -phiM));
     const int n = Options.Symmetry == 1 ? 2 : Options.Symmetry;
     const double a0 = Field->AngleInFace(f, dir);
     const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
-    // (Behind first: a candidate whose parts there conflict needs no streamline ahead.)
-    const Streamline behind = Field->TraceStreamline(n, FieldAngles, centre, a0 + Pi, backward);
+    auto place = [&](const Streamline& line, bool behind, int part, PlacedPart& p) {
+      const Vec2& pc = Tables.Parts[part].Centre;
+      int face = -1;
+      Vec3 x, tangent;
+      return PointFromCentre(line.Pieces, std::abs(Dot(pc, c.MajorAxis)) * scale, behind, face, x,
+               tangent) &&
+        PlacePart(face, x, tangent, part, Cross(c.MajorAxis, pc) * scale, phiM, p);
+    };
+    // Behind first: a candidate whose parts there conflict needs no streamline ahead, and most
+    // conflict at the part nearest the centre, which needs only the streamline up to it.
+    DirectionFieldSolver::StreamlineTracer tracer(
+      *Field, n, FieldAngles, centre, a0 + Pi, backward);
+    if (precheck && Options.EarlyRejection && !CircleMode)
+    {
+      // Stages at each behind part's distance (nearest first); at each, the parts the curve
+      // traced so far holds are checked as CheapConflict checks the whole shape (a conflict of
+      // some of its parts is a conflict of the shape). Parts computed bit for bit as the whole
+      // shape computes them: the same pieces (staging never cuts one), walked from the centre.
+      Record partial;
+      partial.Shape.ClassId = cls;
+      partial.Shape.Scale = s.Scale;
+      std::size_t placed = 0;
+      for (std::size_t k = 0; k < BehindParts[cls].size(); ++k)
+      {
+        const int part = BehindParts[cls][k];
+        const double at = -Dot(Tables.Parts[part].Centre, c.MajorAxis) * scale;
+        tracer.Continue(at);
+        if (tracer.Line().Length < at)
+        {
+          break; // (the streamline ended: the whole shape fails below)
+        }
+        PlacedPart p;
+        if (!place(tracer.Line(), true, part, p))
+        {
+          return false; // (the whole shape stops at this part too)
+        }
+        partial.Shape.Parts.push_back(p);
+        // Checked when the next part needs more streamline (or at the last).
+        const bool more = k + 1 < BehindParts[cls].size() &&
+          -Dot(Tables.Parts[BehindParts[cls][k + 1]].Centre, c.MajorAxis) * scale <= tracer.Line().Length;
+        if (!more && partial.Shape.Parts.size() > placed)
+        {
+          placed = partial.Shape.Parts.size();
+          if (CheapConflict(partial, *precheck))
+          {
+            return false;
+          }
+        }
+      }
+    }
+    tracer.Continue();
+    const Streamline& behind = tracer.Line();
     if (behind.Length < backward * (1.0 - 1e-9))
+    {
+      return false;
+    }
+    const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
+    if (ahead.Length < forward * (1.0 - 1e-9))
     {
       return false;
     }
@@ -383,46 +479,25 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
       s.Curve.push_back(CurvePiece{ it->Face, it->B, it->A });
     }
     s.CurveCentre = behind.Length;
-    if (precheck && Options.EarlyRejection && !CircleMode)
+    s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
+    for (int part : c.Parts)
     {
-      // The parts that PointOnCurve finds within the behind pieces: the same pieces, walked in
-      // the same order, as in the whole curve (a part it would find only past them is left to
-      // the whole shape's check).
-      double behindLength = 0.0;
-      for (const CurvePiece& piece : s.Curve)
+      if (CircleMode)
       {
-        const double len = Norm(piece.B - piece.A);
-        behindLength += len > 0.0 ? len : 0.0;
+        break; // (one circle at the centre, below)
       }
-      Record partial;
-      partial.Shape.ClassId = cls;
-      partial.Shape.Scale = s.Scale;
-      for (int part : c.Parts)
-      {
-        const Vec2& pc = Tables.Parts[part].Centre;
-        const double u = s.CurveCentre + Dot(pc, c.MajorAxis) * scale;
-        if (!(u < behindLength))
-        {
-          continue;
-        }
-        PlacedPart p;
-        if (!PlacePart(s.Curve, u, part, Cross(c.MajorAxis, pc) * scale, phiM, p))
-        {
-          return false; // (the whole shape stops at this part too)
-        }
-        partial.Shape.Parts.push_back(p);
-      }
-      if (!partial.Shape.Parts.empty() && CheapConflict(partial, *precheck))
+      PlacedPart p;
+      const bool behindPart = Dot(Tables.Parts[part].Centre, c.MajorAxis) < 0.0;
+      if (!place(behindPart ? behind : ahead, behindPart, part, p))
       {
         return false;
       }
+      s.Parts.push_back(p);
     }
-    const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
-    if (ahead.Length < forward * (1.0 - 1e-9))
+    if (!CircleMode)
     {
-      return false;
+      return true;
     }
-    s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
   }
   if (CircleMode || c.Parts.size() <= 1)
   {
@@ -434,20 +509,7 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     s.Parts.push_back(p);
     return true;
   }
-  const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
-  for (int part : c.Parts)
-  {
-    const Vec2& pc = Tables.Parts[part].Centre;
-    const double along = Dot(pc, c.MajorAxis) * scale;
-    const double across = Cross(c.MajorAxis, pc) * scale;
-    PlacedPart p;
-    if (!PlacePart(s.Curve, s.CurveCentre + along, part, across, phiM, p))
-    {
-      return false;
-    }
-    s.Parts.push_back(p);
-  }
-  return true;
+  return false; // (not reached: a long class returns above)
 }
 
 void ShapeDistributor::Impl::CollectKills(const Record& r, std::vector<char>& mark, std::vector<int>& marked,

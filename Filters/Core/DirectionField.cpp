@@ -1213,108 +1213,138 @@ Streamline DirectionFieldSolver::TraceStreamline(int n, const std::vector<double
   const SurfacePoint& start, double initialAngle, double length, const std::vector<double>* indices,
   double maxTurn) const
 {
-  Streamline line;
-  const int nf = Surface.NumberOfFaces();
+  StreamlineTracer tracer(*this, n, angles, start, initialAngle, length, indices, maxTurn);
+  tracer.Continue();
+  return std::move(tracer.Line());
+}
+
+DirectionFieldSolver::StreamlineTracer::StreamlineTracer(const DirectionFieldSolver& solver, int n,
+  const std::vector<double>& angles, const SurfacePoint& start, double initialAngle, double length,
+  const std::vector<double>* indices, double maxTurn)
+  : Solver(solver)
+  , Angles(angles)
+  , Indices(indices)
+  , N(n)
+  , MaxTurn(maxTurn < 0 ? 0.9 * Pi / std::max(n, 1) : maxTurn)
+{
+  const TriangleMesh& surface = Solver.Surface;
+  const int nf = surface.NumberOfFaces();
   if (n < 1 || static_cast<int>(angles.size()) != nf || nf == 0 || !(length >= 0.0) ||
     !std::isfinite(length))
   {
-    line.Reason = Streamline::Stuck;
-    return line;
+    Traced.Reason = Streamline::Stuck;
+    Done = true;
+    return;
   }
-  if (maxTurn < 0)
-  {
-    maxTurn = 0.9 * Pi / n;
-  }
-  int f = start.Face;
-  Vec3 x;
+  Face = start.Face;
   if (start.IsVertex())
   {
-    f = TriangleMesh::FaceOf(Surface.VertexHalfedge(start.Vertex));
-    x = Surface.Position(start.Vertex);
+    Face = TriangleMesh::FaceOf(surface.VertexHalfedge(start.Vertex));
+    X = surface.Position(start.Vertex);
   }
   else
   {
-    x = Surface.Interpolate(f, start.Bary);
+    X = surface.Interpolate(Face, start.Bary);
   }
-  line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = Surface.ClampedBarycentric(f, x);
-  auto singularFace = [&](int face) {
-    if (!indices)
-    {
-      return false;
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      if (std::abs((*indices)[Surface.Face(face)[c]]) > 1e-9 &&
-        !Surface.IsBoundaryVertex(Surface.Face(face)[c]))
-      {
-        return true;
-      }
-    }
-    return false;
-  };
-  if (singularFace(f))
+  Traced.End = SurfacePoint::InFace(Face, 0, 0, 0);
+  Traced.End.Bary = surface.ClampedBarycentric(Face, X);
+  if (Singular(Face))
   {
-    line.Reason = Streamline::ReachedSingularity;
-    return line;
+    Traced.Reason = Streamline::ReachedSingularity;
+    Done = true;
+    return;
   }
   // Representative closest to the wanted angle.
-  auto closest = [&](int face, double wanted) {
-    return wanted + WrapSymmetric(angles[face] - wanted, n);
-  };
-  double a = closest(f, initialAngle);
-  Vec3 d = DirectionInFace(f, a);
-  double remaining = length;
-  int entry = -1;
-  const int maxSteps = 10 * nf + 1000;
-  for (int step = 0; step < maxSteps; ++step)
+  A = initialAngle + WrapSymmetric(Angles[Face] - initialAngle, N);
+  D = Solver.DirectionInFace(Face, A);
+  Remaining = length;
+  // (At most 10 nf + 1000 faces crossed, whatever the stages.)
+  StepsLeft = 10LL * nf + 1000;
+}
+
+bool DirectionFieldSolver::StreamlineTracer::Singular(int face) const
+{
+  if (!Indices)
   {
-    const FaceExit out = FindFaceExit(Surface, f, x, d, entry);
-    if (out.Edge < 0)
+    return false;
+  }
+  const TriangleMesh& surface = Solver.Surface;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (std::abs((*Indices)[surface.Face(face)[c]]) > 1e-9 &&
+      !surface.IsBoundaryVertex(surface.Face(face)[c]))
     {
-      line.Reason = Streamline::Stuck;
+      return true;
+    }
+  }
+  return false;
+}
+
+void DirectionFieldSolver::StreamlineTracer::Finish()
+{
+  Done = true;
+  Traced.End = SurfacePoint::InFace(Face, 0, 0, 0);
+  Traced.End.Bary = Solver.Surface.ClampedBarycentric(Face, X);
+}
+
+bool DirectionFieldSolver::StreamlineTracer::Continue(double until)
+{
+  const TriangleMesh& surface = Solver.Surface;
+  while (!Done && !(Traced.Length >= until))
+  {
+    if (StepsLeft-- <= 0)
+    {
+      Finish(); // (Reason stays ReachedLength, as the loop of old ended)
       break;
     }
-    if (out.T >= remaining)
+    const FaceExit out = FindFaceExit(surface, Face, X, D, Entry);
+    if (out.Edge < 0)
     {
-      const Vec3 y = x + d * remaining;
-      line.Pieces.push_back({ f, x, y });
-      line.Length += remaining;
-      x = y;
-      line.Reason = Streamline::ReachedLength;
+      Traced.Reason = Streamline::Stuck;
+      Finish();
+      break;
+    }
+    if (out.T >= Remaining)
+    {
+      const Vec3 y = X + D * Remaining;
+      Traced.Pieces.push_back({ Face, X, y });
+      Traced.Length += Remaining;
+      X = y;
+      Traced.Reason = Streamline::ReachedLength;
+      Finish();
       break;
     }
     const double s = std::min(1.0 - 1e-9, std::max(1e-9, out.S));
-    const Vec3 A = Surface.Position(Surface.Origin(out.Edge)),
-               B = Surface.Position(Surface.Destination(out.Edge));
-    const Vec3 y = A + (B - A) * s;
-    line.Pieces.push_back({ f, x, y });
-    line.Length += out.T;
-    remaining -= out.T;
-    x = y;
-    const int t = Surface.Twin(out.Edge);
+    const Vec3 P = surface.Position(surface.Origin(out.Edge)),
+               Q = surface.Position(surface.Destination(out.Edge));
+    const Vec3 y = P + (Q - P) * s;
+    Traced.Pieces.push_back({ Face, X, y });
+    Traced.Length += out.T;
+    Remaining -= out.T;
+    X = y;
+    const int t = surface.Twin(out.Edge);
     if (t < 0)
     {
-      line.Reason = Streamline::ReachedBoundary;
+      Traced.Reason = Streamline::ReachedBoundary;
+      Finish();
       break;
     }
     const int g = TriangleMesh::FaceOf(t);
     // Incoming direction transported into g, then the field's closest representative.
-    const double incoming = a + Transport[out.Edge];
-    const double next = closest(g, incoming);
-    if (std::abs(next - incoming) > maxTurn || singularFace(g))
+    const double incoming = A + Solver.Transport[out.Edge];
+    const double next = incoming + WrapSymmetric(Angles[g] - incoming, N);
+    if (std::abs(next - incoming) > MaxTurn || Singular(g))
     {
-      line.Reason = Streamline::ReachedSingularity;
+      Traced.Reason = Streamline::ReachedSingularity;
+      Finish();
       break;
     }
-    f = g;
-    a = next;
-    d = DirectionInFace(f, a);
-    entry = t;
+    Face = g;
+    A = next;
+    D = Solver.DirectionInFace(Face, A);
+    Entry = t;
   }
-  line.End = SurfacePoint::InFace(f, 0, 0, 0);
-  line.End.Bary = Surface.ClampedBarycentric(f, x);
-  return line;
+  return !Done;
 }
 
 std::vector<double> DirectionFieldSolver::VertexIndices(int n, const std::vector<double>& angles) const

@@ -20,6 +20,7 @@
 #include "Vector.h"
 
 #include <memory>
+#include <limits>
 #include <vector>
 
 namespace gs
@@ -141,6 +142,38 @@ public:
   Streamline TraceStreamline(int n, const std::vector<double>& angles, const SurfacePoint& start,
     double initialAngle, double length, const std::vector<double>* indices = nullptr,
     double maxTurn = -1.0) const;
+
+  // The same streamline traced in stages: Continue(until) traces it on to the first face exit at
+  // or beyond the geodesic length `until` (or to its end), so that a caller can look at its
+  // beginning before paying for the rest. The pieces are those of TraceStreamline, bit for bit,
+  // however the tracing is staged (a stage never cuts a piece short of its face's exit).
+  class StreamlineTracer
+  {
+  public:
+    StreamlineTracer(const DirectionFieldSolver& solver, int n, const std::vector<double>& angles,
+      const SurfacePoint& start, double initialAngle, double length,
+      const std::vector<double>* indices = nullptr, double maxTurn = -1.0);
+    // Traces on until Line().Length >= until or the line has ended; true while it goes on.
+    bool Continue(double until = std::numeric_limits<double>::infinity());
+    bool Finished() const { return Done; }
+    const Streamline& Line() const { return Traced; }
+    Streamline& Line() { return Traced; }
+
+  private:
+    bool Singular(int face) const;
+    void Finish();
+    const DirectionFieldSolver& Solver;
+    const std::vector<double>& Angles;
+    const std::vector<double>* Indices;
+    int N;
+    double MaxTurn;
+    Streamline Traced;
+    int Face = -1, Entry = -1;
+    Vec3 X{ 0, 0, 0 }, D{ 0, 0, 0 };
+    double A = 0.0, Remaining = 0.0;
+    long long StepsLeft = 0;
+    bool Done = false;
+  };
 
   // One direction per vertex: the area-weighted average of the N-th powers of the adjacent
   // faces' directions, taken in the vertex's tangent plane (normal: area-weighted face normals),

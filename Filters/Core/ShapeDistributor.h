@@ -114,10 +114,11 @@ struct ShapeDistributionOptions
   /// with its curve, or a chart that is no isometry across a neighbour, are not. false: the
   /// tables alone.
   bool DrawnCheck = true;
-  /// Long candidates: the streamline behind the centre is traced first, and the candidate is
-  /// given up when its parts there conflict (as the cheap checks would find), before the
-  /// streamline ahead is traced. The same placements either way, bit for bit; false only to
-  /// compare the two (tests, DistributionBenchmark).
+  /// Long candidates: the streamline behind the centre is traced in stages, up to each part
+  /// behind the centre (nearest first), and the candidate is given up as soon as its parts
+  /// traced so far conflict (as the cheap checks would find), before the rest of the streamline
+  /// behind and the streamline ahead are traced. The same placements either way, bit for bit;
+  /// false only to compare the two (tests, DistributionBenchmark).
   bool EarlyRejection = true;
 };
 

@@ -201,6 +201,7 @@ struct ShapeDistributor::Impl
   std::vector<std::pair<int, int>> Killed; // (class or -1 for all, face) killed, in order
   std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
+  std::vector<std::vector<int>> BehindParts; // a long class's parts behind its centre, nearest first
   std::unique_ptr<DirectionFieldSolver> Field; // long classes: streamlines
   std::vector<double> FieldAngles;
 
@@ -243,18 +244,26 @@ struct ShapeDistributor::Impl
   /// `prefer` (optional): of the field's N directions in the face, take the one closest to it
   /// (greedy fronts keep neighbours turned alike in cross fields); otherwise the face's own.
   /// `precheck` (optional, scratch for CheapConflict; with Options.EarlyRejection): a long
-  /// class's streamline behind the centre is traced first, and its parts there are checked as
-  /// CheapConflict checks them; on a conflict the candidate is given up (false) before the
-  /// streamline ahead is traced. The same decision as building the whole shape and checking it:
-  /// those parts are computed bit for bit as the whole shape computes them, and a conflict of
-  /// some parts is a conflict of the shape.
+  /// class's streamline behind the centre is traced in stages, up to each part behind the
+  /// centre (BehindParts, nearest first), and the parts placed so far are checked as
+  /// CheapConflict checks them; on a conflict the candidate is given up (false) before the rest
+  /// of the streamline is traced. The same decision as building the whole shape and checking
+  /// it: those parts are computed bit for bit as the whole shape computes them (the staged
+  /// streamline has the same pieces, and parts are placed walking from the centre), and a
+  /// conflict of some parts is a conflict of the shape.
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
     const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr) const;
-  /// Places part `part` (MakeShape, and its precheck on the curve behind the centre): at arc
-  /// length `u` of `curve`, `across` off it, its axis turned by -phiM from the curve's
-  /// direction there; false when it leaves the surface.
-  bool PlacePart(const std::vector<CurvePiece>& curve, double u, int part, double across,
+  /// Places part `part` (MakeShape, and its precheck on the curve behind the centre): from the
+  /// curve point (face, x) with the curve's unit tangent there, `across` off the curve, its axis
+  /// turned by -phiM from the curve's direction; false when it leaves the surface.
+  bool PlacePart(int face, const Vec3& x, const Vec3& tangent, int part, double across,
     double phiM, PlacedPart& p) const;
+  /// The point `distance` from the centre along a streamline's pieces (traced from the centre),
+  /// clamped to its end, with the unit tangent of the shape's curve there: the streamline's
+  /// direction ahead of the centre, the opposite behind it (`behind`, the curve runs towards the
+  /// centre there). False for a line of no length.
+  static bool PointFromCentre(const std::vector<CurvePiece>& pieces, double distance, bool behind,
+    int& face, Vec3& x, Vec3& tangent);
   /// Faces where no candidate can fit any more: every candidate centred in them conflicts with
   /// part k of the new shape, because its distance from that part's centre is below the smallest
   /// safe distance against any part of any class, less the class's reach (its part centres'

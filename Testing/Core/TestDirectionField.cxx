@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 namespace
@@ -496,6 +497,75 @@ TEST(DirectionField, StreamlineTracer)
   EXPECT_LT(pole.Length, 2.0);
   const gs::Vec3 pe = sphere.Interpolate(pole.End.Face, pole.End.Bary);
   EXPECT_GT(std::abs(pe.z), 0.9);
+}
+
+namespace
+{
+bool SameBits(const gs::Vec3& a, const gs::Vec3& b)
+{
+  return std::memcmp(&a, &b, sizeof(gs::Vec3)) == 0;
+}
+
+void ExpectSameLine(const gs::Streamline& a, const gs::Streamline& b, const char* what)
+{
+  ASSERT_EQ(a.Pieces.size(), b.Pieces.size()) << what;
+  for (std::size_t i = 0; i < a.Pieces.size(); ++i)
+  {
+    EXPECT_EQ(a.Pieces[i].Face, b.Pieces[i].Face) << what << " piece " << i;
+    EXPECT_TRUE(SameBits(a.Pieces[i].A, b.Pieces[i].A) && SameBits(a.Pieces[i].B, b.Pieces[i].B))
+      << what << " piece " << i;
+  }
+  EXPECT_EQ(std::memcmp(&a.Length, &b.Length, sizeof(double)), 0) << what;
+  EXPECT_EQ(a.Reason, b.Reason) << what;
+  EXPECT_EQ(a.End.Face, b.End.Face) << what;
+  EXPECT_TRUE(a.End.Bary == b.End.Bary) << what;
+}
+} // namespace
+
+// A streamline traced in stages (the Shape Distributor checks a long candidate's parts behind
+// its centre before tracing the rest) is the streamline traced at once, bit for bit, wherever
+// the stages end: each stage stops at the first face exit at or beyond its length.
+TEST(DirectionField, StagedStreamlineIsTheSameBitForBit)
+{
+  const gs::TriangleMesh sphere = gs_test::BuildMesh(gs::MakeIcosphere(1.0, 4));
+  gs::DirectionFieldSolver solver(sphere);
+  std::vector<double> angles;
+  const int north = ClosestVertex(sphere, { 0, 0, 1 }), south = ClosestVertex(sphere, { 0, 0, -1 });
+  ASSERT_TRUE(gs_test::Succeeded(solver.SolvePrescribed(2, { { north, 1.0 }, { south, 1.0 } }, {}, angles)));
+  const std::vector<double> index = solver.RoundedVertexIndices(2, angles);
+  int stopsAtLength = 0, stopsEarly = 0;
+  for (int f = 0; f < sphere.NumberOfFaces(); f += 97)
+  {
+    const gs::SurfacePoint start = gs::SurfacePoint::InFace(f, 0.5, 0.3, 0.2);
+    for (double length : { 0.05, 0.8, 4.0 })
+    {
+      const gs::Streamline once = solver.TraceStreamline(2, angles, start, 0.3, length, &index);
+      (once.Reason == gs::Streamline::ReachedLength ? stopsAtLength : stopsEarly) += 1;
+      for (double stage : { 0.0, 0.013, 0.31, 0.5 })
+      {
+        gs::DirectionFieldSolver::StreamlineTracer tracer(solver, 2, angles, start, 0.3, length, &index);
+        double last = 0.0;
+        for (double until = stage; until < length && !tracer.Finished(); until += stage > 0 ? stage : length)
+        {
+          tracer.Continue(until);
+          EXPECT_TRUE(tracer.Finished() || tracer.Line().Length >= until);
+          EXPECT_GE(tracer.Line().Length, last); // stages only add pieces
+          last = tracer.Line().Length;
+          // A stage holds a prefix of the whole line's pieces.
+          ASSERT_LE(tracer.Line().Pieces.size(), once.Pieces.size());
+          if (!tracer.Finished() && !tracer.Line().Pieces.empty())
+          {
+            const std::size_t k = tracer.Line().Pieces.size() - 1;
+            EXPECT_TRUE(SameBits(tracer.Line().Pieces[k].B, once.Pieces[k].B)) << "face " << f;
+          }
+        }
+        EXPECT_FALSE(tracer.Continue());
+        ExpectSameLine(tracer.Line(), once, "staged");
+      }
+    }
+  }
+  EXPECT_GT(stopsAtLength, 10);
+  EXPECT_GT(stopsEarly, 3); // (singularities at the poles)
 }
 
 // Issue 21 (part 4): a point direction array averaged per face N-symmetrically. Each corner of a

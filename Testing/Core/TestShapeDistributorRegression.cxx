@@ -98,20 +98,23 @@ struct Case
   Hashes Expected;
 };
 
-// Recorded on the unsplit distributor (commit 9effd44).
+// Recorded on the unsplit distributor (commit 9effd44). Session 31: the placements hashes of the
+// cases with long shapes recorded again, when a long shape's parts came to be placed by walking
+// its streamline from the centre instead of from its far end (the same points but for rounding:
+// the decals, outlines, counts and probes of every case kept their hashes).
 const Case Cases[] = {
   { "plane random keep-inside", false, DistributionMode::Random, false, true, false,
-    { 0x36a3c994243e0236ull, 0x1509a19feedc474dull, 0x8d8ba8c82131c243ull, 47, 0.014999999999999999 } },
+    { 0x0e76edd2852bb614ull, 0x1509a19feedc474dull, 0x8d8ba8c82131c243ull, 47, 0.014999999999999999 } },
   { "plane greedy density", false, DistributionMode::Greedy, true, false, false,
-    { 0x7ea3d6e40bcb8faeull, 0x8bee05b60b9069e6ull, 0x52a65acc23e910c2ull, 67, 0.0050000000000000001 } },
+    { 0xdc4520260bdc79b6ull, 0x8bee05b60b9069e6ull, 0x52a65acc23e910c2ull, 67, 0.0050000000000000001 } },
   { "plane greedy density keep-inside graph", false, DistributionMode::Greedy, true, true, true,
-    { 0x16b928e9e7f1183full, 0xeb43f6f99bffddb5ull, 0xc19bd1c8fdb3c318ull, 51, 0.0050000000000000001 } },
+    { 0xb834dd1f14121164ull, 0xeb43f6f99bffddb5ull, 0xc19bd1c8fdb3c318ull, 51, 0.0050000000000000001 } },
   { "sphere random density graph", true, DistributionMode::Random, true, false, true,
-    { 0x136560d75299427dull, 0x6729bb0a9123bb3full, 0x625a625d24d4cefcull, 130, 0 } },
+    { 0x36225d5751078c4eull, 0x6729bb0a9123bb3full, 0x625a625d24d4cefcull, 130, 0 } },
   { "sphere greedy graph", true, DistributionMode::Greedy, false, false, true,
-    { 0x081e3ec94f6ff087ull, 0x15ac46d5dafb208aull, 0xef5085869cd604f5ull, 97, 0 } },
+    { 0x07f09a192fc2d6e2ull, 0x15ac46d5dafb208aull, 0xef5085869cd604f5ull, 97, 0 } },
   { "sphere greedy density exact", true, DistributionMode::Greedy, true, false, false,
-    { 0x8198c3f245d3a3c9ull, 0xa118f871cebc9481ull, 0x119ca8780a540c55ull, 116, 0 } },
+    { 0x9ddc96d1d9446abfull, 0xa118f871cebc9481ull, 0x119ca8780a540c55ull, 116, 0 } },
   { "sphere circumcircles graph", true, DistributionMode::CircumcirclePoissonDisk, false, false, true,
     { 0x3c042043c3068257ull, 0x8e4a939bd45fdfedull, 0xcad68a7795a2006eull, 96, 0.01 } },
 };
