@@ -487,7 +487,10 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
         break; // (one circle at the centre, below)
       }
       PlacedPart p;
-      const bool behindPart = Dot(Tables.Parts[part].Centre, c.MajorAxis) < 0.0;
+      // (A part at the centre itself reads the curve's direction there on whichever side the
+      // curve has length: a class may end at its centre.)
+      const double along = Dot(Tables.Parts[part].Centre, c.MajorAxis);
+      const bool behindPart = along < 0.0 || (along == 0.0 && !(ahead.Length > 0.0));
       if (!place(behindPart ? behind : ahead, behindPart, part, p))
       {
         return false;
