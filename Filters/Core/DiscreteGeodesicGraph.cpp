@@ -194,20 +194,19 @@ bool DGGPropagation::Covered(const Window& w, double epsilon) const
     int Depth;
   };
   auto q = [&](int k, double t) { return Hypot(t - use[k]->X, use[k]->Y); };
+  // Depth first, the later half first: the piece at hand is kept out of the stack, which holds
+  // the earlier halves still to do (at most 22: a split is refused when the stack would pass 22
+  // with both halves counted, as when both were pushed).
   Piece stack[24];
   int top = 0;
+  Piece p{ w.B0, w.B1, Hypot(w.B0 - ix, iy), Hypot(w.B1 - ix, iy), {}, {}, 0 };
+  for (int k = 0; k < m; ++k)
   {
-    Piece first{ w.B0, w.B1, Hypot(w.B0 - ix, iy), Hypot(w.B1 - ix, iy), {}, {}, 0 };
-    for (int k = 0; k < m; ++k)
-    {
-      first.Q0[k] = q(k, w.B0);
-      first.Q1[k] = q(k, w.B1);
-    }
-    stack[top++] = first;
+    p.Q0[k] = q(k, w.B0);
+    p.Q1[k] = q(k, w.B1);
   }
-  while (top > 0)
+  for (;;)
   {
-    const Piece p = stack[--top];
     bool end0 = false, end1 = false;
     for (int k = 0; k < m; ++k)
     {
@@ -230,22 +229,30 @@ bool DGGPropagation::Covered(const Window& w, double epsilon) const
     }
     if (whole)
     {
+      if (top == 0)
+      {
+        break;
+      }
+      p = stack[--top];
       continue;
     }
     if (p.Depth >= 12 || top + 2 > 24)
     {
       return false;
     }
-    Piece a = p, b = p;
-    a.T1 = b.T0 = tm;
-    a.P1 = b.P0 = pm;
-    a.Depth = b.Depth = p.Depth + 1;
+    // The earlier half waits on the stack; the later half is the next piece.
+    Piece& a = stack[top++];
+    a = p;
+    a.T1 = tm;
+    a.P1 = pm;
+    a.Depth = p.Depth + 1;
+    p.T0 = tm;
+    p.P0 = pm;
+    p.Depth = a.Depth;
     for (int k = 0; k < m; ++k)
     {
-      a.Q1[k] = b.Q0[k] = q(k, tm);
+      a.Q1[k] = p.Q0[k] = q(k, tm);
     }
-    stack[top++] = a;
-    stack[top++] = b;
   }
   return true;
 }
