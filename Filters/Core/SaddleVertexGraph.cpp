@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <unistd.h>
 
 #if defined(__SSE2__)
@@ -233,10 +234,11 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
     options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
 #pragma omp parallel num_threads(buildThreads)
   {
-    ExactGeodesicSolver solver(mesh);
+    // (Each engine allocates per-vertex state: only the one this graph uses is made.)
+    std::unique_ptr<ExactGeodesicSolver> solver(dgg ? nullptr : new ExactGeodesicSolver(mesh));
     ExactGeodesicOptions opt;
     opt.MaximumFinalVertices = k;
-    DGGPropagation propagation(mesh);
+    std::unique_ptr<DGGPropagation> propagation(dgg ? new DGGPropagation(mesh) : nullptr);
     std::vector<DGGPropagation::Link> links;
     const double epsilon = DGGEpsilonPerAccuracy * options.Accuracy;
     int masterCount = 0;
@@ -253,7 +255,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       auto& out = direct[s];
       if (dgg)
       {
-        propagation.Run(s, epsilon, links);
+        propagation->Run(s, epsilon, links);
         for (const auto& link : links)
         {
           out.emplace_back(link.Target, link.Distance);
@@ -262,13 +264,13 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       }
       else
       {
-        static_cast<void>(solver.Solve(s, opt)); // s is a vertex of the mesh: accepted
-        for (int v : solver.FinalVertices())
+        static_cast<void>(solver->Solve(s, opt)); // s is a vertex of the mesh: accepted
+        for (int v : solver->FinalVertices())
         {
-          if (v != s && solver.IsDirect(v))
+          if (v != s && solver->IsDirect(v))
           {
-            out.emplace_back(v, solver.Distance(v));
-            angles[s].push_back(solver.DepartureAngle(v));
+            out.emplace_back(v, solver->Distance(v));
+            angles[s].push_back(solver->DepartureAngle(v));
           }
         }
       }
