@@ -480,39 +480,32 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     }
     s.CurveCentre = behind.Length;
     s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
-    for (int part : c.Parts)
-    {
-      if (CircleMode)
-      {
-        break; // (one circle at the centre, below)
-      }
-      PlacedPart p;
-      // (A part at the centre itself reads the curve's direction there on whichever side the
-      // curve has length: a class may end at its centre.)
-      const double along = Dot(Tables.Parts[part].Centre, c.MajorAxis);
-      const bool behindPart = along < 0.0 || (along == 0.0 && !(ahead.Length > 0.0));
-      if (!place(behindPart ? behind : ahead, behindPart, part, p))
-      {
-        return false;
-      }
-      s.Parts.push_back(p);
-    }
     if (!CircleMode)
     {
+      for (int part : c.Parts)
+      {
+        PlacedPart p;
+        // (A part at the centre itself reads the curve's direction there on whichever side the
+        // curve has length: a class may end at its centre.)
+        const double along = Dot(Tables.Parts[part].Centre, c.MajorAxis);
+        const bool behindPart = along < 0.0 || (along == 0.0 && !(ahead.Length > 0.0));
+        if (!place(behindPart ? behind : ahead, behindPart, part, p))
+        {
+          return false;
+        }
+        s.Parts.push_back(p);
+      }
       return true;
     }
   }
-  if (CircleMode || c.Parts.size() <= 1)
-  {
-    PlacedPart p;
-    p.Part = CircleMode ? cls : c.Parts[0];
-    p.Centre = centre;
-    p.Position = s.Position;
-    p.Axis = s.Direction;
-    s.Parts.push_back(p);
-    return true;
-  }
-  return false; // (not reached: a long class returns above)
+  // A short class, or any class as circles: one part, at the centre.
+  PlacedPart p;
+  p.Part = CircleMode ? cls : c.Parts[0];
+  p.Centre = centre;
+  p.Position = s.Position;
+  p.Axis = s.Direction;
+  s.Parts.push_back(p);
+  return true;
 }
 
 void ShapeDistributor::Impl::CollectKills(const Record& r, std::vector<char>& mark, std::vector<int>& marked,
