@@ -146,7 +146,8 @@ public:
   // The same streamline traced in stages: Continue(until) traces it on to the first face exit at
   // or beyond the geodesic length `until` (or to its end), so that a caller can look at its
   // beginning before paying for the rest. The pieces are those of TraceStreamline, bit for bit,
-  // however the tracing is staged (a stage never cuts a piece short of its face's exit).
+  // however the tracing is staged (a stage never cuts a piece short of its face's exit). The
+  // solver, `angles` and `indices` must outlive the tracer.
   class StreamlineTracer
   {
   public:
