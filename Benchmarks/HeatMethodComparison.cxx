@@ -3,6 +3,7 @@
 // in the same run, on the same welded mesh and sources.
 //
 //   HeatMethodComparison mesh.off|mesh.ply [...] [--sources N] [--k K] [--dgg A,B,...] [--rounds R]
+//   [--dgg-reached A,... (discrete geodesic graphs whose stencils hold the reached vertices too)]
 #include "BenchmarkSupport.h"
 #include "ExactGeodesic.h"
 #include "MeshIO.h"
@@ -98,6 +99,8 @@ int main(int argc, char** argv)
   std::vector<std::string> files;
   int numSources = 5, k = 50, rounds = 5;
   std::vector<double> accuracies = { 1e-2, 1e-3 };
+  std::vector<bool> reachedStencils = { false, false }; // per accuracy: ReachedStencil
+  bool listed = false; // (--dgg or --dgg-reached given: they replace the default accuracies)
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -105,13 +108,19 @@ int main(int argc, char** argv)
       numSources = std::max(1, std::atoi(argv[++i]));
     else if (a == "--k" && i + 1 < argc)
       k = std::atoi(argv[++i]);
-    else if (a == "--dgg" && i + 1 < argc)
+    else if ((a == "--dgg" || a == "--dgg-reached") && i + 1 < argc)
     {
-      accuracies.clear();
+      if (!listed)
+      {
+        accuracies.clear();
+        reachedStencils.clear();
+        listed = true;
+      }
       for (const char* p = argv[++i]; *p;)
       {
         char* end = nullptr;
         accuracies.push_back(std::strtod(p, &end));
+        reachedStencils.push_back(a == "--dgg-reached");
         p = *end == ',' ? end + 1 : end;
         if (end == p && *p)
           break;
@@ -122,7 +131,7 @@ int main(int argc, char** argv)
     else if (a == "--help" || a == "-h")
     {
       std::printf(
-        "usage: %s mesh [...] [--sources N] [--k K] [--dgg 1e-2,1e-3] [--rounds R]\n", argv[0]);
+        "usage: %s mesh [...] [--sources N] [--k K] [--dgg 1e-2,1e-3] [--dgg-reached 1e-1] [--rounds R]\n", argv[0]);
       return 0;
     }
     else
@@ -158,11 +167,12 @@ int main(int argc, char** argv)
     // The graphs: SVG with K, then a discrete geodesic graph per accuracy.
     std::vector<gs::SaddleVertexGraphOptions> configurations(1);
     configurations[0].K = k;
-    for (double accuracy : accuracies)
+    for (std::size_t a = 0; a < accuracies.size(); ++a)
     {
       configurations.emplace_back();
       configurations.back().Construction = gs::GraphConstruction::DiscreteGeodesic;
-      configurations.back().Accuracy = accuracy;
+      configurations.back().Accuracy = accuracies[a];
+      configurations.back().ReachedStencil = reachedStencils[a];
     }
     std::vector<std::unique_ptr<gs::SaddleVertexGraph>> graphs;
     std::vector<std::unique_ptr<gs::SVGGeodesicSolver>> solvers;
@@ -197,8 +207,8 @@ int main(int argc, char** argv)
       Method ours;
       char label[64];
       if (graph.GetConstruction() == gs::GraphConstruction::DiscreteGeodesic)
-        std::snprintf(label, sizeof(label), "DGG accuracy %.0e (%.1f links/v)", graph.GetAccuracy(),
-          graph.MeanDegree());
+        std::snprintf(label, sizeof(label), "DGG accuracy %.0e%s (%.1f links/v)", graph.GetAccuracy(),
+          graph.GetReachedStencil() ? ", reached stencils" : "", graph.MeanDegree());
       else
         std::snprintf(label, sizeof(label), "SVG K=%d (%.1f links/v)", graph.GetK(), graph.MeanDegree());
       ours.Label = label;

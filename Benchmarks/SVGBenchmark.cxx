@@ -4,6 +4,8 @@
 //
 //   SVGBenchmark mesh.off|mesh.ply [...] [--k 50,100,200] [--dgg 1e-2,1e-3] [--sources N]
 //                [--threads T] [--subdivide S (midpoint subdivisions of each mesh first)]
+//                [--dgg-reached 1e-1 (discrete geodesic graphs whose stencils hold the reached
+//                vertices too, SaddleVertexGraphOptions::ReachedStencil; labelled r1e-01)]
 //   (--k "": no saddle vertex graph. The refined solve is also timed on T threads (2 by default)
 //   against one; GS_PARALLEL_MINIMUM=N sets SVGSolveOptions::ParallelRefinementMinimum there.)
 #include "BenchmarkSupport.h"
@@ -55,6 +57,7 @@ int main(int argc, char** argv)
   std::vector<std::string> files;
   std::vector<int> ks = { 50, 100, 200 };
   std::vector<double> accuracies; // discrete geodesic graphs
+  std::vector<bool> reachedStencils; // per accuracy: ReachedStencil
   int numSources = 5, threads = 0, subdivisions = 0;
   double maxError = 0.0; // > 0: exit 1 when the refined mean error exceeds it (a test)
   bool failed = false;
@@ -69,12 +72,15 @@ int main(int argc, char** argv)
       while (std::getline(ss, item, ','))
         ks.push_back(std::atoi(item.c_str()));
     }
-    else if (a == "--dgg" && i + 1 < argc)
+    else if ((a == "--dgg" || a == "--dgg-reached") && i + 1 < argc)
     {
       std::stringstream ss(argv[++i]);
       std::string item;
       while (std::getline(ss, item, ','))
+      {
         accuracies.push_back(std::atof(item.c_str()));
+        reachedStencils.push_back(a == "--dgg-reached");
+      }
     }
     else if (a == "--sources" && i + 1 < argc)
       numSources = std::max(1, std::atoi(argv[++i]));
@@ -86,7 +92,7 @@ int main(int argc, char** argv)
       maxError = std::atof(argv[++i]);
     else if (a == "--help" || a == "-h")
     {
-      std::printf("usage: %s mesh [...] [--k 50,100,200] [--dgg 1e-2,1e-3] [--sources N] "
+      std::printf("usage: %s mesh [...] [--k 50,100,200] [--dgg 1e-2,1e-3] [--dgg-reached 1e-1] [--sources N] "
                   "[--threads T] [--subdivide S] "
                   "[--max-error E (exit 1 when the mean error exceeds E)]\n",
         argv[0]);
@@ -157,11 +163,12 @@ int main(int argc, char** argv)
       configurations.emplace_back();
       configurations.back().K = k;
     }
-    for (double accuracy : accuracies)
+    for (std::size_t a = 0; a < accuracies.size(); ++a)
     {
       configurations.emplace_back();
       configurations.back().Construction = GraphConstruction::DiscreteGeodesic;
-      configurations.back().Accuracy = accuracy;
+      configurations.back().Accuracy = accuracies[a];
+      configurations.back().ReachedStencil = reachedStencils[a];
     }
     for (SaddleVertexGraphOptions opt : configurations)
     {
@@ -290,7 +297,7 @@ int main(int argc, char** argv)
       dij /= numSources;
       char label[32];
       if (dgg)
-        std::snprintf(label, sizeof(label), "e%.0e", opt.Accuracy);
+        std::snprintf(label, sizeof(label), "%s%.0e", opt.ReachedStencil ? "r" : "e", opt.Accuracy);
       else
         std::snprintf(label, sizeof(label), "%d", g.GetK());
       std::printf("%-24s %7d %6s %8.1f %9.2f %10.1f %10.2e %10.2e %10.2e %10.2e %10.2e %10.4f %8.2f %8.2f %8.2f %10.1f %10.2f %8.0f %8.0f %8.0f\n",

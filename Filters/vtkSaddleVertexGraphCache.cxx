@@ -15,15 +15,18 @@ namespace
 using GraphPointer = std::shared_ptr<const gs::SaddleVertexGraph>;
 
 // What tells graphs of one mesh apart: the construction and its parameter (K clamped to the
-// vertex count as the core clamps it, or the accuracy).
+// vertex count as the core clamps it, or the accuracy and whether the stencils hold the reached
+// vertices).
 struct GraphKey
 {
   gs::GraphConstruction Construction = gs::GraphConstruction::SaddleVertex;
   int K = 0;
   double Accuracy = 0.0;
+  bool ReachedStencil = false;
   bool operator==(const GraphKey& o) const
   {
-    return Construction == o.Construction && K == o.K && Accuracy == o.Accuracy;
+    return Construction == o.Construction && K == o.K && Accuracy == o.Accuracy &&
+      ReachedStencil == o.ReachedStencil;
   }
 };
 
@@ -175,6 +178,7 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   key.Construction = options.Construction;
   key.K = gs::SaddleVertexGraph::EffectiveK(options, nv);
   key.Accuracy = dgg ? options.Accuracy : 0.0;
+  key.ReachedStencil = dgg && options.ReachedStencil;
 
   // 1. Memory.
   if (validOptions)

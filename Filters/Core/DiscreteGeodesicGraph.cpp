@@ -356,10 +356,14 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
   }
 }
 
-void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links)
+void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::vector<Link>* reached)
 {
   Reset();
   links.clear();
+  if (reached)
+  {
+    reached->clear();
+  }
   Dist[s] = 0.0;
   Touched.push_back(s);
   const int start = Mesh.VertexHalfedge(s);
@@ -405,9 +409,17 @@ void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links)
   }
   for (int v : Touched)
   {
-    if (v != s && !IsCovered[v])
+    if (v == s)
+    {
+      continue;
+    }
+    if (!IsCovered[v])
     {
       links.push_back({ v, Dist[v], AnglePhi[v] + std::atan2(AngleY[v], AngleX[v]) });
+    }
+    else if (reached)
+    {
+      reached->push_back({ v, Dist[v], AnglePhi[v] + std::atan2(AngleY[v], AngleX[v]) });
     }
   }
 }

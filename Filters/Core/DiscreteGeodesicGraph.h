@@ -59,8 +59,10 @@ public:
   };
   // The links of vertex s for epsilon (> 0): its mesh neighbours (always) and every vertex whose
   // shortest direct geodesic from s is not covered. The propagation ends by itself once every
-  // window is covered, trimmed away or has left the mesh.
-  void Run(int s, double epsilon, std::vector<Link>& links);
+  // window is covered, trimmed away or has left the mesh. `reached` (optional): the other
+  // vertices reached, whose best arrival was covered (the source excluded), with the length and
+  // direction of that arrival's direct geodesic.
+  void Run(int s, double epsilon, std::vector<Link>& links, std::vector<Link>* reached = nullptr);
 
   const DGGStatistics& Statistics() const { return Stats; }
 

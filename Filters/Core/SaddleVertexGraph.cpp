@@ -33,6 +33,16 @@ constexpr double Inf = std::numeric_limits<double>::infinity();
 // discrete geodesic graph's the accuracy (double); the rest is laid out alike.
 constexpr char Magic[8] = { 'G', 'S', 'S', 'V', 'G', '0', '0', '4' };
 constexpr char DGGMagic[8] = { 'G', 'S', 'D', 'G', 'G', '0', '0', '1' };
+// A discrete geodesic graph whose stencils hold its reached vertices too (the same layout).
+constexpr char DGRMagic[8] = { 'G', 'S', 'D', 'G', 'R', '0', '0', '1' };
+// What a cache file holds, from its magic's first five characters (null: not a graph file).
+const char* GraphKind(const char* magic)
+{
+  return std::memcmp(magic, Magic, 5) == 0 ? "a saddle vertex graph"
+    : std::memcmp(magic, DGGMagic, 5) == 0 ? "a discrete geodesic graph"
+    : std::memcmp(magic, DGRMagic, 5) == 0 ? "a discrete geodesic graph with reached stencils"
+                                            : nullptr;
+}
 
 // Build memory per vertex and per unit of K (bytes), above the peaks SVGBenchmark measured on
 // armadillo, refined_elephant and mannequin-devil: 4.9-5.0 KB per vertex at K = 50, 9.2-10.1 KB
@@ -102,7 +112,10 @@ double SaddleVertexGraph::EstimatedBuildBytes(
   // peaks SVGBenchmark measured on refined_elephant subdivided twice (711K vertices): 1.4 KB per
   // vertex at accuracy 0.1 (epsilon 0.02; estimate 3.1 KB), 2.9 KB at 0.03 (estimate 4.9 KB).
   const double epsilon = DGGEpsilonPerAccuracy * std::max(options.Accuracy, 1e-5);
-  return EstimatedBuildBytes(numberOfVertices, static_cast<int>(std::ceil(3.0 / std::sqrt(epsilon))));
+  // (ReachedStencil: the stencils hold about three times the links at accuracy 0.1, each entry
+  // as costly as a saddle vertex graph's: counted as twice the K.)
+  const double k = 3.0 / std::sqrt(epsilon) * (options.ReachedStencil ? 2.0 : 1.0);
+  return EstimatedBuildBytes(numberOfVertices, static_cast<int>(std::ceil(k)));
 }
 
 int SaddleVertexGraph::LocalDiskSize() const
@@ -142,6 +155,7 @@ void SaddleVertexGraph::Clear()
   Construction = GraphConstruction::SaddleVertex;
   K = 0;
   Accuracy = 0.0;
+  ReachedStencil = false;
 }
 
 std::uint64_t SaddleVertexGraph::HashMesh(const TriangleMesh& mesh)
@@ -228,6 +242,10 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   OrderNodes(mesh);
   std::vector<std::vector<std::pair<int, double>>> direct(nv);
   std::vector<std::vector<double>> angles(nv);
+  // (ReachedStencil: the reached, covered vertices, for the stencils only.)
+  const bool reachedStencil = dgg && options.ReachedStencil;
+  std::vector<std::vector<std::pair<int, double>>> reachedDirect(reachedStencil ? nv : 0);
+  std::vector<std::vector<double>> reachedAngles(reachedStencil ? nv : 0);
   std::atomic<int> done(0);
   std::atomic<bool> aborted(false);
   const int buildThreads =
@@ -239,7 +257,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
     ExactGeodesicOptions opt;
     opt.MaximumFinalVertices = k;
     std::unique_ptr<DGGPropagation> propagation(dgg ? new DGGPropagation(mesh) : nullptr);
-    std::vector<DGGPropagation::Link> links;
+    std::vector<DGGPropagation::Link> links, reached;
     const double epsilon = DGGEpsilonPerAccuracy * options.Accuracy;
     int masterCount = 0;
     // Sources in node order: consecutive solves then cover overlapping neighbourhoods, whose
@@ -255,11 +273,16 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       auto& out = direct[s];
       if (dgg)
       {
-        propagation->Run(s, epsilon, links);
+        propagation->Run(s, epsilon, links, reachedStencil ? &reached : nullptr);
         for (const auto& link : links)
         {
           out.emplace_back(link.Target, link.Distance);
           angles[s].push_back(link.Angle);
+        }
+        for (const auto& r : reached)
+        {
+          reachedDirect[s].emplace_back(r.Target, r.Distance);
+          reachedAngles[s].push_back(r.Angle);
         }
       }
       else
@@ -294,11 +317,20 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
 
   // Everything below is laid out by node (the vertices in Z-order, see OrderNodes).
 
-  // Polar stencils: each vertex's own direct neighbours sorted by departure angle.
+  // Polar stencils: each vertex's own direct neighbours sorted by departure angle (with
+  // ReachedStencil, its reached vertices too: entry i < links is link i, the others follow).
+  auto stencilSize = [&](int v) {
+    return direct[v].size() + (reachedStencil ? reachedDirect[v].size() : 0);
+  };
+  auto stencilItem = [&](int v, std::size_t i) {
+    const std::size_t links = direct[v].size();
+    return i < links ? std::make_pair(direct[v][i], angles[v][i])
+                     : std::make_pair(reachedDirect[v][i - links], reachedAngles[v][i - links]);
+  };
   StencilOffsets.assign(nv + 1, 0);
   for (int n = 0; n < nv; ++n)
   {
-    StencilOffsets[n + 1] = StencilOffsets[n] + static_cast<std::int64_t>(direct[VertexOf[n]].size());
+    StencilOffsets[n + 1] = StencilOffsets[n] + static_cast<std::int64_t>(stencilSize(VertexOf[n]));
   }
   Stencil.resize(StencilOffsets[nv]);
   WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
@@ -306,19 +338,21 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   for (int n = 0; n < nv; ++n)
   {
     const int v = VertexOf[n];
-    std::vector<int> order(direct[v].size());
+    std::vector<int> order(stencilSize(v));
     for (std::size_t i = 0; i < order.size(); ++i)
     {
       order[i] = static_cast<int>(i);
     }
+    auto angleOf = [&](int i) { return stencilItem(v, static_cast<std::size_t>(i)).second; };
     std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return angles[v][a] < angles[v][b] || (angles[v][a] == angles[v][b] && a < b);
+      return angleOf(a) < angleOf(b) || (angleOf(a) == angleOf(b) && a < b);
     });
     for (std::size_t i = 0; i < order.size(); ++i)
     {
       const std::int64_t e = StencilOffsets[n] + static_cast<std::int64_t>(i);
-      const double r = direct[v][order[i]].second, a = angles[v][order[i]];
-      Stencil[e].Target = NodeOf[direct[v][order[i]].first];
+      const auto item = stencilItem(v, static_cast<std::size_t>(order[i]));
+      const double r = item.first.second, a = item.second;
+      Stencil[e].Target = NodeOf[item.first.first];
       Stencil[e].R = r;
       Stencil[e].X = r * std::cos(a);
       Stencil[e].Y = r * std::sin(a);
@@ -330,6 +364,11 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       }
     }
     std::vector<double>().swap(angles[v]);
+    if (reachedStencil)
+    {
+      std::vector<std::pair<int, double>>().swap(reachedDirect[v]);
+      std::vector<double>().swap(reachedAngles[v]);
+    }
   }
 
   // Symmetrize and add the mesh edges; duplicates keep the smallest weight, so that both
@@ -432,6 +471,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   Construction = options.Construction;
   K = EffectiveK(options, nv);
   Accuracy = dgg ? options.Accuracy : 0.0;
+  ReachedStencil = reachedStencil;
   Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return Status();
 }
@@ -530,7 +570,7 @@ Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) 
   sum.AddVector(stencilXY);
   sum.AddVector(WrapXY);
   sum.AddVector(VertexOf);
-  out.write(dgg ? DGGMagic : Magic, sizeof(Magic));
+  out.write(dgg ? (ReachedStencil ? DGRMagic : DGGMagic) : Magic, sizeof(Magic));
   out.write(reinterpret_cast<const char*>(&meshHash), sizeof(meshHash));
   out.write(static_cast<const char*>(key), static_cast<std::streamsize>(keySize));
   out.write(reinterpret_cast<const char*>(&seconds), sizeof(seconds));
@@ -584,13 +624,12 @@ Status SaddleVertexGraph::Load(
   double seconds = 0.0;
   std::int64_t nv = 0, ne = 0;
   in.read(magic, sizeof(magic));
-  const char* expected = dgg ? DGGMagic : Magic;
-  if (in && std::memcmp(magic, expected, 5) != 0 &&
-    (std::memcmp(magic, Magic, 5) == 0 || std::memcmp(magic, DGGMagic, 5) == 0))
+  const bool reachedStencil = dgg && options.ReachedStencil;
+  const char* expected = dgg ? (reachedStencil ? DGRMagic : DGGMagic) : Magic;
+  if (in && std::memcmp(magic, expected, 5) != 0 && GraphKind(magic))
   {
-    return Status::Error(path +
-      (dgg ? " holds a saddle vertex graph, not a discrete geodesic graph"
-           : " holds a discrete geodesic graph, not a saddle vertex graph"));
+    return Status::Error(
+      path + " holds " + GraphKind(magic) + ", not " + GraphKind(expected));
   }
   in.read(reinterpret_cast<char*>(&hash), sizeof(hash));
   in.read(static_cast<char*>(key), keySize);
@@ -742,6 +781,7 @@ Status SaddleVertexGraph::Load(
   Construction = options.Construction;
   K = dgg ? 0 : fileK;
   Accuracy = dgg ? fileAccuracy : 0.0;
+  ReachedStencil = reachedStencil;
   Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;
   return Status();
 }
