@@ -282,6 +282,7 @@ bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
   {
     options.Construction = gs::GraphConstruction::DiscreteGeodesic;
     options.Accuracy = this->Accuracy; // (0 included: the core rejects what is out of range)
+    options.ReachedStencil = this->ReachedStencil;
   }
   if (!cache.UseSaddleVertexGraph(this, options, this->CacheFileName, 0.1, 0.7, graphChanged, &run.GraphOrigin))
   {
@@ -419,6 +420,7 @@ void vtkSVGGeodesicDistance::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ResultArrayName: " << this->ResultArrayName << "\n";
   os << indent << "K: " << this->K << "\n";
   os << indent << "Accuracy: " << this->Accuracy << "\n";
+  os << indent << "ReachedStencil: " << this->ReachedStencil << "\n";
   os << indent << "CacheFileName: "
      << (this->CacheFileName.empty() ? "(none)" : this->CacheFileName) << "\n";
   os << indent << "UnfoldingRefinement: " << (this->UnfoldingRefinement ? "on" : "off") << "\n";

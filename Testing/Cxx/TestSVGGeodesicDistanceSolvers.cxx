@@ -573,6 +573,35 @@ void TestDiscreteGeodesicGraph()
     "the SVG solver used a DGG file");
   std::remove(file.c_str());
 
+  // ReachedStencil: a graph of its own (built, not the plain one from memory), the same
+  // distances without refinement, a smaller refined mean error, still within the accuracy.
+  auto runReached = [&](bool refine, bool reached) {
+    vtkNew<vtkSVGGeodesicDistance> filter;
+    filter->SetInputData(mesh);
+    filter->SetSolver(vtkSVGGeodesicDistance::DGG);
+    filter->SetAccuracy(0.1);
+    filter->SetReachedStencil(reached);
+    filter->SetUnfoldingRefinement(refine);
+    for (vtkIdType id : ids)
+      filter->AddSourceVertexId(id);
+    return Execute(filter);
+  };
+  const Run plainGraph = runReached(false, false);
+  const Run reachedGraph = runReached(false, true);
+  Check(reachedGraph.Origin() == "built" && reachedGraph.Errors.empty(), test,
+    "the reached-stencil graph came from " + reachedGraph.Origin());
+  Check(MaxAbsoluteDifference(plainGraph.Distances(), reachedGraph.Distances()) == 0.0, test,
+    "ReachedStencil changed the graph distances");
+  const Errors plainRefined = RelativeErrors(runReached(true, false).Distances(), exact.Distances());
+  const Run reachedRun = runReached(true, true);
+  const Errors reachedRefined = RelativeErrors(reachedRun.Distances(), exact.Distances());
+  std::cout << test << " bumpy_sphere.ply, accuracy 0.1 refined: mean relative error "
+            << plainRefined.Mean << " with links-only stencils, " << reachedRefined.Mean
+            << " with ReachedStencil (" << reachedRun.Origin() << ")\n";
+  Check(reachedRun.Origin() == "memory" && reachedRefined.Max <= 0.1 &&
+      reachedRefined.Mean < 0.75 * plainRefined.Mean,
+    test, "ReachedStencil did not refine closer");
+
   for (double bad : { 0.0, -1e-3, 0.5, std::nan("") })
   {
     const Run r = run(bad, true, ids, nullptr, "");
