@@ -95,7 +95,8 @@ _SOLVERS = {"svg": vtkSVGGeodesicDistance.SVG_LABEL_CORRECTING,
 
 
 def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, accuracy=1e-3,
-                      maximum_distance=0.0, cache_file=None, return_vtk=False):
+                      maximum_distance=0.0, cache_file=None, return_vtk=False,
+                      reached_stencil=False):
     """Geodesic distance (shortest path on the surface) from sources to every vertex.
 
     mesh: a vtkPolyData or (vertices, triangles).
@@ -108,6 +109,9 @@ def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, accurac
     k: the graph's neighbourhood size (SVG solvers; default 50). accuracy: the DGG's largest
         relative error, 1e-5 .. 0.1 (default 1e-3). maximum_distance: stop there
         (0: none; beyond it NaN). cache_file: where the graph is saved and read back.
+    reached_stencil: "dgg" only: refine over the vertices the graph's construction reached,
+        not only its links (the filter's ReachedStencil: a 2-3x smaller mean error at
+        accuracy 0.1 for twice the graph's memory).
     Returns an (n,) array of distances (NaN where unreachable), and the filter's output too
     when return_vtk is true.
     """
@@ -118,6 +122,7 @@ def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, accurac
     f.SetSolver(_SOLVERS[solver])
     f.SetK(int(k))
     f.SetAccuracy(float(accuracy))
+    f.SetReachedStencil(bool(reached_stencil))
     f.SetMaximumDistance(float(maximum_distance))
     if cache_file:
         f.SetCacheFileName(str(cache_file))

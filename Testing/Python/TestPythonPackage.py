@@ -97,6 +97,21 @@ for solver in ("svg", "svg-dijkstra", "dgg", "exact"):
     g = gs.geodesic_distance((plane_v, plane_f), centre, solver=solver)
     check(numpy.allclose(g, euclid, atol=1e-9), "geodesic_distance %s on a plane: off by %g"
           % (solver, numpy.abs(g - euclid).max()))
+# The discrete geodesic graph with reached stencils: exact on the plane too, and closer than
+# the links-only stencils on the sphere (against the exact solver).
+g = gs.geodesic_distance((plane_v, plane_f), centre, solver="dgg", accuracy=0.1, reached_stencil=True)
+check(numpy.allclose(g, euclid, atol=1e-9), "dgg reached_stencil on a plane: off by %g"
+      % numpy.abs(g - euclid).max())
+exact_sphere = gs.geodesic_distance((V, F), 7, solver="exact")
+mean_error = {}
+for reached in (False, True):
+    d = gs.geodesic_distance((V, F), 7, solver="dgg", accuracy=0.1, reached_stencil=reached)
+    far = exact_sphere > 0
+    mean_error[reached] = numpy.mean(numpy.abs(d[far] - exact_sphere[far]) / exact_sphere[far])
+print("dgg accuracy 0.1 on the sphere: mean relative error %.3g with reached_stencil, %.3g without"
+      % (mean_error[True], mean_error[False]))
+check(mean_error[True] < 0.75 * mean_error[False], "reached_stencil mean error %g, links-only %g"
+      % (mean_error[True], mean_error[False]))
 # From a point between vertices and from a curve (the x axis: distance |y|).
 point = numpy.array([[0.05, 0.02, 0.0]])
 g = gs.geodesic_distance((plane_v, plane_f), point, solver="exact")
