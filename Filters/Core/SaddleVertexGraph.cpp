@@ -279,6 +279,8 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
           out.emplace_back(link.Target, link.Distance);
           angles[s].push_back(link.Angle);
         }
+        reachedDirect[s].reserve(reached.size());
+        reachedAngles[s].reserve(reached.size());
         for (const auto& r : reached)
         {
           reachedDirect[s].emplace_back(r.Target, r.Distance);
@@ -339,13 +341,14 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   {
     const int v = VertexOf[n];
     std::vector<int> order(stencilSize(v));
+    std::vector<double> angle(order.size());
     for (std::size_t i = 0; i < order.size(); ++i)
     {
       order[i] = static_cast<int>(i);
+      angle[i] = stencilItem(v, i).second;
     }
-    auto angleOf = [&](int i) { return stencilItem(v, static_cast<std::size_t>(i)).second; };
     std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return angleOf(a) < angleOf(b) || (angleOf(a) == angleOf(b) && a < b);
+      return angle[a] < angle[b] || (angle[a] == angle[b] && a < b);
     });
     for (std::size_t i = 0; i < order.size(); ++i)
     {
