@@ -279,8 +279,11 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
           out.emplace_back(link.Target, link.Distance);
           angles[s].push_back(link.Angle);
         }
-        reachedDirect[s].reserve(reached.size());
-        reachedAngles[s].reserve(reached.size());
+        if (reachedStencil)
+        {
+          reachedDirect[s].reserve(reached.size());
+          reachedAngles[s].reserve(reached.size());
+        }
         for (const auto& r : reached)
         {
           reachedDirect[s].emplace_back(r.Target, r.Distance);
