@@ -312,39 +312,6 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
   }
 }
 
-bool ShapeDistributor::Impl::PointFromCentre(
-  const std::vector<CurvePiece>& pieces, double distance, bool behind, int& face, Vec3& x, Vec3& tangent)
-{
-  double walked = 0.0;
-  const CurvePiece* last = nullptr;
-  for (const CurvePiece& piece : pieces)
-  {
-    const double len = Norm(piece.B - piece.A);
-    if (len <= 0.0)
-    {
-      continue;
-    }
-    last = &piece;
-    if (walked + len >= distance)
-    {
-      const double t = std::max(0.0, (distance - walked) / len);
-      face = piece.Face;
-      x = piece.A + (piece.B - piece.A) * t;
-      tangent = (behind ? piece.A - piece.B : piece.B - piece.A) * (1.0 / len);
-      return true;
-    }
-    walked += len;
-  }
-  if (!last)
-  {
-    return false;
-  }
-  face = last->Face;
-  x = last->B;
-  tangent = Unit(behind ? last->A - last->B : last->B - last->A);
-  return true;
-}
-
 bool ShapeDistributor::Impl::PlacePart(
   int face, const Vec3& x, const Vec3& tangent, int part, double across, double phiM, PlacedPart& p) const
 {
@@ -413,13 +380,19 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     const int n = Options.Symmetry == 1 ? 2 : Options.Symmetry;
     const double a0 = Field->AngleInFace(f, dir);
     const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
+    // A part's distance from the centre along the curve, and the part placed there by walking
+    // the streamline `line` traced from the centre (behind it, the curve runs the other way).
+    auto distance = [&](int part) { return std::abs(Dot(Tables.Parts[part].Centre, c.MajorAxis)) * scale; };
     auto place = [&](const Streamline& line, bool behind, int part, PlacedPart& p) {
-      const Vec2& pc = Tables.Parts[part].Centre;
       int face = -1;
       Vec3 x, tangent;
-      return PointFromCentre(line.Pieces, std::abs(Dot(pc, c.MajorAxis)) * scale, behind, face, x,
-               tangent) &&
-        PlacePart(face, x, tangent, part, Cross(c.MajorAxis, pc) * scale, phiM, p);
+      if (!PointOnCurve(Mesh, line.Pieces, distance(part), face, x, tangent))
+      {
+        return false;
+      }
+      // (0 - t, not -t: a zero component stays +0, as the opposite piece's difference gives it.)
+      return PlacePart(face, x, behind ? Vec3{ 0.0, 0.0, 0.0 } - tangent : tangent, part,
+        Cross(c.MajorAxis, Tables.Parts[part].Centre) * scale, phiM, p);
     };
     // Behind first: a candidate whose parts there conflict needs no streamline ahead, and most
     // conflict at the part nearest the centre, which needs only the streamline up to it.
@@ -434,11 +407,10 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
       Record partial;
       partial.Shape.ClassId = cls;
       partial.Shape.Scale = s.Scale;
-      std::size_t placed = 0;
       for (std::size_t k = 0; k < BehindParts[cls].size(); ++k)
       {
         const int part = BehindParts[cls][k];
-        const double at = -Dot(Tables.Parts[part].Centre, c.MajorAxis) * scale;
+        const double at = distance(part);
         tracer.Continue(at);
         if (tracer.Line().Length < at)
         {
@@ -452,14 +424,10 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
         partial.Shape.Parts.push_back(p);
         // Checked when the next part needs more streamline (or at the last).
         const bool more = k + 1 < BehindParts[cls].size() &&
-          -Dot(Tables.Parts[BehindParts[cls][k + 1]].Centre, c.MajorAxis) * scale <= tracer.Line().Length;
-        if (!more && partial.Shape.Parts.size() > placed)
+          distance(BehindParts[cls][k + 1]) <= tracer.Line().Length;
+        if (!more && CheapConflict(partial, *precheck))
         {
-          placed = partial.Shape.Parts.size();
-          if (CheapConflict(partial, *precheck))
-          {
-            return false;
-          }
+          return false;
         }
       }
     }

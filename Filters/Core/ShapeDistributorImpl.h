@@ -249,7 +249,8 @@ struct ShapeDistributor::Impl
   /// CheapConflict checks them; on a conflict the candidate is given up (false) before the rest
   /// of the streamline is traced. The same decision as building the whole shape and checking
   /// it: those parts are computed bit for bit as the whole shape computes them (the staged
-  /// streamline has the same pieces, and parts are placed walking from the centre), and a
+  /// streamline has the same pieces, and parts are placed walking the streamline from the
+  /// centre, PointOnCurve over its pieces), and a
   /// conflict of some parts is a conflict of the shape.
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
     const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr) const;
@@ -258,12 +259,6 @@ struct ShapeDistributor::Impl
   /// turned by -phiM from the curve's direction; false when it leaves the surface.
   bool PlacePart(int face, const Vec3& x, const Vec3& tangent, int part, double across,
     double phiM, PlacedPart& p) const;
-  /// The point `distance` from the centre along a streamline's pieces (traced from the centre),
-  /// clamped to its end, with the unit tangent of the shape's curve there: the streamline's
-  /// direction ahead of the centre, the opposite behind it (`behind`, the curve runs towards the
-  /// centre there). False for a line of no length.
-  static bool PointFromCentre(const std::vector<CurvePiece>& pieces, double distance, bool behind,
-    int& face, Vec3& x, Vec3& tangent);
   /// Faces where no candidate can fit any more: every candidate centred in them conflicts with
   /// part k of the new shape, because its distance from that part's centre is below the smallest
   /// safe distance against any part of any class, less the class's reach (its part centres'
