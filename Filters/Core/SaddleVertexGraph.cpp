@@ -244,8 +244,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   std::vector<std::vector<double>> angles(nv);
   // (ReachedStencil: the reached, covered vertices, for the stencils only.)
   const bool reachedStencil = dgg && options.ReachedStencil;
-  std::vector<std::vector<std::pair<int, double>>> reachedDirect(reachedStencil ? nv : 0);
-  std::vector<std::vector<double>> reachedAngles(reachedStencil ? nv : 0);
+  std::vector<std::vector<DGGPropagation::Link>> reachedLinks(reachedStencil ? nv : 0);
   std::atomic<int> done(0);
   std::atomic<bool> aborted(false);
   const int buildThreads =
@@ -281,13 +280,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
         }
         if (reachedStencil)
         {
-          reachedDirect[s].reserve(reached.size());
-          reachedAngles[s].reserve(reached.size());
-        }
-        for (const auto& r : reached)
-        {
-          reachedDirect[s].emplace_back(r.Target, r.Distance);
-          reachedAngles[s].push_back(r.Angle);
+          reachedLinks[s] = reached;
         }
       }
       else
@@ -325,12 +318,17 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   // Polar stencils: each vertex's own direct neighbours sorted by departure angle (with
   // ReachedStencil, its reached vertices too: entry i < links is link i, the others follow).
   auto stencilSize = [&](int v) {
-    return direct[v].size() + (reachedStencil ? reachedDirect[v].size() : 0);
+    return direct[v].size() + (reachedStencil ? reachedLinks[v].size() : 0);
   };
+  // Entry i of v's stencil: (target vertex, distance), departure angle.
   auto stencilItem = [&](int v, std::size_t i) {
     const std::size_t links = direct[v].size();
-    return i < links ? std::make_pair(direct[v][i], angles[v][i])
-                     : std::make_pair(reachedDirect[v][i - links], reachedAngles[v][i - links]);
+    if (i < links)
+    {
+      return std::make_pair(direct[v][i], angles[v][i]);
+    }
+    const DGGPropagation::Link& r = reachedLinks[v][i - links];
+    return std::make_pair(std::make_pair(r.Target, r.Distance), r.Angle);
   };
   StencilOffsets.assign(nv + 1, 0);
   for (int n = 0; n < nv; ++n)
@@ -372,8 +370,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
     std::vector<double>().swap(angles[v]);
     if (reachedStencil)
     {
-      std::vector<std::pair<int, double>>().swap(reachedDirect[v]);
-      std::vector<double>().swap(reachedAngles[v]);
+      std::vector<DGGPropagation::Link>().swap(reachedLinks[v]);
     }
   }
 
