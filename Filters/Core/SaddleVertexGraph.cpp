@@ -357,7 +357,6 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       const auto item = stencilItem(v, static_cast<std::size_t>(order[i]));
       const double r = item.first.second, a = item.second;
       Stencil[e].Target = NodeOf[item.first.first];
-      Stencil[e].R = r;
       Stencil[e].X = r * std::cos(a);
       Stencil[e].Y = r * std::sin(a);
       if (i == 0)
@@ -562,7 +561,7 @@ Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) 
   for (std::int64_t e = 0; e < ns; ++e)
   {
     stencilTargets[e] = Stencil[e].Target;
-    stencilR[e] = Stencil[e].R;
+    stencilR[e] = StencilDistance(e);
     stencilXY[2 * e] = Stencil[e].X;
     stencilXY[2 * e + 1] = Stencil[e].Y;
   }
@@ -773,7 +772,6 @@ Status SaddleVertexGraph::Load(
   for (std::int64_t e = 0; e < ns; ++e)
   {
     Stencil[e].Target = stencilTargets[e];
-    Stencil[e].R = stencilR[e];
     Stencil[e].X = stencilXY[2 * e];
     Stencil[e].Y = stencilXY[2 * e + 1];
   }
