@@ -3,7 +3,8 @@
 // to 40 triangles (indices modulo the point count, possibly out of range or repeated) ->
 // TriangleMeshBuilder (must reject bad input with a message, never crash) -> exact geodesics,
 // a saddle vertex graph (K = 6) and SVG distances, polar coordinates, a discrete geodesic graph
-// (accuracy 0.05) and its distances, and a streamline.
+// (accuracy 0.05; with reached stencils for inputs of odd size) with its distances and polar
+// coordinates, and a streamline traced whole and in stages (the same pieces bit for bit).
 #include "DirectionField.h"
 #include "ExactGeodesic.h"
 #include "GeodesicPolarCoordinates.h"
@@ -77,8 +78,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   gs::SaddleVertexGraph dgg;
   options.Construction = gs::GraphConstruction::DiscreteGeodesic;
   options.Accuracy = 0.05;
+  options.ReachedStencil = (size & 1) != 0;
   if (dgg.Build(mesh, options, nullptr).Ok())
   {
+    gs::GeodesicPolarCoordinates polar(mesh, &dgg);
+    static_cast<void>(polar.Compute(gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5), 2.0, 0.0));
     gs::SVGGeodesicSolver solver(mesh, dgg);
     if (solver.Solve({ gs::SurfacePoint::AtVertex(0) }).Ok())
     {
@@ -93,6 +97,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   gs::DirectionFieldSolver field(mesh);
   std::vector<double> angles(mesh.NumberOfFaces(), 0.3);
-  field.TraceStreamline(1, angles, gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5), 0.0, 3.0);
+  const gs::SurfacePoint start = gs::SurfacePoint::InFace(0, 0.2, 0.3, 0.5);
+  const gs::Streamline whole = field.TraceStreamline(1, angles, start, 0.0, 3.0);
+  gs::DirectionFieldSolver::StreamlineTracer tracer(field, 1, angles, start, 0.0, 3.0);
+  for (double until : { 0.1, 0.5, 1.5 })
+  {
+    tracer.Continue(until);
+  }
+  tracer.Continue();
+  const gs::Streamline& staged = tracer.Line();
+  if (staged.Pieces.size() != whole.Pieces.size() || staged.Length != whole.Length ||
+    staged.Reason != whole.Reason)
+  {
+    __builtin_trap();
+  }
+  for (std::size_t k = 0; k < whole.Pieces.size(); ++k)
+  {
+    const gs::CurvePiece &a = whole.Pieces[k], &b = staged.Pieces[k];
+    if (a.Face != b.Face || a.A.x != b.A.x || a.A.y != b.A.y || a.A.z != b.A.z || a.B.x != b.B.x ||
+      a.B.y != b.B.y || a.B.z != b.B.z)
+    {
+      __builtin_trap();
+    }
+  }
   return 0;
 }
