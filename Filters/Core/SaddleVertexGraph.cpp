@@ -14,6 +14,9 @@
 #include <limits>
 #include <memory>
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -28,6 +31,17 @@ namespace gs
 
 namespace
 {
+// The per-vertex lists the build has freed (many small blocks inside the heap) are handed back
+// to the system before the next large arrays are allocated (as new pages): otherwise the freed
+// blocks stay resident and the two add up in the peak (with reached stencils at 711K vertices:
+// 3430 bytes per vertex before this).
+void ReturnFreedMemory()
+{
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
 constexpr double Inf = std::numeric_limits<double>::infinity();
 // Cache file formats: the saddle vertex graph's header holds K (int32) after the mesh hash, the
 // discrete geodesic graph's the accuracy (double); the rest is laid out alike.
@@ -109,8 +123,9 @@ double SaddleVertexGraph::EstimatedBuildBytes(
     return EstimatedBuildBytes(numberOfVertices, options.K);
   }
   // Links per vertex grow as 1 / sqrt(epsilon): counted as a K of 3 / sqrt(epsilon), above the
-  // peaks SVGBenchmark measured on refined_elephant subdivided twice (711K vertices): 1.4 KB per
-  // vertex at accuracy 0.1 (epsilon 0.02; estimate 3.1 KB), 2.9 KB at 0.03 (estimate 4.9 KB).
+  // peaks SVGBenchmark measured on refined_elephant subdivided twice (711K vertices): 1.7 KB per
+  // vertex at accuracy 0.1 (epsilon 0.02; estimate 3.2 KB; 2.1 KB with reached stencils,
+  // estimate 5.3 KB), 2.9 KB at 0.03 (estimate 4.9 KB; measured before session 32's lower peaks).
   const double epsilon = DGGEpsilonPerAccuracy * std::max(options.Accuracy, 1e-5);
   // (ReachedStencil: the stencils hold about three times the links at accuracy 0.1, each entry
   // as costly as a saddle vertex graph's: counted as twice the K.)
@@ -240,11 +255,55 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
 
   // Nodes: the vertices in Z-order (see OrderNodes).
   OrderNodes(mesh);
-  std::vector<std::vector<std::pair<int, double>>> direct(nv);
-  std::vector<std::vector<double>> angles(nv);
-  // (ReachedStencil: the reached, covered vertices, for the stencils only.)
+  // What each node's solve finds, in one block per node (made by the thread that solves it): its
+  // polar stencil (see makeStencil), then its links (target vertex in Target, length in X).
+  // Gathered below into the graph's stencil array and the links' arrays; one block a node, so
+  // that the blocks freed behind the gathering leave whole pages free to hand back.
+  std::vector<std::vector<StencilEntry>> made(nv);
+  std::vector<int> stencilSize(nv, 0);
+  WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
+  // (ReachedStencil: the reached, covered vertices join the stencils, not the links.)
   const bool reachedStencil = dgg && options.ReachedStencil;
-  std::vector<std::vector<DGGPropagation::Link>> reachedLinks(reachedStencil ? nv : 0);
+  // Node n's polar stencil: its vertex's links, then (with `reached`) its reached vertices,
+  // sorted by departure angle (ties by that order), at (r cos a, r sin a); the first entry also
+  // turned by the vertex's total angle, for the pair that closes the fan. `order`: scratch.
+  auto makeStencil = [&](int n, const std::vector<DGGPropagation::Link>& links,
+                       const std::vector<DGGPropagation::Link>* reached, std::vector<int>& order) {
+    const std::size_t nl = links.size(), size = nl + (reached ? reached->size() : 0);
+    auto item = [&](std::size_t i) -> const DGGPropagation::Link& {
+      return i < nl ? links[i] : (*reached)[i - nl];
+    };
+    order.resize(size);
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      order[i] = static_cast<int>(i);
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double aa = item(a).Angle, ab = item(b).Angle;
+      return aa < ab || (aa == ab && a < b);
+    });
+    std::vector<StencilEntry>& out = made[n];
+    out.resize(size + nl);
+    stencilSize[n] = static_cast<int>(size);
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      const DGGPropagation::Link& l = item(static_cast<std::size_t>(order[i]));
+      const double r = l.Distance, a = l.Angle;
+      out[i].Target = NodeOf[l.Target];
+      out[i].X = r * std::cos(a);
+      out[i].Y = r * std::sin(a);
+      if (i == 0)
+      {
+        const double wrapped = a + mesh.TotalAngle(VertexOf[n]);
+        WrapXY[2 * static_cast<std::size_t>(n)] = r * std::cos(wrapped);
+        WrapXY[2 * static_cast<std::size_t>(n) + 1] = r * std::sin(wrapped);
+      }
+    }
+    for (std::size_t i = 0; i < nl; ++i)
+    {
+      out[size + i] = { links[i].Distance, 0.0, links[i].Target };
+    }
+  };
   std::atomic<int> done(0);
   std::atomic<bool> aborted(false);
   const int buildThreads =
@@ -257,6 +316,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
     opt.MaximumFinalVertices = k;
     std::unique_ptr<DGGPropagation> propagation(dgg ? new DGGPropagation(mesh) : nullptr);
     std::vector<DGGPropagation::Link> links, reached;
+    std::vector<int> order;
     const double epsilon = DGGEpsilonPerAccuracy * options.Accuracy;
     int masterCount = 0;
     // Sources in node order: consecutive solves then cover overlapping neighbourhoods, whose
@@ -269,32 +329,23 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
         continue;
       }
       const int s = VertexOf[node];
-      auto& out = direct[s];
       if (dgg)
       {
         propagation->Run(s, epsilon, links, reachedStencil ? &reached : nullptr);
-        for (const auto& link : links)
-        {
-          out.emplace_back(link.Target, link.Distance);
-          angles[s].push_back(link.Angle);
-        }
-        if (reachedStencil)
-        {
-          reachedLinks[s] = reached;
-        }
       }
       else
       {
         static_cast<void>(solver->Solve(s, opt)); // s is a vertex of the mesh: accepted
+        links.clear();
         for (int v : solver->FinalVertices())
         {
           if (v != s && solver->IsDirect(v))
           {
-            out.emplace_back(v, solver->Distance(v));
-            angles[s].push_back(solver->DepartureAngle(v));
+            links.push_back({ v, solver->Distance(v), solver->DepartureAngle(v) });
           }
         }
       }
+      makeStencil(node, links, reachedStencil ? &reached : nullptr, order);
       const int n = ++done;
 #ifdef _OPENMP
       const bool master = omp_get_thread_num() == 0;
@@ -315,63 +366,47 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
 
   // Everything below is laid out by node (the vertices in Z-order, see OrderNodes).
 
-  // Polar stencils: each vertex's own direct neighbours sorted by departure angle (with
-  // ReachedStencil, its reached vertices too: entry i < links is link i, the others follow).
-  auto stencilSize = [&](int v) {
-    return direct[v].size() + (reachedStencil ? reachedLinks[v].size() : 0);
-  };
-  // Entry i of v's stencil: (target vertex, distance), departure angle.
-  auto stencilItem = [&](int v, std::size_t i) {
-    const std::size_t links = direct[v].size();
-    if (i < links)
-    {
-      return std::make_pair(direct[v][i], angles[v][i]);
-    }
-    const DGGPropagation::Link& r = reachedLinks[v][i - links];
-    return std::make_pair(std::make_pair(r.Target, r.Distance), r.Angle);
-  };
+  // The blocks, gathered into the stencil array and the links' arrays, in slabs of nodes in
+  // order (each slab on the build's threads): the stencil array is allocated without being
+  // written, so that its pages become resident as the slabs fill them, while the blocks gathered
+  // are freed and handed back to the system after each slab. The blocks and the array are then
+  // never both resident whole (with reached stencils they are most of the graph).
   StencilOffsets.assign(nv + 1, 0);
+  std::vector<std::int64_t> linkOffsets(nv + 1, 0);
   for (int n = 0; n < nv; ++n)
   {
-    StencilOffsets[n + 1] = StencilOffsets[n] + static_cast<std::int64_t>(stencilSize(VertexOf[n]));
+    StencilOffsets[n + 1] = StencilOffsets[n] + stencilSize[n];
+    linkOffsets[n + 1] = linkOffsets[n] + static_cast<std::int64_t>(made[n].size()) - stencilSize[n];
   }
+  Stencil.clear();
   Stencil.resize(StencilOffsets[nv]);
-  WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(buildThreads)
-  for (int n = 0; n < nv; ++n)
+  std::vector<int> linkTargets(linkOffsets[nv]); // vertices
+  std::vector<double> linkLengths(linkOffsets[nv]);
+  // (Slabs of about 32 MB of stencil, at most 32: handing memory back costs a pass over the
+  // heap, about 1 ms, which a small graph need not pay for every 1/32 of its nodes.)
+  const int slabs = static_cast<int>(std::min<std::int64_t>(32,
+    1 + StencilOffsets[nv] * static_cast<std::int64_t>(sizeof(StencilEntry)) / (32 << 20)));
+  for (int slab = 0; slab < slabs; ++slab)
   {
-    const int v = VertexOf[n];
-    std::vector<int> order(stencilSize(v));
-    std::vector<double> angle(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
+    const int first = static_cast<int>(static_cast<long long>(nv) * slab / slabs);
+    const int last = static_cast<int>(static_cast<long long>(nv) * (slab + 1) / slabs);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(buildThreads)
+    for (int n = first; n < last; ++n)
     {
-      order[i] = static_cast<int>(i);
-      angle[i] = stencilItem(v, i).second;
-    }
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return angle[a] < angle[b] || (angle[a] == angle[b] && a < b);
-    });
-    for (std::size_t i = 0; i < order.size(); ++i)
-    {
-      const std::int64_t e = StencilOffsets[n] + static_cast<std::int64_t>(i);
-      const auto item = stencilItem(v, static_cast<std::size_t>(order[i]));
-      const double r = item.first.second, a = item.second;
-      Stencil[e].Target = NodeOf[item.first.first];
-      Stencil[e].X = r * std::cos(a);
-      Stencil[e].Y = r * std::sin(a);
-      if (i == 0)
+      const std::vector<StencilEntry>& block = made[n];
+      std::copy(block.begin(), block.begin() + stencilSize[n], Stencil.begin() + StencilOffsets[n]);
+      for (std::int64_t i = 0; i < linkOffsets[n + 1] - linkOffsets[n]; ++i)
       {
-        const double wrapped = a + mesh.TotalAngle(v);
-        WrapXY[2 * n] = r * std::cos(wrapped);
-        WrapXY[2 * n + 1] = r * std::sin(wrapped);
+        const StencilEntry& link = block[stencilSize[n] + i];
+        linkTargets[linkOffsets[n] + i] = link.Target;
+        linkLengths[linkOffsets[n] + i] = link.X;
       }
+      std::vector<StencilEntry>().swap(made[n]);
     }
-    std::vector<double>().swap(angles[v]);
-    if (reachedStencil)
-    {
-      std::vector<DGGPropagation::Link>().swap(reachedLinks[v]);
-    }
+    ReturnFreedMemory();
   }
+  std::vector<std::vector<StencilEntry>>().swap(made);
+  std::vector<int>().swap(stencilSize);
 
   // Symmetrize and add the mesh edges; duplicates keep the smallest weight, so that both
   // directions of a link carry the same value. Each thread fills the buckets of its own range of
@@ -387,11 +422,11 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
     for (int s = 0; s < nv; ++s)
     {
       const int ns = NodeOf[s];
-      for (const auto& e : direct[s])
+      for (std::int64_t e = linkOffsets[ns]; e < linkOffsets[ns + 1]; ++e)
       {
-        const int target = NodeOf[e.first];
-        add(ns, target, e.second);
-        add(target, ns, e.second);
+        const int target = NodeOf[linkTargets[e]];
+        add(ns, target, linkLengths[e]);
+        add(target, ns, linkLengths[e]);
       }
     }
     for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
@@ -429,7 +464,8 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
       }
     });
   }
-  std::vector<std::vector<std::pair<int, double>>>().swap(direct);
+  std::vector<int>().swap(linkTargets);
+  std::vector<double>().swap(linkLengths);
   std::vector<std::int64_t> kept(nv + 1, 0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(buildThreads)
   for (int n = 0; n < nv; ++n)

@@ -21,6 +21,9 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <new>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -238,7 +241,32 @@ private:
       return X == o.X && Y == o.Y && Target == o.Target;
     }
   };
-  std::vector<StencilEntry> Stencil;
+  // (Resized without writing: the build's gathering touches its pages as it fills them.)
+  template <class T>
+  struct UninitializedAllocator : std::allocator<T>
+  {
+    template <class U>
+    struct rebind
+    {
+      using other = UninitializedAllocator<U>;
+    };
+    UninitializedAllocator() = default;
+    template <class U>
+    UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
+    {
+    }
+    template <class U>
+    void construct(U* p) noexcept
+    {
+      ::new (static_cast<void*>(p)) U; // default-initialized: left as it is
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args)
+    {
+      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+  };
+  std::vector<StencilEntry, UninitializedAllocator<StencilEntry>> Stencil;
   std::vector<double> WrapXY;
   std::vector<int> LinkStencil;
   std::vector<int> NodeOf, VertexOf;
