@@ -41,8 +41,8 @@
  * for the SVG solvers K (geodesic disk size of the graph, default 50, at least 1, clamped to the
  * number of vertices), for DGG Accuracy (1e-5 .. 0.1) and ReachedStencil (advanced), for both
  * CacheFileName (optional file the graph is loaded from when it matches the mesh and K, or
- * Accuracy and ReachedStencil, and saved to otherwise; a
- * stale or corrupt file is rebuilt with a warning) and
+ * Accuracy and ReachedStencil, and saved to otherwise; a stale or corrupt file is rebuilt with
+ * a warning) and
  * UnfoldingRefinement (refine graph distances by geodesic triangle unfolding: exact on
  * developable surfaces, 2-8x more accurate on curved ones; default on).
  *
@@ -162,9 +162,8 @@ public:
   ///@{
   /// SVG solvers: optional cache file for the graph. When set, the graph is loaded from it if
   /// it was saved for the same mesh geometry and K (DGG: Accuracy and ReachedStencil);
-  /// otherwise it is built and saved there. A
-  /// missing file is silent, a stale or corrupt one gets a warning (and is rebuilt), a failed
-  /// save is a warning. Default empty (no file).
+  /// otherwise it is built and saved there. A missing file is silent, a stale or corrupt one
+  /// gets a warning (and is rebuilt), a failed save is a warning. Default empty (no file).
   vtkSetStdStringFromCharMacro(CacheFileName);
   vtkGetCharFromStdStringMacro(CacheFileName);
   ///@}

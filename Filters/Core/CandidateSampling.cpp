@@ -312,8 +312,8 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
   }
 }
 
-bool ShapeDistributor::Impl::PlacePart(
-  int face, const Vec3& x, const Vec3& tangent, int part, double across, double phiM, PlacedPart& p) const
+bool ShapeDistributor::Impl::PlacePart(int face, const Vec3& x, const Vec3& tangent, int part,
+  double across, double phiM, PlacedPart& p) const
 {
   p.Part = part;
   Vec3 endTangent;
@@ -382,7 +382,9 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
     const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
     // A part's distance from the centre along the curve, and the part placed there by walking
     // the streamline `line` traced from the centre (behind it, the curve runs the other way).
-    auto distance = [&](int part) { return std::abs(Dot(Tables.Parts[part].Centre, c.MajorAxis)) * scale; };
+    auto distance = [&](int part) {
+      return std::abs(Dot(Tables.Parts[part].Centre, c.MajorAxis)) * scale;
+    };
     auto place = [&](const Streamline& line, bool behind, int part, PlacedPart& p) {
       int face = -1;
       Vec3 x, tangent;

@@ -19,8 +19,8 @@
 #include "TriangleMesh.h"
 #include "Vector.h"
 
-#include <memory>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace gs

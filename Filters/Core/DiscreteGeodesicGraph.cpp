@@ -356,7 +356,8 @@ void DGGPropagation::Propagate(const Window& w, double epsilon)
   }
 }
 
-void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::vector<Link>* reached)
+void DGGPropagation::Run(
+  int s, double epsilon, std::vector<Link>& links, std::vector<Link>* reached)
 {
   Reset();
   links.clear();
@@ -409,18 +410,12 @@ void DGGPropagation::Run(int s, double epsilon, std::vector<Link>& links, std::v
   }
   for (int v : Touched)
   {
-    if (v == s)
+    if (v == s || (IsCovered[v] && !reached))
     {
       continue;
     }
-    if (!IsCovered[v])
-    {
-      links.push_back({ v, Dist[v], AnglePhi[v] + std::atan2(AngleY[v], AngleX[v]) });
-    }
-    else if (reached)
-    {
-      reached->push_back({ v, Dist[v], AnglePhi[v] + std::atan2(AngleY[v], AngleX[v]) });
-    }
+    (IsCovered[v] ? *reached : links)
+      .push_back({ v, Dist[v], AnglePhi[v] + std::atan2(AngleY[v], AngleX[v]) });
   }
 }
 

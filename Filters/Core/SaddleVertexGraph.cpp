@@ -376,7 +376,8 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   for (int n = 0; n < nv; ++n)
   {
     StencilOffsets[n + 1] = StencilOffsets[n] + stencilSize[n];
-    linkOffsets[n + 1] = linkOffsets[n] + static_cast<std::int64_t>(made[n].size()) - stencilSize[n];
+    linkOffsets[n + 1] =
+      linkOffsets[n] + static_cast<std::int64_t>(made[n].size()) - stencilSize[n];
   }
   Stencil.clear();
   Stencil.resize(StencilOffsets[nv]);

@@ -23,8 +23,8 @@
 #include <functional>
 #include <memory>
 #include <new>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gs
@@ -215,8 +215,8 @@ public:
   bool operator==(const SaddleVertexGraph& o) const
   {
     return Construction == o.Construction && K == o.K && Accuracy == o.Accuracy &&
-      ReachedStencil == o.ReachedStencil && Offsets == o.Offsets && Targets == o.Targets && Weights == o.Weights &&
-      StencilOffsets == o.StencilOffsets && Stencil == o.Stencil && WrapXY == o.WrapXY &&
+      ReachedStencil == o.ReachedStencil && Offsets == o.Offsets && Targets == o.Targets &&
+      Weights == o.Weights && StencilOffsets == o.StencilOffsets && Stencil == o.Stencil && WrapXY == o.WrapXY &&
       VertexOf == o.VertexOf;
   }
 

@@ -201,7 +201,8 @@ struct ShapeDistributor::Impl
   std::vector<std::pair<int, int>> Killed; // (class or -1 for all, face) killed, in order
   std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
-  std::vector<std::vector<int>> BehindParts; // a long class's parts behind its centre, nearest first
+  // A long class's parts behind its centre, nearest first.
+  std::vector<std::vector<int>> BehindParts;
   std::unique_ptr<DirectionFieldSolver> Field; // long classes: streamlines
   std::vector<double> FieldAngles;
 
@@ -250,8 +251,8 @@ struct ShapeDistributor::Impl
   /// of the streamline is traced. The same decision as building the whole shape and checking
   /// it: those parts are computed bit for bit as the whole shape computes them (the staged
   /// streamline has the same pieces, and parts are placed walking the streamline from the
-  /// centre, PointOnCurve over its pieces), and a
-  /// conflict of some parts is a conflict of the shape.
+  /// centre, PointOnCurve over its pieces), and a conflict of some parts is a conflict of the
+  /// shape.
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
     const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr) const;
   /// Places part `part` (MakeShape, and its precheck on the curve behind the centre): from the
