@@ -153,7 +153,9 @@ public:
   /// Off by default. On: at Accuracy 0.1 the refined mean error is 2-3x smaller (below the
   /// saddle vertex graph's with K = 50 on the meshes measured), for about twice the graph's
   /// memory, a build about 1.2x longer and a refined solve 20-30% slower (README, "Geodesic
-  /// engines"). A graph of its own (cache and CacheFileName).
+  /// engines"). On irregular flat meshes, where the refinement over the links alone is exact or
+  /// nearly, it is less accurate (still within Accuracy). A graph of its own (cache and
+  /// CacheFileName).
   vtkSetMacro(ReachedStencil, bool);
   vtkGetMacro(ReachedStencil, bool);
   vtkBooleanMacro(ReachedStencil, bool);

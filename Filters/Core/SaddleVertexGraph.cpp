@@ -386,7 +386,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   // (Slabs of about 32 MB of stencil, at most 32: handing memory back costs a pass over the
   // heap, about 1 ms, which a small graph need not pay for every 1/32 of its nodes.)
   const int slabs = static_cast<int>(std::min<std::int64_t>(32,
-    1 + StencilOffsets[nv] * static_cast<std::int64_t>(sizeof(StencilEntry)) / (32 << 20)));
+    1 + StencilOffsets[nv] * static_cast<std::int64_t>(sizeof(StencilEntry)) / GatherSlabBytes));
   for (int slab = 0; slab < slabs; ++slab)
   {
     const int first = static_cast<int>(static_cast<long long>(nv) * slab / slabs);

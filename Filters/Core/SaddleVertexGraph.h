@@ -65,7 +65,9 @@ struct SaddleVertexGraphOptions
   // also holds the vertices its propagation reached along direct geodesics but found covered
   // (not links: the graph and its graph distances are the same). About three times the stencil
   // at accuracy 0.1, for a refined mean error 2-3x smaller (below the saddle vertex graph's of
-  // K = 50 on the meshes measured, README) and a refined solve 20-30% slower.
+  // K = 50 on the meshes measured, README) and a refined solve 20-30% slower; on irregular flat
+  // meshes, where the links-only refinement is exact or nearly, less accurate (within the
+  // accuracy: test DiscreteGeodesicGraph.StencilsGatheredAcrossSlabs's plane).
   bool ReachedStencil = false;
   int NumberOfThreads = 0; // 0: OpenMP's default
 };
@@ -108,6 +110,10 @@ public:
   int LocalDiskSize() const;
   double BuildSeconds() const { return Seconds; }
   std::size_t MemoryBytes() const;
+  // Build gathers the per-vertex stencils into the graph's array in slabs of nodes holding about
+  // this many bytes of stencil (at most 32 slabs), handing the gathered memory back to the
+  // system after each: the build's peak then holds the stencils about once, not twice.
+  static constexpr std::int64_t GatherSlabBytes = std::int64_t(32) << 20;
 
   // Peak memory (bytes) that Build is expected to add for K on `numberOfVertices` vertices: an
   // upper estimate from the peaks SVGBenchmark measures (README, "Memory"). Build refuses a

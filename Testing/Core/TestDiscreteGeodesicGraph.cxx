@@ -297,3 +297,59 @@ TEST(DiscreteGeodesicGraph, ReachedStencilRefinesCloserWithTheSameGraph)
   EXPECT_TRUE(gs_test::FailedWith(loaded.Load(path, hash, o), "not a discrete geodesic graph with reached stencils"));
   std::remove(path.c_str());
 }
+
+// The build gathers the per-vertex stencils into one array in slabs (GatherSlabBytes). On a
+// graph whose stencils span several slabs, every entry must land in its own vertex's place: each
+// vertex's links-only stencil is, entry for entry and in order, part of its stencil with the
+// reached vertices (the same links, gathered in fewer slabs); each link's entry in its target's
+// stencil lies at the link's length; the errors stay within the accuracy.
+TEST(DiscreteGeodesicGraph, StencilsGatheredAcrossSlabs)
+{
+  const TriangleMesh m = JitteredPlane(215, 0.3, 5);
+  SaddleVertexGraphOptions o;
+  o.Construction = GraphConstruction::DiscreteGeodesic;
+  o.Accuracy = 0.1;
+  SaddleVertexGraph plain, g;
+  ASSERT_TRUE(gs_test::Succeeded(plain.Build(m, o, nullptr)));
+  o.ReachedStencil = true;
+  ASSERT_TRUE(gs_test::Succeeded(g.Build(m, o, nullptr)));
+  std::int64_t entries = 0;
+  for (int n = 0; n < g.NumberOfVertices(); ++n)
+    entries += g.StencilEnd(n) - g.StencilBegin(n);
+  // At least two slabs (an entry holds two doubles and more).
+  ASSERT_GT(entries * static_cast<std::int64_t>(2 * sizeof(double)),
+    SaddleVertexGraph::GatherSlabBytes);
+  ASSERT_EQ(plain.NumberOfEntries(), g.NumberOfEntries());
+  std::int64_t misplaced = 0, indexed = 0, off = 0;
+  for (int n = 0; n < g.NumberOfVertices(); ++n)
+  {
+    // The links-only stencil, a subsequence of the one with the reached vertices.
+    std::int64_t k = g.StencilBegin(n);
+    for (std::int64_t e = plain.StencilBegin(n); e < plain.StencilEnd(n); ++e)
+    {
+      while (k < g.StencilEnd(n) &&
+        !(g.StencilTarget(k) == plain.StencilTarget(e) && g.StencilX(k) == plain.StencilX(e) &&
+          g.StencilY(k) == plain.StencilY(e)))
+        ++k;
+      misplaced += k == g.StencilEnd(n);
+      k += k < g.StencilEnd(n);
+    }
+    for (std::int64_t e = g.Begin(n); e < g.End(n); ++e)
+    {
+      misplaced += g.Target(e) != plain.Target(e) || g.Weight(e) != plain.Weight(e);
+      const int index = g.LinkStencilIndex(e);
+      if (index < 0)
+        continue;
+      ++indexed;
+      const double r = g.StencilDistance(g.StencilBegin(g.Target(e)) + index);
+      off += std::abs(r - g.Weight(e)) > 1e-9 * g.Weight(e);
+    }
+  }
+  EXPECT_EQ(misplaced, 0);
+  EXPECT_GT(indexed, g.NumberOfEntries() / 2);
+  EXPECT_EQ(off, 0);
+  Errors graph, refined;
+  Measure(m, g, graph, refined);
+  ASSERT_GT(refined.Count, 100000);
+  EXPECT_LE(refined.Max, o.Accuracy);
+}
