@@ -66,8 +66,8 @@ struct SaddleVertexGraphOptions
   // (not links: the graph and its graph distances are the same). About three times the stencil
   // at accuracy 0.1, for a refined mean error 2-3x smaller (below the saddle vertex graph's of
   // K = 50 on the meshes measured, README) and a refined solve 20-30% slower; on irregular flat
-  // meshes, where the links-only refinement is exact or nearly, less accurate (within the
-  // accuracy: test DiscreteGeodesicGraph.StencilsGatheredAcrossSlabs's plane).
+  // meshes, where the links-only refinement is exact or nearly, near-exact but a little less
+  // accurate (test DiscreteGeodesicGraph.ReachedStencilNearExactOnJitteredPlanes).
   bool ReachedStencil = false;
   int NumberOfThreads = 0; // 0: OpenMP's default
 };
