@@ -320,7 +320,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
       return true;
     }
     int hint = -1;
-    if (!shortX && X.Frame && !shortC &&
+    if (!shortX && X.Frame &&
       OutlineEnters(
         Regions[X.Shape.ClassId], c.Drawn,
         [&X, &nearX, &hint](
@@ -338,7 +338,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
       return true;
     }
     hint = -1;
-    if (!shortC && c.Frame && !shortX && X.HasDrawn &&
+    if (!shortC && c.Frame && X.HasDrawn &&
       OutlineEnters(
         Regions[c.Shape.ClassId], X.Drawn,
         [&c, &nearC, &hint](

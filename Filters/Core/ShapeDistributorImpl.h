@@ -356,8 +356,10 @@ struct ShapeDistributor::Impl
   /// The drawn check, after the tables accepted the candidate (its charts computed): its outline
   /// as drawn (kept in the record) against every accepted neighbour's, as VerifyOverlaps judges
   /// them: a conflict when one reaches into the other's silhouette deeper than a quarter of
-  /// VerifyOverlaps' tolerance (0.125% of the smaller circumradius), read in the chart of the
-  /// short one of the two (two long shapes: the tables alone). The tables assume rigid planar
+  /// VerifyOverlaps' tolerance (0.125% of the smaller circumradius), each outline read through
+  /// the inverse of the other's drawing map (a short shape's chart, a long shape's CurveGrid),
+  /// both ways, as VerifyOverlaps reads them: at a pointed outline the two depths differ (test
+  /// OverlapCheck.DrawnCheckReadsShortOutlinesInLongFrames). The tables assume rigid planar
   /// copies; this catches where the drawn shapes are not (a long shape's part bending with its
   /// curve, a chart that is no isometry across the neighbour's circle).
   bool DrawnConflict(Record& c, std::vector<int>& scratch) const;
