@@ -158,7 +158,7 @@ bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& 
     return false;
   }
   const auto& corners = Mesh.Face(x.Face);
-  Vec2 q{ 0.0, 0.0 };
+  Vec2 c[3];
   for (int k = 0; k < 3; ++k)
   {
     const ChartEntry* e = chart.Find(corners[k]);
@@ -166,10 +166,27 @@ bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& 
     {
       return false;
     }
-    q = q + Vec2{ e->X, e->Y } * x.Bary[k];
+    c[k] = Vec2{ e->X, e->Y };
   }
-  p = q * inverse;
+  if (!ChartFaceHolds(x.Face, c))
+  {
+    return false;
+  }
+  p = (c[0] * x.Bary[0] + c[1] * x.Bary[1] + c[2] * x.Bary[2]) * inverse;
   return true;
+}
+
+bool ShapeDistributor::Impl::ChartFaceHolds(int f, const Vec2 (&c)[3]) const
+{
+  double chart2 = 0.0, space = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec2 e = c[(k + 1) % 3] - c[k];
+    chart2 = std::max(chart2, Dot(e, e));
+    space = std::max(space, Mesh.EdgeLength(3 * f + k));
+  }
+  const double most = MaxChartStretch * space;
+  return chart2 <= most * most;
 }
 
 bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const

@@ -300,8 +300,16 @@ struct ShapeDistributor::Impl
   static std::vector<int> ChartVertices(const Record& r);
   /// The corners of the faces holding the record's part centres, sorted, unique.
   std::vector<int> CentreCorners(const Record& r) const;
+  /// Whether a face's chart triangle (corners c, world units) can be its image under the log
+  /// map: no edge longer than MaxChartStretch times the face's longest edge. A face across the
+  /// chart's cut locus (its corners reached around a hole, a thin part or a ridge from two
+  /// sides) spans the chart and holds no point of it: interpolated there, a far point lands
+  /// near the centre.
+  bool ChartFaceHolds(int f, const Vec2 (&c)[3]) const;
+  static constexpr double MaxChartStretch = 3.0;
   /// A surface point in a chart (divided by `unit`): a vertex's entry, or a face point's corners
-  /// interpolated; false when a corner is not in the chart.
+  /// interpolated; false when a corner is not in the chart or the face does not hold in it
+  /// (ChartFaceHolds).
   bool ChartPoint(const Chart& chart, const SurfacePoint& x, double unit, Vec2& p) const;
   /// A short shape's class point of x (its centre's chart); false for long shapes.
   bool ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const;

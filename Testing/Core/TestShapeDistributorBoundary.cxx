@@ -5,7 +5,9 @@
 #include "TestMeshes.h"
 #include "TestStatus.h"
 
+#include "ExactGeodesic.h"
 #include "MeshGenerators.h"
+#include "OverlapCheck.h"
 #include "SaddleVertexGraph.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
@@ -281,4 +283,73 @@ TEST(ShapeDistributorBoundary, LongBentShapesOverTheBoundaryDoNotOverlap)
     EXPECT_GT(without, 0) << engine; // (the case needs the drawn check)
     EXPECT_EQ(with, 0) << engine;
   }
+}
+
+
+// A thin closed sheet (a sphere squashed to a twelfth of its radius: a lentil): the polar chart
+// of a shape on one side wraps around the rim to the other, where geodesics from all around the
+// rim meet (the chart's cut locus). A face there has corners that the chart puts on opposite
+// sides: it spans the chart, and a point interpolated in it lands near the centre though it lies
+// far from it. Such points made VerifyOverlaps report pairs that were not there (up to 27% of
+// the radius deep on elephant-with-holes' thin parts), CentreCovered and the drawn check read
+// them in the wrong place, and a short shape's decal drew across the face. Such faces now hold
+// no chart point (ShapeDistributor::Impl::ChartFaceHolds): wherever ClassPoint answers, the
+// chart radius is the geodesic distance (exact solver) to within the face's size.
+TEST(ShapeDistributorBoundary, ChartsDoNotInterpolateAcrossTheirCutLocus)
+{
+  TriangleSoup lentil = MakeIcosphere(1.0, 4);
+  for (Vec3& p : lentil.Points)
+    p.z *= 1.0 / 12.0;
+  const TriangleMesh mesh = gs_test::BuildMesh(lentil);
+  const SafeDistanceTables t = StarAndTile(32);
+  std::vector<Vec3> directions(mesh.NumberOfFaces());
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+    directions[f] = Cross(mesh.FaceNormal(f), Vec3{ 0.3, 1.0, 0.2 });
+  ExactGeodesicSolver exact(mesh);
+  long long answered = 0, wrong = 0, pairs = 0, stars = 0;
+  for (std::uint64_t seed : { 1, 2, 3 })
+  {
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.5;
+    o.Seed = seed;
+    o.MaximalFailures = 300;
+    ShapeDistributor d(mesh);
+    const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
+    for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
+    {
+      const PlacedShape& shape = r->Shapes[s];
+      if (shape.ClassId != 0)
+        continue;
+      ++stars;
+      ASSERT_TRUE(gs_test::Succeeded(exact.Solve({ shape.Centre })));
+      const double unit = o.ShapeSize * shape.Scale;
+      for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+      {
+        Vec2 p;
+        if (!d.ClassPoint(s, SurfacePoint::InFace(f, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0), p))
+          continue;
+        ++answered;
+        double geodesic = 0.0, edge = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          geodesic += exact.Distance(mesh.Face(f)[k]) / 3.0;
+          edge = std::max(edge, mesh.EdgeLength(3 * f + k));
+        }
+        wrong += std::abs(Norm(p) * unit - geodesic) > 2.0 * edge ? 1 : 0;
+      }
+    }
+    std::vector<std::vector<OutlinePiece>> outlines(r->Shapes.size());
+    for (std::size_t k = 0; k < outlines.size(); ++k)
+      outlines[k] = d.Outline(static_cast<int>(k), d.OutlineSpacing());
+    const Result<OverlapCheckResult> found = CheckOverlaps(d, outlines);
+    ASSERT_TRUE(found.Ok()) << found.Message();
+    pairs += static_cast<long long>(found->Pairs.size());
+  }
+  std::printf("%lld stars; %lld chart points, %lld of them off the geodesic distance; %lld "
+              "overlapping pairs\n", stars, answered, wrong, pairs);
+  EXPECT_GT(stars, 3);
+  EXPECT_GT(answered, 1000);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(pairs, 0);
 }
