@@ -368,7 +368,11 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   std::vector<std::vector<int>> overlapsOf(n); // per shape: overlapping shapes of higher index
   long long examined = 0;
   // Long shapes: the inverse of their drawing map near them.
+  // A long shape is drawn on the faces whose corners are all among its frame's vertices (its
+  // decal's): a point elsewhere, though near the frame in space (another layer of the surface,
+  // geodesically far), is not in it.
   std::vector<std::shared_ptr<const CurveGrid>> frames(n);
+  std::vector<std::vector<int>> drawnOn(n);
   const int threads = ThreadCount(options.NumberOfThreads);
   (void)threads;
 #pragma omp parallel for schedule(dynamic, 8) num_threads(threads)
@@ -377,6 +381,10 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
     if (!shapes[s].Curve.empty())
     {
       frames[s] = distributor.Frame(s);
+      if (frames[s])
+      {
+        drawnOn[s] = frames[s]->Vertices();
+      }
     }
   }
   // Does the drawn outline of `b` reach deeper than the tolerance into `a`'s silhouette? (Points
@@ -392,9 +400,20 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
     if (!shapes[a].Curve.empty())
     {
       const CurveGrid& frame = *frames[a];
+      const std::vector<int>& vertices = drawnOn[a];
+      auto in = [&vertices, &mesh](const SurfacePoint& x) {
+        auto has = [&vertices](int v) { return std::binary_search(vertices.begin(), vertices.end(), v); };
+        if (x.IsVertex())
+        {
+          return has(x.Vertex);
+        }
+        const auto& c = mesh.Face(x.Face);
+        return has(c[0]) && has(c[1]) && has(c[2]);
+      };
       int hint = -1;
       return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
-        [&frame, &near, &hint](const SurfacePoint& x, Vec2& p) { return near(x) && frame.ClassPoint(x, p, &hint); },
+        [&frame, &near, &in, &hint](
+          const SurfacePoint& x, Vec2& p) { return near(x) && in(x) && frame.ClassPoint(x, p, &hint); },
         depth);
     }
     return OutlineEnters(regions[shapes[a].ClassId], outlines[b],

@@ -213,6 +213,9 @@ struct CurveGrid
   /// `hint` (optional, in and out): a node to start from (the previous point's, for points
   /// along a curve); -1: none.
   bool ClassPoint(const SurfacePoint& x, Vec2& p, int* hint = nullptr) const;
+  /// The vertices the shape is drawn on (its decal's faces have all three corners among them):
+  /// the corners of the faces holding nodes and their neighbours, sorted.
+  std::vector<int> Vertices() const;
 
 private:
   // Valid nodes by cells of twice the grid step over the nodes' bounding box.

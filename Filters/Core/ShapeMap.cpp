@@ -6,6 +6,7 @@
 
 #include "GeodesicShooting.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -522,6 +523,40 @@ void CurveGrid::Index()
       CellNodes[fill[cellOf(Nodes[k].Position)]++] = k;
     }
   }
+}
+
+std::vector<int> CurveGrid::Vertices() const
+{
+  std::vector<int> seeds, out;
+  if (!Mesh)
+  {
+    return out;
+  }
+  for (const Node& n : Nodes)
+  {
+    if (n.Valid)
+    {
+      for (int v : Mesh->Face(n.At.Face))
+      {
+        seeds.push_back(v);
+      }
+    }
+  }
+  std::sort(seeds.begin(), seeds.end());
+  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+  out = seeds;
+  for (int v : seeds)
+  {
+    Mesh->ForEachOutgoingHalfedge(v, [&](int he) {
+      for (int w : Mesh->Face(he / 3))
+      {
+        out.push_back(w);
+      }
+    });
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p, int* hint) const

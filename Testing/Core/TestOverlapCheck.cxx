@@ -277,6 +277,67 @@ TEST(OverlapCheck, DrawnCheckReadsShortOutlinesInLongFrames)
   }
 }
 
+// A sheet folded flat (a hairpin: two layers 0.008 apart, joined around a bend at one end):
+// points of one layer lie closer in space to a long shape on the other than half its frame's
+// grid step, though a whole bend away on the surface. VerifyOverlaps read them through the long
+// shape's frame (the inverse of its drawing map, searched in space) and reported pairs that were
+// not there (on elephant-with-holes, layers 0.0137 apart in space and 0.125 on the surface);
+// it now reads a point in a long shape only on the faces the shape is drawn on (its decal's,
+// CurveGrid::Vertices).
+TEST(OverlapCheck, FoldedSheetLayersDoNotOverlap)
+{
+  const int n = 30, m = 20, bend = 3;
+  const double h = 0.1, gap = 0.008;
+  // Columns along the fold: the top layer out, the bend, the bottom layer back.
+  std::vector<std::pair<double, double>> xz;
+  for (int i = 0; i <= n; ++i)
+    xz.emplace_back(i * h, 0.5 * gap);
+  for (int t = 1; t <= bend; ++t)
+  {
+    const double a = 3.14159265358979323846 * t / (bend + 1);
+    xz.emplace_back(n * h + 0.5 * gap * std::sin(a), 0.5 * gap * std::cos(a));
+  }
+  for (int i = n; i >= 0; --i)
+    xz.emplace_back(i * h, -0.5 * gap);
+  TriangleSoup soup;
+  const int columns = static_cast<int>(xz.size());
+  for (int c = 0; c < columns; ++c)
+    for (int j = 0; j <= m; ++j)
+      soup.Points.push_back(Vec3{ xz[c].first, j * h, xz[c].second });
+  auto id = [m](int c, int j) { return c * (m + 1) + j; };
+  for (int c = 0; c + 1 < columns; ++c)
+    for (int j = 0; j < m; ++j)
+    {
+      soup.Triangles.push_back({ id(c, j), id(c + 1, j), id(c + 1, j + 1) });
+      soup.Triangles.push_back({ id(c, j), id(c + 1, j + 1), id(c, j + 1) });
+    }
+  const TriangleMesh mesh = gs_test::BuildMesh(soup);
+  Result<SafeDistanceTables> tables = BundledTables();
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
+  std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 1.0, 0.4, 0.0 });
+  int pairs = 0, longShapes = 0, shapes = 0;
+  for (std::uint64_t seed : { 1, 2, 3 })
+  {
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.3;
+    o.Seed = seed;
+    o.MaximalFailures = 500;
+    ShapeDistributor d(mesh);
+    const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
+    shapes += static_cast<int>(r->Shapes.size());
+    for (const PlacedShape& s : r->Shapes)
+      longShapes += s.Curve.empty() ? 0 : 1;
+    const Result<OverlapCheckResult> found = CheckOverlaps(d, Outlines(d, d.OutlineSpacing()));
+    ASSERT_TRUE(gs_test::Succeeded(found));
+    pairs += static_cast<int>(found->Pairs.size());
+  }
+  std::printf("%d shapes (%d long) on the two layers: %d overlapping pairs reported\n", shapes,
+    longShapes, pairs);
+  EXPECT_GT(longShapes, 20);
+  EXPECT_EQ(pairs, 0);
+}
+
 // A long class exactly as long as its circle's diameter (a banana whose tips set the circle),
 // smaller than the mesh's triangles: its grid columns land on the curve's ends; one a rounding
 // error beyond took its direction from a geodesic 1e-17 long and turned the column, folding the
