@@ -39,6 +39,7 @@
 #include "ShapeDrawing.h"
 #include "Silhouette.h"
 #include "TriangleMesh.h"
+#include "UnitSilhouettes.h"
 
 #include <algorithm>
 #include <chrono>
@@ -194,19 +195,12 @@ std::vector<Vec2> Pentagram()
 // Scaled to circumradius 1, so that every class has the same size.
 bool ShapeFromImage(const std::string& file, Shape2D& shape)
 {
-  Result<SilhouetteImage> r = ReadSilhouetteImage(file);
+  Result<Shape2D> r = UnitShapeFromImage(file);
   if (!r.Ok())
   {
     return false;
   }
-  shape = ShapeFromMask(r->Mask);
-  std::vector<Vec2> all;
-  for (const auto& ring : shape.Rings)
-    all.insert(all.end(), ring.begin(), ring.end());
-  const Circle c = SmallestEnclosingCircle(all);
-  for (auto& ring : shape.Rings)
-    for (Vec2& p : ring)
-      p = (p - c.Centre) * (1.0 / c.Radius);
+  shape = *r;
   return true;
 }
 

@@ -383,7 +383,11 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
       frames[s] = distributor.Frame(s);
       if (frames[s])
       {
-        drawnOn[s] = frames[s]->Vertices();
+        for (const auto& vertexNode : frames[s]->Vertices())
+        {
+          drawnOn[s].push_back(vertexNode.first);
+        }
+        std::sort(drawnOn[s].begin(), drawnOn[s].end());
       }
     }
   }

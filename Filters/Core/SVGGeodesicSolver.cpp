@@ -630,10 +630,10 @@ bool SVGGeodesicSolver::RefineVertex(
       nearest2 = std::min(nearest2, NearestUnfolding2(batch));
       batch.Count = 0;
     }
-    const double arrivalRoute =
-      distanceOf(Graph.StencilTarget(arrival)) + Graph.StencilDistance(arrival);
+    // (The arrival's route is read only when a move is possible: most vertices stop before.)
     if (attempt > 0 || relaxedEntry < 0 || relaxedEntry == arrival ||
-      !(relaxed < arrivalRoute * (1.0 - ArrivalMoveMargin)))
+      !(relaxed < (distanceOf(Graph.StencilTarget(arrival)) + Graph.StencilDistance(arrival)) *
+          (1.0 - ArrivalMoveMargin)))
     {
       break;
     }

@@ -168,7 +168,7 @@ bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& 
     }
     c[k] = Vec2{ e->X, e->Y };
   }
-  if (!ChartFaceHolds(x.Face, c))
+  if (!ChartFaceHolds(Mesh, x.Face, c, 1.0))
   {
     return false;
   }
@@ -176,16 +176,16 @@ bool ShapeDistributor::Impl::ChartPoint(const Chart& chart, const SurfacePoint& 
   return true;
 }
 
-bool ShapeDistributor::Impl::ChartFaceHolds(int f, const Vec2 (&c)[3]) const
+bool distribution::ChartFaceHolds(const TriangleMesh& mesh, int f, const Vec2 (&c)[3], double unit)
 {
   double chart2 = 0.0, space = 0.0;
   for (int k = 0; k < 3; ++k)
   {
     const Vec2 e = c[(k + 1) % 3] - c[k];
     chart2 = std::max(chart2, Dot(e, e));
-    space = std::max(space, Mesh.EdgeLength(3 * f + k));
+    space = std::max(space, mesh.EdgeLength(3 * f + k));
   }
-  const double most = MaxChartStretch * space;
+  const double most = MaxChartStretch * space / unit;
   return chart2 <= most * most;
 }
 

@@ -173,10 +173,9 @@ struct DecalBuilder
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
   Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
   int Hint = -1, FirstValid = -1;
-  // Short shapes: the largest chart edge of a face, in class units, per class unit of the
-  // face's longest edge (0: no limit; see ShapeDistributor::Impl::ChartFaceHolds), and the
-  // class units per world unit.
-  double MaxStretch = 0.0, PerWorld = 1.0;
+  // Short shapes: the world units per class unit, for ChartFaceHolds
+  // (0: long shapes, no test).
+  double ChartUnit = 0.0;
   KeyedValues<Vec2> CornerValues; // vertices of faces to split, on the grid
   KeyedValues<std::pair<bool, Vec2>> Midpoints; // face edges' midpoints
 
@@ -351,18 +350,12 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
         uv[k] = ToTexture(value);
       }
     }
-    if (all && !Grid && MaxStretch > 0.0)
+    if (all && ChartUnit > 0.0)
     {
       // A face across the chart's cut locus spans the chart: it draws nothing.
-      double chart2 = 0.0, space = 0.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        const Vec2 e = *Find(Mesh.Face(f)[(k + 1) % 3]) - *Find(Mesh.Face(f)[k]);
-        chart2 = std::max(chart2, Dot(e, e));
-        space = std::max(space, Mesh.EdgeLength(3 * f + k));
-      }
-      const double most = MaxStretch * space * PerWorld;
-      all = chart2 <= most * most;
+      const auto& v = Mesh.Face(f);
+      const Vec2 c[3] = { *Find(v[0]), *Find(v[1]), *Find(v[2]) };
+      all = ChartFaceHolds(Mesh, f, c, ChartUnit);
     }
     if (all && MeetsBox(uv, Lo, Hi))
     {
@@ -514,8 +507,7 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
         b.Local.emplace_back(e.Vertex, q * (1.0 / scale));
       }
     }
-    b.MaxStretch = MaxChartStretch;
-    b.PerWorld = 1.0 / scale;
+    b.ChartUnit = scale;
   }
   else
   {

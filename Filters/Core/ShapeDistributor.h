@@ -62,6 +62,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gs
@@ -213,9 +214,10 @@ struct CurveGrid
   /// `hint` (optional, in and out): a node to start from (the previous point's, for points
   /// along a curve); -1: none.
   bool ClassPoint(const SurfacePoint& x, Vec2& p, int* hint = nullptr) const;
-  /// The vertices the shape is drawn on (its decal's faces have all three corners among them):
-  /// the corners of the faces holding nodes and their neighbours, sorted.
-  std::vector<int> Vertices() const;
+  /// The vertices the shape is drawn on (its decal's faces have all three corners among them),
+  /// each once with a node near it: the corners of the faces holding nodes (with that node,
+  /// nodes in order), then their neighbours (with the node of the corner reaching them first).
+  std::vector<std::pair<int, int>> Vertices() const;
 
 private:
   // Valid nodes by cells of twice the grid step over the nodes' bounding box.

@@ -132,6 +132,14 @@ inline void SortUnique(std::vector<int>& v)
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
+/// Whether face f's chart triangle (corners c, in units of `unit` world units) can be its image
+/// under the log map: no edge longer than MaxChartStretch times the face's longest edge. A face
+/// across the chart's cut locus (its corners reached around a hole, a thin part or a ridge from
+/// two sides) spans the chart and holds no point of it: interpolated there, a far point lands
+/// near the centre. (ShapeDistributor::Impl::ChartPoint and the short decals.)
+constexpr double MaxChartStretch = 3.0;
+bool ChartFaceHolds(const TriangleMesh& mesh, int f, const Vec2 (&c)[3], double unit);
+
 } // namespace distribution
 
 struct ShapeDistributor::Impl
@@ -300,13 +308,6 @@ struct ShapeDistributor::Impl
   static std::vector<int> ChartVertices(const Record& r);
   /// The corners of the faces holding the record's part centres, sorted, unique.
   std::vector<int> CentreCorners(const Record& r) const;
-  /// Whether a face's chart triangle (corners c, world units) can be its image under the log
-  /// map: no edge longer than MaxChartStretch times the face's longest edge. A face across the
-  /// chart's cut locus (its corners reached around a hole, a thin part or a ridge from two
-  /// sides) spans the chart and holds no point of it: interpolated there, a far point lands
-  /// near the centre.
-  bool ChartFaceHolds(int f, const Vec2 (&c)[3]) const;
-  static constexpr double MaxChartStretch = 3.0;
   /// A surface point in a chart (divided by `unit`): a vertex's entry, or a face point's corners
   /// interpolated; false when a corner is not in the chart or the face does not hold in it
   /// (ChartFaceHolds).

@@ -327,39 +327,9 @@ CurveGrid ShapeDistributor::Impl::BuildCurveGrid(const PlacedShape& s, const Saf
 
 void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vector<std::pair<int, Vec2>>& local) const
 {
-  const std::vector<CurveGrid::Node>& nodes = grid.Nodes;
-  // The vertices of the nodes' faces and their neighbours, each with a node to start from;
-  // the nearest node by descent over the grid (the map is smooth at the grid's scale).
-  // (Each vertex once: marks per thread, stamped per call.)
-  thread_local VertexStamps marks;
-  marks.Begin(static_cast<std::size_t>(Mesh.NumberOfVertices()));
-  std::vector<std::pair<int, int>> seeds; // (vertex, node)
-  for (int k = 0; k < static_cast<int>(nodes.size()); ++k)
-  {
-    if (nodes[k].Valid)
-    {
-      for (int v : Mesh.Face(nodes[k].At.Face))
-      {
-        if (marks.Mark(v))
-        {
-          seeds.emplace_back(v, k);
-        }
-      }
-    }
-  }
-  for (std::size_t k = 0, n = seeds.size(); k < n; ++k)
-  {
-    const int node = seeds[k].second;
-    Mesh.ForEachOutgoingHalfedge(seeds[k].first, [&](int he) {
-      for (int w : Mesh.Face(he / 3))
-      {
-        if (marks.Mark(w))
-        {
-          seeds.emplace_back(w, node);
-        }
-      }
-    });
-  }
+  // The vertices the shape is drawn on, each from its node: the nearest node by descent over
+  // the grid (the map is smooth at the grid's scale).
+  const std::vector<std::pair<int, int>> seeds = grid.Vertices(); // (vertex, node)
   local.reserve(local.size() + seeds.size());
   for (const auto& seed : seeds)
   {
@@ -525,38 +495,43 @@ void CurveGrid::Index()
   }
 }
 
-std::vector<int> CurveGrid::Vertices() const
+std::vector<std::pair<int, int>> CurveGrid::Vertices() const
 {
-  std::vector<int> seeds, out;
+  std::vector<std::pair<int, int>> seeds; // (vertex, node)
   if (!Mesh)
   {
-    return out;
+    return seeds;
   }
-  for (const Node& n : Nodes)
+  // (Each vertex once: marks per thread, stamped per call.)
+  thread_local VertexStamps marks;
+  marks.Begin(static_cast<std::size_t>(Mesh->NumberOfVertices()));
+  for (int k = 0; k < static_cast<int>(Nodes.size()); ++k)
   {
-    if (n.Valid)
+    if (Nodes[k].Valid)
     {
-      for (int v : Mesh->Face(n.At.Face))
+      for (int v : Mesh->Face(Nodes[k].At.Face))
       {
-        seeds.push_back(v);
+        if (marks.Mark(v))
+        {
+          seeds.emplace_back(v, k);
+        }
       }
     }
   }
-  std::sort(seeds.begin(), seeds.end());
-  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
-  out = seeds;
-  for (int v : seeds)
+  for (std::size_t k = 0, n = seeds.size(); k < n; ++k)
   {
-    Mesh->ForEachOutgoingHalfedge(v, [&](int he) {
+    const int node = seeds[k].second;
+    Mesh->ForEachOutgoingHalfedge(seeds[k].first, [&](int he) {
       for (int w : Mesh->Face(he / 3))
       {
-        out.push_back(w);
+        if (marks.Mark(w))
+        {
+          seeds.emplace_back(w, node);
+        }
       }
     });
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
+  return seeds;
 }
 
 bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p, int* hint) const

@@ -22,6 +22,16 @@
 namespace gs_test
 {
 
+/// Every shape's drawn outline at `spacing` (ShapeDistributor::Outline), as CheckOverlaps takes
+/// them.
+inline std::vector<std::vector<gs::OutlinePiece>> Outlines(const gs::ShapeDistributor& d, double spacing)
+{
+  std::vector<std::vector<gs::OutlinePiece>> out(d.Shapes().size());
+  for (std::size_t s = 0; s < out.size(); ++s)
+    out[s] = d.Outline(static_cast<int>(s), spacing);
+  return out;
+}
+
 /// Number of overlapping pairs among shapes placed on a planar mesh (any plane orientation).
 inline int CountPlanarOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDistanceTables& tables,
   const std::vector<gs::PlacedShape>& shapes, double shapeSize, int* pairsChecked = nullptr,

@@ -12,7 +12,7 @@
 #include "SaddleVertexGraph.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
-#include "Silhouette.h"
+#include "UnitSilhouettes.h"
 
 #include <gtest/gtest.h>
 
@@ -43,19 +43,11 @@ Result<SafeDistanceTables> BundledTables()
   std::vector<SafeDistanceInput> in;
   for (const char* name : { "star", "gull", "leaf", "fish" })
   {
-    Result<SilhouetteImage> image =
-      ReadSilhouetteImage(std::string(GS_TEST_DATA_DIR) + "/shapes/" + name + ".png");
-    if (!image.Ok())
-      return Status::Error(image.Message());
-    Shape2D shape = ShapeFromMask(image->Mask);
-    std::vector<Vec2> all;
-    for (const auto& ring : shape.Rings)
-      all.insert(all.end(), ring.begin(), ring.end());
-    const Circle c = SmallestEnclosingCircle(all);
-    for (auto& ring : shape.Rings)
-      for (Vec2& p : ring)
-        p = (p - c.Centre) * (1.0 / c.Radius);
-    in.push_back({ name, shape });
+    Result<Shape2D> shape =
+      UnitShapeFromImage(std::string(GS_TEST_DATA_DIR) + "/shapes/" + name + ".png");
+    if (!shape.Ok())
+      return Status::Error(shape.Message());
+    in.push_back({ name, *shape });
   }
   SafeDistanceOptions so;
   so.AngleBins = 64;
@@ -79,13 +71,7 @@ SafeDistanceTables Shrunk(SafeDistanceTables t, double factor)
   return t;
 }
 
-std::vector<std::vector<OutlinePiece>> Outlines(const ShapeDistributor& d, double spacing)
-{
-  std::vector<std::vector<OutlinePiece>> out(d.Shapes().size());
-  for (std::size_t s = 0; s < out.size(); ++s)
-    out[s] = d.Outline(static_cast<int>(s), spacing);
-  return out;
-}
+using gs_test::Outlines;
 } // namespace
 
 TEST(OverlapCheck, FindsThePlanarOraclesOverlapsAndNoOther)
@@ -397,10 +383,7 @@ TEST(OverlapCheck, SmallLongShapesKeepRegularFrames)
       }
     folded += regular ? 0 : 1;
   }
-  std::vector<std::vector<OutlinePiece>> outlines(r->Shapes.size());
-  for (std::size_t s = 0; s < outlines.size(); ++s)
-    outlines[s] = d.Outline(static_cast<int>(s), d.OutlineSpacing());
-  const Result<OverlapCheckResult> check = CheckOverlaps(d, outlines);
+  const Result<OverlapCheckResult> check = CheckOverlaps(d, Outlines(d, d.OutlineSpacing()));
   ASSERT_TRUE(gs_test::Succeeded(check));
   std::printf("small bananas on a torus: %zu shapes, %d long, %d with a folded grid, %zu overlapping pairs\n",
     r->Shapes.size(), longShapes, folded, check->Pairs.size());

@@ -339,10 +339,8 @@ TEST(ShapeDistributorBoundary, ChartsDoNotInterpolateAcrossTheirCutLocus)
         wrong += std::abs(Norm(p) * unit - geodesic) > 2.0 * edge ? 1 : 0;
       }
     }
-    std::vector<std::vector<OutlinePiece>> outlines(r->Shapes.size());
-    for (std::size_t k = 0; k < outlines.size(); ++k)
-      outlines[k] = d.Outline(static_cast<int>(k), d.OutlineSpacing());
-    const Result<OverlapCheckResult> found = CheckOverlaps(d, outlines);
+    const Result<OverlapCheckResult> found =
+      CheckOverlaps(d, gs_test::Outlines(d, d.OutlineSpacing()));
     ASSERT_TRUE(found.Ok()) << found.Message();
     pairs += static_cast<long long>(found->Pairs.size());
   }

@@ -4,6 +4,7 @@
 // off, with and without a saddle vertex graph) hashed and compared with hashes recorded before
 // the distributor was split into files. A change of any bit fails; when a change of results is
 // intended, the test prints the new hashes to record.
+#include "DistributionChecks.h"
 #include "TestMeshes.h"
 #include "TestStatus.h"
 
@@ -180,10 +181,8 @@ TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
         first = h;
         EXPECT_GT(h.Shapes, 10) << c.Name;
         // Whatever the hashes, no overlap as VerifyOverlaps judges the drawn outlines.
-        std::vector<std::vector<OutlinePiece>> outlines(r->Shapes.size());
-        for (std::size_t s = 0; s < outlines.size(); ++s)
-          outlines[s] = d.Outline(static_cast<int>(s), d.OutlineSpacing());
-        const Result<OverlapCheckResult> overlaps = CheckOverlaps(d, outlines);
+        const Result<OverlapCheckResult> overlaps =
+          CheckOverlaps(d, gs_test::Outlines(d, d.OutlineSpacing()));
         ASSERT_TRUE(gs_test::Succeeded(overlaps));
         EXPECT_EQ(overlaps->Pairs.size(), 0u) << c.Name;
         int longShapes = 0;
