@@ -72,6 +72,53 @@ struct DecalOracleResult
   double Worst = 0.0; // the largest shared fraction
 };
 
+// Decals against outlines: each shape's drawn outline points read in its own decal (texture
+// coordinates as rendered), the class point's distance to the silhouette's boundary over the
+// circumradius; per kind (short, long): mean, the share over 5%, and points outside the decal.
+void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes,
+  const std::vector<ShapeDecal>& decals, const std::vector<std::vector<OutlinePiece>>& outlines)
+{
+  for (const bool longShapes : { false, true })
+  {
+    double sum = 0.0;
+    long long points = 0, uncovered = 0, far = 0;
+    for (std::size_t s = 0; s < shapes.size(); ++s)
+    {
+      if (shapes[s].Curve.empty() == longShapes)
+        continue;
+      const SafeDistanceClass& c = t.Classes[shapes[s].ClassId];
+      for (const OutlinePiece& piece : outlines[s])
+        for (const SurfacePoint& p : piece.Points)
+        {
+          ++points;
+          Vec2 uv{ 0.0, 0.0 };
+          if (!decals[s].TextureCoordinate(p, uv))
+          {
+            ++uncovered;
+            continue;
+          }
+          const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+          double best = 1e300;
+          for (const auto& ring : c.Outline.Rings)
+            for (std::size_t k = 0; k < ring.size(); ++k)
+            {
+              const Vec2 a = ring[k], ab = ring[(k + 1) % ring.size()] - a;
+              const double l2 = Dot(ab, ab);
+              const double u = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(q - a, ab) / l2)) : 0.0;
+              best = std::min(best, Norm(a + ab * u - q));
+            }
+          const double e = best / c.Radius;
+          sum += e;
+          far += e > 0.05 ? 1 : 0;
+        }
+    }
+    const long long covered = points - uncovered;
+    std::printf("    decals against outlines, %s shapes: %lld outline points, %lld outside the decal; class point off "
+                "the silhouette: mean %.2e of the radius, %.3f%% over 5%%\n", longShapes ? "long" : "short", points,
+      uncovered, covered > 0 ? sum / covered : 0.0, covered > 0 ? 100.0 * far / covered : 0.0);
+  }
+}
+
 DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes,
   const std::vector<ShapeDecal>& decals)
 {
@@ -678,11 +725,29 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       }
       const OverlapCheckResult& check = *checked;
       const double t4 = Now();
+      if (threads == 2)
+      {
+        // The same check through the placement's own charts (on the geodesic graph).
+        OverlapCheckOptions xo = co;
+        xo.ExactCharts = false;
+        const double x0 = Now();
+        const Result<OverlapCheckResult> chartChecked = CheckOverlaps(d, outlines, xo);
+        if (chartChecked.Ok())
+        {
+          std::printf("    overlap check through the placement's charts: %zu pairs, %lld examined, %.3f s (%.2fx the exact check)\n",
+            chartChecked->Pairs.size(), chartChecked->PairsExamined, Now() - x0, (Now() - x0) / std::max(1e-9, t4 - t3));
+          for (std::size_t k = 0; k < chartChecked->Pairs.size() && k < 6; ++k)
+            std::printf("      pair %d (class %d) and %d (class %d)\n", chartChecked->Pairs[k].first,
+              r->Shapes[chartChecked->Pairs[k].first].ClassId, chartChecked->Pairs[k].second,
+              r->Shapes[chartChecked->Pairs[k].second].ClassId);
+        }
+      }
       if (threads == 1 && std::getenv("GS_PROBES"))
         std::printf("    probes that still fit: %.4f%% of 100000\n", 100.0 * d.ProbeFitFraction(100000, 777));
       if (threads == 1)
       {
         const DecalOracleResult oracle = DecalOracle(t, r->Shapes, decals);
+        DecalsAgainstOutlines(t, r->Shapes, decals, outlines);
         std::printf("    decal oracle: %lld pairs draw a common lattice point, %lld of them more than 1%% of the "
                     "smaller shape's (worst %.2f%%)\n", oracle.SharingPairs, oracle.PairsOverOnePercent,
           100.0 * oracle.Worst);

@@ -1,5 +1,7 @@
 #include "OverlapCheck.h"
 
+#include "GeodesicPolarCoordinates.h"
+#include "GeodesicShooting.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
 
@@ -7,6 +9,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 namespace gs
 {
@@ -365,8 +368,6 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
     grid.emplace_back(key(shapes[s].Position), s);
   }
   std::sort(grid.begin(), grid.end());
-  std::vector<std::vector<int>> overlapsOf(n); // per shape: overlapping shapes of higher index
-  long long examined = 0;
   // Long shapes: the inverse of their drawing map near them.
   // A long shape is drawn on the faces whose corners are all among its frame's vertices (its
   // decal's): a point elsewhere, though near the frame in space (another layer of the surface,
@@ -395,7 +396,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   // farther in space from a's centre than sqrt(2) times its circumradius are outside it: a's
   // outline is drawn along paths of length |along| + |across| at most.)
   const TriangleMesh& mesh = distributor.Mesh();
-  auto enters = [&](int a, int b, double depth) {
+  auto enters = [&](int a, int b, double depth, const GeodesicPolarCoordinates* exact) {
     const Vec3 centre = shapes[a].Position;
     const double reach = 1.4143 * radius[a] + mesh.MeanEdgeLength();
     auto near = [&](const SurfacePoint& x) {
@@ -420,11 +421,31 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
           const SurfacePoint& x, Vec2& p) { return near(x) && in(x) && frame.ClassPoint(x, p, &hint); },
         depth);
     }
+    if (exact)
+    {
+      // a's exact polar coordinates (computed by the caller), in class units.
+      const double toUnits = exact->SourceAngleSum() / (2.0 * 3.14159265358979323846), inverse = 1.0 / (size * shapes[a].Scale);
+      return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
+        [exact, toUnits, inverse, &near](const SurfacePoint& x, Vec2& p) {
+          double rho = 0.0, theta = 0.0;
+          if (!near(x) || !exact->PolarAt(x, rho, theta))
+          {
+            return false;
+          }
+          const double raw = theta * toUnits; // the drawing's angle (MapShape: raw tangent angles)
+          p = Vec2{ rho * std::cos(raw) * inverse, rho * std::sin(raw) * inverse };
+          return true;
+        },
+        depth);
+    }
     return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
       [&distributor, a, &near](const SurfacePoint& x, Vec2& p) { return near(x) && distributor.ClassPoint(a, x, p); },
       depth);
   };
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) reduction(+ : examined)
+  // Each shape's neighbours: the shapes whose centres are closer in space than the sum of the
+  // circumradii (the geodesic distance is never shorter).
+  std::vector<std::vector<int>> neighbours(n);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (int a = 0; a < n; ++a)
   {
     const std::array<long long, 3> c = key(shapes[a].Position);
@@ -433,33 +454,80 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
         for (long long dz = -1; dz <= 1; ++dz)
         {
           const std::array<long long, 3> q{ c[0] + dx, c[1] + dy, c[2] + dz };
-          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, a + 1));
+          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, 0));
           for (; it != grid.end() && it->first == q; ++it)
           {
             const int b = it->second;
-            if (Norm(shapes[b].Position - shapes[a].Position) >= radius[a] + radius[b])
+            if (b != a && Norm(shapes[b].Position - shapes[a].Position) < radius[a] + radius[b])
             {
-              continue;
-            }
-            ++examined;
-            const double depth = tolerance * std::min(radius[a], radius[b]);
-            const bool overlap =
-              enters(a, b, depth / (size * shapes[a].Scale)) || enters(b, a, depth / (size * shapes[b].Scale));
-            if (overlap)
-            {
-              overlapsOf[a].push_back(b);
+              neighbours[a].push_back(b);
             }
           }
         }
+    std::sort(neighbours[a].begin(), neighbours[a].end());
   }
+  // Which neighbours' outlines enter each shape (read in its frame, computed once).
+  double longest = 0.0;
+  if (options.ExactCharts)
+  {
+    for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
+    {
+      longest = std::max(longest, mesh.EdgeLength(h));
+    }
+  }
+  std::vector<std::vector<int>> entering(n);
+#pragma omp parallel num_threads(threads)
+  {
+    std::unique_ptr<GeodesicPolarCoordinates> engine;
+#pragma omp for schedule(dynamic, 8)
+    for (int a = 0; a < n; ++a)
+    {
+      if (neighbours[a].empty())
+      {
+        continue;
+      }
+      const GeodesicPolarCoordinates* exact = nullptr;
+      if (options.ExactCharts && shapes[a].Curve.empty())
+      {
+        if (!engine)
+        {
+          engine.reset(new GeodesicPolarCoordinates(mesh));
+        }
+        // Every face that meets the circle has its corners within a longest edge beyond it.
+        const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
+        if (std::isfinite(reference) &&
+          engine->Compute(shapes[a].Centre, radius[a] + 1.01 * longest, reference).Ok())
+        {
+          exact = engine.get();
+        }
+      }
+      for (int b : neighbours[a])
+      {
+        const double depth = tolerance * std::min(radius[a], radius[b]);
+        if (enters(a, b, depth / (size * shapes[a].Scale), exact))
+        {
+          entering[a].push_back(b);
+        }
+      }
+    }
+  }
+  long long examined = 0;
   for (int a = 0; a < n; ++a)
   {
-    std::sort(overlapsOf[a].begin(), overlapsOf[a].end());
-    for (int b : overlapsOf[a])
+    for (int b : neighbours[a])
     {
-      result.Pairs.emplace_back(a, b);
-      ++result.Overlaps[a];
-      ++result.Overlaps[b];
+      if (b < a)
+      {
+        continue;
+      }
+      ++examined;
+      if (std::binary_search(entering[a].begin(), entering[a].end(), b) ||
+        std::binary_search(entering[b].begin(), entering[b].end(), a))
+      {
+        result.Pairs.emplace_back(a, b);
+        ++result.Overlaps[a];
+        ++result.Overlaps[b];
+      }
     }
   }
   result.PairsExamined = examined;

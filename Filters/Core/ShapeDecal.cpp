@@ -2,6 +2,8 @@
 // shape's polar chart, a long shape's CurveGrid), split where the map is not affine over a face.
 #include "ShapeDistributorImpl.h"
 
+#include "GeodesicShooting.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,6 +15,10 @@ using namespace distribution;
 
 namespace
 {
+// A short shape's face is laid out rigidly by its polar coordinates when the squares of its
+// edges in the chart are within this fraction of their lengths' squares (a length within 0.5%).
+constexpr double RigidStretch = 0.01;
+
 // Whether triangle t (texture coordinates) meets the box [lo, hi] (separating axes).
 bool MeetsBox(const std::array<Vec2, 3>& t, const Vec2& lo, const Vec2& hi)
 {
@@ -169,6 +175,10 @@ struct DecalBuilder
   const TriangleMesh& Mesh;
   const SafeDistanceClass& ShapeClass;
   std::shared_ptr<const CurveGrid> Grid; // long shapes
+  // Short shapes: the exact polar coordinates of the centre, their angle's factor to the
+  // drawing's tangent angle, and the world units per class unit.
+  const GeodesicPolarCoordinates* Exact = nullptr;
+  double ExactToRaw = 1.0, ExactUnit = 1.0;
   double TolUV = 0.0;                    // texture units per circumradius
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
   Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
@@ -256,6 +266,17 @@ struct DecalBuilder
   // the corners' values are, CurveShapeVertices).
   bool ClassAt(int f, const std::array<double, 3>& b, Vec2& q)
   {
+    if (Exact)
+    {
+      double rho = 0.0, theta = 0.0;
+      if (!Exact->PolarAt(SurfacePoint::InFace(f, b[0], b[1], b[2]), rho, theta))
+      {
+        return false;
+      }
+      const double raw = theta * ExactToRaw;
+      q = Vec2{ rho * std::cos(raw), rho * std::sin(raw) } * (1.0 / ExactUnit);
+      return true;
+    }
     // (Not from the previous point's node: where the map folds, at a kink of the curve, the
     // globally nearest node decides the sheet, the same for every point.)
     if (Grid->ClassPoint(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
@@ -270,10 +291,37 @@ struct DecalBuilder
   }
 
   // Faces checked for splitting: a long shape's faces wider than its grid's step (on smaller
-  // faces the grid, affine per grid triangle, knows the map no better than the face's corners).
+  // faces the grid, affine per grid triangle, knows the map no better than the face's corners);
+  // a short shape's faces that its polar coordinates do not lay out rigidly (the corners' class
+  // points not as far apart as the corners: a face behind a saddle vertex or as large as its
+  // distance from the centre, where the log map is not affine).
   bool Splits(int f) const
   {
-    if (!Grid || !(TolUV > 0.0))
+    if (!(TolUV > 0.0))
+    {
+      return false;
+    }
+    if (Exact)
+    {
+      const auto& v = Mesh.Face(f);
+      const Vec2 *a = Find(v[0]), *b = Find(v[1]), *c = Find(v[2]);
+      if (!a || !b || !c)
+      {
+        return false;
+      }
+      const Vec2 chart[3] = { *a, *b, *c };
+      for (int k = 0; k < 3; ++k)
+      {
+        const Vec2 e = (chart[(k + 1) % 3] - chart[k]) * ExactUnit;
+        const double inChart = Dot(e, e), edge = Mesh.EdgeLength(3 * f + k);
+        if (std::abs(inChart - edge * edge) > RigidStretch * edge * edge)
+        {
+          return true;
+        }
+      }
+      return false;
+    }
+    if (!Grid)
     {
       return false;
     }
@@ -336,7 +384,7 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
         // (The corners of a face to split are read like the points inside it, on the grid where
         // it reaches: where the map folds the grid decides the sheet, the same for all.)
         Vec2 value = *q;
-        if (Splits(f))
+        if (Grid && Splits(f))
         {
           const Vec2* known = CornerValues.Find(static_cast<std::uint64_t>(v));
           if (!known)
@@ -443,7 +491,7 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
       // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
       const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
         Norm(at(t.B[0]) - at(t.B[2])) });
-      if (error > TolUV && (t.Depth == maxDepth || size <= 0.5 * Grid->Step))
+      if (error > TolUV && (t.Depth == maxDepth || (Grid && size <= 0.5 * Grid->Step)))
       {
         if (error > 5.0 * TolUV)
         {
@@ -492,20 +540,26 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
   const double reach = c.Radius * scale + MaxEdge;
   DecalBuilder b(Mesh, c, tolerance);
   // Class-frame coordinates (normalized) of the vertices near the shape.
+  std::unique_ptr<GeodesicPolarCoordinates> exact;
   if (s.Curve.empty())
   {
-    const Record& r = Accepted.at(shape);
-    if (r.Charts.empty())
+    // The exact polar coordinates of the centre (the inverse of the geodesic shots that draw the
+    // outline), not the placement's chart: its graph's departure angles can be off by degrees
+    // behind saddles, which would draw the shape where it is not.
+    exact = TakeExactEngine();
+    const double reference = TangentAngle(Mesh, s.Centre, s.Direction);
+    if (!std::isfinite(reference) || !exact->Compute(s.Centre, reach, reference).Ok())
     {
+      GiveBackExactEngine(std::move(exact));
       return decal;
     }
-    for (const ChartEntry& e : r.Charts[0].Entries)
+    b.Exact = exact.get();
+    b.ExactToRaw = exact->SourceAngleSum() / TwoPi;
+    b.ExactUnit = scale;
+    for (int v : exact->Inside())
     {
-      const Vec2 q{ e.X, e.Y };
-      if (Norm(q) <= reach)
-      {
-        b.Local.emplace_back(e.Vertex, q * (1.0 / scale));
-      }
+      const double rho = exact->Rho(v), raw = exact->Theta(v) * b.ExactToRaw;
+      b.Local.emplace_back(v, Vec2{ rho * std::cos(raw), rho * std::sin(raw) } * (1.0 / scale));
     }
     b.ChartUnit = scale;
   }
@@ -527,7 +581,31 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
   {
     b.AddFace(entry.first, entry.second, sense, unit, decal);
   }
+  if (exact)
+  {
+    GiveBackExactEngine(std::move(exact));
+  }
   return decal;
+}
+
+std::unique_ptr<GeodesicPolarCoordinates> ShapeDistributor::Impl::TakeExactEngine() const
+{
+  {
+    std::lock_guard<std::mutex> lock(ExactPoolMutex);
+    if (!ExactPool.empty())
+    {
+      std::unique_ptr<GeodesicPolarCoordinates> engine = std::move(ExactPool.back());
+      ExactPool.pop_back();
+      return engine;
+    }
+  }
+  return std::unique_ptr<GeodesicPolarCoordinates>(new GeodesicPolarCoordinates(Mesh));
+}
+
+void ShapeDistributor::Impl::GiveBackExactEngine(std::unique_ptr<GeodesicPolarCoordinates> engine) const
+{
+  std::lock_guard<std::mutex> lock(ExactPoolMutex);
+  ExactPool.push_back(std::move(engine));
 }
 
 ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const

@@ -29,6 +29,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -495,6 +496,12 @@ struct ShapeDistributor::Impl
   // ---- Decals (ShapeDecal.cpp) ----------------------------------------------------------
   /// See ShapeDistributor::Decal.
   ShapeDecal DecalOf(int shape, double tolerance) const;
+  // Exact geodesic polar coordinates engines for short shapes' decals (taken from the pool by
+  // the thread drawing a decal, given back after it; DecalOf may run on any thread).
+  mutable std::mutex ExactPoolMutex;
+  mutable std::vector<std::unique_ptr<GeodesicPolarCoordinates>> ExactPool;
+  std::unique_ptr<GeodesicPolarCoordinates> TakeExactEngine() const;
+  void GiveBackExactEngine(std::unique_ptr<GeodesicPolarCoordinates> engine) const;
 };
 
 } // namespace gs

@@ -108,22 +108,25 @@ struct Case
 // shapes' frames too: its 130 shapes held 2 pairs that VerifyOverlaps finds (checked below now);
 // 119 shapes without (a 300-failure run ends early or late by chance: over seeds 1-20 the mean
 // count is 116.75 against 117.30 before, with 0 pairs against 2; 3000 failures, seeds 1-8: 141.00
-// against 141.12, 0 pairs against 3).
+// against 141.12, 0 pairs against 3). Session 34: the decals hashes of every case recorded again
+// when short decals came to be made from the exact log map of their centres (in doubles) instead
+// of the placement's charts (on the geodesic graph when there is one; floats): placements and
+// outlines kept their hashes.
 const Case Cases[] = {
   { "plane random keep-inside", false, DistributionMode::Random, false, true, false,
-    { 0x0e76edd2852bb614ull, 0x1509a19feedc474dull, 0x8d8ba8c82131c243ull, 47, 0.014999999999999999 } },
+    { 0x0e76edd2852bb614ull, 0x9c7cae1037b85aacull, 0x8d8ba8c82131c243ull, 47, 0.014999999999999999 } },
   { "plane greedy density", false, DistributionMode::Greedy, true, false, false,
-    { 0xdc4520260bdc79b6ull, 0x8bee05b60b9069e6ull, 0x52a65acc23e910c2ull, 67, 0.0050000000000000001 } },
+    { 0xdc4520260bdc79b6ull, 0xad93c540fe02619eull, 0x52a65acc23e910c2ull, 67, 0.0050000000000000001 } },
   { "plane greedy density keep-inside graph", false, DistributionMode::Greedy, true, true, true,
-    { 0xb834dd1f14121164ull, 0xeb43f6f99bffddb5ull, 0xc19bd1c8fdb3c318ull, 51, 0.0050000000000000001 } },
+    { 0xb834dd1f14121164ull, 0x63a6a4ff2529c61aull, 0xc19bd1c8fdb3c318ull, 51, 0.0050000000000000001 } },
   { "sphere random density graph", true, DistributionMode::Random, true, false, true,
-    { 0x2fb21214d805b65bull, 0xa0a358c6c98c0832ull, 0x76071e157299aeb0ull, 119, 0 } },
+    { 0x2fb21214d805b65bull, 0xb80cb312ab45f574ull, 0x76071e157299aeb0ull, 119, 0 } },
   { "sphere greedy graph", true, DistributionMode::Greedy, false, false, true,
-    { 0x07f09a192fc2d6e2ull, 0x15ac46d5dafb208aull, 0xef5085869cd604f5ull, 97, 0 } },
+    { 0x07f09a192fc2d6e2ull, 0x7758864c21480107ull, 0xef5085869cd604f5ull, 97, 0 } },
   { "sphere greedy density exact", true, DistributionMode::Greedy, true, false, false,
-    { 0x9ddc96d1d9446abfull, 0xa118f871cebc9481ull, 0x119ca8780a540c55ull, 116, 0 } },
+    { 0x9ddc96d1d9446abfull, 0xecb7cdba5912dd35ull, 0x119ca8780a540c55ull, 116, 0 } },
   { "sphere circumcircles graph", true, DistributionMode::CircumcirclePoissonDisk, false, false, true,
-    { 0x3c042043c3068257ull, 0x8e4a939bd45fdfedull, 0xcad68a7795a2006eull, 96, 0.01 } },
+    { 0x3c042043c3068257ull, 0xe40183488d034339ull, 0xcad68a7795a2006eull, 96, 0.01 } },
 };
 } // namespace
 
