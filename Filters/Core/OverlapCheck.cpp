@@ -277,7 +277,8 @@ bool ClassRegion::Within(const Vec2& p, double distance) const
 }
 
 bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& pieces,
-  const std::function<bool(const SurfacePoint&, Vec2&)>& toClass, double depth)
+  const std::function<bool(const SurfacePoint&, Vec2&)>& toClass, double depth,
+  const TriangleMesh* mesh, double classPerWorld)
 {
   const double step = depth; // samples along the outline
   std::vector<Vec2> local;
@@ -308,6 +309,22 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
       if (SegmentDistance(p, q, Vec2{ 0.0, 0.0 }) >= region.Radius())
       {
         continue;
+      }
+      if (mesh)
+      {
+        auto at = [mesh](const SurfacePoint& x) {
+          return x.IsVertex() ? mesh->Position(x.Vertex) : mesh->Interpolate(x.Face, x.Bary);
+        };
+        const double space = Norm(at(piece.Points[next]) - at(piece.Points[k]));
+        if (Norm(q - p) > 3.0 * classPerWorld * space + 0.1 * region.Radius())
+        {
+          // A jump across the frame's cut locus: the ends only.
+          if (region.DeeplyInside(p, depth) || region.DeeplyInside(q, depth))
+          {
+            return true;
+          }
+          continue;
+        }
       }
       const Vec2 pq = q - p;
       const int n = std::max(1, std::min(100000, static_cast<int>(std::ceil(std::sqrt(Dot(pq, pq)) / step))));
@@ -436,7 +453,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
           p = Vec2{ rho * std::cos(raw) * inverse, rho * std::sin(raw) * inverse };
           return true;
         },
-        depth);
+        depth, &mesh, inverse);
     }
     return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
       [&distributor, a, &near](const SurfacePoint& x, Vec2& p) { return near(x) && distributor.ClassPoint(a, x, p); },

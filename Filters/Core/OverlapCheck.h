@@ -17,6 +17,7 @@
 
 #include "ShapeOutline.h"
 #include "Status.h"
+#include "TriangleMesh.h"
 #include "Vector.h"
 
 #include <functional>
@@ -56,8 +57,13 @@ class ClassRegion;
 /// Does the drawn outline `pieces` reach deeper than `depth` (class units) into `region`?
 /// `toClass` carries a surface point into the region's class frame (false: beyond the frame's
 /// chart, so farther than its circle). The outline is sampled along its polyline every `depth`.
+/// With `mesh`, a segment between consecutive outline points whose class-frame length exceeds
+/// 3 times their distance in space (times `classPerWorld`, the frame's class units per world
+/// unit) plus a tenth of the circumradius jumps across the frame's cut locus (the map is not
+/// continuous there): only its ends are tested, not the straight line between them.
 bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& pieces,
-  const std::function<bool(const SurfacePoint&, Vec2&)>& toClass, double depth);
+  const std::function<bool(const SurfacePoint&, Vec2&)>& toClass, double depth,
+  const TriangleMesh* mesh = nullptr, double classPerWorld = 0.0);
 
 /// Checks the shapes of `distributor` (after its Run) against their drawn outlines
 /// (`outlines[s]`: ShapeDistributor::Outline of shape s). Deterministic: the same pairs whatever

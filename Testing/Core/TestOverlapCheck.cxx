@@ -460,3 +460,32 @@ TEST(OverlapCheck, ClassRegionAnswersAsTheDefinition)
     EXPECT_GT(near, 1000); // points inside but within the depth of the outline were asked about
   }
 }
+
+TEST(OverlapCheck, OutlineJumpsAcrossTheCutLocusAreReadAtTheirEnds)
+{
+  // Two consecutive outline points a small step apart on the surface that a frame maps to two
+  // sides of the shape (a thin part's two faces seen from across its edge: the frame is not
+  // continuous there). The straight line between their frame points crosses the shape; the
+  // outline does not. With the mesh, such a segment is read at its ends only.
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(4, 4, 1.0, 1.0));
+  const std::vector<std::vector<Vec2>> square{ { { -0.5, -0.5 }, { 0.5, -0.5 }, { 0.5, 0.5 }, { -0.5, 0.5 } } };
+  const ClassRegion region(square, 0.75, 0.01);
+  OutlinePiece piece;
+  piece.Points = { SurfacePoint::InFace(0, 0.3, 0.3, 0.4), SurfacePoint::InFace(0, 0.35, 0.3, 0.35) };
+  piece.Closed = false;
+  const std::vector<OutlinePiece> pieces{ piece };
+  auto jump = [&piece](const SurfacePoint& x, Vec2& p) {
+    p = x.Bary[0] == piece.Points[0].Bary[0] ? Vec2{ -2.0, 0.1 } : Vec2{ 2.0, 0.1 };
+    return true;
+  };
+  EXPECT_TRUE(OutlineEnters(region, pieces, jump, 0.005)); // without the mesh: the line is read
+  EXPECT_FALSE(OutlineEnters(region, pieces, jump, 0.005, &plane, 1.0));
+  // A segment as long in the frame as in space is read along its length.
+  auto continuous = [&piece, &plane](const SurfacePoint& x, Vec2& p) {
+    const double d = Norm(plane.Interpolate(piece.Points[1].Face, piece.Points[1].Bary) -
+      plane.Interpolate(piece.Points[0].Face, piece.Points[0].Bary));
+    p = x.Bary[0] == piece.Points[0].Bary[0] ? Vec2{ -0.5 * d, 0.1 } : Vec2{ 0.5 * d, 0.1 };
+    return true;
+  };
+  EXPECT_TRUE(OutlineEnters(region, pieces, continuous, 0.005, &plane, 1.0));
+}
