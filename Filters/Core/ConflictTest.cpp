@@ -306,7 +306,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
       const Vec3 centre = R.Shape.Position;
       const double reach = 1.4143 * radius + Mesh.MeanEdgeLength();
       return [this, centre, reach](const SurfacePoint& q) {
-        return Norm((q.IsVertex() ? Mesh.Position(q.Vertex) : Mesh.Interpolate(q.Face, q.Bary)) -
+        return Norm(Mesh.Position(q) -
                  centre) <= reach;
       };
     };

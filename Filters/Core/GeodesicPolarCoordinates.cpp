@@ -490,7 +490,7 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
   if (sourceFace)
   {
     // Straight inside the face: exact.
-    const Vec3 s = Source.IsVertex() ? Mesh.Position(Source.Vertex) : Mesh.Interpolate(Source.Face, Source.Bary);
+    const Vec3 s = Mesh.Position(Source);
     rho = Norm(x - s);
     if (rho == 0.0)
     {
@@ -540,6 +540,18 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
     sum += q.Bary[k] * d;
   }
   theta = Wrap(VertexTheta[t[0]] + sum);
+  return true;
+}
+
+bool GeodesicPolarCoordinates::LogMapAt(const SurfacePoint& q, Vec2& p) const
+{
+  double rho = 0.0, theta = 0.0;
+  if (!PolarAt(q, rho, theta))
+  {
+    return false;
+  }
+  const double raw = theta * (Turn / TwoPi);
+  p = Vec2{ rho * std::cos(raw), rho * std::sin(raw) };
   return true;
 }
 

@@ -91,6 +91,11 @@ public:
   // Coordinates of any surface point (interpolated inside its face: rho by geodesic triangle
   // unfolding, theta circularly; exact in the source's own face). False outside the radius.
   bool PolarAt(const SurfacePoint& q, double& rho, double& theta) const;
+  // The same as a point of the tangent plane at the source: (rho cos a, rho sin a), with a the
+  // true angle from the reference (theta times SourceAngleSum / 2 pi: not scaled at a cone or
+  // saddle source), so that ShootGeodesic(source, reference + a, rho) draws it. False where
+  // PolarAt is.
+  bool LogMapAt(const SurfacePoint& q, Vec2& p) const;
 
   // The inverse map: the surface point at (rho, theta): geodesic shooting, or after
   // UseIsoCurveAngles, the point at the fraction theta / 2 pi along the level loop rho (the

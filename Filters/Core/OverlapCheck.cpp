@@ -312,10 +312,7 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
       }
       if (mesh)
       {
-        auto at = [mesh](const SurfacePoint& x) {
-          return x.IsVertex() ? mesh->Position(x.Vertex) : mesh->Interpolate(x.Face, x.Bary);
-        };
-        const double space = Norm(at(piece.Points[next]) - at(piece.Points[k]));
+        const double space = Norm(mesh->Position(piece.Points[next]) - mesh->Position(piece.Points[k]));
         if (Norm(q - p) > 3.0 * classPerWorld * space + 0.1 * region.Radius())
         {
           // A jump across the frame's cut locus: the ends only.
@@ -417,7 +414,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
     const Vec3 centre = shapes[a].Position;
     const double reach = 1.4143 * radius[a] + mesh.MeanEdgeLength();
     auto near = [&](const SurfacePoint& x) {
-      return Norm((x.IsVertex() ? mesh.Position(x.Vertex) : mesh.Interpolate(x.Face, x.Bary)) - centre) <= reach;
+      return Norm(mesh.Position(x) - centre) <= reach;
     };
     if (!shapes[a].Curve.empty())
     {
@@ -440,17 +437,15 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
     }
     if (exact)
     {
-      // a's exact polar coordinates (computed by the caller), in class units.
-      const double toUnits = exact->SourceAngleSum() / (2.0 * 3.14159265358979323846), inverse = 1.0 / (size * shapes[a].Scale);
+      // a's exact log map (computed by the caller), in class units.
+      const double inverse = 1.0 / (size * shapes[a].Scale);
       return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
-        [exact, toUnits, inverse, &near](const SurfacePoint& x, Vec2& p) {
-          double rho = 0.0, theta = 0.0;
-          if (!near(x) || !exact->PolarAt(x, rho, theta))
+        [exact, inverse, &near](const SurfacePoint& x, Vec2& p) {
+          if (!near(x) || !exact->LogMapAt(x, p))
           {
             return false;
           }
-          const double raw = theta * toUnits; // the drawing's angle (MapShape: raw tangent angles)
-          p = Vec2{ rho * std::cos(raw) * inverse, rho * std::sin(raw) * inverse };
+          p = p * inverse;
           return true;
         },
         depth, &mesh, inverse);
@@ -484,14 +479,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
     std::sort(neighbours[a].begin(), neighbours[a].end());
   }
   // Which neighbours' outlines enter each shape (read in its frame, computed once).
-  double longest = 0.0;
-  if (options.ExactCharts)
-  {
-    for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
-    {
-      longest = std::max(longest, mesh.EdgeLength(h));
-    }
-  }
+  const double longest = mesh.LongestEdgeLength();
   std::vector<std::vector<int>> entering(n);
 #pragma omp parallel num_threads(threads)
   {

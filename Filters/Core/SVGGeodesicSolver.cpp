@@ -701,11 +701,6 @@ Status SVGGeodesicSolver::Reject(Status why, GraphAlgorithm algorithm)
   return why;
 }
 
-Vec3 SVGGeodesicSolver::PositionOf(const SurfacePoint& p) const
-{
-  return p.IsVertex() ? Mesh.Position(p.Vertex) : Mesh.Interpolate(p.Face, p.Bary);
-}
-
 Status SVGGeodesicSolver::SolveFromPieces(const std::vector<SurfacePoint>& exactSources,
   int finalVertices, const SVGSolveOptions& options)
 {
@@ -801,7 +796,7 @@ Status SVGGeodesicSolver::Solve(
     else
     {
       facePoints.push_back(s);
-      const Vec3 p = PositionOf(s);
+      const Vec3 p = Mesh.Position(s);
       Pieces.push_back({ s.Face, p, p });
     }
   }
@@ -900,7 +895,7 @@ double SVGGeodesicSolver::DistanceAt(const SurfacePoint& q) const
     [](const Piece& p, int f) { return p.Face < f; });
   if (it != Pieces.end() && it->Face == q.Face)
   {
-    const Vec3 x = PositionOf(q);
+    const Vec3 x = Mesh.Position(q);
     for (; it != Pieces.end() && it->Face == q.Face; ++it)
     {
       best = std::min(best, PointSegmentDistance(x, it->A, it->B));

@@ -105,7 +105,6 @@ private:
     int Face;
     Vec3 A, B; // a segment (A == B for a point source) inside Face
   };
-  Vec3 PositionOf(const SurfacePoint& p) const;
   // Geodesic triangle unfolding over the polar stencils, in order of distance.
   void Refine(double maxDistance, bool unfold, bool angles, int threads = 1,
     std::int64_t parallelMinimum = 0);

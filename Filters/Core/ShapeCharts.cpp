@@ -15,18 +15,7 @@ using namespace distribution;
 void ShapeDistributor::Impl::PrepareChartMeasures()
 {
   const int nv = Mesh.NumberOfVertices();
-  MaxEdge = 0.0;
-  {
-    double longest = 0.0;
-#pragma omp parallel for schedule(static) reduction(max                                            \
-                                                    : longest)                                     \
-  num_threads(ThreadCount(Options.NumberOfThreads))
-    for (int h = 0; h < Mesh.NumberOfHalfedges(); ++h)
-    {
-      longest = std::max(longest, Mesh.EdgeLength(h));
-    }
-    MaxEdge = longest;
-  }
+  MaxEdge = Mesh.LongestEdgeLength();
   ChartMargin = 2.0 * Mesh.MeanEdgeLength();
   if (static_cast<int>(Defect.size()) != nv)
   {

@@ -175,10 +175,9 @@ struct DecalBuilder
   const TriangleMesh& Mesh;
   const SafeDistanceClass& ShapeClass;
   std::shared_ptr<const CurveGrid> Grid; // long shapes
-  // Short shapes: the exact polar coordinates of the centre, their angle's factor to the
-  // drawing's tangent angle, and the world units per class unit.
+  // Short shapes: the exact polar coordinates of the centre, and the world units per class unit.
   const GeodesicPolarCoordinates* Exact = nullptr;
-  double ExactToRaw = 1.0, ExactUnit = 1.0;
+  double ExactUnit = 1.0;
   double TolUV = 0.0;                    // texture units per circumradius
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
   Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
@@ -268,13 +267,11 @@ struct DecalBuilder
   {
     if (Exact)
     {
-      double rho = 0.0, theta = 0.0;
-      if (!Exact->PolarAt(SurfacePoint::InFace(f, b[0], b[1], b[2]), rho, theta))
+      if (!Exact->LogMapAt(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
       {
         return false;
       }
-      const double raw = theta * ExactToRaw;
-      q = Vec2{ rho * std::cos(raw), rho * std::sin(raw) } * (1.0 / ExactUnit);
+      q = q * (1.0 / ExactUnit);
       return true;
     }
     // (Not from the previous point's node: where the map folds, at a kink of the curve, the
@@ -540,26 +537,25 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
   const double reach = c.Radius * scale + MaxEdge;
   DecalBuilder b(Mesh, c, tolerance);
   // Class-frame coordinates (normalized) of the vertices near the shape.
-  std::unique_ptr<GeodesicPolarCoordinates> exact;
+  ExactEngineLease exact(*this); // (taken from the pool only for a short shape)
   if (s.Curve.empty())
   {
     // The exact polar coordinates of the centre (the inverse of the geodesic shots that draw the
     // outline), not the placement's chart: its graph's departure angles can be off by degrees
     // behind saddles, which would draw the shape where it is not.
-    exact = TakeExactEngine();
+    GeodesicPolarCoordinates& engine = exact.Take();
     const double reference = TangentAngle(Mesh, s.Centre, s.Direction);
-    if (!std::isfinite(reference) || !exact->Compute(s.Centre, reach, reference).Ok())
+    if (!std::isfinite(reference) || !engine.Compute(s.Centre, reach, reference).Ok())
     {
-      GiveBackExactEngine(std::move(exact));
       return decal;
     }
-    b.Exact = exact.get();
-    b.ExactToRaw = exact->SourceAngleSum() / TwoPi;
+    b.Exact = &engine;
     b.ExactUnit = scale;
-    for (int v : exact->Inside())
+    for (int v : engine.Inside())
     {
-      const double rho = exact->Rho(v), raw = exact->Theta(v) * b.ExactToRaw;
-      b.Local.emplace_back(v, Vec2{ rho * std::cos(raw), rho * std::sin(raw) } * (1.0 / scale));
+      Vec2 q;
+      engine.LogMapAt(SurfacePoint::AtVertex(v), q);
+      b.Local.emplace_back(v, q * (1.0 / scale));
     }
     b.ChartUnit = scale;
   }
@@ -581,31 +577,36 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
   {
     b.AddFace(entry.first, entry.second, sense, unit, decal);
   }
-  if (exact)
-  {
-    GiveBackExactEngine(std::move(exact));
-  }
   return decal;
 }
 
-std::unique_ptr<GeodesicPolarCoordinates> ShapeDistributor::Impl::TakeExactEngine() const
+GeodesicPolarCoordinates& ShapeDistributor::Impl::ExactEngineLease::Take()
 {
+  if (!Engine)
   {
-    std::lock_guard<std::mutex> lock(ExactPoolMutex);
-    if (!ExactPool.empty())
     {
-      std::unique_ptr<GeodesicPolarCoordinates> engine = std::move(ExactPool.back());
-      ExactPool.pop_back();
-      return engine;
+      std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
+      if (!Owner.ExactPool.empty())
+      {
+        Engine = std::move(Owner.ExactPool.back());
+        Owner.ExactPool.pop_back();
+      }
+    }
+    if (!Engine)
+    {
+      Engine.reset(new GeodesicPolarCoordinates(Owner.Mesh));
     }
   }
-  return std::unique_ptr<GeodesicPolarCoordinates>(new GeodesicPolarCoordinates(Mesh));
+  return *Engine;
 }
 
-void ShapeDistributor::Impl::GiveBackExactEngine(std::unique_ptr<GeodesicPolarCoordinates> engine) const
+ShapeDistributor::Impl::ExactEngineLease::~ExactEngineLease()
 {
-  std::lock_guard<std::mutex> lock(ExactPoolMutex);
-  ExactPool.push_back(std::move(engine));
+  if (Engine)
+  {
+    std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
+    Owner.ExactPool.push_back(std::move(Engine));
+  }
 }
 
 ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const

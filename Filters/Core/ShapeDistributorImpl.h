@@ -496,12 +496,27 @@ struct ShapeDistributor::Impl
   // ---- Decals (ShapeDecal.cpp) ----------------------------------------------------------
   /// See ShapeDistributor::Decal.
   ShapeDecal DecalOf(int shape, double tolerance) const;
-  // Exact geodesic polar coordinates engines for short shapes' decals (taken from the pool by
-  // the thread drawing a decal, given back after it; DecalOf may run on any thread).
+  // Exact geodesic polar coordinates engines for short shapes' decals: DecalOf may run on any
+  // thread, so an engine is leased from the pool (Take; a new one when it is empty) and goes
+  // back to it when the lease ends.
   mutable std::mutex ExactPoolMutex;
   mutable std::vector<std::unique_ptr<GeodesicPolarCoordinates>> ExactPool;
-  std::unique_ptr<GeodesicPolarCoordinates> TakeExactEngine() const;
-  void GiveBackExactEngine(std::unique_ptr<GeodesicPolarCoordinates> engine) const;
+  class ExactEngineLease
+  {
+  public:
+    explicit ExactEngineLease(const Impl& owner)
+      : Owner(owner)
+    {
+    }
+    ExactEngineLease(const ExactEngineLease&) = delete;
+    ExactEngineLease& operator=(const ExactEngineLease&) = delete;
+    ~ExactEngineLease();
+    GeodesicPolarCoordinates& Take();
+
+  private:
+    const Impl& Owner;
+    std::unique_ptr<GeodesicPolarCoordinates> Engine;
+  };
 };
 
 } // namespace gs

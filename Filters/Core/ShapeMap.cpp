@@ -540,7 +540,7 @@ bool CurveGrid::ClassPoint(const SurfacePoint& x, Vec2& p, int* hint) const
   {
     return false;
   }
-  const Vec3 X = x.IsVertex() ? Mesh->Position(x.Vertex) : Mesh->Interpolate(x.Face, x.Bary);
+  const Vec3 X = Mesh->Position(x);
   if (hint && *hint >= 0 && *hint < static_cast<int>(Nodes.size()))
   {
     // From the previous point's node: the descent finds the nearest node when it is near.

@@ -40,18 +40,13 @@ FaceExit FindFaceExit(const TriangleMesh& M, int f, const Vec3& x, const Vec3& d
 
 namespace
 {
-Vec3 PositionOf(const TriangleMesh& M, const SurfacePoint& p)
-{
-  return p.IsVertex() ? M.Position(p.Vertex) : M.Interpolate(p.Face, p.Bary);
-}
-
 // Appends the pieces of the straight surface path from `from` to `to`.
 void TraceSegment(const TriangleMesh& M, const SurfacePoint& from, const SurfacePoint& to,
   std::vector<CurvePiece>& out)
 {
   auto addPiece = [&](int f, const Vec3& a, const Vec3& b) { out.push_back({ f, a, b }); };
-  const Vec3 q = PositionOf(M, to);
-  Vec3 x = PositionOf(M, from);
+  const Vec3 q = M.Position(to);
+  Vec3 x = M.Position(from);
   auto hasCorner = [&](int f, int v) {
     const auto& t = M.Face(f);
     return t[0] == v || t[1] == v || t[2] == v;
@@ -145,7 +140,7 @@ std::vector<CurvePiece> TraceSurfaceCurve(const TriangleMesh& M, const std::vect
   std::vector<CurvePiece> out;
   if (curve.size() == 1)
   {
-    const Vec3 p = PositionOf(M, curve[0]);
+    const Vec3 p = M.Position(curve[0]);
     out.push_back({ curve[0].IsVertex() ? M.VertexHalfedge(curve[0].Vertex) / 3 : curve[0].Face, p, p });
   }
   for (std::size_t i = 0; i + 1 < curve.size(); ++i)

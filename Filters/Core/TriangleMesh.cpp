@@ -212,9 +212,11 @@ void TriangleMesh::ComputeDerivedData()
     Normals[f] = Areas[f] > 0 ? n / (2.0 * Areas[f]) : Vec3(0, 0, 0);
   }
   double sum = 0.0; // (in order: the same mean whatever the number of threads)
+  LongestEdge = 0.0;
   for (const double l : Lengths)
   {
     sum += l;
+    LongestEdge = std::max(LongestEdge, l);
   }
   MeanEdge = nf > 0 ? sum / (3.0 * nf) : 0.0;
 

@@ -29,6 +29,11 @@ public:
   int NumberOfEdges() const { return NumEdges; }
 
   const Vec3& Position(int v) const { return Positions[v]; }
+  // A surface point's position: its vertex's, or interpolated in its face.
+  Vec3 Position(const SurfacePoint& p) const
+  {
+    return p.IsVertex() ? Positions[p.Vertex] : Interpolate(p.Face, p.Bary);
+  }
   const std::vector<Vec3>& GetPositions() const { return Positions; }
   const std::array<int, 3>& Face(int f) const { return Faces[f]; }
 
@@ -91,6 +96,7 @@ public:
   Vec3 FaceNormal(int f) const; // unit (computed once)
   // Average edge length (a length scale for tolerances).
   double MeanEdgeLength() const { return MeanEdge; }
+  double LongestEdgeLength() const { return LongestEdge; }
   double BoundingBoxDiagonal() const { return BoxDiagonal; }
   // Corners of the axis-aligned bounding box of the positions.
   const Vec3& BoundingBoxMin() const { return BoxMin; }
@@ -140,7 +146,7 @@ private:
   int NumComponents = 0;
   int NumEdges = 0;
   int TotalGenus = 0;
-  double MeanEdge = 0.0;
+  double MeanEdge = 0.0, LongestEdge = 0.0;
   double BoxDiagonal = 0.0;
   Vec3 BoxMin, BoxMax;
 };

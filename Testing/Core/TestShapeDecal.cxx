@@ -319,7 +319,7 @@ Drawn CompareDrawn(const ShapeDistributor& d, const TriangleMesh& mesh, const Sa
             continue;
           }
           ++r.Samples;
-          const Vec3 mapped = m.End.IsVertex() ? mesh.Position(m.End.Vertex) : mesh.Interpolate(m.End.Face, m.End.Bary);
+          const Vec3 mapped = mesh.Position(m.End);
           const double e = Norm(mapped - x) / radius;
           r.Max = std::max(r.Max, e);
           r.Wrong += e > 0.05 ? 1 : 0;
