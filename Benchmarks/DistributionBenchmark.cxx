@@ -17,7 +17,10 @@
 // Usage: DistributionBenchmark <refined_elephant.off> [shape images dir] [--quick]
 //   or: DistributionBenchmark <mesh.off> --scale --image a.png [--image b.png ...] [--cache graph.svg]
 //       [--size 0.01] [--greedy] [--speed-rounds R] [--graph-accuracy A (the charts' discrete geodesic
-//       graph, default 0.1 as the filter's; 0: the saddle vertex graph of K = 50)] (see AtScale; environment: GS_DISTORTION_LIMIT
+//       graph, default 0.1 as the filter's; 0: the saddle vertex graph of K = 50)] [--check (exit 2 when
+//       VerifyOverlaps reports a pair or two decals share more than 1% of a shape's lattice points)]
+//       (see AtScale; environment: GS_DEBUG_ORACLE prints, for such decal pairs, the shared points as
+//       each shape's map reads them; GS_DISTORTION_LIMIT
 //       sets DistortionLimit, GS_DRAWN_CHECK=0 turns the drawn check off, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
 //       shape's drawn map departs from its rigid parts)
 //   [--square W [--seeds N] (section 1b alone, a square W circumradii wide, N seeds; environment:
@@ -61,6 +64,8 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 long long TotalShapes = 0, TotalOverlaps = 0, TotalPairs = 0;
+bool CheckScale = false;   // --check: the at-scale run fails on a fault found below
+long long ScaleFaults = 0; // pairs VerifyOverlaps reports, decal pairs sharing over 1%
 // The decal oracle (issue 21): what the decals draw, compared on a fixed lattice of points of
 // every mesh face (28 barycentric points): a lattice point drawn inside the silhouette (the
 // texture coordinate, linear in the decal triangle holding it, as a renderer draws it) by two
@@ -70,6 +75,7 @@ struct DecalOracleResult
   long long SharingPairs = 0; // pairs with a lattice point drawn by both
   long long PairsOverOnePercent = 0; // sharing more than 1% of the smaller shape's drawn points
   double Worst = 0.0; // the largest shared fraction
+  std::vector<std::pair<std::pair<int, int>, double>> Over; // the pairs over 1%, with their fractions
 };
 
 // Decals against outlines: each shape's drawn outline points read in its own decal (texture
@@ -164,6 +170,8 @@ DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<Pla
     const double fraction = static_cast<double>(e.second) / smaller;
     ++r.SharingPairs;
     r.PairsOverOnePercent += fraction > 0.01 ? 1 : 0;
+    if (fraction > 0.01)
+      r.Over.push_back({ e.first, fraction });
     r.Worst = std::max(r.Worst, fraction);
   }
   return r;
@@ -724,6 +732,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         return 1;
       }
       const OverlapCheckResult& check = *checked;
+      ScaleFaults += static_cast<long long>(check.Pairs.size());
       const double t4 = Now();
       if (threads == 2)
       {
@@ -751,6 +760,77 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         std::printf("    decal oracle: %lld pairs draw a common lattice point, %lld of them more than 1%% of the "
                     "smaller shape's (worst %.2f%%)\n", oracle.SharingPairs, oracle.PairsOverOnePercent,
           100.0 * oracle.Worst);
+        if (std::getenv("GS_DEBUG_ORACLE"))
+          for (const auto& pair : oracle.Over)
+          {
+            const int L = 6;
+            std::map<std::uint64_t, std::pair<Vec2, SurfacePoint>> pts[2];
+            const int ids[2] = { pair.first.first, pair.first.second };
+            for (int w = 0; w < 2; ++w)
+            {
+              const SafeDistanceClass& c = t.Classes[r->Shapes[ids[w]].ClassId];
+              const ClassRegion region(c.Outline.Rings, c.Radius, 0.0);
+              const ShapeDecal& decal = decals[ids[w]];
+              for (std::size_t k = 0; k < decal.Faces.size(); ++k)
+              {
+                int index = 0;
+                for (int i = 0; i <= L; ++i)
+                  for (int j = 0; i + j <= L; ++j, ++index)
+                  {
+                    const double b0 = (i + 1.0 / 3.0) / (L + 1.0), b1 = (j + 1.0 / 3.0) / (L + 1.0);
+                    Vec2 uv;
+                    if (!decal.TextureCoordinateIn(k, { b0, b1, 1.0 - b0 - b1 }, uv))
+                      continue;
+                    const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+                    if (region.Inside(q))
+                      pts[w][static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index] = std::make_pair(q, SurfacePoint{ -1, decal.Faces[k], { b0, b1, 1.0 - b0 - b1 } });
+                  }
+              }
+            }
+            for (int w = 0; w < 2; ++w)
+            {
+              const PlacedShape& S = r->Shapes[ids[w]];
+              std::printf("      shape %d class %d at (%.4f %.4f %.4f), radius %.4f, %zu parts, curve %zu\n", ids[w],
+                S.ClassId, S.Position.x, S.Position.y, S.Position.z,
+                t.Classes[S.ClassId].Radius * o.ShapeSize * S.Scale, S.Parts.size(), S.Curve.size());
+            }
+            for (const auto& e : pts[0])
+            {
+              const auto it = pts[1].find(e.first);
+              if (it == pts[1].end())
+                continue;
+              const SurfacePoint& x = e.second.second;
+              const Vec3 X = mesh.Interpolate(x.Face, x.Bary);
+              Vec2 c0{ NAN, NAN }, c1{ NAN, NAN };
+              auto classPoint = [&](int id, Vec2& c) {
+                if (r->Shapes[id].Curve.empty())
+                  return d.ClassPoint(id, x, c);
+                const auto grid = d.Frame(id);
+                int hint = -1;
+                const bool ok = grid->ClassPoint(x, c, &hint);
+                for (int k = 0; k < static_cast<int>(grid->Nodes.size()); ++k)
+                  if (grid->Nodes[k].Valid) { hint = k; break; }
+                Vec2 e; double dist = -1; int nn = -1;
+                grid->Locate(X, hint, e, &dist, &nn);
+                const MappedPoint m = d.Map(id, e);
+                std::printf("        grid %dx%d step %.4f: located (%.3f %.3f) at %.4f from the grid (node %d at %.4f); map of the decal point %s, %.4f from X\n",
+                  grid->Columns, grid->Rows, grid->Step, e.x, e.y, dist, nn, Norm(grid->Nodes[nn].Position - X),
+                  m.Reached ? "reached" : "stopped", Norm(mesh.Position(m.End) - X));
+                return ok;
+              };
+              const bool ok0 = classPoint(ids[0], c0), ok1 = classPoint(ids[1], c1);
+              std::printf("      face %d (%.4f %.4f %.4f): decal %d (%.3f %.3f) chart %d (%.3f %.3f) | decal %d (%.3f %.3f) chart %d (%.3f %.3f); |X-c| %.4f %.4f\n",
+                x.Face, X.x, X.y, X.z, ids[0], e.second.first.x, e.second.first.y, ok0, c0.x, c0.y, ids[1],
+                it->second.first.x, it->second.first.y, ok1, c1.x, c1.y, Norm(X - r->Shapes[ids[0]].Position),
+                Norm(X - r->Shapes[ids[1]].Position));
+            }
+          }
+        ScaleFaults += oracle.PairsOverOnePercent;
+        for (const auto& pair : oracle.Over)
+          std::printf("      decals of %d (class %d%s) and %d (class %d%s) share %.2f%%\n", pair.first.first,
+            r->Shapes[pair.first.first].ClassId, r->Shapes[pair.first.first].Curve.empty() ? "" : ", long",
+            pair.first.second, r->Shapes[pair.first.second].ClassId,
+            r->Shapes[pair.first.second].Curve.empty() ? "" : ", long", 100.0 * pair.second);
       }
       const ShapeDistributionStatistics& st = r->Statistics;
       const double values[8] = { st.PrepareSeconds, st.GenerateSeconds, st.CheckSeconds, st.RoundSeconds,
@@ -907,7 +987,9 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
   std::printf("  2 threads: %.2fx one; overlap check / distribution with outputs: %.1f%%; same shapes for 1 "
               "and 2 threads: %s\n", one / two, 100.0 * Median(phase[6][2]) / two,
     counts[1] == counts[2] ? "yes" : "NO");
-  return counts[1] == counts[2] ? 0 : 2;
+  if (CheckScale && ScaleFaults > 0)
+    std::printf("FAILED: %lld faults (VerifyOverlaps pairs, decal pairs sharing over 1%%)\n", ScaleFaults);
+  return counts[1] == counts[2] && !(CheckScale && ScaleFaults > 0) ? 0 : 2;
 }
 
 int main(int argc, char* argv[])
@@ -932,6 +1014,8 @@ int main(int argc, char* argv[])
       scaleSize = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--graph-accuracy") == 0 && i + 1 < argc)
       scaleAccuracy = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--check") == 0)
+      CheckScale = true;
     else if (std::strcmp(argv[i], "--greedy") == 0)
       scaleMode = DistributionMode::Greedy;
     else if (std::strcmp(argv[i], "--image") == 0 && i + 1 < argc)

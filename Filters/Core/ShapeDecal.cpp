@@ -186,7 +186,22 @@ struct DecalBuilder
   // (0: long shapes, no test).
   double ChartUnit = 0.0;
   KeyedValues<Vec2> CornerValues; // vertices of faces to split, on the grid
-  KeyedValues<std::pair<bool, Vec2>> Midpoints; // face edges' midpoints
+  // The map read at a point: found, and beyond the map's reach inside the silhouette.
+  struct Reading
+  {
+    bool Found = false;
+    bool Ghost = false;
+    Vec2 Point;
+  };
+  KeyedValues<Reading> Midpoints; // face edges' midpoints
+  // Long shapes: where the grid does not reach (its shots stopped at the mesh boundary, or a
+  // nearby sheet of the surface), the affine extension of its border (what the vertices beyond
+  // it are given, CurveShapeVertices) can carry the silhouette across a hole; such points are
+  // ghosts, and the decal does not draw them. The silhouette for that test, the vertices
+  // farther than half a grid step from the grid (sorted), and their ghost states as found.
+  const ClassRegion* Region = nullptr;
+  std::vector<int> Far;
+  KeyedValues<char> VertexGhosts;
 
   DecalBuilder(const TriangleMesh& mesh, const SafeDistanceClass& c, double tolerance)
     : Mesh(mesh)
@@ -261,10 +276,16 @@ struct DecalBuilder
     }
   }
 
+  // A class point beyond the grid's reach that the silhouette (dilated by 1% of the radius, for
+  // texture filtering) holds: a ghost.
+  bool InSilhouette(const Vec2& q) const { return Region->Within(q, 0.01 * ShapeClass.Radius); }
+
   // The shape's map at a point of face f: on the grid, or beyond it its affine extension (what
-  // the corners' values are, CurveShapeVertices).
-  bool ClassAt(int f, const std::array<double, 3>& b, Vec2& q)
+  // the corners' values are, CurveShapeVertices); `ghost`: beyond the grid's reach, inside the
+  // silhouette.
+  bool ClassAt(int f, const std::array<double, 3>& b, Vec2& q, bool& ghost)
   {
+    ghost = false;
     if (Exact)
     {
       if (!Exact->LogMapAt(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
@@ -284,7 +305,27 @@ struct DecalBuilder
     {
       Hint = FirstValid;
     }
-    return Grid->Locate(Mesh.Interpolate(f, b), Hint, q, nullptr, &Hint);
+    const bool found = Grid->Locate(Mesh.Interpolate(f, b), Hint, q, nullptr, &Hint);
+    ghost = found && Region && InSilhouette(q);
+    return found;
+  }
+
+  // Is vertex v (class point q, located from its node) a ghost? Only vertices farther than half
+  // a grid step from the grid can be; the grid's own search then decides.
+  bool VertexGhost(int v, const Vec2& q)
+  {
+    if (!Grid || !Region || !std::binary_search(Far.begin(), Far.end(), v) || !InSilhouette(q))
+    {
+      return false;
+    }
+    if (const char* known = VertexGhosts.Find(static_cast<std::uint64_t>(v)))
+    {
+      return *known != 0;
+    }
+    Vec2 onGrid;
+    const bool ghost = !Grid->ClassPoint(SurfacePoint::AtVertex(v), onGrid);
+    VertexGhosts.Insert(static_cast<std::uint64_t>(v), ghost ? 1 : 0);
+    return ghost;
   }
 
   // Faces checked for splitting: a long shape's faces wider than its grid's step (on smaller
@@ -343,12 +384,13 @@ struct DecalBuilder
     std::array<std::array<double, 3>, 3> B;
     std::array<Vec2, 3> U;
     int Depth;
+    std::array<bool, 3> Ghost; // per corner
   };
   std::vector<Piece> Stack; // AddFace's (kept across faces)
-  // The map at the piece's edge midpoints (mid, trueUV; linear where it is not known) and the
-  // largest departure from the affine map there.
+  // The map at the piece's edge midpoints (mid, trueUV; linear where it is not known; ghost) and
+  // the largest departure from the affine map there.
   double MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
-    std::array<Vec2, 3>& trueUV);
+    std::array<Vec2, 3>& trueUV, std::array<bool, 3>& ghost);
 };
 
 std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double& orientation)
@@ -412,7 +454,7 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
 }
 
 double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
-  std::array<Vec2, 3>& trueUV)
+  std::array<Vec2, 3>& trueUV, std::array<bool, 3>& ghost)
 {
   const auto& corners = Mesh.Face(f);
   double error = 0.0;
@@ -427,20 +469,23 @@ double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<
       ? (static_cast<std::uint64_t>(std::min(corners[k], corners[(k + 1) % 3])) << 32) |
         static_cast<std::uint32_t>(std::max(corners[k], corners[(k + 1) % 3]))
       : 0;
-    const std::pair<bool, Vec2>* known = t.Depth == 0 ? Midpoints.Find(edge) : nullptr;
+    const Reading* known = t.Depth == 0 ? Midpoints.Find(edge) : nullptr;
     Vec2 q;
     bool found = false;
     if (known)
     {
-      found = known->first;
-      q = known->second;
+      found = known->Found;
+      ghost[k] = known->Ghost;
+      q = known->Point;
     }
     else
     {
-      found = ClassAt(f, mid[k], q);
+      bool g = false;
+      found = ClassAt(f, mid[k], q, g);
+      ghost[k] = g;
       if (t.Depth == 0)
       {
-        Midpoints.Insert(edge, std::make_pair(found, q));
+        Midpoints.Insert(edge, Reading{ found, g, q });
       }
     }
     if (found)
@@ -460,17 +505,28 @@ double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<
 // tolerance at an edge midpoint (a long shape's map along its curve, read on its grid), the
 // triangle is split in four, to depth 5 (1024 pieces per face). A piece whose texture triangle
 // is turned over (the map folds there) or stretched far beyond its size on the surface (a jump
-// across a seam of the map) is dropped.
+// across a seam of the map) is dropped. A long shape's face with a ghost corner or midpoint
+// (beyond the grid's reach, inside the silhouette) is split to the finest pieces, and those
+// whose centre is a ghost are dropped: the shape is drawn where its map reaches.
 void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal)
 {
   const int maxDepth = 5;
   const auto& corners = Mesh.Face(f);
   const Vec3 X[3] = { Mesh.Position(corners[0]), Mesh.Position(corners[1]),
     Mesh.Position(corners[2]) };
-  const bool split = Splits(f);
+  std::array<bool, 3> cornerGhost{ { false, false, false } };
+  if (Grid && Region)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      cornerGhost[k] =
+        VertexGhost(corners[k], Vec2{ (2.0 * uv[k].x - 1.0) * ShapeClass.Radius, (2.0 * uv[k].y - 1.0) * ShapeClass.Radius });
+    }
+  }
+  const bool split = Splits(f) || cornerGhost[0] || cornerGhost[1] || cornerGhost[2];
   std::vector<Piece>& stack = Stack;
   stack.clear();
-  stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, uv, 0 });
+  stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, uv, 0, cornerGhost });
   while (!stack.empty())
   {
     const Piece t = stack.back();
@@ -484,11 +540,36 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
     {
       std::array<std::array<double, 3>, 3> mid;
       std::array<Vec2, 3> trueUV;
-      const double error = MidpointError(f, t, mid, trueUV);
+      std::array<bool, 3> midGhost{ { false, false, false } };
+      const double error = MidpointError(f, t, mid, trueUV, midGhost);
       // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
       const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
         Norm(at(t.B[0]) - at(t.B[2])) });
-      if (error > TolUV && (t.Depth == maxDepth || (Grid && size <= 0.5 * Grid->Step)))
+      const bool finest = t.Depth == maxDepth || (Grid && size <= 0.5 * Grid->Step);
+      if (t.Ghost[0] || t.Ghost[1] || t.Ghost[2] || midGhost[0] || midGhost[1] || midGhost[2])
+      {
+        if (!finest)
+        {
+          stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1,
+            { { t.Ghost[0], midGhost[0], midGhost[2] } } });
+          stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1,
+            { { midGhost[0], t.Ghost[1], midGhost[1] } } });
+          stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1,
+            { { midGhost[2], midGhost[1], t.Ghost[2] } } });
+          stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1,
+            { { midGhost[0], midGhost[1], midGhost[2] } } });
+          continue;
+        }
+        const std::array<double, 3> centre{ { (t.B[0][0] + t.B[1][0] + t.B[2][0]) / 3.0,
+          (t.B[0][1] + t.B[1][1] + t.B[2][1]) / 3.0, (t.B[0][2] + t.B[1][2] + t.B[2][2]) / 3.0 } };
+        Vec2 q;
+        bool ghost = false;
+        if (ClassAt(f, centre, q, ghost) && ghost)
+        {
+          continue; // beyond the map's reach
+        }
+      }
+      if (error > TolUV && finest)
       {
         if (error > 5.0 * TolUV)
         {
@@ -498,10 +579,11 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
       else if (error > TolUV)
       {
         // Corners 0, 1, 2 and midpoints m01, m12, m20.
-        stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1 });
-        stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1 });
-        stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1 });
-        stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1 });
+        const std::array<bool, 3> none{ { false, false, false } };
+        stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1, none });
+        stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1, none });
+        stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1, none });
+        stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1, none });
         continue;
       }
     }
@@ -566,7 +648,9 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
     {
       return decal;
     }
-    CurveShapeVertices(*b.Grid, b.Local);
+    CurveShapeVertices(*b.Grid, b.Local, &b.Far);
+    std::sort(b.Far.begin(), b.Far.end());
+    b.Region = &Regions[s.ClassId];
   }
   b.Start();
   double orientation = 0.0;

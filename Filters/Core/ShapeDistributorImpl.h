@@ -488,8 +488,11 @@ struct ShapeDistributor::Impl
   bool CurveGridFoot(const PlacedShape& s, double u, double length, SurfacePoint& foot, Vec3& tangent) const;
   /// The class points (normalized) of the vertices near a long shape: the vertices of the grid
   /// nodes' faces and their neighbours, each located from a node of that face. Appends
-  /// (vertex, class point) pairs.
-  void CurveShapeVertices(const CurveGrid& grid, std::vector<std::pair<int, Vec2>>& local) const;
+  /// (vertex, class point) pairs, and to `far` (optional) the vertices farther than half a grid
+  /// step from the grid (their class points are the affine extension of the nearest grid
+  /// triangle).
+  void CurveShapeVertices(const CurveGrid& grid, std::vector<std::pair<int, Vec2>>& local,
+    std::vector<int>* far = nullptr) const;
   /// A long shape's CurveGrid: the one the drawn check built (indexed), or a new one.
   std::shared_ptr<const CurveGrid> FrameOf(int shape) const;
 

@@ -325,7 +325,8 @@ CurveGrid ShapeDistributor::Impl::BuildCurveGrid(const PlacedShape& s, const Saf
   return grid;
 }
 
-void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vector<std::pair<int, Vec2>>& local) const
+void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vector<std::pair<int, Vec2>>& local,
+  std::vector<int>* far) const
 {
   // The vertices the shape is drawn on, each from its node: the nearest node by descent over
   // the grid (the map is smooth at the grid's scale).
@@ -335,9 +336,14 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
   {
     const int v = seed.first;
     Vec2 point;
-    if (grid.Locate(Mesh.Position(v), seed.second, point, nullptr))
+    double distance = 0.0;
+    if (grid.Locate(Mesh.Position(v), seed.second, point, &distance))
     {
       local.emplace_back(v, point);
+      if (far && distance > 0.5 * grid.Step)
+      {
+        far->push_back(v);
+      }
     }
   }
 }
