@@ -87,15 +87,16 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
   for (const bool longShapes : { false, true })
   {
     double sum = 0.0;
-    long long points = 0, uncovered = 0, far = 0;
+    long long points = 0, uncovered = 0, far = 0, farFromOwn = 0;
     for (std::size_t s = 0; s < shapes.size(); ++s)
     {
       if (shapes[s].Curve.empty() == longShapes)
         continue;
       const SafeDistanceClass& c = t.Classes[shapes[s].ClassId];
       for (const OutlinePiece& piece : outlines[s])
-        for (const SurfacePoint& p : piece.Points)
+        for (std::size_t i = 0; i < piece.Points.size(); ++i)
         {
+          const SurfacePoint& p = piece.Points[i];
           ++points;
           Vec2 uv{ 0.0, 0.0 };
           if (!decals[s].TextureCoordinate(p, uv))
@@ -116,12 +117,17 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
           const double e = best / c.Radius;
           sum += e;
           far += e > 0.05 ? 1 : 0;
+          // (Where a short shape's outline runs along the mesh boundary, its points are inside
+          // the silhouette, at the class points the map stopped at: ClassPoints.)
+          if (i < piece.ClassPoints.size())
+            farFromOwn += Norm(piece.ClassPoints[i] - q) > 0.05 * c.Radius ? 1 : 0;
         }
     }
     const long long covered = points - uncovered;
     std::printf("    decals against outlines, %s shapes: %lld outline points, %lld outside the decal; class point off "
-                "the silhouette: mean %.2e of the radius, %.3f%% over 5%%\n", longShapes ? "long" : "short", points,
-      uncovered, covered > 0 ? sum / covered : 0.0, covered > 0 ? 100.0 * far / covered : 0.0);
+                "the silhouette: mean %.2e of the radius, %.3f%% over 5%%; off the outline's own class point: %.3f%% over "
+                "5%%\n", longShapes ? "long" : "short", points, uncovered, covered > 0 ? sum / covered : 0.0,
+      covered > 0 ? 100.0 * far / covered : 0.0, covered > 0 ? 100.0 * farFromOwn / covered : 0.0);
   }
 }
 
