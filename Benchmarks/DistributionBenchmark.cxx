@@ -76,6 +76,7 @@ struct DecalOracleResult
   long long PairsOverOnePercent = 0; // sharing more than 1% of the smaller shape's drawn points
   double Worst = 0.0; // the largest shared fraction
   std::vector<std::pair<std::pair<int, int>, double>> Over; // the pairs over 1%, with their fractions
+  std::uint64_t DrawnHash = 0; // what the decals draw: the lattice points inside, with their class points
 };
 
 // Decals against outlines: each shape's drawn outline points read in its own decal (texture
@@ -138,6 +139,7 @@ DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<Pla
   std::unordered_map<std::uint64_t, int> owner;
   std::map<std::pair<int, int>, long long> shared;
   std::vector<long long> drawn(shapes.size(), 0);
+  Hasher drawnHash; // (the same for decals that differ only in triangles drawing nothing)
   for (std::size_t s = 0; s < shapes.size(); ++s)
   {
     const SafeDistanceClass& c = t.Classes[shapes[s].ClassId];
@@ -155,8 +157,12 @@ DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<Pla
           if (!decal.TextureCoordinateIn(k, { b0, b1, 1.0 - b0 - b1 }, uv))
             continue;
           const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
-          if (region.Inside(q))
-            mine.insert(static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index);
+          if (region.Inside(q) && mine.insert(static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index).second)
+          {
+            drawnHash.AddValue(decal.Faces[k]);
+            drawnHash.AddValue(index);
+            drawnHash.AddValue(uv);
+          }
         }
     }
     drawn[s] = static_cast<long long>(mine.size());
@@ -170,6 +176,7 @@ DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<Pla
     }
   }
   DecalOracleResult r;
+  r.DrawnHash = drawnHash.H;
   for (const auto& e : shared)
   {
     const long long smaller = std::max(1LL, std::min(drawn[e.first.first], drawn[e.first.second]));
@@ -766,6 +773,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         std::printf("    decal oracle: %lld pairs draw a common lattice point, %lld of them more than 1%% of the "
                     "smaller shape's (worst %.2f%%)\n", oracle.SharingPairs, oracle.PairsOverOnePercent,
           100.0 * oracle.Worst);
+        std::printf("    decals drawn hash %016llx (lattice points inside the silhouette)\n",
+          static_cast<unsigned long long>(oracle.DrawnHash));
         if (std::getenv("GS_DEBUG_ORACLE"))
           for (const auto& pair : oracle.Over)
           {
