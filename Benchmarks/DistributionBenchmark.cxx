@@ -135,7 +135,6 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
 DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<PlacedShape>& shapes,
   const std::vector<ShapeDecal>& decals)
 {
-  const int L = 6; // lattice: (i + 1/3) / (L + 1), i + j <= L
   std::unordered_map<std::uint64_t, int> owner;
   std::map<std::pair<int, int>, long long> shared;
   std::vector<long long> drawn(shapes.size(), 0);
@@ -146,25 +145,15 @@ DecalOracleResult DecalOracle(const SafeDistanceTables& t, const std::vector<Pla
     const ClassRegion region(c.Outline.Rings, c.Radius, 0.0);
     std::unordered_set<std::uint64_t> mine;
     const ShapeDecal& decal = decals[s];
-    for (std::size_t k = 0; k < decal.Faces.size(); ++k)
-    {
-      int index = 0;
-      for (int i = 0; i <= L; ++i)
-        for (int j = 0; i + j <= L; ++j, ++index)
+    gs_test::ForEachDrawnLatticePoint(decal, c, region,
+      [&](std::size_t k, int index, const std::array<double, 3>&, const Vec2& uv, const Vec2&) {
+        if (mine.insert(static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index).second)
         {
-          const double b0 = (i + 1.0 / 3.0) / (L + 1.0), b1 = (j + 1.0 / 3.0) / (L + 1.0);
-          Vec2 uv;
-          if (!decal.TextureCoordinateIn(k, { b0, b1, 1.0 - b0 - b1 }, uv))
-            continue;
-          const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
-          if (region.Inside(q) && mine.insert(static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index).second)
-          {
-            drawnHash.AddValue(decal.Faces[k]);
-            drawnHash.AddValue(index);
-            drawnHash.AddValue(uv);
-          }
+          drawnHash.AddValue(decal.Faces[k]);
+          drawnHash.AddValue(index);
+          drawnHash.AddValue(uv);
         }
-    }
+      });
     drawn[s] = static_cast<long long>(mine.size());
     for (std::uint64_t key : mine)
     {
@@ -778,7 +767,6 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         if (std::getenv("GS_DEBUG_ORACLE"))
           for (const auto& pair : oracle.Over)
           {
-            const int L = 6;
             std::map<std::uint64_t, std::pair<Vec2, SurfacePoint>> pts[2];
             const int ids[2] = { pair.first.first, pair.first.second };
             for (int w = 0; w < 2; ++w)
@@ -786,21 +774,11 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
               const SafeDistanceClass& c = t.Classes[r->Shapes[ids[w]].ClassId];
               const ClassRegion region(c.Outline.Rings, c.Radius, 0.0);
               const ShapeDecal& decal = decals[ids[w]];
-              for (std::size_t k = 0; k < decal.Faces.size(); ++k)
-              {
-                int index = 0;
-                for (int i = 0; i <= L; ++i)
-                  for (int j = 0; i + j <= L; ++j, ++index)
-                  {
-                    const double b0 = (i + 1.0 / 3.0) / (L + 1.0), b1 = (j + 1.0 / 3.0) / (L + 1.0);
-                    Vec2 uv;
-                    if (!decal.TextureCoordinateIn(k, { b0, b1, 1.0 - b0 - b1 }, uv))
-                      continue;
-                    const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
-                    if (region.Inside(q))
-                      pts[w][static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index] = std::make_pair(q, SurfacePoint{ -1, decal.Faces[k], { b0, b1, 1.0 - b0 - b1 } });
-                  }
-              }
+              gs_test::ForEachDrawnLatticePoint(decal, c, region,
+                [&](std::size_t k, int index, const std::array<double, 3>& bary, const Vec2&, const Vec2& q) {
+                  pts[w][static_cast<std::uint64_t>(decal.Faces[k]) * 64 + index] =
+                    std::make_pair(q, SurfacePoint{ -1, decal.Faces[k], bary });
+                });
             }
             for (int w = 0; w < 2; ++w)
             {

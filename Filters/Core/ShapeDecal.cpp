@@ -310,11 +310,12 @@ struct DecalBuilder
     return found;
   }
 
-  // Is vertex v (class point q, located from its node) a ghost? Only vertices farther than half
-  // a grid step from the grid can be; the grid's own search then decides.
-  bool VertexGhost(int v, const Vec2& q)
+  // Is vertex v (near the shape) a ghost? Only vertices farther than half a grid step from the
+  // grid can be (their class point located from their node, the affine extension); the grid's
+  // own search then decides.
+  bool VertexGhost(int v)
   {
-    if (!Grid || !Region || !std::binary_search(Far.begin(), Far.end(), v) || !InSilhouette(q))
+    if (!Grid || !Region || !std::binary_search(Far.begin(), Far.end(), v) || !InSilhouette(*Find(v)))
     {
       return false;
     }
@@ -514,15 +515,7 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
   const auto& corners = Mesh.Face(f);
   const Vec3 X[3] = { Mesh.Position(corners[0]), Mesh.Position(corners[1]),
     Mesh.Position(corners[2]) };
-  std::array<bool, 3> cornerGhost{ { false, false, false } };
-  if (Grid && Region)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      cornerGhost[k] =
-        VertexGhost(corners[k], Vec2{ (2.0 * uv[k].x - 1.0) * ShapeClass.Radius, (2.0 * uv[k].y - 1.0) * ShapeClass.Radius });
-    }
-  }
+  const std::array<bool, 3> cornerGhost{ { VertexGhost(corners[0]), VertexGhost(corners[1]), VertexGhost(corners[2]) } };
   const bool split = Splits(f) || cornerGhost[0] || cornerGhost[1] || cornerGhost[2];
   std::vector<Piece>& stack = Stack;
   stack.clear();
@@ -546,18 +539,22 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
       const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
         Norm(at(t.B[0]) - at(t.B[2])) });
       const bool finest = t.Depth == maxDepth || (Grid && size <= 0.5 * Grid->Step);
+      // Corners 0, 1, 2 and midpoints m01, m12, m20, each with its ghost state.
+      auto splitInFour = [&]() {
+        stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1,
+          { { t.Ghost[0], midGhost[0], midGhost[2] } } });
+        stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1,
+          { { midGhost[0], t.Ghost[1], midGhost[1] } } });
+        stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1,
+          { { midGhost[2], midGhost[1], t.Ghost[2] } } });
+        stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1,
+          { { midGhost[0], midGhost[1], midGhost[2] } } });
+      };
       if (t.Ghost[0] || t.Ghost[1] || t.Ghost[2] || midGhost[0] || midGhost[1] || midGhost[2])
       {
         if (!finest)
         {
-          stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1,
-            { { t.Ghost[0], midGhost[0], midGhost[2] } } });
-          stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1,
-            { { midGhost[0], t.Ghost[1], midGhost[1] } } });
-          stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1,
-            { { midGhost[2], midGhost[1], t.Ghost[2] } } });
-          stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1,
-            { { midGhost[0], midGhost[1], midGhost[2] } } });
+          splitInFour();
           continue;
         }
         const std::array<double, 3> centre{ { (t.B[0][0] + t.B[1][0] + t.B[2][0]) / 3.0,
@@ -578,12 +575,7 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
       }
       else if (error > TolUV)
       {
-        // Corners 0, 1, 2 and midpoints m01, m12, m20.
-        const std::array<bool, 3> none{ { false, false, false } };
-        stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1, none });
-        stack.push_back(Piece{ { { mid[0], t.B[1], mid[1] } }, { { trueUV[0], t.U[1], trueUV[1] } }, t.Depth + 1, none });
-        stack.push_back(Piece{ { { mid[2], mid[1], t.B[2] } }, { { trueUV[2], trueUV[1], t.U[2] } }, t.Depth + 1, none });
-        stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1, none });
+        splitInFour(); // (no ghost here: pieces with one were split above)
         continue;
       }
     }

@@ -12,9 +12,11 @@
 #include "ShapeOverlapOracle.h"
 #include "GeodesicPolarCoordinates.h"
 #include "GeodesicShooting.h"
+#include "OverlapCheck.h"
 #include "TriangleMesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -30,6 +32,34 @@ inline std::vector<std::vector<gs::OutlinePiece>> Outlines(const gs::ShapeDistri
   for (std::size_t s = 0; s < out.size(); ++s)
     out[s] = d.Outline(static_cast<int>(s), spacing);
   return out;
+}
+
+/// What a decal draws, read on a fixed lattice of every decal triangle's face (28 barycentric
+/// points, (i + 1/3) / 7): calls f(k, index, bary, uv, q) for each lattice point of face
+/// decal.Faces[k] that triangle k holds and renders inside the silhouette (`region`, the class
+/// of `c`): its index in the face's lattice, barycentric coordinates, texture coordinate and
+/// class point q. A point on the edge of two triangles of one face is given by both.
+template <class F>
+void ForEachDrawnLatticePoint(const gs::ShapeDecal& decal, const gs::SafeDistanceClass& c,
+  const gs::ClassRegion& region, F&& f)
+{
+  const int L = 6;
+  for (std::size_t k = 0; k < decal.Faces.size(); ++k)
+  {
+    int index = 0;
+    for (int i = 0; i <= L; ++i)
+      for (int j = 0; i + j <= L; ++j, ++index)
+      {
+        const double b0 = (i + 1.0 / 3.0) / (L + 1.0), b1 = (j + 1.0 / 3.0) / (L + 1.0);
+        const std::array<double, 3> bary{ { b0, b1, 1.0 - b0 - b1 } };
+        gs::Vec2 uv;
+        if (!decal.TextureCoordinateIn(k, bary, uv))
+          continue;
+        const gs::Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+        if (region.Inside(q))
+          f(k, index, bary, uv, q);
+      }
+  }
 }
 
 /// Number of overlapping pairs among shapes placed on a planar mesh (any plane orientation).

@@ -2,6 +2,7 @@
 // the points of its drawn outline, fall on the silhouette's boundary (short shapes: the log map
 // of the centre; long shapes: arc length along the curve and the perpendicular geodesic, the map
 // the outline and the parts use).
+#include "DistributionChecks.h"
 #include "TestMeshes.h"
 #include "TestStatus.h"
 
@@ -438,36 +439,23 @@ TEST(ShapeDecal, LongDecalsDrawOnlyWhereTheirMapReaches)
       ASSERT_TRUE(frame);
       ++shapes;
       const ShapeDecal decal = d.Decal(s);
-      for (std::size_t k = 0; k < decal.Faces.size(); ++k)
-      {
-        const int L = 6;
-        for (int i = 0; i <= L; ++i)
-          for (int j = 0; i + j <= L; ++j)
+      gs_test::ForEachDrawnLatticePoint(decal, c, region,
+        [&](std::size_t k, int, const std::array<double, 3>& bary, const Vec2&, const Vec2& q) {
+          ++drawn;
+          Vec2 p;
+          if (!frame->ClassPoint(SurfacePoint::InFace(decal.Faces[k], bary[0], bary[1], bary[2]), p))
           {
-            const std::array<double, 3> b{ { (i + 1.0 / 3.0) / (L + 1.0), (j + 1.0 / 3.0) / (L + 1.0), 0.0 } };
-            const std::array<double, 3> bary{ { b[0], b[1], 1.0 - b[0] - b[1] } };
-            Vec2 uv;
-            if (!decal.TextureCoordinateIn(k, bary, uv))
-              continue;
-            const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
-            if (!region.Inside(q))
-              continue;
-            ++drawn;
-            Vec2 p;
-            if (!frame->ClassPoint(SurfacePoint::InFace(decal.Faces[k], bary[0], bary[1], bary[2]), p))
-            {
-              ++beyond;
-              const Vec3 X = mesh.Interpolate(decal.Faces[k], bary);
-              double nearest = 1e300;
-              for (const CurveGrid::Node& node : frame->Nodes)
-                if (node.Valid)
-                  nearest = std::min(nearest, Norm(node.Position - X));
-              farthest = std::max(farthest, nearest / frame->Step);
-            }
-            else if (Norm(p - q) > 0.05 * c.Radius)
-              ++off;
+            ++beyond;
+            const Vec3 X = mesh.Interpolate(decal.Faces[k], bary);
+            double nearest = 1e300;
+            for (const CurveGrid::Node& node : frame->Nodes)
+              if (node.Valid)
+                nearest = std::min(nearest, Norm(node.Position - X));
+            farthest = std::max(farthest, nearest / frame->Step);
           }
-      }
+          else if (Norm(p - q) > 0.05 * c.Radius)
+            ++off;
+        });
     }
   }
   std::printf("%d bent bars over slots: %lld lattice points drawn inside the silhouette, %lld beyond the "
