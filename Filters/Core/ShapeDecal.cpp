@@ -566,14 +566,15 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
           continue; // beyond the map's reach
         }
       }
-      if (error > TolUV && finest)
+      // (Tolerance 0: no split for the map's bends; a face is split only for its ghosts.)
+      if (TolUV > 0.0 && error > TolUV && finest)
       {
         if (error > 5.0 * TolUV)
         {
           continue; // still not affine at the finest: the map folds or jumps here
         }
       }
-      else if (error > TolUV)
+      else if (TolUV > 0.0 && error > TolUV)
       {
         splitInFour(); // (no ghost here: pieces with one were split above)
         continue;
