@@ -89,10 +89,13 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
   {
     double sum = 0.0;
     long long points = 0, uncovered = 0, far = 0, farFromOwn = 0;
+    long long kindShapes = 0, unfaithful = 0; // shapes with a point outside or 5% off its own
     for (std::size_t s = 0; s < shapes.size(); ++s)
     {
       if (shapes[s].Curve.empty() == longShapes)
         continue;
+      ++kindShapes;
+      const long long before = uncovered + farFromOwn;
       const SafeDistanceClass& c = t.Classes[shapes[s].ClassId];
       for (const OutlinePiece& piece : outlines[s])
         for (std::size_t i = 0; i < piece.Points.size(); ++i)
@@ -103,6 +106,9 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
           if (!decals[s].TextureCoordinate(p, uv))
           {
             ++uncovered;
+            if (getenv("GS_DEBUG_FAITH") && i < piece.ClassPoints.size())
+              std::printf("      shape %zu class %d uncovered at class point (%.3f, %.3f) r %.3f\n", s, shapes[s].ClassId,
+                piece.ClassPoints[i].x / c.Radius, piece.ClassPoints[i].y / c.Radius, c.Radius);
             continue;
           }
           const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
@@ -121,14 +127,21 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
           // (Where a short shape's outline runs along the mesh boundary, its points are inside
           // the silhouette, at the class points the map stopped at: ClassPoints.)
           if (i < piece.ClassPoints.size())
+          {
             farFromOwn += Norm(piece.ClassPoints[i] - q) > 0.05 * c.Radius ? 1 : 0;
+            if (getenv("GS_DEBUG_FAITH") && Norm(piece.ClassPoints[i] - q) > 0.05 * c.Radius)
+              std::printf("      shape %zu class %d far at class point (%.3f, %.3f) decal (%.3f, %.3f)\n", s, shapes[s].ClassId,
+                piece.ClassPoints[i].x / c.Radius, piece.ClassPoints[i].y / c.Radius, q.x / c.Radius, q.y / c.Radius);
+          }
         }
+      unfaithful += uncovered + farFromOwn > before ? 1 : 0;
     }
     const long long covered = points - uncovered;
     std::printf("    decals against outlines, %s shapes: %lld outline points, %lld outside the decal; class point off "
                 "the silhouette: mean %.2e of the radius, %.3f%% over 5%%; off the outline's own class point: %.3f%% over "
-                "5%%\n", longShapes ? "long" : "short", points, uncovered, covered > 0 ? sum / covered : 0.0,
-      covered > 0 ? 100.0 * far / covered : 0.0, covered > 0 ? 100.0 * farFromOwn / covered : 0.0);
+                "5%%; %lld of %lld shapes with such a point\n", longShapes ? "long" : "short", points, uncovered,
+      covered > 0 ? sum / covered : 0.0, covered > 0 ? 100.0 * far / covered : 0.0,
+      covered > 0 ? 100.0 * farFromOwn / covered : 0.0, unfaithful, kindShapes);
   }
 }
 
@@ -674,6 +687,10 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
       o.Mode = mode;
       if (const char* drawn = std::getenv("GS_DRAWN_CHECK"))
         o.DrawnCheck = std::atoi(drawn) != 0;
+      if (const char* faithful = std::getenv("GS_FAITHFUL"))
+        o.FaithfulCheck = std::atoi(faithful) != 0;
+      if (const char* tol = std::getenv("GS_FAITHFUL_TOLERANCE"))
+        o.FaithfulTolerance = std::atof(tol);
       if (const char* early = std::getenv("GS_EARLY_REJECTION"))
         o.EarlyRejection = std::atoi(early) != 0; // (0: whole long shapes built, the same placements)
       if (const char* failures = std::getenv("GS_MAXIMAL_FAILURES"))

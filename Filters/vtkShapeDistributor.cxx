@@ -360,6 +360,7 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HolonomyMargin: " << this->HolonomyMargin << "\n";
   os << indent << "KeepInside: " << this->KeepInside << "\n";
   os << indent << "DrawnCheck: " << this->DrawnCheck << "\n";
+  os << indent << "FaithfulCheck: " << this->FaithfulCheck << "\n";
   os << indent << "DecalTolerance: " << this->DecalTolerance << "\n";
   os << indent << "VerifyOverlaps: " << this->VerifyOverlaps << "\n";
   os << indent << "K: " << this->K << "\n";
@@ -821,6 +822,7 @@ bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
   options.HolonomyMargin = this->HolonomyMargin;
   options.KeepInside = this->KeepInside;
   options.DrawnCheck = this->DrawnCheck;
+  options.FaithfulCheck = this->FaithfulCheck;
   gs::Result<gs::ShapeDistribution> placed =
     distributor.Run(run.Tables, run.Directions, run.Density, options, [this](double p) {
       this->UpdateProgress(0.4 + 0.45 * p);

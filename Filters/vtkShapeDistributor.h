@@ -151,6 +151,19 @@ public:
   ///@}
 
   ///@{
+  /// With DrawnCheck: place a shape only where its map is one-to-one over its silhouette
+  /// (gs::ShapeDistributionOptions::FaithfulCheck), so that its decal draws the outline it is
+  /// checked with: every point of its drawn outline, read back through the inverse of its map,
+  /// gives the silhouette point it was drawn from, within 5% of the circumradius. It is not where
+  /// a long shape's curve turns more tightly than its width (the map folds) or a large short
+  /// shape reaches around bumps or thin parts. Default on; off: such shapes are placed, their
+  /// decals drawing something else than their outlines.
+  vtkSetMacro(FaithfulCheck, bool);
+  vtkGetMacro(FaithfulCheck, bool);
+  vtkBooleanMacro(FaithfulCheck, bool);
+  ///@}
+
+  ///@{
   /// Decals: a face is split (to depth 5) where the shape's map departs from the face's affine
   /// texture map by more than this fraction of the circumradius (a long shape bending inside a
   /// face); 0: whole faces only. Default 0.01; negative or not finite is an error.
@@ -222,6 +235,7 @@ protected:
   double HolonomyMargin = 1.0;
   bool KeepInside = false;
   bool DrawnCheck = true;
+  bool FaithfulCheck = true;
   double DecalTolerance = 0.01;
   bool VerifyOverlaps = false;
   int K = 50;

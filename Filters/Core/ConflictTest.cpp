@@ -255,12 +255,8 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
   return false;
 }
 
-bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch) const
+void ShapeDistributor::Impl::DrawOutline(Record& c) const
 {
-  if (CircleMode || !Options.DrawnCheck)
-  {
-    return false;
-  }
   if (!c.HasDrawn)
   {
     c.Drawn = OutlineOf(c.Shape, OutlineSpacing());
@@ -273,6 +269,54 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
     frame->Index();
     c.Frame = frame;
   }
+}
+
+bool ShapeDistributor::Impl::Unfaithful(Record& c) const
+{
+  if (CircleMode || !Options.DrawnCheck || !Options.FaithfulCheck)
+  {
+    return false;
+  }
+  const bool isShort = c.Shape.Curve.empty();
+  if (isShort && (c.Charts.empty() || c.Charts[0].Entries.empty()))
+  {
+    return false; // (read once its chart is computed)
+  }
+  if (c.FaithfulChecked)
+  {
+    return false;
+  }
+  DrawOutline(c);
+  c.FaithfulChecked = true;
+  const double tolerance = Options.FaithfulTolerance * Tables.Classes[c.Shape.ClassId].Radius;
+  int hint = -1;
+  for (const OutlinePiece& piece : c.Drawn)
+  {
+    for (std::size_t i = 0; i < piece.Points.size() && i < piece.ClassPoints.size(); ++i)
+    {
+      Vec2 p;
+      const bool read = isShort ? ClassPointOf(c, piece.Points[i], p)
+                                : (c.Frame && c.Frame->ClassPoint(piece.Points[i], p, &hint));
+      if (!read || Norm(p - piece.ClassPoints[i]) > tolerance)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch) const
+{
+  if (CircleMode || !Options.DrawnCheck)
+  {
+    return false;
+  }
+  if (Unfaithful(c))
+  {
+    return true;
+  }
+  DrawOutline(c);
   scratch.clear();
   for (int v : CentreCorners(c))
   {

@@ -314,6 +314,11 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
           r.Rejected = true;
           continue;
         }
+        if (Unfaithful(r)) // (a long shape: before its charts)
+        {
+          r.Rejected = true;
+          continue;
+        }
         const auto chartStart = std::chrono::steady_clock::now();
         ComputeCharts(r, Engine());
         chartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();

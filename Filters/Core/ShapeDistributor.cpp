@@ -120,11 +120,12 @@ Status ShapeDistributor::Impl::CheckTablesAndOptions() const
     Options.GreedyDirections < 1 || Options.GreedyDirections > 1024 ||
     !(Options.SafetyMargin >= 0.0) || Options.SafetyMargin > 10.0 ||
     !(Options.DistortionLimit >= 0.0) || !(Options.HolonomyMargin >= 0.0) ||
-    Options.HolonomyMargin > 100.0)
+    Options.HolonomyMargin > 100.0 || !(Options.FaithfulTolerance > 0.0) ||
+    Options.FaithfulTolerance > 1.0)
   {
     return Status::Error("invalid MaximumShapes, MaximalFailures, NumberOfThreads (>= 0), "
                          "GreedyDirections (1..1024), SafetyMargin (0..10), DistortionLimit "
-                         "(>= 0) or HolonomyMargin (0..100)");
+                         "(>= 0), HolonomyMargin (0..100) or FaithfulTolerance (> 0, <= 1)");
   }
   return Status();
 }

@@ -172,6 +172,7 @@ struct ShapeDistributor::Impl
     // The outline as drawn (Outline, OutlineSpacing), once the tables accept the shape.
     std::vector<OutlinePiece> Drawn;
     bool HasDrawn = false;
+    bool FaithfulChecked = false; // (Unfaithful: tested once)
     // Long shapes: the inverse of the drawing map (for the drawn check against long neighbours).
     std::shared_ptr<const CurveGrid> Frame;
   };
@@ -373,6 +374,13 @@ struct ShapeDistributor::Impl
   /// copies; this catches where the drawn shapes are not (a long shape's part bending with its
   /// curve, a chart that is no isometry across the neighbour's circle).
   bool DrawnConflict(Record& c, std::vector<int>& scratch) const;
+  /// Whether c's drawn outline does not read back through the inverse of its own map to the
+  /// class points it was drawn from (Options.FaithfulCheck): its map is not one-to-one over its
+  /// silhouette. Draws the outline (and a long shape's grid) if not done yet; tested once (a
+  /// short shape once its chart is computed; before, false).
+  bool Unfaithful(Record& c) const;
+  /// The outline as drawn, and a long shape's CurveGrid, kept in the record.
+  void DrawOutline(Record& c) const;
 
   // ---- Priority rounds, Algorithm 3 (PriorityRounds.cpp) -------------------------------
   /// Where a run stands between rounds.

@@ -62,6 +62,40 @@ void ForEachDrawnLatticePoint(const gs::ShapeDecal& decal, const gs::SafeDistanc
   }
 }
 
+/// Shapes whose decal does not draw their outline: a point of the drawn outline (`outlines`,
+/// one per shape) outside the decal, or read in it (its texture coordinate, as rendered) farther
+/// than `tolerance` (a fraction of the class circumradius) from the class point it was drawn
+/// from. `points` (optional) gets the number of such outline points.
+inline int CountUnfaithfulDecals(const gs::SafeDistanceTables& tables, const gs::ShapeDistributor& d,
+  const std::vector<std::vector<gs::OutlinePiece>>& outlines, double tolerance, long long* points = nullptr)
+{
+  int shapes = 0;
+  long long off = 0;
+  for (std::size_t s = 0; s < outlines.size(); ++s)
+  {
+    const gs::SafeDistanceClass& c = tables.Classes[d.Shapes()[s].ClassId];
+    const gs::ShapeDecal decal = d.Decal(static_cast<int>(s));
+    long long mine = 0;
+    for (const gs::OutlinePiece& piece : outlines[s])
+      for (std::size_t i = 0; i < piece.Points.size() && i < piece.ClassPoints.size(); ++i)
+      {
+        gs::Vec2 uv;
+        if (!decal.TextureCoordinate(piece.Points[i], uv))
+        {
+          ++mine;
+          continue;
+        }
+        const gs::Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+        mine += gs::Norm(q - piece.ClassPoints[i]) > tolerance * c.Radius ? 1 : 0;
+      }
+    shapes += mine > 0 ? 1 : 0;
+    off += mine;
+  }
+  if (points)
+    *points = off;
+  return shapes;
+}
+
 /// Number of overlapping pairs among shapes placed on a planar mesh (any plane orientation).
 inline int CountPlanarOverlaps(const gs::TriangleMesh& mesh, const gs::SafeDistanceTables& tables,
   const std::vector<gs::PlacedShape>& shapes, double shapeSize, int* pairsChecked = nullptr,

@@ -489,3 +489,54 @@ TEST(OverlapCheck, OutlineJumpsAcrossTheCutLocusAreReadAtTheirEnds)
   };
   EXPECT_TRUE(OutlineEnters(region, pieces, continuous, 0.005, &plane, 1.0));
 }
+
+// Decals that draw their outlines (ShapeDistributionOptions::FaithfulCheck): a shape's decal
+// draws the inverse of its map (a short shape's chart: shortest paths; a long shape's CurveGrid),
+// its outline the map itself (straightest geodesics from the centre; perpendicular geodesics off
+// the curve). They agree where the map is one-to-one over the silhouette, and not where a long
+// shape's curve turns more tightly than its width (the map folds: a side of the shape drawn
+// elsewhere or not at all) or a short shape's geodesics pass saddle vertices or reach around
+// the bumps. Bundled bumpy sphere subdivided once, the bundled silhouettes, large shapes (6% of
+// the diagonal), a constant direction projected on the surface (its singularities turn the
+// streamlines tightly): without the check many shapes' decals draw something else than their
+// outlines (an outline point outside the decal, or 5% of the radius off); with it, almost none.
+TEST(OverlapCheck, DecalsDrawTheirOutlinesWhereTheMapIsOneToOne)
+{
+  const TriangleMesh mesh = FineBumpySphere();
+  SaddleVertexGraph graph;
+  ASSERT_TRUE(gs_test::Succeeded(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr)));
+  Result<SafeDistanceTables> tables = BundledTables();
+  ASSERT_TRUE(tables.Ok()) << tables.Message();
+  const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
+  int unfaithfulWithout = 0, unfaithfulWith = 0;
+  std::size_t shapesWithout = 0, shapesWith = 0;
+  for (const double size : { 0.03, 0.06 })
+  {
+    for (const bool faithful : { false, true })
+    {
+      ShapeDistributionOptions o;
+      o.ShapeSize = size * mesh.BoundingBoxDiagonal();
+      o.Seed = 10;
+      o.FaithfulCheck = faithful;
+      ShapeDistributor d(mesh, &graph);
+      const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+      ASSERT_TRUE(r.Ok()) << r.Message();
+      const auto outlines = Outlines(d, 0.25 * mesh.MeanEdgeLength());
+      long long points = 0;
+      const int unfaithful = gs_test::CountUnfaithfulDecals(*tables, d, outlines, 0.05, &points);
+      long long all = 0;
+      for (const auto& pieces : outlines)
+        for (const OutlinePiece& piece : pieces)
+          all += static_cast<long long>(piece.Points.size());
+      std::printf("size %.2f, check %s: %zu shapes, %d whose decal does not draw the outline (%lld of %lld points)\n",
+        size, faithful ? "on" : "off", r->Shapes.size(), unfaithful, points, all);
+      (faithful ? unfaithfulWith : unfaithfulWithout) += unfaithful;
+      (faithful ? shapesWith : shapesWithout) += r->Shapes.size();
+      if (faithful)
+        EXPECT_LE(static_cast<double>(points), 1e-4 * static_cast<double>(all)) << "size " << size;
+    }
+  }
+  EXPECT_GE(unfaithfulWithout, 10); // (the case shows the fault)
+  EXPECT_LE(unfaithfulWith, 2);
+  EXPECT_GT(static_cast<double>(shapesWith), 0.95 * static_cast<double>(shapesWithout));
+}
