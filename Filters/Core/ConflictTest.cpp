@@ -4,6 +4,7 @@
 // the cheap checks (against accepted shapes' charts, the centre inside a silhouette), the
 // boundary (KeepInside) and the drawn check (outlines as drawn, the tables' rigid copies aside).
 #include "ShapeDistributorImpl.h"
+#include "GeodesicShooting.h"
 
 #include <cmath>
 #include <limits>
@@ -278,25 +279,62 @@ bool ShapeDistributor::Impl::Unfaithful(Record& c) const
     return false;
   }
   const bool isShort = c.Shape.Curve.empty();
-  if (isShort && (c.Charts.empty() || c.Charts[0].Entries.empty()))
-  {
-    return false; // (read once its chart is computed)
-  }
   if (c.FaithfulChecked)
   {
     return false;
   }
   DrawOutline(c);
   c.FaithfulChecked = true;
-  const double tolerance = Options.FaithfulTolerance * Tables.Classes[c.Shape.ClassId].Radius;
+  const SafeDistanceClass& cls = Tables.Classes[c.Shape.ClassId];
+  const double tolerance = Options.FaithfulTolerance * cls.Radius;
+  // A short shape is read through the map its decal draws: the exact log map of its centre (the
+  // placement's chart, on the geodesic graph, can be off by degrees behind saddles).
+  ExactEngineLease lease(*this);
+  const GeodesicPolarCoordinates* exact = nullptr;
+  const double unit = Options.ShapeSize * c.Shape.Scale;
+  if (isShort)
+  {
+    GeodesicPolarCoordinates& engine = lease.Take();
+    const double reference = TangentAngle(Mesh, c.Shape.Centre, c.Shape.Direction);
+    if (!std::isfinite(reference) ||
+      !engine.Compute(c.Shape.Centre, cls.Radius * unit + MaxEdge, reference).Ok())
+    {
+      return true;
+    }
+    exact = &engine;
+  }
+  // Where the outline runs along the mesh boundary (a shape hanging over it), its points are
+  // where the map stopped, inside the silhouette: the cut, not the silhouette's contour.
+  auto onBoundary = [this](const SurfacePoint& q) {
+    if (q.IsVertex())
+    {
+      return Mesh.IsBoundaryVertex(q.Vertex);
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      if (q.Bary[k] <= 1e-12 && Mesh.IsBoundaryHalfedge(3 * q.Face + (k + 1) % 3))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
   int hint = -1;
   for (const OutlinePiece& piece : c.Drawn)
   {
     for (std::size_t i = 0; i < piece.Points.size() && i < piece.ClassPoints.size(); ++i)
     {
+      if (onBoundary(piece.Points[i]))
+      {
+        continue;
+      }
       Vec2 p;
-      const bool read = isShort ? ClassPointOf(c, piece.Points[i], p)
-                                : (c.Frame && c.Frame->ClassPoint(piece.Points[i], p, &hint));
+      const bool read = exact ? exact->LogMapAt(piece.Points[i], p)
+                              : (c.Frame && c.Frame->ClassPoint(piece.Points[i], p, &hint));
+      if (exact)
+      {
+        p = p * (1.0 / unit);
+      }
       if (!read || Norm(p - piece.ClassPoints[i]) > tolerance)
       {
         return true;
@@ -312,7 +350,8 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
   {
     return false;
   }
-  if (Unfaithful(c))
+  const bool isLong = !c.Shape.Curve.empty();
+  if (isLong && Unfaithful(c)) // (a short shape: last, its exact log map costs most)
   {
     return true;
   }
@@ -392,7 +431,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
       return true;
     }
   }
-  return false;
+  return Unfaithful(c);
 }
 
 } // namespace gs

@@ -314,7 +314,7 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
           r.Rejected = true;
           continue;
         }
-        if (Unfaithful(r)) // (a long shape: before its charts)
+        if (!r.Shape.Curve.empty() && Unfaithful(r)) // (a long shape: before its charts)
         {
           r.Rejected = true;
           continue;

@@ -376,8 +376,8 @@ struct ShapeDistributor::Impl
   bool DrawnConflict(Record& c, std::vector<int>& scratch) const;
   /// Whether c's drawn outline does not read back through the inverse of its own map to the
   /// class points it was drawn from (Options.FaithfulCheck): its map is not one-to-one over its
-  /// silhouette. Draws the outline (and a long shape's grid) if not done yet; tested once (a
-  /// short shape once its chart is computed; before, false).
+  /// silhouette. Draws the outline (and a long shape's grid) if not done yet; tested once. A
+  /// short shape is read through the exact log map of its centre, as its decal is drawn.
   bool Unfaithful(Record& c) const;
   /// The outline as drawn, and a long shape's CurveGrid, kept in the record.
   void DrawOutline(Record& c) const;
