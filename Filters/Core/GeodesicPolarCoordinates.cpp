@@ -469,28 +469,29 @@ bool GeodesicPolarCoordinates::CurveCoordinatesAt(
   return true;
 }
 
-bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, double& theta) const
+namespace
+{
+// PolarAt of an engine or of a snapshot: `values(v, rho, theta)` gives vertex v's coordinates
+// (false outside the radius); the rest as GeodesicPolarCoordinates::PolarAt says.
+template <class Values>
+bool PolarAtImpl(const TriangleMesh& mesh, const SurfacePoint& source, double reference, double turn,
+  const SurfacePoint& q, double& rho, double& theta, const Values& values)
 {
   rho = theta = NaN;
-  if (CurveMode)
-  {
-    return false; // curve coordinates: CurveCoordinatesAt
-  }
+  auto rawToTheta = [reference, turn](double raw) { return Wrap((raw - reference) * TwoPi / turn); };
   if (q.IsVertex())
   {
-    rho = VertexRho[q.Vertex];
-    theta = VertexTheta[q.Vertex];
-    return std::isfinite(rho);
+    return values(q.Vertex, rho, theta);
   }
-  const auto& t = Mesh.Face(q.Face);
-  const Vec3 x = Mesh.Interpolate(q.Face, q.Bary);
-  const bool sourceFace = Source.IsVertex()
-    ? (t[0] == Source.Vertex || t[1] == Source.Vertex || t[2] == Source.Vertex)
-    : Source.Face == q.Face;
+  const auto& t = mesh.Face(q.Face);
+  const Vec3 x = mesh.Interpolate(q.Face, q.Bary);
+  const bool sourceFace = source.IsVertex()
+    ? (t[0] == source.Vertex || t[1] == source.Vertex || t[2] == source.Vertex)
+    : source.Face == q.Face;
   if (sourceFace)
   {
     // Straight inside the face: exact.
-    const Vec3 s = Mesh.Position(Source);
+    const Vec3 s = mesh.Position(source);
     rho = Norm(x - s);
     if (rho == 0.0)
     {
@@ -498,15 +499,21 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
       return true;
     }
     // The tangent angle at the source of the direction towards x, measured in x's face.
-    const double raw = TangentAngle(Mesh, Source, x - s);
-    theta = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
+    const double raw = TangentAngle(mesh, source, x - s);
+    theta = std::isfinite(raw) ? rawToTheta(raw) : 0.0;
     return true;
   }
-  if (!std::isfinite(VertexRho[t[0]]) || !std::isfinite(VertexRho[t[1]]) || !std::isfinite(VertexRho[t[2]]))
+  double cornerRho[3], cornerTheta[3];
+  for (int k = 0; k < 3; ++k)
   {
-    return false;
+    if (!values(t[k], cornerRho[k], cornerTheta[k]))
+    {
+      rho = theta = NaN;
+      return false;
+    }
   }
-  const UnfoldedTriangle u = UnfoldTriangle(Mesh, q.Face, q.Bary, { { VertexRho[t[0]], VertexRho[t[1]], VertexRho[t[2]] } });
+  const UnfoldedTriangle u =
+    UnfoldTriangle(mesh, q.Face, q.Bary, { { cornerRho[0], cornerRho[1], cornerRho[2] } });
   rho = u.Distance;
   // Theta: in the unfolding, the direction from the unfolded source to q, turned by the offset
   // that maps the corners' unfolded directions onto their angles (the same for all corners on a
@@ -521,7 +528,7 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
     {
       const Vec2 c = u.Corners[k] - u.Source;
       // Angles in the unfolding are true angles at the source: scale them like the raw ones.
-      const double o = VertexTheta[t[k]] - std::atan2(c.y, c.x) * TwoPi / Turn;
+      const double o = cornerTheta[k] - std::atan2(c.y, c.x) * TwoPi / turn;
       if (k == 0)
       {
         offset0 = o;
@@ -530,29 +537,92 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
       d -= TwoPi * std::round(d / TwoPi);
       sum += q.Bary[k] * d;
     }
-    theta = Wrap(offset0 + sum + std::atan2(toQ.y, toQ.x) * TwoPi / Turn);
+    theta = Wrap(offset0 + sum + std::atan2(toQ.y, toQ.x) * TwoPi / turn);
     return true;
   }
   for (int k = 0; k < 3; ++k)
   {
-    double d = VertexTheta[t[k]] - VertexTheta[t[0]];
+    double d = cornerTheta[k] - cornerTheta[0];
     d -= TwoPi * std::round(d / TwoPi);
     sum += q.Bary[k] * d;
   }
-  theta = Wrap(VertexTheta[t[0]] + sum);
+  theta = Wrap(cornerTheta[0] + sum);
   return true;
+}
+
+bool LogMapFromPolar(double rho, double theta, double turn, Vec2& p)
+{
+  const double raw = theta * (turn / TwoPi);
+  p = Vec2{ rho * std::cos(raw), rho * std::sin(raw) };
+  return true;
+}
+} // namespace
+
+bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, double& theta) const
+{
+  if (CurveMode)
+  {
+    rho = theta = NaN;
+    return false; // curve coordinates: CurveCoordinatesAt
+  }
+  return PolarAtImpl(Mesh, Source, Reference, Turn, q, rho, theta, [this](int v, double& r, double& a) {
+    r = VertexRho[v];
+    a = VertexTheta[v];
+    return std::isfinite(r);
+  });
 }
 
 bool GeodesicPolarCoordinates::LogMapAt(const SurfacePoint& q, Vec2& p) const
 {
   double rho = 0.0, theta = 0.0;
-  if (!PolarAt(q, rho, theta))
+  return PolarAt(q, rho, theta) && LogMapFromPolar(rho, theta, Turn, p);
+}
+
+LogMapSnapshot GeodesicPolarCoordinates::Snapshot() const
+{
+  LogMapSnapshot s;
+  if (CurveMode || !Solved)
   {
+    return s;
+  }
+  s.Source = Source;
+  s.Reference = Reference;
+  s.Turn = Turn;
+  s.Entries.reserve(InsideList.size());
+  for (int v : InsideList)
+  {
+    s.Entries.push_back({ v, VertexRho[v], VertexTheta[v] });
+  }
+  std::sort(s.Entries.begin(), s.Entries.end(),
+    [](const LogMapSnapshot::Entry& a, const LogMapSnapshot::Entry& b) { return a.Vertex < b.Vertex; });
+  return s;
+}
+
+bool LogMapSnapshot::PolarAt(const TriangleMesh& mesh, const SurfacePoint& q, double& rho, double& theta) const
+{
+  if (Entries.empty())
+  {
+    rho = theta = NaN;
     return false;
   }
-  const double raw = theta * (Turn / TwoPi);
-  p = Vec2{ rho * std::cos(raw), rho * std::sin(raw) };
-  return true;
+  return PolarAtImpl(mesh, Source, Reference, Turn, q, rho, theta, [this](int v, double& r, double& a) {
+    const auto it = std::lower_bound(Entries.begin(), Entries.end(), v,
+      [](const Entry& e, int vertex) { return e.Vertex < vertex; });
+    if (it == Entries.end() || it->Vertex != v || !std::isfinite(it->Rho))
+    {
+      r = a = NaN;
+      return false;
+    }
+    r = it->Rho;
+    a = it->Theta;
+    return true;
+  });
+}
+
+bool LogMapSnapshot::LogMapAt(const TriangleMesh& mesh, const SurfacePoint& q, Vec2& p) const
+{
+  double rho = 0.0, theta = 0.0;
+  return PolarAt(mesh, q, rho, theta) && LogMapFromPolar(rho, theta, Turn, p);
 }
 
 namespace

@@ -40,6 +40,23 @@ struct CurveCoordinates
   double Length = 0.0; ///< the curve's length
 };
 
+/// The polar coordinates of a GeodesicPolarCoordinates::Compute, kept without the engine (its
+/// per-mesh arrays): the vertices inside the radius, sorted, with the source and the angle
+/// convention. PolarAt and LogMapAt give what the engine's give, to the bit.
+struct LogMapSnapshot
+{
+  struct Entry
+  {
+    int Vertex;
+    double Rho, Theta;
+  };
+  std::vector<Entry> Entries; ///< by vertex
+  SurfacePoint Source;
+  double Reference = 0.0, Turn = 0.0;
+  bool PolarAt(const TriangleMesh& mesh, const SurfacePoint& q, double& rho, double& theta) const;
+  bool LogMapAt(const TriangleMesh& mesh, const SurfacePoint& q, Vec2& p) const;
+};
+
 class GeodesicPolarCoordinates
 {
 public:
@@ -96,6 +113,9 @@ public:
   // saddle source), so that ShootGeodesic(source, reference + a, rho) draws it. False where
   // PolarAt is.
   bool LogMapAt(const SurfacePoint& q, Vec2& p) const;
+  // The coordinates of the last successful Compute, to keep (empty after ComputeCurve or a
+  // failed Compute).
+  LogMapSnapshot Snapshot() const;
 
   // The inverse map: the surface point at (rho, theta): geodesic shooting, or after
   // UseIsoCurveAngles, the point at the fraction theta / 2 pi along the level loop rho (the

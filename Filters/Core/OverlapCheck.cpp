@@ -450,9 +450,11 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
         },
         depth, &mesh, inverse);
     }
+    // (The placement's reading: the exact log map the drawn check kept, or the chart; a jump
+    // across the map's cut locus is tested at its ends only, as above.)
     return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
       [&distributor, a, &near](const SurfacePoint& x, Vec2& p) { return near(x) && distributor.ClassPoint(a, x, p); },
-      depth);
+      depth, &mesh, 1.0 / (size * shapes[a].Scale));
   };
   // Each shape's neighbours: the shapes whose centres are closer in space than the sum of the
   // circumradii (the geodesic distance is never shorter).

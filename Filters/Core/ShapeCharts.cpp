@@ -184,7 +184,17 @@ bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x
   {
     return false;
   }
-  return ChartPoint(r.Charts[0], x, Options.ShapeSize * r.Shape.Scale, p);
+  const double unit = Options.ShapeSize * r.Shape.Scale;
+  if (r.Exact) // (the drawn check's: the exact log map of the centre)
+  {
+    if (!r.Exact->LogMapAt(Mesh, x, p))
+    {
+      return false;
+    }
+    p = p * (1.0 / unit);
+    return true;
+  }
+  return ChartPoint(r.Charts[0], x, unit, p);
 }
 
 void ShapeDistributor::Impl::PrepareCommit(Record& r, std::vector<char>& mark, std::vector<int>& marked) const

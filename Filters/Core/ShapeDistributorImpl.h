@@ -173,6 +173,9 @@ struct ShapeDistributor::Impl
     std::vector<OutlinePiece> Drawn;
     bool HasDrawn = false;
     bool FaithfulChecked = false; // (Unfaithful: tested once)
+    // A short shape under the drawn check: the exact log map of its centre (PrepareExactMap),
+    // through which the drawn check and FaithfulCheck read it.
+    std::shared_ptr<const LogMapSnapshot> Exact;
     // Long shapes: the inverse of the drawing map (for the drawn check against long neighbours).
     std::shared_ptr<const CurveGrid> Frame;
   };
@@ -314,7 +317,8 @@ struct ShapeDistributor::Impl
   /// interpolated; false when a corner is not in the chart or the face does not hold in it
   /// (ChartFaceHolds).
   bool ChartPoint(const Chart& chart, const SurfacePoint& x, double unit, Vec2& p) const;
-  /// A short shape's class point of x (its centre's chart); false for long shapes.
+  /// A short shape's class point of x (the exact log map of its centre when the drawn check
+  /// computed it, Record::Exact; otherwise its centre's chart); false for long shapes.
   bool ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const;
   /// The commit's own work that needs no shared state, done in parallel before it.
   void PrepareCommit(Record& r, std::vector<char>& mark, std::vector<int>& marked) const;
@@ -381,6 +385,9 @@ struct ShapeDistributor::Impl
   bool Unfaithful(Record& c) const;
   /// The outline as drawn, and a long shape's CurveGrid, kept in the record.
   void DrawOutline(Record& c) const;
+  /// A short shape's exact log map (Record::Exact), out to the corners of the faces its outline
+  /// crosses (after DrawOutline); false when it cannot be computed.
+  bool PrepareExactMap(Record& c) const;
 
   // ---- Priority rounds, Algorithm 3 (PriorityRounds.cpp) -------------------------------
   /// Where a run stands between rounds.

@@ -526,3 +526,48 @@ TEST(GeodesicPolarCoordinates, CurveArcLengthAlongEachOffsetCurve)
     EXPECT_NEAR(turn.ArcLength[inner.Vertex], (x - 1) / (2 - 2 * d), 1e-6) << x;
   }
 }
+
+// A snapshot (LogMapSnapshot: the coordinates kept without the engine) reads every surface point
+// as the engine does, to the bit, inside and outside the radius; from a face point and a vertex
+// source on a bumpy sphere (saddles: unfolded and interpolated angles), and after a curve
+// Compute, empty.
+TEST(GeodesicPolarCoordinates, SnapshotReadsAsTheEngine)
+{
+  const TriangleMesh m = BuildMesh(gs_test::BumpySoup(3, 7, 0.05));
+  GeodesicPolarCoordinates pc(m);
+  std::uint64_t state = 12345;
+  auto uniform = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+  };
+  for (const SurfacePoint& source : { SurfacePoint::InFace(7, 0.2, 0.3, 0.5), SurfacePoint::AtVertex(11) })
+  {
+    ASSERT_TRUE(gs_test::Succeeded(pc.Compute(source, 0.6, 0.4)));
+    const LogMapSnapshot snapshot = pc.Snapshot();
+    ASSERT_EQ(snapshot.Entries.size(), pc.Inside().size());
+    int inside = 0;
+    for (int i = 0; i < 4000; ++i)
+    {
+      const int f = static_cast<int>(uniform() * m.NumberOfFaces()) % m.NumberOfFaces();
+      double a = uniform(), b = uniform();
+      if (a + b > 1.0)
+      {
+        a = 1.0 - a;
+        b = 1.0 - b;
+      }
+      const SurfacePoint q = i % 10 == 0 ? SurfacePoint::AtVertex(m.Face(f)[0]) : SurfacePoint::InFace(f, a, b, 1.0 - a - b);
+      Vec2 p1{ 0.0, 0.0 }, p2{ 0.0, 0.0 };
+      const bool r1 = pc.LogMapAt(q, p1), r2 = snapshot.LogMapAt(m, q, p2);
+      ASSERT_EQ(r1, r2);
+      if (r1)
+      {
+        ++inside;
+        EXPECT_EQ(p1.x, p2.x);
+        EXPECT_EQ(p1.y, p2.y);
+      }
+    }
+    EXPECT_GT(inside, 200);
+  }
+  ASSERT_TRUE(gs_test::Succeeded(pc.ComputeCurve({ SurfacePoint::AtVertex(11), SurfacePoint::AtVertex(12) }, 0.5)));
+  EXPECT_TRUE(pc.Snapshot().Entries.empty());
+}

@@ -178,7 +178,9 @@ TEST(ShapeDecal, ShortDecalsComeFromTheExactLogMapNotThePlacementsGraph)
   // graph (the distributor's default, accuracy 0.1), whose departure angles behind saddles can be
   // off by several degrees: a decal made from them drew a star's tip half a radius from where the
   // exact log map (the inverse of the geodesic shots that draw the outline) puts it, into a
-  // neighbour. A short decal's corners are the exact log map of its centre.
+  // neighbour. A short decal's corners are the exact log map of its centre. With the drawn
+  // check off, ShapeDistributor::ClassPoint reads the placement's chart (here, to show it is
+  // off); with it on, the exact log map the drawn check computed (the same as the decal's).
   const TriangleMesh bumpy = gs_test::BuildMesh(gs_test::BumpySoup(5, 7, 0.01));
   SaddleVertexGraph graph;
   SaddleVertexGraphOptions go;
@@ -187,57 +189,64 @@ TEST(ShapeDecal, ShortDecalsComeFromTheExactLogMapNotThePlacementsGraph)
   ASSERT_TRUE(gs_test::Succeeded(graph.Build(bumpy, go, nullptr)));
   const std::vector<Vec3> directions(bumpy.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
   const SafeDistanceTables t = gs_test::PolygonTables({ MakeStarPolygon(5, 1.0, 0.4) });
-  ShapeDistributionOptions o;
-  o.ShapeSize = 0.15;
-  o.Seed = 2;
-  o.MaximalFailures = 1000;
-  ShapeDistributor d(bumpy, &graph);
-  const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
-  ASSERT_TRUE(r.Ok()) << r.Message();
-  const double radius = t.Classes[0].Radius;
-  double decalOff = 0.0, graphOff = 0.0;
-  long long corners = 0, graphFar = 0;
-  GeodesicPolarCoordinates exact(bumpy);
-  for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
+  for (const bool drawnCheck : { false, true })
   {
-    const PlacedShape& shape = r->Shapes[s];
-    const double unit = o.ShapeSize * shape.Scale;
-    ASSERT_TRUE(exact.Compute(shape.Centre, 3.0 * radius * unit, TangentAngle(bumpy, shape.Centre, shape.Direction)).Ok());
-    auto exactPoint = [&](int v) {
-      return Vec2{ std::cos(exact.Theta(v)), std::sin(exact.Theta(v)) } * (exact.Rho(v) / unit);
-    };
-    const ShapeDecal decal = d.Decal(s);
-    for (std::size_t k = 0; k < decal.Faces.size(); ++k)
+    ShapeDistributionOptions o;
+    o.ShapeSize = 0.15;
+    o.Seed = 2;
+    o.MaximalFailures = 1000;
+    o.DrawnCheck = drawnCheck;
+    ShapeDistributor d(bumpy, &graph);
+    const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+    ASSERT_TRUE(r.Ok()) << r.Message();
+    const double radius = t.Classes[0].Radius;
+    double decalOff = 0.0, graphOff = 0.0;
+    long long corners = 0, graphFar = 0;
+    GeodesicPolarCoordinates exact(bumpy);
+    for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
     {
-      for (int i = 0; i < 3; ++i)
+      const PlacedShape& shape = r->Shapes[s];
+      const double unit = o.ShapeSize * shape.Scale;
+      ASSERT_TRUE(exact.Compute(shape.Centre, 3.0 * radius * unit, TangentAngle(bumpy, shape.Centre, shape.Direction)).Ok());
+      auto exactPoint = [&](int v) {
+        return Vec2{ std::cos(exact.Theta(v)), std::sin(exact.Theta(v)) } * (exact.Rho(v) / unit);
+      };
+      const ShapeDecal decal = d.Decal(s);
+      for (std::size_t k = 0; k < decal.Faces.size(); ++k)
       {
-        for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
         {
-          if (decal.Corners[k][i][j] != 1.0)
-            continue; // (a corner of a piece inside the face)
-          const int v = bumpy.Face(decal.Faces[k])[j];
-          ASSERT_TRUE(std::isfinite(exact.Rho(v)));
-          const Vec2 uv = decal.TextureCoordinates[k][i];
-          const Vec2 q{ (2.0 * uv.x - 1.0) * radius, (2.0 * uv.y - 1.0) * radius };
-          decalOff = std::max(decalOff, Norm(q - exactPoint(v)) / radius);
-          ++corners;
-          Vec2 g;
-          if (d.ClassPoint(s, SurfacePoint::AtVertex(v), g))
+          for (int j = 0; j < 3; ++j)
           {
-            const double off = Norm(g - exactPoint(v)) / radius;
-            graphOff = std::max(graphOff, off);
-            graphFar += off > 0.05 ? 1 : 0;
+            if (decal.Corners[k][i][j] != 1.0)
+              continue; // (a corner of a piece inside the face)
+            const int v = bumpy.Face(decal.Faces[k])[j];
+            ASSERT_TRUE(std::isfinite(exact.Rho(v)));
+            const Vec2 uv = decal.TextureCoordinates[k][i];
+            const Vec2 q{ (2.0 * uv.x - 1.0) * radius, (2.0 * uv.y - 1.0) * radius };
+            decalOff = std::max(decalOff, Norm(q - exactPoint(v)) / radius);
+            ++corners;
+            Vec2 g;
+            if (d.ClassPoint(s, SurfacePoint::AtVertex(v), g))
+            {
+              const double off = Norm(g - exactPoint(v)) / radius;
+              graphOff = std::max(graphOff, off);
+              graphFar += off > 0.05 ? 1 : 0;
+            }
           }
         }
       }
     }
+    std::printf("bumpy sphere, drawn check %s: %zu stars, %lld decal corners: off the exact log map by at most %.2e of "
+                "the radius; ClassPoint there: at most %.3f, %lld corners more than 5%% off\n",
+      drawnCheck ? "on" : "off", r->Shapes.size(), corners, decalOff, graphOff, graphFar);
+    EXPECT_GT(r->Shapes.size(), 20u);
+    if (drawnCheck)
+      EXPECT_LT(graphOff, 1e-6); // the drawn check reads the decal's map
+    else
+      EXPECT_GT(graphFar, 0); // the case this guards against is there
+    EXPECT_LT(decalOff, 1e-6);
   }
-  std::printf("bumpy sphere: %zu stars, %lld decal corners: off the exact log map by at most %.2e of the radius; the "
-              "placement's chart there: at most %.3f, %lld corners more than 5%% off\n",
-    r->Shapes.size(), corners, decalOff, graphOff, graphFar);
-  EXPECT_GT(r->Shapes.size(), 20u);
-  EXPECT_GT(graphFar, 0); // the case this guards against is there
-  EXPECT_LT(decalOff, 1e-6);
 }
 
 namespace
