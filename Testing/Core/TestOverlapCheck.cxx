@@ -71,6 +71,30 @@ SafeDistanceTables Shrunk(SafeDistanceTables t, double factor)
   return t;
 }
 
+// The bundled bumpy sphere subdivided once, its saddle vertex graph, the bundled silhouettes and
+// a constant direction projected on the surface (singularities at its poles).
+struct BumpyCase
+{
+  const TriangleMesh Mesh = FineBumpySphere();
+  SaddleVertexGraph Graph;
+  const Result<SafeDistanceTables> Tables = BundledTables();
+  const std::vector<Vec3> Directions;
+  Status Built;
+  BumpyCase()
+    : Directions(Mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 })
+  {
+    Built = Graph.Build(Mesh, SaddleVertexGraphOptions(), nullptr);
+  }
+  ::testing::AssertionResult Ok() const
+  {
+    if (!Built.Ok())
+      return ::testing::AssertionFailure() << Built.Message();
+    if (!Tables.Ok())
+      return ::testing::AssertionFailure() << Tables.Message();
+    return ::testing::AssertionSuccess();
+  }
+};
+
 using gs_test::Outlines;
 } // namespace
 
@@ -190,12 +214,9 @@ TEST(OverlapCheck, CurvedMeshNoFalseOverlapsAndTheSurfaceOraclesCount)
 // of shapes stays within 1%.
 TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
 {
-  const TriangleMesh mesh = FineBumpySphere();
-  SaddleVertexGraph graph;
-  ASSERT_TRUE(gs_test::Succeeded(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr)));
-  Result<SafeDistanceTables> tables = BundledTables();
-  ASSERT_TRUE(tables.Ok()) << tables.Message();
-  const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
+  const BumpyCase bumpy;
+  ASSERT_TRUE(bumpy.Ok());
+  const TriangleMesh& mesh = bumpy.Mesh;
   int oracleWithout = 0, oracleWith = 0, checkWithout = 0, checkWith = 0;
   std::size_t shapesWithout = 0, shapesWith = 0;
   for (std::uint64_t seed : { 10, 12 })
@@ -206,10 +227,10 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
       o.ShapeSize = 0.03 * mesh.BoundingBoxDiagonal();
       o.Seed = seed;
       o.DrawnCheck = drawn;
-      ShapeDistributor d(mesh, &graph);
-      const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+      ShapeDistributor d(mesh, &bumpy.Graph);
+      const Result<ShapeDistribution> r = d.Run(*bumpy.Tables, bumpy.Directions, {}, o);
       ASSERT_TRUE(r.Ok()) << r.Message();
-      const int oracle = gs_test::CountSurfaceOverlaps(mesh, *tables, d, o.ShapeSize, 0.02);
+      const int oracle = gs_test::CountSurfaceOverlaps(mesh, *bumpy.Tables, d, o.ShapeSize, 0.02);
       (drawn ? oracleWith : oracleWithout) += oracle;
       (drawn ? shapesWith : shapesWithout) += r->Shapes.size();
       // VerifyOverlaps' check, which also reads long shapes through their frames (pairs of two
@@ -220,7 +241,7 @@ TEST(OverlapCheck, DrawnCheckKeepsBentLongShapesOffTheirNeighbours)
       (drawn ? checkWith : checkWithout) += static_cast<int>(found->Pairs.size());
     }
   }
-  std::printf("tables alone: %zu shapes, %d overlapping pairs (%d found by the check); with the drawn "
+  std::printf("bumpy.Tables alone: %zu shapes, %d overlapping pairs (%d found by the check); with the drawn "
               "check: %zu shapes, %d (%d)\n",
     shapesWithout, oracleWithout, checkWithout, shapesWith, oracleWith, checkWith);
   EXPECT_EQ(checkWith, 0);
@@ -502,12 +523,9 @@ TEST(OverlapCheck, OutlineJumpsAcrossTheCutLocusAreReadAtTheirEnds)
 // outlines (an outline point outside the decal, or 5% of the radius off); with it, almost none.
 TEST(OverlapCheck, DecalsDrawTheirOutlinesWhereTheMapIsOneToOne)
 {
-  const TriangleMesh mesh = FineBumpySphere();
-  SaddleVertexGraph graph;
-  ASSERT_TRUE(gs_test::Succeeded(graph.Build(mesh, SaddleVertexGraphOptions(), nullptr)));
-  Result<SafeDistanceTables> tables = BundledTables();
-  ASSERT_TRUE(tables.Ok()) << tables.Message();
-  const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
+  const BumpyCase bumpy;
+  ASSERT_TRUE(bumpy.Ok());
+  const TriangleMesh& mesh = bumpy.Mesh;
   int unfaithfulWithout = 0, unfaithfulWith = 0;
   std::size_t shapesWithout = 0, shapesWith = 0;
   for (const double size : { 0.03, 0.06 })
@@ -518,12 +536,12 @@ TEST(OverlapCheck, DecalsDrawTheirOutlinesWhereTheMapIsOneToOne)
       o.ShapeSize = size * mesh.BoundingBoxDiagonal();
       o.Seed = 10;
       o.FaithfulCheck = faithful;
-      ShapeDistributor d(mesh, &graph);
-      const Result<ShapeDistribution> r = d.Run(*tables, directions, {}, o);
+      ShapeDistributor d(mesh, &bumpy.Graph);
+      const Result<ShapeDistribution> r = d.Run(*bumpy.Tables, bumpy.Directions, {}, o);
       ASSERT_TRUE(r.Ok()) << r.Message();
       const auto outlines = Outlines(d, 0.25 * mesh.MeanEdgeLength());
       long long points = 0;
-      const int unfaithful = gs_test::CountUnfaithfulDecals(*tables, d, outlines, 0.05, &points);
+      const int unfaithful = gs_test::CountUnfaithfulDecals(*bumpy.Tables, d, outlines, 0.05, &points);
       long long all = 0;
       for (const auto& pieces : outlines)
         for (const OutlinePiece& piece : pieces)
