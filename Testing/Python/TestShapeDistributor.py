@@ -240,6 +240,15 @@ shapes.NumberOfThreads = 2
 two = vtk_to_numpy(fetch(shapes, 0).GetPoints().GetData()).copy()
 check(one.shape == two.shape and numpy.array_equal(one, two), "1 and 2 threads differ")
 
+# FaithfulCheck (advanced): on a plane every shape's map is one-to-one over its silhouette, so
+# turning it off changes nothing here (it rejects folded long shapes and large short shapes
+# reaching around bumps: TestOverlapCheck).
+shapes.FaithfulCheck = 0
+unchecked = vtk_to_numpy(fetch(shapes, 0).GetPoints().GetData()).copy()
+shapes.FaithfulCheck = 1
+check(unchecked.shape == two.shape and numpy.array_equal(unchecked, two),
+      "FaithfulCheck changed a planar distribution")
+
 # Modes and MaximumShapes.
 shapes.Mode = "Circumcircle Poisson disk"
 circles = fetch(shapes, 0).GetNumberOfPoints()
