@@ -285,7 +285,7 @@ bool ShapeDistributor::Impl::PrepareExactMap(Record& c) const
   // VerifyOverlaps, which reads the whole segment, found a pair the drawn check had let through
   // (elephant-with-holes subdivided once, ShapeSize 1.5%, seed 10). On a mesh whose longest edge
   // is far longer than its shapes, this costs: turbine at ShapeSize 0.6% (longest edge 14x the
-  // mean), the distribution takes 3.6x its time with the placement's charts.
+  // mean), the distribution takes 1.8x its time with the placement's charts (one thread).
   ExactEngineLease lease(*this);
   GeodesicPolarCoordinates& engine = lease.Take();
   const double unit = Options.ShapeSize * c.Shape.Scale;
@@ -364,7 +364,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
     return false;
   }
   const bool isLong = !c.Shape.Curve.empty();
-  if (isLong && Unfaithful(c)) // (a short shape: last, its exact log map costs most)
+  if (isLong && Unfaithful(c)) // (a short shape: after its neighbours', through its exact map)
   {
     return true;
   }
