@@ -39,8 +39,9 @@ struct OverlapCheckOptions
   /// exact solver truncated a longest edge beyond the circumradius: the inverse of the geodesic
   /// shots that draw the outline), not through the distributor's charts (computed on its
   /// geodesic graph, whose departure angles can be off by degrees behind saddles): the check
-  /// then shares nothing with the placement but the drawn outlines. False: the distributor's
-  /// charts (what the placement's own drawn check reads; about 0.6x the time).
+  /// then shares nothing with the placement but the drawn outlines. False: what the placement's
+  /// own drawn check read (ShapeDistributor::ClassPoint: the exact log maps it kept with
+  /// DrawnCheck, the distributor's charts without).
   bool ExactCharts = true;
 };
 

@@ -110,20 +110,21 @@ struct ShapeDistributionOptions
   bool KeepInside = false;
   /// After the tables accept a shape, its outline as drawn is checked against its accepted
   /// neighbours' (a point of one inside the other by more than 0.125% of the smaller
-  /// circumradius, read through the inverse of the other's drawing map: a short shape's chart, a
-  /// long shape's CurveGrid): the tables assume rigid planar copies, which a long shape bending
-  /// with its curve, or a chart that is no isometry across a neighbour, are not. false: the
-  /// tables alone.
+  /// circumradius, read through the inverse of the other's drawing map: a short shape's exact
+  /// log map, computed once per candidate as VerifyOverlaps computes it, a long shape's
+  /// CurveGrid): the tables assume rigid planar copies, which a long shape bending with its
+  /// curve, or a chart that is no isometry across a neighbour, are not. false: the tables alone.
   bool DrawnCheck = true;
   /// With DrawnCheck: a shape is placed only where its map is one-to-one over its silhouette, so
   /// that its decal draws the outline it is checked with: every point of its drawn outline, read
-  /// back through the inverse of its map (a short shape's chart, a long shape's CurveGrid), must
-  /// give the class point it was drawn from, within FaithfulTolerance of the class circumradius
-  /// (0 < tolerance <= 1). It is not where a long shape's curve turns more tightly than its width
-  /// (the perpendicular geodesics cross: the map folds), or a short shape's straightest
-  /// geodesics pass saddle vertices or reach around a thin part (its chart, the shortest paths,
-  /// is no longer their inverse). Tested after the tables accept the shape (a long shape before
-  /// its charts). false: such shapes are placed, their decals drawing what the inverse map gives
+  /// back through the inverse of its map (a short shape's exact log map, a long shape's
+  /// CurveGrid), must give the class point it was drawn from, within FaithfulTolerance of the
+  /// class circumradius (0 < tolerance <= 1). It is not where a long shape's curve turns more
+  /// tightly than its width (the perpendicular geodesics cross: the map folds), or a short
+  /// shape's straightest geodesics pass saddle vertices or reach around a thin part (its log
+  /// map, the shortest paths, is no longer their inverse). Tested after the tables accept the
+  /// shape (a long shape before its charts, a short one after its neighbours' drawn checks).
+  /// false: such shapes are placed, their decals drawing what the inverse map gives
   /// (refined_elephant subdivided once, ShapeSize 1% of the diagonal: 5% of the long shapes).
   bool FaithfulCheck = true;
   double FaithfulTolerance = 0.05;
@@ -296,9 +297,10 @@ public:
   const TriangleMesh& Mesh() const;
   const ShapeDistributionOptions& Options() const;
   /// After Run: the class-frame point (normalized units) of surface point x as seen by short
-  /// shape s: x's coordinates in the polar chart of s's centre (the log map, the inverse of
-  /// MapToSurface), interpolated in x's face. False for long shapes and points beyond the chart
-  /// (farther from the centre than the shape's circle).
+  /// shape s, as the drawn check read it: x's coordinates in the log map of s's centre (the
+  /// inverse of MapToSurface), the exact one the drawn check kept (with DrawnCheck), otherwise
+  /// the placement's polar chart, interpolated in x's face. False for long shapes and points
+  /// beyond the map (farther from the centre than the shape's circle).
   bool ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const;
   /// The spacing between outline points the drawn check uses (half a mean edge): Outline at
   /// this spacing returns the outline the check drew.

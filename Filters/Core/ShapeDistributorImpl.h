@@ -372,8 +372,8 @@ struct ShapeDistributor::Impl
   /// as drawn (kept in the record) against every accepted neighbour's, as VerifyOverlaps judges
   /// them: a conflict when one reaches into the other's silhouette deeper than a quarter of
   /// VerifyOverlaps' tolerance (0.125% of the smaller circumradius), each outline read through
-  /// the inverse of the other's drawing map (a short shape's chart, a long shape's CurveGrid),
-  /// both ways, as VerifyOverlaps reads them: at a pointed outline the two depths differ (test
+  /// the inverse of the other's drawing map (a short shape's exact log map, Record::Exact; a
+  /// long shape's CurveGrid), both ways, as VerifyOverlaps reads them: at a pointed outline the two depths differ (test
   /// OverlapCheck.DrawnCheckReadsShortOutlinesInLongFrames). The tables assume rigid planar
   /// copies; this catches where the drawn shapes are not (a long shape's part bending with its
   /// curve, a chart that is no isometry across the neighbour's circle).
@@ -385,8 +385,8 @@ struct ShapeDistributor::Impl
   bool Unfaithful(Record& c) const;
   /// The outline as drawn, and a long shape's CurveGrid, kept in the record.
   void DrawOutline(Record& c) const;
-  /// A short shape's exact log map (Record::Exact), out to the corners of the faces its outline
-  /// crosses (after DrawOutline); false when it cannot be computed.
+  /// A short shape's exact log map (Record::Exact), out to a longest edge of the mesh beyond its
+  /// circle (as VerifyOverlaps computes it), computed once; false when it cannot be computed.
   bool PrepareExactMap(Record& c) const;
 
   // ---- Priority rounds, Algorithm 3 (PriorityRounds.cpp) -------------------------------
@@ -514,9 +514,9 @@ struct ShapeDistributor::Impl
   // ---- Decals (ShapeDecal.cpp) ----------------------------------------------------------
   /// See ShapeDistributor::Decal.
   ShapeDecal DecalOf(int shape, double tolerance) const;
-  // Exact geodesic polar coordinates engines for short shapes' decals: DecalOf may run on any
-  // thread, so an engine is leased from the pool (Take; a new one when it is empty) and goes
-  // back to it when the lease ends.
+  // Exact geodesic polar coordinates engines for short shapes' decals and the drawn check's
+  // exact log maps (PrepareExactMap): both may run on any thread, so an engine is leased from
+  // the pool (Take; a new one when it is empty) and goes back to it when the lease ends.
   mutable std::mutex ExactPoolMutex;
   mutable std::vector<std::unique_ptr<GeodesicPolarCoordinates>> ExactPool;
   class ExactEngineLease
