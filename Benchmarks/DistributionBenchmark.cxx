@@ -113,7 +113,7 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
                 piece.ClassPoints[i].x / c.Radius, piece.ClassPoints[i].y / c.Radius, c.Radius);
             continue;
           }
-          const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+          const Vec2 q = gs_test::ClassPointOfTexture(uv, c.Radius);
           double best = 1e300;
           for (const auto& ring : c.Outline.Rings)
             for (std::size_t k = 0; k < ring.size(); ++k)

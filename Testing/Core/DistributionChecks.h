@@ -34,6 +34,13 @@ inline std::vector<std::vector<gs::OutlinePiece>> Outlines(const gs::ShapeDistri
   return out;
 }
 
+/// The class point (normalized class frame) a decal's texture coordinate uv stands for: the
+/// texture square [0, 1]^2 is the square about the class circle of radius `radius`.
+inline gs::Vec2 ClassPointOfTexture(const gs::Vec2& uv, double radius)
+{
+  return gs::Vec2{ (2.0 * uv.x - 1.0) * radius, (2.0 * uv.y - 1.0) * radius };
+}
+
 /// What a decal draws, read on a fixed lattice of every decal triangle's face (28 barycentric
 /// points, (i + 1/3) / 7): calls f(k, index, bary, uv, q) for each lattice point of face
 /// decal.Faces[k] that triangle k holds and renders inside the silhouette (`region`, the class
@@ -55,7 +62,7 @@ void ForEachDrawnLatticePoint(const gs::ShapeDecal& decal, const gs::SafeDistanc
         gs::Vec2 uv;
         if (!decal.TextureCoordinateIn(k, bary, uv))
           continue;
-        const gs::Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+        const gs::Vec2 q = ClassPointOfTexture(uv, c.Radius);
         if (region.Inside(q))
           f(k, index, bary, uv, q);
       }
@@ -85,7 +92,7 @@ inline int CountUnfaithfulDecals(const gs::SafeDistanceTables& tables, const gs:
           ++mine;
           continue;
         }
-        const gs::Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+        const gs::Vec2 q = ClassPointOfTexture(uv, c.Radius);
         mine += gs::Norm(q - piece.ClassPoints[i]) > tolerance * c.Radius ? 1 : 0;
       }
     shapes += mine > 0 ? 1 : 0;

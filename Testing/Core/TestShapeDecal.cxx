@@ -78,7 +78,7 @@ Agreement Check(const ShapeDistributor& d, const TriangleMesh& mesh, const SafeD
           ++a.Uncovered;
           continue;
         }
-        const Vec2 q{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+        const Vec2 q = gs_test::ClassPointOfTexture(uv, c.Radius);
         const double e = DistanceToRings(c.Outline.Rings, q) / c.Radius;
         a.Max = std::max(a.Max, e);
         sum += e;
@@ -223,7 +223,7 @@ TEST(ShapeDecal, ShortDecalsComeFromTheExactLogMapNotThePlacementsGraph)
             const int v = bumpy.Face(decal.Faces[k])[j];
             ASSERT_TRUE(std::isfinite(exact.Rho(v)));
             const Vec2 uv = decal.TextureCoordinates[k][i];
-            const Vec2 q{ (2.0 * uv.x - 1.0) * radius, (2.0 * uv.y - 1.0) * radius };
+            const Vec2 q = gs_test::ClassPointOfTexture(uv, radius);
             decalOff = std::max(decalOff, Norm(q - exactPoint(v)) / radius);
             ++corners;
             Vec2 g;
@@ -307,7 +307,7 @@ Drawn CompareDrawn(const ShapeDistributor& d, const TriangleMesh& mesh, const Sa
             b[m] = decal.Corners[k][0][m] * l0 + decal.Corners[k][1][m] * l1 + decal.Corners[k][2][m] * l2;
           const Vec2 uv = decal.TextureCoordinates[k][0] * l0 + decal.TextureCoordinates[k][1] * l1 +
             decal.TextureCoordinates[k][2] * l2;
-          const Vec2 drawn{ (2.0 * uv.x - 1.0) * c.Radius, (2.0 * uv.y - 1.0) * c.Radius };
+          const Vec2 drawn = gs_test::ClassPointOfTexture(uv, c.Radius);
           if (!InsideRings(c.Outline.Rings, drawn))
             continue;
           const MappedPoint m = d.Map(s, drawn);

@@ -380,6 +380,14 @@ TEST(ShapeDistributor, BadInputGetsClearErrors)
   r = d.Run(t, plane.Directions, {}, o);
   EXPECT_NE(r.Message().find("Mode 7"), std::string::npos) << r.Message();
   o.Mode = DistributionMode::Random;
+  for (const double tolerance : { 0.0, -0.1, 2.0, static_cast<double>(NAN) })
+  {
+    o.FaithfulTolerance = tolerance;
+    r = d.Run(t, plane.Directions, {}, o);
+    EXPECT_FALSE(r.Ok()) << tolerance;
+    EXPECT_NE(r.Message().find("FaithfulTolerance"), std::string::npos) << r.Message();
+  }
+  o.FaithfulTolerance = 0.05;
   // A saddle vertex graph built for another mesh is refused (not silently dropped).
   const Plane other = MakePlane(5, 1.0);
   SaddleVertexGraph otherGraph;
