@@ -496,6 +496,8 @@ bool SVGGeodesicSolver::RefineVertex(
   double relaxed = Inf, nearest2 = Inf; // without angles: the minima over the pairs
   std::int64_t relaxedEntry = -1;       // the stencil entry giving `relaxed`
   PairBatch batch;
+  std::int64_t carried = -1; // the last pair's second entry, its distance and route
+  double carriedDistance = Inf, carriedRoute = Inf;
   double ax = 0.0, ay = 0.0;
   std::int64_t a = 0, lo = 0, hi = 0;
   // The predecessor's direction can be far from the source's: a graph route within the
@@ -545,10 +547,25 @@ bool SVGGeodesicSolver::RefineVertex(
       }
       const std::int64_t e1 = begin + i1;
       const std::int64_t e2 = wraps ? begin : e1 + 1;
-      const double d1 = distanceOf(Graph.StencilTarget(e1));
+      // Graph relaxation with the (refined) distances of the cone's stencil vertices. (Each
+      // entry but the cone's ends is in two consecutive pairs: its distance and route carry
+      // over from the pair before.)
+      double d1, c1;
+      if (e1 == carried)
+      {
+        d1 = carriedDistance;
+        c1 = carriedRoute;
+      }
+      else
+      {
+        d1 = distanceOf(Graph.StencilTarget(e1));
+        c1 = d1 + Graph.StencilDistance(e1);
+      }
       const double d2 = distanceOf(Graph.StencilTarget(e2));
-      // Graph relaxation with the (refined) distances of the cone's stencil vertices.
-      const double c1 = d1 + Graph.StencilDistance(e1), c2 = d2 + Graph.StencilDistance(e2);
+      const double c2 = d2 + Graph.StencilDistance(e2);
+      carried = e2;
+      carriedDistance = d2;
+      carriedRoute = c2;
       const double p1x = Graph.StencilX(e1), p1y = Graph.StencilY(e1);
       const double p2x = wraps ? Graph.StencilWrapX(x) : Graph.StencilX(e2);
       const double p2y = wraps ? Graph.StencilWrapY(x) : Graph.StencilY(e2);
