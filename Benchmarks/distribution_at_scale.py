@@ -142,6 +142,8 @@ for r in range(args.runs):
         print("re-run seed %d, %d thread(s): %.2f s, %d shapes (%.0f shapes/s); %s" % (
             seed + r, threads, wall, n, n / wall, ", ".join("%s %.2f" % kv for kv in split.items())))
 for threads in args.threads:
+    if not times[threads]:
+        continue  # --runs 0: the first run only
     med = statistics.median(times[threads])
     names = splits[threads][0].keys() if splits[threads] else []
     print("median of %d re-runs, %d thread(s): %.2f s, %.0f shapes/s; %s" % (

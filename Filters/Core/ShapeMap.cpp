@@ -35,14 +35,16 @@ double TriangleDistance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
   {
     return std::abs(Dot(w, n)) / std::sqrt(area2);
   }
-  // Outside: the distance to the nearest edge.
-  auto segment = [&x](const Vec3& p, const Vec3& q) {
+  // Outside: the distance to the nearest edge. (One square root of the smallest square: the
+  // same value as the smallest of three roots, the root being monotonic and correctly rounded.)
+  auto segment2 = [&x](const Vec3& p, const Vec3& q) {
     const Vec3 pq = q - p;
     const double l2 = Dot(pq, pq);
     const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, Dot(x - p, pq) / l2)) : 0.0;
-    return Norm(p + pq * t - x);
+    const Vec3 d = p + pq * t - x;
+    return Dot(d, d);
   };
-  return std::min(segment(a, b), std::min(segment(b, c), segment(c, a)));
+  return std::sqrt(std::min(segment2(a, b), std::min(segment2(b, c), segment2(c, a))));
 }
 } // namespace
 
