@@ -336,7 +336,13 @@ bool ShapeDistributor::Impl::Unfaithful(Record& c) const
     }
     return false;
   };
-  int hint = -1;
+  // A long shape's outline is read as its decal reads the surface: from the grid node nearest
+  // each point, not by descent from the previous point's. Where the grid folds (the curve turns
+  // more tightly than the shape is wide), the descent stays on the sheet the outline was drawn
+  // from and reads it back, while the decal, taking the nearest node, reads the other sheet and
+  // drops the pieces where the two disagree: a strip of the outline left undrawn (refined_elephant
+  // at ShapeSize 1%: 30 / 48 outline points outside their decal, 4 / 10 shapes, against 2 / 5
+  // and 1 / 4 read this way, at no measurable cost).
   for (const OutlinePiece& piece : c.Drawn)
   {
     for (std::size_t i = 0; i < piece.Points.size() && i < piece.ClassPoints.size(); ++i)
@@ -347,7 +353,7 @@ bool ShapeDistributor::Impl::Unfaithful(Record& c) const
       }
       Vec2 p;
       const bool read = isShort ? ClassPointOf(c, piece.Points[i], p)
-                                : (c.Frame && c.Frame->ClassPoint(piece.Points[i], p, &hint));
+                                : (c.Frame && c.Frame->ClassPoint(piece.Points[i], p));
       if (!read || Norm(p - piece.ClassPoints[i]) > tolerance)
       {
         return true;
