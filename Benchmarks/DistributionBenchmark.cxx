@@ -18,7 +18,9 @@
 //   or: DistributionBenchmark <mesh.off> --scale --image a.png [--image b.png ...] [--cache graph.svg]
 //       [--size 0.01] [--greedy] [--speed-rounds R] [--graph-accuracy A (the charts' discrete geodesic
 //       graph, default 0.1 as the filter's; 0: the saddle vertex graph of K = 50)] [--check (exit 2 when
-//       VerifyOverlaps reports a pair or two decals share more than 1% of a shape's lattice points)]
+//       VerifyOverlaps reports a pair, two decals share more than 1% of a shape's lattice points,
+//       short decals leave over 0.2% of their outline points undrawn, or a decal leaves 8 or more
+//       consecutive points of its outline undrawn)]
 //       (see AtScale; environment: GS_DEBUG_ORACLE prints, for such decal pairs, the shared points as
 //       each shape's map reads them; GS_DISTORTION_LIMIT
 //       sets DistortionLimit, GS_DRAWN_CHECK=0 turns the drawn check off, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
@@ -92,6 +94,12 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
     double sum = 0.0;
     long long points = 0, uncovered = 0, far = 0, farFromOwn = 0;
     long long kindShapes = 0, unfaithful = 0; // shapes with a point outside or 5% off its own
+    // Shapes with a strip of their outline undrawn: StripPoints or more consecutive points of a
+    // piece outside the decal (isolated points are the finest pieces dropped at a fold).
+    constexpr int StripPoints = 8;
+    long long stripShapes = 0;
+    int longestStrip = 0;
+    std::size_t longestStripShape = 0;
     for (std::size_t s = 0; s < shapes.size(); ++s)
     {
       if (shapes[s].Curve.empty() == longShapes)
@@ -99,7 +107,10 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
       ++kindShapes;
       const long long before = uncovered + farFromOwn;
       const SafeDistanceClass& c = t.Classes[shapes[s].ClassId];
+      int longestRun = 0;
       for (const OutlinePiece& piece : outlines[s])
+      {
+        int run = 0;
         for (std::size_t i = 0; i < piece.Points.size(); ++i)
         {
           const SurfacePoint& p = piece.Points[i];
@@ -108,11 +119,13 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
           if (!decals[s].TextureCoordinate(p, uv))
           {
             ++uncovered;
+            longestRun = std::max(longestRun, ++run);
             if (getenv("GS_DEBUG_FAITH") && i < piece.ClassPoints.size())
-              std::printf("      shape %zu class %d uncovered at class point (%.3f, %.3f) r %.3f\n", s, shapes[s].ClassId,
-                piece.ClassPoints[i].x / c.Radius, piece.ClassPoints[i].y / c.Radius, c.Radius);
+              std::printf("      shape %zu class %d uncovered at class point (%.3f, %.3f) r %.3f face %d bary %.3f %.3f %.3f\n", s, shapes[s].ClassId,
+                piece.ClassPoints[i].x / c.Radius, piece.ClassPoints[i].y / c.Radius, c.Radius, p.Face, p.Bary[0], p.Bary[1], p.Bary[2]);
             continue;
           }
+          run = 0;
           const Vec2 q = gs_test::ClassPointOfTexture(uv, c.Radius);
           double best = 1e300;
           for (const auto& ring : c.Outline.Rings)
@@ -136,7 +149,14 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
                 piece.ClassPoints[i].x / c.Radius, piece.ClassPoints[i].y / c.Radius, q.x / c.Radius, q.y / c.Radius);
           }
         }
+      }
       unfaithful += uncovered + farFromOwn > before ? 1 : 0;
+      stripShapes += longestRun >= StripPoints ? 1 : 0;
+      if (longestRun > longestStrip)
+      {
+        longestStrip = longestRun;
+        longestStripShape = s;
+      }
       if (getenv("GS_DEBUG_FAITH") && uncovered + farFromOwn > before)
         std::printf("      shape %zu class %d: %zu decal triangles, centre face %d (vertex %d), bary %.3f %.3f %.3f\n", s,
           shapes[s].ClassId, decals[s].Faces.size(), shapes[s].Centre.Face, shapes[s].Centre.Vertex,
@@ -148,6 +168,15 @@ void DecalsAgainstOutlines(const SafeDistanceTables& t, const std::vector<Placed
     if (!longShapes && uncovered > 0.002 * static_cast<double>(points))
     {
       std::printf("    short decals leave %lld of %lld outline points undrawn (over 0.2%%)\n", uncovered, points);
+      ++ScaleFaults;
+    }
+    // (Long decals: a fold that the shape's own outline reads back through (FaithfulCheck) but
+    // its decal does not draw left strips of up to 8 points before the check read the outline
+    // as the decal does, from the grid node nearest each point.)
+    if (stripShapes > 0)
+    {
+      std::printf("    %lld %s shapes leave a strip of %d or more outline points undrawn (the longest: %d points, "
+                  "shape %zu)\n", stripShapes, longShapes ? "long" : "short", StripPoints, longestStrip, longestStripShape);
       ++ScaleFaults;
     }
     std::printf("    decals against outlines, %s shapes: %lld outline points, %lld outside the decal; class point off "
@@ -1012,7 +1041,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
     counts[1] == counts[2] ? "yes" : "NO");
   if (CheckScale && ScaleFaults > 0)
     std::printf("FAILED: %lld faults (VerifyOverlaps pairs, decal pairs sharing over 1%%, short decals leaving "
-                "outline points undrawn)\n", ScaleFaults);
+                "outline points undrawn, decals leaving strips of their outline undrawn)\n", ScaleFaults);
   return counts[1] == counts[2] && !(CheckScale && ScaleFaults > 0) ? 0 : 2;
 }
 
