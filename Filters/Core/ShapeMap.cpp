@@ -408,30 +408,47 @@ bool CurveGrid::Locate(const Vec3& X, int start, Vec2& p, double* distance, int*
   }
   const int ni = nearest / Rows, nj = nearest % Rows;
   double bestDistance = std::numeric_limits<double>::infinity();
+  auto cell = [&](int ci, int cj) {
+    const int q00 = ci * Rows + cj, q10 = (ci + 1) * Rows + cj, q11 = (ci + 1) * Rows + cj + 1,
+              q01 = ci * Rows + cj + 1;
+    for (const std::array<int, 3>& t : { std::array<int, 3>{ q00, q10, q11 }, std::array<int, 3>{ q00, q11, q01 } })
+    {
+      const Node &A = Nodes[t[0]], &B = Nodes[t[1]], &C = Nodes[t[2]];
+      if (!A.Valid || !B.Valid || !C.Valid)
+      {
+        continue;
+      }
+      double lambda[3] = { 0.0, 0.0, 0.0 };
+      const double d = TriangleDistance(A.Position, B.Position, C.Position, X, lambda);
+      if (d < bestDistance)
+      {
+        bestDistance = d;
+        p = A.ClassPoint * lambda[0] + B.ClassPoint * lambda[1] + C.ClassPoint * lambda[2];
+      }
+    }
+  };
   for (int ci = ni - 1; ci <= ni; ++ci)
   {
     for (int cj = nj - 1; cj <= nj; ++cj)
     {
-      if (ci < 0 || cj < 0 || ci + 1 >= Columns || cj + 1 >= Rows)
+      if (ci >= 0 && cj >= 0 && ci + 1 < Columns && cj + 1 < Rows)
       {
-        continue;
+        cell(ci, cj);
       }
-      const int q00 = ci * Rows + cj, q10 = (ci + 1) * Rows + cj, q11 = (ci + 1) * Rows + cj + 1,
-                q01 = ci * Rows + cj + 1;
-      for (const std::array<int, 3>& t : { std::array<int, 3>{ q00, q10, q11 }, std::array<int, 3>{ q00, q11, q01 } })
+    }
+  }
+  // A nearest node on a ragged border (its shots stopped short: the grid's corners on a bent
+  // curve) may have no whole grid triangle about it: the nearest triangle of the whole grid
+  // then. (Before, the point had no class point: a face corner far from the shape, on a mesh
+  // whose faces are larger than the shape, was left out and its faces with it, and the decal
+  // left a strip of the outline undrawn: mannequin-devil at ShapeSize 0.6%, 35 points.)
+  if (!std::isfinite(bestDistance))
+  {
+    for (int ci = 0; ci + 1 < Columns; ++ci)
+    {
+      for (int cj = 0; cj + 1 < Rows; ++cj)
       {
-        const Node &A = Nodes[t[0]], &B = Nodes[t[1]], &C = Nodes[t[2]];
-        if (!A.Valid || !B.Valid || !C.Valid)
-        {
-          continue;
-        }
-        double lambda[3] = { 0.0, 0.0, 0.0 };
-        const double d = TriangleDistance(A.Position, B.Position, C.Position, X, lambda);
-        if (d < bestDistance)
-        {
-          bestDistance = d;
-          p = A.ClassPoint * lambda[0] + B.ClassPoint * lambda[1] + C.ClassPoint * lambda[2];
-        }
+        cell(ci, cj);
       }
     }
   }
