@@ -224,6 +224,14 @@ struct DecalBuilder
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
   Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
   int Hint = -1, FirstValid = -1;
+  // Long shapes: the grid nodes whose class points lie in the texels that draw, by face (face,
+  // barycentric coordinates), sorted. A piece of a face holding one meets the shape, whatever its
+  // corners' values say: on a face larger than the shape, its corners lie beyond the grid, and
+  // their class points, extended from the grid's border, can all fall on one side of the
+  // silhouette (armadillo at ShapeSize 0.6%: a gull's wing tip inside a face whose corners read
+  // 2.5-3.3 radii away, its texture triangle outside the silhouette's box: 32 outline points
+  // undrawn).
+  std::vector<std::pair<int, std::array<double, 3>>> BoxNodes;
   // Short shapes: the world units per class unit, for ChartFaceHolds
   // (0: long shapes, no test).
   double ChartUnit = 0.0;
@@ -318,7 +326,38 @@ struct DecalBuilder
       {
         FirstValid = Grid->Nodes[k].Valid ? k : -1;
       }
+      for (const CurveGrid::Node& node : Grid->Nodes)
+      {
+        const Vec2 u = ToTexture(node.ClassPoint);
+        if (node.Valid && node.At.Face >= 0 && u.x >= Lo.x && u.x <= Hi.x && u.y >= Lo.y && u.y <= Hi.y)
+        {
+          BoxNodes.emplace_back(node.At.Face, node.At.Bary);
+        }
+      }
+      std::sort(BoxNodes.begin(), BoxNodes.end());
     }
+  }
+
+  // Whether the piece of face f with barycentric corners B holds a node of BoxNodes.
+  bool HoldsBoxNode(int f, const std::array<std::array<double, 3>, 3>& B) const
+  {
+    auto it = std::lower_bound(BoxNodes.begin(), BoxNodes.end(), std::make_pair(f, std::array<double, 3>{ { -1e300, -1e300, -1e300 } }));
+    const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1], by = B[1][1] - B[2][1];
+    const double det = ax * by - bx * ay;
+    for (; it != BoxNodes.end() && it->first == f; ++it)
+    {
+      if (det == 0.0)
+      {
+        return false;
+      }
+      const double px = it->second[0] - B[2][0], py = it->second[1] - B[2][1];
+      const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
+      if (l0 >= -1e-9 && l1 >= -1e-9 && l2 >= -1e-9)
+      {
+        return true;
+      }
+    }
+    return false;
   }
 
   // A class point beyond the grid's reach that the silhouette (dilated by 1% of the radius, for
@@ -495,7 +534,9 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
     {
       centreOrientation = SignedArea(uv);
     }
-    if (all && MeetsBox(uv, Lo, Hi))
+    static const std::array<std::array<double, 3>, 3> identity{ { { { 1.0, 0.0, 0.0 } }, { { 0.0, 1.0, 0.0 } },
+      { { 0.0, 0.0, 1.0 } } } };
+    if (all && (MeetsBox(uv, Lo, Hi) || (Grid && HoldsBoxNode(f, identity))))
     {
       whole.emplace_back(f, uv);
       orientation += SignedArea(uv);
@@ -582,7 +623,11 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
   {
     const Piece t = stack.back();
     stack.pop_back();
-    if (!MeetsBox(t.U, Lo, Hi))
+    // (A piece holding a node of the silhouette's box meets the shape: its corners' values may
+    // be extended from far beyond the grid. It is split until its corners are read on the grid.)
+    const bool meets = MeetsBox(t.U, Lo, Hi);
+    const bool holds = !meets && Grid && HoldsBoxNode(f, t.B);
+    if (!meets && !holds)
     {
       continue;
     }
@@ -608,6 +653,11 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
         stack.push_back(Piece{ { { mid[0], mid[1], mid[2] } }, { { trueUV[0], trueUV[1], trueUV[2] } }, t.Depth + 1,
           { { midGhost[0], midGhost[1], midGhost[2] } } });
       };
+      if (holds && !finest)
+      {
+        splitInFour();
+        continue;
+      }
       if (t.Ghost[0] || t.Ghost[1] || t.Ghost[2] || midGhost[0] || midGhost[1] || midGhost[2])
       {
         if (!finest)
