@@ -338,18 +338,22 @@ struct DecalBuilder
     }
   }
 
+  // The barycentric corners of a whole face.
+  static constexpr std::array<std::array<double, 3>, 3> WholeFace{ { { { 1.0, 0.0, 0.0 } }, { { 0.0, 1.0, 0.0 } },
+    { { 0.0, 0.0, 1.0 } } } };
   // Whether the piece of face f with barycentric corners B holds a node of BoxNodes.
   bool HoldsBoxNode(int f, const std::array<std::array<double, 3>, 3>& B) const
   {
-    auto it = std::lower_bound(BoxNodes.begin(), BoxNodes.end(), std::make_pair(f, std::array<double, 3>{ { -1e300, -1e300, -1e300 } }));
     const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1], by = B[1][1] - B[2][1];
     const double det = ax * by - bx * ay;
-    for (; it != BoxNodes.end() && it->first == f; ++it)
+    if (det == 0.0)
     {
-      if (det == 0.0)
-      {
-        return false;
-      }
+      return false;
+    }
+    const std::array<double, 3> first{ { -1e300, -1e300, -1e300 } };
+    for (auto it = std::lower_bound(BoxNodes.begin(), BoxNodes.end(), std::make_pair(f, first));
+         it != BoxNodes.end() && it->first == f; ++it)
+    {
       const double px = it->second[0] - B[2][0], py = it->second[1] - B[2][1];
       const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
       if (l0 >= -1e-9 && l1 >= -1e-9 && l2 >= -1e-9)
@@ -456,8 +460,9 @@ struct DecalBuilder
   }
 
   // Faces with all corners known, near the shape (each face visited once, from its corner of
-  // smallest index), whose texture triangle meets the class square; `orientation`: the map's
-  // sense, the area-weighted sign of the texture triangles.
+  // smallest index), whose texture triangle meets the class square or that hold a node of
+  // BoxNodes; `orientation`: the map's sense, the area-weighted sign of the texture triangles
+  // (a short shape's centre face decides; a long shape's grid does, GridSense).
   std::vector<std::pair<int, std::array<Vec2, 3>>> WholeFaces(double& orientation);
 
   // Face f (texture triangle uv) into the decal, split where the map is not affine.
@@ -534,9 +539,7 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
     {
       centreOrientation = SignedArea(uv);
     }
-    static const std::array<std::array<double, 3>, 3> identity{ { { { 1.0, 0.0, 0.0 } }, { { 0.0, 1.0, 0.0 } },
-      { { 0.0, 0.0, 1.0 } } } };
-    if (all && (MeetsBox(uv, Lo, Hi) || (Grid && HoldsBoxNode(f, identity))))
+    if (all && (MeetsBox(uv, Lo, Hi) || (Grid && HoldsBoxNode(f, WholeFace))))
     {
       whole.emplace_back(f, uv);
       orientation += SignedArea(uv);
@@ -618,13 +621,14 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
   const bool split = Splits(f) || cornerGhost[0] || cornerGhost[1] || cornerGhost[2];
   std::vector<Piece>& stack = Stack;
   stack.clear();
-  stack.push_back(Piece{ { { { 1.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, { 0.0, 0.0, 1.0 } } }, uv, 0, cornerGhost });
+  stack.push_back(Piece{ WholeFace, uv, 0, cornerGhost });
   while (!stack.empty())
   {
     const Piece t = stack.back();
     stack.pop_back();
     // (A piece holding a node of the silhouette's box meets the shape: its corners' values may
-    // be extended from far beyond the grid. It is split until its corners are read on the grid.)
+    // be extended from far beyond the grid. It is split to the finest pieces or until its
+    // texture triangle, from the map read at its midpoints, meets the box.)
     const bool meets = MeetsBox(t.U, Lo, Hi);
     const bool holds = !meets && Grid && HoldsBoxNode(f, t.B);
     if (!meets && !holds)
