@@ -67,8 +67,9 @@ namespace
 constexpr double Pi = 3.14159265358979323846;
 long long TotalShapes = 0, TotalOverlaps = 0, TotalPairs = 0;
 bool CheckScale = false;   // --check: the at-scale run fails on a fault found below
-// Pairs VerifyOverlaps reports, decal pairs sharing over 1%, and runs whose short decals leave
-// over 0.2% of their outline points undrawn.
+// Pairs VerifyOverlaps reports, decal pairs sharing over 1%, runs whose short decals leave over
+// 0.2% of their outline points undrawn, and runs with decals leaving strips of their outline
+// undrawn (per kind).
 long long ScaleFaults = 0;
 // The decal oracle (issue 21): what the decals draw, compared on a fixed lattice of points of
 // every mesh face (28 barycentric points): a lattice point drawn inside the silhouette (the

@@ -550,11 +550,11 @@ bool PolarAtImpl(const TriangleMesh& mesh, const SurfacePoint& source, double re
   return true;
 }
 
-bool LogMapFromPolar(double rho, double theta, double turn, Vec2& p)
+// The log map's point of polar coordinates (rho, theta) (theta scaled to the source's total angle).
+Vec2 LogMapFromPolar(double rho, double theta, double turn)
 {
   const double raw = theta * (turn / TwoPi);
-  p = Vec2{ rho * std::cos(raw), rho * std::sin(raw) };
-  return true;
+  return Vec2{ rho * std::cos(raw), rho * std::sin(raw) };
 }
 } // namespace
 
@@ -575,7 +575,12 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
 bool GeodesicPolarCoordinates::LogMapAt(const SurfacePoint& q, Vec2& p) const
 {
   double rho = 0.0, theta = 0.0;
-  return PolarAt(q, rho, theta) && LogMapFromPolar(rho, theta, Turn, p);
+  if (!PolarAt(q, rho, theta))
+  {
+    return false;
+  }
+  p = LogMapFromPolar(rho, theta, Turn);
+  return true;
 }
 
 LogMapSnapshot GeodesicPolarCoordinates::Snapshot() const
@@ -622,7 +627,12 @@ bool LogMapSnapshot::PolarAt(const TriangleMesh& mesh, const SurfacePoint& q, do
 bool LogMapSnapshot::LogMapAt(const TriangleMesh& mesh, const SurfacePoint& q, Vec2& p) const
 {
   double rho = 0.0, theta = 0.0;
-  return PolarAt(mesh, q, rho, theta) && LogMapFromPolar(rho, theta, Turn, p);
+  if (!PolarAt(mesh, q, rho, theta))
+  {
+    return false;
+  }
+  p = LogMapFromPolar(rho, theta, Turn);
+  return true;
 }
 
 namespace

@@ -93,12 +93,12 @@ double GridSense(const TriangleMesh& mesh, const CurveGrid& grid)
   const double sense = classSense * surfaceSense;
   return sense > 0.0 ? 1.0 : (sense < 0.0 ? -1.0 : 0.0);
 }
-} // namespace
 
-bool ShapeDecal::TextureCoordinateIn(std::size_t k, const std::array<double, 3>& bary, Vec2& uv) const
+// The barycentric coordinates l, in a piece of a face with barycentric corners B, of the point
+// of that face with barycentric coordinates `bary` (solved in the first two face coordinates);
+// whether the piece holds it (to 1e-9). False for a degenerate piece.
+bool InPiece(const std::array<std::array<double, 3>, 3>& B, const std::array<double, 3>& bary, double l[3])
 {
-  // bary's barycentric coordinates in triangle k: solve in the first two face coordinates.
-  const auto& B = Corners[k];
   const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1],
                by = B[1][1] - B[2][1];
   const double det = ax * by - bx * ay;
@@ -107,15 +107,24 @@ bool ShapeDecal::TextureCoordinateIn(std::size_t k, const std::array<double, 3>&
     return false;
   }
   const double px = bary[0] - B[2][0], py = bary[1] - B[2][1];
-  const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
+  l[0] = (px * by - bx * py) / det;
+  l[1] = (ax * py - px * ay) / det;
+  l[2] = 1.0 - l[0] - l[1];
   const double eps = -1e-9;
-  if (l0 >= eps && l1 >= eps && l2 >= eps)
+  return l[0] >= eps && l[1] >= eps && l[2] >= eps;
+}
+} // namespace
+
+bool ShapeDecal::TextureCoordinateIn(std::size_t k, const std::array<double, 3>& bary, Vec2& uv) const
+{
+  double l[3];
+  if (!InPiece(Corners[k], bary, l))
   {
-    const auto& U = TextureCoordinates[k];
-    uv = U[0] * l0 + U[1] * l1 + U[2] * l2;
-    return true;
+    return false;
   }
-  return false;
+  const auto& U = TextureCoordinates[k];
+  uv = U[0] * l[0] + U[1] * l[1] + U[2] * l[2];
+  return true;
 }
 
 bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
@@ -344,19 +353,12 @@ struct DecalBuilder
   // Whether the piece of face f with barycentric corners B holds a node of BoxNodes.
   bool HoldsBoxNode(int f, const std::array<std::array<double, 3>, 3>& B) const
   {
-    const double ax = B[0][0] - B[2][0], bx = B[1][0] - B[2][0], ay = B[0][1] - B[2][1], by = B[1][1] - B[2][1];
-    const double det = ax * by - bx * ay;
-    if (det == 0.0)
-    {
-      return false;
-    }
     const std::array<double, 3> first{ { -1e300, -1e300, -1e300 } };
     for (auto it = std::lower_bound(BoxNodes.begin(), BoxNodes.end(), std::make_pair(f, first));
          it != BoxNodes.end() && it->first == f; ++it)
     {
-      const double px = it->second[0] - B[2][0], py = it->second[1] - B[2][1];
-      const double l0 = (px * by - bx * py) / det, l1 = (ax * py - px * ay) / det, l2 = 1.0 - l0 - l1;
-      if (l0 >= -1e-9 && l1 >= -1e-9 && l2 >= -1e-9)
+      double l[3];
+      if (InPiece(B, it->second, l))
       {
         return true;
       }
