@@ -547,3 +547,45 @@ TEST(ShapeDrawing, DrawsEveryShapeAsItsOwnCallsAndLiftsAlongTheNormals)
   const Vec3 corner = LiftedFacePoint(plane, 7, { 1.0, 0.0, 0.0 }, lift);
   EXPECT_NEAR(Norm(corner - plane.Position(plane.Face(7)[0]) - plane.FaceNormal(7) * lift), 0.0, 1e-15);
 }
+
+// CurveGrid::Locate at a ragged border: a point whose nearest node has no whole grid triangle
+// about it (its neighbours' shots stopped short) gets the affine map of the nearest triangle of
+// the whole grid, extended to it. Before, it had no class point: on a mesh whose faces are larger
+// than the shape, such a face corner was left out of the decal with its faces, and a strip of
+// the outline went undrawn (mannequin-devil at ShapeSize 0.6%, 35 points). A grid without any
+// whole triangle still gives none.
+TEST(CurveGrid, LocatesPointsNearARaggedBorderThroughTheNearestWholeTriangle)
+{
+  CurveGrid grid;
+  grid.Columns = 5;
+  grid.Rows = 5;
+  grid.Step = 1.0;
+  grid.Nodes.assign(25, CurveGrid::Node());
+  auto node = [&grid](int i, int j) -> CurveGrid::Node& { return grid.Nodes[i * grid.Rows + j]; };
+  // An affine map on a 3 x 3 block of valid nodes, and one valid node alone at (4, 4).
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+    {
+      node(i, j).Position = Vec3{ double(i), double(j), 0.0 };
+      node(i, j).ClassPoint = Vec2{ 0.1 * i, 0.2 * j };
+      node(i, j).Valid = (i <= 2 && j <= 2) || (i == 4 && j == 4);
+    }
+  Vec2 p{ 0.0, 0.0 };
+  double distance = 0.0;
+  int nearest = -1;
+  ASSERT_TRUE(grid.Locate(Vec3{ 4.1, 4.2, 0.0 }, 4 * 5 + 4, p, &distance, &nearest));
+  EXPECT_EQ(nearest, 4 * 5 + 4); // (the descent stays at the lone node)
+  EXPECT_NEAR(p.x, 0.41, 1e-12);
+  EXPECT_NEAR(p.y, 0.84, 1e-12);
+  EXPECT_NEAR(distance, std::hypot(2.1, 2.2), 1e-12); // to the block's corner (2, 2)
+  // Inside the block, the triangles about the nearest node answer as before.
+  ASSERT_TRUE(grid.Locate(Vec3{ 1.3, 0.6, 0.0 }, 0, p, &distance));
+  EXPECT_NEAR(p.x, 0.13, 1e-12);
+  EXPECT_NEAR(p.y, 0.12, 1e-12);
+  EXPECT_NEAR(distance, 0.0, 1e-12);
+  // No whole triangle anywhere: no class point.
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      node(i, j).Valid = (i + j) % 2 == 0 && i % 2 == 0;
+  EXPECT_FALSE(grid.Locate(Vec3{ 4.1, 4.2, 0.0 }, 4 * 5 + 4, p, &distance));
+}
