@@ -180,6 +180,18 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   key.Accuracy = dgg ? options.Accuracy : 0.0;
   key.ReachedStencil = dgg && options.ReachedStencil;
 
+  // 0. A file name that may not be written (a user's file, a FIFO, a directory): an error
+  // before any work; nothing is read from it or written to it.
+  if (!fileName.empty())
+  {
+    result.Status = gs::SaddleVertexGraph::CheckCacheFileName(fileName);
+    if (!result.Status.Ok())
+    {
+      result.Status = gs::Status::Error("CacheFileName: " + result.Status.Message());
+      return result;
+    }
+  }
+
   // 1. Memory.
   if (validOptions)
   {
@@ -212,7 +224,17 @@ vtkSaddleVertexGraphCache::Result vtkSaddleVertexGraphCache::Get(const gs::Trian
   if (validOptions && !fileName.empty() && FileExists(fileName))
   {
     auto graph = std::make_shared<gs::SaddleVertexGraph>();
-    const gs::Status loaded = graph->Load(fileName, meshHash, options);
+    gs::Status loaded = graph->Load(fileName, meshHash, options);
+    if (loaded.Ok())
+    {
+      // The checksum proves no integrity against intent: check the graph against the mesh.
+      const gs::Status verified = graph->Verify(mesh);
+      if (!verified.Ok())
+      {
+        loaded = gs::Status::Error(
+          "it does not match the mesh: " + verified.Message());
+      }
+    }
     if (loaded.Ok())
     {
       result.Graph = Insert(graph, meshHash, key, fileName);

@@ -10,11 +10,14 @@
 //    and cells hashes to the same key: the graph is not rebuilt.
 //  - The Capacity most recently used graphs are kept alive by the cache; any graph still held by
 //    a filter (a shared_ptr) is found as well, however old.
-//  - With a file name: a graph found in memory is written there once (so the file exists for
-//    the next session); otherwise the file is loaded when it matches the mesh and the
-//    construction (each has its own file format); a missing
-//    file is silent, a stale or corrupt one gets a warning and the graph is rebuilt, then saved
-//    (a failed save is a warning).
+//  - With a file name: a path holding anything but a graph cache file (a user's file, a
+//    directory, a FIFO) is an error before any work, and is never read or written
+//    (gs::SaddleVertexGraph::CheckCacheFileName). Otherwise a graph found in memory is written
+//    there once (so the file exists for the next session), or the file is loaded when it
+//    matches the mesh and the construction (each has its own file format) and passes
+//    gs::SaddleVertexGraph::Verify against the mesh; a missing file is silent, a stale, corrupt
+//    or forged one gets a warning and the graph is rebuilt, then saved (a failed save is a
+//    warning). Saves replace the file whole (a temporary file renamed into place).
 //  - An aborted build (the progress callback returned false) caches nothing.
 // Thread-safe (one mutex around the store; builds and file I/O run outside it).
 #ifndef vtkSaddleVertexGraphCache_h

@@ -9,10 +9,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <cerrno>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -568,13 +572,151 @@ void SaddleVertexGraph::IndexLinksInStencils()
   }
 }
 
+namespace
+{
+// What lies at a cache file's path.
+enum class PathKind
+{
+  Missing,
+  Regular,
+  Other, // a directory, a FIFO, a device, a socket: never opened (a FIFO would block the open)
+  Unknown // stat failed for another reason than a missing file (e.g. permissions)
+};
+
+PathKind KindOfPath(const std::string& path)
+{
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0)
+  {
+    return errno == ENOENT ? PathKind::Missing : PathKind::Unknown;
+  }
+  return S_ISREG(st.st_mode) ? PathKind::Regular : PathKind::Other;
+}
+
+// Whether the regular file at `path` starts as one of this project's graph cache files do (any
+// construction, any format version).
+bool HoldsGraphCache(const std::string& path)
+{
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
+  {
+    return false;
+  }
+  char magic[8] = {};
+  const ssize_t n = ::read(fd, magic, sizeof(magic));
+  ::close(fd);
+  return n == static_cast<ssize_t>(sizeof(magic)) && GraphKind(magic) != nullptr;
+}
+
+// A name beside `path` for a file that only this call creates (O_EXCL): the process id and a
+// process-wide counter, so that concurrent writers in one or several processes never share one.
+int CreateTemporaryBeside(const std::string& path, std::string& temporary)
+{
+  static std::atomic<unsigned> counter{ 0 };
+  for (int attempt = 0; attempt < 100; ++attempt)
+  {
+    temporary = path + ".tmp." + std::to_string(static_cast<long>(::getpid())) + "." +
+      std::to_string(counter.fetch_add(1));
+    // 0666 before the umask: the permissions a plain file written there would get.
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST)
+    {
+      return fd;
+    }
+  }
+  return -1;
+}
+// Reads a file through a descriptor (Load opens it without blocking): read() fills a buffer or
+// marks the reader failed, as an istream does.
+class FileReader
+{
+public:
+  explicit FileReader(int fd)
+    : File(::fdopen(fd, "rb"))
+  {
+    if (!File)
+    {
+      ::close(fd);
+    }
+  }
+  ~FileReader()
+  {
+    if (File)
+    {
+      std::fclose(File);
+    }
+  }
+  FileReader(const FileReader&) = delete;
+  FileReader& operator=(const FileReader&) = delete;
+  void read(char* data, std::size_t n)
+  {
+    Good = Good && File && std::fread(data, 1, n, File) == n;
+  }
+  explicit operator bool() const { return Good && File; }
+  bool operator!() const { return !static_cast<bool>(*this); }
+
+private:
+  std::FILE* File;
+  bool Good = true;
+};
+} // namespace
+
+Status SaddleVertexGraph::CheckCacheFileName(const std::string& path)
+{
+  switch (KindOfPath(path))
+  {
+    case PathKind::Missing:
+      return Status();
+    case PathKind::Other:
+      return Status::Error(path + " is not a regular file (a directory, a pipe or a device); "
+                                  "it is left untouched: choose another cache file name");
+    case PathKind::Unknown:
+      return Status::Error("cannot inspect " + path + " (" + std::strerror(errno) + ")");
+    case PathKind::Regular:
+    default:
+      break;
+  }
+  if (!HoldsGraphCache(path))
+  {
+    return Status::Error(path + " exists and is not a geodesic graph cache file; it is left "
+                                "untouched: choose another cache file name");
+  }
+  return Status();
+}
+
 Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) const
 {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out)
+  const Status target = CheckCacheFileName(path);
+  if (!target.Ok())
   {
-    return Status::Error("cannot write " + path);
+    return target;
   }
+  std::string temporary;
+  const int fd = CreateTemporaryBeside(path, temporary);
+  if (fd < 0)
+  {
+    return Status::Error("cannot write " + path + " (a temporary file beside it could not be "
+                                                  "created: " + std::strerror(errno) + ")");
+  }
+  bool good = true;
+  auto put = [fd, &good](const void* data, std::size_t n) {
+    const char* p = static_cast<const char*>(data);
+    while (good && n > 0)
+    {
+      const ssize_t written = ::write(fd, p, n);
+      if (written < 0 && errno == EINTR)
+      {
+        continue;
+      }
+      if (written <= 0)
+      {
+        good = false;
+        break;
+      }
+      p += written;
+      n -= static_cast<std::size_t>(written);
+    }
+  };
   const std::int64_t nv = NumberOfVertices(), ne = NumberOfEntries();
   const bool dgg = Construction == GraphConstruction::DiscreteGeodesic;
   const std::int32_t k = K;
@@ -609,26 +751,41 @@ Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) 
   sum.AddVector(stencilXY);
   sum.AddVector(WrapXY);
   sum.AddVector(VertexOf);
-  out.write(dgg ? (ReachedStencil ? DGRMagic : DGGMagic) : Magic, sizeof(Magic));
-  out.write(reinterpret_cast<const char*>(&meshHash), sizeof(meshHash));
-  out.write(static_cast<const char*>(key), static_cast<std::streamsize>(keySize));
-  out.write(reinterpret_cast<const char*>(&seconds), sizeof(seconds));
-  out.write(reinterpret_cast<const char*>(&nv), sizeof(nv));
-  out.write(reinterpret_cast<const char*>(&ne), sizeof(ne));
-  out.write(reinterpret_cast<const char*>(Offsets.data()), Offsets.size() * sizeof(std::int64_t));
-  out.write(reinterpret_cast<const char*>(Targets.data()), Targets.size() * sizeof(int));
-  out.write(reinterpret_cast<const char*>(Weights.data()), Weights.size() * sizeof(double));
-  out.write(reinterpret_cast<const char*>(&ns), sizeof(ns));
-  out.write(reinterpret_cast<const char*>(StencilOffsets.data()), StencilOffsets.size() * sizeof(std::int64_t));
-  out.write(reinterpret_cast<const char*>(stencilTargets.data()), stencilTargets.size() * sizeof(int));
-  out.write(reinterpret_cast<const char*>(stencilR.data()), stencilR.size() * sizeof(double));
-  out.write(reinterpret_cast<const char*>(stencilXY.data()), stencilXY.size() * sizeof(double));
-  out.write(reinterpret_cast<const char*>(WrapXY.data()), WrapXY.size() * sizeof(double));
-  out.write(reinterpret_cast<const char*>(VertexOf.data()), VertexOf.size() * sizeof(int));
-  out.write(reinterpret_cast<const char*>(&sum.H), sizeof(sum.H));
-  if (!out)
+  put(dgg ? (ReachedStencil ? DGRMagic : DGGMagic) : Magic, sizeof(Magic));
+  put(&meshHash, sizeof(meshHash));
+  put(key, keySize);
+  put(&seconds, sizeof(seconds));
+  put(&nv, sizeof(nv));
+  put(&ne, sizeof(ne));
+  put(Offsets.data(), Offsets.size() * sizeof(std::int64_t));
+  put(Targets.data(), Targets.size() * sizeof(int));
+  put(Weights.data(), Weights.size() * sizeof(double));
+  put(&ns, sizeof(ns));
+  put(StencilOffsets.data(), StencilOffsets.size() * sizeof(std::int64_t));
+  put(stencilTargets.data(), stencilTargets.size() * sizeof(int));
+  put(stencilR.data(), stencilR.size() * sizeof(double));
+  put(stencilXY.data(), stencilXY.size() * sizeof(double));
+  put(WrapXY.data(), WrapXY.size() * sizeof(double));
+  put(VertexOf.data(), VertexOf.size() * sizeof(int));
+  put(&sum.H, sizeof(sum.H));
+  const int writeError = good ? 0 : errno;
+  // On disk before the rename, so that a crash cannot leave the new name on a partial file.
+  good = good && ::fsync(fd) == 0;
+  good = (::close(fd) == 0) && good;
+  if (!good)
   {
-    return Status::Error("error while writing " + path);
+    const std::string why = std::strerror(writeError ? writeError : errno);
+    ::unlink(temporary.c_str());
+    return Status::Error("error while writing " + path + " (" + why + "); the previous file, if "
+                                                                     "any, is unchanged");
+  }
+  // Checked again just before the rename: what took the name meanwhile is not replaced either.
+  const Status still = CheckCacheFileName(path);
+  if (!still.Ok() || ::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    const std::string why = still.Ok() ? std::string(std::strerror(errno)) : still.Message();
+    ::unlink(temporary.c_str());
+    return Status::Error("cannot write " + path + " (" + why + ")");
   }
   return Status();
 }
@@ -646,14 +803,22 @@ Status SaddleVertexGraph::Load(
   const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
   const int k = options.K;
   Clear();
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  // (A FIFO or a device is never read: opened without blocking, then checked on the open
+  // descriptor, so that nothing put at the path meanwhile can block the read either.)
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
   {
-    return Status::Error("cannot open " + path);
+    return Status::Error(errno == ENOENT ? path + " does not exist"
+                                         : "cannot open " + path + " (" + std::strerror(errno) + ")");
   }
-  in.seekg(0, std::ios::end);
-  const std::int64_t fileSize = static_cast<std::int64_t>(in.tellg());
-  in.seekg(0, std::ios::beg);
+  struct stat st;
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+  {
+    ::close(fd);
+    return Status::Error(path + " is not a regular file");
+  }
+  FileReader in(fd);
+  const std::int64_t fileSize = static_cast<std::int64_t>(st.st_size);
   char magic[8] = {};
   std::uint64_t hash = 0;
   std::int32_t fileK = 0;
@@ -821,6 +986,117 @@ Status SaddleVertexGraph::Load(
   Accuracy = dgg ? fileAccuracy : 0.0;
   ReachedStencil = reachedStencil;
   Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;
+  return Status();
+}
+
+Status SaddleVertexGraph::Verify(const TriangleMesh& mesh) const
+{
+  const Status sameSize = CheckMesh(mesh);
+  if (!sameSize.Ok())
+  {
+    return sameSize;
+  }
+  const int nv = NumberOfVertices();
+  // Rounding allowance: relative to the length compared, and absolute at the mesh's scale.
+  const double slack = 1e-12 * mesh.BoundingBoxDiagonal();
+  auto below = [slack](double w, double bound) { return w < bound * (1.0 - 1e-9) - slack; };
+  auto differs = [slack](double w, double exact) {
+    return std::abs(w - exact) > 1e-9 * exact + slack;
+  };
+  auto describe = [this, &mesh](int node, std::int64_t e) {
+    const int u = Vertex(node), x = Vertex(Target(e));
+    return "the link from vertex " + std::to_string(u) + " to vertex " + std::to_string(x) +
+      " (weight " + std::to_string(Weight(e)) + ", straight distance " +
+      std::to_string(Norm(mesh.Position(u) - mesh.Position(x))) + ")";
+  };
+  // A saddle vertex graph links each vertex to the vertices whose shortest geodesic is direct:
+  // its weights are geodesic distances. A discrete geodesic graph may keep a direct geodesic
+  // that is longer than the shortest path (around the other side of a bump), and its stencils
+  // may hold another geodesic to the same vertex: its weights are only bounded from below.
+  const bool shortest = Construction == GraphConstruction::SaddleVertex;
+  // 1. Every link at least as long as the straight segment between its ends (no path on the
+  // surface is shorter); in a saddle vertex graph, equal to its entry in its target's polar
+  // stencil where it has one.
+  // 2. Every mesh edge a link whose weight is the edge's length (graphs keep every edge).
+  // The first failing node in node order (the same message for any thread count).
+  int firstBad = nv;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(min : firstBad)
+  for (int n = 0; n < nv; ++n)
+  {
+    const int u = Vertex(n);
+    for (std::int64_t e = Begin(n); e < End(n); ++e)
+    {
+      const int x = Vertex(Target(e));
+      const double chord = Norm(mesh.Position(u) - mesh.Position(x));
+      const int s = shortest ? LinkStencil[e] : -1;
+      if (below(Weight(e), chord) ||
+        (s >= 0 && differs(Weight(e), StencilDistance(StencilBegin(Target(e)) + s))))
+      {
+        firstBad = std::min(firstBad, n);
+      }
+    }
+    mesh.ForEachOutgoingHalfedge(u, [&](int h) {
+      const int x = Node(mesh.Destination(h));
+      const auto first = Targets.begin() + Begin(n), last = Targets.begin() + End(n);
+      const auto it = std::lower_bound(first, last, x);
+      if (it == last || *it != x || differs(Weights[it - Targets.begin()], mesh.EdgeLength(h)))
+      {
+        firstBad = std::min(firstBad, n);
+      }
+    });
+  }
+  if (firstBad < nv)
+  {
+    const int n = firstBad, u = Vertex(n);
+    for (std::int64_t e = Begin(n); e < End(n); ++e)
+    {
+      const int x = Vertex(Target(e));
+      if (below(Weight(e), Norm(mesh.Position(u) - mesh.Position(x))))
+      {
+        return Status::Error(describe(n, e) + " is shorter than the straight distance");
+      }
+      const int s = shortest ? LinkStencil[e] : -1;
+      if (s >= 0 && differs(Weight(e), StencilDistance(StencilBegin(Target(e)) + s)))
+      {
+        return Status::Error(describe(n, e) + " differs from its stencil entry");
+      }
+    }
+    return Status::Error("a mesh edge at vertex " + std::to_string(u) +
+      " is missing from the graph or has a weight other than its length");
+  }
+  // 3. Every link of a sample of vertices, spread over the surface (nodes are in spatial
+  // order), equal to the exact geodesic distance between its ends (a discrete geodesic graph's:
+  // at least that distance). The solves stop at the longest link (and at MaximumVerified
+  // vertices: longer links of a discrete geodesic graph go unchecked).
+  constexpr int Samples = 48;
+  constexpr int MaximumVerified = 4096;
+  ExactGeodesicSolver exact(mesh);
+  const int samples = std::min(nv, Samples);
+  for (int i = 0; i < samples; ++i)
+  {
+    const int n = static_cast<int>((static_cast<std::int64_t>(2 * i + 1) * nv) / (2 * samples));
+    double longest = 0.0;
+    for (std::int64_t e = Begin(n); e < End(n); ++e)
+    {
+      longest = std::max(longest, Weight(e));
+    }
+    ExactGeodesicOptions options;
+    options.MaximumDistance = longest * (1.0 + 1e-6) + slack;
+    options.MaximumFinalVertices = MaximumVerified;
+    if (!exact.Solve(Vertex(n), options).Ok())
+    {
+      continue;
+    }
+    for (std::int64_t e = Begin(n); e < End(n); ++e)
+    {
+      const double d = exact.Distance(Vertex(Target(e)));
+      if (std::isfinite(d) && (shortest ? differs(Weight(e), d) : below(Weight(e), d)))
+      {
+        return Status::Error(describe(n, e) + (shortest ? " differs from" : " is shorter than") +
+          " the exact geodesic distance " + std::to_string(d));
+      }
+    }
+  }
   return Status();
 }
 

@@ -211,7 +211,30 @@ public:
   // file only if it is intact (checksum), for the same mesh hash and K (clamped to the vertex
   // count, as Build does), and well-formed; otherwise it returns an error saying why and leaves
   // the graph empty. BuildSeconds() of a loaded graph is the original build's.
+  //
+  // Save never destroys what it does not own: it writes a temporary file beside `path` and
+  // renames it into place, so that an interrupted or failed write leaves the previous file
+  // whole and concurrent writers leave one writer's whole file, never a mixture; and it refuses
+  // (CheckCacheFileName) a path holding anything but one of these cache files. Load never opens
+  // what is not a regular file (the open of a FIFO would block).
+  //
+  // The checksum only detects accidental damage (anyone can recompute it): Verify checks a
+  // loaded graph against the mesh.
   Status Save(const std::string& path, std::uint64_t meshHash) const;
+  // Ok when `path` is free for a cache file: missing, or a regular file that starts as a graph
+  // cache file of this project does (any construction or format version); otherwise an error
+  // naming the file and saying it is left untouched.
+  static Status CheckCacheFileName(const std::string& path);
+  // What the mesh can check of a graph cheaply (a loaded cache file may be forged): the vertex
+  // count; every link at least the straight distance between its ends; every mesh edge a link
+  // weighing the edge's length; every link of 48 vertices spread over the surface at least the
+  // exact geodesic distance (up to the 4096 nearest vertices); and for a saddle vertex graph,
+  // whose links are shortest geodesics, those links equal to the exact distance and every link
+  // equal to its entry in its target's polar stencil (within 1e-9 relative). A discrete
+  // geodesic graph may keep direct geodesics longer than the shortest path: its weights are
+  // bounded from below only (a forged longer link makes distances longer, never shorter).
+  // O(links) plus 48 small exact solves. Ok, or an error naming the first link that fails.
+  Status Verify(const TriangleMesh& mesh) const;
   Status Load(const std::string& path, std::uint64_t meshHash, int k);
   // The same for any construction: a discrete geodesic graph's file (its own format) must have
   // been saved for exactly the same accuracy.

@@ -12,6 +12,7 @@
 #include "vtkSVGGeodesicDistance.h"
 
 #include "FilterTestSupport.h"
+#include "Hash.h"
 #include "vtkSaddleVertexGraphCache.h"
 
 #include <vtkAlgorithm.h>
@@ -391,10 +392,32 @@ void TestGraphCache()
     "loaded graph gives other distances");
   std::cout << test << ": loaded from the file in " << loaded.Seconds << " s\n";
 
-  // 4. A corrupt file: a warning, a rebuild, identical distances, the file rewritten.
+  // 4. A file that is not a cache: an error, the file untouched. A corrupt cache file (one
+  //    flipped byte): a warning, a rebuild, identical distances, the file rewritten.
+  std::string good;
+  {
+    std::ifstream in(file, std::ios::binary);
+    good.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string garbageText = "this is not a saddle vertex graph, just garbage 0123456789";
   {
     std::ofstream garbage(file, std::ios::binary | std::ios::trunc);
-    garbage << "this is not a saddle vertex graph, just garbage 0123456789";
+    garbage << garbageText;
+  }
+  ResetGraphCache();
+  const Run foreign = Solve(torus, lc, { 3 }, nullptr, 50, file);
+  {
+    std::ifstream in(file, std::ios::binary);
+    const std::string after((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Check(Mentions(foreign.Errors, "not a geodesic graph cache file") && foreign.Empty() &&
+        after == garbageText,
+      test, "a file that is not a cache: no error, or the file was changed");
+  }
+  {
+    std::string flipped = good;
+    flipped[good.size() / 2] ^= 0x10;
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << flipped;
   }
   ResetGraphCache();
   const Run corrupt = Solve(torus, lc, { 3 }, nullptr, 50, file);
@@ -441,7 +464,67 @@ void TestGraphCache()
   Check(unwritable.Origin() == "built" && Mentions(unwritable.Warnings, "save") &&
       MaxAbsoluteDifference(unwritable.Distances(), reference) == 0.0,
     test, "unwritable cache file");
+
+  // 7. A forged file (every weight halved, the checksum recomputed): it loads, fails the check
+  //    against the mesh, a warning and a rebuild with the right distances; the file rewritten.
+  ResetGraphCache();
+  Solve(torus, lc, { 3 }, nullptr, 50, file);
+  {
+    std::ifstream in(file, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    std::int64_t nv = 0, ne = 0;
+    std::memcpy(&nv, &bytes[28], 8);
+    std::memcpy(&ne, &bytes[36], 8);
+    const std::size_t weights = 44 + 8 * (nv + 1) + 4 * ne;
+    for (std::int64_t e = 0; e < ne; ++e)
+    {
+      double w;
+      std::memcpy(&w, &bytes[weights + 8 * e], 8);
+      w *= 0.5;
+      std::memcpy(&bytes[weights + 8 * e], &w, 8);
+    }
+    gs::Hasher sum;
+    sum.Add(bytes.data() + 8, bytes.size() - 16);
+    std::memcpy(&bytes[bytes.size() - 8], &sum.H, 8);
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  ResetGraphCache();
+  const Run forged = Solve(torus, lc, { 3 }, nullptr, 50, file);
+  Check(forged.Origin() == "built" && Mentions(forged.Warnings, "does not match the mesh") &&
+      MaxAbsoluteDifference(forged.Distances(), reference) == 0.0,
+    test, "forged cache file: origin " + forged.Origin());
+  ResetGraphCache();
+  Check(Solve(torus, lc, { 3 }, nullptr, 50, file).Origin() == "loaded", test,
+    "the forged file was not replaced by the rebuilt graph");
   std::remove(file.c_str());
+
+  // 8. A user's file at the cache path is never touched, whether the graph is in memory or
+  //    not: an error naming it before any work, an empty output.
+  const std::string users = TempDir + "/TestSVGGeodesicDistanceSolvers_users_mesh.ply";
+  const std::string content = "ply\nformat ascii 1.0\nelement vertex 0\nend_header\n";
+  {
+    std::ofstream out(users, std::ios::binary | std::ios::trunc);
+    out << content;
+  }
+  for (bool inMemory : { true, false })
+  {
+    ResetGraphCache();
+    if (inMemory)
+    {
+      Solve(torus, lc, { 3 }, nullptr, 50);
+    }
+    const Run refused = Solve(torus, lc, { 3 }, nullptr, 50, users);
+    std::ifstream in(users, std::ios::binary);
+    const std::string after((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Check(Mentions(refused.Errors, "CacheFileName") && Mentions(refused.Errors, users) &&
+        Mentions(refused.Errors, "left untouched") && refused.Empty(),
+      test, std::string("a user's file as CacheFileName (graph ") +
+        (inMemory ? "in memory" : "not in memory") + "): no error naming it");
+    Check(after == content, test, "a user's file at the cache path was changed");
+  }
+  std::remove(users.c_str());
 }
 
 //------------------------------------------------------------------------------
