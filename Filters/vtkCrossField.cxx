@@ -123,6 +123,24 @@ int vtkCrossField::Execute(vtkPolyData* input, vtkPointSet* singularities, vtkPo
   {
     return 1;
   }
+  {
+    // A field is smoothed across the edges that triangles share: with none (one triangle, a
+    // soup of separate triangles) there is nothing to solve, and the solve's system is empty.
+    const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+    bool shared = false;
+    for (int h = 0; h < mesh.NumberOfHalfedges() && !shared; ++h)
+    {
+      shared = !mesh.IsBoundaryHalfedge(h);
+    }
+    if (!shared)
+    {
+      vtkErrorMacro("Cross Field needs triangles that share edges: the input's "
+        << mesh.NumberOfFaces()
+        << " triangle(s) share none (a single triangle or separate triangles have no field to "
+           "smooth).");
+      return 1;
+    }
+  }
   if (!cache.Solver)
   {
     cache.Solver.reset(new gs::DirectionFieldSolver(cache.Mesh.Build.Mesh));

@@ -175,6 +175,14 @@ bool vtkGeodesicPolarCoordinates::CheckParameters()
                                        << ": 0 (Geodesic direction) or 1 (Iso-curve arc length).");
     return false;
   }
+  // (Radius first: a numpy caller's DecalSize defaults to twice the radius.)
+  if (!(this->Radius > 0.0))
+  {
+    vtkErrorMacro("Radius must be > 0 (0, negative or NaN is an error; infinity means the whole "
+                  "reachable surface); it is "
+      << this->Radius << ".");
+    return false;
+  }
   if (!(this->DecalSize > 0.0) || !std::isfinite(this->DecalSize))
   {
     vtkErrorMacro("DecalSize must be finite and > 0 (it is " << this->DecalSize << ").");

@@ -50,7 +50,7 @@
  * not equal to the first) are closed, with a warning.
  *
  * Errors (vtkErrorMacro, empty outputs and empty whole extents): no shape, unreadable / empty / all-transparent /
- * all-opaque images, AngleBins outside [1, 4096], DistanceSteps outside [1, 2^20],
+ * all-opaque images, AngleBins outside [1, 4096], DistanceSteps outside [1, 4096],
  * MaximumAspectRatio < 1, thresholds outside [0, 1], TextureSize outside [1, 8192].
  * Progress is reported and the computation can be aborted.
  *

@@ -140,6 +140,12 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
     vtkErrorMacro("ResultArrayName is empty.");
     return 1;
   }
+  if (!(this->MaximumDistance >= 0.0))
+  {
+    vtkErrorMacro("MaximumDistance must be at least 0 (0 or infinity: unlimited); it is "
+      << this->MaximumDistance << ".");
+    return 1;
+  }
   Run run;
 
   // 1. The core mesh, converted once while the input is unchanged.

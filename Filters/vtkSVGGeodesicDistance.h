@@ -120,7 +120,8 @@ public:
 
   ///@{
   /// Distances larger than this are not computed (NaN in the output). 0 (default): unlimited.
-  vtkSetClampMacro(MaximumDistance, double, 0.0, VTK_DOUBLE_MAX);
+  // (Not clamped: a negative or NaN value is an error when the filter runs, naming it.)
+  vtkSetMacro(MaximumDistance, double);
   vtkGetMacro(MaximumDistance, double);
   ///@}
 

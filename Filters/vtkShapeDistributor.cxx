@@ -560,10 +560,10 @@ bool vtkShapeDistributor::DrawShapes(
   // check drew them).
   const gs::ShapeDistributor& distributor = *cache.Distributor;
   const std::vector<gs::ShapeDecal> decalOf =
-    gs::DrawDecals(distributor, this->DecalTolerance, this->NumberOfThreads);
+    gs::DrawDecals(distributor, this->DecalTolerance, this->UsedThreads());
   run.Lap("Decals");
   const std::vector<std::vector<gs::OutlinePiece>> outlineOf =
-    gs::DrawOutlines(distributor, this->NumberOfThreads);
+    gs::DrawOutlines(distributor, this->UsedThreads());
   run.Lap("Outlines");
 
   // VerifyOverlaps: the drawn outlines checked against each other, independently of the tables.
@@ -571,7 +571,7 @@ bool vtkShapeDistributor::DrawShapes(
   if (this->VerifyOverlaps)
   {
     gs::OverlapCheckOptions check;
-    check.NumberOfThreads = this->NumberOfThreads;
+    check.NumberOfThreads = this->UsedThreads();
     const gs::Result<gs::OverlapCheckResult> found =
       gs::CheckOverlaps(distributor, outlineOf, check);
     if (!found.Ok())
@@ -591,13 +591,20 @@ bool vtkShapeDistributor::DrawShapes(
   }
 
   // Assembled in shape order, lifted off the surface.
-  const int threads = gs::ThreadCount(this->NumberOfThreads);
+  const int threads = gs::ThreadCount(this->UsedThreads());
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   const double lift = Lift * run.ShapeSize;
   WriteDecals(mesh, shapes, decalOf, lift, threads, decals);
   WriteOutlines(mesh, shapes, outlineOf, lift, threads, outlines);
   run.Lap("Assembly");
   return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkShapeDistributor::UsedThreads() const
+{
+  // (Capped: more threads than processors only cost memory, a chart engine each.)
+  return std::min(this->NumberOfThreads, gs::MaximumThreadCount());
 }
 
 //------------------------------------------------------------------------------
@@ -615,6 +622,42 @@ bool vtkShapeDistributor::CheckParameters()
     vtkErrorMacro(
       "K must be >= 0 (0: exact charts, without a saddle vertex graph); it is " << this->K << ".");
     return false;
+  }
+  if (this->MaximumShapes < 0)
+  {
+    vtkErrorMacro("MaximumShapes must be at least 0 (0: no limit); it is " << this->MaximumShapes
+                                                                          << ".");
+    return false;
+  }
+  if (this->MaximalFailures < 0)
+  {
+    vtkErrorMacro("MaximalFailures must be at least 0 (0: automatic); it is "
+      << this->MaximalFailures << ".");
+    return false;
+  }
+  if (this->NumberOfThreads < 0)
+  {
+    vtkErrorMacro("NumberOfThreads must be at least 0 (0: all cores); it is "
+      << this->NumberOfThreads << ".");
+    return false;
+  }
+  if (!(this->DistortionLimit >= 0.0))
+  {
+    vtkErrorMacro("DistortionLimit must be at least 0 (0: no limit); it is "
+      << this->DistortionLimit << ".");
+    return false;
+  }
+  if (!(this->HolonomyMargin >= 0.0) || this->HolonomyMargin > 100.0)
+  {
+    vtkErrorMacro("HolonomyMargin must be from 0 to 100; it is " << this->HolonomyMargin << ".");
+    return false;
+  }
+  if (this->NumberOfThreads > gs::MaximumThreadCount())
+  {
+    vtkWarningMacro("NumberOfThreads " << this->NumberOfThreads << " is more than the "
+                                       << gs::MaximumThreadCount() << " processors: "
+                                       << gs::MaximumThreadCount()
+                                       << " threads are used (the result does not depend on it).");
   }
   return true;
 }
@@ -755,6 +798,33 @@ bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache,
       }
     }
   }
+  // Faces whose vector is zero, not finite or normal to the surface give their shapes a random
+  // orientation (the distributor's rule): a few are normal (a field's singularities), all or
+  // most of them are a mistake the user should hear about.
+  int unusable = 0;
+  for (int f = 0; f < nf; ++f)
+  {
+    const gs::Vec3& d = directions[f];
+    const gs::Vec3 n = mesh.FaceNormal(f);
+    const gs::Vec3 t = d - n * gs::Dot(n, d);
+    unusable += !(gs::IsFinite(d) && gs::Norm(t) > 1e-12 * gs::Norm(d) && gs::Norm(t) > 0.0);
+  }
+  if (unusable == nf)
+  {
+    vtkErrorMacro("The DirectionArray \"" << directionName << "\" has no usable vector: all "
+                                          << nf
+                                          << " triangles get a zero, NaN or surface-normal "
+                                             "vector. Run Cross Field, or give tangent vectors.");
+    return false;
+  }
+  if (unusable > nf / 10)
+  {
+    vtkWarningMacro("The DirectionArray \"" << directionName << "\": " << unusable << " of " << nf
+                                            << " triangles ("
+                                            << static_cast<int>(100.0 * unusable / nf + 0.5)
+                                            << "%) get a zero, NaN or surface-normal vector: "
+                                               "shapes there get a random orientation.");
+  }
   return true;
 }
 
@@ -816,7 +886,7 @@ bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.MaximumShapes = this->MaximumShapes;
   options.MaximalFailures = this->MaximalFailures;
-  options.NumberOfThreads = this->NumberOfThreads;
+  options.NumberOfThreads = this->UsedThreads();
   options.Symmetry = run.Symmetry;
   options.DistortionLimit = this->DistortionLimit;
   options.HolonomyMargin = this->HolonomyMargin;

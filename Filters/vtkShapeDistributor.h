@@ -252,6 +252,8 @@ private:
   // Execute's steps (vtkShapeDistributor.cxx); each reports its own errors.
   struct Run; // one Execute's inputs, results and phase times
   bool CheckParameters();
+  // NumberOfThreads capped at the processors (0 stays 0: OpenMP's default).
+  int UsedThreads() const;
   bool ResolveShapeSize(const Cache& cache, Run& run);
   bool ReadDirections(vtkPolyData* input, const Cache& cache, Run& run);
   bool ReadDensity(const Cache& cache, Run& run);

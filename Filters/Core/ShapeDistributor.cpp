@@ -5,13 +5,24 @@
 
 #include "SaddleVertexGraph.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace gs
 {
 using namespace distribution;
+
+int MaximumThreadCount()
+{
+#ifdef _OPENMP
+  return std::max(1, omp_get_num_procs());
+#else
+  return 1;
+#endif
+}
 
 int ThreadCount(int requested)
 {
@@ -116,17 +127,29 @@ Status ShapeDistributor::Impl::CheckTablesAndOptions() const
     return Status::Error("unknown Mode " + std::to_string(static_cast<int>(Options.Mode)) +
       ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk)");
   }
-  if (Options.MaximumShapes < 0 || Options.MaximalFailures < 0 || Options.NumberOfThreads < 0 ||
-    Options.GreedyDirections < 1 || Options.GreedyDirections > 1024 ||
-    !(Options.SafetyMargin >= 0.0) || Options.SafetyMargin > 10.0 ||
-    !(Options.DistortionLimit >= 0.0) || !(Options.HolonomyMargin >= 0.0) ||
-    Options.HolonomyMargin > 100.0 || !(Options.FaithfulTolerance > 0.0) ||
-    Options.FaithfulTolerance > 1.0)
-  {
-    return Status::Error("invalid MaximumShapes, MaximalFailures, NumberOfThreads (>= 0), "
-                         "GreedyDirections (1..1024), SafetyMargin (0..10), DistortionLimit "
-                         "(>= 0), HolonomyMargin (0..100) or FaithfulTolerance (> 0, <= 1)");
-  }
+  // Each option on its own, with its value (the names are the options' own; the filter checks
+  // the ones it exposes first, under its property names).
+  auto outside = [](const char* name, double value, const char* range) {
+    std::ostringstream message;
+    message << name << " must be " << range << " (it is " << value << ")";
+    return Status::Error(message.str());
+  };
+  if (Options.MaximumShapes < 0)
+    return outside("MaximumShapes", Options.MaximumShapes, "at least 0 (0: no limit)");
+  if (Options.MaximalFailures < 0)
+    return outside("MaximalFailures", Options.MaximalFailures, "at least 0 (0: automatic)");
+  if (Options.NumberOfThreads < 0)
+    return outside("NumberOfThreads", Options.NumberOfThreads, "at least 0 (0: all cores)");
+  if (Options.GreedyDirections < 1 || Options.GreedyDirections > 1024)
+    return outside("GreedyDirections", Options.GreedyDirections, "from 1 to 1024");
+  if (!(Options.SafetyMargin >= 0.0) || Options.SafetyMargin > 10.0)
+    return outside("SafetyMargin", Options.SafetyMargin, "from 0 to 10");
+  if (!(Options.DistortionLimit >= 0.0))
+    return outside("DistortionLimit", Options.DistortionLimit, "at least 0 (0: no limit)");
+  if (!(Options.HolonomyMargin >= 0.0) || Options.HolonomyMargin > 100.0)
+    return outside("HolonomyMargin", Options.HolonomyMargin, "from 0 to 100");
+  if (!(Options.FaithfulTolerance > 0.0) || Options.FaithfulTolerance > 1.0)
+    return outside("FaithfulTolerance", Options.FaithfulTolerance, "above 0 and at most 1");
   return Status();
 }
 

@@ -78,8 +78,12 @@ enum class DistributionMode
 };
 
 /// The number of OpenMP threads that a NumberOfThreads of `requested` means: `requested` when
-/// > 0, otherwise OpenMP's default (1 without OpenMP).
+/// > 0, otherwise OpenMP's default (1 without OpenMP). Results do not depend on it. (The filter
+/// caps what users ask at MaximumThreadCount(): more threads than processors only cost memory,
+/// each holding its own chart engine; tests may ask more to exercise the thread split.)
 int ThreadCount(int requested);
+/// The processors OpenMP may use (1 without OpenMP).
+int MaximumThreadCount();
 
 struct ShapeDistributionOptions
 {

@@ -409,9 +409,23 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
   // 2. Faces; degenerate and duplicate triangles.
   m.Faces.resize(triangles.size());
   double scale = 0.0;
+  Vec3 lo = m.Positions.empty() ? Vec3() : m.Positions[0], hi = lo;
   for (const Vec3& p : m.Positions)
   {
     scale = std::max({ scale, std::abs(p.x), std::abs(p.y), std::abs(p.z) });
+    lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+    hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+  }
+  // Areas and squared lengths of a mesh much smaller than this underflow (at 1e-80 a solve is
+  // silently wrong, at 1e-200 every triangle has zero area): an error that says what to do,
+  // like the 1e100 bound above.
+  const double extent = std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
+  if (!m.Positions.empty() && extent < MinimumExtent)
+  {
+    std::ostringstream message;
+    message << "the mesh is too small for double precision (its largest bounding box side is "
+            << extent << ", below " << MinimumExtent << "): rescale the mesh";
+    return Status::Error(message.str());
   }
   for (std::size_t i = 0; i < triangles.size(); ++i)
   {

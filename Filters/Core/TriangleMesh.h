@@ -171,7 +171,10 @@ public:
   // coordinates are welded. Fails, with a message, on: no triangles, out-of-range indices,
   // non-finite coordinates of a referenced point, degenerate (repeated index or zero-area)
   // triangles, duplicate triangles, non-manifold edges or vertices, non-orientable components.
-  // Inconsistently oriented faces are flipped (a warning says how many).
+  // Inconsistently oriented faces are flipped (a warning says how many). Coordinates beyond
+  // 1e100 and meshes whose largest bounding box side is below MinimumExtent are refused (areas
+  // and squared lengths would overflow or underflow): "rescale the mesh".
+  static constexpr double MinimumExtent = 1e-50;
   static Result<MeshBuild> Build(
     const std::vector<Vec3>& points, const std::vector<std::array<long long, 3>>& triangles);
 };

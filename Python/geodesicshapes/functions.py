@@ -8,6 +8,7 @@ Python warnings (category ``GeodesicShapesWarning``).
 """
 import warnings
 
+import math
 import numpy
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -176,16 +177,26 @@ def polar_coordinates(mesh, source, radius, reference_direction=None, k=0, decal
     radius: how far (geodesic distance). reference_direction: the direction of angle 0 at the
         source (projected onto the surface; default the filter's). k: 0 exact geodesics (default),
         >= 1 the saddle vertex graph with that K. decal_size: side of the square that the decal
-        coordinates map to [0, 1]^2 (default 2 radius). angle_mode: "geodesic" (the direction of
+        coordinates map to [0, 1]^2 (default 2 radius; with an infinite radius, twice the mesh's
+        bounding box diagonal). angle_mode: "geodesic" (the direction of
         the geodesic at the source) or "arc-length" (proportional to arc length along each
         geodesic circle).
     Returns a PolarCoordinates.
     """
     f = vtkGeodesicPolarCoordinates()
-    f.SetInputData(as_polydata(mesh))
-    f.SetRadius(float(radius))
+    polydata = as_polydata(mesh)
+    f.SetInputData(polydata)
+    radius = float(radius)
+    f.SetRadius(radius)
     f.SetK(int(k))
-    f.SetDecalSize(float(decal_size) if decal_size is not None else 2.0 * float(radius))
+    if decal_size is None:
+        # Twice the radius (the decal's inscribed disc is the geodesic disc); a radius that is
+        # not finite (the whole surface, or an error the filter names) leaves the decal the
+        # whole mesh: twice its bounding box diagonal.
+        decal_size = 2.0 * radius
+        if not math.isfinite(decal_size):
+            decal_size = 2.0 * (polydata.GetLength() or 1.0)
+    f.SetDecalSize(float(decal_size))
     if reference_direction is not None:
         f.SetReferenceDirection(*[float(x) for x in reference_direction])
     if angle_mode == "geodesic":

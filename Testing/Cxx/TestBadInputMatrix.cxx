@@ -340,6 +340,9 @@ int main(int argc, char* argv[])
   cases.push_back({ "reference sphere", sphere, Expect::Works, "", 1.0 });
   cases.push_back({ "tiny (1e-12)", Scaled(sphere, 1e-12), Expect::Works, "", 1e-12 });
   cases.push_back({ "huge (1e12)", Scaled(sphere, 1e12), Expect::Works, "", 1e12 });
+  // Below what double precision can square (areas underflow): refused, "rescale the mesh".
+  cases.push_back({ "tiny (1e-80)", Scaled(sphere, 1e-80), Expect::Error, "rescale" });
+  cases.push_back({ "tiny (1e-200)", Scaled(sphere, 1e-200), Expect::Error, "rescale" });
   cases.push_back({ "64 components", ManyComponents(), Expect::Works, "" });
   cases.push_back({ "82 boundary loops", ManyHoles(), Expect::Works, "" });
   for (Case& c : cases)

@@ -133,6 +133,27 @@ int main()
     const Run r = Execute(f);
     Check(r.Empty && Mentions(r.Errors, "manifold"), "NonManifold", "no error");
   }
+  // A single triangle, and two separate triangles: no shared edge, no field to smooth (an error
+  // that says so, not a failed factorization).
+  for (int count : { 1, 2 })
+  {
+    vtkNew<vtkPolyData> mesh;
+    vtkNew<vtkPoints> p;
+    vtkNew<vtkCellArray> t;
+    for (int i = 0; i < count; ++i)
+    {
+      const vtkIdType ids[3] = { p->InsertNextPoint(3 * i, 0, 0), p->InsertNextPoint(3 * i + 1, 0, 0),
+        p->InsertNextPoint(3 * i, 1, 0) };
+      t->InsertNextCell(3, ids);
+    }
+    mesh->SetPoints(p);
+    mesh->SetPolys(t);
+    vtkNew<vtkCrossField> f;
+    f->SetInputData(mesh);
+    const Run r = Execute(f);
+    Check(r.Empty && Mentions(r.Errors, "share edges") && !Mentions(r.Errors, "factorization"),
+      "NoSharedEdge", "no clear error for " + std::to_string(count) + " separate triangle(s)");
+  }
   auto sphere = Sphere();
   // Bad parameters.
   {

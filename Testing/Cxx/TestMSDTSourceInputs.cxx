@@ -180,6 +180,9 @@ int main(int argc, char* argv[])
   source->SetAngleBins(32);
   source->SetDistanceSteps(0);
   expectError(source, "DistanceSteps 0");
+  // (Before any work: 2^20 steps would take minutes.)
+  source->SetDistanceSteps(1 << 20);
+  expectError(source, "DistanceSteps 2^20");
   source->SetDistanceSteps(40);
   source->SetMaximumAspectRatio(0.5);
   expectError(source, "MaximumAspectRatio 0.5");

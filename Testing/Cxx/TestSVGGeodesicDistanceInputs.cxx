@@ -395,6 +395,35 @@ void TestMaximumDistance()
   }
 }
 
+// MaximumDistance negative or NaN: an error naming it, an empty output; infinity: unlimited.
+void TestBadMaximumDistance()
+{
+  auto mesh = gs_test::UnitSquare(4, true);
+  for (double bad : { -1.0, std::numeric_limits<double>::quiet_NaN() })
+  {
+    for (int solver : AllSolvers)
+    {
+      const std::string test = "BadMaximumDistance[" + std::to_string(bad) + ", " +
+        vtkSVGGeodesicDistance::GetSolverName(solver) + "]";
+      const RunResult r = Run(mesh, { 0 }, nullptr, bad, solver);
+      bool named = false;
+      for (const std::string& e : r.Errors)
+      {
+        named = named || e.find("MaximumDistance must be at least 0") != std::string::npos;
+      }
+      Check(named && r.Output->GetNumberOfPoints() == 0, test, "no error naming MaximumDistance");
+    }
+  }
+  const RunResult unlimited = Run(mesh, { 0 }, nullptr, std::numeric_limits<double>::infinity());
+  vtkDoubleArray* d = unlimited.Distance();
+  bool finite = unlimited.Errors.empty() && d && d->GetNumberOfTuples() == 25;
+  for (vtkIdType i = 0; finite && i < d->GetNumberOfTuples(); ++i)
+  {
+    finite = std::isfinite(d->GetValue(i));
+  }
+  Check(finite, "BadMaximumDistance[inf]", "infinity is not unlimited");
+}
+
 void TestPrintSelf()
 {
   vtkNew<vtkSVGGeodesicDistance> filter;
@@ -460,6 +489,7 @@ int main()
   TestSourcePoints();
   TestEmptySourcePoints();
   TestMaximumDistance();
+  TestBadMaximumDistance();
   TestDisconnected();
   TestPrintSelf();
   if (Failures > 0)

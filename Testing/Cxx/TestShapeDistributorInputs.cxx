@@ -112,7 +112,9 @@ void ExpectError(Run& run, const std::string& test, const std::string& keyword)
 {
   run.Update();
   Check(!run.Messages->Errors.empty(), test, "no error reported");
-  Check(Mentions(run.Messages->Errors, keyword), test, "the error does not mention '" + keyword + "'");
+  Check(Mentions(run.Messages->Errors, keyword), test,
+    "the error does not mention '" + keyword + "'" +
+      (run.Messages->Errors.empty() ? std::string() : ": " + run.Messages->Errors[0]));
   Check(run.Empty(), test, "outputs should be empty");
 }
 } // namespace
@@ -252,6 +254,41 @@ int main(int, char*[])
     run.Filter->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Nope");
     ExpectError(run, "missing density", "DensityArray");
   }
+  // Directions that are all zero, all NaN or all normal to the plane: an error naming the array;
+  // a third of them zero: shapes, and a warning with the share.
+  for (double fill : { 0.0, std::numeric_limits<double>::quiet_NaN(), 1.0 })
+  {
+    auto mesh = Plane(6);
+    vtkNew<vtkDoubleArray> d;
+    d->SetName("Useless");
+    d->SetNumberOfComponents(3);
+    for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+    {
+      // (1.0: along the plane's normal, z.)
+      d->InsertNextTuple3(fill == 1.0 ? 0.0 : fill, fill == 1.0 ? 0.0 : fill, fill);
+    }
+    mesh->GetCellData()->AddArray(d);
+    Run run(mesh, tables);
+    run.Filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "Useless");
+    ExpectError(run, "unusable directions", "\"Useless\" has no usable vector");
+  }
+  {
+    auto mesh = Plane(6);
+    vtkNew<vtkDoubleArray> d;
+    d->SetName("Partly");
+    d->SetNumberOfComponents(3);
+    for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+    {
+      d->InsertNextTuple3(c % 3 == 0 ? 0.0 : 1.0, 0.0, 0.0);
+    }
+    mesh->GetCellData()->AddArray(d);
+    Run run(mesh, tables);
+    run.Filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "Partly");
+    run.Update();
+    Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() > 0 &&
+        Mentions(run.Messages->Warnings, "random orientation"),
+      "partly zero directions", "no shapes, or no warning");
+  }
   {
     auto mesh = Plane(4);
     vtkDataArray* f = mesh->GetPointData()->GetArray("Density");
@@ -367,6 +404,42 @@ int main(int, char*[])
     Run run(Plane(4), tables);
     run.Filter->SetK(-3);
     ExpectError(run, "negative K", "K");
+  }
+  // Each option out of range: an error naming the property and its value.
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetHolonomyMargin(250);
+    ExpectError(run, "HolonomyMargin 250", "HolonomyMargin must be from 0 to 100; it is 250");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetDistortionLimit(std::nan(""));
+    ExpectError(run, "DistortionLimit NaN", "DistortionLimit must be at least 0");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetMaximumShapes(-2);
+    ExpectError(run, "MaximumShapes -2", "MaximumShapes must be at least 0 (0: no limit); it is -2");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetNumberOfThreads(-1);
+    ExpectError(run, "NumberOfThreads -1", "NumberOfThreads must be at least 0");
+  }
+  // More threads than processors: capped, with a warning; the same shapes as one thread.
+  {
+    Run many(Plane(6), tables);
+    many.Filter->SetNumberOfThreads(1000);
+    many.Update();
+    Run one(Plane(6), tables);
+    one.Filter->SetNumberOfThreads(1);
+    one.Update();
+    Check(many.Messages->Errors.empty() && Mentions(many.Messages->Warnings, "NumberOfThreads 1000") &&
+        Mentions(many.Messages->Warnings, "processors"),
+      "NumberOfThreads 1000", "no warning about the cap");
+    Check(many.Out(0)->GetNumberOfPoints() > 0 &&
+        many.Out(0)->GetNumberOfPoints() == one.Out(0)->GetNumberOfPoints(),
+      "NumberOfThreads 1000", "not the shapes of one thread");
   }
   {
     Run run(Plane(8), tables);

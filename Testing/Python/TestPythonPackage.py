@@ -194,6 +194,36 @@ check(raises(ValueError, gs.as_polydata, (V, F + len(V))) is not None, "out-of-r
 check(raises(TypeError, gs.as_polydata, "mesh.ply") is not None, "a file name accepted as a mesh")
 check(raises(ValueError, gs.distribute_shapes, (V, F), star, directions=numpy.zeros((7, 3))) is not None,
       "wrong number of directions accepted")
+# Radius 0 or NaN names Radius (not DecalSize, which the caller never set); an infinite radius
+# is the whole surface.
+for bad_radius in (0.0, float("nan"), -1.0):
+    text = raises(gs.GeodesicShapesError, gs.polar_coordinates, (plane_v, plane_f), centre, bad_radius)
+    check(text is not None and "Radius must be > 0" in text and "DecalSize" not in text,
+          "polar_coordinates(radius=%r): %r" % (bad_radius, text))
+whole = gs.polar_coordinates((plane_v, plane_f), centre, float("inf"))
+check(numpy.isfinite(whole.rho).all() and numpy.allclose(whole.rho, euclid, atol=1e-9),
+      "polar_coordinates(radius=inf)")
+# MaximumDistance negative or NaN is an error naming it.
+for bad_limit in (-1.0, float("nan")):
+    text = raises(gs.GeodesicShapesError, gs.geodesic_distance, (plane_v, plane_f), 0,
+                  maximum_distance=bad_limit)
+    check(text is not None and "MaximumDistance" in text, "maximum_distance=%r: %r" % (bad_limit, text))
+# cache_file pointing at a user's file: an error naming it, the file untouched.
+import os
+import tempfile
+with tempfile.TemporaryDirectory() as folder:
+    users = os.path.join(folder, "my_mesh.ply")
+    with open(users, "w") as out:
+        out.write("ply\nformat ascii 1.0\nelement vertex 0\nend_header\n")
+    before = open(users, "rb").read()
+    text = raises(gs.GeodesicShapesError, gs.geodesic_distance, (plane_v, plane_f), 0,
+                  solver="svg", cache_file=users)
+    check(text is not None and users in text and "left untouched" in text, "cache_file on a user's file: %r" % text)
+    check(open(users, "rb").read() == before, "cache_file overwrote a user's file")
+    cache = os.path.join(folder, "plane.svgg")
+    first = gs.geodesic_distance((plane_v, plane_f), 0, solver="svg", cache_file=cache)
+    check(os.path.isfile(cache) and sorted(os.listdir(folder)) == ["my_mesh.ply", "plane.svgg"],
+          "cache_file: %r" % sorted(os.listdir(folder)))
 check(messages.GetOutput() == "", "messages reached the output window: %r" % messages.GetOutput()[:300])
 
 if failures:

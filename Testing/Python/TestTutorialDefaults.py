@@ -72,6 +72,23 @@ check(size_used is not None and abs(size_used.GetValue(0) - 0.04 * largest) < 1e
       "ShapeSizeUsed is not 4% of the largest side")
 check(n3 > 100, "the tutorial without ShapeSize placed %d shapes" % n3)
 
+# On inputs never updated (their bounds not known when the distributor is made), ShapeSize left
+# unset or given as 0 stays 0 (automatic: 4% of the largest side), never a negative size.
+for given in ({}, {"ShapeSize": 0.0}):
+    fresh_mesh = PLYReader(FileNames=[os.path.join(args.data, "bumpy_sphere.ply")])
+    fresh_field = CrossField(Input=fresh_mesh, Symmetry=1)
+    fresh_tables = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", "star.png")])
+    fresh = ShapeDistributor(Input=fresh_field, Table=fresh_tables, **given)
+    check(fresh.ShapeSize == 0.0, "ShapeSize as made on a fresh input (%r): %r" % (given, fresh.ShapeSize))
+    fresh.UpdatePipeline()
+    placed = fresh.GetClientSideObject().GetOutputDataObject(0)
+    used_size = placed.GetFieldData().GetArray("ShapeSizeUsed")
+    check(placed.GetNumberOfPoints() == n3 and used_size is not None
+          and abs(used_size.GetValue(0) - 0.04 * largest) < 1e-9 * largest,
+          "automatic size on a fresh input (%r): %d shapes, size %s"
+          % (given, placed.GetNumberOfPoints(), used_size.GetValue(0) if used_size else None))
+    Delete(fresh)
+
 # No direction anywhere: a clear error, no shapes.
 plain = PLYReader(FileNames=[os.path.join(args.data, "bumpy_sphere.ply")])
 bare = ShapeDistributor(Input=plain, Table=tables, ShapeSize=0.08)
