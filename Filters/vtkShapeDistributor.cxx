@@ -29,6 +29,7 @@
 #include <vtkStringArray.h>
 
 #include <algorithm>
+#include <iomanip>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -559,12 +560,24 @@ bool vtkShapeDistributor::DrawShapes(
   // Every shape's decal and outline, computed per shape in parallel (the outlines as the drawn
   // check drew them).
   const gs::ShapeDistributor& distributor = *cache.Distributor;
+  // (Abort is honoured between the drawing phases: each is proportional to the shapes placed,
+  // which the distributor bounded.)
   const std::vector<gs::ShapeDecal> decalOf =
     gs::DrawDecals(distributor, this->DecalTolerance, this->UsedThreads());
   run.Lap("Decals");
+  this->UpdateProgress(0.9);
+  if (this->CheckAbort())
+  {
+    return false;
+  }
   const std::vector<std::vector<gs::OutlinePiece>> outlineOf =
     gs::DrawOutlines(distributor, this->UsedThreads());
   run.Lap("Outlines");
+  this->UpdateProgress(0.93);
+  if (this->CheckAbort())
+  {
+    return false;
+  }
 
   // VerifyOverlaps: the drawn outlines checked against each other, independently of the tables.
   const std::vector<gs::PlacedShape>& shapes = run.Distribution.Shapes;
@@ -871,9 +884,15 @@ bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
   // the shapes by 1 / f^2.
   const double expected = gs::ShapeDistributor::ExpectedCount(
     distributor.Mesh(), run.Tables, run.Density, run.ShapeSize);
-  if (expected > 250000.0 && (this->MaximumShapes == 0 || this->MaximumShapes > 250000))
+  // (Not for counts the distributor refuses anyway: sizes below a 1e7th of an edge.)
+  if (expected > 250000.0 && run.ShapeSize * 1e7 >= distributor.Mesh().MeanEdgeLength() &&
+    (this->MaximumShapes == 0 || this->MaximumShapes > 250000))
   {
-    vtkWarningMacro("About " << static_cast<long long>(expected)
+    // (Printed as a number of 3 digits: a count beyond 2^63, from an absurd size, is refused by
+    // the distributor, but the warning comes first and must not overflow.)
+    std::ostringstream count;
+    count << std::setprecision(3) << expected;
+    vtkWarningMacro("About " << count.str()
                              << " shapes are expected (ShapeSize " << run.ShapeSize
                              << " times the density factors): the run may take minutes and "
                                 "gigabytes. A larger ShapeSize, density factors away from 0 or "

@@ -7,14 +7,43 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <thread>
 
 namespace gs
 {
 using namespace distribution;
 
+bool ShapeDistributor::Impl::Poll() const
+{
+  if (Aborting.load(std::memory_order_relaxed))
+  {
+    return true;
+  }
+  if (!Progress || std::this_thread::get_id() != Caller)
+  {
+    return false;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - LastPoll).count() < PollSeconds)
+  {
+    return false;
+  }
+  LastPoll = now;
+  if (!Progress(Reported))
+  {
+    Aborting.store(true, std::memory_order_relaxed);
+  }
+  return Aborting.load(std::memory_order_relaxed);
+}
+
 bool ShapeDistributor::Impl::RunRounds(
   int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
 {
+  Progress = progress;
+  Reported = 0.0;
+  Aborting.store(false);
+  Caller = std::this_thread::get_id();
+  LastPoll = std::chrono::steady_clock::now();
   RunState run;
   run.FailuresToStop = Options.MaximalFailures > 0 ? Options.MaximalFailures : 10000;
   const bool greedyMode = Options.Mode == DistributionMode::Greedy;
@@ -40,6 +69,10 @@ bool ShapeDistributor::Impl::RunRounds(
     }
     const int n = static_cast<int>(batch.size());
     lap(stats.GenerateSeconds);
+    if (Poll())
+    {
+      return false;
+    }
     stats.Candidates += n;
     long long charts = 0;
     double chartSeconds = 0.0;
@@ -55,6 +88,10 @@ bool ShapeDistributor::Impl::RunRounds(
       }
     }
     const std::vector<std::vector<int>> above = HigherPriorityNeighbours(batch, survivors, threads);
+    if (Poll())
+    {
+      return false;
+    }
     // (c) Waves: a survivor is decided once all its higher-priority neighbours are; it is then
     // checked against every accepted shape (those of this round included) and, if free, gets
     // its charts and is accepted. Candidates of one wave are never neighbours, so this is
@@ -78,6 +115,10 @@ bool ShapeDistributor::Impl::RunRounds(
     stats.Charts += charts;
     stats.ChartCpuSeconds += chartSeconds;
     lap(stats.CheckSeconds);
+    if (Poll())
+    {
+      return false; // (the round's decisions were cut short: nothing of it is kept)
+    }
     // (d) Priority order: consecutive failures and MaximumShapes may end the run inside the
     // round; shapes after that point are taken back.
     const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
@@ -114,10 +155,13 @@ bool ShapeDistributor::Impl::RunRounds(
       fraction = std::max(fraction, static_cast<double>(Accepted.size()) / Options.MaximumShapes);
     }
     run.Reported = std::max(run.Reported, std::min(0.99, fraction));
+    Reported = run.Reported;
     if (progress && !progress(run.Reported))
     {
+      Aborting.store(true);
       return false;
     }
+    LastPoll = std::chrono::steady_clock::now();
   }
   stats.ConsecutiveFailures = run.Consecutive;
   return true;
@@ -131,7 +175,10 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (int k = 0; k < static_cast<int>(front.size()); ++k)
   {
-    proposals[k] = Propose(front[k], round, k);
+    if (!Poll())
+    {
+      proposals[k] = Propose(front[k], round, k);
+    }
   }
   std::vector<Proposal> all;
   for (const auto& p : proposals)
@@ -149,7 +196,7 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
     for (int i = 0; i < n; ++i)
     {
       Random rng(Options.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-      batch[i].Valid =
+      batch[i].Valid = !Poll() &&
         MakeShape(all[i].Centre, all[i].Class, rng, batch[i].Shape, &all[i].Prefer, &scratch);
     }
   }
@@ -174,7 +221,7 @@ bool ShapeDistributor::Impl::DrawRandomBatch(
   return true;
 }
 
-void ShapeDistributor::Impl::CheapChecks(std::vector<Record>& batch, int threads) const
+void ShapeDistributor::Impl::CheapChecks(std::vector<Record>& batch, int threads)
 {
   const int n = static_cast<int>(batch.size());
 #pragma omp parallel num_threads(threads)
@@ -184,6 +231,11 @@ void ShapeDistributor::Impl::CheapChecks(std::vector<Record>& batch, int threads
     for (int i = 0; i < n; ++i)
     {
       Record& r = batch[i];
+      if (Poll())
+      {
+        r.Rejected = true;
+        continue;
+      }
       r.Rejected = !r.Valid || CheapConflict(r, scratch);
     }
   }
@@ -256,6 +308,10 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
   for (int i : survivors)
   {
     Record& r = batch[i];
+    if (Poll())
+    {
+      break;
+    }
     ComputeCharts(r, Engine0());
     ++charts;
     if (FullConflict(r, scratch) || DrawnConflict(r, scratch))
@@ -281,7 +337,7 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
   long long charts = 0;
   double chartSeconds = 0.0;
   std::vector<int> undecided = survivors, ready, waiting;
-  while (!undecided.empty())
+  while (!undecided.empty() && !Poll())
   {
     ready.clear();
     waiting.clear();
@@ -304,6 +360,11 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
       for (int k = 0; k < nr; ++k)
       {
         Record& r = batch[ready[k]];
+        if (Poll())
+        {
+          r.Rejected = true;
+          continue;
+        }
         bool recheck = false;
         for (int j : above[ready[k]])
         {

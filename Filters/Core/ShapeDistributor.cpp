@@ -112,9 +112,10 @@ Status ShapeDistributor::Impl::CheckTablesAndOptions() const
   }
   if (Options.ShapeSize * 1e7 < Mesh.MeanEdgeLength())
   {
-    return Status::Error("ShapeSize " + std::to_string(Options.ShapeSize) +
-      " is absurdly small for this mesh (mean edge length " +
-      std::to_string(Mesh.MeanEdgeLength()) + "): it would take more than 1e14 shapes");
+    std::ostringstream message;
+    message << "ShapeSize " << Options.ShapeSize << " is absurdly small for this mesh (mean edge "
+            << "length " << Mesh.MeanEdgeLength() << "): it would take more than 1e14 shapes";
+    return Status::Error(message.str());
   }
   if (Options.Symmetry != 1 && Options.Symmetry != 2 && Options.Symmetry != 4)
   {

@@ -26,11 +26,14 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <atomic>
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -206,6 +209,17 @@ struct ShapeDistributor::Impl
   std::vector<double> FaceWeight;  // area / f^2 (0: no density)
   std::vector<double> AllCdf;      // cumulative face weights of all faces (probes)
   double MaxFaceDensity = 1.0;
+  /// An error when the largest class at the largest density factor has a circumscribed disc
+  /// holding more area than the largest connected part of the surface (PrepareFaceWeights).
+  Status CheckShapeSizeAgainstSurface() const;
+  /// How many shapes a run may place (an upper estimate: ExpectedCount's disc packing, times
+  /// 3 for the tables' closer packing).
+  double EstimatedShapes() const;
+  /// An error when EstimatedShapes' memory exceeds 80% of the available memory (unless
+  /// MaximumShapes bounds it).
+  Status CheckMemory() const;
+  static constexpr double ShortShapeBytes = 40e3;
+  static constexpr double LongShapeBytes = 160e3;
   std::vector<char> Dead;          // faces where no candidate can fit any more
   int DeadSinceCdf = 0;            // faces killed since FaceCdf was built
   std::vector<double> KillRadius;  // per (part, class) (normalized): see CollectKills
@@ -405,13 +419,30 @@ struct ShapeDistributor::Impl
   /// The rounds of a prepared run, until MaximumShapes, MaximalFailures or no live face; false
   /// when aborted by `progress`.
   bool RunRounds(int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats);
+
+  // ---- Progress and abort inside a round (RunRounds) ---------------------------------------
+  // A round may hold thousands of candidates, each costing up to a fraction of a second: the
+  // caller's callback is polled from inside the rounds too, on the calling thread only (OpenMP's
+  // master thread; VTK's progress and abort belong to it), at most every PollSeconds; an abort
+  // sets Aborting, which every loop of the round tests to stop early.
+  std::function<bool(double)> Progress;
+  double Reported = 0.0; // the fraction last reported
+  // (Mutable: the const stages of a round poll too; the state is the abort request's, not the
+  // distribution's.)
+  mutable std::atomic<bool> Aborting{ false };
+  std::thread::id Caller;
+  mutable std::chrono::steady_clock::time_point LastPoll;
+  static constexpr double PollSeconds = 0.1;
+  /// True once the run is aborted; on the calling thread, first asks the callback when
+  /// PollSeconds have passed since the last time.
+  bool Poll() const;
   /// A Greedy round's candidates: the proposals of every front shape, nearest to the first
   /// shape first (kind 4 of Random).
   void DrawGreedyBatch(const std::vector<int>& front, int round, int threads, std::vector<Record>& batch) const;
   /// A random round's candidates (1 to 4096); false when no face is left alive.
   bool DrawRandomBatch(int round, bool seeding, RunState& run, std::vector<Record>& batch);
   /// (a) Rejects the candidates that conflict with accepted shapes in those shapes' charts.
-  void CheapChecks(std::vector<Record>& batch, int threads) const;
+  void CheapChecks(std::vector<Record>& batch, int threads);
   /// (b) Per survivor, the higher-priority survivors it may conflict with (parts closer in
   /// space than the sum of their circumradii).
   std::vector<std::vector<int>> HigherPriorityNeighbours(

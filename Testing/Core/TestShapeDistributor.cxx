@@ -395,12 +395,17 @@ TEST(ShapeDistributor, BadInputGetsClearErrors)
   ShapeDistributor mismatched(plane.Mesh, &otherGraph);
   r = mismatched.Run(t, plane.Directions, {}, o);
   EXPECT_NE(r.Message().find("another mesh"), std::string::npos) << r.Message();
-  // A shape larger than the mesh: at most one fits; a NaN direction gets a random orientation.
+  // A shape larger than the mesh: an error before any work, naming ShapeSize and the largest
+  // size that fits.
   o.ShapeSize = 5.0;
+  r = d.Run(t, plane.Directions, {}, o);
+  EXPECT_TRUE(gs_test::FailedWith(r, "makes shapes larger than the surface")) << r.Message();
+  EXPECT_NE(r.Message().find("Use a ShapeSize below"), std::string::npos) << r.Message();
+  // A NaN direction gets a random orientation.
+  o.ShapeSize = 0.2;
   std::vector<Vec3> nan(plane.Directions.size(), Vec3{ NAN, 0, 0 });
   r = d.Run(t, nan, {}, o);
   EXPECT_TRUE(r.Ok()) << r.Message();
-  EXPECT_LE(r->Shapes.size(), 1u);
   // Abort.
   o.ShapeSize = 0.05;
   r = d.Run(t, plane.Directions, {}, o, [](double) { return false; });

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <string>
@@ -378,11 +379,31 @@ int main(int, char*[])
       "automatic size", "ShapeSizeUsed = 4% of the largest side, shapes placed");
   }
   {
+    // Far larger than the mesh: an error before any work, naming ShapeSize.
     Run run(Plane(4), tables);
-    run.Filter->SetShapeSize(100.0); // far larger than the mesh: at most one shape
-    run.Update();
-    Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() <= 1, "huge size",
-      "at most one shape, no error");
+    run.Filter->SetShapeSize(100.0);
+    ExpectError(run, "huge size", "ShapeSize 100 makes shapes larger than the surface");
+  }
+  {
+    // A density factor of 1e6 makes shapes a million times larger: the same error, naming it.
+    auto mesh = Plane(4);
+    vtkDataArray* f = mesh->GetPointData()->GetArray("Density");
+    for (vtkIdType i = 0; i < f->GetNumberOfTuples(); ++i)
+    {
+      f->SetTuple1(i, 1e6);
+    }
+    Run run(mesh, tables);
+    run.Filter->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Density");
+    ExpectError(run, "huge density", "larger than the surface");
+  }
+  {
+    // Sizes so small the run would not fit in memory: refused before any work (the available
+    // memory set to 100 MB for the test).
+    setenv("GS_AVAILABLE_MEMORY", "1e8", 1);
+    Run run(Plane(4), tables);
+    run.Filter->SetShapeSize(1e-4);
+    ExpectError(run, "memory", "GB available");
+    unsetenv("GS_AVAILABLE_MEMORY");
   }
   {
     Run run(Plane(4), tables);
