@@ -560,20 +560,24 @@ bool vtkShapeDistributor::DrawShapes(
   // Every shape's decal and outline, computed per shape in parallel (the outlines as the drawn
   // check drew them).
   const gs::ShapeDistributor& distributor = *cache.Distributor;
-  // (Abort is honoured between the drawing phases: each is proportional to the shapes placed,
-  // which the distributor bounded.)
-  const std::vector<gs::ShapeDecal> decalOf =
-    gs::DrawDecals(distributor, this->DecalTolerance, this->UsedThreads());
+  // (Progress and abort inside each drawing phase too: they are proportional to the shapes
+  // placed, which may be many.)
+  auto phase = [this](double start, double span) {
+    return [this, start, span](double fraction) {
+      this->UpdateProgress(start + span * fraction);
+      return !this->CheckAbort();
+    };
+  };
+  const std::vector<gs::ShapeDecal> decalOf = gs::DrawDecals(
+    distributor, this->DecalTolerance, this->UsedThreads(), nullptr, phase(0.85, 0.05));
   run.Lap("Decals");
-  this->UpdateProgress(0.9);
   if (this->CheckAbort())
   {
     return false;
   }
   const std::vector<std::vector<gs::OutlinePiece>> outlineOf =
-    gs::DrawOutlines(distributor, this->UsedThreads());
+    gs::DrawOutlines(distributor, this->UsedThreads(), phase(0.9, 0.03));
   run.Lap("Outlines");
-  this->UpdateProgress(0.93);
   if (this->CheckAbort())
   {
     return false;
@@ -585,8 +589,13 @@ bool vtkShapeDistributor::DrawShapes(
   {
     gs::OverlapCheckOptions check;
     check.NumberOfThreads = this->UsedThreads();
+    check.Progress = phase(0.93, 0.04);
     const gs::Result<gs::OverlapCheckResult> found =
       gs::CheckOverlaps(distributor, outlineOf, check);
+    if (found.IsAborted())
+    {
+      return false;
+    }
     if (!found.Ok())
     {
       vtkErrorMacro("VerifyOverlaps: " << found.Message() << ".");

@@ -2,6 +2,7 @@
 
 #include "GeodesicPolarCoordinates.h"
 #include "GeodesicShooting.h"
+#include "PhasePoll.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
 
@@ -483,13 +484,14 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   // Which neighbours' outlines enter each shape (read in its frame, computed once).
   const double longest = mesh.LongestEdgeLength();
   std::vector<std::vector<int>> entering(n);
+  PhasePoll poll(options.Progress, n);
 #pragma omp parallel num_threads(threads)
   {
     std::unique_ptr<GeodesicPolarCoordinates> engine;
 #pragma omp for schedule(dynamic, 8)
     for (int a = 0; a < n; ++a)
     {
-      if (neighbours[a].empty())
+      if (neighbours[a].empty() || poll.Skip(a))
       {
         continue;
       }
@@ -517,6 +519,10 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
         }
       }
     }
+  }
+  if (poll.WasAborted())
+  {
+    return Status::Aborted();
   }
   long long examined = 0;
   for (int a = 0; a < n; ++a)

@@ -43,6 +43,9 @@ struct OverlapCheckOptions
   /// own drawn check read (ShapeDistributor::ClassPoint: the exact log maps it kept with
   /// DrawnCheck, the distributor's charts without).
   bool ExactCharts = true;
+  /// Optional: sees the fraction of shapes checked (from the calling thread, at most every
+  /// 0.1 s); returning false aborts the check (CheckOverlaps returns Status::Aborted()).
+  std::function<bool(double)> Progress;
 };
 
 struct OverlapCheckResult

@@ -1,6 +1,7 @@
 #include "SafeDistanceTable.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -107,13 +108,29 @@ int SafeDistanceTables::AngleBin(double alpha, int angleBins)
 
 namespace
 {
-// Area moments of a region bounded by oriented rings (Green's theorem), about `ref`.
+// Area moments of a region, about `ref`.
 struct Moments
 {
   double Area = 0, Cx = 0, Cy = 0, Sxx = 0, Syy = 0, Sxy = 0; // central second moments / area
 };
 
-Moments AreaMoments(const Shape2D& shape, const Vec2& ref)
+Moments EvenOddMoments(const Shape2D& shape, const Vec2& ref)
+{
+  const std::array<double, 6> i = shape.EvenOddIntegrals(ref);
+  Moments m;
+  m.Area = i[0];
+  if (!(m.Area > 0.0))
+    return m;
+  const double cx = i[1] / m.Area, cy = i[2] / m.Area;
+  m.Cx = cx + ref.x;
+  m.Cy = cy + ref.y;
+  m.Sxx = i[3] / m.Area - cx * cx;
+  m.Syy = i[4] / m.Area - cy * cy;
+  m.Sxy = i[5] / m.Area - cx * cy;
+  return m;
+}
+
+Moments GreenMoments(const Shape2D& shape, const Vec2& ref)
 {
   double a = 0, mx = 0, my = 0, ixx = 0, iyy = 0, ixy = 0;
   for (const auto& ring : shape.Rings)
@@ -142,6 +159,20 @@ Moments AreaMoments(const Shape2D& shape, const Vec2& ref)
   m.Sxy = ixy / (24.0 * m.Area) - cx * cy;
   return m;
 }
+
+// The region's moments under the even-odd rule: by Green's theorem over the oriented rings when
+// they bound it (outer rings counter-clockwise, holes clockwise: their signed area is the
+// filled area), else (rings that cross each other or themselves, repeated rings) by slabs.
+Moments AreaMoments(const Shape2D& shape, const Vec2& ref, double filledArea)
+{
+  const double signedArea = shape.Area();
+  if (!(std::abs(signedArea - filledArea) <= 1e-9 * filledArea))
+  {
+    return EvenOddMoments(shape, ref);
+  }
+  return GreenMoments(shape, ref);
+}
+
 
 // The boundary of the class region within the strip lo <= Dot(p - o, u) <= hi: the ring edges
 // clipped to the strip, plus the pieces of the cut lines inside the region (even-odd pairs of
@@ -315,9 +346,11 @@ Result<SafeDistanceTables> ComputeSafeDistanceParts(
         points.push_back(p);
       }
     }
-    if (points.size() < 3 || !(std::abs(shape.Area()) > 0.0))
+    const double filled = points.size() < 3 ? 0.0 : shape.FilledArea();
+    if (!(filled > 0.0))
     {
-      return Status::Error("shape '" + shapes[c].Name + "' is empty (no area)");
+      return Status::Error("shape '" + shapes[c].Name +
+        "' is empty: its rings enclose no area under the even-odd rule");
     }
     SafeDistanceClass cls;
     cls.Name = shapes[c].Name;
@@ -338,7 +371,8 @@ Result<SafeDistanceTables> ComputeSafeDistanceParts(
       cls.Outline.Rings.push_back(std::move(r));
     }
     // Principal axes of the area (Fig. 7: long shapes are cut across the major axis).
-    const Moments m = AreaMoments(cls.Outline, cls.Outline.Rings[0][0]);
+    const double scale2 = 1.0 / (tables.Scale * tables.Scale);
+    const Moments m = AreaMoments(cls.Outline, cls.Outline.Rings[0][0], filled * scale2);
     const double angle = 0.5 * std::atan2(2.0 * m.Sxy, m.Sxx - m.Syy);
     const Vec2 u{ std::cos(angle), std::sin(angle) }, v{ -u.y, u.x };
     const Vec2 o{ m.Cx, m.Cy };

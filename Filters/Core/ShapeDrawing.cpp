@@ -1,12 +1,15 @@
 #include "ShapeDrawing.h"
 
+#include "PhasePoll.h"
+
 #include <chrono>
 
 namespace gs
 {
 
+
 std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double tolerance,
-  int numberOfThreads, std::vector<double>* seconds)
+  int numberOfThreads, std::vector<double>* seconds, const std::function<bool(double)>& progress)
 {
   const int ns = static_cast<int>(distributor.Shapes().size());
   std::vector<ShapeDecal> decals(ns);
@@ -16,9 +19,14 @@ std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double t
   }
   const int threads = ThreadCount(numberOfThreads);
   (void)threads;
+  PhasePoll poll(progress, ns);
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (int s = 0; s < ns; ++s)
   {
+    if (poll.Skip(s))
+    {
+      continue;
+    }
     const auto start = std::chrono::steady_clock::now();
     decals[s] = distributor.Decal(s, tolerance);
     if (seconds)
@@ -31,17 +39,21 @@ std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double t
 }
 
 std::vector<std::vector<OutlinePiece>> DrawOutlines(
-  const ShapeDistributor& distributor, int numberOfThreads)
+  const ShapeDistributor& distributor, int numberOfThreads, const std::function<bool(double)>& progress)
 {
   const int ns = static_cast<int>(distributor.Shapes().size());
   std::vector<std::vector<OutlinePiece>> outlines(ns);
   const double spacing = distributor.OutlineSpacing();
   const int threads = ThreadCount(numberOfThreads);
   (void)threads;
+  PhasePoll poll(progress, ns);
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (int s = 0; s < ns; ++s)
   {
-    outlines[s] = distributor.Outline(s, spacing);
+    if (!poll.Skip(s))
+    {
+      outlines[s] = distributor.Outline(s, spacing);
+    }
   }
   return outlines;
 }

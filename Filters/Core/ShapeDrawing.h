@@ -10,6 +10,7 @@
 #include "Vector.h"
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace gs
@@ -17,14 +18,18 @@ namespace gs
 
 /// ShapeDistributor::Decal(s, tolerance) of every placed shape s, over `numberOfThreads` OpenMP
 /// threads (0: OpenMP's default; at most the run's NumberOfThreads). With `seconds` (may be
-/// null): each shape's wall time, for benchmarks.
+/// null): each shape's wall time, for benchmarks. `progress` (optional; PhasePoll.h) sees the
+/// fraction of shapes done from the calling thread, at most every 0.1 s; returning false skips
+/// the rest (an abort: the result is incomplete).
 std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double tolerance,
-  int numberOfThreads, std::vector<double>* seconds = nullptr);
+  int numberOfThreads, std::vector<double>* seconds = nullptr,
+  const std::function<bool(double)>& progress = {});
 
 /// ShapeDistributor::Outline(s, distributor.OutlineSpacing()) of every placed shape s (the
-/// outlines the drawn check drew), over `numberOfThreads` OpenMP threads (0: OpenMP's default).
-std::vector<std::vector<OutlinePiece>> DrawOutlines(
-  const ShapeDistributor& distributor, int numberOfThreads);
+/// outlines the drawn check drew), over `numberOfThreads` OpenMP threads (0: OpenMP's default);
+/// `progress` as for DrawDecals.
+std::vector<std::vector<OutlinePiece>> DrawOutlines(const ShapeDistributor& distributor,
+  int numberOfThreads, const std::function<bool(double)>& progress = {});
 
 /// A decal triangle's corner (barycentric coordinates `bary` in mesh face `face`) in space,
 /// `lift` (world units) along the face's normal.

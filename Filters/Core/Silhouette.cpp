@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -207,6 +208,119 @@ double Shape2D::Area() const
   return 0.5 * twice;
 }
 
+std::array<double, 6> Shape2D::EvenOddIntegrals(const Vec2& ref) const
+{
+  // Horizontal slabs between consecutive event heights (every vertex, every crossing of two
+  // edges): inside a slab no two edges cross, so the edges spanning it keep their order and
+  // the even-odd region is the union of the spans between crossings 0-1, 2-3, ... Across a span
+  // at height y the integrands (xr - xl, (xr^2 - xl^2) / 2, y (xr - xl), (xr^3 - xl^3) / 3,
+  // y^2 (xr - xl), y (xr^2 - xl^2) / 2) are cubic in y (xl, xr are linear): Simpson's rule
+  // over the slab is exact.
+  struct Edge
+  {
+    Vec2 A, B; // A.y < B.y
+  };
+  std::vector<Edge> edges;
+  std::vector<double> events;
+  for (const auto& ring : this->Rings)
+  {
+    for (std::size_t k = 0, n = ring.size(); k < n; ++k)
+    {
+      Vec2 a = ring[k] - ref, b = ring[(k + 1) % n] - ref;
+      events.push_back(a.y);
+      if (a.y == b.y)
+      {
+        continue; // (no crossing with a horizontal line inside a slab)
+      }
+      if (a.y > b.y)
+      {
+        std::swap(a, b);
+      }
+      edges.push_back({ a, b });
+    }
+  }
+  // Crossings of two edges: only pairs overlapping in height (edges sorted by their low end).
+  std::sort(edges.begin(), edges.end(), [](const Edge& e, const Edge& f) { return e.A.y < f.A.y; });
+  for (std::size_t i = 0; i < edges.size(); ++i)
+  {
+    const Edge& e = edges[i];
+    for (std::size_t j = i + 1; j < edges.size() && edges[j].A.y < e.B.y; ++j)
+    {
+      const Edge& f = edges[j];
+      const Vec2 d = e.B - e.A, g = f.B - f.A, w = f.A - e.A;
+      const double den = Cross(d, g);
+      if (den == 0.0)
+      {
+        continue;
+      }
+      const double t = Cross(w, g) / den, u = Cross(w, d) / den;
+      if (t > 0.0 && t < 1.0 && u > 0.0 && u < 1.0)
+      {
+        events.push_back(e.A.y + t * d.y);
+      }
+    }
+  }
+  std::sort(events.begin(), events.end());
+  events.erase(std::unique(events.begin(), events.end()), events.end());
+  std::array<double, 6> sum{};
+  std::vector<std::pair<double, const Edge*>> spanning;
+  auto xAt = [](const Edge& e, double y) {
+    return e.A.x + (y - e.A.y) * (e.B.x - e.A.x) / (e.B.y - e.A.y);
+  };
+  for (std::size_t k = 0; k + 1 < events.size(); ++k)
+  {
+    const double y0 = events[k], y1 = events[k + 1], ym = 0.5 * (y0 + y1), h = y1 - y0;
+    spanning.clear();
+    for (const Edge& e : edges)
+    {
+      if (e.A.y <= y0 && e.B.y >= y1)
+      {
+        spanning.emplace_back(xAt(e, ym), &e);
+      }
+      else if (e.A.y >= y1)
+      {
+        break; // (sorted by their low end)
+      }
+    }
+    std::sort(spanning.begin(), spanning.end(),
+      [](const std::pair<double, const Edge*>& a, const std::pair<double, const Edge*>& b) {
+        return a.first < b.first;
+      });
+    for (std::size_t m = 0; m + 1 < spanning.size(); m += 2)
+    {
+      const Edge& l = *spanning[m].second;
+      const Edge& r = *spanning[m + 1].second;
+      const double ys[3] = { y0, ym, y1 }, weights[3] = { h / 6.0, 4.0 * h / 6.0, h / 6.0 };
+      for (int q = 0; q < 3; ++q)
+      {
+        const double y = ys[q], xl = xAt(l, y), xr = xAt(r, y), len = xr - xl;
+        const double x2 = 0.5 * (xr * xr - xl * xl);
+        const double f[6] = { len, x2, y * len, (xr * xr * xr - xl * xl * xl) / 3.0, y * y * len,
+          y * x2 };
+        for (int c = 0; c < 6; ++c)
+        {
+          sum[c] += weights[q] * f[c];
+        }
+      }
+    }
+  }
+  return sum;
+}
+
+double Shape2D::FilledArea() const
+{
+  // (About a vertex of the shape: coordinates relative to it keep the integrals' rounding at
+  // the shape's own scale.)
+  for (const auto& ring : this->Rings)
+  {
+    if (!ring.empty())
+    {
+      return EvenOddIntegrals(ring[0])[0];
+    }
+  }
+  return 0.0;
+}
+
 namespace
 {
 bool RingContains(const std::vector<Vec2>& ring, const Vec2& p)
@@ -348,12 +462,9 @@ Shape2D ShapeFromPolygons(const std::vector<std::vector<Vec2>>& polygons)
     {
       ring.pop_back();
     }
-    double twice = 0.0;
-    for (std::size_t k = 0; k < ring.size(); ++k)
-    {
-      twice += Cross(ring[k], ring[(k + 1) % ring.size()]);
-    }
-    if (ring.size() >= 3 && twice != 0.0)
+    // (Every ring of 3 or more distinct vertices, whatever its signed area: a symmetric bow-tie
+    // has none but encloses two triangles under the even-odd rule.)
+    if (ring.size() >= 3)
     {
       shape.Rings.push_back(std::move(ring));
     }
@@ -379,7 +490,9 @@ Shape2D ShapeFromPolygons(const std::vector<std::vector<Vec2>>& polygons)
     {
       twice += Cross(ring[k], ring[(k + 1) % ring.size()]);
     }
-    if ((twice > 0.0) != (depth[i] % 2 == 0))
+    // (A self-intersecting ring has no orientation that puts its inside on the left: left as
+    // given when its signed area is 0; the even-odd rule decides what it encloses.)
+    if (twice != 0.0 && (twice > 0.0) != (depth[i] % 2 == 0))
     {
       std::reverse(ring.begin(), ring.end());
     }

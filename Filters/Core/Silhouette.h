@@ -9,6 +9,7 @@
 #include "Status.h"
 #include "Vector.h"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -83,8 +84,15 @@ struct Shape2D
   std::vector<std::vector<Vec2>> Rings;
 
   std::size_t NumberOfEdges() const;
-  /// Signed area (positive for correctly oriented rings).
+  /// Signed area (positive for correctly oriented rings; for rings that cross each other or
+  /// themselves, not the even-odd area: see FilledArea).
   double Area() const;
+  /// The area enclosed under the even-odd rule, whatever the rings' orientation, crossings or
+  /// repetitions (two identical rings enclose nothing).
+  double FilledArea() const;
+  /// Exact integrals over the even-odd region of 1, x, y, x^2, y^2 and xy, in coordinates
+  /// relative to `ref` (horizontal slabs between vertices and edge crossings; O(E^2) at worst).
+  std::array<double, 6> EvenOddIntegrals(const Vec2& ref) const;
   /// Even-odd point-in-region test (points on the boundary may go either way).
   bool Contains(const Vec2& p) const;
 };
@@ -93,9 +101,10 @@ struct Shape2D
 /// with collinear runs of pixel edges merged. Pixels touching only at a corner are joined.
 Shape2D ShapeFromMask(const SilhouetteMask& mask);
 
-/// A region from arbitrary closed polygons (even-odd rule, any orientation): drops repeated
-/// consecutive vertices and rings with fewer than 3 distinct vertices, then orients each ring
-/// by its nesting depth (even depth counter-clockwise, odd depth clockwise).
+/// A region from arbitrary closed polygons (even-odd rule, any orientation, crossings allowed):
+/// drops repeated consecutive vertices and rings with fewer than 3 distinct vertices, then
+/// orients each ring by its nesting depth (even depth counter-clockwise, odd depth clockwise;
+/// a ring whose signed area is 0, such as a symmetric bow-tie, as given).
 Shape2D ShapeFromPolygons(const std::vector<std::vector<Vec2>>& polygons);
 
 /// Rasterizes a region into a mask: a pixel is inside when its centre is. `origin` is the

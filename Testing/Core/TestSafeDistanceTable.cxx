@@ -438,6 +438,52 @@ TEST(SafeDistanceTable, PolygonsWithHolesAndOrientation)
   EXPECT_EQ(CountOverlaps(T, 1, 1, Bn, Bn, 5000, 7), 0);
 }
 
+TEST(SafeDistanceTable, PolygonsFollowTheEvenOddRule)
+{
+  // The filled (even-odd) area against pixel counts of the same region: random masks' exact
+  // contours (no crossings: equal to the signed area).
+  {
+    std::mt19937 random(3);
+    SilhouetteMask m;
+    m.Width = 40;
+    m.Height = 30;
+    m.Inside.resize(40 * 30);
+    for (auto& v : m.Inside)
+      v = random() % 3 == 0;
+    const Shape2D shape = ShapeFromMask(m);
+    EXPECT_NEAR(shape.FilledArea(), static_cast<double>(m.Count()), 1e-9);
+  }
+  // A symmetric bow-tie (signed area 0): two triangles of area 1 each, accepted.
+  const Shape2D bowTie = ShapeFromPolygons({ { { -1, -1 }, { 1, 1 }, { 1, -1 }, { -1, 1 } } });
+  ASSERT_EQ(bowTie.Rings.size(), 1u);
+  EXPECT_NEAR(bowTie.Area(), 0.0, 1e-12);
+  EXPECT_NEAR(bowTie.FilledArea(), 2.0, 1e-12);
+  EXPECT_TRUE(bowTie.Contains({ 0.8, 0.1 }));
+  EXPECT_FALSE(bowTie.Contains({ 0.1, 0.8 }));
+  // Two identical rings enclose nothing; two overlapping squares (area 4 each, overlapping in
+  // a unit square) enclose their symmetric difference, 4 + 4 - 2.
+  const std::vector<Vec2> square = { { 0, 0 }, { 2, 0 }, { 2, 2 }, { 0, 2 } };
+  EXPECT_NEAR(ShapeFromPolygons({ square, square }).FilledArea(), 0.0, 1e-12);
+  const std::vector<Vec2> shifted = { { 1, 1 }, { 3, 1 }, { 3, 3 }, { 1, 3 } };
+  EXPECT_NEAR(ShapeFromPolygons({ square, shifted }).FilledArea(), 4.0 + 4.0 - 2.0, 1e-12);
+  // The tables: the bow-tie is a shape (its table that of two triangles: zero at the pinch
+  // is never reached, and the table is not that of the empty set), the repeated ring an error.
+  const Result<SafeDistanceTables> tie = ComputeSafeDistanceTables({ { "bow-tie", bowTie } });
+  ASSERT_TRUE(tie.Ok()) << tie.Message();
+  EXPECT_GT(tie->Value(0, 0, 0, 0), 0.5);
+  const Result<SafeDistanceTables> twice =
+    ComputeSafeDistanceTables({ { "twice", ShapeFromPolygons({ square, square }) } });
+  EXPECT_TRUE(gs_test::FailedWith(twice, "no area under the even-odd rule"));
+  // An asymmetric bow-tie: one lobe 4 times the other's area; its principal axis along the
+  // lobes (x), which the signed area would have mixed up (lobes of opposite signs).
+  const Shape2D lopsided = ShapeFromPolygons({ { { -2, -2 }, { 1, 1 }, { 1, -1 }, { -2, 2 } } });
+  EXPECT_NEAR(lopsided.FilledArea(), 4.0 + 1.0, 1e-12);
+  const std::array<double, 6> i = lopsided.EvenOddIntegrals({ 0, 0 });
+  // Centroid: (4 * (-4/3) + 1 * (2/3)) / 5 = -0.933...
+  EXPECT_NEAR(i[1] / i[0], (4.0 * (-4.0 / 3.0) + 1.0 * (2.0 / 3.0)) / 5.0, 1e-12);
+  EXPECT_NEAR(i[2] / i[0], 0.0, 1e-12);
+}
+
 TEST(SafeDistanceTable, LongShapesAreSplitAlongTheirMajorAxis)
 {
   // An ellipse 5:1 whose major axis is at 30 degrees: 3 parts of aspect 5/3 <= 2.

@@ -324,7 +324,7 @@ int main(int argc, char* argv[])
     flatPolygon->SetPolys(flatCells);
     guarded->SetPolygonsData(flatPolygon);
     CHECK(Run(guarded) >= 1);
-    CHECK(LastError.find("shape 'polygon cell 0' is empty (no area)") != std::string::npos);
+    CHECK(LastError.find("shape 'polygon cell 0' is empty: its rings enclose no area under the even-odd rule") != std::string::npos);
     flatPoints->SetPoint(2, std::nan(""), 1, 0);
     flatPoints->Modified();
     CHECK(Run(guarded) >= 1);
