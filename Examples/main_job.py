@@ -30,7 +30,8 @@ from paraview.vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 shapes_dir = os.path.join(root, "Data", "shapes")
-parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+# (The first paragraph of the docstring, whole: its first line alone stops mid-sentence.)
+parser = argparse.ArgumentParser(description=" ".join(__doc__.split("\n\n")[0].split()))
 parser.add_argument("--plugin", default=os.path.join(
     root, "build", "lib", "paraview-5.11", "plugins", "GeodesicShapes", "GeodesicShapes.so"))
 parser.add_argument("--mesh", default=os.path.join(root, "Data", "bumpy_sphere.ply"),
