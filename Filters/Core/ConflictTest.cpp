@@ -397,6 +397,10 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
   const double radiusC = Tables.Classes[c.Shape.ClassId].Radius * unitC;
   for (int x : scratch)
   {
+    if (Poll())
+    {
+      return true; // (aborted: the round is dropped, whatever this says)
+    }
     const Record& X = Accepted[x];
     const double unitX = Options.ShapeSize * X.Shape.Scale;
     const double radiusX = Tables.Classes[X.Shape.ClassId].Radius * unitX;

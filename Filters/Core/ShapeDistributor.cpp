@@ -243,7 +243,11 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
   I.EnsureEngines(threads);
   result.Statistics.PrepareSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!I.RunRounds(threads, progress, result.Statistics))
+  const bool finished = I.RunRounds(threads, progress, result.Statistics);
+  // (The polling belongs to this run: later queries, e.g. ProbeFitFraction, never see it.)
+  I.Progress = nullptr;
+  I.Aborting.store(false);
+  if (!finished)
   {
     I.Accepted.clear();
     I.Placed.clear();
