@@ -88,6 +88,52 @@ struct vtkShapeDistributor::Run
 
 namespace
 {
+// A warning naming the check that rejected most candidates, with the advice that fits.
+void WarnAboutRejections(
+  vtkShapeDistributor* self, const gs::ShapeDistributionStatistics& st, std::size_t placed)
+{
+  // Of the candidates the tables let through (placed, or rejected by a later check), a check
+  // that rejects most is worth a word: the user sees few shapes and no reason otherwise.
+  const double passed = static_cast<double>(placed) +
+    static_cast<double>(st.RejectedByFaithfulCheck + st.RejectedByDrawnCheck);
+  auto share = [](double part, double whole) {
+    return static_cast<int>(100.0 * part / whole + 0.5);
+  };
+  if (passed >= 50 && st.RejectedByFaithfulCheck > 0.5 * passed)
+  {
+    vtkWarningWithObjectMacro(self, "FaithfulCheck rejected "
+      << st.RejectedByFaithfulCheck << " of the " << static_cast<long long>(passed)
+      << " candidates the safe distance tables accepted ("
+      << share(st.RejectedByFaithfulCheck, passed) << "%; " << placed
+      << " placed): the shapes' maps are not one-to-one over their silhouettes on this "
+         "surface, either because the shapes are too large for its curvature (wrapping round a "
+         "tube or a bump) or too small for its roughness (a few noisy triangles across). Another "
+         "ShapeSize or a smoother mesh place more; FaithfulCheck off places more too, but decals "
+         "may then not draw the outlines that were checked.");
+  }
+  if (passed >= 50 && st.RejectedByDrawnCheck > 0.5 * passed)
+  {
+    vtkWarningWithObjectMacro(self, "The drawn check (DrawnCheck) rejected "
+      << st.RejectedByDrawnCheck << " of the " << static_cast<long long>(passed)
+      << " candidates the safe distance tables accepted ("
+      << share(st.RejectedByDrawnCheck, passed) << "%; " << placed
+      << " placed): their outlines as drawn on this surface overlap where the tables say they "
+         "do not. A larger HolonomyMargin makes the tables keep such shapes apart sooner "
+         "(fewer wasted candidates); larger shapes or a smoother mesh reduce the difference.");
+  }
+  const double all = static_cast<double>(st.Candidates);
+  if (all >= 100 && st.RejectedWithoutShape > 0.5 * all)
+  {
+    vtkWarningWithObjectMacro(self, "" << st.RejectedWithoutShape << " of the " << st.Candidates
+                       << " candidates (" << share(st.RejectedWithoutShape, all)
+                       << "%) could not be laid on the surface: a long shape's streamline or a "
+                          "part left the surface (a boundary, a singularity of the field) or "
+                          "KeepInside kept it off. Shorter shapes (MSDT Source's "
+                          "MaximumAspectRatio splits them), a field with fewer singularities, "
+                          "or KeepInside off place more.");
+  }
+}
+
 // ShapeSize 0 (the proxy's default before the GUI proposes a value): this fraction of the
 // input's largest bounding-box side.
 constexpr double AutomaticShapeSize = 0.04;
@@ -149,6 +195,12 @@ void WritePlacements(const gs::ShapeDistribution& result, vtkIdType firstPolygon
   };
   single("NumberOfCandidates", static_cast<double>(result.Statistics.Candidates));
   single("NumberOfCharts", static_cast<double>(result.Statistics.Charts));
+  // What rejected the candidates that were not placed (ShapeDistributionStatistics).
+  single("CandidatesWithoutShape", static_cast<double>(result.Statistics.RejectedWithoutShape));
+  single("CandidatesRejectedByTables", static_cast<double>(result.Statistics.RejectedByTables));
+  single("CandidatesRejectedByFaithfulCheck",
+    static_cast<double>(result.Statistics.RejectedByFaithfulCheck));
+  single("CandidatesRejectedByDrawnCheck", static_cast<double>(result.Statistics.RejectedByDrawnCheck));
   single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
   single("Seconds", result.Statistics.Seconds);
   single("ShapeSizeUsed", shapeSize);
@@ -941,5 +993,7 @@ bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
   run.Phases.emplace_back("Candidates", st.GenerateSeconds);
   run.Phases.emplace_back("ChecksAndCharts", st.CheckSeconds);
   run.Phases.emplace_back("Rounds", st.RoundSeconds);
+  WarnAboutRejections(this, st, run.Distribution.Shapes.size());
   return true;
 }
+

@@ -22,7 +22,9 @@
  * Output port 0 ("Placements"): one vertex per shape at its centre; point arrays ClassId,
  * Scale, Direction (the shape's +x axis), Normal, FaceId (input cell). Field data:
  * NumberOfCandidates, NumberOfCharts, Maximal (1 when ended by the failure count), Seconds,
- * DirectionArrayUsed, PhaseSeconds;
+ * CandidatesWithoutShape, CandidatesRejectedByTables, CandidatesRejectedByFaithfulCheck,
+ * CandidatesRejectedByDrawnCheck (a warning names a check that rejects most of the candidates
+ * the tables accepted), DirectionArrayUsed, PhaseSeconds;
  * with VerifyOverlaps, the point array Overlaps and field data OverlappingPairs and
  * OverlapCheckSeconds.
  * Output port 1 ("Decals"): per shape, copies of the triangles it covers with texture

@@ -404,10 +404,13 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
       const SurfacePoint centre = RandomPoint(rng);
       // A class that certainly cannot fit in this face, or (long classes, whose shapes cost a
       // streamline) at this centre: no need to build the shape.
-      batch[i].Valid = !DeadForClass(cls, centre.Face) &&
-        !(Tables.Classes[cls].Parts.size() > 1 &&
-          CentreCovered(centre, cls, DensityAt(centre), scratch)) &&
-        MakeShape(centre, cls, rng, batch[i].Shape, nullptr, &scratch);
+      const bool covered = DeadForClass(cls, centre.Face) ||
+        (Tables.Classes[cls].Parts.size() > 1 &&
+          CentreCovered(centre, cls, DensityAt(centre), scratch));
+      batch[i].Valid = !covered && MakeShape(centre, cls, rng, batch[i].Shape, nullptr, &scratch);
+      batch[i].Reason = batch[i].Valid ? Record::Rejection::None
+        : covered                      ? Record::Rejection::Tables
+                                       : Record::Rejection::WithoutShape;
     }
   }
 }

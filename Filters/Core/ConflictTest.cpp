@@ -372,8 +372,11 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
   const bool isLong = !c.Shape.Curve.empty();
   if (isLong && Unfaithful(c)) // (a short shape: after its neighbours', through its exact map)
   {
+    c.Reason = Record::Rejection::Faithful;
     return true;
   }
+  // (What rejects it from here on, but for the last test: the drawn check.)
+  c.Reason = Record::Rejection::Drawn;
   DrawOutline(c);
   const bool shortC = c.Shape.Curve.empty() && !c.Charts.empty() && !c.Charts[0].Entries.empty();
   if (shortC && !PrepareExactMap(c))
@@ -460,7 +463,8 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
       return true;
     }
   }
-  return Unfaithful(c);
+  c.Reason = Unfaithful(c) ? Record::Rejection::Faithful : Record::Rejection::None;
+  return c.Reason != Record::Rejection::None;
 }
 
 } // namespace gs

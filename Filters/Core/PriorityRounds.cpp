@@ -119,6 +119,31 @@ bool ShapeDistributor::Impl::RunRounds(
     {
       return false; // (the round's decisions were cut short: nothing of it is kept)
     }
+    for (int i = 0; i < n; ++i)
+    {
+      if (state[i] == 1)
+      {
+        continue;
+      }
+      switch (batch[i].Reason)
+      {
+        case Record::Rejection::WithoutShape:
+          ++stats.RejectedWithoutShape;
+          break;
+        case Record::Rejection::Tables:
+          ++stats.RejectedByTables;
+          break;
+        case Record::Rejection::Faithful:
+          ++stats.RejectedByFaithfulCheck;
+          break;
+        case Record::Rejection::Drawn:
+          ++stats.RejectedByDrawnCheck;
+          break;
+        case Record::Rejection::None:
+        default:
+          break;
+      }
+    }
     // (d) Priority order: consecutive failures and MaximumShapes may end the run inside the
     // round; shapes after that point are taken back.
     const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
@@ -198,6 +223,7 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
       Random rng(Options.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
       batch[i].Valid = !Poll() &&
         MakeShape(all[i].Centre, all[i].Class, rng, batch[i].Shape, &all[i].Prefer, &scratch);
+      batch[i].Reason = batch[i].Valid ? Record::Rejection::None : Record::Rejection::WithoutShape;
     }
   }
 }
@@ -237,6 +263,10 @@ void ShapeDistributor::Impl::CheapChecks(std::vector<Record>& batch, int threads
         continue;
       }
       r.Rejected = !r.Valid || CheapConflict(r, scratch);
+      if (r.Valid && r.Rejected)
+      {
+        r.Reason = Record::Rejection::Tables;
+      }
     }
   }
 }
@@ -314,7 +344,13 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
     }
     ComputeCharts(r, Engine0());
     ++charts;
-    if (FullConflict(r, scratch) || DrawnConflict(r, scratch))
+    if (FullConflict(r, scratch))
+    {
+      r.Reason = Record::Rejection::Tables;
+      state[i] = 2;
+      continue;
+    }
+    if (DrawnConflict(r, scratch))
     {
       state[i] = 2;
       continue;
@@ -373,18 +409,24 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
         if (recheck && CheapConflict(r, scratch))
         {
           r.Rejected = true;
+          r.Reason = Record::Rejection::Tables;
           continue;
         }
         if (!r.Shape.Curve.empty() && Unfaithful(r)) // (a long shape: before its charts)
         {
           r.Rejected = true;
+          r.Reason = Record::Rejection::Faithful;
           continue;
         }
         const auto chartStart = std::chrono::steady_clock::now();
         ComputeCharts(r, Engine());
         chartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
         ++charts;
-        if (FullConflict(r, scratch) || DrawnConflict(r, scratch))
+        if (FullConflict(r, scratch))
+        {
+          r.Reason = Record::Rejection::Tables;
+        }
+        if (r.Reason == Record::Rejection::Tables || DrawnConflict(r, scratch))
         {
           r.Rejected = true;
           r.Charts.clear();

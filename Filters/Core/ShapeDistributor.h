@@ -177,6 +177,14 @@ struct ShapeDistributionStatistics
   double GenerateSeconds = 0.0, CheckSeconds = 0.0, RoundSeconds = 0.0;
   double ChartCpuSeconds = 0.0; ///< summed over threads: computing polar charts
   double PrepareSeconds = 0.0;  ///< checks, sampling weights, per-thread geodesic engines
+  /// Candidates by what rejected them (with the shapes placed, and those taken back past the
+  /// end of the last round, they make up Candidates): no shape could be laid at the centre
+  /// drawn (a long shape's streamline or a part leaving the surface, KeepInside); the safe
+  /// distance tables (against placed shapes, masked faces or a higher-priority candidate);
+  /// FaithfulCheck (the shape's map not one-to-one over its silhouette); the drawn check (the
+  /// outlines as drawn overlap). The same for any thread count.
+  long long RejectedWithoutShape = 0, RejectedByTables = 0, RejectedByFaithfulCheck = 0,
+            RejectedByDrawnCheck = 0;
 };
 
 /// What a Run placed.

@@ -168,6 +168,16 @@ struct ShapeDistributor::Impl
     std::vector<Chart> Charts; // one per part (empty before the chart step)
     bool Valid = false;
     bool Rejected = false;
+    // What rejected it (ShapeDistributionStatistics' counts).
+    enum class Rejection : unsigned char
+    {
+      None,
+      WithoutShape,
+      Tables,
+      Faithful,
+      Drawn
+    };
+    Rejection Reason = Rejection::None;
     // Prepared in parallel for the commit (see PrepareCommit).
     bool Prepared = false;
     std::vector<int> Cover, Centres;

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <cmath>
 #include <map>
 
@@ -168,6 +170,7 @@ TEST(ShapeDistributor, SameResultForAnyThreadCount)
   for (DistributionMode mode : { DistributionMode::Random, DistributionMode::Greedy })
   {
     std::vector<std::vector<PlacedShape>> results;
+    std::vector<std::array<long long, 5>> counts; // candidates and what rejected them
     for (int threads : { 1, 2, 3 })
     {
       ShapeDistributionOptions o;
@@ -177,8 +180,19 @@ TEST(ShapeDistributor, SameResultForAnyThreadCount)
       o.NumberOfThreads = threads;
       o.MaximalFailures = 2000;
       ShapeDistributor d(plane.Mesh);
-      results.push_back(Distribute(d, plane, t, o).Shapes);
+      const ShapeDistribution r = Distribute(d, plane, t, o);
+      results.push_back(r.Shapes);
+      const ShapeDistributionStatistics& st = r.Statistics;
+      counts.push_back({ st.Candidates, st.RejectedWithoutShape, st.RejectedByTables,
+        st.RejectedByFaithfulCheck, st.RejectedByDrawnCheck });
+      // Every candidate is placed, rejected by one check, or taken back past the last cut.
+      const long long rejected = st.RejectedWithoutShape + st.RejectedByTables +
+        st.RejectedByFaithfulCheck + st.RejectedByDrawnCheck;
+      EXPECT_LE(rejected + static_cast<long long>(r.Shapes.size()), st.Candidates);
+      EXPECT_GT(st.RejectedByTables, st.Candidates / 2); // (a plane packed until maximal)
     }
+    EXPECT_EQ(counts[1], counts[0]);
+    EXPECT_EQ(counts[2], counts[0]);
     for (std::size_t k = 1; k < results.size(); ++k)
     {
       ASSERT_EQ(results[k].size(), results[0].size());

@@ -6,6 +6,8 @@ On the bundled torus (about 2.8 wide, area 15.75) with the bundled star and fish
   error naming ShapeSize, no shapes, in well under the time a single candidate used to take;
 - shapes so small that the run would exceed the available memory (ShapeSize 3e-3 against
   GS_AVAILABLE_MEMORY = 2 GB) or absurdly small (1e-310): an error, no overflowing count;
+- a run that places nothing (ShapeSize 1.4, the star alone: its maps fold round the tube) counts
+  the candidates each check rejected (field data) and warns, naming FaithfulCheck;
 - long runs aborted at 1 s: ShapeSize 1.4 (wider than the tube, smaller than the surface: every
   candidate fails the drawn checks until MaximalFailures, about 100 s) and 0.01 (minutes of
   shapes): empty outputs, returned within 3 s of the request (the distributor polls the abort
@@ -76,6 +78,38 @@ placed, seconds, _ = run(3e-3)
 del os.environ["GS_AVAILABLE_MEMORY"]
 print("ShapeSize 3e-3 with 2 GB available: %d shapes in %.2f s" % (placed, seconds))
 check(placed == 0 and seconds < 20, "ShapeSize 3e-3 was not refused (%d shapes, %.1f s)" % (placed, seconds))
+
+# A run that places nothing says why: the counts of candidates by the check that rejected them
+# (field data), and a warning naming the check. ShapeSize 1.4 with the star alone: wider than
+# the tube, every candidate's map folds (FaithfulCheck); one round of 256 candidates.
+from vtkmodules.util.misc import calldata_type  # noqa: E402
+from vtkmodules.vtkCommonCore import VTK_STRING  # noqa: E402
+star = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", "star.png")])
+folded = ShapeDistributor(Input=field, Table=star, ShapeSize=1.4, Seed=3, MaximalFailures=1)
+folded.DirectionArray = ["CELLS", "Direction"]
+warned = []
+
+
+@calldata_type(VTK_STRING)
+def on_warning(caller, event, text):
+    warned.append(text)
+
+
+folded.GetClientSideObject().AddObserver(vtkCommand.WarningEvent, on_warning)
+folded.UpdatePipeline()
+data = folded.GetClientSideObject().GetOutputDataObject(0)
+counts = {name: data.GetFieldData().GetArray(name).GetValue(0) for name in (
+    "NumberOfCandidates", "CandidatesWithoutShape", "CandidatesRejectedByTables",
+    "CandidatesRejectedByFaithfulCheck", "CandidatesRejectedByDrawnCheck")}
+print("ShapeSize 1.4, star: %d shapes, %s" % (data.GetNumberOfPoints(), counts))
+rejected = sum(v for k, v in counts.items() if k != "NumberOfCandidates")
+check(counts["NumberOfCandidates"] >= 256 and
+      rejected + data.GetNumberOfPoints() == counts["NumberOfCandidates"] and
+      counts["CandidatesRejectedByFaithfulCheck"] > 0.9 * counts["NumberOfCandidates"],
+      "rejection counts: %s" % counts)
+check(any("FaithfulCheck rejected" in w and "ShapeSize" in w for w in warned),
+      "no warning naming FaithfulCheck: %s" % warned)
+Delete(folded)
 
 for size in (1.4, 0.01):
     placed, seconds, latency = run(size, abort_at=1.0)
