@@ -184,7 +184,8 @@ SaveData(os.path.join(args.output, "decals.vtp"), proxy=OutputPort(shapes, 1), *
 SaveData(os.path.join(args.output, "outlines.vtp"), proxy=OutputPort(shapes, 2), **VTP)
 
 # 5. Picture: the surface coloured by density, each class's decals textured with its
-# silhouette (a cut-out: fragments outside the silhouette are discarded).
+# silhouette, transparent outside it (ParaView's own texture blending: the decals' texture
+# coordinates stay in the texture square, so no repeat of it is drawn).
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
 
@@ -224,15 +225,13 @@ for k in range(len(args.shapes)):
     decal = Show(one, view)
     decal.ColorArrayName = ["POINTS", ""]
     decal.Texture = CreateTexture(texture_file)
-    decal.UseShaderReplacements = 1
-    decal.ShaderReplacements = (
-        '[{"type": "fragment", "original": "//VTK::Light::Impl", '
-        '"replacement": "//VTK::Light::Impl\\n  if (gl_FragData[0].a < 0.5) { discard; }\\n", '
-        '"replace_all": false}]')
 view.CameraPosition = [centre[0] + 2.2 * radius, centre[1] - 3.4 * radius, centre[2] + 1.6 * radius]
 view.CameraFocalPoint = centre
 view.CameraViewUp = [0, 0, 1]
 view.ResetCamera()
+Render(view)
+# (Closer than ResetCamera's fit of the bounding sphere: the surface fills most of the picture.)
+view.CameraPosition = [f + 0.8 * (p - f) for p, f in zip(view.CameraPosition, view.CameraFocalPoint)]
 Render(view)
 picture = os.path.join(args.output, "main_job.png")
 SaveScreenshot(picture, view, ImageResolution=[900, 800])

@@ -53,6 +53,90 @@ double SignedArea(const std::array<Vec2, 3>& t)
   return 0.5 * Cross(t[1] - t[0], t[2] - t[0]);
 }
 
+// A decal triangle clipped to the texture square [0, 1]^2: the renderer interpolates the texture
+// coordinates linearly over the triangle, as the barycentric coordinates, so the part of it
+// that draws texels of the square is the polygon clipped in texture space, its corners'
+// barycentric coordinates interpolated alike (Sutherland-Hodgman, one side at a time), then
+// fanned into triangles. A texture that repeats, a renderer that clamps, an exporter: none then
+// draws anything outside the silhouette's square. Triangles inside the square are kept as they
+// are; `emit` receives each piece (corners in the triangle's order, so its sense is kept).
+template <class Emit>
+void ClipToTextureSquare(
+  const std::array<std::array<double, 3>, 3>& bary, const std::array<Vec2, 3>& uv, Emit&& emit)
+{
+  bool inside = true;
+  for (const Vec2& u : uv)
+  {
+    inside = inside && u.x >= 0.0 && u.x <= 1.0 && u.y >= 0.0 && u.y <= 1.0;
+  }
+  if (inside)
+  {
+    emit(bary, uv);
+    return;
+  }
+  struct Corner
+  {
+    std::array<double, 3> B;
+    Vec2 U;
+  };
+  std::vector<Corner> polygon = { { bary[0], uv[0] }, { bary[1], uv[1] }, { bary[2], uv[2] } };
+  std::vector<Corner> next;
+  // Sides: u >= 0, u <= 1, v >= 0, v <= 1 (distance inside: positive).
+  for (int side = 0; side < 4 && !polygon.empty(); ++side)
+  {
+    auto inside = [side](const Vec2& u) {
+      switch (side)
+      {
+        case 0:
+          return u.x;
+        case 1:
+          return 1.0 - u.x;
+        case 2:
+          return u.y;
+        default:
+          return 1.0 - u.y;
+      }
+    };
+    next.clear();
+    for (std::size_t k = 0, n = polygon.size(); k < n; ++k)
+    {
+      const Corner& a = polygon[k];
+      const Corner& b = polygon[(k + 1) % n];
+      const double da = inside(a.U), db = inside(b.U);
+      if (da >= 0.0)
+      {
+        next.push_back(a);
+      }
+      if ((da >= 0.0) != (db >= 0.0))
+      {
+        const double t = da / (da - db);
+        Corner c;
+        for (int i = 0; i < 3; ++i)
+        {
+          c.B[i] = a.B[i] + t * (b.B[i] - a.B[i]);
+        }
+        c.U = a.U + (b.U - a.U) * t;
+        // (Exactly on the side: rounding may leave it a hair outside.)
+        if (side < 2)
+          c.U.x = side == 0 ? 0.0 : 1.0;
+        else
+          c.U.y = side == 2 ? 0.0 : 1.0;
+        next.push_back(c);
+      }
+    }
+    polygon.swap(next);
+  }
+  for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+  {
+    const std::array<Vec2, 3> u{ { polygon[0].U, polygon[k].U, polygon[k + 1].U } };
+    if (SignedArea(u) == 0.0)
+    {
+      continue; // (a sliver along a side of the square)
+    }
+    emit(std::array<std::array<double, 3>, 3>{ { polygon[0].B, polygon[k].B, polygon[k + 1].B } }, u);
+  }
+}
+
 // The sense in which a long shape's grid lays its class frame on the surface (+1 or -1; 0 when
 // it cannot tell): at the node of the centre row nearest the shape's centre (class point 0)
 // whose four neighbours along and across are valid, the sign of the face normal against the
@@ -710,9 +794,12 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
     {
       continue;
     }
-    decal.Faces.push_back(f);
-    decal.Corners.push_back(t.B);
-    decal.TextureCoordinates.push_back(t.U);
+    ClipToTextureSquare(t.B, t.U,
+      [&decal, f](const std::array<std::array<double, 3>, 3>& b, const std::array<Vec2, 3>& u) {
+        decal.Faces.push_back(f);
+        decal.Corners.push_back(b);
+        decal.TextureCoordinates.push_back(u);
+      });
   }
 }
 } // namespace

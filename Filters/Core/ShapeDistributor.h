@@ -196,7 +196,9 @@ struct ShapeDistribution
 
 /// A decal: triangles on the mesh faces a shape covers, with texture coordinates per corner
 /// mapping the square around the class circle onto [0, 1]^2 (the convention of MSDT Source's
-/// silhouettes: class point r (2 u - 1, 2 v - 1)). A triangle is a whole mesh face or, where the
+/// silhouettes: class point r (2 u - 1, 2 v - 1)); every texture coordinate lies in [0, 1]^2
+/// (triangles are cut at the square's border, so that no renderer, texture setting or exporter
+/// draws a neighbouring repeat of the texture). A triangle is a whole mesh face or, where the
 /// shape's map is not affine over the face (a long shape bending inside a face), a piece of one:
 /// its corners are barycentric coordinates in that face.
 struct ShapeDecal

@@ -46,6 +46,11 @@ struct Agreement
 {
   double Max = 0.0, Mean = 0.0; // distance of the decal's class point to the silhouette, / radius
   long long Points = 0, Uncovered = 0;
+  // Outline points at the texture square's border (their class point within 2% of the radius of
+  // it: a silhouette touching its circle where the circle touches the square) that the decal,
+  // cut at the border, leaves out: its map, off by up to a few percent of the radius, puts them
+  // just outside the square, where the texture holds nothing to draw.
+  long long AtBorder = 0;
   int Shapes = 0;
 };
 
@@ -69,13 +74,16 @@ Agreement Check(const ShapeDistributor& d, const TriangleMesh& mesh, const SafeD
     const ShapeDecal decal = d.Decal(s);
     for (const OutlinePiece& piece : d.Outline(s, 0.25 * mesh.MeanEdgeLength()))
     {
-      for (const SurfacePoint& p : piece.Points)
+      for (std::size_t i = 0; i < piece.Points.size(); ++i)
       {
+        const SurfacePoint& p = piece.Points[i];
         ++a.Points;
         Vec2 uv{ 0.0, 0.0 };
         if (!decal.TextureCoordinate(p, uv))
         {
-          ++a.Uncovered;
+          const Vec2 q = i < piece.ClassPoints.size() ? piece.ClassPoints[i] : Vec2{ 0.0, 0.0 };
+          const bool border = std::max(std::abs(q.x), std::abs(q.y)) >= 0.98 * c.Radius;
+          ++(border ? a.AtBorder : a.Uncovered);
           continue;
         }
         const Vec2 q = gs_test::ClassPointOfTexture(uv, c.Radius);
@@ -162,14 +170,42 @@ TEST(ShapeDecal, DecalsAgreeWithOutlinesOnASphere)
     // (Near the poles, the field's singularities, a long shape's curve turns tighter than its
     // half width: the map folds and neither outline nor decal is the shape; skipped.)
     const Agreement a = Check(d, sphere, t, longShapes, 0.35);
-    std::printf("sphere, %s shapes: %d shapes, %lld outline points (%lld outside the decal), class point "
-                "off the silhouette: mean %.2e, max %.2e of the radius\n",
-      longShapes ? "long" : "short", a.Shapes, a.Points, a.Uncovered, a.Mean, a.Max);
+    std::printf("sphere, %s shapes: %d shapes, %lld outline points (%lld outside the decal, %lld at "
+                "the texture square's border), class point off the silhouette: mean %.2e, max %.2e "
+                "of the radius\n",
+      longShapes ? "long" : "short", a.Shapes, a.Points, a.Uncovered, a.AtBorder, a.Mean, a.Max);
+    EXPECT_LE(a.AtBorder, a.Points / 1000);
     EXPECT_GT(a.Shapes, 5);
     EXPECT_EQ(a.Uncovered, 0);
     EXPECT_LT(a.Mean, 0.01);
     EXPECT_LT(a.Max, 0.05);
   }
+  // Every decal's texture coordinates lie in the texture square (its triangles cut at the
+  // border), so that no texture setting draws a neighbouring repeat: stray fragments where no
+  // shape is, hatching inside a shape. Before the cut, the triangles of a decal reached from
+  // about -0.9 to 2.0; some are cut here.
+  long long corners = 0, outside = 0, cut = 0;
+  for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
+  {
+    const ShapeDecal decal = d.Decal(s, 0.01);
+    for (std::size_t k = 0; k < decal.Faces.size(); ++k)
+    {
+      bool onBorder = false;
+      for (const Vec2& u : decal.TextureCoordinates[k])
+      {
+        ++corners;
+        outside += !(u.x >= 0.0 && u.x <= 1.0 && u.y >= 0.0 && u.y <= 1.0);
+        onBorder = onBorder || u.x == 0.0 || u.x == 1.0 || u.y == 0.0 || u.y == 1.0;
+      }
+      cut += onBorder;
+    }
+  }
+  std::printf("sphere decals: %lld corners, %lld outside the texture square, %lld triangles cut at "
+              "its border\n",
+    corners, outside, cut);
+  EXPECT_GT(corners, 1000);
+  EXPECT_EQ(outside, 0);
+  EXPECT_GT(cut, 0);
 }
 
 TEST(ShapeDecal, ShortDecalsComeFromTheExactLogMapNotThePlacementsGraph)
