@@ -72,7 +72,9 @@ void ForEachDrawnLatticePoint(const gs::ShapeDecal& decal, const gs::SafeDistanc
 /// Shapes whose decal does not draw their outline: a point of the drawn outline (`outlines`,
 /// one per shape) outside the decal, or read in it (its texture coordinate, as rendered) farther
 /// than `tolerance` (a fraction of the class circumradius) from the class point it was drawn
-/// from. `points` (optional) gets the number of such outline points.
+/// from (a point within `tolerance` of the texture square's border that the decal, cut at the
+/// border, leaves out counts as drawn). `points` (optional) gets the number of such outline
+/// points.
 inline int CountUnfaithfulDecals(const gs::SafeDistanceTables& tables, const gs::ShapeDistributor& d,
   const std::vector<std::vector<gs::OutlinePiece>>& outlines, double tolerance, long long* points = nullptr)
 {
@@ -89,7 +91,11 @@ inline int CountUnfaithfulDecals(const gs::SafeDistanceTables& tables, const gs:
         gs::Vec2 uv;
         if (!decal.TextureCoordinate(piece.Points[i], uv))
         {
-          ++mine;
+          // (A decal ends at its texture square's border: a point of the outline within the
+          // tolerance of that border, which the decal's map puts just outside it, is drawn as
+          // far as the texture goes, within the tolerance.)
+          const gs::Vec2& p = piece.ClassPoints[i];
+          mine += std::max(std::abs(p.x), std::abs(p.y)) < (1.0 - tolerance) * c.Radius ? 1 : 0;
           continue;
         }
         const gs::Vec2 q = ClassPointOfTexture(uv, c.Radius);
