@@ -10,7 +10,7 @@ On the bundled torus (about 2.8 wide, area 15.75) with the bundled star and fish
   the candidates each check rejected (field data) and warns, naming FaithfulCheck;
 - long runs aborted at 1 s: ShapeSize 1.4 (wider than the tube, smaller than the surface: every
   candidate fails the drawn checks until MaximalFailures, about 100 s) and 0.01 (minutes of
-  shapes): empty outputs, returned within 3 s of the request (the distributor polls the abort
+  shapes): empty outputs, returned within 2 s of the request (the distributor polls the abort
   inside its rounds every 0.1 s).
 
 Usage: pvpython TestBoundedWork.py --plugin <GeodesicShapes.so> --data <Data dir>
@@ -115,7 +115,7 @@ for size in (1.4, 0.01):
     placed, seconds, latency = run(size, abort_at=1.0)
     print("ShapeSize %g aborted at 1 s: returned %.2f s after the request (%d shapes)"
           % (size, latency if latency is not None else -1, placed))
-    check(latency is not None and latency < 3.0 and placed == 0,
+    check(latency is not None and latency < 2.0 and placed == 0,
           "abort at ShapeSize %g: latency %s s, %d shapes" % (size, latency, placed))
 
 if failures:
