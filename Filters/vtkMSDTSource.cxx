@@ -36,6 +36,9 @@
 
 vtkStandardNewMacro(vtkMSDTSource);
 
+// Classes whose circumradii differ by more than this factor get a warning (UpdateShapes).
+constexpr double MaximumSizeRatio = 20.0;
+
 // The classes and parts of the last read (ComputeSafeDistanceParts, no table values yet),
 // keyed by everything they depend on.
 struct vtkMSDTSource::ShapeCache
@@ -389,6 +392,26 @@ void vtkMSDTSource::UpdateShapes(vtkInformationVector** inputVector)
   }
   cache.Status = gs::Status();
   cache.Parts = std::move(*parts);
+  // Classes are compared in their own units (images in pixels, polygons in theirs): a polygon
+  // drawn in unit coordinates next to an image is then tens of times smaller, and a
+  // distribution of it runs for minutes. Sizes that far apart are said.
+  const auto& cls = cache.Parts.Classes;
+  std::size_t smallest = 0, largest = 0;
+  for (std::size_t c = 1; c < cls.size(); ++c)
+  {
+    smallest = cls[c].Radius < cls[smallest].Radius ? c : smallest;
+    largest = cls[c].Radius > cls[largest].Radius ? c : largest;
+  }
+  if (!cls.empty() && cls[largest].Radius > MaximumSizeRatio * cls[smallest].Radius)
+  {
+    vtkWarningMacro("Shape '" << cls[largest].Name << "' is "
+                              << cls[largest].Radius / cls[smallest].Radius << " times larger than '"
+                              << cls[smallest].Name
+                              << "' (circumradii compared in the shapes' own units: images in "
+                                 "pixels, polygons in their coordinates). If that is not meant, "
+                                 "draw the polygons in the images' pixel units; with shapes that "
+                                 "small, a distribution places very many of them.");
+  }
 }
 
 //------------------------------------------------------------------------------

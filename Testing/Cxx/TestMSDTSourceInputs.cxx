@@ -291,6 +291,43 @@ int main(int argc, char* argv[])
     CHECK(Warnings == 0 && lines->GetOutlinesOutput()->GetNumberOfCells() == 2);
   }
 
+  // 3b. Classes far apart in size (an image in pixels next to a polygon drawn in unit
+  // coordinates: 30 times smaller): a warning naming both; a polygon in pixel units: none.
+  for (const double side : { 2.0, 40.0 })
+  {
+    vtkNew<vtkMSDTSource> mixed;
+    vtkNew<vtkCallbackCommand> onWarning;
+    onWarning->SetCallback(CountWarning);
+    mixed->AddObserver(vtkCommand::WarningEvent, onWarning);
+    mixed->AddShapeFileName(diskRGBA.c_str());
+    vtkNew<vtkPoints> p;
+    vtkNew<vtkCellArray> c;
+    c->InsertNextCell(4);
+    for (const auto& xy : { std::array<double, 2>{ 0, 0 }, std::array<double, 2>{ side, 0 },
+           std::array<double, 2>{ side, side }, std::array<double, 2>{ 0, side } })
+    {
+      c->InsertCellPoint(p->InsertNextPoint(xy[0], xy[1], 0.0));
+    }
+    vtkNew<vtkPolyData> square;
+    square->SetPoints(p);
+    square->SetPolys(c);
+    mixed->SetPolygonsData(square);
+    mixed->SetAngleBins(16);
+    mixed->SetDistanceSteps(16);
+    Warnings = 0;
+    LastWarning.clear();
+    CHECK(Run(mixed) == 0);
+    if (side == 2.0)
+    {
+      CHECK(Warnings == 1 && LastWarning.find("times larger than 'polygon cell 0'") != std::string::npos &&
+        LastWarning.find("pixel units") != std::string::npos);
+    }
+    else
+    {
+      CHECK(Warnings == 0);
+    }
+  }
+
   // 4. Guards: a surface connected as polygons (not in a plane of constant z), and tables
   // that would not fit in memory (refused before allocation).
   {
