@@ -697,33 +697,17 @@ bool vtkShapeDistributor::CheckParameters()
       "K must be >= 0 (0: exact charts, without a saddle vertex graph); it is " << this->K << ".");
     return false;
   }
-  if (this->MaximumShapes < 0)
+  // The options the distributor checks itself, checked here before any work (the same ranges
+  // and messages: the properties carry the options' names).
+  gs::ShapeDistributionOptions ranges;
+  ranges.MaximumShapes = this->MaximumShapes;
+  ranges.MaximalFailures = this->MaximalFailures;
+  ranges.NumberOfThreads = this->NumberOfThreads;
+  ranges.DistortionLimit = this->DistortionLimit;
+  ranges.HolonomyMargin = this->HolonomyMargin;
+  if (const gs::Status checked = gs::ShapeDistributor::CheckOptionRanges(ranges); !checked.Ok())
   {
-    vtkErrorMacro("MaximumShapes must be at least 0 (0: no limit); it is " << this->MaximumShapes
-                                                                          << ".");
-    return false;
-  }
-  if (this->MaximalFailures < 0)
-  {
-    vtkErrorMacro("MaximalFailures must be at least 0 (0: automatic); it is "
-      << this->MaximalFailures << ".");
-    return false;
-  }
-  if (this->NumberOfThreads < 0)
-  {
-    vtkErrorMacro("NumberOfThreads must be at least 0 (0: all cores); it is "
-      << this->NumberOfThreads << ".");
-    return false;
-  }
-  if (!(this->DistortionLimit >= 0.0))
-  {
-    vtkErrorMacro("DistortionLimit must be at least 0 (0: no limit); it is "
-      << this->DistortionLimit << ".");
-    return false;
-  }
-  if (!(this->HolonomyMargin >= 0.0) || this->HolonomyMargin > 100.0)
-  {
-    vtkErrorMacro("HolonomyMargin must be from 0 to 100; it is " << this->HolonomyMargin << ".");
+    vtkErrorMacro(<< checked.Message() << ".");
     return false;
   }
   if (this->NumberOfThreads > gs::MaximumThreadCount())

@@ -7,43 +7,16 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <thread>
 
 namespace gs
 {
 using namespace distribution;
 
-bool ShapeDistributor::Impl::Poll() const
-{
-  if (Aborting.load(std::memory_order_relaxed))
-  {
-    return true;
-  }
-  if (!Progress || std::this_thread::get_id() != Caller)
-  {
-    return false;
-  }
-  const auto now = std::chrono::steady_clock::now();
-  if (std::chrono::duration<double>(now - LastPoll).count() < PollSeconds)
-  {
-    return false;
-  }
-  LastPoll = now;
-  if (!Progress(Reported))
-  {
-    Aborting.store(true, std::memory_order_relaxed);
-  }
-  return Aborting.load(std::memory_order_relaxed);
-}
-
 bool ShapeDistributor::Impl::RunRounds(
   int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
 {
-  Progress = progress;
+  Polling.reset(new PhasePoll(progress));
   Reported = 0.0;
-  Aborting.store(false);
-  Caller = std::this_thread::get_id();
-  LastPoll = std::chrono::steady_clock::now();
   RunState run;
   run.FailuresToStop = Options.MaximalFailures > 0 ? Options.MaximalFailures : 10000;
   const bool greedyMode = Options.Mode == DistributionMode::Greedy;
@@ -181,12 +154,10 @@ bool ShapeDistributor::Impl::RunRounds(
     }
     run.Reported = std::max(run.Reported, std::min(0.99, fraction));
     Reported = run.Reported;
-    if (progress && !progress(run.Reported))
+    if (!Polling->Report(run.Reported))
     {
-      Aborting.store(true);
       return false;
     }
-    LastPoll = std::chrono::steady_clock::now();
   }
   stats.ConsecutiveFailures = run.Consecutive;
   return true;

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+
 #include <cerrno>
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -626,6 +627,7 @@ int CreateTemporaryBeside(const std::string& path, std::string& temporary)
   }
   return -1;
 }
+
 // Reads a file through a descriptor (Load opens it without blocking): read() fills a buffer or
 // marks the reader failed, as an istream does.
 class FileReader
@@ -1019,49 +1021,52 @@ Status SaddleVertexGraph::Verify(const TriangleMesh& mesh) const
   // stencil where it has one.
   // 2. Every mesh edge a link whose weight is the edge's length (graphs keep every edge).
   // The first failing node in node order (the same message for any thread count).
+  auto linkFault = [&](int n, std::int64_t e) -> const char* {
+    const int x = Vertex(Target(e));
+    if (below(Weight(e), Norm(mesh.Position(Vertex(n)) - mesh.Position(x))))
+    {
+      return " is shorter than the straight distance";
+    }
+    const int s = shortest ? LinkStencil[e] : -1;
+    return s >= 0 && differs(Weight(e), StencilDistance(StencilBegin(Target(e)) + s))
+      ? " differs from its stencil entry"
+      : nullptr;
+  };
+  auto edgesFault = [&](int n) {
+    bool fault = false;
+    mesh.ForEachOutgoingHalfedge(Vertex(n), [&](int h) {
+      const int x = Node(mesh.Destination(h));
+      const auto first = Targets.begin() + Begin(n), last = Targets.begin() + End(n);
+      const auto it = std::lower_bound(first, last, x);
+      fault = fault || it == last || *it != x ||
+        differs(Weights[it - Targets.begin()], mesh.EdgeLength(h));
+    });
+    return fault;
+  };
   int firstBad = nv;
 #pragma omp parallel for schedule(dynamic, 4096) reduction(min : firstBad)
   for (int n = 0; n < nv; ++n)
   {
-    const int u = Vertex(n);
-    for (std::int64_t e = Begin(n); e < End(n); ++e)
+    bool fault = edgesFault(n);
+    for (std::int64_t e = Begin(n); e < End(n) && !fault; ++e)
     {
-      const int x = Vertex(Target(e));
-      const double chord = Norm(mesh.Position(u) - mesh.Position(x));
-      const int s = shortest ? LinkStencil[e] : -1;
-      if (below(Weight(e), chord) ||
-        (s >= 0 && differs(Weight(e), StencilDistance(StencilBegin(Target(e)) + s))))
-      {
-        firstBad = std::min(firstBad, n);
-      }
+      fault = linkFault(n, e) != nullptr;
     }
-    mesh.ForEachOutgoingHalfedge(u, [&](int h) {
-      const int x = Node(mesh.Destination(h));
-      const auto first = Targets.begin() + Begin(n), last = Targets.begin() + End(n);
-      const auto it = std::lower_bound(first, last, x);
-      if (it == last || *it != x || differs(Weights[it - Targets.begin()], mesh.EdgeLength(h)))
-      {
-        firstBad = std::min(firstBad, n);
-      }
-    });
+    if (fault)
+    {
+      firstBad = std::min(firstBad, n);
+    }
   }
   if (firstBad < nv)
   {
-    const int n = firstBad, u = Vertex(n);
-    for (std::int64_t e = Begin(n); e < End(n); ++e)
+    for (std::int64_t e = Begin(firstBad); e < End(firstBad); ++e)
     {
-      const int x = Vertex(Target(e));
-      if (below(Weight(e), Norm(mesh.Position(u) - mesh.Position(x))))
+      if (const char* fault = linkFault(firstBad, e))
       {
-        return Status::Error(describe(n, e) + " is shorter than the straight distance");
-      }
-      const int s = shortest ? LinkStencil[e] : -1;
-      if (s >= 0 && differs(Weight(e), StencilDistance(StencilBegin(Target(e)) + s)))
-      {
-        return Status::Error(describe(n, e) + " differs from its stencil entry");
+        return Status::Error(describe(firstBad, e) + fault);
       }
     }
-    return Status::Error("a mesh edge at vertex " + std::to_string(u) +
+    return Status::Error("a mesh edge at vertex " + std::to_string(Vertex(firstBad)) +
       " is missing from the graph or has a weight other than its length");
   }
   // 3. Every link of a sample of vertices, spread over the surface (nodes are in spatial

@@ -69,6 +69,34 @@ Status ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   return Status();
 }
 
+Status ShapeDistributor::CheckOptionRanges(const ShapeDistributionOptions& options)
+{
+  // Each option on its own, with its value (the Shape Distributor filter's properties carry
+  // the same names, and it calls this before any work).
+  auto outside = [](const char* name, double value, const char* range) {
+    std::ostringstream message;
+    message << name << " must be " << range << "; it is " << value;
+    return Status::Error(message.str());
+  };
+  if (options.MaximumShapes < 0)
+    return outside("MaximumShapes", options.MaximumShapes, "at least 0 (0: no limit)");
+  if (options.MaximalFailures < 0)
+    return outside("MaximalFailures", options.MaximalFailures, "at least 0 (0: automatic)");
+  if (options.NumberOfThreads < 0)
+    return outside("NumberOfThreads", options.NumberOfThreads, "at least 0 (0: all cores)");
+  if (options.GreedyDirections < 1 || options.GreedyDirections > 1024)
+    return outside("GreedyDirections", options.GreedyDirections, "from 1 to 1024");
+  if (!(options.SafetyMargin >= 0.0) || options.SafetyMargin > 10.0)
+    return outside("SafetyMargin", options.SafetyMargin, "from 0 to 10");
+  if (!(options.DistortionLimit >= 0.0))
+    return outside("DistortionLimit", options.DistortionLimit, "at least 0 (0: no limit)");
+  if (!(options.HolonomyMargin >= 0.0) || options.HolonomyMargin > 100.0)
+    return outside("HolonomyMargin", options.HolonomyMargin, "from 0 to 100");
+  if (!(options.FaithfulTolerance > 0.0) || options.FaithfulTolerance > 1.0)
+    return outside("FaithfulTolerance", options.FaithfulTolerance, "above 0 and at most 1");
+  return Status();
+}
+
 Status ShapeDistributor::Impl::CheckTablesAndOptions() const
 {
   if (Mesh.NumberOfFaces() == 0)
@@ -128,29 +156,10 @@ Status ShapeDistributor::Impl::CheckTablesAndOptions() const
     return Status::Error("unknown Mode " + std::to_string(static_cast<int>(Options.Mode)) +
       ": 0 (Random), 1 (Greedy) or 2 (Circumcircle Poisson disk)");
   }
-  // Each option on its own, with its value (the names are the options' own; the filter checks
-  // the ones it exposes first, under its property names).
-  auto outside = [](const char* name, double value, const char* range) {
-    std::ostringstream message;
-    message << name << " must be " << range << " (it is " << value << ")";
-    return Status::Error(message.str());
-  };
-  if (Options.MaximumShapes < 0)
-    return outside("MaximumShapes", Options.MaximumShapes, "at least 0 (0: no limit)");
-  if (Options.MaximalFailures < 0)
-    return outside("MaximalFailures", Options.MaximalFailures, "at least 0 (0: automatic)");
-  if (Options.NumberOfThreads < 0)
-    return outside("NumberOfThreads", Options.NumberOfThreads, "at least 0 (0: all cores)");
-  if (Options.GreedyDirections < 1 || Options.GreedyDirections > 1024)
-    return outside("GreedyDirections", Options.GreedyDirections, "from 1 to 1024");
-  if (!(Options.SafetyMargin >= 0.0) || Options.SafetyMargin > 10.0)
-    return outside("SafetyMargin", Options.SafetyMargin, "from 0 to 10");
-  if (!(Options.DistortionLimit >= 0.0))
-    return outside("DistortionLimit", Options.DistortionLimit, "at least 0 (0: no limit)");
-  if (!(Options.HolonomyMargin >= 0.0) || Options.HolonomyMargin > 100.0)
-    return outside("HolonomyMargin", Options.HolonomyMargin, "from 0 to 100");
-  if (!(Options.FaithfulTolerance > 0.0) || Options.FaithfulTolerance > 1.0)
-    return outside("FaithfulTolerance", Options.FaithfulTolerance, "above 0 and at most 1");
+  if (Status ranges = CheckOptionRanges(Options); !ranges.Ok())
+  {
+    return ranges;
+  }
   return Status();
 }
 
@@ -245,8 +254,7 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool finished = I.RunRounds(threads, progress, result.Statistics);
   // (The polling belongs to this run: later queries, e.g. ProbeFitFraction, never see it.)
-  I.Progress = nullptr;
-  I.Aborting.store(false);
+  I.Polling.reset();
   if (!finished)
   {
     I.Accepted.clear();

@@ -267,6 +267,10 @@ public:
   /// half the surface with the shapes' circles): the sum over the faces carrying shapes of
   /// area / (pi (ShapeSize f r)^2) / 2, r the classes' mean circumradius, f the smallest
   /// density factor of the face's corners. Cheap; for warnings before long runs.
+  /// An error naming the first option of `options` out of its range, with its value
+  /// (MaximumShapes, MaximalFailures, NumberOfThreads, GreedyDirections, SafetyMargin,
+  /// DistortionLimit, HolonomyMargin, FaithfulTolerance); Run checks them too.
+  static Status CheckOptionRanges(const ShapeDistributionOptions& options);
   static double ExpectedCount(const TriangleMesh& mesh, const SafeDistanceTables& tables,
     const std::vector<double>& vertexDensity, double shapeSize);
 

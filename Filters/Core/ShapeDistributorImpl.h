@@ -22,18 +22,16 @@
 #include "DirectionField.h"
 #include "GeodesicPolarCoordinates.h"
 #include "OverlapCheck.h"
+#include "PhasePoll.h"
 #include "ShapeDistributor.h"
 
 #include <algorithm>
 #include <cstdint>
-#include <atomic>
-#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -432,20 +430,13 @@ struct ShapeDistributor::Impl
 
   // ---- Progress and abort inside a round (RunRounds) ---------------------------------------
   // A round may hold thousands of candidates, each costing up to a fraction of a second: the
-  // caller's callback is polled from inside the rounds too, on the calling thread only (OpenMP's
-  // master thread; VTK's progress and abort belong to it), at most every PollSeconds; an abort
-  // sets Aborting, which every loop of the round tests to stop early.
-  std::function<bool(double)> Progress;
+  // caller's callback is polled from inside the rounds too (PhasePoll: on the calling thread,
+  // at most every 0.1 s); every loop of the round stops early once it is aborted. Set for the
+  // duration of a run only.
+  std::unique_ptr<PhasePoll> Polling;
   double Reported = 0.0; // the fraction last reported
-  // (Mutable: the const stages of a round poll too; the state is the abort request's, not the
-  // distribution's.)
-  mutable std::atomic<bool> Aborting{ false };
-  std::thread::id Caller;
-  mutable std::chrono::steady_clock::time_point LastPoll;
-  static constexpr double PollSeconds = 0.1;
-  /// True once the run is aborted; on the calling thread, first asks the callback when
-  /// PollSeconds have passed since the last time.
-  bool Poll() const;
+  /// True once the run is aborted (Polling's Poll at the fraction last reported).
+  bool Poll() const { return Polling && Polling->Poll(Reported); }
   /// A Greedy round's candidates: the proposals of every front shape, nearest to the first
   /// shape first (kind 4 of Random).
   void DrawGreedyBatch(const std::vector<int>& front, int round, int threads, std::vector<Record>& batch) const;
