@@ -13,7 +13,7 @@
 //  - With a file name: a path holding anything but a graph cache file (a user's file, a
 //    directory, a FIFO) is an error before any work, and is never read or written
 //    (gs::SaddleVertexGraph::CheckCacheFileName). Otherwise a graph found in memory is written
-//    there once (so the file exists for the next session), or the file is loaded when it
+//    there once (so the file exists for the next process), or the file is loaded when it
 //    matches the mesh and the construction (each has its own file format) and passes
 //    gs::SaddleVertexGraph::Verify against the mesh; a missing file is silent, a stale, corrupt
 //    or forged one gets a warning and the graph is rebuilt, then saved (a failed save is a
