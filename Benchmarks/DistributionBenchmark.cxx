@@ -27,6 +27,9 @@
 //       shape's drawn map departs from its rigid parts)
 //   [--square W [--seeds N] (section 1b alone, a square W circumradii wide, N seeds; environment:
 //   GS_SQUARE_CELLS sets its mesh's cells per side, default edges of 0.2)]
+//   or: DistributionBenchmark Data/bumpy_sphere.ply --under-load --image Data/shapes/star.png [--image ...]
+//       [--speed-rounds R] (the demo's distribution on 1 and 2 threads, alone and with one
+//       competing CPU-bound process: see UnderLoad)
 //   [--mesh-only (section 4 only)] [--speed-only (its speed figures only)] [--speed-rounds R]
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
 //   openclipart; polygons are used when missing).
@@ -53,6 +56,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <set>
+#include <thread>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <unordered_map>
 #include <unordered_set>
 #include <string>
@@ -1046,6 +1055,110 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
   return counts[1] == counts[2] && !(CheckScale && ScaleFaults > 0) ? 0 : 2;
 }
 
+// --under-load: the demo's distribution (the bundled bumpy sphere, its four classes, Greedy, decals
+// and outlines as the filter draws them) on 1 and 2 threads, each with and without one CPU-bound
+// competing process (a forked child spinning), alternating; medians of R rounds. What a ParaView
+// user sees when anything else runs: 2 threads should be no slower than 1.
+int UnderLoad(const std::string& meshPath, const std::vector<std::string>& images, int rounds)
+{
+  TriangleSoup soup;
+  std::string error;
+  if (!ReadMesh(meshPath, soup, error))
+  {
+    std::fprintf(stderr, "%s: %s\n", meshPath.c_str(), error.c_str());
+    return 1;
+  }
+  const TriangleMesh mesh = Build(soup);
+  std::vector<SafeDistanceInput> classes;
+  for (const std::string& file : images)
+  {
+    Shape2D shape;
+    if (!ShapeFromImage(file, shape))
+    {
+      std::fprintf(stderr, "cannot read %s\n", file.c_str());
+      return 1;
+    }
+    classes.push_back({ file, shape });
+  }
+  const SafeDistanceTables t = Tables(classes);
+  SaddleVertexGraph graph;
+  SaddleVertexGraphOptions go;
+  go.Construction = GraphConstruction::DiscreteGeodesic;
+  go.Accuracy = 0.1;
+  if (const Status built = graph.Build(mesh, go, nullptr); !built.Ok())
+  {
+    std::fprintf(stderr, "graph: %s\n", built.Message().c_str());
+    return 1;
+  }
+  Vec3 lo = mesh.Position(0), hi = lo;
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+  {
+    const Vec3& x = mesh.Position(v);
+    lo = Vec3{ std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z) };
+    hi = Vec3{ std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z) };
+  }
+  const double halfExtent = 0.5 * std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
+  const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
+  ShapeDistributor d(mesh, &graph);
+  std::printf("Under load: %s, %d faces, %zu classes, Greedy, ShapeSize 0.09 of the half extent; %d rounds\n",
+    meshPath.c_str(), mesh.NumberOfFaces(), classes.size(), rounds);
+  std::map<std::pair<int, bool>, std::vector<double>> seconds;
+  std::map<std::pair<int, bool>, std::set<std::size_t>> counts;
+  for (int round = 0; round < rounds; ++round)
+  {
+    for (bool compete : { false, true })
+    {
+      for (int threads : { 1, 2 })
+      {
+        pid_t child = -1;
+        if (compete)
+        {
+          child = fork();
+          if (child == 0)
+          {
+            for (volatile unsigned long long spin = 0;; spin = spin + 1)
+            {
+            }
+          }
+          std::this_thread::sleep_for(std::chrono::milliseconds(50)); // (the child runs)
+        }
+        ShapeDistributionOptions o;
+        o.ShapeSize = 0.09 * halfExtent;
+        o.Seed = static_cast<std::uint64_t>(10 + round);
+        o.NumberOfThreads = threads;
+        o.Mode = DistributionMode::Greedy;
+        const double t0 = Now();
+        const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
+        const std::vector<ShapeDecal> decals =
+          DrawDecals(d, ShapeDistributor::DefaultDecalTolerance, threads, nullptr);
+        const std::vector<std::vector<OutlinePiece>> outlines = DrawOutlines(d, threads);
+        const double elapsed = Now() - t0;
+        if (child > 0)
+        {
+          kill(child, SIGKILL);
+          waitpid(child, nullptr, 0);
+        }
+        if (!r.Ok())
+        {
+          std::fprintf(stderr, "distribution: %s\n", r.Message().c_str());
+          return 1;
+        }
+        seconds[{ threads, compete }].push_back(elapsed);
+        counts[{ threads, compete }].insert(r->Shapes.size());
+        std::printf("  seed %d, %d thread%s, %s: %.3f s, %zu shapes\n", 10 + round, threads,
+          threads > 1 ? "s" : "", compete ? "one competing process" : "alone", elapsed, r->Shapes.size());
+      }
+    }
+  }
+  for (bool compete : { false, true })
+  {
+    const double one = Median(seconds[{ 1, compete }]), two = Median(seconds[{ 2, compete }]);
+    std::printf("%s: median 1 thread %.3f s, 2 threads %.3f s: 2 threads take %.2fx the time of 1\n",
+      compete ? "one competing process" : "alone", one, two, two / one);
+  }
+  return 0;
+}
+
 int main(int argc, char* argv[])
 {
   bool quick = false, meshOnly = false, exactCharts = false, speedOnly = false;
@@ -1056,12 +1169,14 @@ int main(int argc, char* argv[])
   std::vector<std::string> args, scaleImages;
   std::string scaleCache;
   double scaleSize = 0.01, scaleAccuracy = 0.1;
-  bool scale = false;
+  bool scale = false, underLoad = false;
   DistributionMode scaleMode = DistributionMode::Random;
   for (int i = 1; i < argc; ++i)
   {
     if (std::strcmp(argv[i], "--scale") == 0)
       scale = true;
+    else if (std::strcmp(argv[i], "--under-load") == 0)
+      underLoad = true;
     else if (std::strcmp(argv[i], "--cache") == 0 && i + 1 < argc)
       scaleCache = argv[++i];
     else if (std::strcmp(argv[i], "--size") == 0 && i + 1 < argc)
@@ -1097,6 +1212,8 @@ int main(int argc, char* argv[])
     else
       args.push_back(argv[i]);
   }
+  if (underLoad && !args.empty())
+    return UnderLoad(args[0], scaleImages, speedRounds);
   if (scale && !args.empty())
     return AtScale(args[0], scaleImages, scaleCache, speedRounds, scaleSize, scaleMode, scaleAccuracy);
   const std::string images = args.size() > 1 ? args[1] : "";

@@ -5,6 +5,7 @@
 #include "vtkSafeDistanceTableImage.h"
 
 #include "OverlapCheck.h"
+#include "ParallelFor.h"
 #include "SafeDistanceTable.h"
 #include "DirectionField.h"
 #include "ShapeDistributor.h"
@@ -269,9 +270,7 @@ void WriteDecals(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedShape
   float* t = tcoords->GetPointer(0);
   vtkIdType* o = offsets->GetPointer(0);
   vtkIdType* c = connectivity->GetPointer(0);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-  for (int s = 0; s < ns; ++s)
-  {
+  gs::ParallelFor(ns, threads, 16, [&](int s, int) {
     const gs::ShapeDecal& d = decalOf[s];
     for (std::size_t k = 0; k < d.Faces.size(); ++k)
     {
@@ -291,7 +290,7 @@ void WriteDecals(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedShape
       shapeId->SetValue(cell, s);
       classId->SetValue(cell, shapes[s].ClassId);
     }
-  }
+  });
   o[nd] = 3 * nd;
   vtkNew<vtkPoints> points;
   points->SetData(xyz);
@@ -343,9 +342,7 @@ void WriteOutlines(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedSha
   double* x = xyz->GetPointer(0);
   vtkIdType* o = offsets->GetPointer(0);
   vtkIdType* c = connectivity->GetPointer(0);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-  for (int s = 0; s < ns; ++s)
-  {
+  gs::ParallelFor(ns, threads, 16, [&](int s, int) {
     vtkIdType line = firstLine[s], point = firstPoint[s], id = firstId[s];
     for (const gs::OutlinePiece& piece : outlineOf[s])
     {
@@ -371,7 +368,7 @@ void WriteOutlines(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedSha
         c[id++] = start;
       }
     }
-  }
+  });
   o[nl] = ni;
   vtkNew<vtkPoints> points;
   points->SetData(xyz);

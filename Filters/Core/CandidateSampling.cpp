@@ -55,13 +55,11 @@ Status ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDi
       std::to_string(faceDirections.size()) + " given for " + std::to_string(nf) + " faces)");
   }
   FaceDirection.assign(nf, Vec3{ 0, 0, 0 });
-#pragma omp parallel for schedule(static) num_threads(ThreadCount(Options.NumberOfThreads))
-  for (int f = 0; f < nf; ++f)
-  {
+  ParallelFor(nf, ThreadCount(Options.NumberOfThreads), 4096, [&](int f, int) {
     const Vec3& d = faceDirections[f];
     if (!IsFinite(d))
     {
-      continue;
+      return;
     }
     const Vec3 n = Mesh.FaceNormal(f);
     const Vec3 t = d - n * Dot(n, d);
@@ -69,7 +67,7 @@ Status ShapeDistributor::Impl::PrepareDirections(const std::vector<Vec3>& faceDi
     {
       FaceDirection[f] = Unit(t);
     }
-  }
+  });
   return Status();
 }
 
@@ -388,16 +386,12 @@ int ShapeDistributor::Impl::RandomClass(Random& rng) const
 void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) const
 {
   const int n = static_cast<int>(batch.size());
-#pragma omp parallel num_threads(ThreadCount(Options.NumberOfThreads))
-  {
-    std::vector<int> scratch;
-#pragma omp for schedule(dynamic, 64)
-    for (int i = 0; i < n; ++i)
-    {
+  ParallelForEachThread<std::vector<int>>(n, ThreadCount(Options.NumberOfThreads), 64,
+    [&](int i, std::vector<int>& scratch) {
       if (Poll())
       {
         batch[i].Valid = false; // (aborted: the round is dropped)
-        continue;
+        return;
       }
       Random rng(Options.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
       const int cls = RandomClass(rng);
@@ -411,8 +405,7 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
       batch[i].Reason = batch[i].Valid ? Record::Rejection::None
         : covered                      ? Record::Rejection::Tables
                                        : Record::Rejection::WithoutShape;
-    }
-  }
+    });
 }
 
 bool ShapeDistributor::Impl::PlacePart(int face, const Vec3& x, const Vec3& tangent, int part,

@@ -2,6 +2,7 @@
 
 #include "GeodesicPolarCoordinates.h"
 #include "GeodesicShooting.h"
+#include "ParallelFor.h"
 #include "PhasePoll.h"
 #include "SafeDistanceTable.h"
 #include "ShapeDistributor.h"
@@ -390,10 +391,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   std::vector<std::shared_ptr<const CurveGrid>> frames(n);
   std::vector<std::vector<int>> drawnOn(n);
   const int threads = ThreadCount(options.NumberOfThreads);
-  (void)threads;
-#pragma omp parallel for schedule(dynamic, 8) num_threads(threads)
-  for (int s = 0; s < n; ++s)
-  {
+  ParallelFor(n, threads, 8, [&](int s, int) {
     if (!shapes[s].Curve.empty())
     {
       frames[s] = distributor.Frame(s);
@@ -406,7 +404,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
         std::sort(drawnOn[s].begin(), drawnOn[s].end());
       }
     }
-  }
+  });
   // Does the drawn outline of `b` reach deeper than the tolerance into `a`'s silhouette? (Points
   // farther in space from a's centre than sqrt(2) times its circumradius are outside it: a's
   // outline is drawn along paths of length |along| + |across| at most.)
@@ -460,9 +458,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   // Each shape's neighbours: the shapes whose centres are closer in space than the sum of the
   // circumradii (the geodesic distance is never shorter).
   std::vector<std::vector<int>> neighbours(n);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-  for (int a = 0; a < n; ++a)
-  {
+  ParallelFor(n, threads, 16, [&](int a, int) {
     const std::array<long long, 3> c = key(shapes[a].Position);
     for (long long dx = -1; dx <= 1; ++dx)
       for (long long dy = -1; dy <= 1; ++dy)
@@ -480,46 +476,41 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
           }
         }
     std::sort(neighbours[a].begin(), neighbours[a].end());
-  }
+  });
   // Which neighbours' outlines enter each shape (read in its frame, computed once).
   const double longest = mesh.LongestEdgeLength();
   std::vector<std::vector<int>> entering(n);
   PhasePoll poll(options.Progress, n);
-#pragma omp parallel num_threads(threads)
-  {
-    std::unique_ptr<GeodesicPolarCoordinates> engine;
-#pragma omp for schedule(dynamic, 8)
-    for (int a = 0; a < n; ++a)
+  ParallelForEachThread<std::unique_ptr<GeodesicPolarCoordinates>>(n, threads, 8,
+    [&](int a, std::unique_ptr<GeodesicPolarCoordinates>& engine) {
+    if (neighbours[a].empty() || poll.Skip(a))
     {
-      if (neighbours[a].empty() || poll.Skip(a))
+      return;
+    }
+    const GeodesicPolarCoordinates* exact = nullptr;
+    if (options.ExactCharts && shapes[a].Curve.empty())
+    {
+      if (!engine)
       {
-        continue;
+        engine.reset(new GeodesicPolarCoordinates(mesh));
       }
-      const GeodesicPolarCoordinates* exact = nullptr;
-      if (options.ExactCharts && shapes[a].Curve.empty())
+      // Every face that meets the circle has its corners within a longest edge beyond it.
+      const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
+      if (std::isfinite(reference) &&
+        engine->Compute(shapes[a].Centre, radius[a] + 1.01 * longest, reference).Ok())
       {
-        if (!engine)
-        {
-          engine.reset(new GeodesicPolarCoordinates(mesh));
-        }
-        // Every face that meets the circle has its corners within a longest edge beyond it.
-        const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
-        if (std::isfinite(reference) &&
-          engine->Compute(shapes[a].Centre, radius[a] + 1.01 * longest, reference).Ok())
-        {
-          exact = engine.get();
-        }
-      }
-      for (int b : neighbours[a])
-      {
-        const double depth = tolerance * std::min(radius[a], radius[b]);
-        if (enters(a, b, depth / (size * shapes[a].Scale), exact))
-        {
-          entering[a].push_back(b);
-        }
+        exact = engine.get();
       }
     }
-  }
+    for (int b : neighbours[a])
+    {
+      const double depth = tolerance * std::min(radius[a], radius[b]);
+      if (enters(a, b, depth / (size * shapes[a].Scale), exact))
+      {
+        entering[a].push_back(b);
+      }
+    }
+    });
   if (poll.WasAborted())
   {
     return Status::Aborted();

@@ -168,14 +168,12 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
 {
   // Proposals of every front shape, nearest to the first shape first.
   std::vector<std::vector<Proposal>> proposals(front.size());
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-  for (int k = 0; k < static_cast<int>(front.size()); ++k)
-  {
+  ParallelFor(static_cast<int>(front.size()), threads, 4, [&](int k, int) {
     if (!Poll())
     {
       proposals[k] = Propose(front[k], round, k);
     }
-  }
+  });
   std::vector<Proposal> all;
   for (const auto& p : proposals)
   {
@@ -185,18 +183,13 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
     [](const Proposal& a, const Proposal& b) { return a.Key < b.Key; });
   const int n = static_cast<int>(all.size());
   batch.resize(n);
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<int> scratch; // (MakeShape's precheck of long shapes: the same decisions)
-#pragma omp for schedule(dynamic, 16)
-    for (int i = 0; i < n; ++i)
-    {
-      Random rng(Options.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-      batch[i].Valid = !Poll() &&
-        MakeShape(all[i].Centre, all[i].Class, rng, batch[i].Shape, &all[i].Prefer, &scratch);
-      batch[i].Reason = batch[i].Valid ? Record::Rejection::None : Record::Rejection::WithoutShape;
-    }
-  }
+  // (scratch: MakeShape's precheck of long shapes: the same decisions)
+  ParallelForEachThread<std::vector<int>>(n, threads, 16, [&](int i, std::vector<int>& scratch) {
+    Random rng(Options.Seed, 4, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
+    batch[i].Valid = !Poll() &&
+      MakeShape(all[i].Centre, all[i].Class, rng, batch[i].Shape, &all[i].Prefer, &scratch);
+    batch[i].Reason = batch[i].Valid ? Record::Rejection::None : Record::Rejection::WithoutShape;
+  });
 }
 
 bool ShapeDistributor::Impl::DrawRandomBatch(
@@ -221,25 +214,19 @@ bool ShapeDistributor::Impl::DrawRandomBatch(
 void ShapeDistributor::Impl::CheapChecks(std::vector<Record>& batch, int threads)
 {
   const int n = static_cast<int>(batch.size());
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<int> scratch;
-#pragma omp for schedule(dynamic, 64)
-    for (int i = 0; i < n; ++i)
+  ParallelForEachThread<std::vector<int>>(n, threads, 64, [&](int i, std::vector<int>& scratch) {
+    Record& r = batch[i];
+    if (Poll())
     {
-      Record& r = batch[i];
-      if (Poll())
-      {
-        r.Rejected = true;
-        continue;
-      }
-      r.Rejected = !r.Valid || CheapConflict(r, scratch);
-      if (r.Valid && r.Rejected)
-      {
-        r.Reason = Record::Rejection::Tables;
-      }
+      r.Rejected = true;
+      return;
     }
-  }
+    r.Rejected = !r.Valid || CheapConflict(r, scratch);
+    if (r.Valid && r.Rejected)
+    {
+      r.Reason = Record::Rejection::Tables;
+    }
+  });
 }
 
 std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
@@ -264,9 +251,7 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
   }
   std::sort(grid.begin(), grid.end());
   grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
-  for (std::size_t k = 0; k < survivors.size(); ++k)
-  {
+  ParallelFor(static_cast<int>(survivors.size()), threads, 64, [&](int k, int) {
     const int i = survivors[k];
     const Record& r = batch[i];
     std::vector<int>& list = above[i];
@@ -297,7 +282,7 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
           }
     }
     SortUnique(list);
-  }
+  });
   return above;
 }
 
@@ -313,7 +298,7 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
     {
       break;
     }
-    ComputeCharts(r, Engine0());
+    ComputeCharts(r, Engine(0));
     ++charts;
     if (FullConflict(r, scratch))
     {
@@ -358,53 +343,60 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
       (free ? ready : waiting).push_back(i);
     }
     const int nr = static_cast<int>(ready.size());
-#pragma omp parallel num_threads(threads) reduction(+ : charts, chartSeconds)
+    struct Scratch
     {
-      std::vector<int> scratch, marked;
-      // One candidate at a time: a chart costs about 0.6 ms, and waves are often short (a
-      // chunk of 4 left one thread idle for up to 3 charts).
-#pragma omp for schedule(dynamic, 1)
-      for (int k = 0; k < nr; ++k)
+      std::vector<int> Conflicts, Marked;
+      long long Charts = 0;
+      double ChartSeconds = 0.0;
+    };
+    // One candidate at a time: a chart costs about 0.6 ms, and waves are often short (a chunk of
+    // 4 left one thread idle for up to 3 charts).
+    std::vector<Scratch> perThread(threads);
+    ParallelFor(nr, threads, 1, [&](int k, int thread) {
+      Scratch& s = perThread[thread];
+      Record& r = batch[ready[k]];
+      if (Poll())
       {
-        Record& r = batch[ready[k]];
-        if (Poll())
-        {
-          r.Rejected = true;
-          continue;
-        }
-        bool recheck = false;
-        for (int j : above[ready[k]])
-        {
-          recheck = recheck || state[j] == 1;
-        }
-        if (recheck && CheapConflict(r, scratch))
-        {
-          r.Rejected = true;
-          r.Reason = Record::Rejection::Tables;
-          continue;
-        }
-        if (!r.Shape.Curve.empty() && Unfaithful(r)) // (a long shape: before its charts)
-        {
-          r.Rejected = true;
-          r.Reason = Record::Rejection::Faithful;
-          continue;
-        }
-        const auto chartStart = std::chrono::steady_clock::now();
-        ComputeCharts(r, Engine());
-        chartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
-        ++charts;
-        if (FullConflict(r, scratch))
-        {
-          r.Reason = Record::Rejection::Tables;
-        }
-        if (r.Reason == Record::Rejection::Tables || DrawnConflict(r, scratch))
-        {
-          r.Rejected = true;
-          r.Charts.clear();
-          continue;
-        }
-        PrepareCommit(r, Marks[ThreadId()], marked);
+        r.Rejected = true;
+        return;
       }
+      bool recheck = false;
+      for (int j : above[ready[k]])
+      {
+        recheck = recheck || state[j] == 1;
+      }
+      if (recheck && CheapConflict(r, s.Conflicts))
+      {
+        r.Rejected = true;
+        r.Reason = Record::Rejection::Tables;
+        return;
+      }
+      if (!r.Shape.Curve.empty() && Unfaithful(r)) // (a long shape: before its charts)
+      {
+        r.Rejected = true;
+        r.Reason = Record::Rejection::Faithful;
+        return;
+      }
+      const auto chartStart = std::chrono::steady_clock::now();
+      ComputeCharts(r, Engine(thread));
+      s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
+      ++s.Charts;
+      if (FullConflict(r, s.Conflicts))
+      {
+        r.Reason = Record::Rejection::Tables;
+      }
+      if (r.Reason == Record::Rejection::Tables || DrawnConflict(r, s.Conflicts))
+      {
+        r.Rejected = true;
+        r.Charts.clear();
+        return;
+      }
+      PrepareCommit(r, Marks[thread], s.Marked);
+    });
+    for (const Scratch& s : perThread)
+    {
+      charts += s.Charts;
+      chartSeconds += s.ChartSeconds;
     }
     for (int i : ready) // priority order
     {

@@ -62,11 +62,8 @@ void ShapeDistributor::Impl::EnsureEngines(int threads)
     return;
   }
   Engines.resize(threads);
-#pragma omp parallel for schedule(static, 1) num_threads(threads)
-  for (int t = have; t < threads; ++t)
-  {
-    Engines[t].reset(new GeodesicPolarCoordinates(Mesh, Graph));
-  }
+  ParallelFor(threads - have, threads - have, 1,
+    [&](int k, int) { Engines[have + k].reset(new GeodesicPolarCoordinates(Mesh, Graph)); });
 }
 
 void ShapeDistributor::Impl::ComputeCharts(Record& r, GeodesicPolarCoordinates& engine) const

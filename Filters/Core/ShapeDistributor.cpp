@@ -11,6 +11,10 @@
 #include <limits>
 #include <sstream>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace gs
 {
 using namespace distribution;
@@ -280,27 +284,33 @@ double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
   }
   const int threads = ThreadCount(I.Options.NumberOfThreads);
   I.EnsureEngines(threads);
-  long long fits = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : fits)
+  struct Scratch
   {
-    std::vector<int> scratch;
-#pragma omp for schedule(dynamic, 64)
-    for (int i = 0; i < probes; ++i)
+    std::vector<int> Conflicts;
+    long long Fits = 0;
+  };
+  std::vector<Scratch> perThread(threads);
+  ParallelFor(probes, threads, 64, [&](int i, int thread) {
+    Scratch& s = perThread[thread];
+    Random rng(seed, 3, 0, static_cast<std::uint64_t>(i));
+    Impl::Record r;
+    const int cls = I.RandomClass(rng);
+    const SurfacePoint centre = I.RandomPoint(rng, false);
+    if (!I.MakeShape(centre, cls, rng, r.Shape, nullptr, &s.Conflicts) ||
+      I.CheapConflict(r, s.Conflicts))
     {
-      Random rng(seed, 3, 0, static_cast<std::uint64_t>(i));
-      Impl::Record r;
-      const int cls = I.RandomClass(rng);
-      const SurfacePoint centre = I.RandomPoint(rng, false);
-      if (!I.MakeShape(centre, cls, rng, r.Shape, nullptr, &scratch) || I.CheapConflict(r, scratch))
-      {
-        continue;
-      }
-      I.ComputeCharts(r, I.Engine());
-      if (!I.FullConflict(r, scratch) && !I.DrawnConflict(r, scratch))
-      {
-        ++fits;
-      }
+      return;
     }
+    I.ComputeCharts(r, I.Engine(thread));
+    if (!I.FullConflict(r, s.Conflicts) && !I.DrawnConflict(r, s.Conflicts))
+    {
+      ++s.Fits;
+    }
+  });
+  long long fits = 0;
+  for (const Scratch& s : perThread)
+  {
+    fits += s.Fits;
   }
   return static_cast<double>(fits) / probes;
 }

@@ -22,6 +22,7 @@
 #include "DirectionField.h"
 #include "GeodesicPolarCoordinates.h"
 #include "OverlapCheck.h"
+#include "ParallelFor.h"
 #include "PhasePoll.h"
 #include "ShapeDistributor.h"
 
@@ -34,10 +35,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace gs
 {
@@ -69,15 +66,6 @@ struct Random
     return static_cast<double>(State >> 11) * (1.0 / 9007199254740992.0);
   }
 };
-
-inline int ThreadId()
-{
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
 
 struct ChartEntry
 {
@@ -350,8 +338,8 @@ struct ShapeDistributor::Impl
   Record Uncommit();
   /// Per-thread geodesic engines and scratch marks for `threads` threads.
   void EnsureEngines(int threads);
-  GeodesicPolarCoordinates& Engine() { return *Engines[distribution::ThreadId()]; }
-  GeodesicPolarCoordinates& Engine0() { return *Engines[0]; } // outside parallel regions
+  // The engine of a ParallelFor thread (0: the calling thread's, also outside parallel loops).
+  GeodesicPolarCoordinates& Engine(int thread) { return *Engines[thread]; }
 
   // ---- The conflict test, Algorithm 2 (ConflictTest.cpp) --------------------------------
   // Per class: its silhouette for point queries, and the clearance of its centre (the distance

@@ -1,5 +1,6 @@
 #include "ShapeDrawing.h"
 
+#include "ParallelFor.h"
 #include "PhasePoll.h"
 
 #include <chrono>
@@ -18,14 +19,11 @@ std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double t
     seconds->assign(ns, 0.0);
   }
   const int threads = ThreadCount(numberOfThreads);
-  (void)threads;
   PhasePoll poll(progress, ns);
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-  for (int s = 0; s < ns; ++s)
-  {
+  ParallelFor(ns, threads, 4, [&](int s, int) {
     if (poll.Skip(s))
     {
-      continue;
+      return;
     }
     const auto start = std::chrono::steady_clock::now();
     decals[s] = distributor.Decal(s, tolerance);
@@ -34,7 +32,7 @@ std::vector<ShapeDecal> DrawDecals(const ShapeDistributor& distributor, double t
       (*seconds)[s] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-  }
+  });
   return decals;
 }
 
@@ -45,16 +43,13 @@ std::vector<std::vector<OutlinePiece>> DrawOutlines(
   std::vector<std::vector<OutlinePiece>> outlines(ns);
   const double spacing = distributor.OutlineSpacing();
   const int threads = ThreadCount(numberOfThreads);
-  (void)threads;
   PhasePoll poll(progress, ns);
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-  for (int s = 0; s < ns; ++s)
-  {
+  ParallelFor(ns, threads, 4, [&](int s, int) {
     if (!poll.Skip(s))
     {
       outlines[s] = distributor.Outline(s, spacing);
     }
-  }
+  });
   return outlines;
 }
 
