@@ -32,6 +32,7 @@ from .mesh import as_polydata, points_of, triangles_of  # noqa: F401
 from .functions import (  # noqa: F401
     CrossField,
     Distribution,
+    GeodesicShapesAborted,
     GeodesicShapesError,
     PolarCoordinates,
     SafeDistanceTables,
@@ -45,6 +46,7 @@ from .functions import (  # noqa: F401
 __all__ = [
     "vtkSVGGeodesicDistance", "vtkGeodesicPolarCoordinates", "vtkMSDTSource", "vtkCrossField",
     "vtkShapeDistributor", "as_polydata", "points_of", "triangles_of", "GeodesicShapesError",
+    "GeodesicShapesAborted",
     "geodesic_distance", "polar_coordinates", "cross_field", "safe_distance_tables",
     "distribute_shapes", "PolarCoordinates", "CrossField", "SafeDistanceTables", "Distribution",
 ]

@@ -5,6 +5,11 @@ A mesh is a vtkPolyData or a ``(vertices, triangles)`` pair of numpy arrays (see
 the result objects (attribute ``vtk``) where they carry more. A filter's error (bad input, bad
 parameter) raises ``GeodesicShapesError`` with the filter's own message; its warnings become
 Python warnings (category ``GeodesicShapesWarning``).
+
+Every function takes ``progress=None``: a callable given the fraction done (0 to 1) as the
+filter advances through its phases (graph, candidates, rounds, decals, ...), on the calling
+thread, at most about every 0.1 s and once at 1; when it returns False the work stops soon after
+and ``GeodesicShapesAborted`` is raised. E.g. ``progress=lambda f: print("%3d%%" % (100 * f))``.
 """
 import warnings
 
@@ -29,6 +34,10 @@ class GeodesicShapesError(RuntimeError):
     """A filter refused its input or parameters; the message is the filter's."""
 
 
+class GeodesicShapesAborted(GeodesicShapesError):
+    """The caller's progress callback returned False: the work stopped, no result."""
+
+
 class GeodesicShapesWarning(UserWarning):
     """A filter's warning (the result is valid)."""
 
@@ -41,9 +50,19 @@ def _message(text):
     return " ".join(text.split())
 
 
-def _update(algorithm, what):
-    """Updates ``algorithm``; its errors raise GeodesicShapesError, its warnings are warned."""
+def _update(algorithm, what, progress=None):
+    """Updates ``algorithm``; its errors raise GeodesicShapesError, its warnings are warned;
+    ``progress(fraction)`` is called as it advances, and returning False aborts it."""
+    if progress is not None and not callable(progress):
+        raise TypeError("%s: progress must be a callable taking the fraction done, not %r"
+                        % (what, progress))
     errors, warned = [], []
+    stopped = []
+
+    def on_progress(caller, event):
+        if not stopped and progress(caller.GetProgress()) is False:
+            stopped.append(True)
+            caller.SetAbortExecute(1)
 
     @calldata_type(VTK_STRING)
     def on_error(caller, event, text):
@@ -55,11 +74,18 @@ def _update(algorithm, what):
 
     tags = [algorithm.AddObserver(vtkCommand.ErrorEvent, on_error),
             algorithm.AddObserver(vtkCommand.WarningEvent, on_warning)]
+    if progress is not None:
+        tags.append(algorithm.AddObserver(vtkCommand.ProgressEvent, on_progress))
     try:
         algorithm.Update()
     finally:
         for tag in tags:
             algorithm.RemoveObserver(tag)
+        algorithm.SetAbortExecute(0)
+        if stopped:
+            algorithm.Modified()  # (the aborted output is not a result: the next call re-runs)
+    if stopped:
+        raise GeodesicShapesAborted("%s: aborted by the progress callback" % what)
     for text in warned:
         warnings.warn("%s: %s" % (what, text), GeodesicShapesWarning, stacklevel=3)
     if errors:
@@ -97,7 +123,7 @@ _SOLVERS = {"svg": vtkSVGGeodesicDistance.SVG_LABEL_CORRECTING,
 
 def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, accuracy=1e-3,
                       maximum_distance=0.0, cache_file=None, return_vtk=False,
-                      reached_stencil=False):
+                      reached_stencil=False, progress=None):
     """Geodesic distance (shortest path on the surface) from sources to every vertex.
 
     mesh: a vtkPolyData or (vertices, triangles).
@@ -141,7 +167,7 @@ def geodesic_distance(mesh, sources=None, curves=(), solver="svg", k=50, accurac
         f.SetSourcesData(point_cloud(points if points is not None else numpy.zeros((0, 3)), list(curves)))
     elif sources is None:
         raise ValueError("geodesic_distance: give sources (vertex indices or points) or curves")
-    _update(f, "geodesic_distance")
+    _update(f, "geodesic_distance", progress)
     out = f.GetOutput()
     distance = _point_array(out, "GeodesicDistance")
     return (distance, out) if return_vtk else distance
@@ -169,7 +195,7 @@ class PolarCoordinates:
 
 
 def polar_coordinates(mesh, source, radius, reference_direction=None, k=0, decal_size=None,
-                      angle_mode="geodesic"):
+                      angle_mode="geodesic", progress=None):
     """Geodesic polar coordinates of the vertices within ``radius`` of a source.
 
     source: a vertex index, a point ((3,) array, snapped to the surface) or a curve ((k, 3)
@@ -216,7 +242,7 @@ def polar_coordinates(mesh, source, radius, reference_direction=None, k=0, decal
         curve = True
     else:
         raise ValueError("source: a vertex index, a (3,) point or a (k, 3) curve")
-    _update(f, "polar_coordinates")
+    _update(f, "polar_coordinates", progress)
     return PolarCoordinates(f.GetOutput(), curve)
 
 
@@ -233,7 +259,8 @@ class CrossField:
         self.symmetry = symmetry
 
 
-def cross_field(mesh, symmetry=4, singularities=None, strokes=(), curvature_alignment=None):
+def cross_field(mesh, symmetry=4, singularities=None, strokes=(), curvature_alignment=None,
+                progress=None):
     """The smoothest N-direction field on the mesh (trivial connections, Crane et al. 2010).
 
     symmetry: N = 1 (vectors, for birds or fish), 2 (lines) or 4 (crosses; default).
@@ -263,7 +290,7 @@ def cross_field(mesh, symmetry=4, singularities=None, strokes=(), curvature_alig
         f.SetModeToPrescribedSingularities()
     if len(strokes):
         f.SetStrokesData(point_cloud(numpy.zeros((0, 3)), list(strokes)))
-    _update(f, "cross_field")
+    _update(f, "cross_field", progress)
     return CrossField(f.GetOutput(), int(symmetry))
 
 
@@ -291,7 +318,7 @@ class SafeDistanceTables:
 
 
 def safe_distance_tables(images=(), polygons=(), angle_bins=64, distance_steps=64,
-                         maximum_aspect_ratio=2.0, texture_size=256):
+                         maximum_aspect_ratio=2.0, texture_size=256, progress=None):
     """Minimum safe distance tables of shapes given as images and/or polygons.
 
     images: file names of silhouettes (PNG with transparency, or dark shapes on a light
@@ -327,7 +354,7 @@ def safe_distance_tables(images=(), polygons=(), angle_bins=64, distance_steps=6
     f.SetDistanceSteps(int(distance_steps))
     f.SetMaximumAspectRatio(float(maximum_aspect_ratio))
     f.SetTextureSize(int(texture_size))
-    _update(f, "safe_distance_tables")
+    _update(f, "safe_distance_tables", progress)
     return SafeDistanceTables(f)
 
 
@@ -369,7 +396,7 @@ _MODES = {"random": vtkShapeDistributor.RANDOM, "greedy": vtkShapeDistributor.GR
 def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, density=None,
                       mode="random", seed=0, class_weights=None, maximum_shapes=0,
                       keep_inside=False, verify_overlaps=False, threads=0, k=50,
-                      graph_accuracy=0.1):
+                      graph_accuracy=0.1, progress=None):
     """Places shapes on the surface without any two overlapping (Wang et al. 2016).
 
     mesh: a vtkPolyData (e.g. CrossField.vtk, whose cell array Direction is then used) or
@@ -450,5 +477,5 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
         f.SetNumberOfClassWeights(len(weights))
         for i, w in enumerate(weights):
             f.SetClassWeight(i, w)
-    _update(f, "distribute_shapes")
+    _update(f, "distribute_shapes", progress)
     return Distribution(f)

@@ -170,6 +170,40 @@ check(3.0 < len(dense) / len(by_face) < 5.0, "density 0.5: %d against %d" % (len
 print("functions: %d shapes (automatic size %.3f), %d / %d with given directions, %d at density 0.5"
       % (len(dist), dist.shape_size, len(by_face), len(by_vertex), len(dense)))
 
+# Progress: fractions that rise to 1 through the phases; False aborts (no result, the next call
+# runs whole).
+seen = []
+with_progress = gs.distribute_shapes((V, F), star, seed=5, progress=seen.append)
+check(numpy.array_equal(with_progress.positions, dist.positions), "progress changed the result")
+check(len(seen) >= 3 and seen[-1] == 1.0 and all(b >= a for a, b in zip(seen, seen[1:])),
+      "progress fractions: %s" % seen)
+distance_seen = []
+gs.geodesic_distance((V, F), 0, progress=distance_seen.append)
+check(distance_seen and distance_seen[-1] == 1.0, "geodesic_distance progress: %s" % distance_seen)
+asked = []
+
+
+def stop_after_start(fraction):
+    asked.append(fraction)
+    return fraction == 0.0
+
+
+try:
+    gs.distribute_shapes((V, F), star, seed=5, progress=stop_after_start)
+    check(False, "progress returning False did not abort")
+except gs.GeodesicShapesAborted as e:
+    check("aborted" in str(e) and len(asked) >= 2 and max(asked) < 1.0,
+          "abort: %r after %s" % (str(e), asked))
+check(isinstance(gs.GeodesicShapesAborted("x"), gs.GeodesicShapesError), "Aborted is an Error")
+again_whole = gs.distribute_shapes((V, F), star, seed=5)
+check(numpy.array_equal(again_whole.positions, dist.positions), "a call after an abort differs")
+try:
+    gs.distribute_shapes((V, F), star, progress=0.5)
+    check(False, "a non-callable progress accepted")
+except TypeError as e:
+    check("progress" in str(e), "non-callable progress: %r" % str(e))
+print("progress: %d reports (%s ... %s), abort after %d" % (len(seen), seen[0], seen[-1], len(asked)))
+
 # Errors: the filters' messages as exceptions, bad arguments as Python errors.
 def raises(kind, function, *a, **k):
     try:
