@@ -412,7 +412,9 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
     density: an (n,) array of per-vertex size factors f (f = 0.5: four times as many shapes per
         unit area; f <= 0 masks the triangles around). mode: "random" (dart throwing), "greedy"
         (denser) or "circumcircle" (the baseline). seed: the result depends on it only.
-    class_weights: relative frequencies of the classes. maximum_shapes: stop there (0: none).
+    class_weights: how often each class is proposed (the counts follow the weights until the
+        surface fills; then smaller classes fill gaps and exceed their share). maximum_shapes:
+        stop there (0: none).
     keep_inside: keep shapes off the mesh boundary. verify_overlaps: check the result by the
     drawn outlines (Distribution.overlapping_pairs). threads: 0 all. k: 0 for exact charts
     (no graph). graph_accuracy: the charts' discrete geodesic graph's accuracy (1e-5 .. 0.1,
