@@ -5,10 +5,18 @@
 //   --case mesh --mesh refined_elephant.off --image crow.png: birds following a smooth vector
 //     field (Cross Field, N = 1) on a real mesh, every bird inside the mesh's bounding box.
 //
-// Decals of neighbouring shapes overlap (each covers the square around its circle, transparent
-// outside the silhouette): the texture is drawn as a cut-out (fragments with alpha < 0.5 are
-// discarded by a shader replacement), and each shape's decal is lifted by a shape-dependent hair
-// against z-fighting.
+//   --case drawn --mesh bumpy_sphere.ply --image star.png --image fish.png: no baseline; the
+//     decals are checked against the outlines, pixel by pixel. The decals of the shapes facing
+//     the camera are rendered alone (white, the texture's alpha blended over a black surface and
+//     background), and the same shapes' outlines are projected to the screen and filled. Every
+//     decal pixel (alpha >= 0.5) lies within 2 pixels of a filled outline (no stray fragment, no
+//     repeat of the texture), and the outlines' interiors more than 2 pixels from their border
+//     are decal pixels (no hatching, no hole), but for 1% (bumps of the surface hiding a part).
+//
+// Decals of neighbouring shapes overlap (each covers the part of the square around its circle
+// that lies on the surface, transparent outside the silhouette): the texture's alpha is blended
+// by VTK's translucent pass, with no shader of the project's, and each shape's decal is lifted by
+// a shape-dependent hair against z-fighting.
 #include "vtkCrossField.h"
 #include "vtkMSDTSource.h"
 #include "vtkShapeDistributor.h"
@@ -35,15 +43,21 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
-#include <vtkShaderProperty.h>
+#include <vtkIdList.h>
 #include <vtkTexture.h>
 #include <vtkTriangleFilter.h>
+#include <vtkWindowToImageFilter.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 using gs_test::Check;
 
@@ -143,11 +157,8 @@ int Render(vtkPolyData* mesh, vtkPolyData* decals, vtkImageData* texture, int ar
   vtkNew<vtkActor> decalActor;
   decalActor->SetMapper(decalMapper);
   decalActor->SetTexture(tex);
-  // Cut-out texture: fragments outside the silhouettes are discarded (alpha test), so the
-  // overlapping decal squares of neighbours never hide each other.
-  decalActor->ForceOpaqueOn();
-  decalActor->GetShaderProperty()->AddFragmentShaderReplacement("//VTK::Light::Impl", true,
-    "//VTK::Light::Impl\n  if (gl_FragData[0].a < 0.5) { discard; }\n", false);
+  // The texture's alpha blends the decals over the surface (VTK's own translucent pass, as
+  // ParaView draws them): transparent outside the silhouettes.
   renderer->AddActor(decalActor);
   renderer->SetBackground(0.32, 0.34, 0.43);
   vtkNew<vtkRenderWindow> window;
@@ -170,6 +181,240 @@ int Render(vtkPolyData* mesh, vtkPolyData* decals, vtkImageData* texture, int ar
   return image;
 }
 
+// The cells of `data` whose cell array ShapeId is in `keep`, as a new polydata (points copied per
+// cell; the cell data and point data come along).
+vtkSmartPointer<vtkPolyData> CellsOfShapes(vtkPolyData* data, const std::set<int>& keep)
+{
+  vtkDataArray* shape = data->GetCellData()->GetArray("ShapeId");
+  vtkNew<vtkIdList> cells;
+  for (vtkIdType c = 0; shape && c < data->GetNumberOfCells(); ++c)
+  {
+    if (keep.count(static_cast<int>(shape->GetTuple1(c))))
+    {
+      cells->InsertNextId(c);
+    }
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->AllocateCopy(data);
+  out->GetCellData()->CopyAllocate(data->GetCellData());
+  out->GetPointData()->CopyAllocate(data->GetPointData());
+  vtkNew<vtkPoints> points;
+  out->SetPoints(points);
+  for (vtkIdType k = 0; k < cells->GetNumberOfIds(); ++k)
+  {
+    const vtkIdType c = cells->GetId(k);
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    data->GetCellPoints(c, n, ids);
+    std::vector<vtkIdType> copy(n);
+    for (vtkIdType j = 0; j < n; ++j)
+    {
+      copy[j] = points->InsertNextPoint(data->GetPoint(ids[j]));
+      out->GetPointData()->CopyData(data->GetPointData(), ids[j], copy[j]);
+    }
+    const vtkIdType made = out->InsertNextCell(data->GetCellType(c), n, copy.data());
+    out->GetCellData()->CopyData(data->GetCellData(), c, made);
+  }
+  return out;
+}
+
+// Decals against outlines, pixel by pixel (see the file's comment). Returns the failures.
+int DecalsInsideTheirOutlines(const std::string& meshFile, const std::vector<std::string>& images)
+{
+  auto mesh = gs_test::ReadPolyData(meshFile);
+  if (!mesh)
+  {
+    return 1;
+  }
+  vtkNew<vtkMSDTSource> msdt;
+  for (const std::string& file : images)
+  {
+    msdt->AddShapeFileName(file.c_str());
+  }
+  msdt->SetTextureSize(256);
+  vtkNew<vtkCrossField> field;
+  field->SetInputData(mesh);
+  field->SetSymmetry(1);
+  vtkNew<vtkShapeDistributor> shapes;
+  shapes->SetInputConnection(0, field->GetOutputPort());
+  shapes->SetInputConnection(1, msdt->GetOutputPort(0));
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  shapes->SetShapeSize(0.025 * diagonal);
+  shapes->SetSeed(3);
+  shapes->Update();
+  msdt->Update();
+  vtkPolyData* placed = shapes->GetOutput(0);
+  vtkPolyData* decals = shapes->GetOutput(1);
+  vtkPolyData* outlines = shapes->GetOutput(2);
+  vtkDataArray* normal = placed->GetPointData()->GetArray("Normal");
+  vtkDataArray* classOf = placed->GetPointData()->GetArray("ClassId");
+  if (!normal || !classOf || placed->GetNumberOfPoints() < 50)
+  {
+    Check(false, "drawn", "too few shapes or no Normal / ClassId arrays");
+    return 1;
+  }
+
+  const int width = 800, height = 800;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  window->AddRenderer(renderer);
+  window->SetSize(width, height);
+  window->SetMultiSamples(0);
+  renderer->SetBackground(0, 0, 0);
+  vtkNew<vtkPolyDataMapper> meshMapper;
+  meshMapper->SetInputData(mesh);
+  meshMapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> meshActor;
+  meshActor->SetMapper(meshMapper);
+  meshActor->GetProperty()->SetColor(0, 0, 0);
+  meshActor->GetProperty()->SetSpecular(0);
+  renderer->AddActor(meshActor);
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->Azimuth(25);
+  renderer->GetActiveCamera()->Elevation(20);
+  renderer->GetActiveCamera()->Zoom(1.3);
+  renderer->ResetCameraClippingRange();
+  double eye[3];
+  renderer->GetActiveCamera()->GetPosition(eye);
+
+  // The shapes facing the camera (their normal within 45 degrees of the line of sight).
+  std::set<int> front;
+  for (vtkIdType s = 0; s < placed->GetNumberOfPoints(); ++s)
+  {
+    double x[3], n[3], v[3];
+    placed->GetPoint(s, x);
+    normal->GetTuple(s, n);
+    for (int k = 0; k < 3; ++k)
+      v[k] = eye[k] - x[k];
+    const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if ((n[0] * v[0] + n[1] * v[1] + n[2] * v[2]) > 0.7071 * len)
+      front.insert(static_cast<int>(s));
+  }
+  // Their decals, one actor per class, white where the silhouette is.
+  const double white[3] = { 1, 1, 1 };
+  std::vector<vtkSmartPointer<vtkActor>> decalActors;
+  for (int k = 0; k < static_cast<int>(images.size()); ++k)
+  {
+    std::set<int> ofClass;
+    for (int s : front)
+      if (static_cast<int>(classOf->GetTuple1(s)) == k)
+        ofClass.insert(s);
+    auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+    mapper->SetInputData(CellsOfShapes(decals, ofClass));
+    mapper->ScalarVisibilityOff();
+    auto texture = vtkSmartPointer<vtkTexture>::New();
+    texture->SetInputData(Texture(msdt->GetSilhouettesOutput(), k, white));
+    texture->InterpolateOn();
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    actor->SetTexture(texture);
+    actor->GetProperty()->SetAmbient(1.0);
+    actor->GetProperty()->SetDiffuse(0.0);
+    actor->GetProperty()->SetSpecular(0.0);
+    renderer->AddActor(actor);
+    decalActors.push_back(actor);
+  }
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkDataArray* pixels = grab->GetOutput()->GetPointData()->GetScalars();
+  int dims[3];
+  grab->GetOutput()->GetDimensions(dims);
+  std::vector<char> decal(static_cast<std::size_t>(dims[0]) * dims[1], 0);
+  for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i)
+    decal[i] = pixels->GetComponent(i, 0) >= 128.0;
+
+  // The same shapes' outlines, projected and filled (even-odd per shape, scanlines through the
+  // pixel centres), from the outlines' closed polylines.
+  std::map<int, std::vector<std::vector<std::array<double, 2>>>> rings;
+  vtkDataArray* outlineShape = outlines->GetCellData()->GetArray("ShapeId");
+  for (vtkIdType c = 0; outlineShape && c < outlines->GetNumberOfCells(); ++c)
+  {
+    const int s = static_cast<int>(outlineShape->GetTuple1(c));
+    if (!front.count(s))
+      continue;
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    outlines->GetCellPoints(c, n, ids);
+    std::vector<std::array<double, 2>> ring;
+    for (vtkIdType j = 0; j < n; ++j)
+    {
+      double x[3];
+      outlines->GetPoint(ids[j], x);
+      renderer->SetWorldPoint(x[0], x[1], x[2], 1.0);
+      renderer->WorldToDisplay();
+      double d[3];
+      renderer->GetDisplayPoint(d);
+      ring.push_back({ d[0], d[1] });
+    }
+    rings[s].push_back(ring);
+  }
+  std::vector<char> fill(decal.size(), 0);
+  for (const auto& shapeRings : rings)
+  {
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      const double yc = y + 0.5;
+      std::vector<double> crossings;
+      for (const auto& ring : shapeRings.second)
+        for (std::size_t j = 0; j + 1 < ring.size(); ++j)
+        {
+          const auto& a = ring[j];
+          const auto& b = ring[j + 1];
+          if ((a[1] <= yc) != (b[1] <= yc))
+            crossings.push_back(a[0] + (yc - a[1]) / (b[1] - a[1]) * (b[0] - a[0]));
+        }
+      std::sort(crossings.begin(), crossings.end());
+      for (std::size_t j = 0; j + 1 < crossings.size(); j += 2)
+        for (int x = std::max(0, static_cast<int>(std::ceil(crossings[j] - 0.5)));
+             x < dims[0] && x + 0.5 <= crossings[j + 1]; ++x)
+          fill[static_cast<std::size_t>(y) * dims[0] + x] = 1;
+    }
+  }
+  // Within 2 pixels of the fill, and 2 pixels inside it.
+  auto near = [&](const std::vector<char>& mask, int x, int y, char value) {
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx)
+      {
+        const int u = x + dx, v = y + dy;
+        if (u >= 0 && v >= 0 && u < dims[0] && v < dims[1] &&
+          mask[static_cast<std::size_t>(v) * dims[0] + u] == value)
+          return true;
+      }
+    return false;
+  };
+  long long decalPixels = 0, stray = 0, interior = 0, holes = 0;
+  for (int y = 0; y < dims[1]; ++y)
+    for (int x = 0; x < dims[0]; ++x)
+    {
+      const std::size_t i = static_cast<std::size_t>(y) * dims[0] + x;
+      if (decal[i])
+      {
+        ++decalPixels;
+        stray += !near(fill, x, y, 1);
+      }
+      if (fill[i] && !near(fill, x, y, 0))
+      {
+        ++interior;
+        holes += !decal[i];
+      }
+    }
+  std::cout << placed->GetNumberOfPoints() << " shapes, " << front.size() << " facing the camera: "
+            << decalPixels << " decal pixels, " << stray << " farther than 2 pixels from their outlines; "
+            << interior << " interior pixels of the outlines, " << holes << " not drawn by a decal\n";
+  Check(front.size() >= 20 && decalPixels > 10000, "drawn", "too few shapes facing the camera");
+  Check(stray == 0, "drawn", std::to_string(stray) + " decal pixels outside the outlines");
+  Check(holes <= interior / 100, "drawn", std::to_string(holes) + " of " + std::to_string(interior) +
+      " pixels inside the outlines not drawn by a decal");
+  return 0;
+}
+
 vtkIdType Count(vtkShapeDistributor* f, int mode)
 {
   f->SetMode(mode);
@@ -181,6 +426,7 @@ vtkIdType Count(vtkShapeDistributor* f, int mode)
 int main(int argc, char* argv[])
 {
   std::string which, meshFile, imageFile;
+  std::vector<std::string> imageFiles;
   for (int i = 1; i + 1 < argc; ++i)
   {
     if (std::strcmp(argv[i], "--case") == 0)
@@ -188,7 +434,15 @@ int main(int argc, char* argv[])
     else if (std::strcmp(argv[i], "--mesh") == 0)
       meshFile = argv[i + 1];
     else if (std::strcmp(argv[i], "--image") == 0)
+    {
       imageFile = argv[i + 1];
+      imageFiles.push_back(imageFile);
+    }
+  }
+  if (which == "drawn")
+  {
+    const int failed = DecalsInsideTheirOutlines(meshFile, imageFiles);
+    return failed == 0 && gs_test::Failures == 0 ? 0 : 1;
   }
   int image = vtkRegressionTester::FAILED;
   if (which == "plane")
