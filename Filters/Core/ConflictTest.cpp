@@ -279,21 +279,22 @@ bool ShapeDistributor::Impl::PrepareExactMap(Record& c) const
   {
     return !c.Exact->Entries.empty();
   }
-  // Out to a longest edge of the mesh beyond the circle, as decals and VerifyOverlaps take it:
-  // read through a map truncated nearer (the longest edge of the faces the outline crosses), a
-  // neighbour's outline segment with an end beyond it is tested at its other end only, and
-  // VerifyOverlaps, which reads the whole segment, found a pair the drawn check had let through
-  // (elephant-with-holes subdivided once, ShapeSize 1.5%, seed 10). On a mesh whose longest edge
-  // is far longer than its shapes, this costs: turbine at ShapeSize 0.6% (longest edge 14x the
-  // mean), the distribution takes 1.8x its time with the placement's charts (one thread).
+  // Over every face that meets the disc of the circumradius plus an outline spacing, as
+  // VerifyOverlaps takes it (ComputeCoveringDisc): a neighbour's outline segment that reaches
+  // into the circle has both ends there, and is read whole (read through a map truncated at the
+  // faces the outline crosses, such a segment was tested at one end only, and VerifyOverlaps
+  // found a pair the drawn check had let through: elephant-with-holes subdivided once, ShapeSize
+  // 1.5%, seed 10). A margin of the mesh's longest edge, everywhere, did the same at up to 30
+  // times the cost on meshes with a few long edges (a noisy scan; turbine, whose longest edge
+  // is 14x the mean).
   ExactEngineLease lease(*this);
   GeodesicPolarCoordinates& engine = lease.Take();
   const double unit = Options.ShapeSize * c.Shape.Scale;
   const double reference = TangentAngle(Mesh, c.Shape.Centre, c.Shape.Direction);
   const bool ok = std::isfinite(reference) &&
     engine
-      .Compute(c.Shape.Centre, Tables.Classes[c.Shape.ClassId].Radius * unit * (1.0 + 1e-9) + 1.01 * MaxEdge,
-        reference)
+      .ComputeCoveringDisc(c.Shape.Centre,
+        Tables.Classes[c.Shape.ClassId].Radius * unit * (1.0 + 1e-9) + OutlineSpacing(), reference)
       .Ok();
   c.Exact = std::make_shared<const LogMapSnapshot>(ok ? engine.Snapshot() : LogMapSnapshot());
   return ok && !c.Exact->Entries.empty();

@@ -497,6 +497,21 @@ Status ExactGeodesicSolver::Solve(
     }
   }
 
+  // StopOnceFinal: its distinct vertices not final yet (checked as FinalOrder grows).
+  std::size_t targetsLeft = 0, seen = 0;
+  if (options.StopOnceFinal && !options.StopOnceFinal->empty())
+  {
+    Target.resize(Surface.NumberOfVertices(), 0);
+    for (int v : *options.StopOnceFinal)
+    {
+      if (v >= 0 && v < Surface.NumberOfVertices() && !Target[v])
+      {
+        Target[v] = 1;
+        ++targetsLeft;
+      }
+    }
+  }
+  const bool targeted = targetsLeft > 0;
   bool truncated = false;
   while (!Queue.Empty())
   {
@@ -507,6 +522,15 @@ Status ExactGeodesicSolver::Solve(
     }
     FinalizeUpTo(w.Key);
     if (maxFinal > 0 && FinalOrder.size() >= maxFinal)
+    {
+      truncated = true;
+      break;
+    }
+    for (; targeted && seen < FinalOrder.size(); ++seen)
+    {
+      targetsLeft -= Target[FinalOrder[seen]];
+    }
+    if (targeted && targetsLeft == 0)
     {
       truncated = true;
       break;
@@ -539,6 +563,13 @@ Status ExactGeodesicSolver::Solve(
       Final[FinalOrder[i]] = 0;
     }
     FinalOrder.resize(maxFinal);
+  }
+  for (int v : targeted ? *options.StopOnceFinal : std::vector<int>())
+  {
+    if (v >= 0 && v < Surface.NumberOfVertices())
+    {
+      Target[v] = 0;
+    }
   }
   return Status();
 }

@@ -35,6 +35,9 @@ struct ExactGeodesicOptions
   // Stop once this many vertices are final (0: unlimited). The K nearest vertices are then exact;
   // the others are unreachable.
   int MaximumFinalVertices = 0;
+  // Stop once every vertex listed is final (null or empty: no such stop; MaximumDistance still
+  // bounds the solve). The vertices final by then are exact; the others are unreachable.
+  const std::vector<int>* StopOnceFinal = nullptr;
 };
 
 struct ExactGeodesicStatistics
@@ -146,6 +149,7 @@ private:
   std::vector<int> Root;          // source index of the best path to v
   std::vector<double> CrossX;     // where it crossed (in that half-edge's frame)
   std::vector<unsigned char> Final;
+  std::vector<unsigned char> Target; // StopOnceFinal's vertices during a solve
   std::vector<unsigned char> Propagated; // pseudo-source vertex already spread its windows
   std::vector<int> Touched;
   std::vector<int> FinalOrder;

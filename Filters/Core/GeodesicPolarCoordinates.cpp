@@ -47,8 +47,141 @@ double GeodesicPolarCoordinates::RawToTheta(double raw) const
   return Wrap((raw - Reference) * TwoPi / Turn);
 }
 
+namespace
+{
+// Distance from p to the triangle (a, b, c) (the closest point by its Voronoi regions).
+double PointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0)
+  {
+    return Norm(ap);
+  }
+  const Vec3 bp = p - b;
+  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3)
+  {
+    return Norm(bp);
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+  {
+    return Norm(p - (a + ab * (d1 / (d1 - d3))));
+  }
+  const Vec3 cp = p - c;
+  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6)
+  {
+    return Norm(cp);
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+  {
+    return Norm(p - (a + ac * (d2 / (d2 - d6))));
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+  {
+    return Norm(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+  }
+  const double denominator = 1.0 / (va + vb + vc);
+  return Norm(p - (a + ab * (vb * denominator) + ac * (vc * denominator)));
+}
+} // namespace
+
+Result<double> GeodesicPolarCoordinates::ComputeCoveringDisc(
+  const SurfacePoint& source, double radius, double referenceAngle)
+{
+  const double bound = radius + 1.01 * Mesh.LongestEdgeLength();
+  const bool validSource = source.IsVertex()
+    ? source.Vertex >= 0 && source.Vertex < Mesh.NumberOfVertices()
+    : source.Face >= 0 && source.Face < Mesh.NumberOfFaces();
+  if (Svg || !(radius > 0.0) || !std::isfinite(radius) || !validSource)
+  {
+    if (Status computed = Compute(source, bound, referenceAngle); !computed.Ok())
+    {
+      return computed;
+    }
+    return double(bound);
+  }
+  // The faces that may meet the geodesic disc: those meeting the ball of `radius` about the
+  // source (no geodesic is shorter than the chord), connected to the source's faces across
+  // edges (so are the faces a geodesic from the source crosses on its way into the disc).
+  const Vec3 x = Mesh.Position(source);
+  std::vector<int> faces;
+  auto visit = [&](int f) {
+    if (FaceSeen[f])
+    {
+      return;
+    }
+    FaceSeen[f] = 1;
+    const auto& c = Mesh.Face(f);
+    if (PointTriangleDistance(x, Mesh.Position(c[0]), Mesh.Position(c[1]), Mesh.Position(c[2])) < radius)
+    {
+      faces.push_back(f);
+    }
+  };
+  FaceSeen.resize(Mesh.NumberOfFaces(), 0);
+  std::vector<int> seen;
+  if (source.IsVertex())
+  {
+    const int start = Mesh.VertexHalfedge(source.Vertex);
+    int h = start;
+    do
+    {
+      visit(h / 3);
+      seen.push_back(h / 3);
+      h = Mesh.RotateCCW(h);
+    } while (h >= 0 && h != start);
+  }
+  else
+  {
+    visit(source.Face);
+    seen.push_back(source.Face);
+  }
+  for (std::size_t k = 0; k < faces.size(); ++k)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      const int twin = Mesh.Twin(3 * faces[k] + e);
+      if (twin >= 0 && !FaceSeen[twin / 3])
+      {
+        seen.push_back(twin / 3);
+        visit(twin / 3);
+      }
+    }
+  }
+  std::vector<int> corners;
+  for (int f : faces)
+  {
+    const auto& c = Mesh.Face(f);
+    corners.insert(corners.end(), c.begin(), c.end());
+  }
+  for (int f : seen)
+  {
+    FaceSeen[f] = 0;
+  }
+  if (Status computed = Solve(source, bound, referenceAngle, &corners); !computed.Ok())
+  {
+    return computed;
+  }
+  double reached = 0.0;
+  for (int v : InsideList)
+  {
+    reached = std::max(reached, VertexRho[v]);
+  }
+  return reached;
+}
+
 Status GeodesicPolarCoordinates::Compute(
   const SurfacePoint& source, double radius, double referenceAngle)
+{
+  return Solve(source, radius, referenceAngle, nullptr);
+}
+
+Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius,
+  double referenceAngle, const std::vector<int>* stopOnceFinal)
 {
   for (int v : InsideList)
   {
@@ -100,6 +233,7 @@ Status GeodesicPolarCoordinates::Compute(
   {
     ExactGeodesicOptions options;
     options.MaximumDistance = maxDistance;
+    options.StopOnceFinal = stopOnceFinal;
     if (const Status solved = Solver.Solve({ source }, options); !solved.Ok())
     {
       return solved;

@@ -71,6 +71,15 @@ public:
   // UseIsoCurveAngles fail until the next successful Compute).
   Status Compute(const SurfacePoint& source, double radius, double referenceAngle = 0.0);
 
+  // Compute over every face that meets the geodesic disc of `radius` (so that the map reads
+  // every point of the disc): the exact solve stops once the corners of every face that meets
+  // the ball of that radius about the source (and is connected to the source's faces through
+  // such faces) are final, at most radius + 1.01 times the mesh's longest edge. A single Compute
+  // would need that bound everywhere, and on a mesh with long edges anywhere (a noisy scan)
+  // it made every map cover 10-30 times the disc's area. Returns the largest rho computed. With
+  // a graph: Compute to the bound.
+  Result<double> ComputeCoveringDisc(const SurfacePoint& source, double radius, double referenceAngle = 0.0);
+
   // Coordinates about a curve (a polyline of surface points, consecutive points joined by the
   // straight surface path; the paper's Fig. 3 and 4): for every vertex closer than `radius` to
   // the curve, Offset = signed geodesic distance delta (positive on the left of the curve's
@@ -140,6 +149,10 @@ public:
   Result<int> UseIsoCurveAngles();
 
 private:
+  // Compute, the exact solve stopping once `stopOnceFinal`'s vertices are final (if given).
+  Status Solve(const SurfacePoint& source, double radius, double referenceAngle,
+    const std::vector<int>* stopOnceFinal);
+  std::vector<unsigned char> FaceSeen; // ComputeCoveringDisc's scratch (all zero between calls)
   double RawToTheta(double raw) const;
   // Curve mode: arc length along v's offset curve until the foot parameter reaches stopAt,
   // walking with the curve on the left or right; -1 if it cannot.

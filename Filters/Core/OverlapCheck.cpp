@@ -478,7 +478,7 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
     std::sort(neighbours[a].begin(), neighbours[a].end());
   });
   // Which neighbours' outlines enter each shape (read in its frame, computed once).
-  const double longest = mesh.LongestEdgeLength();
+  const double spacing = distributor.OutlineSpacing();
   std::vector<std::vector<int>> entering(n);
   PhasePoll poll(options.Progress, n);
   ParallelForEachThread<std::unique_ptr<GeodesicPolarCoordinates>>(n, threads, 8,
@@ -494,10 +494,11 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
       {
         engine.reset(new GeodesicPolarCoordinates(mesh));
       }
-      // Every face that meets the circle has its corners within a longest edge beyond it.
+      // Every face that meets the circle (and an outline spacing beyond it) has its corners in
+      // the map (ComputeCoveringDisc).
       const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
       if (std::isfinite(reference) &&
-        engine->Compute(shapes[a].Centre, radius[a] + 1.01 * longest, reference).Ok())
+        engine->ComputeCoveringDisc(shapes[a].Centre, radius[a] + spacing, reference).Ok())
       {
         exact = engine.get();
       }

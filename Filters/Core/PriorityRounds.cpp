@@ -83,7 +83,7 @@ bool ShapeDistributor::Impl::RunRounds(
     }
     else
     {
-      DecideInWaves(batch, survivors, above, state, acceptedAs, threads, charts, chartSeconds);
+      DecideInWaves(batch, survivors, above, state, acceptedAs, threads, run, charts, chartSeconds);
     }
     stats.Charts += charts;
     stats.ChartCpuSeconds += chartSeconds;
@@ -117,10 +117,12 @@ bool ShapeDistributor::Impl::RunRounds(
           break;
       }
     }
+    run.FaithfulFirst = stats.RejectedByFaithfulCheck > run.ChartedThenTables;
     // (d) Priority order: consecutive failures and MaximumShapes may end the run inside the
     // round; shapes after that point are taken back.
     const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
     TakeBack(roundStart, cut, state, acceptedAs);
+    KillUnfaithfulFaces(batch, cut, state);
     std::vector<int> nextFront;
     for (int id = roundStart; id < static_cast<int>(Accepted.size()); ++id)
     {
@@ -324,7 +326,7 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
 
 void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std::vector<int>& survivors,
   const std::vector<std::vector<int>>& above, std::vector<char>& state, std::vector<int>& acceptedAs,
-  int threads, long long& chartCount, double& chartCpuSeconds)
+  int threads, RunState& run, long long& chartCount, double& chartCpuSeconds)
 {
   long long charts = 0;
   double chartSeconds = 0.0;
@@ -346,7 +348,7 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
     struct Scratch
     {
       std::vector<int> Conflicts, Marked;
-      long long Charts = 0;
+      long long Charts = 0, TablesAfterCharts = 0;
       double ChartSeconds = 0.0;
     };
     // One candidate at a time: a chart costs about 0.6 ms, and waves are often short (a chunk of
@@ -371,7 +373,8 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
         r.Reason = Record::Rejection::Tables;
         return;
       }
-      if (!r.Shape.Curve.empty() && Unfaithful(r)) // (a long shape: before its charts)
+      // (A long shape: always before its charts; a short one where that saves charts.)
+      if ((!r.Shape.Curve.empty() || run.FaithfulFirst) && Unfaithful(r))
       {
         r.Rejected = true;
         r.Reason = Record::Rejection::Faithful;
@@ -381,9 +384,19 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
       ComputeCharts(r, Engine(thread));
       s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
       ++s.Charts;
+      if (r.FaithfulChecked && r.Shape.Curve.empty() && (r.Charts.empty() || r.Charts[0].Entries.empty()))
+      {
+        // (Checked before its charts: read through charts that came out empty, the check
+        // would have failed, as it does when it runs after them.)
+        r.Rejected = true;
+        r.Reason = Record::Rejection::Faithful;
+        r.Charts.clear();
+        return;
+      }
       if (FullConflict(r, s.Conflicts))
       {
         r.Reason = Record::Rejection::Tables;
+        ++s.TablesAfterCharts;
       }
       if (r.Reason == Record::Rejection::Tables || DrawnConflict(r, s.Conflicts))
       {
@@ -397,6 +410,7 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
     {
       charts += s.Charts;
       chartSeconds += s.ChartSeconds;
+      run.ChartedThenTables += s.TablesAfterCharts;
     }
     for (int i : ready) // priority order
     {

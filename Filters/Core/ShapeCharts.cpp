@@ -177,12 +177,12 @@ bool distribution::ChartFaceHolds(const TriangleMesh& mesh, int f, const Vec2 (&
 
 bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const
 {
-  if (!r.Shape.Curve.empty() || r.Charts.empty() || r.Charts[0].Entries.empty())
+  if (!r.Shape.Curve.empty())
   {
     return false;
   }
   const double unit = Options.ShapeSize * r.Shape.Scale;
-  if (r.Exact) // (the drawn check's: the exact log map of the centre)
+  if (r.Exact) // (the drawn check's: the exact log map of the centre; charts not needed)
   {
     if (!r.Exact->LogMapAt(Mesh, x, p))
     {
@@ -190,6 +190,10 @@ bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x
     }
     p = p * (1.0 / unit);
     return true;
+  }
+  if (r.Charts.empty() || r.Charts[0].Entries.empty())
+  {
+    return false;
   }
   return ChartPoint(r.Charts[0], x, unit, p);
 }

@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <memory>
@@ -221,6 +222,8 @@ struct ShapeDistributor::Impl
   std::vector<double> KillRadius;  // per (part, class) (normalized): see CollectKills
   std::vector<double> KillReach;   // per class (normalized): see CollectKills
   std::vector<char> DeadFor;       // per (class, face): no candidate of that class fits there
+  std::vector<unsigned char> UnfaithfulAt; // per (class, face): FaithfulCheck failures centred there
+  int UnfaithfulFaceLimit = std::getenv("GS_UNFAITHFUL_LIMIT") ? std::atoi(std::getenv("GS_UNFAITHFUL_LIMIT")) : 0;
   std::vector<std::pair<int, int>> Killed; // (class or -1 for all, face) killed, in order
   std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
@@ -294,6 +297,11 @@ struct ShapeDistributor::Impl
     std::vector<std::pair<int, int>>& kills) const;
   /// Marks the faces a committed shape kills (recorded in Killed for Uncommit).
   void KillFaces(const Record& r);
+  /// Marks face f dead for class c (c, and -1 when every class is dead there, recorded in Killed).
+  void KillFace(int c, int f);
+  /// After a round's cut: a face where candidates of a class centred in it have failed
+  /// FaithfulCheck UnfaithfulFaceLimit times is dead for that class (0: never).
+  void KillUnfaithfulFaces(const std::vector<Record>& batch, int cut, const std::vector<char>& state);
 
   // ---- Shape charts and the accepted shapes (ShapeCharts.cpp) ---------------------------
   std::vector<Record> Accepted;
@@ -411,6 +419,13 @@ struct ShapeDistributor::Impl
     int RandomRounds = 0;
     bool Stop = false;
     double Reported = 0.0; // progress
+    // Short candidates checked for faithfulness before their charts: where FaithfulCheck has
+    // rejected more candidates than the tables rejected after a chart (a rough surface, shapes
+    // a few triangles wide), a chart would mostly be computed for a candidate the check then
+    // rejects. The decisions are the same in either order; only what is computed, and the
+    // reason a candidate failing both is counted under, differ.
+    bool FaithfulFirst = false;
+    long long ChartedThenTables = 0; // candidates the tables rejected after their charts
   };
   /// The rounds of a prepared run, until MaximumShapes, MaximalFailures or no live face; false
   /// when aborted by `progress`.
@@ -443,7 +458,7 @@ struct ShapeDistributor::Impl
   /// the id in Accepted).
   void DecideInWaves(std::vector<Record>& batch, const std::vector<int>& survivors,
     const std::vector<std::vector<int>>& above, std::vector<char>& state, std::vector<int>& acceptedAs,
-    int threads, long long& charts, double& chartSeconds);
+    int threads, RunState& run, long long& charts, double& chartSeconds);
   /// (d) Where the round ends in priority order (consecutive failures, MaximumShapes, Greedy's
   /// one seed): the number of candidates kept.
   int CutRound(const std::vector<char>& state, int roundStart, bool greedy, bool seeding, RunState& run,
