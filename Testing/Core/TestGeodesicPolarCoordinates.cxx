@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <random>
 
 using namespace gs;
 using gs_test::BuildMesh;
@@ -570,4 +572,70 @@ TEST(GeodesicPolarCoordinates, SnapshotReadsAsTheEngine)
   }
   ASSERT_TRUE(gs_test::Succeeded(pc.ComputeCurve({ SurfacePoint::AtVertex(11), SurfacePoint::AtVertex(12) }, 0.5)));
   EXPECT_TRUE(pc.Snapshot().Entries.empty());
+}
+
+// ComputeCoveringDisc against a Compute out to the radius plus the mesh's longest edge: on a
+// rough plane (saddles everywhere) with a spike far away (edges 20 times the mean), every point
+// of the disc reads the same coordinates, bit for bit, from a map that holds far fewer vertices.
+TEST(GeodesicPolarCoordinates, CoveringDiscReadsTheDiscAsTheLongestEdgeBound)
+{
+  TriangleSoup soup = MakePlanarGrid(40, 40, 4.0, 4.0);
+  std::mt19937 noise(11);
+  std::uniform_real_distribution<double> bump(-0.03, 0.03);
+  for (Vec3& p : soup.Points)
+    p.z = p.x + p.y < 1e-9 ? 2.0 : bump(noise); // (the spike at the corner (0, 0))
+  const TriangleMesh m = BuildMesh(soup);
+  ASSERT_GT(m.LongestEdgeLength(), 15.0 * m.MeanEdgeLength());
+  GeodesicPolarCoordinates covering(m), bound(m);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> face(0, m.NumberOfFaces() - 1);
+  auto farFromTheSpike = [&m](int f) {
+    const Vec3 c = m.Position(m.Face(f)[0]);
+    return c.x > 1.5 && c.y > 1.5 && c.x < 3.5 && c.y < 3.5;
+  };
+  const double radius = 4.0 * m.MeanEdgeLength();
+  long long smallEntries = 0, boundEntries = 0, disc = 0;
+  for (int k = 0; k < 30; ++k)
+  {
+    int f0 = face(rng);
+    while (!farFromTheSpike(f0))
+      f0 = face(rng);
+    const SurfacePoint source = k % 3 == 0
+      ? SurfacePoint::AtVertex(m.Face(f0)[0])
+      : SurfacePoint{ -1, f0, { 0.2, 0.3, 0.5 } };
+    const Result<double> reached = covering.ComputeCoveringDisc(source, radius, 0.4);
+    ASSERT_TRUE(gs_test::Succeeded(reached));
+    ASSERT_TRUE(gs_test::Succeeded(bound.Compute(source, radius + 1.01 * m.LongestEdgeLength(), 0.4)));
+    EXPECT_GE(*reached, radius * 0.999);
+    const LogMapSnapshot a = covering.Snapshot(), b = bound.Snapshot();
+    smallEntries += static_cast<long long>(a.Entries.size());
+    boundEntries += static_cast<long long>(b.Entries.size());
+    for (int v : covering.Inside())
+    {
+      ASSERT_EQ(covering.Rho(v), bound.Rho(v));
+      ASSERT_EQ(covering.Theta(v), bound.Theta(v));
+    }
+    // Every lattice point of every face that the disc holds (by the bound's map) reads alike.
+    for (int f = 0; f < m.NumberOfFaces(); ++f)
+    {
+      for (int i = 0; i <= 6; ++i)
+        for (int j = 0; i + j <= 6; ++j)
+        {
+          const SurfacePoint q{ -1, f, { i / 6.0, j / 6.0, (6 - i - j) / 6.0 } };
+          double rho = 0.0, theta = 0.0;
+          if (!b.PolarAt(m, q, rho, theta) || !(rho < radius))
+            continue;
+          ++disc;
+          Vec2 pa, pb;
+          ASSERT_TRUE(a.LogMapAt(m, q, pa)) << "source " << k << ", face " << f;
+          ASSERT_TRUE(b.LogMapAt(m, q, pb));
+          ASSERT_EQ(pa.x, pb.x);
+          ASSERT_EQ(pa.y, pb.y);
+        }
+    }
+  }
+  EXPECT_GT(disc, 1000);
+  EXPECT_LT(10 * smallEntries, boundEntries) << smallEntries << " against " << boundEntries;
+  std::cout << "covering maps: " << smallEntries << " vertices against " << boundEntries
+            << " out to the longest edge; " << disc << " disc points read alike\n";
 }
