@@ -26,7 +26,11 @@
 //       sets DistortionLimit, GS_DRAWN_CHECK=0 turns the drawn check off, GS_DEBUG_DEPTH prints, for each overlapping pair, how far the long
 //       shape's drawn map departs from its rigid parts)
 //   [--square W [--seeds N] (section 1b alone, a square W circumradii wide, N seeds; environment:
-//   GS_SQUARE_CELLS sets its mesh's cells per side, default edges of 0.2)]
+//   GS_SQUARE_CELLS sets its mesh's cells per side, default edges of 0.2; GS_SQUARE_JITTER moves
+//   its interior vertices by up to that fraction of a cell, GS_SQUARE_FLIP=1 splits each cell
+//   along a random diagonal: an irregular triangulation (the count of triangles turned over is
+//   printed); GS_SQUARE_GRAPH=A: charts on the discrete geodesic graph of accuracy A;
+//   GS_SQUARE_REASONS=1: each run's rejections by check; GS_DISTORTION_LIMIT sets DistortionLimit)]
 //   or: DistributionBenchmark Data/bumpy_sphere.ply --under-load --image Data/shapes/star.png [--image ...]
 //       [--speed-rounds R] (the demo's distribution on 1 and 2 threads, alone and with one
 //       competing CPU-bound process: see UnderLoad)
@@ -56,6 +60,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <random>
 #include <set>
 #include <thread>
 
@@ -558,7 +563,44 @@ void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
   int cells = static_cast<int>(std::lround(side / 0.2));
   if (const char* c = std::getenv("GS_SQUARE_CELLS"))
     cells = std::max(1, std::atoi(c)); // (other mesh resolutions: cells per side)
-  const TriangleMesh plane = Build(MakePlanarGrid(cells, cells, side, side));
+  TriangleSoup grid = MakePlanarGrid(cells, cells, side, side);
+  if (const char* j = std::getenv("GS_SQUARE_JITTER"))
+  {
+    // An irregular triangulation: interior vertices moved by up to this fraction of a cell.
+    const double h = side / cells, amount = std::atof(j);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-amount * h, amount * h);
+    for (Vec3& p : grid.Points)
+      if (p.x > 1e-9 && p.y > 1e-9 && p.x < side - 1e-9 && p.y < side - 1e-9)
+      {
+        p.x += u(rng);
+        p.y += u(rng);
+      }
+    // Each cell split along a random diagonal: vertex degrees from 4 to 8.
+    std::bernoulli_distribution flip(0.5);
+    grid.Triangles.clear();
+    for (int y = 0; y < cells; ++y)
+      for (int x = 0; x < cells; ++x)
+      {
+        const long long a = y * (cells + 1) + x, b = a + 1, c = a + cells + 1, d = c + 1;
+        if (std::getenv("GS_SQUARE_FLIP") ? flip(rng) : (x + y) % 2 == 1)
+        {
+          grid.Triangles.push_back({ a, b, d });
+          grid.Triangles.push_back({ a, d, c });
+        }
+        else
+        {
+          grid.Triangles.push_back({ a, b, c });
+          grid.Triangles.push_back({ b, d, c });
+        }
+      }
+  }
+  const TriangleMesh plane = Build(grid);
+  int inverted = 0;
+  for (int f = 0; f < plane.NumberOfFaces(); ++f)
+    inverted += plane.FaceNormal(f).z < 0.0;
+  if (inverted > 0)
+    std::printf("  %d inverted triangles\n", inverted);
   const SafeDistanceTables t = Tables({ shape });
   const double r = t.Parts[0].Radius, size = 0.5;
   const double cell = DensestLatticeCell(t);
@@ -567,6 +609,18 @@ void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
               "shapes for the area\n", side, side, width, cells, cells, cell / (r * r), lattice);
   std::vector<Vec3> dirs(plane.NumberOfFaces(), Vec3{ 1, 0, 0 });
   std::map<DistributionMode, double> mean;
+  // GS_SQUARE_GRAPH=A: the charts on the discrete geodesic graph of accuracy A, as the filter's
+  // default (0.1) computes them; unset: exact charts.
+  SaddleVertexGraph graph;
+  const char* graphAccuracy = std::getenv("GS_SQUARE_GRAPH");
+  if (graphAccuracy)
+  {
+    SaddleVertexGraphOptions go;
+    go.Construction = GraphConstruction::DiscreteGeodesic;
+    go.Accuracy = std::atof(graphAccuracy);
+    if (!graph.Build(plane, go, nullptr).Ok())
+      graphAccuracy = nullptr;
+  }
   for (DistributionMode mode :
     { DistributionMode::CircumcirclePoissonDisk, DistributionMode::Random, DistributionMode::Greedy })
   {
@@ -574,11 +628,13 @@ void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
     std::printf("    %-12s", ModeName(mode));
     for (int seed = 0; seed < seeds; ++seed)
     {
-      ShapeDistributor d(plane);
+      ShapeDistributor d(plane, graphAccuracy ? &graph : nullptr);
       ShapeDistributionOptions o;
       o.ShapeSize = size;
       o.Mode = mode;
       o.Seed = static_cast<std::uint64_t>(seed);
+      if (const char* limit = std::getenv("GS_DISTORTION_LIMIT"))
+        o.DistortionLimit = std::atof(limit);
       const Result<ShapeDistribution> res = d.Run(t, dirs, {}, o);
       int pairs = 0;
       const int overlaps = gs_test::CountPlanarOverlaps(plane, t, res->Shapes, o.ShapeSize, &pairs);
@@ -587,6 +643,10 @@ void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
       TotalPairs += pairs;
       sum += static_cast<double>(res->Shapes.size());
       std::printf(" %zu%s", res->Shapes.size(), overlaps ? "(OVERLAPS)" : "");
+      if (std::getenv("GS_SQUARE_REASONS"))
+        std::printf(" [candidates %lld: tables %lld, faithful %lld, drawn %lld, no shape %lld]",
+          res->Statistics.Candidates, res->Statistics.RejectedByTables, res->Statistics.RejectedByFaithfulCheck,
+          res->Statistics.RejectedByDrawnCheck, res->Statistics.RejectedWithoutShape);
       if (seed == 0 && !SvgPrefix.empty())
         WriteSvg(SvgPrefix + "_square" + std::to_string(static_cast<int>(width)) + "_" + ModeName(mode) + ".svg",
           t, res->Shapes, o.ShapeSize, side);
