@@ -30,6 +30,23 @@ def check(condition, message):
         print("FAILED:", message)
 
 
+# A repeatable property without a file list (ParaView's value list widget) shows no label of
+# its own: it must sit alone in a labelled PropertyGroup, whose label names it (Class Weights
+# was an unlabelled empty box).
+for path in sorted(glob.glob(os.path.join(args.xml, "*.xml"))):
+    text = open(path, encoding="utf-8").read()
+    for proxy in re.finditer(r"<SourceProxy(.*?)</SourceProxy>", text, re.S):
+        body = proxy.group(1)
+        groups = [(g.group(1), re.findall(r'<Property name="(\w+)"', g.group(2)))
+                  for g in re.finditer(r'<PropertyGroup label="([^"]*)">(.*?)</PropertyGroup>', body, re.S)]
+        for prop in re.finditer(r'<(\w+VectorProperty) name="(\w+)"([^>]*)>(.*?)</\1>', body, re.S):
+            if 'repeat_command="1"' not in prop.group(3) or "FileListDomain" in prop.group(4):
+                continue
+            name = prop.group(2)
+            alone = [label for label, members in groups if members == [name] and label.strip()]
+            check(alone, "%s: the list property %s is not alone in a labelled PropertyGroup (its "
+                  "widget would show no label)" % (os.path.basename(path), name))
+
 proxies = []  # (group, name, label)
 for path in sorted(glob.glob(os.path.join(args.xml, "*.xml"))):
     text = open(path, encoding="utf-8").read()
