@@ -1,5 +1,5 @@
 """pvpython test: a new user's first pipeline typed with the defaults (issue: the DirectionArray
-default left unresolved as [None, '0'] when the inputs were not updated before the distributor
+default left unresolved (no array name) when the inputs were not updated before the distributor
 was made, and the run failed with 0 shapes).
 
 Exactly as a user types it: no UpdatePipeline before making the distributor, no arrays set. The
@@ -38,6 +38,9 @@ SetActiveSource(None)
 tables = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", "star.png")])
 shapes = ShapeDistributor(Input=field, Table=tables, ShapeSize=0.08)
 print("DirectionArray as made:", list(shapes.DirectionArray))
+# No array named "0" (a default of "0" repeated into the name, which the GUI showed as "0 (?)").
+check(list(shapes.DirectionArray)[1] in ("", "Direction"),
+      "DirectionArray as made names the array %r" % list(shapes.DirectionArray)[1])
 shapes.UpdatePipeline()
 placements = shapes.GetClientSideObject().GetOutputDataObject(0)
 n = placements.GetNumberOfPoints()
