@@ -130,7 +130,7 @@ double SaddleVertexGraph::EstimatedBuildBytes(
   // Links per vertex grow as 1 / sqrt(epsilon): counted as a K of 3 / sqrt(epsilon), above the
   // peaks SVGBenchmark measured on refined_elephant subdivided twice (711K vertices): 1.7 KB per
   // vertex at accuracy 0.1 (epsilon 0.02; estimate 3.2 KB; 2.1 KB with reached stencils,
-  // estimate 5.3 KB), 2.9 KB at 0.03 (estimate 4.9 KB; measured before session 32's lower peaks).
+  // estimate 5.3 KB), 2.9 KB at 0.03 (estimate 4.9 KB; measured before the builds' peaks were lowered).
   const double epsilon = DGGEpsilonPerAccuracy * std::max(options.Accuracy, 1e-5);
   // (ReachedStencil: the stencils hold about three times the links at accuracy 0.1, each entry
   // as costly as a saddle vertex graph's: counted as twice the K.)

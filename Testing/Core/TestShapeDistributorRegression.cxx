@@ -100,29 +100,10 @@ struct Case
   Hashes Expected;
 };
 
-// Recorded on the unsplit distributor (commit 9effd44). Session 31: the placements hashes of the
-// cases with long shapes recorded again, when a long shape's parts came to be placed by walking
-// its streamline from the centre instead of from its far end (the same points but for rounding:
-// the decals, outlines, counts and probes of every case kept their hashes). Session 33: "sphere
-// random density graph" recorded again when the drawn check came to read short outlines in long
-// shapes' frames too: its 130 shapes held 2 pairs that VerifyOverlaps finds (checked below now);
-// 119 shapes without (a 300-failure run ends early or late by chance: over seeds 1-20 the mean
-// count is 116.75 against 117.30 before, with 0 pairs against 2; 3000 failures, seeds 1-8: 141.00
-// against 141.12, 0 pairs against 3). Session 34: the decals hashes of every case recorded again
-// when short decals came to be made from the exact log map of their centres (in doubles) instead
-// of the placement's charts (on the geodesic graph when there is one; floats): placements and
-// outlines kept their hashes. Session 36: the sphere cases (but circumcircles) recorded again when
-// shapes whose map is not one-to-one over their silhouette came to be rejected (FaithfulCheck:
-// their decals did not draw their outlines): 131, 108 and 110 shapes against 119, 97 and 116 (the
-// 300-failure runs end early or late by chance, above); the plane cases kept their hashes.
-// Session 37: the decals hash of "sphere circumcircles graph" recorded again when long decals
-// came to take their sense from their grid instead of their faces' vote (shape 13, a long shape
-// that circumcircles let fold over itself, had its faces vote against its grid's sense), and again
-// when a piece of a face holding a grid node inside the silhouette's box came to be kept whatever
-// its corners' texture triangle (the same shape); every placements and outlines hash kept.
-// The decals hashes of every case recorded again when decal triangles came to be cut at the
-// texture square's border (ShapeDecal: every texture coordinate in [0, 1]^2); every placements
-// and outlines hash kept.
+// Recorded from a run of the distributor and recorded again, deliberately, when a change was
+// meant to move them (the git log of this file says which and why: e.g. decal triangles cut at
+// the texture square's border moved every decals hash and kept every placements and outlines
+// hash). A refactor must keep them all.
 const Case Cases[] = {
   { "plane random keep-inside", false, DistributionMode::Random, false, true, false,
     { 0x0e76edd2852bb614ull, 0x42d7536aa80f2837ull, 0x8d8ba8c82131c243ull, 47, 0.014999999999999999 } },
