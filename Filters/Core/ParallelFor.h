@@ -11,7 +11,9 @@
 // helper that wakes after the last chunk is taken does nothing), and chunks shrink as the loop
 // ends (guided), so a descheduled helper costs at most the small chunk it holds. Measured
 // (DistributionBenchmark --under-load): with one competing process on two cores, 2 threads take
-// 0.96-1.16x the time of 1, against 2.2-2.4x with OpenMP; alone, the same speed as OpenMP.
+// 0.83-1.16x the time of 1 (median 1.03x over 8 runs), against 2.0-2.4x with OpenMP; alone,
+// the same speed as OpenMP. (Running the loops serially while threads are being preempted was
+// measured too: no better than this, within the machine's noise.)
 //
 // Results do not depend on the pool: every index is run exactly once, by whichever thread takes
 // its chunk, and the loops write per-index results (or per-thread scratch indexed by `thread`).
