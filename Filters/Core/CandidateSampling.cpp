@@ -113,7 +113,6 @@ Status ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& ver
   Dead.assign(nf, 0);
   NumberOfClasses = static_cast<int>(Tables.Classes.size());
   DeadFor.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
-  UnfaithfulAt.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
   Killed.clear();
   KilledBy.clear();
   BuildCdf();
@@ -633,51 +632,28 @@ void ShapeDistributor::Impl::KillFaces(const Record& r)
   {
     CollectKills(r, Marks[0], Marked, own); // (serial: the first thread's scratch)
   }
+  const int nc = NumberOfClasses;
   for (const auto& cf : r.Prepared ? r.Kills : own)
   {
-    KillFace(cf.first, cf.second);
-  }
-}
-
-void ShapeDistributor::Impl::KillFace(int c, int f)
-{
-  char& dead = DeadFor[static_cast<std::size_t>(c) * Mesh.NumberOfFaces() + f];
-  if (dead)
-  {
-    return;
-  }
-  dead = 1;
-  Killed.emplace_back(c, f);
-  bool all = true;
-  for (int o = 0; o < NumberOfClasses && all; ++o)
-  {
-    all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
-      DeadFor[static_cast<std::size_t>(o) * Mesh.NumberOfFaces() + f];
-  }
-  if (all && !Dead[f])
-  {
-    Dead[f] = 1;
-    Killed.emplace_back(-1, f);
-    ++DeadSinceCdf;
-  }
-}
-
-void ShapeDistributor::Impl::KillUnfaithfulFaces(
-  const std::vector<Record>& batch, int cut, const std::vector<char>& state)
-{
-  const int limit = UnfaithfulFaceLimit;
-  for (int i = 0; i < cut && limit > 0; ++i)
-  {
-    const Record& r = batch[i];
-    if (state[i] == 1 || r.Reason != Record::Rejection::Faithful)
+    const int c = cf.first, f = cf.second;
+    char& dead = DeadFor[static_cast<std::size_t>(c) * Mesh.NumberOfFaces() + f];
+    if (dead)
     {
       continue;
     }
-    const std::size_t at =
-      static_cast<std::size_t>(r.Shape.ClassId) * Mesh.NumberOfFaces() + r.Shape.Centre.Face;
-    if (++UnfaithfulAt[at] >= limit)
+    dead = 1;
+    Killed.emplace_back(c, f);
+    bool all = true;
+    for (int o = 0; o < nc && all; ++o)
     {
-      KillFace(r.Shape.ClassId, r.Shape.Centre.Face);
+      all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
+        DeadFor[static_cast<std::size_t>(o) * Mesh.NumberOfFaces() + f];
+    }
+    if (all && !Dead[f])
+    {
+      Dead[f] = 1;
+      Killed.emplace_back(-1, f);
+      ++DeadSinceCdf;
     }
   }
 }

@@ -122,7 +122,6 @@ bool ShapeDistributor::Impl::RunRounds(
     // round; shapes after that point are taken back.
     const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
     TakeBack(roundStart, cut, state, acceptedAs);
-    KillUnfaithfulFaces(batch, cut, state);
     std::vector<int> nextFront;
     for (int id = roundStart; id < static_cast<int>(Accepted.size()); ++id)
     {

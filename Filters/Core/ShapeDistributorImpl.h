@@ -28,7 +28,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <functional>
 #include <map>
 #include <memory>
@@ -222,8 +221,6 @@ struct ShapeDistributor::Impl
   std::vector<double> KillRadius;  // per (part, class) (normalized): see CollectKills
   std::vector<double> KillReach;   // per class (normalized): see CollectKills
   std::vector<char> DeadFor;       // per (class, face): no candidate of that class fits there
-  std::vector<unsigned char> UnfaithfulAt; // per (class, face): FaithfulCheck failures centred there
-  int UnfaithfulFaceLimit = std::getenv("GS_UNFAITHFUL_LIMIT") ? std::atoi(std::getenv("GS_UNFAITHFUL_LIMIT")) : 0;
   std::vector<std::pair<int, int>> Killed; // (class or -1 for all, face) killed, in order
   std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
   std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
@@ -297,11 +294,6 @@ struct ShapeDistributor::Impl
     std::vector<std::pair<int, int>>& kills) const;
   /// Marks the faces a committed shape kills (recorded in Killed for Uncommit).
   void KillFaces(const Record& r);
-  /// Marks face f dead for class c (c, and -1 when every class is dead there, recorded in Killed).
-  void KillFace(int c, int f);
-  /// After a round's cut: a face where candidates of a class centred in it have failed
-  /// FaithfulCheck UnfaithfulFaceLimit times is dead for that class (0: never).
-  void KillUnfaithfulFaces(const std::vector<Record>& batch, int cut, const std::vector<char>& state);
 
   // ---- Shape charts and the accepted shapes (ShapeCharts.cpp) ---------------------------
   std::vector<Record> Accepted;
