@@ -177,12 +177,14 @@ bool distribution::ChartFaceHolds(const TriangleMesh& mesh, int f, const Vec2 (&
 
 bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const
 {
-  if (!r.Shape.Curve.empty())
+  // Charts computed but empty (the engine failed): nothing reads, as ever. Not computed yet
+  // (FaithfulCheck run before the charts): the exact log map alone reads.
+  if (!r.Shape.Curve.empty() || (!r.Charts.empty() && r.Charts[0].Entries.empty()))
   {
     return false;
   }
   const double unit = Options.ShapeSize * r.Shape.Scale;
-  if (r.Exact) // (the drawn check's: the exact log map of the centre; charts not needed)
+  if (r.Exact) // (the drawn check's: the exact log map of the centre)
   {
     if (!r.Exact->LogMapAt(Mesh, x, p))
     {
@@ -191,7 +193,7 @@ bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x
     p = p * (1.0 / unit);
     return true;
   }
-  if (r.Charts.empty() || r.Charts[0].Entries.empty())
+  if (r.Charts.empty())
   {
     return false;
   }
