@@ -564,11 +564,14 @@ Status ExactGeodesicSolver::Solve(
     }
     FinalOrder.resize(maxFinal);
   }
-  for (int v : targeted ? *options.StopOnceFinal : std::vector<int>())
+  if (targeted)
   {
-    if (v >= 0 && v < Surface.NumberOfVertices())
+    for (int v : *options.StopOnceFinal)
     {
-      Target[v] = 0;
+      if (v >= 0 && v < Surface.NumberOfVertices())
+      {
+        Target[v] = 0;
+      }
     }
   }
   return Status();

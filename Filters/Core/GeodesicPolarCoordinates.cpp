@@ -94,10 +94,8 @@ Result<double> GeodesicPolarCoordinates::ComputeCoveringDisc(
   const SurfacePoint& source, double radius, double referenceAngle)
 {
   const double bound = radius + 1.01 * Mesh.LongestEdgeLength();
-  const bool validSource = source.IsVertex()
-    ? source.Vertex >= 0 && source.Vertex < Mesh.NumberOfVertices()
-    : source.Face >= 0 && source.Face < Mesh.NumberOfFaces();
-  if (Svg || !(radius > 0.0) || !std::isfinite(radius) || !validSource)
+  // (A graph engine, or arguments Compute refuses with its own message.)
+  if (Svg || !(radius > 0.0) || !std::isfinite(radius) || !Mesh.CheckPoint(source).Ok())
   {
     if (Status computed = Compute(source, bound, referenceAngle); !computed.Ok())
     {
@@ -109,13 +107,14 @@ Result<double> GeodesicPolarCoordinates::ComputeCoveringDisc(
   // source (no geodesic is shorter than the chord), connected to the source's faces across
   // edges (so are the faces a geodesic from the source crosses on its way into the disc).
   const Vec3 x = Mesh.Position(source);
-  std::vector<int> faces;
+  std::vector<int> faces, seen; // (seen: the faces to unmark)
   auto visit = [&](int f) {
     if (FaceSeen[f])
     {
       return;
     }
     FaceSeen[f] = 1;
+    seen.push_back(f);
     const auto& c = Mesh.Face(f);
     if (PointTriangleDistance(x, Mesh.Position(c[0]), Mesh.Position(c[1]), Mesh.Position(c[2])) < radius)
     {
@@ -123,31 +122,21 @@ Result<double> GeodesicPolarCoordinates::ComputeCoveringDisc(
     }
   };
   FaceSeen.resize(Mesh.NumberOfFaces(), 0);
-  std::vector<int> seen;
   if (source.IsVertex())
   {
-    const int start = Mesh.VertexHalfedge(source.Vertex);
-    int h = start;
-    do
-    {
-      visit(h / 3);
-      seen.push_back(h / 3);
-      h = Mesh.RotateCCW(h);
-    } while (h >= 0 && h != start);
+    Mesh.ForEachOutgoingHalfedge(source.Vertex, [&](int h) { visit(h / 3); });
   }
   else
   {
     visit(source.Face);
-    seen.push_back(source.Face);
   }
   for (std::size_t k = 0; k < faces.size(); ++k)
   {
     for (int e = 0; e < 3; ++e)
     {
       const int twin = Mesh.Twin(3 * faces[k] + e);
-      if (twin >= 0 && !FaceSeen[twin / 3])
+      if (twin >= 0)
       {
-        seen.push_back(twin / 3);
         visit(twin / 3);
       }
     }

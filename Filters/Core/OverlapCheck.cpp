@@ -483,34 +483,34 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   PhasePoll poll(options.Progress, n);
   ParallelForEachThread<std::unique_ptr<GeodesicPolarCoordinates>>(n, threads, 8,
     [&](int a, std::unique_ptr<GeodesicPolarCoordinates>& engine) {
-    if (neighbours[a].empty() || poll.Skip(a))
-    {
-      return;
-    }
-    const GeodesicPolarCoordinates* exact = nullptr;
-    if (options.ExactCharts && shapes[a].Curve.empty())
-    {
-      if (!engine)
+      if (neighbours[a].empty() || poll.Skip(a))
       {
-        engine.reset(new GeodesicPolarCoordinates(mesh));
+        return;
       }
-      // Every face that meets the circle (and an outline spacing beyond it) has its corners in
-      // the map (ComputeCoveringDisc).
-      const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
-      if (std::isfinite(reference) &&
-        engine->ComputeCoveringDisc(shapes[a].Centre, radius[a] + spacing, reference).Ok())
+      const GeodesicPolarCoordinates* exact = nullptr;
+      if (options.ExactCharts && shapes[a].Curve.empty())
       {
-        exact = engine.get();
+        if (!engine)
+        {
+          engine.reset(new GeodesicPolarCoordinates(mesh));
+        }
+        // Every face that meets the circle (and an outline spacing beyond it) has its corners in
+        // the map (ComputeCoveringDisc).
+        const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
+        if (std::isfinite(reference) &&
+          engine->ComputeCoveringDisc(shapes[a].Centre, radius[a] + spacing, reference).Ok())
+        {
+          exact = engine.get();
+        }
       }
-    }
-    for (int b : neighbours[a])
-    {
-      const double depth = tolerance * std::min(radius[a], radius[b]);
-      if (enters(a, b, depth / (size * shapes[a].Scale), exact))
+      for (int b : neighbours[a])
       {
-        entering[a].push_back(b);
+        const double depth = tolerance * std::min(radius[a], radius[b]);
+        if (enters(a, b, depth / (size * shapes[a].Scale), exact))
+        {
+          entering[a].push_back(b);
+        }
       }
-    }
     });
   if (poll.WasAborted())
   {

@@ -26,11 +26,12 @@
 namespace gs
 {
 
-/// Runs body(i, thread) for every i in [0, n), in chunks of `chunk` consecutive indices taken in
-/// order by up to `threads` threads (the caller is thread 0; helpers are 1 .. threads - 1). Runs
-/// serially (thread 0) when threads <= 1, n <= chunk, inside another ParallelFor or while another
-/// thread's ParallelFor holds the pool. An exception thrown by the body stops the handing out of
-/// chunks and is rethrown to the caller once every running chunk has ended.
+/// Runs body(i, thread) for every i in [0, n), in chunks of consecutive indices taken in order by
+/// up to `threads` threads (the caller is thread 0; helpers are 1 .. threads - 1), each chunk a
+/// quarter of what is left per thread but at least `chunk`. Runs serially (thread 0) when
+/// threads <= 1, n <= chunk, inside another ParallelFor or while another thread's ParallelFor
+/// holds the pool. An exception thrown by the body stops the handing out of chunks and is
+/// rethrown to the caller once every running chunk has ended.
 void ParallelFor(int n, int threads, int chunk, const std::function<void(int i, int thread)>& body);
 
 /// ParallelFor with a default-constructed `State` per thread (scratch, partial sums), passed to

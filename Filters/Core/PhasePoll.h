@@ -1,6 +1,6 @@
 // PhasePoll: progress and abort for long parallel work (the distributor's rounds, the drawing
 // phases, the overlap check). The callback belongs to the calling thread (VTK's UpdateProgress
-// and CheckAbort): it is called from that thread only (OpenMP's master), at most every 0.1 s
+// and CheckAbort): it is called from that thread only (the caller of ParallelFor), at most every 0.1 s
 // (Poll, Skip) or at once (Report); once it returns false, every later Poll and Skip, from any
 // thread, is true (the caller, which aborted, discards the result).
 #pragma once

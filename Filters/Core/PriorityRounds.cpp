@@ -350,8 +350,8 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
       long long Charts = 0, TablesAfterCharts = 0;
       double ChartSeconds = 0.0;
     };
-    // One candidate at a time: a chart costs about 0.6 ms, and waves are often short (a chunk of
-    // 4 left one thread idle for up to 3 charts).
+    // Chunks down to one candidate: a chart costs about 0.6 ms, and waves are often short (a
+    // chunk of 4 left one thread idle for up to 3 charts).
     std::vector<Scratch> perThread(threads);
     ParallelFor(nr, threads, 1, [&](int k, int thread) {
       Scratch& s = perThread[thread];
