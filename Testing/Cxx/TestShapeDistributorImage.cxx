@@ -218,6 +218,37 @@ vtkSmartPointer<vtkPolyData> CellsOfShapes(vtkPolyData* data, const std::set<int
   return out;
 }
 
+// A mesh's shapes as a user lays them: Cross Field (N = 1), MSDT Source of `images` (textures of
+// 256 pixels) and a Shape Distributor at 2.5% of the bounding-box diagonal, all updated.
+struct FieldAndShapes
+{
+  vtkNew<vtkMSDTSource> Msdt;
+  vtkNew<vtkCrossField> Field;
+  vtkNew<vtkShapeDistributor> Shapes;
+  double Diagonal = 0.0;
+
+  FieldAndShapes(vtkPolyData* mesh, const std::vector<std::string>& images, int seed)
+  {
+    for (const std::string& file : images)
+    {
+      this->Msdt->AddShapeFileName(file.c_str());
+    }
+    this->Msdt->SetTextureSize(256);
+    this->Field->SetInputData(mesh);
+    this->Field->SetSymmetry(1);
+    this->Shapes->SetInputConnection(0, this->Field->GetOutputPort());
+    this->Shapes->SetInputConnection(1, this->Msdt->GetOutputPort(0));
+    double bounds[6];
+    mesh->GetBounds(bounds);
+    this->Diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+      (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+    this->Shapes->SetShapeSize(0.025 * this->Diagonal);
+    this->Shapes->SetSeed(seed);
+    this->Shapes->Update();
+    this->Msdt->Update();
+  }
+};
+
 // Decals against outlines, pixel by pixel (see the file's comment). Returns the failures.
 int DecalsInsideTheirOutlines(const std::string& meshFile, const std::vector<std::string>& images)
 {
@@ -226,26 +257,9 @@ int DecalsInsideTheirOutlines(const std::string& meshFile, const std::vector<std
   {
     return 1;
   }
-  vtkNew<vtkMSDTSource> msdt;
-  for (const std::string& file : images)
-  {
-    msdt->AddShapeFileName(file.c_str());
-  }
-  msdt->SetTextureSize(256);
-  vtkNew<vtkCrossField> field;
-  field->SetInputData(mesh);
-  field->SetSymmetry(1);
-  vtkNew<vtkShapeDistributor> shapes;
-  shapes->SetInputConnection(0, field->GetOutputPort());
-  shapes->SetInputConnection(1, msdt->GetOutputPort(0));
-  double bounds[6];
-  mesh->GetBounds(bounds);
-  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  shapes->SetShapeSize(0.025 * diagonal);
-  shapes->SetSeed(3);
-  shapes->Update();
-  msdt->Update();
+  FieldAndShapes run(mesh, images, 3);
+  vtkShapeDistributor* shapes = run.Shapes;
+  vtkMSDTSource* msdt = run.Msdt;
   vtkPolyData* placed = shapes->GetOutput(0);
   vtkPolyData* decals = shapes->GetOutput(1);
   vtkPolyData* outlines = shapes->GetOutput(2);
@@ -489,22 +503,11 @@ int main(int argc, char* argv[])
     {
       return 1;
     }
-    vtkNew<vtkMSDTSource> msdt;
-    msdt->AddShapeFileName(imageFile.c_str());
-    msdt->SetTextureSize(256);
-    vtkNew<vtkCrossField> field;
-    field->SetInputData(mesh);
-    field->SetSymmetry(1);
-    vtkNew<vtkShapeDistributor> shapes;
-    shapes->SetInputConnection(0, field->GetOutputPort());
-    shapes->SetInputConnection(1, msdt->GetOutputPort(0));
-    double bounds[6];
-    mesh->GetBounds(bounds);
-    const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-      (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-    shapes->SetShapeSize(0.025 * diagonal);
-    shapes->SetSeed(2);
-    shapes->Update();
+    FieldAndShapes run(mesh, { imageFile }, 2);
+    vtkShapeDistributor* shapes = run.Shapes;
+    vtkCrossField* field = run.Field;
+    vtkMSDTSource* msdt = run.Msdt;
+    const double diagonal = run.Diagonal;
     vtkPolyData* placed = shapes->GetOutput(0);
     std::cout << placed->GetNumberOfPoints() << " birds\n";
     Check(placed->GetNumberOfPoints() > 100, "mesh", "too few birds");
@@ -522,7 +525,6 @@ int main(int argc, char* argv[])
       off += a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.999;
     }
     Check(off == 0, "mesh", std::to_string(off) + " birds not turned to the field");
-    msdt->Update();
     const double dark[3] = { 0.1, 0.1, 0.15 };
     image = Render(shapes->GetOutput(0)->GetNumberOfPoints() ? field->GetOutput() : mesh.Get(),
       Layered(shapes->GetOutput(1), 2e-5 * diagonal), Texture(msdt->GetSilhouettesOutput(), 0, dark),
@@ -530,7 +532,8 @@ int main(int argc, char* argv[])
   }
   else
   {
-    std::cerr << "usage: --case plane | --case mesh --mesh file --image file\n";
+    std::cerr << "usage: --case plane | --case mesh --mesh file --image file | --case drawn --mesh "
+                 "file --image file [--image file ...]\n";
     return 1;
   }
   if (gs_test::Failures)
