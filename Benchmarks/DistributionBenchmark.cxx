@@ -331,6 +331,49 @@ bool ShapeFromImage(const std::string& file, Shape2D& shape)
   return true;
 }
 
+// One class per image file (scaled to circumradius 1); false, naming the file, when one cannot
+// be read.
+bool ImageClasses(const std::vector<std::string>& images, std::vector<SafeDistanceInput>& classes)
+{
+  for (const std::string& file : images)
+  {
+    Shape2D shape;
+    if (!ShapeFromImage(file, shape))
+    {
+      std::fprintf(stderr, "cannot read %s\n", file.c_str());
+      return false;
+    }
+    classes.push_back({ file, shape });
+  }
+  return true;
+}
+
+// The mesh file's triangles; false, with the reader's message, when it cannot be read.
+bool ReadMeshOrSay(const std::string& path, TriangleSoup& soup)
+{
+  std::string error;
+  if (!ReadMesh(path, soup, error))
+  {
+    std::fprintf(stderr, "%s: %s\n", path.c_str(), error.c_str());
+    return false;
+  }
+  return true;
+}
+
+// The charts' graph as the filter builds it: the discrete geodesic graph of `accuracy` (the
+// filter's default 0.1); accuracy 0: the saddle vertex graph of K = 50.
+SaddleVertexGraphOptions ChartGraphOptions(double accuracy)
+{
+  SaddleVertexGraphOptions go;
+  go.K = 50;
+  if (accuracy > 0.0)
+  {
+    go.Construction = GraphConstruction::DiscreteGeodesic;
+    go.Accuracy = accuracy;
+  }
+  return go;
+}
+
 SafeDistanceTables Tables(const std::vector<SafeDistanceInput>& in)
 {
   SafeDistanceOptions o;
@@ -613,14 +656,8 @@ void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
   // default (0.1) computes them; unset: exact charts.
   SaddleVertexGraph graph;
   const char* graphAccuracy = std::getenv("GS_SQUARE_GRAPH");
-  if (graphAccuracy)
-  {
-    SaddleVertexGraphOptions go;
-    go.Construction = GraphConstruction::DiscreteGeodesic;
-    go.Accuracy = std::atof(graphAccuracy);
-    if (!graph.Build(plane, go, nullptr).Ok())
-      graphAccuracy = nullptr;
-  }
+  if (graphAccuracy && !graph.Build(plane, ChartGraphOptions(std::atof(graphAccuracy)), nullptr).Ok())
+    graphAccuracy = nullptr;
   for (DistributionMode mode :
     { DistributionMode::CircumcirclePoissonDisk, DistributionMode::Random, DistributionMode::Greedy })
   {
@@ -728,10 +765,8 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
   int runs, double size, DistributionMode mode, double graphAccuracy)
 {
   TriangleSoup soup;
-  std::string error;
-  if (!ReadMesh(meshPath, soup, error))
+  if (!ReadMeshOrSay(meshPath, soup))
   {
-    std::fprintf(stderr, "%s: %s\n", meshPath.c_str(), error.c_str());
     return 1;
   }
   const TriangleSoup subdivided = SubdivideAtMidpoints(soup);
@@ -739,15 +774,9 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
   const TriangleMesh mesh = Build(subdivided);
   std::printf("  mesh build: %.3f s\n", Now() - tb0);
   std::vector<SafeDistanceInput> classes;
-  for (const std::string& file : images)
+  if (!ImageClasses(images, classes))
   {
-    Shape2D shape;
-    if (!ShapeFromImage(file, shape))
-    {
-      std::fprintf(stderr, "cannot read %s\n", file.c_str());
-      return 1;
-    }
-    classes.push_back({ file, shape });
+    return 1;
   }
   const SafeDistanceTables t = Tables(classes);
   int longClasses = 0;
@@ -760,13 +789,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
   // The charts' graph: as the filter's default, the discrete geodesic graph of accuracy 0.1
   // (--graph-accuracy 0: the saddle vertex graph of K = 50).
   SaddleVertexGraph graph;
-  SaddleVertexGraphOptions go;
-  go.K = 50;
-  if (graphAccuracy > 0.0)
-  {
-    go.Construction = GraphConstruction::DiscreteGeodesic;
-    go.Accuracy = graphAccuracy;
-  }
+  const SaddleVertexGraphOptions go = ChartGraphOptions(graphAccuracy);
   if (cache.empty() || !graph.Load(cache, meshHash, go).Ok())
   {
     const double t0 = Now();
@@ -1122,41 +1145,24 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
 int UnderLoad(const std::string& meshPath, const std::vector<std::string>& images, int rounds)
 {
   TriangleSoup soup;
-  std::string error;
-  if (!ReadMesh(meshPath, soup, error))
+  if (!ReadMeshOrSay(meshPath, soup))
   {
-    std::fprintf(stderr, "%s: %s\n", meshPath.c_str(), error.c_str());
     return 1;
   }
   const TriangleMesh mesh = Build(soup);
   std::vector<SafeDistanceInput> classes;
-  for (const std::string& file : images)
+  if (!ImageClasses(images, classes))
   {
-    Shape2D shape;
-    if (!ShapeFromImage(file, shape))
-    {
-      std::fprintf(stderr, "cannot read %s\n", file.c_str());
-      return 1;
-    }
-    classes.push_back({ file, shape });
+    return 1;
   }
   const SafeDistanceTables t = Tables(classes);
   SaddleVertexGraph graph;
-  SaddleVertexGraphOptions go;
-  go.Construction = GraphConstruction::DiscreteGeodesic;
-  go.Accuracy = 0.1;
-  if (const Status built = graph.Build(mesh, go, nullptr); !built.Ok())
+  if (const Status built = graph.Build(mesh, ChartGraphOptions(0.1), nullptr); !built.Ok())
   {
     std::fprintf(stderr, "graph: %s\n", built.Message().c_str());
     return 1;
   }
-  Vec3 lo = mesh.Position(0), hi = lo;
-  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
-  {
-    const Vec3& x = mesh.Position(v);
-    lo = Vec3{ std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z) };
-    hi = Vec3{ std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z) };
-  }
+  const Vec3 lo = mesh.BoundingBoxMin(), hi = mesh.BoundingBoxMax();
   const double halfExtent = 0.5 * std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
   const std::vector<Vec3> directions(mesh.NumberOfFaces(), Vec3{ 0.3, 1.0, 0.2 });
   ShapeDistributor d(mesh, &graph);
@@ -1319,10 +1325,8 @@ int main(int argc, char* argv[])
   if (!args.empty())
   {
     TriangleSoup soup;
-    std::string error;
-    if (!ReadMesh(args[0], soup, error))
+    if (!ReadMeshOrSay(args[0], soup))
     {
-      std::fprintf(stderr, "%s: %s\n", args[0].c_str(), error.c_str());
       return 1;
     }
     const TriangleMesh coarse = Build(soup);
