@@ -79,7 +79,7 @@ public:
     if (Running > 0)
     {
       lock.unlock();
-      SpinBriefly([this] { return RunningAtomic.load() == 0; });
+      SpinBriefly([this] { return Running.load() == 0; });
       lock.lock();
       Done.wait(lock, [this] { return Running == 0; });
     }
@@ -159,13 +159,10 @@ private:
         continue; // not wanted, or every chunk was taken before this helper woke
       }
       ++Running;
-      RunningAtomic.store(Running);
       lock.unlock();
       Work(index);
       lock.lock();
-      --Running;
-      RunningAtomic.store(Running);
-      if (Running == 0 && Closed)
+      if (--Running == 0 && Closed)
       {
         lock.unlock();
         Done.notify_one();
@@ -179,9 +176,9 @@ private:
   int Helpers = 0; // (detached: they sleep until the process ends)
   std::atomic<unsigned long long> Generation{ 0 };
   std::atomic<int> Next{ 0 };
-  std::atomic<int> RunningAtomic{ 0 }; // a copy of Running for the caller's brief spin
+  std::atomic<int> Running{ 0 }; // helpers in the job (changed under Mutex; atomic for the spin)
   const std::function<void(int, int)>* Body = nullptr;
-  int Count = 0, Chunk = 1, Threads = 1, Wanted = 0, Running = 0;
+  int Count = 0, Chunk = 1, Threads = 1, Wanted = 0;
   bool Closed = true;
   std::exception_ptr Error;
 };
