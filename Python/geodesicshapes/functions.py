@@ -81,10 +81,7 @@ def _update(algorithm, what, progress=None):
     finally:
         for tag in tags:
             algorithm.RemoveObserver(tag)
-        algorithm.SetAbortExecute(0)
-        if stopped:
-            algorithm.Modified()  # (the aborted output is not a result: the next call re-runs)
-    if stopped:
+    if stopped:  # (each call makes its own filter: nothing of the aborted run is kept)
         raise GeodesicShapesAborted("%s: aborted by the progress callback" % what)
     for text in warned:
         warnings.warn("%s: %s" % (what, text), GeodesicShapesWarning, stacklevel=3)
