@@ -3,7 +3,7 @@ to the plugin's folder and GS_TEST_OUTPUT, GS_SOURCE_DIR in the environment).
 
 - The plugin is loaded by the GUI at start-up and every filter is in the "Geodesic Shapes"
   menu category (the ShowInMenu hint of its proxy definition).
-- The main job (Examples/main_job.py, the paper's Fig. 1 pipeline) runs inside the GUI session
+- The main job (Examples/main_job.py, the paper's Fig. 1 pipeline) runs inside the GUI
   and produces its screenshot and ParaView state.
 The GUI has no Python exit: the script ends the process with os._exit(status) (0: passed);
 results and failures are written to GS_TEST_OUTPUT/gui_result.txt.
