@@ -93,9 +93,16 @@ double PointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
 Result<double> GeodesicPolarCoordinates::ComputeCoveringDisc(
   const SurfacePoint& source, double radius, double referenceAngle)
 {
+  if (!(radius > 0.0) || !Mesh.CheckPoint(source).Ok())
+  {
+    // (Compute's own message: the radius plus a margin would pass a negative radius.)
+    if (Status refused = Compute(source, radius, referenceAngle); !refused.Ok())
+    {
+      return refused;
+    }
+  }
   const double bound = radius + 1.01 * Mesh.LongestEdgeLength();
-  // (A graph engine, or arguments Compute refuses with its own message.)
-  if (Svg || !(radius > 0.0) || !std::isfinite(radius) || !Mesh.CheckPoint(source).Ok())
+  if (Svg || !std::isfinite(radius)) // (a graph engine, or the whole surface)
   {
     if (Status computed = Compute(source, bound, referenceAngle); !computed.Ok())
     {

@@ -635,6 +635,12 @@ TEST(GeodesicPolarCoordinates, CoveringDiscReadsTheDiscAsTheLongestEdgeBound)
     }
   }
   EXPECT_GT(disc, 1000);
+  // Bad arguments: Compute's errors, nothing computed.
+  EXPECT_FALSE(covering.ComputeCoveringDisc(SurfacePoint::AtVertex(-1), radius).Ok());
+  EXPECT_FALSE(covering.ComputeCoveringDisc(SurfacePoint{ -1, m.NumberOfFaces(), { 1, 0, 0 } }, radius).Ok());
+  EXPECT_FALSE(covering.ComputeCoveringDisc(SurfacePoint::AtVertex(0), std::nan("")).Ok());
+  EXPECT_FALSE(covering.ComputeCoveringDisc(SurfacePoint::AtVertex(0), -1.0).Ok());
+  EXPECT_TRUE(covering.Inside().empty());
   EXPECT_LT(10 * smallEntries, boundEntries) << smallEntries << " against " << boundEntries;
   std::cout << "covering maps: " << smallEntries << " vertices against " << boundEntries
             << " out to the longest edge; " << disc << " disc points read alike\n";
