@@ -606,38 +606,11 @@ void IssueSquare(const SafeDistanceInput& shape, double width, int seeds)
   int cells = static_cast<int>(std::lround(side / 0.2));
   if (const char* c = std::getenv("GS_SQUARE_CELLS"))
     cells = std::max(1, std::atoi(c)); // (other mesh resolutions: cells per side)
-  TriangleSoup grid = MakePlanarGrid(cells, cells, side, side);
-  if (const char* j = std::getenv("GS_SQUARE_JITTER"))
-  {
-    // An irregular triangulation: interior vertices moved by up to this fraction of a cell.
-    const double h = side / cells, amount = std::atof(j);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(-amount * h, amount * h);
-    for (Vec3& p : grid.Points)
-      if (p.x > 1e-9 && p.y > 1e-9 && p.x < side - 1e-9 && p.y < side - 1e-9)
-      {
-        p.x += u(rng);
-        p.y += u(rng);
-      }
-    // Each cell split along a random diagonal: vertex degrees from 4 to 8.
-    std::bernoulli_distribution flip(0.5);
-    grid.Triangles.clear();
-    for (int y = 0; y < cells; ++y)
-      for (int x = 0; x < cells; ++x)
-      {
-        const long long a = y * (cells + 1) + x, b = a + 1, c = a + cells + 1, d = c + 1;
-        if (std::getenv("GS_SQUARE_FLIP") ? flip(rng) : (x + y) % 2 == 1)
-        {
-          grid.Triangles.push_back({ a, b, d });
-          grid.Triangles.push_back({ a, d, c });
-        }
-        else
-        {
-          grid.Triangles.push_back({ a, b, c });
-          grid.Triangles.push_back({ b, d, c });
-        }
-      }
-  }
+  // GS_SQUARE_JITTER, GS_SQUARE_FLIP: an irregular triangulation (MakeIrregularPlanarGrid).
+  const char* jitter = std::getenv("GS_SQUARE_JITTER");
+  const TriangleSoup grid = jitter
+    ? MakeIrregularPlanarGrid(cells, side, std::atof(jitter), std::getenv("GS_SQUARE_FLIP") != nullptr, 5)
+    : MakePlanarGrid(cells, cells, side, side);
   const TriangleMesh plane = Build(grid);
   int inverted = 0;
   for (int f = 0; f < plane.NumberOfFaces(); ++f)

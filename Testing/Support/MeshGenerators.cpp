@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <utility>
 
 namespace gs
@@ -44,6 +45,44 @@ TriangleSoup MakePlanarGrid(int nx, int ny, double sizeX, double sizeY)
     for (int i = 0; i < nx; ++i)
     {
       AddQuad(s, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 1);
+    }
+  }
+  return s;
+}
+
+TriangleSoup MakeIrregularPlanarGrid(int n, double side, double jitter, bool randomDiagonals, unsigned seed)
+{
+  TriangleSoup s = MakePlanarGrid(n, n, side, side);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> move(-jitter * side / n, jitter * side / n);
+  for (Vec3& p : s.Points)
+  {
+    if (p.x > 1e-9 && p.y > 1e-9 && p.x < side - 1e-9 && p.y < side - 1e-9)
+    {
+      p.x += move(rng);
+      p.y += move(rng);
+    }
+  }
+  if (randomDiagonals)
+  {
+    std::bernoulli_distribution flip(0.5);
+    s.Triangles.clear();
+    for (long long y = 0; y < n; ++y)
+    {
+      for (long long x = 0; x < n; ++x)
+      {
+        const long long a = y * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
+        if (flip(rng))
+        {
+          s.Triangles.push_back({ a, b, d });
+          s.Triangles.push_back({ a, d, c });
+        }
+        else
+        {
+          s.Triangles.push_back({ a, b, c });
+          s.Triangles.push_back({ b, d, c });
+        }
+      }
     }
   }
   return s;

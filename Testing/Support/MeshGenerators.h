@@ -20,6 +20,11 @@ struct TriangleSoup
 // Planar grid on [0, sizeX] x [0, sizeY] (z = 0), nx x ny quads split into two triangles each,
 // the diagonals alternating so that the mesh has no preferred direction.
 TriangleSoup MakePlanarGrid(int nx, int ny, double sizeX, double sizeY);
+// The n x n planar grid of a side x side square made irregular: interior vertices moved by up to
+// `jitter` of a cell in x and in y (uniformly, seeded), and with `randomDiagonals` each cell split
+// along a random diagonal (vertex degrees 4 to 8). Moves of 0.3 of a cell or more may turn
+// triangles over (a folded surface, no plane).
+TriangleSoup MakeIrregularPlanarGrid(int n, double side, double jitter, bool randomDiagonals, unsigned seed);
 // L-shaped planar domain: [0, 2]^2 minus (1, 2] x (1, 2], n cells per unit length. Its re-entrant
 // corner at (1, 1) is a boundary vertex with a 270 degree angle.
 TriangleSoup MakeLShape(int n);
