@@ -1,10 +1,16 @@
 // Speed of the exact geodesic solver on real meshes: seconds per single-source, all-destination
 // solve (one thread), against edge-graph Dijkstra measured in the same run as the baseline.
 //
-//   ExactGeodesicBenchmark mesh.off [mesh2.ply ...] [--sources N]
+//   ExactGeodesicBenchmark mesh.off [mesh2.ply ...] [--sources N] [--subdivide S] [--first-source F]
+//
+// Every solve is also checked: each vertex the edge graph reaches (the source's connected part)
+// must get a finite exact distance, never above the edge-graph distance (the length of a path on
+// the surface) by more than rounding. The program exits 1 when a check fails.
 #include "ExactGeodesic.h"
+#include "MeshGenerators.h"
 #include "MeshIO.h"
 #include "TriangleMesh.h"
+#include "VirtualSourceGeodesic.h"
 
 #include <chrono>
 #include <cmath>
@@ -64,7 +70,7 @@ double GraphDijkstra(const TriangleMesh& m, int source, std::vector<double>& d)
 int main(int argc, char** argv)
 {
   std::vector<std::string> files;
-  int numSources = 5;
+  int numSources = 5, subdivisions = 0, firstSource = 0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -72,9 +78,19 @@ int main(int argc, char** argv)
     {
       numSources = std::max(1, std::atoi(argv[++i]));
     }
+    else if (a == "--subdivide" && i + 1 < argc)
+    {
+      subdivisions = std::max(0, std::atoi(argv[++i]));
+    }
+    else if (a == "--first-source" && i + 1 < argc)
+    {
+      firstSource = std::max(0, std::atoi(argv[++i]));
+    }
     else if (a == "--help" || a == "-h")
     {
-      std::printf("usage: %s mesh.off|mesh.ply [...] [--sources N]\n", argv[0]);
+      std::printf("usage: %s mesh.off|mesh.ply [...] [--sources N] [--subdivide S (midpoint "
+                  "subdivisions first)] [--first-source F (skip the first F sources)]\n",
+        argv[0]);
       return 0;
     }
     else
@@ -87,8 +103,9 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "no mesh given (try --help)\n");
     return 2;
   }
-  std::printf("%-28s %8s %8s %8s %12s %12s %8s %12s %10s\n", "mesh", "vertices", "faces", "saddles",
-    "exact_s", "dijkstra_s", "ratio", "windows", "max_err_dij");
+  std::printf("%-28s %8s %8s %8s %12s %12s %8s %12s %10s %10s %10s %10s %8s\n", "mesh", "vertices",
+    "faces", "saddles", "exact_s", "dijkstra_s", "ratio", "windows", "max_err_dij", "vsp_s",
+    "vsp_mean", "vsp_max", "vsp_Mv/s");
   int failures = 0;
   for (const std::string& path : files)
   {
@@ -100,6 +117,8 @@ int main(int argc, char** argv)
       ++failures;
       continue;
     }
+    for (int level = 0; level < subdivisions; ++level)
+      soup = SubdivideAtMidpoints(soup);
     Result<MeshBuild> r = TriangleMeshBuilder::Build(soup.Points, soup.Triangles);
     if (!r.Ok())
     {
@@ -112,25 +131,59 @@ int main(int argc, char** argv)
     for (int v = 0; v < m.NumberOfVertices(); ++v)
       saddles += m.IsSaddleVertex(v);
     ExactGeodesicSolver solver(m);
-    double exact = 0, dijkstra = 0, windows = 0, relGap = 0;
+    VirtualSourceSolver virtualSources(m);
+    double exact = 0, dijkstra = 0, windows = 0, relGap = 0, vsp = 0, vspSum = 0, vspSigned = 0, vspMax = 0;
+    long long vspCount = 0, vspUnreached = 0;
     std::vector<double> graph;
-    for (int k = 0; k < numSources; ++k)
+    const double rounding = 1e-9 * m.BoundingBoxDiagonal();
+    for (int k = firstSource; k < firstSource + numSources; ++k)
     {
       const int source = static_cast<int>((static_cast<long long>(k) * 7919 + 13) % m.NumberOfVertices());
       exact += Seconds([&] { static_cast<void>(solver.Solve(source)); }); // a vertex: accepted
       windows += static_cast<double>(solver.Statistics().WindowsPropagated);
       dijkstra += Seconds([&] { GraphDijkstra(m, source, graph); });
+      vsp += Seconds([&] { static_cast<void>(virtualSources.Solve({ SurfacePoint::AtVertex(source) })); });
+      int notFinite = 0, aboveGraph = 0;
       for (int v = 0; v < m.NumberOfVertices(); ++v)
       {
         const double d = solver.Distance(v);
         if (d > 0 && std::isfinite(d))
+        {
           relGap = std::max(relGap, (graph[v] - d) / d);
+          const double e = std::abs(virtualSources.Distance(v) - d) / d;
+          vspSum += e;
+          vspSigned += (virtualSources.Distance(v) - d) / d;
+          vspMax = std::max(vspMax, e);
+          ++vspCount;
+        }
+        if (std::isfinite(graph[v]) && !std::isfinite(virtualSources.Distance(v)) && vspUnreached++ < 3)
+          std::printf("  source %d: vertex %d unreached by virtual sources\n", source, v);
+        if (std::isfinite(graph[v]) && !std::isfinite(d))
+        {
+          if (notFinite++ < 5)
+            std::printf("  source %d: vertex %d has distance %g (edge graph %g)\n", source, v, d,
+              graph[v]);
+        }
+        else if (d > graph[v] + rounding)
+        {
+          if (aboveGraph++ < 5)
+            std::printf("  source %d: vertex %d exact %.17g above the edge graph's %.17g\n",
+              source, v, d, graph[v]);
+        }
+      }
+      if (notFinite + aboveGraph > 0)
+      {
+        std::printf("  source %d: %d reachable vertices not finite, %d above the edge graph\n",
+          source, notFinite, aboveGraph);
+        ++failures;
       }
     }
     const std::string name = path.substr(path.find_last_of('/') + 1);
-    std::printf("%-28s %8d %8d %8d %12.4f %12.4f %8.1f %12.0f %10.4f\n", name.c_str(),
-      m.NumberOfVertices(), m.NumberOfFaces(), saddles, exact / numSources, dijkstra / numSources,
-      exact / dijkstra, windows / numSources, relGap);
+    std::printf("%-28s %8d %8d %8d %12.4f %12.4f %8.1f %12.0f %10.4f %10.4f %10.2e %10.2e %8.2f\n",
+      name.c_str(), m.NumberOfVertices(), m.NumberOfFaces(), saddles, exact / numSources,
+      dijkstra / numSources, exact / dijkstra, windows / numSources, relGap, vsp / numSources,
+      vspSum / std::max(1LL, vspCount), vspMax, 1e-6 * m.NumberOfVertices() * numSources / vsp);
+    std::printf("signed mean %.3e\n", vspSigned / std::max(1LL, vspCount));
   }
   std::printf("exact_s: seconds per single-source exact solve (one thread); dijkstra_s: edge-graph "
               "Dijkstra, same sources; ratio = exact/dijkstra; max_err_dij: largest relative excess "

@@ -1,0 +1,115 @@
+// Approximate geodesic distance with no precomputation, by virtual source propagation (after
+// Trettner, Bommes, Kobbelt, "Geodesic distance computation via virtual source propagation",
+// SGP 2021).
+//
+// Each face holds one virtual source: a point of the plane into which the faces crossed so far
+// are unfolded, at geodesic distance Sigma from the real source, kept in the face's own frame.
+// Crossing an edge into the next face keeps the source when the straight line
+// from it to the next face's centroid passes through the edge; otherwise the path bends around
+// the nearer end of the edge, which becomes the new virtual source (Sigma grows by its distance).
+// A face takes the crossing that gives its centroid the smallest distance, and on a tie the one
+// with the smaller Sigma (fewer bends behind it: exact on flat meshes). The search is label
+// correcting: a face may be improved several times; faces are processed in buckets of one mean
+// edge length of distance, first in first out within a bucket. A vertex's distance is the smallest over the
+// crossings that reach it: the straight line from the source when it passes through the edge
+// crossed, else the bend around the nearer end.
+//
+// A line from a virtual source is checked against the edge it crosses last only, not every edge
+// since the bend: on a curved surface a vertex's distance may be a little below the geodesic
+// one (a line no sequence of faces unfolds), and a bend at a vertex that is not a saddle a little
+// above it. Exact on flat meshes; mean relative error 1e-4 .. 4e-3 on curved ones
+// (Docs/BENCHMARKS.md gives the figures measured against the exact solver). The solve is
+// sequential and deterministic; it touches each face a few times, so it is linear in practice.
+#pragma once
+
+#include "Status.h"
+#include "SurfacePoint.h"
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace gs
+{
+
+struct VirtualSourceOptions
+{
+  // > 0 and finite: vertices farther than this stay unreached (infinite); the front stops a
+  // longest edge beyond it.
+  double MaximumDistance = 0.0;
+  // Called now and then with the fraction of faces reached (non-decreasing, 0 .. 1); returning
+  // false aborts the solve (every vertex is then unreached and Solve returns Status::Aborted()).
+  std::function<bool(double)> Progress;
+};
+
+struct VirtualSourceStatistics
+{
+  std::int64_t Crossings = 0;    // edges crossed (one per queue item processed)
+  std::int64_t FaceUpdates = 0;  // crossings that improved a face
+  std::int64_t FacesReached = 0; // faces given a source
+};
+
+class VirtualSourceSolver
+{
+public:
+  static constexpr double Unreachable = std::numeric_limits<double>::infinity();
+
+  // The mesh must outlive the solver. Sets up per-half-edge geometry (linear in the mesh size).
+  explicit VirtualSourceSolver(const TriangleMesh& mesh);
+
+  // Distances from the nearest of the sources (vertices or face points). Fails (every vertex
+  // unreached) when there is no source or a source is invalid (TriangleMesh::CheckPoint), the
+  // message saying which, or when the progress callback aborts.
+  Status Solve(const std::vector<SurfacePoint>& sources,
+    const VirtualSourceOptions& options = VirtualSourceOptions());
+
+  // Distance of vertex v after the last solve (Unreachable when not reached or beyond
+  // MaximumDistance).
+  double Distance(int v) const { return Dist[v]; }
+  const std::vector<double>& Distances() const { return Dist; }
+  const VirtualSourceStatistics& Statistics() const { return Stats; }
+  const TriangleMesh& Mesh() const { return Surface; }
+
+private:
+  struct QueueItem
+  {
+    int Halfedge; // cross out of face(Halfedge) through this half-edge
+    double Key;   // the face's distance when queued (stale when the face changed since)
+  };
+  // A face's virtual source in the face's own frame (corner 0 at (0, 0), corner 1 on the
+  // positive x axis, corner 2 at y > 0), its distance Sigma from the real source, and the
+  // distance of the face's centroid through it (the face's key).
+  struct FaceState
+  {
+    double Sx, Sy, Sigma, Key;
+  };
+  // The frame of half-edge h in its face's frame: origin (Ox, Oy), unit x axis (Ux, Uy).
+  struct EdgeFrame
+  {
+    double Ox, Oy, Ux, Uy;
+  };
+  EdgeFrame FrameOf(int h) const;
+  void Seed(int f, double sx, double sy, double sigma);
+  void Push(int face, int except, double key);
+  void Cross(int h);
+  void UpdateVertex(int v, double d)
+  {
+    if (d < Dist[v])
+      Dist[v] = d;
+  }
+
+  const TriangleMesh& Surface;
+  std::vector<double> Cx, Cy; // opposite vertex of each half-edge in its frame
+  std::vector<FaceState> Faces;
+  std::vector<double> Dist;
+  std::vector<std::vector<QueueItem>> Buckets;
+  std::size_t Current = 0;
+  double BucketWidth = 1.0;
+  double Tolerance = 0.0;  // a face takes a crossing only when it improves its key by more
+  double Horizon = std::numeric_limits<double>::infinity(); // no face pushed beyond this key
+  VirtualSourceStatistics Stats;
+};
+
+} // namespace gs
