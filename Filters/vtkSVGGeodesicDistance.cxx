@@ -6,6 +6,7 @@
 #include "vtkSurfacePointLocator.h"
 
 #include "ExactGeodesic.h"
+#include "VirtualSourceGeodesic.h"
 #include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
 #include "SurfaceCurve.h"
@@ -40,6 +41,7 @@ struct vtkSVGGeodesicDistance::Cache : vtkCachedSurface
 {
   std::unique_ptr<gs::ExactGeodesicSolver> Exact; // refers to Mesh.Build.Mesh; on demand
   std::unique_ptr<gs::SVGGeodesicSolver> SVG;     // over Mesh.Build.Mesh and Graph()
+  std::unique_ptr<gs::VirtualSourceSolver> VirtualSources; // refers to Mesh.Build.Mesh; on demand
 };
 
 // One Execute's sources, step to step.
@@ -73,6 +75,8 @@ const char* vtkSVGGeodesicDistance::GetSolverName(int solver)
       return "SVG (Dijkstra)";
     case DGG:
       return "DGG (accuracy-bounded)";
+    case VIRTUAL_SOURCES:
+      return "Virtual sources (no precompute)";
     default:
       return "unknown";
   }
@@ -128,11 +132,12 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
 
-  if (this->Solver < EXACT || this->Solver > DGG)
+  if (this->Solver < EXACT || this->Solver > VIRTUAL_SOURCES)
   {
     vtkErrorMacro("Unknown Solver " << this->Solver
                                     << " (0 = Exact, 1 = SVG (label-correcting), 2 = SVG (Dijkstra), "
-                                       "3 = DGG (accuracy-bounded)).");
+                                       "3 = DGG (accuracy-bounded), 4 = Virtual sources (no "
+                                       "precompute)).");
     return 1;
   }
   if (this->ResultArrayName.empty())
@@ -169,7 +174,7 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
 
   // 3. The saddle vertex graph (SVG solvers): from this process's cache, the cache file, or
   //    built now with progress 0.1 .. 0.8.
-  if (this->Solver != EXACT && !this->UseGraph(cache, run))
+  if (this->UsesGraph() && !this->UseGraph(cache, run))
   {
     return 1;
   }
@@ -306,9 +311,8 @@ bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
 bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
 {
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const bool useGraph = this->Solver != EXACT;
   gs::Status solved;
-  if (useGraph)
+  if (this->UsesGraph())
   {
     gs::SVGSolveOptions options;
     options.Algorithm = this->Solver == SVG_DIJKSTRA ? gs::GraphAlgorithm::Dijkstra
@@ -333,22 +337,43 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
   }
   else
   {
-    if (!cache.Exact)
-    {
-      cache.Exact.reset(new gs::ExactGeodesicSolver(mesh));
-    }
-    // Curves: traced across faces and densely sampled; the exact solver runs from every sample.
-    std::vector<gs::SurfacePoint> exactSources = run.PointSources;
+    // Curves: traced across faces and densely sampled; the solver runs from every sample.
+    std::vector<gs::SurfacePoint> pointSources = run.PointSources;
     for (const auto& curve : run.CurveSources)
     {
       const std::vector<gs::CurvePiece> pieces = gs::TraceSurfaceCurve(mesh, curve);
       const std::vector<gs::SurfacePoint> samples =
         gs::SampleCurvePieces(mesh, pieces, gs::ExactCurveSampleSpacing * mesh.MeanEdgeLength());
-      exactSources.insert(exactSources.end(), samples.begin(), samples.end());
+      pointSources.insert(pointSources.end(), samples.begin(), samples.end());
     }
-    gs::ExactGeodesicOptions options;
-    options.MaximumDistance = this->MaximumDistance;
-    solved = cache.Exact->Solve(exactSources, options);
+    if (this->Solver == VIRTUAL_SOURCES)
+    {
+      if (!cache.VirtualSources)
+      {
+        cache.VirtualSources.reset(new gs::VirtualSourceSolver(mesh));
+      }
+      gs::VirtualSourceOptions options;
+      options.MaximumDistance = this->MaximumDistance;
+      options.Progress = [this](double fraction) {
+        this->UpdateProgress(0.1 + 0.8 * fraction);
+        return !this->CheckAbort();
+      };
+      solved = cache.VirtualSources->Solve(pointSources, options);
+      if (solved.IsAborted())
+      {
+        return false;
+      }
+    }
+    else
+    {
+      if (!cache.Exact)
+      {
+        cache.Exact.reset(new gs::ExactGeodesicSolver(mesh));
+      }
+      gs::ExactGeodesicOptions options;
+      options.MaximumDistance = this->MaximumDistance;
+      solved = cache.Exact->Solve(pointSources, options);
+    }
   }
   if (!solved.Ok())
   {
@@ -362,7 +387,7 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
 void vtkSVGGeodesicDistance::WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output)
 {
   const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
-  const bool useGraph = this->Solver != EXACT;
+  const bool useGraph = this->UsesGraph();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   vtkNew<vtkDoubleArray> distance;
   distance->SetName(this->ResultArrayName.c_str());
@@ -374,7 +399,9 @@ void vtkSVGGeodesicDistance::WriteOutput(const Cache& cache, const Run& run, vtk
     double d = nan;
     if (v >= 0)
     {
-      d = useGraph ? cache.SVG->Distance(v) : cache.Exact->Distance(v);
+      d = useGraph                            ? cache.SVG->Distance(v)
+        : this->Solver == VIRTUAL_SOURCES ? cache.VirtualSources->Distance(v)
+                                          : cache.Exact->Distance(v);
     }
     if (!std::isfinite(d) || (this->MaximumDistance > 0.0 && d > this->MaximumDistance))
     {

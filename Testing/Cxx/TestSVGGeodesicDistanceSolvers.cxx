@@ -318,7 +318,7 @@ void TestCurveSources()
   for (const Case& c : cases)
   {
     for (int solver : { vtkSVGGeodesicDistance::EXACT, vtkSVGGeodesicDistance::SVG_LABEL_CORRECTING,
-           vtkSVGGeodesicDistance::SVG_DIJKSTRA })
+           vtkSVGGeodesicDistance::SVG_DIJKSTRA, vtkSVGGeodesicDistance::VIRTUAL_SOURCES })
     {
       const Run r = Solve(grid, solver, {}, c.Sources);
       const std::string what =
@@ -340,7 +340,9 @@ void TestCurveSources()
       const Errors e = RelativeErrors(d, analytic);
       std::cout << test << " " << what << ": mean relative error " << e.Mean << ", max " << e.Max
                 << " over " << e.Count << " points\n";
-      Check(e.Count > 400 && e.Mean < 1e-2, test, what + ": mean relative error too large");
+      // Virtual sources carry one sample of the curve per face: 0.96-1.06% measured.
+      const double bound = solver == vtkSVGGeodesicDistance::VIRTUAL_SOURCES ? 2e-2 : 1e-2;
+      Check(e.Count > 400 && e.Mean < bound, test, what + ": mean relative error too large");
     }
   }
 }
@@ -694,6 +696,82 @@ void TestDiscreteGeodesicGraph()
 }
 }
 
+//------------------------------------------------------------------------------
+// The no-precompute solver as users call it: no graph (no field data, nothing cached), near the
+// exact solver on curved meshes (measured: torus mean 4.2e-3, cylinder far below), MaximumDistance,
+// and an abort from the progress observer.
+void TestVirtualSources()
+{
+  const std::string test = "VirtualSources";
+  ResetGraphCache();
+  for (const char* name : { "torus.ply", "cylinder.ply" })
+  {
+    auto mesh = ReadMesh(name);
+    const std::vector<vtkIdType> sources = { 0, mesh->GetNumberOfPoints() / 2 + 7 };
+    const Run exact = Solve(mesh, vtkSVGGeodesicDistance::EXACT, sources);
+    const Run vsp = Solve(mesh, vtkSVGGeodesicDistance::VIRTUAL_SOURCES, sources);
+    Check(vsp.Errors.empty() && vsp.Warnings.empty(), test, std::string(name) + ": messages");
+    const Errors e = RelativeErrors(vsp.Distances(), exact.Distances());
+    std::cout << test << " " << name << ": mean relative error " << e.Mean << ", max " << e.Max
+              << " over " << e.Count << " points; exact " << exact.Seconds << " s, virtual sources "
+              << vsp.Seconds << " s\n";
+    Check(e.Count + 2 >= mesh->GetNumberOfPoints(), test, std::string(name) + ": points missing");
+    Check(e.Mean < 6e-3 && e.Max < 6e-2, test, std::string(name) + ": error too large");
+    Check(vsp.Output->GetFieldData()->GetAbstractArray("SVGGraphOrigin") == nullptr, test,
+      std::string(name) + ": the virtual sources solver reports a graph");
+  }
+  Check(vtkSaddleVertexGraphCache::NumberOfGraphs() == 0, test, "a graph was built or cached");
+
+  // MaximumDistance: NaN beyond, the same values within.
+  auto grid = ReadMesh("planar_grid.ply");
+  vtkNew<vtkSVGGeodesicDistance> limited;
+  limited->SetInputData(grid);
+  limited->SetSolverToVirtualSources();
+  limited->AddSourceVertexId(0);
+  limited->SetMaximumDistance(0.5);
+  const Run near = Execute(limited);
+  const std::vector<double> d = near.Distances();
+  int beyond = 0, wrong = 0;
+  double q[3];
+  grid->GetPoint(0, q);
+  for (size_t i = 0; i < d.size(); ++i)
+  {
+    double p[3];
+    near.Output->GetPoint(static_cast<vtkIdType>(i), p);
+    const double r = std::hypot(p[0] - q[0], p[1] - q[1]);
+    beyond += std::isnan(d[i]);
+    wrong += r < 0.499 ? !(std::abs(d[i] - r) < 1e-9) : r > 0.501 ? !std::isnan(d[i]) : 0;
+  }
+  std::cout << test << " MaximumDistance 0.5 on the unit square: " << beyond << " points NaN, "
+            << wrong << " wrong\n";
+  Check(beyond > 0 && wrong == 0, test, "MaximumDistance");
+
+  // 401 x 401 vertices: the solve reports progress several times.
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(400, 400);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(plane->GetOutputPort());
+  triangles->Update();
+  auto big = vtkSmartPointer<vtkPolyData>::New();
+  big->DeepCopy(triangles->GetOutput());
+  vtkNew<vtkSVGGeodesicDistance> aborted;
+  aborted->SetInputData(big);
+  aborted->SetSolverToVirtualSources();
+  aborted->AddSourceVertexId(0);
+  vtkNew<AbortDuringBuild> aborter; // aborts at the first report between 10% and 80%
+  aborted->AddObserver(vtkCommand::ProgressEvent, aborter);
+  const Run stopped = Execute(aborted);
+  std::cout << test << " abort during the solve on " << big->GetNumberOfPoints()
+            << " points: " << stopped.Output->GetNumberOfPoints() << " output points, "
+            << stopped.Errors.size() << " errors\n";
+  Check(aborter->Calls > 0 && stopped.Empty() && stopped.Errors.empty(), test, "abort");
+  aborted->RemoveAllObservers();
+  aborted->AbortExecuteOff();
+  aborted->Modified();
+  const Run whole = Execute(aborted);
+  Check(!whole.Empty() && whole.Errors.empty(), test, "a run after the abort");
+}
+
 int main(int argc, char* argv[])
 {
   for (int i = 1; i + 1 < argc; ++i)
@@ -713,6 +791,7 @@ int main(int argc, char* argv[])
   TestBadK();
   TestAbortDuringBuild();
   TestDiscreteGeodesicGraph();
+  TestVirtualSources();
   if (Failures > 0)
   {
     std::cerr << Failures << " check(s) failed\n";
