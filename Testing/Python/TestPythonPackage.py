@@ -93,7 +93,7 @@ quads = [(j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i)
 plane_f = numpy.array([t for a, b, c, e in quads for t in ((a, b, c), (a, c, e))])
 centre = (n * n) // 2
 euclid = numpy.linalg.norm(plane_v - plane_v[centre], axis=1)
-for solver in ("svg", "svg-dijkstra", "dgg", "exact"):
+for solver in ("svg", "svg-dijkstra", "dgg", "exact", "virtual sources"):
     g = gs.geodesic_distance((plane_v, plane_f), centre, solver=solver)
     check(numpy.allclose(g, euclid, atol=1e-9), "geodesic_distance %s on a plane: off by %g"
           % (solver, numpy.abs(g - euclid).max()))
