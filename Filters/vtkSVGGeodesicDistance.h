@@ -18,7 +18,7 @@
  *    Filters/Core/ExactGeodesic.h), the ground truth the graph solvers are measured against.
  *  - VIRTUAL_SOURCES (4): virtual source propagation (after Trettner, Bommes, Kobbelt 2021;
  *    Filters/Core/VirtualSourceGeodesic.h): nothing to build, linear time, exact on flat meshes
- *    and a mean relative error of 1e-4 to 4e-3 on curved ones: the soonest first answer.
+ *    and a mean relative error of 2e-5 to 2e-3 on curved ones: the soonest first answer.
  *
  * Input port 0 ("Input", vtkPolyData): the surface. Polygons with more than three points and
  * triangle strips are triangulated (with a warning); vertex and line cells are ignored. Exactly

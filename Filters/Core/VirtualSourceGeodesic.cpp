@@ -33,7 +33,7 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
     Cx[h] = x;
     Cy[h] = std::sqrt(std::max(b * b - x * x, 0.0));
   }
-  Faces.assign(Surface.NumberOfFaces(), FaceState{ 0.0, 0.0, 0.0, Inf });
+  Faces.assign(Surface.NumberOfFaces(), FaceState{ 0.0, 0.0, 0.0, Inf, -1 });
   Dist.assign(Surface.NumberOfVertices(), Inf);
   BucketWidth = std::max(Surface.MeanEdgeLength(), 1e-300);
 }
@@ -98,7 +98,7 @@ void VirtualSourceSolver::Seed(int f, double sx, double sy, double sigma)
     return;
   }
   Stats.FacesReached += face.Key == Inf;
-  face = FaceState{ sx, sy, sigma, key };
+  face = FaceState{ sx, sy, sigma, key, -1 };
   Push(f, -1, key);
 }
 
@@ -124,41 +124,81 @@ void VirtualSourceSolver::Cross(int hs)
 
   // Where the line from the source to (x, y) (y > 0 >= sy) crosses the edge's line.
   auto crossing = [&](double x, double y) { return sx + (x - sx) * (-sy) / (y - sy); };
-  // Does the line to the centroid pass through the edge (0), or bend around A (1) or B (2)? A
-  // source in front of the edge's line goes around the nearer end.
-  int bend;
+  // Does the line to the centroid pass through the edge, or bend around A or B? A source in
+  // front of the edge's line goes around the nearer end.
+  enum Bend
+  {
+    None,
+    AtA,
+    AtB,
+    AtD
+  };
+  Bend bend;
   if (sy <= 0.0)
   {
     // A line through an end of the edge passes, up to rounding (on flat meshes that line is the
     // geodesic, and the bend there would tie with it).
     const double t = crossing(gx, gy), slack = 1e-9 * l;
-    bend = t < -slack ? 1 : t > l + slack ? 2 : 0;
+    bend = t < -slack ? AtA : t > l + slack ? AtB : None;
   }
   else
   {
-    bend = Hypot(sx, sy) + Hypot(gx, gy) <= Hypot(sx - l, sy) + Hypot(gx - l, gy) ? 1 : 2;
+    bend = Hypot(sx, sy) + Hypot(gx, gy) <= Hypot(sx - l, sy) + Hypot(gx - l, gy) ? AtA : AtB;
+  }
+  // The edge fs was entered by, A - D or D - B with D the far corner of fs. A line that passes
+  // through this edge but not through that one leaves the faces the source was unfolded over,
+  // beyond D; where D is a saddle (or a boundary vertex a path may bend at), the line is no
+  // path at all and the path bends at D instead. (Elsewhere the line stays: the error of going
+  // on straight past a vertex whose angle is near or below 2 pi is smaller than a bend's.)
+  const double dx = l - Cx[hs], dy = -Cy[hs];
+  const int entry = from.Entry;
+  const bool checkD = entry >= 0 && Surface.IsPseudoSourceVertex(Surface.Opposite(hs));
+  auto beyondD = [&](double x, double y) {
+    if (!checkD)
+    {
+      return false;
+    }
+    // The sides of the line from the source to (x, y) that D and the entry edge's other end
+    // (A or B) lie on: the line misses the entry edge beyond D when both are on one side and D
+    // is nearer to the line.
+    const double ux = x - sx, uy = y - sy;
+    const double sD = ux * (dy - sy) - uy * (dx - sx);
+    const double sE = entry == TriangleMesh::Next(hs) ? ux * (-sy) - uy * (-sx)
+                                                      : ux * (-sy) - uy * (l - sx);
+    return sD * sE > 0.0 && std::abs(sD) < std::abs(sE);
+  };
+  if (bend == None && beyondD(gx, gy))
+  {
+    bend = AtD;
   }
   double nsx = sx, nsy = sy, nsigma = sigma;
-  if (bend != 0)
+  if (bend == AtD)
   {
-    nsx = bend == 1 ? 0.0 : l;
+    nsx = dx;
+    nsy = dy;
+    nsigma = sigma + Hypot(sx - dx, sy - dy);
+  }
+  else if (bend != None)
+  {
+    nsx = bend == AtA ? 0.0 : l;
     nsy = 0.0;
     nsigma = sigma + Hypot(sx - nsx, sy);
   }
 
   // The opposite vertex P through this crossing, whatever the face decides: straight when the
-  // line to it passes through the edge, else around the nearer end.
+  // line to it passes through the edge (and past D as above), else around the end it misses.
   double dP;
-  if (bend != 0)
+  if (bend != None)
   {
-    dP = nsigma + Hypot(px - nsx, py);
+    dP = nsigma + Hypot(px - nsx, py - nsy);
   }
   else
   {
     const double tp = crossing(px, py);
-    dP = tp < 0.0 ? sigma + Hypot(sx, sy) + Hypot(px, py)
-      : tp > l    ? sigma + Hypot(sx - l, sy) + Hypot(px - l, py)
-                  : sigma + Hypot(px - sx, py - sy);
+    dP = tp < 0.0      ? sigma + Hypot(sx, sy) + Hypot(px, py)
+      : tp > l         ? sigma + Hypot(sx - l, sy) + Hypot(px - l, py)
+      : beyondD(px, py) ? sigma + Hypot(sx - dx, sy - dy) + Hypot(px - dx, py - dy)
+                       : sigma + Hypot(px - sx, py - sy);
   }
   UpdateVertex(Surface.Opposite(ht), dP);
 
@@ -179,6 +219,7 @@ void VirtualSourceSolver::Cross(int hs)
   to.Sy = in.Oy + nsx * in.Uy + nsy * in.Ux;
   to.Sigma = nsigma;
   to.Key = key;
+  to.Entry = bend == AtA || bend == AtB ? -1 : ht; // a source at A or B lies in ft
   UpdateVertex(Surface.Origin(ht), nsigma + Hypot(nsx, nsy));
   UpdateVertex(Surface.Destination(ht), nsigma + Hypot(nsx - l, nsy));
   Push(ft, ht, key);

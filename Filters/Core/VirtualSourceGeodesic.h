@@ -7,6 +7,9 @@
 // Crossing an edge into the next face keeps the source when the straight line
 // from it to the next face's centroid passes through the edge; otherwise the path bends around
 // the nearer end of the edge, which becomes the new virtual source (Sigma grows by its distance).
+// The line is also checked against the edge the front entered the previous face by: where it
+// misses that edge beyond the previous face's far corner and that corner is a saddle (or a
+// boundary vertex a path may bend at), the path bends at that corner instead.
 // A face takes the crossing that gives its centroid the smallest distance, and on a tie the one
 // with the smaller Sigma (fewer bends behind it: exact on flat meshes). The search is label
 // correcting: a face may be improved several times; faces are processed in buckets of one mean
@@ -14,11 +17,11 @@
 // crossings that reach it: the straight line from the source when it passes through the edge
 // crossed, else the bend around the nearer end.
 //
-// A line from a virtual source is checked against the edge it crosses last only, not every edge
-// since the bend: on a curved surface a vertex's distance may be a little below the geodesic
-// one (a line no sequence of faces unfolds), and a bend at a vertex that is not a saddle a little
-// above it. Exact on flat meshes; mean relative error 1e-4 .. 4e-3 on curved ones
-// (Docs/BENCHMARKS.md gives the figures measured against the exact solver). The solve is
+// A line from a virtual source is checked against the last two edges it crosses only, not every
+// edge since the bend: on a curved surface a vertex's distance may be a little below the
+// geodesic one (a line no sequence of faces unfolds), and a bend at a vertex that is not a
+// saddle a little above it. Exact on flat meshes; mean relative error 2e-5 .. 2e-3 on the
+// curved meshes measured (Docs/BENCHMARKS.md gives the figures against the exact solver). The solve is
 // sequential and deterministic; it touches each face a few times, so it is linear in practice.
 #pragma once
 
@@ -84,6 +87,7 @@ private:
   struct FaceState
   {
     double Sx, Sy, Sigma, Key;
+    int Entry; // the half-edge the source is seen through (-1: the source lies in the face)
   };
   // The frame of half-edge h in its face's frame: origin (Ox, Oy), unit x axis (Ux, Uy).
   struct EdgeFrame

@@ -698,8 +698,8 @@ void TestDiscreteGeodesicGraph()
 
 //------------------------------------------------------------------------------
 // The no-precompute solver as users call it: no graph (no field data, nothing cached), near the
-// exact solver on curved meshes (measured: torus mean 4.2e-3, cylinder far below), MaximumDistance,
-// and an abort from the progress observer.
+// exact solver on curved meshes (measured: torus mean 1.4e-3, max 1.6e-2; the developable
+// cylinder exact to rounding), MaximumDistance, and an abort from the progress observer.
 void TestVirtualSources()
 {
   const std::string test = "VirtualSources";
@@ -716,7 +716,7 @@ void TestVirtualSources()
               << " over " << e.Count << " points; exact " << exact.Seconds << " s, virtual sources "
               << vsp.Seconds << " s\n";
     Check(e.Count + 2 >= mesh->GetNumberOfPoints(), test, std::string(name) + ": points missing");
-    Check(e.Mean < 6e-3 && e.Max < 6e-2, test, std::string(name) + ": error too large");
+    Check(e.Mean < 3e-3 && e.Max < 3e-2, test, std::string(name) + ": error too large");
     Check(vsp.Output->GetFieldData()->GetAbstractArray("SVGGraphOrigin") == nullptr, test,
       std::string(name) + ": the virtual sources solver reports a graph");
   }
