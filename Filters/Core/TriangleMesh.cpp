@@ -7,7 +7,6 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
 namespace gs
 {
@@ -22,29 +21,68 @@ double AngleBetween(const Vec3& a, const Vec3& b)
   return std::atan2(Norm(Cross(a, b)), Dot(a, b));
 }
 
-struct PointHash
+// The first point seen at each position (exact coordinates, -0 equal to +0): open addressing
+// over point indices, linear probing, no allocation per entry (a node-based map spent most of a
+// large mesh's build allocating).
+class PointWelder
 {
-  std::size_t operator()(const Vec3& p) const
+public:
+  explicit PointWelder(const std::vector<Vec3>& points)
+    : Points(points)
   {
-    auto h = [](double d) {
-      if (d == 0.0)
+    std::size_t size = 16;
+    while (size < 2 * points.size())
+    {
+      size *= 2;
+    }
+    Slots.assign(size, -1);
+    Mask = size - 1;
+  }
+  // The first point inserted at p's position, p itself when it is the first.
+  int Insert(int p)
+  {
+    const Vec3& x = Points[p];
+    for (std::size_t i = Hash(x) & Mask;; i = (i + 1) & Mask)
+    {
+      const int q = Slots[i];
+      if (q < 0)
       {
-        d = 0.0; // -0 and +0 weld
+        Slots[i] = p;
+        return p;
       }
-      std::uint64_t bits;
-      static_assert(sizeof(bits) == sizeof(d), "double size");
-      std::memcpy(&bits, &d, sizeof(d));
-      return std::hash<std::uint64_t>()(bits);
-    };
-    return h(p.x) ^ (h(p.y) * 0x9E3779B97F4A7C15ull) ^ (h(p.z) * 0xC2B2AE3D27D4EB4Full);
+      const Vec3& y = Points[q];
+      if (x.x == y.x && x.y == y.y && x.z == y.z)
+      {
+        return q;
+      }
+    }
   }
-};
-struct PointEqual
-{
-  bool operator()(const Vec3& a, const Vec3& b) const
+
+private:
+  static std::uint64_t Bits(double d)
   {
-    return a.x == b.x && a.y == b.y && a.z == b.z;
+    if (d == 0.0)
+    {
+      d = 0.0; // -0 and +0 weld
+    }
+    std::uint64_t bits;
+    static_assert(sizeof(bits) == sizeof(d), "double size");
+    std::memcpy(&bits, &d, sizeof(d));
+    return bits;
   }
+  static std::uint64_t Hash(const Vec3& p)
+  {
+    std::uint64_t h = Bits(p.x) ^ (Bits(p.y) * 0x9E3779B97F4A7C15ull) ^
+      (Bits(p.z) * 0xC2B2AE3D27D4EB4Full);
+    // Mix the high bits (exponents and leading mantissa bits) into the low ones the mask keeps.
+    h ^= h >> 31;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 29;
+    return h;
+  }
+  const std::vector<Vec3>& Points;
+  std::vector<int> Slots;
+  std::size_t Mask = 0;
 };
 
 // Items bucketed by a vertex (a counting sort), then each bucket sorted by its entries: the order
@@ -352,8 +390,7 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
   // 1. Check indices and coordinates of referenced points; weld exactly coincident points.
   r.PointToVertex.assign(np, -1);
   std::vector<int> weldTarget(np, -1); // input point -> representative input point
-  std::unordered_map<Vec3, int, PointHash, PointEqual> firstAt;
-  firstAt.reserve(np);
+  PointWelder firstAt(points);
   for (std::size_t i = 0; i < triangles.size(); ++i)
   {
     for (int k = 0; k < 3; ++k)
@@ -378,9 +415,8 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
         return Status::Error("point " + std::to_string(p) + " (used by " + FaceLabel(i) +
           ") has a coordinate beyond 1e100: rescale the mesh");
       }
-      auto it = firstAt.emplace(points[p], static_cast<int>(p)).first;
-      weldTarget[p] = it->second;
-      if (it->second != p)
+      weldTarget[p] = firstAt.Insert(static_cast<int>(p));
+      if (weldTarget[p] != p)
       {
         r.NumberOfWeldedPoints++;
       }

@@ -220,8 +220,6 @@ void VirtualSourceSolver::Cross(int hs)
   to.Sigma = nsigma;
   to.Key = key;
   to.Entry = bend == AtA || bend == AtB ? -1 : ht; // a source at A or B lies in ft
-  UpdateVertex(Surface.Origin(ht), nsigma + Hypot(nsx, nsy));
-  UpdateVertex(Surface.Destination(ht), nsigma + Hypot(nsx - l, nsy));
   Push(ft, ht, key);
 }
 
