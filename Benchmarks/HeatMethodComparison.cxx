@@ -4,6 +4,7 @@
 //
 //   HeatMethodComparison mesh.off|mesh.ply [...] [--sources N] [--k K] [--dgg A,B,...] [--rounds R]
 //   [--dgg-reached A,... (discrete geodesic graphs whose stencils hold the reached vertices too)]
+//   [--heat-only (no graphs: the heat method against the exact solver alone)]
 #include "BenchmarkSupport.h"
 #include "ExactGeodesic.h"
 #include "MeshIO.h"
@@ -101,6 +102,7 @@ int main(int argc, char** argv)
   std::vector<double> accuracies = { 1e-2, 1e-3 };
   std::vector<bool> reachedStencils = { false, false }; // per accuracy: ReachedStencil
   bool listed = false; // (--dgg or --dgg-reached given: they replace the default accuracies)
+  bool heatOnly = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -126,12 +128,15 @@ int main(int argc, char** argv)
           break;
       }
     }
+    else if (a == "--heat-only")
+      heatOnly = true;
     else if (a == "--rounds" && i + 1 < argc)
       rounds = std::max(1, std::atoi(argv[++i]));
     else if (a == "--help" || a == "-h")
     {
       std::printf(
-        "usage: %s mesh [...] [--sources N] [--k K] [--dgg 1e-2,1e-3] [--dgg-reached 1e-1] [--rounds R]\n", argv[0]);
+        "usage: %s mesh [...] [--sources N] [--k K] [--dgg 1e-2,1e-3] [--dgg-reached 1e-1] [--rounds R] "
+        "[--heat-only]\n", argv[0]);
       return 0;
     }
     else
@@ -165,9 +170,10 @@ int main(int argc, char** argv)
       ref.push_back(exact.Distances());
     }
     // The graphs: SVG with K, then a discrete geodesic graph per accuracy.
-    std::vector<gs::SaddleVertexGraphOptions> configurations(1);
-    configurations[0].K = k;
-    for (std::size_t a = 0; a < accuracies.size(); ++a)
+    std::vector<gs::SaddleVertexGraphOptions> configurations(heatOnly ? 0 : 1);
+    if (!heatOnly)
+      configurations[0].K = k;
+    for (std::size_t a = 0; a < (heatOnly ? 0 : accuracies.size()); ++a)
     {
       configurations.emplace_back();
       configurations.back().Construction = gs::GraphConstruction::DiscreteGeodesic;
