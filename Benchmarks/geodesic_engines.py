@@ -65,7 +65,7 @@ def heat_method(program, ply, sources):
     out = subprocess.run([program, ply, "--heat-only", "--sources", str(sources), "--rounds", "1"],
                          capture_output=True, text=True, check=True).stdout
     m = re.search(r"CGAL heat method \(direct\): setup ([0-9.]+) s, solve ([0-9.]+) ms.*?"
-                  r"mean error ([0-9.e+-]+), max ([0-9.e+-]+)", out)
+                  r"mean error ([-+0-9.eainf]+), max ([-+0-9.eainf]+)", out)
     setup, solve, mean, worst = (float(x) for x in m.groups())
     return setup, solve / 1e3, mean, worst
 

@@ -57,7 +57,7 @@ void VirtualSourceSolver::Push(int face, int except, double key)
     const int h = 3 * face + k;
     if (h != except)
     {
-      bucket.push_back({ h, key });
+      bucket.push_back({ h, static_cast<float>(key) });
     }
   }
 }
@@ -82,6 +82,22 @@ VirtualSourceSolver::EdgeFrame VirtualSourceSolver::FrameOf(int h) const
   }
 }
 
+void VirtualSourceSolver::PushVertex(int v, double key)
+{
+  if (key > Horizon)
+  {
+    return;
+  }
+  const double slot = key / BucketWidth;
+  std::size_t b = slot < 1e15 ? static_cast<std::size_t>(slot) : Current;
+  b = std::max(b, Current);
+  if (b >= Buckets.size())
+  {
+    Buckets.resize(b + 1);
+  }
+  Buckets[b].push_back({ -1 - v, static_cast<float>(key) });
+}
+
 void VirtualSourceSolver::Seed(int f, double sx, double sy, double sigma)
 {
   // Corners of f in its frame: (0, 0), (L, 0), (Cx, Cy) of its first half-edge.
@@ -100,6 +116,32 @@ void VirtualSourceSolver::Seed(int f, double sx, double sy, double sigma)
   Stats.FacesReached += face.Key == Inf;
   face = FaceState{ sx, sy, sigma, key, -1 };
   Push(f, -1, key);
+}
+
+void VirtualSourceSolver::SeedAround(int v, double sigma)
+{
+  // Each face around v, with v as its source: its corners along its edges from v, its key from
+  // its centroid's position in the frame of the half-edge leaving v.
+  Surface.ForEachOutgoingHalfedge(v, [&](int h) {
+    const double l = Surface.EdgeLength(h);
+    UpdateVertex(Surface.Destination(h), sigma + l);
+    UpdateVertex(Surface.Opposite(h), sigma + Surface.EdgeLength(TriangleMesh::Prev(h)));
+    const int f = TriangleMesh::FaceOf(h);
+    FaceState& face = Faces[f];
+    const double key = sigma + Hypot((l + Cx[h]) / 3.0, Cy[h] / 3.0);
+    if (!(key < face.Key))
+    {
+      return;
+    }
+    const int first = 3 * f;
+    Stats.FacesReached += face.Key == Inf;
+    face.Sx = h % 3 == 0 ? 0.0 : h % 3 == 1 ? Surface.EdgeLength(first) : Cx[first];
+    face.Sy = h % 3 == 2 ? Cy[first] : 0.0;
+    face.Sigma = sigma;
+    face.Key = key;
+    face.Entry = -1;
+    Push(f, -1, key);
+  });
 }
 
 void VirtualSourceSolver::Cross(int hs)
@@ -255,11 +297,7 @@ Status VirtualSourceSolver::Solve(
     {
       const int v = source.Vertex;
       Dist[v] = 0.0;
-      Surface.ForEachOutgoingHalfedge(v, [&](int h) {
-        const int first = h - h % 3;
-        const double x = h % 3 == 0 ? 0.0 : h % 3 == 1 ? Surface.EdgeLength(first) : Cx[first];
-        Seed(TriangleMesh::FaceOf(h), x, h % 3 == 2 ? Cy[first] : 0.0, 0.0);
-      });
+      SeedAround(v, 0.0);
       continue;
     }
     // A face point: in the frame of the face's first half-edge, corner 0 at (0, 0), corner 1 at
@@ -284,7 +322,16 @@ Status VirtualSourceSolver::Solve(
     for (std::size_t i = 0; i < Buckets[Current].size(); ++i)
     {
       const QueueItem item = Buckets[Current][i];
-      if (item.Key != Faces[TriangleMesh::FaceOf(item.Halfedge)].Key)
+      if (item.Halfedge < 0)
+      {
+        const int v = -1 - item.Halfedge;
+        if (item.Key == static_cast<float>(Dist[v]))
+        {
+          SeedAround(v, Dist[v]);
+        }
+        continue;
+      }
+      if (item.Key != static_cast<float>(Faces[TriangleMesh::FaceOf(item.Halfedge)].Key))
       {
         continue; // the face changed since: its newer items carry its source
       }

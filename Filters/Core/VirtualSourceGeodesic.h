@@ -9,7 +9,10 @@
 // the nearer end of the edge, which becomes the new virtual source (Sigma grows by its distance).
 // The line is also checked against the edge the front entered the previous face by: where it
 // misses that edge beyond the previous face's far corner and that corner is a saddle (or a
-// boundary vertex a path may bend at), the path bends at that corner instead.
+// boundary vertex a path may bend at), the path bends at that corner instead. Such a vertex is
+// also a source of its own: when the front reaches its distance, the faces around it take it
+// as their source where that is shorter (the shadow behind a saddle or a reflex boundary
+// corner, which no single unfolded line reaches).
 // A face takes the crossing that gives its centroid the smallest distance, and on a tie the one
 // with the smaller Sigma (fewer bends behind it: exact on flat meshes). The search is label
 // correcting: a face may be improved several times; faces are processed in buckets of one mean
@@ -20,8 +23,9 @@
 // A line from a virtual source is checked against the last two edges it crosses only, not every
 // edge since the bend: on a curved surface a vertex's distance may be a little below the
 // geodesic one (a line no sequence of faces unfolds), and a bend at a vertex that is not a
-// saddle a little above it. Exact on flat meshes; mean relative error 2e-5 .. 2e-3 on the
-// curved meshes measured (Docs/BENCHMARKS.md gives the figures against the exact solver). The solve is
+// saddle a little above it. Exact on flat and developable meshes; mean relative error 1e-3 ..
+// 1.9e-3 on the curved meshes measured (Docs/BENCHMARKS.md gives the figures against the exact
+// solver). The solve is
 // sequential and deterministic; it touches each face a few times, so it is linear in practice.
 #pragma once
 
@@ -78,8 +82,11 @@ public:
 private:
   struct QueueItem
   {
-    int Halfedge; // cross out of face(Halfedge) through this half-edge
-    double Key;   // the face's distance when queued (stale when the face changed since)
+    int Halfedge; // cross out of face(Halfedge) through this half-edge; -1 - v: vertex v's event
+    // The face's (vertex's) distance when queued, rounded to float: an item whose face changed
+    // since is skipped (one that rounds the same is processed with the face's current state,
+    // which is what the newer item would do). Half the queue's memory traffic of a double.
+    float Key;
   };
   // A face's virtual source in the face's own frame (corner 0 at (0, 0), corner 1 on the
   // positive x axis, corner 2 at y > 0), its distance Sigma from the real source, and the
@@ -98,10 +105,19 @@ private:
   void Seed(int f, double sx, double sy, double sigma);
   void Push(int face, int except, double key);
   void Cross(int h);
+  void SeedAround(int v, double sigma);
+  void PushVertex(int v, double key);
+  // A shorter distance for v. A vertex paths may bend at (a saddle, or a boundary vertex whose
+  // angle exceeds pi) is queued at that distance: when the front gets there and no shorter
+  // distance came since, it becomes the source of the faces around it (SeedAround).
   void UpdateVertex(int v, double d)
   {
     if (d < Dist[v])
+    {
       Dist[v] = d;
+      if (Surface.IsPseudoSourceVertex(v))
+        PushVertex(v, d);
+    }
   }
 
   const TriangleMesh& Surface;

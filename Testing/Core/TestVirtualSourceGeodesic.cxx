@@ -88,10 +88,10 @@ TEST(VirtualSourceGeodesic, BendsAroundAReflexCorner)
   EXPECT_LT(e.Max, 1e-12);
 }
 
-// Curved meshes: near the exact solver. Measured: sphere mean 9.6e-4 (max 9.7e-3), torus mean
-// 1.8e-3 (max 1.9e-2), two sources on the sphere 9.7e-4; the bounds leave a margin. Without the
-// check of the previous edge the torus's mean was 4.2e-3; a solver that ignored bends or
-// unfolded wrongly is off by several percent.
+// Curved meshes: near the exact solver. Measured: sphere mean 1.0e-3 (max 9.7e-3), torus mean
+// 1.3e-3 (max 1.9e-2), two sources on the sphere 1.0e-3; the bounds leave a margin. Without the
+// check of the previous edge and the saddles' own sources the torus's mean was 4.2e-3; a
+// solver that ignored bends or unfolded wrongly is off by several percent.
 TEST(VirtualSourceGeodesic, NearTheExactSolverOnCurvedMeshes)
 {
   const TriangleMesh sphere = BuildMesh(MakeIcosphere(1.0, 4));
@@ -100,7 +100,7 @@ TEST(VirtualSourceGeodesic, NearTheExactSolverOnCurvedMeshes)
   EXPECT_LT(a.Max, 2e-2);
   const TriangleMesh torus = BuildMesh(MakeTorus(1.0, 0.4, 48, 24));
   const Errors b = AgainstExact(torus, { SurfacePoint::AtVertex(5) });
-  EXPECT_LT(b.Mean, 3e-3);
+  EXPECT_LT(b.Mean, 2e-3);
   EXPECT_LT(b.Max, 3e-2);
   // Several sources: the nearest one's distance.
   const Errors c =

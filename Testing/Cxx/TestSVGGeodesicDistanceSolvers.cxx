@@ -698,7 +698,7 @@ void TestDiscreteGeodesicGraph()
 
 //------------------------------------------------------------------------------
 // The no-precompute solver as users call it: no graph (no field data, nothing cached), near the
-// exact solver on curved meshes (measured: torus mean 1.4e-3, max 1.6e-2; the developable
+// exact solver on curved meshes (measured: torus mean 1.0e-3, max 1.2e-2; the developable
 // cylinder exact to rounding), MaximumDistance, and an abort from the progress observer.
 void TestVirtualSources()
 {
