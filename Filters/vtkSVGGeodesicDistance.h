@@ -4,7 +4,7 @@
  *
  * Computes, for every point of the input surface, the length of the shortest path on the
  * surface (not through space) to the nearest source. Five solvers (property Solver):
- *  - SVG_LABEL_CORRECTING (1, default) and SVG_DIJKSTRA (2): shortest paths on a saddle vertex
+ *  - SVG_LABEL_CORRECTING (1) and SVG_DIJKSTRA (2): shortest paths on a saddle vertex
  *    graph (Ying, Wang, He 2013; Filters/Core/SaddleVertexGraph.h, SVGGeodesicSolver.h), built
  *    once per mesh geometry and K and then reused: near-exact (mean relative error about 1e-3 at
  *    K = 50) and much faster per solve than the exact solver. Both give the same distances; the
@@ -16,9 +16,10 @@
  *    cache as the SVG solvers.
  *  - EXACT (0): exact polyhedral geodesics by window propagation (Chen-Han / ICH family,
  *    Filters/Core/ExactGeodesic.h), the ground truth the graph solvers are measured against.
- *  - VIRTUAL_SOURCES (4): virtual source propagation (after Trettner, Bommes, Kobbelt 2021;
- *    Filters/Core/VirtualSourceGeodesic.h): nothing to build, linear time, exact on flat meshes
- *    and a mean relative error of 2e-5 to 2e-3 on curved ones: the soonest first answer.
+ *  - VIRTUAL_SOURCES (4, default): virtual source propagation (after Trettner, Bommes,
+ *    Kobbelt 2021; Filters/Core/VirtualSourceGeodesic.h): nothing to build, linear time, exact
+ *    on flat and developable meshes and a mean relative error of 1e-3 to 1.9e-3 on the curved
+ *    ones measured: the soonest first answer (Benchmarks/geodesic_engines.py).
  *
  * Input port 0 ("Input", vtkPolyData): the surface. Polygons with more than three points and
  * triangle strips are triangulated (with a warning); vertex and line cells are ignored. Exactly
@@ -206,7 +207,7 @@ private:
   vtkSVGGeodesicDistance(const vtkSVGGeodesicDistance&) = delete;
   void operator=(const vtkSVGGeodesicDistance&) = delete;
 
-  int Solver = SVG_LABEL_CORRECTING;
+  int Solver = VIRTUAL_SOURCES;
   std::vector<vtkIdType> SourceVertexIds;
   double MaximumDistance = 0.0;
   std::string ResultArrayName = "GeodesicDistance";

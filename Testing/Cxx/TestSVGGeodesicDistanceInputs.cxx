@@ -427,9 +427,9 @@ void TestBadMaximumDistance()
 void TestPrintSelf()
 {
   vtkNew<vtkSVGGeodesicDistance> filter;
-  Check(filter->GetSolver() == vtkSVGGeodesicDistance::SVG_LABEL_CORRECTING && filter->GetK() == 50 &&
+  Check(filter->GetSolver() == vtkSVGGeodesicDistance::VIRTUAL_SOURCES && filter->GetK() == 50 &&
       std::string(filter->GetCacheFileName()).empty() && filter->GetUnfoldingRefinement(),
-    "Defaults", "Solver SVG (label-correcting), K 50, no cache file, refinement on");
+    "Defaults", "Solver Virtual sources (no precompute), K 50, no cache file, refinement on");
   filter->AddSourceVertexId(3);
   filter->AddSourceVertexId(8);
   filter->SetMaximumDistance(2.5);

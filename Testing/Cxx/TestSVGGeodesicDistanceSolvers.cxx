@@ -566,6 +566,7 @@ void TestAbortDuringBuild()
 
   vtkNew<vtkSVGGeodesicDistance> filter;
   filter->SetInputData(mesh);
+  filter->SetSolverToSVGLabelCorrecting();
   filter->AddSourceVertexId(0);
   vtkNew<AbortDuringBuild> aborter;
   filter->AddObserver(vtkCommand::ProgressEvent, aborter);

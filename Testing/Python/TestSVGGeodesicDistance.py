@@ -39,7 +39,7 @@ radius = 2.0
 def sphere_error(resolution):
     sphere = Sphere(Radius=radius, ThetaResolution=resolution, PhiResolution=resolution)
     geodesic = SVGGeodesicDistance(Input=sphere, SourceVertexIds=[0])
-    check(geodesic.Solver == "SVG (label-correcting)", "default Solver is %r" % (geodesic.Solver,))
+    check(geodesic.Solver == "Virtual sources (no precompute)", "default Solver is %r" % (geodesic.Solver,))
     check(geodesic.ResultArrayName == "GeodesicDistance", "default ResultArrayName")
     geodesic.Solver = "Exact"
     output = servermanager.Fetch(geodesic)
@@ -196,7 +196,8 @@ for name, curve_source, curve in [("PolyLineSource", polyline, bent),
 cache_file = os.path.join(args.temp, "TestSVGGeodesicDistance_grid.svgg")
 if os.path.exists(cache_file):
     os.remove(cache_file)
-cached = SVGGeodesicDistance(Input=grid, SourceVertexIds=[0], K=30, CacheFileName=cache_file,
+cached = SVGGeodesicDistance(Input=grid, SourceVertexIds=[0], Solver="SVG (label-correcting)", K=30,
+                             CacheFileName=cache_file,
                              UnfoldingRefinement=1)
 output, distance = run(cached)
 check(os.path.exists(cache_file), "CacheFileName: %s was not written" % cache_file)
