@@ -63,10 +63,12 @@ print("tables: classes of %s parts (radii %s), %d tables of %d x %d"
       % (list(tables.class_parts), numpy.round(tables.class_radius, 3), tables.values.shape[0],
          tables.values.shape[1], tables.values.shape[2]))
 
-# A check of the distance against the exact solver (the default engine is the saddle vertex graph).
+# A check of the distance against the exact solver (the default engine is virtual sources: no
+# precomputation; solver="svg" is the near-exact saddle vertex graph).
 exact = gs.geodesic_distance(mesh, 0, solver="exact")
-relative = numpy.nanmax(numpy.abs(distance - exact)[1:] / exact[1:])
-print("saddle vertex graph against exact: largest relative difference %.1e" % relative)
+relative = numpy.abs(distance - exact)[1:] / exact[1:]
+print("virtual sources against exact: mean relative difference %.1e, largest %.1e"
+      % (numpy.nanmean(relative), numpy.nanmax(relative)))
 
 # 6. Distribution: smaller shapes near the source (density from the distance).
 density = numpy.clip(distance / 1.5, 0.6, 1.0)
@@ -136,7 +138,9 @@ print("picture: %s" % picture)
 
 if args.check:
     problems = []
-    if not relative < 5e-3:
+    # (Measured on this torus: mean 3.2e-3, largest 2.8e-2; a regular grid of diagonals all one
+    # way is the hardest mesh measured for virtual sources.)
+    if not (numpy.nanmean(relative) < 5e-3 and numpy.nanmax(relative) < 5e-2):
         problems.append("distance")
     if abs(field.singularity_index.sum()) > 1e-9:
         problems.append("field")

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 namespace gs
 {
@@ -38,12 +37,13 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
   BucketWidth = std::max(Surface.MeanEdgeLength(), 1e-300);
 }
 
-void VirtualSourceSolver::Push(int face, int except, double key)
+std::vector<VirtualSourceSolver::QueueItem>* VirtualSourceSolver::BucketFor(double key)
 {
   if (key > Horizon)
   {
-    return;
+    return nullptr;
   }
+  // Never behind the bucket being processed (a key below it joins the current one).
   const double slot = key / BucketWidth;
   std::size_t b = slot < 1e15 ? static_cast<std::size_t>(slot) : Current;
   b = std::max(b, Current);
@@ -51,13 +51,22 @@ void VirtualSourceSolver::Push(int face, int except, double key)
   {
     Buckets.resize(b + 1);
   }
-  std::vector<QueueItem>& bucket = Buckets[b];
+  return &Buckets[b];
+}
+
+void VirtualSourceSolver::Push(int face, int except, double key)
+{
+  std::vector<QueueItem>* bucket = BucketFor(key);
+  if (!bucket)
+  {
+    return;
+  }
   for (int k = 0; k < 3; ++k)
   {
     const int h = 3 * face + k;
     if (h != except)
     {
-      bucket.push_back({ h, static_cast<float>(key) });
+      bucket->push_back({ h, static_cast<float>(key) });
     }
   }
 }
@@ -84,18 +93,10 @@ VirtualSourceSolver::EdgeFrame VirtualSourceSolver::FrameOf(int h) const
 
 void VirtualSourceSolver::PushVertex(int v, double key)
 {
-  if (key > Horizon)
+  if (std::vector<QueueItem>* bucket = BucketFor(key))
   {
-    return;
+    bucket->push_back({ -1 - v, static_cast<float>(key) });
   }
-  const double slot = key / BucketWidth;
-  std::size_t b = slot < 1e15 ? static_cast<std::size_t>(slot) : Current;
-  b = std::max(b, Current);
-  if (b >= Buckets.size())
-  {
-    Buckets.resize(b + 1);
-  }
-  Buckets[b].push_back({ -1 - v, static_cast<float>(key) });
 }
 
 void VirtualSourceSolver::Seed(int f, double sx, double sy, double sigma)
