@@ -5,7 +5,7 @@
 //                          masks, a candidate's geometry (direction, streamline, parts)
 //   ShapeCharts.cpp        the polar charts of a shape's parts, and the accepted shapes with
 //                          their chart and centre indexes (commit, take back)
-//   ConflictTest.cpp       Algorithm 2: two shapes' parts judged in a polar chart by the safe
+//   ConflictRules.cpp      Algorithm 2: two shapes' parts judged in a polar chart by the safe
 //                          distance tables; the cheap centre check, the boundary and the drawn
 //                          check
 //   PriorityRounds.cpp     Algorithm 3: rounds of candidates accepted in priority order, in
@@ -341,7 +341,7 @@ struct ShapeDistributor::Impl
   // The engine of a ParallelFor thread (0: the calling thread's, also outside parallel loops).
   GeodesicPolarCoordinates& Engine(int thread) { return *Engines[thread]; }
 
-  // ---- The conflict test, Algorithm 2 (ConflictTest.cpp) --------------------------------
+  // ---- The conflict test, Algorithm 2 (ConflictRules.cpp) ------------------------------
   // Per class: its silhouette for point queries, and the clearance of its centre (the distance
   // from the class origin, the point a candidate is centred at, to the outline; -1 when the
   // origin is outside the silhouette). See CentreCovered.
