@@ -1224,7 +1224,7 @@ DirectionFieldSolver::StreamlineTracer::StreamlineTracer(const DirectionFieldSol
   : Solver(solver)
   , Angles(angles)
   , Indices(indices)
-  , N(n)
+  , Symmetry(n)
   , MaxTurn(maxTurn < 0 ? 0.9 * Pi / std::max(n, 1) : maxTurn)
 {
   const TriangleMesh& surface = Solver.Surface;
@@ -1240,14 +1240,14 @@ DirectionFieldSolver::StreamlineTracer::StreamlineTracer(const DirectionFieldSol
   if (start.IsVertex())
   {
     Face = TriangleMesh::FaceOf(surface.VertexHalfedge(start.Vertex));
-    X = surface.Position(start.Vertex);
+    Point = surface.Position(start.Vertex);
   }
   else
   {
-    X = surface.Interpolate(Face, start.Bary);
+    Point = surface.Interpolate(Face, start.Bary);
   }
   Traced.End = SurfacePoint::InFace(Face, 0, 0, 0);
-  Traced.End.Bary = surface.ClampedBarycentric(Face, X);
+  Traced.End.Bary = surface.ClampedBarycentric(Face, Point);
   if (Singular(Face))
   {
     Traced.Reason = Streamline::ReachedSingularity;
@@ -1255,8 +1255,8 @@ DirectionFieldSolver::StreamlineTracer::StreamlineTracer(const DirectionFieldSol
     return;
   }
   // Representative closest to the wanted angle.
-  A = initialAngle + WrapSymmetric(Angles[Face] - initialAngle, N);
-  D = Solver.DirectionInFace(Face, A);
+  Angle = initialAngle + WrapSymmetric(Angles[Face] - initialAngle, Symmetry);
+  Direction = Solver.DirectionInFace(Face, Angle);
   Remaining = length;
   // (At most 10 nf + 1000 faces crossed, whatever the stages.)
   StepsLeft = 10LL * nf + 1000;
@@ -1284,7 +1284,7 @@ void DirectionFieldSolver::StreamlineTracer::Finish()
 {
   Done = true;
   Traced.End = SurfacePoint::InFace(Face, 0, 0, 0);
-  Traced.End.Bary = Solver.Surface.ClampedBarycentric(Face, X);
+  Traced.End.Bary = Solver.Surface.ClampedBarycentric(Face, Point);
 }
 
 bool DirectionFieldSolver::StreamlineTracer::Continue(double until)
@@ -1297,7 +1297,7 @@ bool DirectionFieldSolver::StreamlineTracer::Continue(double until)
       Finish(); // (Reason stays ReachedLength, as the loop of old ended)
       break;
     }
-    const FaceExit out = FindFaceExit(surface, Face, X, D, Entry);
+    const FaceExit out = FindFaceExit(surface, Face, Point, Direction, Entry);
     if (out.Edge < 0)
     {
       Traced.Reason = Streamline::Stuck;
@@ -1306,10 +1306,10 @@ bool DirectionFieldSolver::StreamlineTracer::Continue(double until)
     }
     if (out.T >= Remaining)
     {
-      const Vec3 y = X + D * Remaining;
-      Traced.Pieces.push_back({ Face, X, y });
+      const Vec3 y = Point + Direction * Remaining;
+      Traced.Pieces.push_back({ Face, Point, y });
       Traced.Length += Remaining;
-      X = y;
+      Point = y;
       Traced.Reason = Streamline::ReachedLength;
       Finish();
       break;
@@ -1318,10 +1318,10 @@ bool DirectionFieldSolver::StreamlineTracer::Continue(double until)
     const Vec3 P = surface.Position(surface.Origin(out.Edge)),
                Q = surface.Position(surface.Destination(out.Edge));
     const Vec3 y = P + (Q - P) * s;
-    Traced.Pieces.push_back({ Face, X, y });
+    Traced.Pieces.push_back({ Face, Point, y });
     Traced.Length += out.T;
     Remaining -= out.T;
-    X = y;
+    Point = y;
     const int t = surface.Twin(out.Edge);
     if (t < 0)
     {
@@ -1331,8 +1331,8 @@ bool DirectionFieldSolver::StreamlineTracer::Continue(double until)
     }
     const int g = TriangleMesh::FaceOf(t);
     // Incoming direction transported into g, then the field's closest representative.
-    const double incoming = A + Solver.Transport[out.Edge];
-    const double next = incoming + WrapSymmetric(Angles[g] - incoming, N);
+    const double incoming = Angle + Solver.Transport[out.Edge];
+    const double next = incoming + WrapSymmetric(Angles[g] - incoming, Symmetry);
     if (std::abs(next - incoming) > MaxTurn || Singular(g))
     {
       Traced.Reason = Streamline::ReachedSingularity;
@@ -1340,8 +1340,8 @@ bool DirectionFieldSolver::StreamlineTracer::Continue(double until)
       break;
     }
     Face = g;
-    A = next;
-    D = Solver.DirectionInFace(Face, A);
+    Angle = next;
+    Direction = Solver.DirectionInFace(Face, Angle);
     Entry = t;
   }
   return !Done;

@@ -166,12 +166,14 @@ public:
     const DirectionFieldSolver& Solver;
     const std::vector<double>& Angles;
     const std::vector<double>* Indices;
-    int N;
+    int Symmetry; // N of the N-direction field
     double MaxTurn;
     Streamline Traced;
-    int Face = -1, Entry = -1;
-    Vec3 X{ 0, 0, 0 }, D{ 0, 0, 0 };
-    double A = 0.0, Remaining = 0.0;
+    int Face = -1, Entry = -1; // the face traced through, and the half-edge it was entered by
+    Vec3 Point{ 0, 0, 0 };     // where the line is (in Face)
+    Vec3 Direction{ 0, 0, 0 }; // its unit direction in Face
+    double Angle = 0.0;        // that direction's angle in Face's frame (a branch of the field)
+    double Remaining = 0.0;    // geodesic length still to trace
     long long StepsLeft = 0;
     bool Done = false;
   };
