@@ -337,13 +337,43 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
   }
   else
   {
-    // Curves: traced across faces and densely sampled; the solver runs from every sample.
+    // Curves: traced across faces; the virtual sources carry the pieces as segments, the exact
+    // solver runs from dense samples of them.
     std::vector<gs::SurfacePoint> pointSources = run.PointSources;
+    std::vector<std::vector<gs::CurvePiece>> runs; // straight, point to point
     for (const auto& curve : run.CurveSources)
     {
-      const std::vector<gs::CurvePiece> pieces = gs::TraceSurfaceCurve(mesh, curve);
+      if (this->Solver == VIRTUAL_SOURCES)
+      {
+        // Runs as long as the curve goes straight in space (a straight line snapped onto a
+        // flat part of the mesh is one run, its distance exact).
+        std::size_t i = 0;
+        while (i + 1 < curve.size())
+        {
+          const gs::Vec3 p = mesh.Position(curve[i]);
+          std::size_t j = i + 1;
+          while (j + 1 < curve.size())
+          {
+            const gs::Vec3 d = mesh.Position(curve[j]) - p, e = mesh.Position(curve[j + 1]) - p;
+            const double nd = gs::Norm(d), ne = gs::Norm(e);
+            if (!(nd > 0.0 && ne > nd && gs::Norm(gs::Cross(d, e)) <= 1e-9 * nd * ne))
+            {
+              break;
+            }
+            ++j;
+          }
+          runs.push_back(gs::TraceSurfaceCurve(mesh, { curve[i], curve[j] }));
+          i = j;
+        }
+        if (curve.size() == 1)
+        {
+          pointSources.push_back(curve[0]);
+        }
+        continue;
+      }
+      const std::vector<gs::CurvePiece> traced = gs::TraceSurfaceCurve(mesh, curve);
       const std::vector<gs::SurfacePoint> samples =
-        gs::SampleCurvePieces(mesh, pieces, gs::ExactCurveSampleSpacing * mesh.MeanEdgeLength());
+        gs::SampleCurvePieces(mesh, traced, gs::ExactCurveSampleSpacing * mesh.MeanEdgeLength());
       pointSources.insert(pointSources.end(), samples.begin(), samples.end());
     }
     if (this->Solver == VIRTUAL_SOURCES)
@@ -358,7 +388,7 @@ bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
         this->UpdateProgress(0.1 + 0.8 * fraction);
         return !this->CheckAbort();
       };
-      solved = cache.VirtualSources->Solve(pointSources, options);
+      solved = cache.VirtualSources->Solve(pointSources, runs, options);
       if (solved.IsAborted())
       {
         return false;

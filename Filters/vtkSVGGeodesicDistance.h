@@ -37,8 +37,10 @@
  *  - Point sources: every point not used by a line cell is snapped to the closest surface point
  *    (a vertex, edge or face point) and used as a source.
  *  Points and curves can be mixed (the points then become one-point curves of the same solve).
- *  For the Exact and Virtual sources solvers, curves are traced on the surface and sampled every 1/16 of the mean
- *  edge length, and the solver runs from all the samples (the reference the SVG curve
+ *  Virtual sources carry each run of a curve that is straight in space as one segment source
+ *  (exact for straight pieces on flat parts of the mesh). For the Exact solver, curves are
+ *  traced on the surface and sampled every 1/16 of the mean edge length, and the solver runs
+ *  from all the samples (the reference the SVG curve
  *  solve is measured against).
  * Otherwise the sources are the input points listed in SourceVertexIds.
  *

@@ -32,7 +32,7 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
     Cx[h] = x;
     Cy[h] = std::sqrt(std::max(b * b - x * x, 0.0));
   }
-  Faces.assign(Surface.NumberOfFaces(), FaceState{ 0.0, 0.0, 0.0, Inf, -1 });
+  Faces.assign(Surface.NumberOfFaces(), FaceState{ 0.0, 0.0, 0.0, Inf, -1, 0.0, 0.0 });
   Dist.assign(Surface.NumberOfVertices(), Inf);
   BucketWidth = std::max(Surface.MeanEdgeLength(), 1e-300);
 }
@@ -99,23 +99,29 @@ void VirtualSourceSolver::PushVertex(int v, double key)
   }
 }
 
-void VirtualSourceSolver::Seed(int f, double sx, double sy, double sigma)
+void VirtualSourceSolver::Seed(int f, double sx, double sy, double tx, double ty)
 {
-  // Corners of f in its frame: (0, 0), (L, 0), (Cx, Cy) of its first half-edge.
+  // The segment's distance from a point of f's frame (corners (0, 0), (L, 0), (Cx, Cy) of its
+  // first half-edge).
   const int h = 3 * f;
   const double l = Surface.EdgeLength(h), cx = Cx[h], cy = Cy[h];
+  const double vx = tx - sx, vy = ty - sy, vv = vx * vx + vy * vy;
+  auto distance = [&](double x, double y) {
+    const double u = vv > 0.0 ? std::min(std::max(((x - sx) * vx + (y - sy) * vy) / vv, 0.0), 1.0) : 0.0;
+    return Hypot(x - sx - u * vx, y - sy - u * vy);
+  };
   const std::array<int, 3>& corners = Surface.Face(f);
-  UpdateVertex(corners[0], sigma + Hypot(sx, sy));
-  UpdateVertex(corners[1], sigma + Hypot(sx - l, sy));
-  UpdateVertex(corners[2], sigma + Hypot(sx - cx, sy - cy));
-  const double key = sigma + Hypot((l + cx) / 3.0 - sx, cy / 3.0 - sy);
+  UpdateVertex(corners[0], distance(0.0, 0.0));
+  UpdateVertex(corners[1], distance(l, 0.0));
+  UpdateVertex(corners[2], distance(cx, cy));
+  const double key = distance((l + cx) / 3.0, cy / 3.0);
   FaceState& face = Faces[f];
   if (!(key < face.Key))
   {
     return;
   }
   Stats.FacesReached += face.Key == Inf;
-  face = FaceState{ sx, sy, sigma, key, -1 };
+  face = FaceState{ sx, sy, 0.0, key, -1, tx, ty };
   Push(f, -1, key);
 }
 
@@ -138,6 +144,8 @@ void VirtualSourceSolver::SeedAround(int v, double sigma)
     Stats.FacesReached += face.Key == Inf;
     face.Sx = h % 3 == 0 ? 0.0 : h % 3 == 1 ? Surface.EdgeLength(first) : Cx[first];
     face.Sy = h % 3 == 2 ? Cy[first] : 0.0;
+    face.Tx = face.Sx;
+    face.Ty = face.Sy;
     face.Sigma = sigma;
     face.Key = key;
     face.Entry = -1;
@@ -155,39 +163,43 @@ void VirtualSourceSolver::Cross(int hs)
   }
   const FaceState& from = Faces[TriangleMesh::FaceOf(hs)];
   const double l = Surface.EdgeLength(ht);
-  // The source in the frame of ht (origin A = Origin(ht), x along ht towards B = Destination(ht),
-  // y > 0 into the next face ft): hs's frame turned by half a turn about the edge's midpoint.
+  // The source, the segment from (sx, sy) to (tx, ty) (one point for point sources), in the frame
+  // of ht (origin A = Origin(ht), x along ht towards B = Destination(ht), y > 0 into the next
+  // face ft): hs's frame turned by half a turn about the edge's midpoint.
   const EdgeFrame out = FrameOf(hs);
-  const double qx = from.Sx - out.Ox, qy = from.Sy - out.Oy;
-  const double sx = l - (qx * out.Ux + qy * out.Uy);
-  const double sy = -(out.Ux * qy - out.Uy * qx);
-  const double sigma = from.Sigma;
-  const double px = Cx[ht], py = Cy[ht];
-  const double gx = (l + px) / 3.0, gy = py / 3.0; // ft's centroid
-
-  // Where the line from the source to (x, y) (y > 0 >= sy) crosses the edge's line.
-  auto crossing = [&](double x, double y) { return sx + (x - sx) * (-sy) / (y - sy); };
-  // Does the line to the centroid pass through the edge, or bend around A or B? A source in
-  // front of the edge's line goes around the nearer end.
-  enum Bend
-  {
-    None,
-    AtA,
-    AtB,
-    AtD
+  auto toEdge = [&](double x, double y, double& ex, double& ey) {
+    const double qx = x - out.Ox, qy = y - out.Oy;
+    ex = l - (qx * out.Ux + qy * out.Uy);
+    ey = -(out.Ux * qy - out.Uy * qx);
   };
-  Bend bend;
-  if (sy <= 0.0)
+  double sx, sy, tx, ty;
+  toEdge(from.Sx, from.Sy, sx, sy);
+  const bool segment = from.Tx != from.Sx || from.Ty != from.Sy;
+  if (segment)
   {
-    // A line through an end of the edge passes, up to rounding (on flat meshes that line is the
-    // geodesic, and the bend there would tie with it).
-    const double t = crossing(gx, gy), slack = 1e-9 * l;
-    bend = t < -slack ? AtA : t > l + slack ? AtB : None;
+    toEdge(from.Tx, from.Ty, tx, ty);
   }
   else
   {
-    bend = Hypot(sx, sy) + Hypot(gx, gy) <= Hypot(sx - l, sy) + Hypot(gx - l, gy) ? AtA : AtB;
+    tx = sx;
+    ty = sy;
   }
+  const double sigma = from.Sigma;
+  const double px = Cx[ht], py = Cy[ht];
+  const double gx = (l + px) / 3.0, gy = py / 3.0; // ft's centroid
+  // The point of the source nearest to (x, y): where the path to it starts.
+  auto nearest = [&](double x, double y, double& ex, double& ey) {
+    ex = sx;
+    ey = sy;
+    if (segment)
+    {
+      const double vx = tx - sx, vy = ty - sy, vv = vx * vx + vy * vy;
+      const double u = vv > 0.0 ? std::min(std::max(((x - sx) * vx + (y - sy) * vy) / vv, 0.0), 1.0) : 0.0;
+      ex = sx + u * vx;
+      ey = sy + u * vy;
+    }
+  };
+
   // The edge fs was entered by, A - D or D - B with D the far corner of fs. A line that passes
   // through this edge but not through that one leaves the faces the source was unfolded over,
   // beyond D; where D is a saddle (or a boundary vertex a path may bend at), the line is no
@@ -196,57 +208,80 @@ void VirtualSourceSolver::Cross(int hs)
   const double dx = l - Cx[hs], dy = -Cy[hs];
   const int entry = from.Entry;
   const bool checkD = entry >= 0 && Surface.IsPseudoSourceVertex(Surface.Opposite(hs));
-  auto beyondD = [&](double x, double y) {
+  // Does the line from (ex, ey) to (x, y) (y > 0) miss the entry edge beyond D? (The sides of
+  // that line that D and the entry edge's other end, A or B, lie on: both on one side, D the
+  // nearer.)
+  auto beyondD = [&](double ex, double ey, double x, double y) {
     if (!checkD)
     {
       return false;
     }
-    // The sides of the line from the source to (x, y) that D and the entry edge's other end
-    // (A or B) lie on: the line misses the entry edge beyond D when both are on one side and D
-    // is nearer to the line.
-    const double ux = x - sx, uy = y - sy;
-    const double sD = ux * (dy - sy) - uy * (dx - sx);
-    const double sE = entry == TriangleMesh::Next(hs) ? ux * (-sy) - uy * (-sx)
-                                                      : ux * (-sy) - uy * (l - sx);
+    const double ux = x - ex, uy = y - ey;
+    const double sD = ux * (dy - ey) - uy * (dx - ex);
+    const double sE = entry == TriangleMesh::Next(hs) ? ux * (-ey) - uy * (-ex)
+                                                      : ux * (-ey) - uy * (l - ex);
     return sD * sE > 0.0 && std::abs(sD) < std::abs(sE);
   };
-  if (bend == None && beyondD(gx, gy))
+  // The path from (ex, ey) to (x, y) through this crossing: straight when the line passes
+  // through the edge (a line through an end of it passes, up to rounding: on flat meshes that
+  // line is the geodesic, and the bend there would tie with it) and past D as above, else bent
+  // at the end it misses or at D. A source in front of the edge's line goes around the nearer
+  // end.
+  enum Bend
   {
-    bend = AtD;
-  }
-  double nsx = sx, nsy = sy, nsigma = sigma;
-  if (bend == AtD)
+    None,
+    AtA,
+    AtB,
+    AtD
+  };
+  auto route = [&](double ex, double ey, double x, double y) {
+    if (ey <= 0.0)
+    {
+      const double t = ex + (x - ex) * (-ey) / (y - ey), slack = 1e-9 * l;
+      return t < -slack ? AtA : t > l + slack ? AtB : beyondD(ex, ey, x, y) ? AtD : None;
+    }
+    return Hypot(ex, ey) + Hypot(x, y) <= Hypot(ex - l, ey) + Hypot(x - l, y) ? AtA : AtB;
+  };
+  auto bendPoint = [&](Bend b, double& bx, double& by) {
+    bx = b == AtA ? 0.0 : b == AtB ? l : dx;
+    by = b == AtD ? dy : 0.0;
+  };
+
+  double ex, ey;
+  nearest(gx, gy, ex, ey);
+  const Bend bend = route(ex, ey, gx, gy);
+  double nsx = sx, nsy = sy, ntx = tx, nty = ty, nsigma = sigma, kx = ex, ky = ey;
+  if (bend != None)
   {
-    nsx = dx;
-    nsy = dy;
-    nsigma = sigma + Hypot(sx - dx, sy - dy);
-  }
-  else if (bend != None)
-  {
-    nsx = bend == AtA ? 0.0 : l;
-    nsy = 0.0;
-    nsigma = sigma + Hypot(sx - nsx, sy);
+    bendPoint(bend, kx, ky);
+    nsigma = sigma + Hypot(ex - kx, ey - ky);
+    nsx = ntx = kx;
+    nsy = nty = ky;
   }
 
-  // The opposite vertex P through this crossing, whatever the face decides: straight when the
-  // line to it passes through the edge (and past D as above), else around the end it misses.
+  // The opposite vertex P through this crossing, whatever the face decides: the centroid's bend
+  // when it bends, else its own path.
   double dP;
   if (bend != None)
   {
-    dP = nsigma + Hypot(px - nsx, py - nsy);
+    dP = nsigma + Hypot(px - kx, py - ky);
   }
   else
   {
-    const double tp = crossing(px, py);
-    dP = tp < 0.0      ? sigma + Hypot(sx, sy) + Hypot(px, py)
-      : tp > l         ? sigma + Hypot(sx - l, sy) + Hypot(px - l, py)
-      : beyondD(px, py) ? sigma + Hypot(sx - dx, sy - dy) + Hypot(px - dx, py - dy)
-                       : sigma + Hypot(px - sx, py - sy);
+    double fx, fy;
+    nearest(px, py, fx, fy);
+    const Bend b = route(fx, fy, px, py);
+    double bx = fx, by = fy;
+    if (b != None)
+    {
+      bendPoint(b, bx, by);
+    }
+    dP = sigma + Hypot(fx - bx, fy - by) + Hypot(px - bx, py - by);
   }
   UpdateVertex(Surface.Opposite(ht), dP);
 
   const int ft = TriangleMesh::FaceOf(ht);
-  const double key = nsigma + Hypot(gx - nsx, gy - nsy);
+  const double key = nsigma + Hypot(gx - kx, gy - ky);
   FaceState& to = Faces[ft];
   // On a tie, the source with fewer bends behind it (a bend exactly on the line to the centroid
   // gives the centroid its distance, but the faces beyond a longer one).
@@ -260,6 +295,8 @@ void VirtualSourceSolver::Cross(int hs)
   const EdgeFrame in = FrameOf(ht);
   to.Sx = in.Ox + nsx * in.Ux - nsy * in.Uy;
   to.Sy = in.Oy + nsx * in.Uy + nsy * in.Ux;
+  to.Tx = segment && bend == None ? in.Ox + ntx * in.Ux - nty * in.Uy : to.Sx;
+  to.Ty = segment && bend == None ? in.Oy + ntx * in.Uy + nty * in.Ux : to.Sy;
   to.Sigma = nsigma;
   to.Key = key;
   to.Entry = bend == AtA || bend == AtB ? -1 : ht; // a source at A or B lies in ft
@@ -268,6 +305,12 @@ void VirtualSourceSolver::Cross(int hs)
 
 Status VirtualSourceSolver::Solve(
   const std::vector<SurfacePoint>& sources, const VirtualSourceOptions& options)
+{
+  return Solve(sources, std::vector<std::vector<CurvePiece>>(), options);
+}
+
+Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
+  const std::vector<std::vector<CurvePiece>>& runs, const VirtualSourceOptions& options)
 {
   for (FaceState& face : Faces)
   {
@@ -280,13 +323,29 @@ Status VirtualSourceSolver::Solve(
   }
   Current = 0;
   Stats = VirtualSourceStatistics();
-  if (sources.empty())
+  std::vector<CurvePiece> pieces;
+  for (const std::vector<CurvePiece>& run : runs)
+  {
+    pieces.insert(pieces.end(), run.begin(), run.end());
+  }
+  if (sources.empty() && pieces.empty())
   {
     return Status::Error("no source given");
   }
-  if (const Status valid = Surface.CheckPoints(sources, "source"); !valid.Ok())
+  if (const Status valid = Surface.CheckPoints(sources, "source"); !sources.empty() && !valid.Ok())
   {
     return valid;
+  }
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+  {
+    const CurvePiece& piece = pieces[i];
+    if (piece.Face < 0 || piece.Face >= Surface.NumberOfFaces() || !std::isfinite(piece.A.x) ||
+      !std::isfinite(piece.A.y) || !std::isfinite(piece.A.z) || !std::isfinite(piece.B.x) ||
+      !std::isfinite(piece.B.y) || !std::isfinite(piece.B.z))
+    {
+      return Status::Error("curve piece " + std::to_string(i) +
+        " lies in no face of the mesh or has a non-finite end");
+    }
   }
   const bool limited = options.MaximumDistance > 0.0 && std::isfinite(options.MaximumDistance);
   Horizon = limited ? options.MaximumDistance + Surface.LongestEdgeLength() : Inf;
@@ -312,7 +371,39 @@ Status VirtualSourceSolver::Solve(
     const int h = 3 * source.Face;
     const double sx = (b[1] * Surface.EdgeLength(h) + b[2] * Cx[h]) / sum;
     const double sy = b[2] * Cy[h] / sum;
-    Seed(source.Face, sx, sy, 0.0);
+    Seed(source.Face, sx, sy, sx, sy);
+  }
+  for (const std::vector<CurvePiece>& run : runs)
+  {
+    double total = 0.0;
+    for (const CurvePiece& piece : run)
+    {
+      total += Norm(piece.B - piece.A);
+    }
+    double before = 0.0;
+    for (const CurvePiece& piece : run)
+    {
+      // The piece's ends in its face's frame (x along corner 0 -> corner 1, y towards corner
+      // 2), then the whole run along the piece's line: the run unfolded into this face.
+      const std::array<int, 3>& corners = Surface.Face(piece.Face);
+      const Vec3& origin = Surface.Position(corners[0]);
+      const Vec3 u = (Surface.Position(corners[1]) - origin) / Surface.EdgeLength(3 * piece.Face);
+      const Vec3 v = gs::Cross(Surface.FaceNormal(piece.Face), u);
+      double ax = Dot(piece.A - origin, u), ay = Dot(piece.A - origin, v);
+      double bx = Dot(piece.B - origin, u), by = Dot(piece.B - origin, v);
+      const double length = Norm(piece.B - piece.A);
+      if (length > 0.0)
+      {
+        const double after = std::max(total - before - length, 0.0);
+        const double dx = (bx - ax) / length, dy = (by - ay) / length;
+        ax -= before * dx;
+        ay -= before * dy;
+        bx += after * dx;
+        by += after * dy;
+      }
+      before += length;
+      Seed(piece.Face, ax, ay, bx, by);
+    }
   }
 
   const std::int64_t numFaces = std::max(1, Surface.NumberOfFaces());

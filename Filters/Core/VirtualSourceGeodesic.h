@@ -30,6 +30,7 @@
 #pragma once
 
 #include "Status.h"
+#include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
@@ -71,6 +72,14 @@ public:
   // message saying which, or when the progress callback aborts.
   Status Solve(const std::vector<SurfacePoint>& sources,
     const VirtualSourceOptions& options = VirtualSourceOptions());
+  // The same from points and curves. Each run is the straight surface path between two
+  // consecutive points of a curve (TraceSurfaceCurve of the two): each of its pieces seeds its
+  // face with the whole run unfolded into that face's plane, a segment carried across the mesh
+  // as one source (exact for a straight curve on a flat mesh). Fails as Solve does, or when a
+  // piece's face does not exist or an end is not finite.
+  Status Solve(const std::vector<SurfacePoint>& sources,
+    const std::vector<std::vector<CurvePiece>>& runs,
+    const VirtualSourceOptions& options = VirtualSourceOptions());
 
   // Distance of vertex v after the last solve (Unreachable when not reached or beyond
   // MaximumDistance).
@@ -89,12 +98,14 @@ private:
     float Key;
   };
   // A face's virtual source in the face's own frame (corner 0 at (0, 0), corner 1 on the
-  // positive x axis, corner 2 at y > 0), its distance Sigma from the real source, and the
-  // distance of the face's centroid through it (the face's key).
+  // positive x axis, corner 2 at y > 0): a point, or a segment unfolded from a piece of a curve
+  // source (a path starts at its point nearest to where it goes); its distance Sigma from the
+  // real source, and the distance of the face's centroid through it (the face's key).
   struct FaceState
   {
     double Sx, Sy, Sigma, Key;
-    int Entry; // the half-edge the source is seen through (-1: the source lies in the face)
+    int Entry;      // the half-edge the source is seen through (-1: the source lies in the face)
+    double Tx, Ty;  // a segment source's other end (a piece of a curve); (Sx, Sy) for a point
   };
   // The frame of half-edge h in its face's frame: origin (Ox, Oy), unit x axis (Ux, Uy).
   struct EdgeFrame
@@ -104,7 +115,7 @@ private:
   EdgeFrame FrameOf(int h) const;
   // The bucket of a key (null beyond the horizon).
   std::vector<QueueItem>* BucketFor(double key);
-  void Seed(int f, double sx, double sy, double sigma);
+  void Seed(int f, double sx, double sy, double tx, double ty);
   void Push(int face, int except, double key);
   void Cross(int h);
   void SeedAround(int v, double sigma);

@@ -130,8 +130,7 @@ def geodesic_distance(mesh, sources=None, curves=(), solver="virtual sources", k
     curves: polylines on or near the surface, each a (k, 3) array: the distance to the curve.
     solver: "virtual sources" (default: no precomputation, the soonest first answer; exact on
         flat meshes, a mean relative error of 1e-3 to 1.9e-3 on the real meshes measured, up to
-        3.4e-3 on regular-grid tori, about 1% to
-        curves), "svg" (saddle vertex graph, label-correcting: near-exact, fast once the graph
+        3.4e-3 on regular-grid tori; straight curves on flat parts exact), "svg" (saddle vertex graph, label-correcting: near-exact, fast once the graph
         is built), "svg-dijkstra", "dgg" (discrete geodesic graph: largest relative error
         within `accuracy`), or "exact" (exact polyhedral geodesics).
     k: the graph's neighbourhood size (SVG solvers; default 50). accuracy: the DGG's largest
