@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace gs
 {
@@ -18,24 +19,79 @@ constexpr std::int64_t ProgressStride = 1 << 16;
 VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
   : Surface(mesh)
 {
-  // The opposite vertex of each half-edge h in h's frame, from the three edge lengths (law of
-  // cosines): no trigonometry.
-  const int nh = Surface.NumberOfHalfedges();
-  Cx.resize(nh);
-  Cy.resize(nh);
-  for (int h = 0; h < nh; ++h)
+  // Corner 2 in the frame of edge 0 from the three edge lengths (law of cosines): no
+  // trigonometry.
+  const int nf = Surface.NumberOfFaces();
+  Faces.resize(nf);
+#pragma omp parallel for schedule(static) if (nf > 20000)
+  for (int f = 0; f < nf; ++f)
   {
-    const double l = Surface.EdgeLength(h);
-    const double b = Surface.EdgeLength(TriangleMesh::Prev(h));
-    const double a = Surface.EdgeLength(TriangleMesh::Next(h));
-    const double x = (l * l + b * b - a * a) / (2.0 * l);
-    Cx[h] = x;
-    Cy[h] = std::sqrt(std::max(b * b - x * x, 0.0));
+    FaceRecord& r = Faces[f];
+    const std::array<int, 3>& corners = Surface.Face(f);
+    for (int k = 0; k < 3; ++k)
+    {
+      r.L[k] = Surface.EdgeLength(3 * f + k);
+      r.Twin[k] = Surface.Twin(3 * f + k);
+      r.Corner[k] = static_cast<unsigned int>(corners[k]) |
+        (Surface.IsPseudoSourceVertex(corners[k]) ? BendFlag : 0u);
+    }
+    const double l = r.L[0], b = r.L[2], a = r.L[1];
+    r.Cx = (l * l + b * b - a * a) / (2.0 * l);
+    r.Cy = std::sqrt(std::max(b * b - r.Cx * r.Cx, 0.0));
+    r.Sx = r.Sy = r.Sigma = r.Tx = r.Ty = 0.0;
+    r.Key = Inf;
+    r.Entry = r.Except = -1;
+    r.Epoch = 0;
   }
-  Faces.assign(Surface.NumberOfFaces(), FaceState{ 0.0, 0.0, 0.0, Inf, -1, 0.0, 0.0 });
   Dist.assign(Surface.NumberOfVertices(), Inf);
   BucketWidth = std::max(Surface.MeanEdgeLength(), 1e-300);
 }
+
+VirtualSourceSolver::EdgeView VirtualSourceSolver::ViewOf(const FaceRecord& r, int k)
+{
+  switch (k)
+  {
+    case 0:
+      return { 0.0, 0.0, 1.0, 0.0, r.L[0], r.Cx, r.Cy };
+    case 1:
+    {
+      // The third corner is corner 0: (0, 0) - (L0, 0) in the edge's frame.
+      const double ux = (r.Cx - r.L[0]) / r.L[1], uy = r.Cy / r.L[1];
+      return { r.L[0], 0.0, ux, uy, r.L[1], -r.L[0] * ux, r.L[0] * uy };
+    }
+    default:
+    {
+      // The third corner is corner 1: (L0, 0) - (Cx, Cy).
+      const double ux = -r.Cx / r.L[2], uy = -r.Cy / r.L[2];
+      const double qx = r.L[0] - r.Cx, qy = -r.Cy;
+      return { r.Cx, r.Cy, ux, uy, r.L[2], qx * ux + qy * uy, ux * qy - uy * qx };
+    }
+  }
+}
+
+VirtualSourceSolver::QueueItem VirtualSourceSolver::Item(int id, double key)
+{
+  const float k = static_cast<float>(key);
+  std::uint32_t bits;
+  std::memcpy(&bits, &k, sizeof(bits));
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(id)) |
+    (static_cast<std::uint64_t>(bits) << 32);
+}
+
+namespace
+{
+int ItemId(std::uint64_t item)
+{
+  return static_cast<int>(static_cast<std::uint32_t>(item));
+}
+float ItemKey(std::uint64_t item)
+{
+  const std::uint32_t bits = static_cast<std::uint32_t>(item >> 32);
+  float k;
+  std::memcpy(&k, &bits, sizeof(k));
+  return k;
+}
+} // namespace
 
 std::vector<VirtualSourceSolver::QueueItem>* VirtualSourceSolver::BucketFor(double key)
 {
@@ -54,40 +110,56 @@ std::vector<VirtualSourceSolver::QueueItem>* VirtualSourceSolver::BucketFor(doub
   return &Buckets[b];
 }
 
-void VirtualSourceSolver::Push(int face, int except, double key)
+void VirtualSourceSolver::Prefetch(const std::vector<QueueItem>& bucket, std::size_t i) const
 {
-  std::vector<QueueItem>* bucket = BucketFor(key);
-  if (!bucket)
+  // The solve waits on memory: each crossing enters a record far from the last. Two stages
+  // ahead of the item being processed: the face of the item Lead2 ahead, then the neighbours of
+  // the one Lead1 ahead (whose record the first stage brought in).
+  constexpr std::size_t Lead1 = 6, Lead2 = 12;
+  auto fetch = [](const FaceRecord& r) {
+    __builtin_prefetch(&r);
+    __builtin_prefetch(reinterpret_cast<const char*>(&r) + 64);
+  };
+  if (i + Lead2 < bucket.size())
   {
-    return;
-  }
-  for (int k = 0; k < 3; ++k)
-  {
-    const int h = 3 * face + k;
-    if (h != except)
+    const int id = ItemId(bucket[i + Lead2]);
+    if (id >= 0)
     {
-      bucket->push_back({ h, static_cast<float>(key) });
+      fetch(Faces[id]);
+    }
+  }
+  if (i + Lead1 < bucket.size())
+  {
+    const int id = ItemId(bucket[i + Lead1]);
+    if (id >= 0)
+    {
+      for (const int t : Faces[id].Twin)
+      {
+        if (t >= 0)
+        {
+          fetch(Faces[TriangleMesh::FaceOf(t)]);
+        }
+      }
     }
   }
 }
 
-VirtualSourceSolver::EdgeFrame VirtualSourceSolver::FrameOf(int h) const
+void VirtualSourceSolver::SetSource(FaceRecord& r, double sx, double sy, double tx, double ty,
+  double sigma, double key, int entry, int except)
 {
-  const int first = h - h % 3;
-  switch (h % 3)
+  Stats.FacesReached += r.Epoch != Epoch;
+  r.Sx = sx;
+  r.Sy = sy;
+  r.Tx = tx;
+  r.Ty = ty;
+  r.Sigma = sigma;
+  r.Key = key;
+  r.Entry = entry;
+  r.Except = except;
+  r.Epoch = Epoch;
+  if (std::vector<QueueItem>* bucket = BucketFor(key))
   {
-    case 0:
-      return { 0.0, 0.0, 1.0, 0.0 };
-    case 1:
-    {
-      const double l0 = Surface.EdgeLength(first), l1 = Surface.EdgeLength(h);
-      return { l0, 0.0, (Cx[first] - l0) / l1, Cy[first] / l1 };
-    }
-    default:
-    {
-      const double l2 = Surface.EdgeLength(h);
-      return { Cx[first], Cy[first], -Cx[first] / l2, -Cy[first] / l2 };
-    }
+    bucket->push_back(Item(static_cast<int>(&r - Faces.data()), key));
   }
 }
 
@@ -95,34 +167,28 @@ void VirtualSourceSolver::PushVertex(int v, double key)
 {
   if (std::vector<QueueItem>* bucket = BucketFor(key))
   {
-    bucket->push_back({ -1 - v, static_cast<float>(key) });
+    bucket->push_back(Item(-1 - v, key));
   }
 }
 
 void VirtualSourceSolver::Seed(int f, double sx, double sy, double tx, double ty)
 {
-  // The segment's distance from a point of f's frame (corners (0, 0), (L, 0), (Cx, Cy) of its
-  // first half-edge).
-  const int h = 3 * f;
-  const double l = Surface.EdgeLength(h), cx = Cx[h], cy = Cy[h];
+  // The segment's distance from a point of f's frame.
+  FaceRecord& r = Faces[f];
+  const double l = r.L[0], cx = r.Cx, cy = r.Cy;
   const double vx = tx - sx, vy = ty - sy, vv = vx * vx + vy * vy;
   auto distance = [&](double x, double y) {
     const double u = vv > 0.0 ? std::min(std::max(((x - sx) * vx + (y - sy) * vy) / vv, 0.0), 1.0) : 0.0;
     return Hypot(x - sx - u * vx, y - sy - u * vy);
   };
-  const std::array<int, 3>& corners = Surface.Face(f);
-  UpdateVertex(corners[0], distance(0.0, 0.0));
-  UpdateVertex(corners[1], distance(l, 0.0));
-  UpdateVertex(corners[2], distance(cx, cy));
+  UpdateVertex(r.Corner[0], distance(0.0, 0.0));
+  UpdateVertex(r.Corner[1], distance(l, 0.0));
+  UpdateVertex(r.Corner[2], distance(cx, cy));
   const double key = distance((l + cx) / 3.0, cy / 3.0);
-  FaceState& face = Faces[f];
-  if (!(key < face.Key))
+  if (key < KeyOf(r))
   {
-    return;
+    SetSource(r, sx, sy, tx, ty, 0.0, key, -1, -1);
   }
-  Stats.FacesReached += face.Key == Inf;
-  face = FaceState{ sx, sy, 0.0, key, -1, tx, ty };
-  Push(f, -1, key);
 }
 
 void VirtualSourceSolver::SeedAround(int v, double sigma)
@@ -130,43 +196,36 @@ void VirtualSourceSolver::SeedAround(int v, double sigma)
   // Each face around v, with v as its source: its corners along its edges from v, its key from
   // its centroid's position in the frame of the half-edge leaving v.
   Surface.ForEachOutgoingHalfedge(v, [&](int h) {
-    const double l = Surface.EdgeLength(h);
-    UpdateVertex(Surface.Destination(h), sigma + l);
-    UpdateVertex(Surface.Opposite(h), sigma + Surface.EdgeLength(TriangleMesh::Prev(h)));
-    const int f = TriangleMesh::FaceOf(h);
-    FaceState& face = Faces[f];
-    const double key = sigma + Hypot((l + Cx[h]) / 3.0, Cy[h] / 3.0);
-    if (!(key < face.Key))
+    FaceRecord& r = Faces[TriangleMesh::FaceOf(h)];
+    const int k = h % 3;
+    const EdgeView e = ViewOf(r, k);
+    UpdateVertex(r.Corner[(k + 1) % 3], sigma + e.Length);
+    UpdateVertex(r.Corner[(k + 2) % 3], sigma + r.L[(k + 2) % 3]);
+    const double key = sigma + Hypot((e.Length + e.Px) / 3.0, e.Py / 3.0);
+    if (key < KeyOf(r))
     {
-      return;
+      SetSource(r, e.Ox, e.Oy, e.Ox, e.Oy, sigma, key, -1, -1);
     }
-    const int first = 3 * f;
-    Stats.FacesReached += face.Key == Inf;
-    face.Sx = h % 3 == 0 ? 0.0 : h % 3 == 1 ? Surface.EdgeLength(first) : Cx[first];
-    face.Sy = h % 3 == 2 ? Cy[first] : 0.0;
-    face.Tx = face.Sx;
-    face.Ty = face.Sy;
-    face.Sigma = sigma;
-    face.Key = key;
-    face.Entry = -1;
-    Push(f, -1, key);
   });
 }
 
-void VirtualSourceSolver::Cross(int hs)
+void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
 {
   ++Stats.Crossings;
-  const int ht = Surface.Twin(hs);
+  const int ht = from.Twin[k];
   if (ht < 0)
   {
     return;
   }
-  const FaceState& from = Faces[TriangleMesh::FaceOf(hs)];
-  const double l = Surface.EdgeLength(ht);
+  const int hs = 3 * f + k;
+  FaceRecord& to = Faces[TriangleMesh::FaceOf(ht)];
+  const int kt = ht % 3;
+  const EdgeView out = ViewOf(from, k);
+  const EdgeView in = ViewOf(to, kt);
+  const double l = out.Length;
   // The source, the segment from (sx, sy) to (tx, ty) (one point for point sources), in the frame
   // of ht (origin A = Origin(ht), x along ht towards B = Destination(ht), y > 0 into the next
-  // face ft): hs's frame turned by half a turn about the edge's midpoint.
-  const EdgeFrame out = FrameOf(hs);
+  // face): hs's frame turned by half a turn about the edge's midpoint.
   auto toEdge = [&](double x, double y, double& ex, double& ey) {
     const double qx = x - out.Ox, qy = y - out.Oy;
     ex = l - (qx * out.Ux + qy * out.Uy);
@@ -185,8 +244,8 @@ void VirtualSourceSolver::Cross(int hs)
     ty = sy;
   }
   const double sigma = from.Sigma;
-  const double px = Cx[ht], py = Cy[ht];
-  const double gx = (l + px) / 3.0, gy = py / 3.0; // ft's centroid
+  const double px = in.Px, py = in.Py;
+  const double gx = (l + px) / 3.0, gy = py / 3.0; // the next face's centroid
   // The point of the source nearest to (x, y): where the path to it starts.
   auto nearest = [&](double x, double y, double& ex, double& ey) {
     ex = sx;
@@ -200,14 +259,14 @@ void VirtualSourceSolver::Cross(int hs)
     }
   };
 
-  // The edge fs was entered by, A - D or D - B with D the far corner of fs. A line that passes
-  // through this edge but not through that one leaves the faces the source was unfolded over,
-  // beyond D; where D is a saddle (or a boundary vertex a path may bend at), the line is no
-  // path at all and the path bends at D instead. (Elsewhere the line stays: the error of going
-  // on straight past a vertex whose angle is near or below 2 pi is smaller than a bend's.)
-  const double dx = l - Cx[hs], dy = -Cy[hs];
+  // The edge the face left was entered by, A - D or D - B with D its far corner. A line that
+  // passes through this edge but not through that one leaves the faces the source was unfolded
+  // over, beyond D; where D is a saddle (or a boundary vertex a path may bend at), the line is
+  // no path at all and the path bends at D instead. (Elsewhere the line stays: the error of
+  // going on straight past a vertex whose angle is near or below 2 pi is smaller than a bend's.)
+  const double dx = l - out.Px, dy = -out.Py;
   const int entry = from.Entry;
-  const bool checkD = entry >= 0 && Surface.IsPseudoSourceVertex(Surface.Opposite(hs));
+  const bool checkD = entry >= 0 && (from.Corner[(k + 2) % 3] & BendFlag);
   // Does the line from (ex, ey) to (x, y) (y > 0) miss the entry edge beyond D? (The sides of
   // that line that D and the entry edge's other end, A or B, lie on: both on one side, D the
   // nearer.)
@@ -278,29 +337,26 @@ void VirtualSourceSolver::Cross(int hs)
     }
     dP = sigma + Hypot(fx - bx, fy - by) + Hypot(px - bx, py - by);
   }
-  UpdateVertex(Surface.Opposite(ht), dP);
+  UpdateVertex(to.Corner[(kt + 2) % 3], dP);
 
-  const int ft = TriangleMesh::FaceOf(ht);
   const double key = nsigma + Hypot(gx - kx, gy - ky);
-  FaceState& to = Faces[ft];
+  const double current = KeyOf(to);
   // On a tie, the source with fewer bends behind it (a bend exactly on the line to the centroid
   // gives the centroid its distance, but the faces beyond a longer one).
-  if (!(key < to.Key - Tolerance || (key <= to.Key + Tolerance && nsigma < to.Sigma - Tolerance)))
+  if (!(key < current - Tolerance ||
+        (key <= current + Tolerance && nsigma < to.Sigma - Tolerance)))
   {
     return;
   }
   ++Stats.FaceUpdates;
-  Stats.FacesReached += to.Key == Inf;
-  // The new state in ft's frame.
-  const EdgeFrame in = FrameOf(ht);
-  to.Sx = in.Ox + nsx * in.Ux - nsy * in.Uy;
-  to.Sy = in.Oy + nsx * in.Uy + nsy * in.Ux;
-  to.Tx = segment && bend == None ? in.Ox + ntx * in.Ux - nty * in.Uy : to.Sx;
-  to.Ty = segment && bend == None ? in.Oy + ntx * in.Uy + nty * in.Ux : to.Sy;
-  to.Sigma = nsigma;
-  to.Key = key;
-  to.Entry = bend == AtA || bend == AtB ? -1 : ht; // a source at A or B lies in ft
-  Push(ft, ht, key);
+  // The new state in the next face's frame.
+  const double nx = in.Ox + nsx * in.Ux - nsy * in.Uy;
+  const double ny = in.Oy + nsx * in.Uy + nsy * in.Ux;
+  const bool carried = segment && bend == None;
+  SetSource(to, nx, ny, carried ? in.Ox + ntx * in.Ux - nty * in.Uy : nx,
+    carried ? in.Oy + ntx * in.Uy + nty * in.Ux : ny, nsigma, key,
+    bend == AtA || bend == AtB ? -1 : ht, // a source at A or B lies in the face
+    kt);
 }
 
 Status VirtualSourceSolver::Solve(
@@ -312,9 +368,14 @@ Status VirtualSourceSolver::Solve(
 Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
   const std::vector<std::vector<CurvePiece>>& runs, const VirtualSourceOptions& options)
 {
-  for (FaceState& face : Faces)
+  if (++Epoch == 0)
   {
-    face.Key = Inf;
+    // The epoch wrapped: no record may look current.
+    for (FaceRecord& r : Faces)
+    {
+      r.Epoch = 0;
+    }
+    Epoch = 1;
   }
   std::fill(Dist.begin(), Dist.end(), Inf);
   for (std::vector<QueueItem>& bucket : Buckets)
@@ -368,9 +429,9 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
       x = std::max(x, 0.0);
     }
     const double sum = b[0] + b[1] + b[2];
-    const int h = 3 * source.Face;
-    const double sx = (b[1] * Surface.EdgeLength(h) + b[2] * Cx[h]) / sum;
-    const double sy = b[2] * Cy[h] / sum;
+    const FaceRecord& r = Faces[source.Face];
+    const double sx = (b[1] * r.L[0] + b[2] * r.Cx) / sum;
+    const double sy = b[2] * r.Cy / sum;
     Seed(source.Face, sx, sy, sx, sy);
   }
   for (const std::vector<CurvePiece>& run : runs)
@@ -413,21 +474,30 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
     // Items pushed into the current bucket while it is processed are appended to it.
     for (std::size_t i = 0; i < Buckets[Current].size(); ++i)
     {
+      Prefetch(Buckets[Current], i);
       const QueueItem item = Buckets[Current][i];
-      if (item.Halfedge < 0)
+      const int id = ItemId(item);
+      if (id < 0)
       {
-        const int v = -1 - item.Halfedge;
-        if (item.Key == static_cast<float>(Dist[v]))
+        const int v = -1 - id;
+        if (ItemKey(item) == static_cast<float>(Dist[v]))
         {
           SeedAround(v, Dist[v]);
         }
         continue;
       }
-      if (item.Key != static_cast<float>(Faces[TriangleMesh::FaceOf(item.Halfedge)].Key))
+      const FaceRecord& face = Faces[id];
+      if (ItemKey(item) != static_cast<float>(face.Key))
       {
-        continue; // the face changed since: its newer items carry its source
+        continue; // the face changed since: its newer item carries its source
       }
-      Cross(item.Halfedge);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (k != face.Except)
+        {
+          Cross(face, id, k);
+        }
+      }
       if (Stats.Crossings >= nextReport)
       {
         nextReport += ProgressStride;

@@ -64,7 +64,7 @@ class VirtualSourceSolver
 public:
   static constexpr double Unreachable = std::numeric_limits<double>::infinity();
 
-  // The mesh must outlive the solver. Sets up per-half-edge geometry (linear in the mesh size).
+  // The mesh must outlive the solver. Sets up a record of 128 bytes per face (parallel).
   explicit VirtualSourceSolver(const TriangleMesh& mesh);
 
   // Distances from the nearest of the sources (vertices or face points). Fails (every vertex
@@ -89,53 +89,69 @@ public:
   const TriangleMesh& Mesh() const { return Surface; }
 
 private:
-  struct QueueItem
+  // One record per face, two cache lines: the face's geometry (fixed) and its virtual source
+  // (per solve). A crossing reads the record it leaves and the one it enters, and the distance of
+  // one vertex: the solve is bound by memory latency, so everything a crossing needs of a face
+  // sits on the face's own lines.
+  struct alignas(64) FaceRecord
   {
-    int Halfedge; // cross out of face(Halfedge) through this half-edge; -1 - v: vertex v's event
-    // The face's (vertex's) distance when queued, rounded to float: an item whose face changed
-    // since is skipped (one that rounds the same is processed with the face's current state,
-    // which is what the newer item would do). Half the queue's memory traffic of a double.
-    float Key;
+    // The face's frame: corner 0 at (0, 0), corner 1 at (L[0], 0), corner 2 at (Cx, Cy), Cy > 0;
+    // L[k] is the length of edge k (corner k to corner k + 1, half-edge 3 f + k).
+    double L[3];
+    double Cx, Cy;
+    int Twin[3];            // the half-edge across edge k, -1 on the boundary
+    unsigned int Corner[3]; // the vertex at corner k, with BendFlag where paths may bend
+    // The virtual source, valid when Epoch is the solve's: a point (Sx, Sy), or a segment from it
+    // to (Tx, Ty) unfolded from a piece of a curve source (a path starts at its point nearest to
+    // where it goes); its distance Sigma from the real source; the distance of the face's
+    // centroid through it (the face's key).
+    double Sx, Sy, Sigma, Key, Tx, Ty;
+    int Entry;  // the half-edge the source is seen through (-1: the source lies in the face)
+    int Except; // the edge (0 .. 2) the front came in by, not crossed back; -1 for none
+    unsigned int Epoch;
   };
-  // A face's virtual source in the face's own frame (corner 0 at (0, 0), corner 1 on the
-  // positive x axis, corner 2 at y > 0): a point, or a segment unfolded from a piece of a curve
-  // source (a path starts at its point nearest to where it goes); its distance Sigma from the
-  // real source, and the distance of the face's centroid through it (the face's key).
-  struct FaceState
+  static constexpr unsigned int BendFlag = 0x80000000u; // a saddle or reflex boundary vertex
+  // Edge k of a face in the face's frame: its origin (Ox, Oy) and unit direction (Ux, Uy), its
+  // length, and the face's third corner (Px, Py) in the edge's own frame (origin at the edge's
+  // start, x along it, y > 0 into the face).
+  struct EdgeView
   {
-    double Sx, Sy, Sigma, Key;
-    int Entry;      // the half-edge the source is seen through (-1: the source lies in the face)
-    double Tx, Ty;  // a segment source's other end (a piece of a curve); (Sx, Sy) for a point
+    double Ox, Oy, Ux, Uy, Length, Px, Py;
   };
-  // The frame of half-edge h in its face's frame: origin (Ox, Oy), unit x axis (Ux, Uy).
-  struct EdgeFrame
-  {
-    double Ox, Oy, Ux, Uy;
-  };
-  EdgeFrame FrameOf(int h) const;
+  static EdgeView ViewOf(const FaceRecord& r, int k);
+  // A queue item: a face whose source is to cross its edges (or, -1 - v, vertex v's event) and
+  // its key when queued, rounded to float, packed in 64 bits. An item whose face changed since
+  // is skipped (one that rounds the same is processed with the face's current state, which is
+  // what the newer item would do).
+  using QueueItem = std::uint64_t;
+  static QueueItem Item(int id, double key);
   // The bucket of a key (null beyond the horizon).
   std::vector<QueueItem>* BucketFor(double key);
+  void Prefetch(const std::vector<QueueItem>& bucket, std::size_t i) const;
+  double KeyOf(const FaceRecord& r) const { return r.Epoch == Epoch ? r.Key : Unreachable; }
+  void SetSource(FaceRecord& r, double sx, double sy, double tx, double ty, double sigma,
+    double key, int entry, int except);
   void Seed(int f, double sx, double sy, double tx, double ty);
-  void Push(int face, int except, double key);
-  void Cross(int h);
+  void Cross(const FaceRecord& from, int f, int k);
   void SeedAround(int v, double sigma);
   void PushVertex(int v, double key);
-  // A shorter distance for v. A vertex paths may bend at (a saddle, or a boundary vertex whose
-  // angle exceeds pi) is queued at that distance: when the front gets there and no shorter
-  // distance came since, it becomes the source of the faces around it (SeedAround).
-  void UpdateVertex(int v, double d)
+  // A shorter distance for the vertex of a corner. A vertex paths may bend at (BendFlag) is
+  // queued at that distance: when the front gets there and no shorter distance came since, it
+  // becomes the source of the faces around it (SeedAround).
+  void UpdateVertex(unsigned int corner, double d)
   {
+    const int v = static_cast<int>(corner & ~BendFlag);
     if (d < Dist[v])
     {
       Dist[v] = d;
-      if (Surface.IsPseudoSourceVertex(v))
+      if (corner & BendFlag)
         PushVertex(v, d);
     }
   }
 
   const TriangleMesh& Surface;
-  std::vector<double> Cx, Cy; // opposite vertex of each half-edge in its frame
-  std::vector<FaceState> Faces;
+  std::vector<FaceRecord> Faces;
+  unsigned int Epoch = 0;
   std::vector<double> Dist;
   std::vector<std::vector<QueueItem>> Buckets;
   std::size_t Current = 0;
