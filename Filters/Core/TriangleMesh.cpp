@@ -614,23 +614,16 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
       " triangles were re-oriented to match their neighbours (inconsistent orientation)");
   }
 
-  // 5. Twins (recomputed after flips).
+  // 5. Twins: the partners of step 3 after the flips. Swapping corners 1 and 2 of a face turns
+  // its half-edge k into half-edge 2 - k, reversed (a -> b, b -> c, c -> a become c -> a, b -> c
+  // reversed, a -> b reversed); the pairs stay.
   m.Twins.assign(3 * nf, -1);
+  auto moved = [&flip](int h) { return flip[h / 3] ? h - h % 3 + 2 - h % 3 : h; };
+  for (int h = 0; h < 3 * nf; ++h)
   {
-    const auto groups = GroupEdges(m.Faces, nv);
-    for (int v = 0; v < nv; ++v)
+    if (partner[h] >= 0)
     {
-      for (int i = groups.Start[v]; i + 1 < groups.Start[v + 1]; ++i)
-      {
-        const auto& e = groups.Entries[i];
-        const auto& next = groups.Entries[i + 1];
-        if (e.first == next.first)
-        {
-          m.Twins[e.second] = next.second;
-          m.Twins[next.second] = e.second;
-          ++i;
-        }
-      }
+      m.Twins[moved(h)] = moved(partner[h]);
     }
   }
 
