@@ -227,8 +227,17 @@ Status TriangleMesh::CheckPoints(
 
 void TriangleMesh::ComputeDerivedData()
 {
+  ComputeGeometry();
+  ComputeVertexKinds();
+  ComputeBoundaryLoops();
+  ComputeComponents();
+}
+
+// Edge lengths, corner angles, face areas and normals, the mean and longest edge, the bounding
+// box.
+void TriangleMesh::ComputeGeometry()
+{
   const int nf = NumberOfFaces();
-  const int nv = NumberOfVertices();
   Lengths.assign(3 * nf, 0.0);
   Angles.assign(3 * nf, 0.0);
   Areas.assign(nf, 0.0);
@@ -267,7 +276,13 @@ void TriangleMesh::ComputeDerivedData()
   BoxMin = lo;
   BoxMax = hi;
   BoxDiagonal = Norm(hi - lo);
+}
 
+// Angle sums; boundary, saddle and pseudo-source vertices.
+void TriangleMesh::ComputeVertexKinds()
+{
+  const int nf = NumberOfFaces();
+  const int nv = NumberOfVertices();
   VertexAngleSum.assign(nv, 0.0);
   for (int h = 0; h < 3 * nf; ++h)
   {
@@ -285,7 +300,11 @@ void TriangleMesh::ComputeDerivedData()
     PseudoSource[v] =
       (SaddleVertex[v] || (BoundaryVertex[v] && VertexAngleSum[v] > Pi + 1e-10)) ? 1 : 0;
   }
+}
 
+void TriangleMesh::ComputeBoundaryLoops()
+{
+  const int nf = NumberOfFaces();
   // Boundary loops: follow boundary half-edges. The boundary half-edge leaving Destination(h)
   // after boundary half-edge h is found by rotating clockwise about Destination(h).
   Loops.clear();
@@ -307,7 +326,13 @@ void TriangleMesh::ComputeDerivedData()
     }
     Loops.push_back(std::move(loop));
   }
+}
 
+// Connected components over face adjacency, the edge count and the genus.
+void TriangleMesh::ComputeComponents()
+{
+  const int nf = NumberOfFaces();
+  const int nv = NumberOfVertices();
   // Connected components over face adjacency.
   FaceComponentIds.assign(nf, -1);
   NumComponents = 0;
@@ -377,17 +402,57 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
   const std::vector<Vec3>& points, const std::vector<std::array<long long, 3>>& triangles)
 {
   MeshBuild r;
-  const std::size_t np = points.size();
   if (triangles.empty())
   {
     return Status::Error("the input has no triangles");
   }
-  if (np > static_cast<std::size_t>(0x3fffffff) || triangles.size() > static_cast<std::size_t>(0x2aaaaaaa))
+  if (points.size() > static_cast<std::size_t>(0x3fffffff) ||
+    triangles.size() > static_cast<std::size_t>(0x2aaaaaaa))
   {
     return Status::Error("the input is too large (more than 2^30 points or 7e8 triangles)");
   }
+  if (Status s = WeldPoints(points, triangles, r); !s.Ok())
+  {
+    return s;
+  }
+  if (Status s = SetFaces(triangles, r); !s.Ok())
+  {
+    return s;
+  }
+  if (Status s = CheckDuplicates(r.Mesh); !s.Ok())
+  {
+    return s;
+  }
+  std::vector<int> partner;
+  if (Status s = PairEdges(r, partner); !s.Ok())
+  {
+    return s;
+  }
+  std::vector<signed char> flip;
+  if (Status s = Orient(partner, r, flip); !s.Ok())
+  {
+    return s;
+  }
+  SetTwins(partner, flip, r.Mesh);
+  std::vector<int> degree;
+  const std::vector<int> pinched = SetOutgoingHalfedges(r.Mesh, degree);
+  if (!pinched.empty())
+  {
+    if (Status s = SplitPinches(triangles, points.size(), flip, pinched, degree, r); !s.Ok())
+    {
+      return s;
+    }
+  }
+  r.Mesh.ComputeDerivedData();
+  return r;
+}
 
-  // 1. Check indices and coordinates of referenced points; weld exactly coincident points.
+// 1. Indices and coordinates of the referenced points checked; exactly coincident points welded;
+// the mesh's vertices: the representatives, in input order.
+Status TriangleMeshBuilder::WeldPoints(
+  const std::vector<Vec3>& points, const Triangles& triangles, MeshBuild& r)
+{
+  const std::size_t np = points.size();
   r.PointToVertex.assign(np, -1);
   std::vector<int> weldTarget(np, -1); // input point -> representative input point
   PointWelder firstAt(points);
@@ -440,9 +505,13 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
       r.PointToVertex[p] = r.PointToVertex[weldTarget[p]];
     }
   }
-  const int nv = static_cast<int>(m.Positions.size());
+  return Status();
+}
 
-  // 2. Faces; degenerate and duplicate triangles.
+// 2. The faces, on the mesh's vertices; degenerate triangles refused.
+Status TriangleMeshBuilder::SetFaces(const Triangles& triangles, MeshBuild& r)
+{
+  TriangleMesh& m = r.Mesh;
   m.Faces.resize(triangles.size());
   double scale = 0.0;
   Vec3 lo = m.Positions.empty() ? Vec3() : m.Positions[0], hi = lo;
@@ -487,68 +556,85 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
       return Status::Error(FaceLabel(i) + " is degenerate (zero area)");
     }
   }
+  return Status();
+}
+
+// Duplicate triangles (the same three corners) refused.
+Status TriangleMeshBuilder::CheckDuplicates(const TriangleMesh& m)
+{
+  const int nv = m.NumberOfVertices();
+  // Faces in the order of (their sorted corners, index), bucketed by the smallest corner:
+  // a duplicate follows its twin.
+  std::vector<std::array<int, 3>> corners(m.Faces.size());
+  for (std::size_t i = 0; i < m.Faces.size(); ++i)
   {
-    // Faces in the order of (their sorted corners, index), bucketed by the smallest corner:
-    // a duplicate follows its twin.
-    std::vector<std::array<int, 3>> corners(m.Faces.size());
-    for (std::size_t i = 0; i < m.Faces.size(); ++i)
+    corners[i] = m.Faces[i];
+    std::sort(corners[i].begin(), corners[i].end());
+  }
+  const auto sorted = BucketByVertex<std::pair<std::pair<int, int>, int>>(
+    m.Faces.size(), nv, [&corners](std::size_t i) {
+      const auto& c = corners[i];
+      return std::make_pair(c[0], std::make_pair(std::make_pair(c[1], c[2]), static_cast<int>(i)));
+    });
+  for (int v = 0; v < nv; ++v)
+  {
+    for (int i = sorted.Start[v] + 1; i < sorted.Start[v + 1]; ++i)
     {
-      corners[i] = m.Faces[i];
-      std::sort(corners[i].begin(), corners[i].end());
-    }
-    const auto sorted = BucketByVertex<std::pair<std::pair<int, int>, int>>(
-      m.Faces.size(), nv, [&corners](std::size_t i) {
-        const auto& c = corners[i];
-        return std::make_pair(c[0], std::make_pair(std::make_pair(c[1], c[2]), static_cast<int>(i)));
-      });
-    for (int v = 0; v < nv; ++v)
-    {
-      for (int i = sorted.Start[v] + 1; i < sorted.Start[v + 1]; ++i)
+      if (sorted.Entries[i].first == sorted.Entries[i - 1].first)
       {
-        if (sorted.Entries[i].first == sorted.Entries[i - 1].first)
-        {
-          return Status::Error(FaceLabel(sorted.Entries[i].second) + " duplicates " +
-            FaceLabel(sorted.Entries[i - 1].second));
-        }
+        return Status::Error(FaceLabel(sorted.Entries[i].second) + " duplicates " +
+          FaceLabel(sorted.Entries[i - 1].second));
       }
     }
   }
+  return Status();
+}
 
-  // 3. Undirected edge adjacency: at most two faces per edge.
+// 3. Undirected edge adjacency: at most two faces per edge; partner[h], the other half-edge of
+// h's edge (-1 on the boundary).
+Status TriangleMeshBuilder::PairEdges(const MeshBuild& r, std::vector<int>& partner)
+{
+  const TriangleMesh& m = r.Mesh;
+  const int nv = m.NumberOfVertices();
+  partner.assign(3 * static_cast<std::size_t>(m.NumberOfFaces()), -1);
+  const auto groups = GroupEdges(m.Faces, nv);
+  const auto& uses = groups.Entries;
+  for (int v = 0; v < nv; ++v)
+  {
+    // (An edge's half-edges are consecutive in its smaller vertex's bucket.)
+    for (int i = groups.Start[v]; i < groups.Start[v + 1];)
+    {
+      int j = i;
+      while (j < groups.Start[v + 1] && uses[j].first == uses[i].first)
+      {
+        ++j;
+      }
+      if (j - i > 2)
+      {
+        const int a = m.Origin(uses[i].second), b = m.Destination(uses[i].second);
+        return Status::Error("non-manifold edge between points " +
+          std::to_string(r.VertexToPoint[a]) + " and " + std::to_string(r.VertexToPoint[b]) +
+          ": it is shared by " + std::to_string(j - i) + " triangles");
+      }
+      if (j - i == 2)
+      {
+        partner[uses[i].second] = uses[i + 1].second;
+        partner[uses[i + 1].second] = uses[i].second;
+      }
+      i = j;
+    }
+  }
+  return Status();
+}
+
+// 4. Consistent orientation: faces flipped (flip[f] = 1: corners 1 and 2 swapped) by
+// breadth-first search over each component, keeping its majority orientation.
+Status TriangleMeshBuilder::Orient(
+  const std::vector<int>& partner, MeshBuild& r, std::vector<signed char>& flip)
+{
+  TriangleMesh& m = r.Mesh;
   const int nf = m.NumberOfFaces();
-  std::vector<int> partner(3 * nf, -1);
-  {
-    const auto groups = GroupEdges(m.Faces, nv);
-    const auto& uses = groups.Entries;
-    for (int v = 0; v < nv; ++v)
-    {
-      // (An edge's half-edges are consecutive in its smaller vertex's bucket.)
-      for (int i = groups.Start[v]; i < groups.Start[v + 1];)
-      {
-        int j = i;
-        while (j < groups.Start[v + 1] && uses[j].first == uses[i].first)
-        {
-          ++j;
-        }
-        if (j - i > 2)
-        {
-          const int a = m.Origin(uses[i].second), b = m.Destination(uses[i].second);
-          return Status::Error("non-manifold edge between points " +
-            std::to_string(r.VertexToPoint[a]) + " and " + std::to_string(r.VertexToPoint[b]) +
-            ": it is shared by " + std::to_string(j - i) + " triangles");
-        }
-        if (j - i == 2)
-        {
-          partner[uses[i].second] = uses[i + 1].second;
-          partner[uses[i + 1].second] = uses[i].second;
-        }
-        i = j;
-      }
-    }
-  }
-
-  // 4. Consistent orientation: flip faces by breadth-first search over each component.
-  std::vector<signed char> flip(nf, -1);
+  flip.assign(nf, -1);
   int flipped = 0;
   for (int f0 = 0; f0 < nf; ++f0)
   {
@@ -613,8 +699,15 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
     r.Warnings.push_back(std::to_string(flipped) +
       " triangles were re-oriented to match their neighbours (inconsistent orientation)");
   }
+  return Status();
+}
 
-  // 5. Twins: the partners of step 3 after the flips. Swapping corners 1 and 2 of a face turns
+// 5. Twins.
+void TriangleMeshBuilder::SetTwins(
+  const std::vector<int>& partner, const std::vector<signed char>& flip, TriangleMesh& m)
+{
+  const int nf = m.NumberOfFaces();
+  // The partners of step 3 after the flips. Swapping corners 1 and 2 of a face turns
   // its half-edge k into half-edge 2 - k, reversed (a -> b, b -> c, c -> a become c -> a, b -> c
   // reversed, a -> b reversed); the pairs stay.
   m.Twins.assign(3 * nf, -1);
@@ -626,11 +719,16 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
       m.Twins[moved(h)] = moved(partner[h]);
     }
   }
+}
 
-  // 6. Outgoing half-edge per vertex (the boundary one if any) and manifold vertices: the faces
-  // around a vertex must form a single fan.
+// 6. The outgoing half-edge of each vertex (the boundary one if any) and its degree; the
+// vertices whose faces form more than one fan (pinched).
+std::vector<int> TriangleMeshBuilder::SetOutgoingHalfedges(TriangleMesh& m, std::vector<int>& degree)
+{
+  const int nf = m.NumberOfFaces();
+  const int nv = m.NumberOfVertices();
   m.OutHalfedge.assign(nv, -1);
-  std::vector<int> degree(nv, 0);
+  degree.assign(nv, 0);
   for (int h = 0; h < 3 * nf; ++h)
   {
     const int v = m.Origin(h);
@@ -660,103 +758,109 @@ Result<MeshBuild> TriangleMeshBuilder::Build(
       pinched.push_back(v);
     }
   }
-  if (!pinched.empty())
-  {
-    std::vector<int> slot(nv, -1);
-    for (std::size_t i = 0; i < pinched.size(); ++i)
-    {
-      slot[pinched[i]] = static_cast<int>(i);
-    }
-    std::vector<std::vector<int>> outgoing(pinched.size());
-    for (int h = 0; h < 3 * nf; ++h)
-    {
-      if (slot[m.Origin(h)] >= 0)
-      {
-        outgoing[slot[m.Origin(h)]].push_back(h);
-      }
-    }
-    std::vector<unsigned char> assigned(3 * nf, 0);
-    for (std::size_t i = 0; i < pinched.size(); ++i)
-    {
-      const int v = pinched[i];
-      bool first = true;
-      for (int h0 : outgoing[i])
-      {
-        if (assigned[h0])
-        {
-          continue;
-        }
-        // Go to the clockwise end of h0's fan, then collect it counter-clockwise.
-        int start = h0;
-        for (int guard = 0; guard < degree[v]; ++guard)
-        {
-          const int cw = m.RotateCW(start);
-          if (cw < 0 || cw == h0)
-          {
-            break;
-          }
-          start = cw;
-        }
-        int target = v;
-        if (!first)
-        {
-          target = static_cast<int>(m.Positions.size());
-          m.Positions.push_back(m.Positions[v]);
-          r.VertexToPoint.push_back(r.VertexToPoint[v]);
-          m.OutHalfedge.push_back(start);
-        }
-        else
-        {
-          m.OutHalfedge[v] = start;
-        }
-        first = false;
-        int h = start;
-        do
-        {
-          assigned[h] = 1;
-          m.Faces[h / 3][h % 3] = target;
-          h = m.RotateCCW(h);
-        } while (h >= 0 && h != start && !assigned[h]);
-      }
-    }
-    // Each input point must lie in a single fan.
-    std::vector<int> seen(np, -1);
-    for (std::size_t i = 0; i < triangles.size(); ++i)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const int corner = flip[i] ? (3 - k) % 3 : k; // flipped faces swapped corners 1 and 2
-        const long long p = triangles[i][k];
-        const int v = m.Faces[i][corner];
-        if (seen[p] >= 0 && seen[p] != v)
-        {
-          return Status::Error("non-manifold vertex at point " + std::to_string(p) +
-            ": its triangles form more than one fan");
-        }
-        seen[p] = v;
-      }
-    }
-    for (std::size_t p = 0; p < np; ++p)
-    {
-      r.PointToVertex[p] = seen[p];
-    }
-    for (int v = 0; v < m.NumberOfVertices(); ++v)
-    {
-      r.VertexToPoint[v] = -1;
-    }
-    for (std::size_t p = np; p-- > 0;)
-    {
-      if (seen[p] >= 0)
-      {
-        r.VertexToPoint[seen[p]] = static_cast<int>(p);
-      }
-    }
-    r.Warnings.push_back(std::to_string(m.NumberOfVertices() - nv) +
-      " coincident points were kept apart: welding them would pinch separate fans of triangles");
-  }
+  return pinched;
+}
 
-  m.ComputeDerivedData();
-  return r;
+// Pinched vertices split into one vertex per fan; an input point in more than one fan refused.
+Status TriangleMeshBuilder::SplitPinches(const Triangles& triangles, std::size_t np,
+  const std::vector<signed char>& flip, const std::vector<int>& pinched,
+  const std::vector<int>& degree, MeshBuild& r)
+{
+  TriangleMesh& m = r.Mesh;
+  const int nf = m.NumberOfFaces();
+  const int nv = m.NumberOfVertices();
+  std::vector<int> slot(nv, -1);
+  for (std::size_t i = 0; i < pinched.size(); ++i)
+  {
+    slot[pinched[i]] = static_cast<int>(i);
+  }
+  std::vector<std::vector<int>> outgoing(pinched.size());
+  for (int h = 0; h < 3 * nf; ++h)
+  {
+    if (slot[m.Origin(h)] >= 0)
+    {
+      outgoing[slot[m.Origin(h)]].push_back(h);
+    }
+  }
+  std::vector<unsigned char> assigned(3 * nf, 0);
+  for (std::size_t i = 0; i < pinched.size(); ++i)
+  {
+    const int v = pinched[i];
+    bool first = true;
+    for (int h0 : outgoing[i])
+    {
+      if (assigned[h0])
+      {
+        continue;
+      }
+      // Go to the clockwise end of h0's fan, then collect it counter-clockwise.
+      int start = h0;
+      for (int guard = 0; guard < degree[v]; ++guard)
+      {
+        const int cw = m.RotateCW(start);
+        if (cw < 0 || cw == h0)
+        {
+          break;
+        }
+        start = cw;
+      }
+      int target = v;
+      if (!first)
+      {
+        target = static_cast<int>(m.Positions.size());
+        m.Positions.push_back(m.Positions[v]);
+        r.VertexToPoint.push_back(r.VertexToPoint[v]);
+        m.OutHalfedge.push_back(start);
+      }
+      else
+      {
+        m.OutHalfedge[v] = start;
+      }
+      first = false;
+      int h = start;
+      do
+      {
+        assigned[h] = 1;
+        m.Faces[h / 3][h % 3] = target;
+        h = m.RotateCCW(h);
+      } while (h >= 0 && h != start && !assigned[h]);
+    }
+  }
+  // Each input point must lie in a single fan.
+  std::vector<int> seen(np, -1);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int corner = flip[i] ? (3 - k) % 3 : k; // flipped faces swapped corners 1 and 2
+      const long long p = triangles[i][k];
+      const int v = m.Faces[i][corner];
+      if (seen[p] >= 0 && seen[p] != v)
+      {
+        return Status::Error("non-manifold vertex at point " + std::to_string(p) +
+          ": its triangles form more than one fan");
+      }
+      seen[p] = v;
+    }
+  }
+  for (std::size_t p = 0; p < np; ++p)
+  {
+    r.PointToVertex[p] = seen[p];
+  }
+  for (int v = 0; v < m.NumberOfVertices(); ++v)
+  {
+    r.VertexToPoint[v] = -1;
+  }
+  for (std::size_t p = np; p-- > 0;)
+  {
+    if (seen[p] >= 0)
+    {
+      r.VertexToPoint[seen[p]] = static_cast<int>(p);
+    }
+  }
+  r.Warnings.push_back(std::to_string(m.NumberOfVertices() - nv) +
+    " coincident points were kept apart: welding them would pinch separate fans of triangles");
+  return Status();
 }
 
 } // namespace gs

@@ -127,7 +127,11 @@ public:
 
 private:
   friend class TriangleMeshBuilder;
-  void ComputeDerivedData();
+  void ComputeDerivedData(); // the four below, in order
+  void ComputeGeometry();
+  void ComputeVertexKinds();
+  void ComputeBoundaryLoops();
+  void ComputeComponents();
 
   std::vector<Vec3> Positions;
   std::vector<std::array<int, 3>> Faces;
@@ -177,6 +181,22 @@ public:
   static constexpr double MinimumExtent = 1e-50;
   static Result<MeshBuild> Build(
     const std::vector<Vec3>& points, const std::vector<std::array<long long, 3>>& triangles);
+
+private:
+  using Triangles = std::vector<std::array<long long, 3>>;
+  // The steps of Build, in order (TriangleMesh.cpp says what each does); each failure is the
+  // message Build returns.
+  static Status WeldPoints(const std::vector<Vec3>& points, const Triangles& triangles, MeshBuild& r);
+  static Status SetFaces(const Triangles& triangles, MeshBuild& r);
+  static Status CheckDuplicates(const TriangleMesh& m);
+  static Status PairEdges(const MeshBuild& r, std::vector<int>& partner);
+  static Status Orient(const std::vector<int>& partner, MeshBuild& r, std::vector<signed char>& flip);
+  static void SetTwins(
+    const std::vector<int>& partner, const std::vector<signed char>& flip, TriangleMesh& m);
+  static std::vector<int> SetOutgoingHalfedges(TriangleMesh& m, std::vector<int>& degree);
+  static Status SplitPinches(const Triangles& triangles, std::size_t np,
+    const std::vector<signed char>& flip, const std::vector<int>& pinched,
+    const std::vector<int>& degree, MeshBuild& r);
 };
 
 } // namespace gs

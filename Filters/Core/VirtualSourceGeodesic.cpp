@@ -22,7 +22,7 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
   // Corner 2 in the frame of edge 0 from the three edge lengths (law of cosines): no
   // trigonometry.
   const int nf = Surface.NumberOfFaces();
-  Faces.resize(nf);
+  Faces.reset(new FaceRecord[static_cast<std::size_t>(nf)]);
 #pragma omp parallel for schedule(static) if (nf > 20000)
   for (int f = 0; f < nf; ++f)
   {
@@ -159,7 +159,7 @@ void VirtualSourceSolver::SetSource(FaceRecord& r, double sx, double sy, double 
   r.Epoch = Epoch;
   if (std::vector<QueueItem>* bucket = BucketFor(key))
   {
-    bucket->push_back(Item(static_cast<int>(&r - Faces.data()), key));
+    bucket->push_back(Item(static_cast<int>(&r - Faces.get()), key));
   }
 }
 
@@ -371,9 +371,9 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
   if (++Epoch == 0)
   {
     // The epoch wrapped: no record may look current.
-    for (FaceRecord& r : Faces)
+    for (int f = 0; f < Surface.NumberOfFaces(); ++f)
     {
-      r.Epoch = 0;
+      Faces[f].Epoch = 0;
     }
     Epoch = 1;
   }

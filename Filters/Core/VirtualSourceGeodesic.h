@@ -37,6 +37,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace gs
@@ -150,7 +151,8 @@ private:
   }
 
   const TriangleMesh& Surface;
-  std::vector<FaceRecord> Faces;
+  // Not value-initialized: the parallel setup touches each page first (no serial zeroing pass).
+  std::unique_ptr<FaceRecord[]> Faces;
   unsigned int Epoch = 0;
   std::vector<double> Dist;
   std::vector<std::vector<QueueItem>> Buckets;
