@@ -3,10 +3,12 @@
 #include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
 #include "vtkSafeDistanceTableImage.h"
+#include "vtkSurfacePointLocator.h"
 
 #include "OverlapCheck.h"
 #include "ParallelFor.h"
 #include "SafeDistanceTable.h"
+#include "DensityBrush.h"
 #include "DirectionField.h"
 #include "ShapeDistributor.h"
 #include "ShapeDrawing.h"
@@ -416,6 +418,10 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "K: " << this->K << "\n";
   os << indent << "GraphAccuracy: " << this->GraphAccuracy << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
+  os << indent << "BrushCenter: (" << this->BrushCenter[0] << ", " << this->BrushCenter[1] << ", "
+     << this->BrushCenter[2] << ")\n";
+  os << indent << "BrushRadius: " << this->BrushRadius << "\n";
+  os << indent << "BrushDensity: " << this->BrushDensity << "\n";
 }
 
 //------------------------------------------------------------------------------
@@ -552,6 +558,14 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
     return 1;
   }
   run.Lap("Graph");
+  if (this->BrushRadius > 0.0)
+  {
+    if (!this->ApplyBrush(cache, run))
+    {
+      return 1;
+    }
+    run.Lap("Brush");
+  }
 
   // 5. Distribution.
   if (!this->Distribute(cache, run))
@@ -682,6 +696,30 @@ int vtkShapeDistributor::UsedThreads() const
 // The parameters the distributor does not see (it checks its own options when it runs).
 bool vtkShapeDistributor::CheckParameters()
 {
+  if (!(this->BrushRadius >= 0.0) || !std::isfinite(this->BrushRadius))
+  {
+    vtkErrorMacro("BrushRadius must be a finite number, at least 0 (0: no brush); it is "
+      << this->BrushRadius << ".");
+    return false;
+  }
+  if (this->BrushRadius > 0.0)
+  {
+    if (!(this->BrushDensity > 0.0 && this->BrushDensity <= 1.0))
+    {
+      vtkErrorMacro("BrushDensity (the size factor at the brush's centre) must lie in (0, 1]; it "
+                    "is "
+        << this->BrushDensity << ".");
+      return false;
+    }
+    if (!std::isfinite(this->BrushCenter[0]) || !std::isfinite(this->BrushCenter[1]) ||
+      !std::isfinite(this->BrushCenter[2]))
+    {
+      vtkErrorMacro("BrushCenter must be a finite point; it is (" << this->BrushCenter[0] << ", "
+                                                                  << this->BrushCenter[1] << ", "
+                                                                  << this->BrushCenter[2] << ").");
+      return false;
+    }
+  }
   if (!(this->DecalTolerance >= 0.0) || !std::isfinite(this->DecalTolerance))
   {
     vtkErrorMacro("DecalTolerance must be a finite number, at least 0 (it is "
@@ -915,6 +953,30 @@ bool vtkShapeDistributor::ReadDensity(const Cache& cache, Run& run)
       }
     }
   }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::ApplyBrush(Cache& cache, Run& run)
+{
+  const gs::Result<gs::SurfacePoint> center = cache.Locator().Snap(this->BrushCenter);
+  if (!center.Ok())
+  {
+    vtkErrorMacro("BrushCenter: " << center.Message() << ".");
+    return false;
+  }
+  gs::DensityBrush brush;
+  brush.Center = *center;
+  brush.Radius = this->BrushRadius;
+  brush.Density = this->BrushDensity;
+  const gs::Result<std::vector<double>> factors =
+    gs::BrushFactors(cache.Mesh.Build.Mesh, cache.Graph(), brush, this->UsedThreads());
+  if (!factors.Ok())
+  {
+    vtkErrorMacro("Density brush: " << factors.Message() << ".");
+    return false;
+  }
+  gs::ApplyBrushFactors(*factors, run.Density);
   return true;
 }
 

@@ -16,7 +16,8 @@
  * Cross Field's Direction, or a point array, averaged per triangle; its field data "Symmetry"
  * (N) says how streamlines may turn it, 1 by default) and an optional density array
  * (DensityArray: point scalars f, a shape at factor f is f times its base size; points with
- * f <= 0 get no shape).
+ * f <= 0 get no shape). A density brush (BrushCenter, BrushRadius, BrushDensity) shrinks the
+ * shapes around a point of the surface, multiplying the density array's factors.
  * Input port 1 ("Table", vtkImageData): the tables of MSDT Source (port 0).
  *
  * Output port 0 ("Placements"): one vertex per shape at its centre; point arrays ClassId,
@@ -211,6 +212,23 @@ public:
   vtkGetCharFromStdStringMacro(CacheFileName);
   ///@}
 
+  ///@{
+  /// The density brush (Wang et al. 2016, Fig. 10): around BrushCenter (world coordinates,
+  /// snapped to the closest surface point) shapes shrink to BrushDensity times their size and
+  /// grow back linearly with the geodesic distance d from it, to their full size at BrushRadius:
+  /// f = max(BrushDensity, min(1, d / BrushRadius)), d from the distributor's own engine (its
+  /// graph; the exact solver with K = 0), multiplied by DensityArray's factors where both are
+  /// given. BrushRadius 0 (the default): no brush; otherwise it must be positive and finite,
+  /// BrushDensity (default 0.25) in (0, 1] and BrushCenter finite. In the GUI the brush is a
+  /// sphere widget the user drags in the render view.
+  vtkSetVector3Macro(BrushCenter, double);
+  vtkGetVector3Macro(BrushCenter, double);
+  vtkSetMacro(BrushRadius, double);
+  vtkGetMacro(BrushRadius, double);
+  vtkSetMacro(BrushDensity, double);
+  vtkGetMacro(BrushDensity, double);
+  ///@}
+
   /// Connect the tables (MSDT Source port 0) to port 1.
   void SetTableConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
@@ -243,6 +261,9 @@ protected:
   int K = 50;
   double GraphAccuracy = 0.1;
   std::string CacheFileName;
+  double BrushCenter[3] = { 0.0, 0.0, 0.0 };
+  double BrushRadius = 0.0; // 0: no brush
+  double BrushDensity = 0.25;
 
 private:
   vtkShapeDistributor(const vtkShapeDistributor&) = delete;
@@ -260,6 +281,7 @@ private:
   bool ReadDirections(vtkPolyData* input, const Cache& cache, Run& run);
   bool ReadDensity(const Cache& cache, Run& run);
   bool UseGraph(Cache& cache);
+  bool ApplyBrush(Cache& cache, Run& run);
   bool Distribute(Cache& cache, Run& run);
   bool DrawShapes(const Cache& cache, Run& run, vtkPolyData* placements, vtkPolyData* decals,
     vtkPolyData* outlines);

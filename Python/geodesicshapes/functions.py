@@ -396,7 +396,7 @@ _MODES = {"random": vtkShapeDistributor.RANDOM, "greedy": vtkShapeDistributor.GR
 def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, density=None,
                       mode="random", seed=0, class_weights=None, maximum_shapes=0,
                       keep_inside=False, verify_overlaps=False, threads=0, k=50,
-                      graph_accuracy=0.1, progress=None):
+                      graph_accuracy=0.1, brush=None, progress=None):
     """Places shapes on the surface without any two overlapping (Wang et al. 2016).
 
     mesh: a vtkPolyData (e.g. CrossField.vtk, whose cell array Direction is then used) or
@@ -419,6 +419,10 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
     drawn outlines (Distribution.overlapping_pairs). threads: 0 all. k: 0 for exact charts
     (no graph). graph_accuracy: the charts' discrete geodesic graph's accuracy (1e-5 .. 0.1,
     default 0.1); 0: the saddle vertex graph of k instead.
+    brush: (center, radius, density), the paper's density brush: around center (3 world
+        coordinates, snapped to the surface) shapes shrink to density (in (0, 1]) times their
+        size and grow back linearly with the geodesic distance d from it, to their full size
+        at radius: f = max(density, min(1, d / radius)), multiplying `density`'s factors.
     Returns a Distribution.
     """
     if mode not in _MODES:
@@ -474,6 +478,18 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
     f.SetNumberOfThreads(int(threads))
     f.SetK(int(k))
     f.SetGraphAccuracy(float(graph_accuracy))
+    if brush is not None:
+        try:
+            center, radius, brush_density = brush
+            center = [float(x) for x in center]
+        except (TypeError, ValueError):
+            raise ValueError("brush: (center, radius, density) with center 3 coordinates, "
+                             "not %r" % (brush,))
+        if len(center) != 3:
+            raise ValueError("brush: the center has 3 coordinates, not %d" % len(center))
+        f.SetBrushCenter(*center)
+        f.SetBrushRadius(float(radius))
+        f.SetBrushDensity(float(brush_density))
     if class_weights is not None:
         weights = [float(w) for w in class_weights]
         f.SetNumberOfClassWeights(len(weights))

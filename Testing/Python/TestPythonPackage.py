@@ -167,6 +167,24 @@ dense = gs.distribute_shapes((V, F), star, directions=faces_dir, size=0.1, seed=
                              density=numpy.full(len(V), 0.5))
 check(len(by_face) > 50 and len(by_vertex) > 50, "directions per face / vertex: %d, %d" % (len(by_face), len(by_vertex)))
 check(3.0 < len(dense) / len(by_face) < 5.0, "density 0.5: %d against %d" % (len(dense), len(by_face)))
+# The density brush equals its factors, computed here from geodesic_distance with the
+# distributor's engine (its DGG of accuracy 0.1, truncated at the radius), given as a density.
+brush_centre, radius = V[7] * 1.01, 0.6
+brushed = gs.distribute_shapes((V, F), star, directions=faces_dir, size=0.1, seed=2,
+                               brush=(brush_centre, radius, 0.25))
+d = gs.geodesic_distance((V, F), [brush_centre], solver="dgg", accuracy=0.1, maximum_distance=radius)
+factors = numpy.where(numpy.isfinite(d), numpy.maximum(0.25, numpy.minimum(1.0, d / radius)), 1.0)
+as_density = gs.distribute_shapes((V, F), star, directions=faces_dir, size=0.1, seed=2,
+                                  density=factors)
+check(len(brushed) > len(by_face) and numpy.array_equal(brushed.positions, as_density.positions),
+      "brush: %d shapes (%d without), the same as its factors as a density: %s" % (
+          len(brushed), len(by_face), numpy.array_equal(brushed.positions, as_density.positions)))
+for bad in ((brush_centre, radius), (brush_centre[:2], radius, 0.25), "brush"):
+    try:
+        gs.distribute_shapes((V, F), star, brush=bad)
+        check(False, "brush=%r accepted" % (bad,))
+    except ValueError:
+        pass
 print("functions: %d shapes (automatic size %.3f), %d / %d with given directions, %d at density 0.5"
       % (len(dist), dist.shape_size, len(by_face), len(by_vertex), len(dense)))
 

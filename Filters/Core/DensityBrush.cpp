@@ -1,0 +1,79 @@
+#include "DensityBrush.h"
+
+#include "ExactGeodesic.h"
+#include "SVGGeodesicSolver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace gs
+{
+
+Result<std::vector<double>> BrushFactors(const TriangleMesh& mesh, const SaddleVertexGraph* graph,
+  const DensityBrush& brush, int threads)
+{
+  if (!(brush.Radius > 0.0) || !std::isfinite(brush.Radius))
+  {
+    std::ostringstream message;
+    message << "the brush radius must be positive and finite (it is " << brush.Radius << ")";
+    return Status::Error(message.str());
+  }
+  if (!(brush.Density > 0.0 && brush.Density <= 1.0))
+  {
+    std::ostringstream message;
+    message << "the brush density (the size factor at its centre) must lie in (0, 1] (it is "
+            << brush.Density << ")";
+    return Status::Error(message.str());
+  }
+  if (const Status valid = mesh.CheckPoint(brush.Center); !valid.Ok())
+  {
+    return Status::Error("the brush centre: " + valid.Message());
+  }
+  std::vector<double> distance;
+  if (graph)
+  {
+    SVGGeodesicSolver solver(mesh, *graph);
+    SVGSolveOptions options;
+    options.MaximumDistance = brush.Radius;
+    options.NumberOfThreads = threads;
+    if (const Status solved = solver.Solve({ brush.Center }, options); !solved.Ok())
+    {
+      return solved;
+    }
+    distance = solver.Distances();
+  }
+  else
+  {
+    ExactGeodesicSolver solver(mesh);
+    ExactGeodesicOptions options;
+    options.MaximumDistance = brush.Radius;
+    if (const Status solved = solver.Solve({ brush.Center }, options); !solved.Ok())
+    {
+      return solved;
+    }
+    distance = solver.Distances();
+  }
+  std::vector<double> factors(distance.size(), 1.0);
+  for (std::size_t v = 0; v < distance.size(); ++v)
+  {
+    // (Unreached, infinite: 1.)
+    factors[v] = std::max(brush.Density, std::min(1.0, distance[v] / brush.Radius));
+  }
+  return factors;
+}
+
+void ApplyBrushFactors(const std::vector<double>& factors, std::vector<double>& density)
+{
+  if (density.empty())
+  {
+    density = factors;
+    return;
+  }
+  for (std::size_t v = 0; v < density.size() && v < factors.size(); ++v)
+  {
+    density[v] *= factors[v];
+  }
+}
+
+} // namespace gs

@@ -1,0 +1,143 @@
+"""pvpython test: Shape Distributor's density brush as a user sets it (BrushCenter, BrushRadius,
+BrushDensity) on the bundled bumpy sphere with the bundled star.
+
+- The brush equals the same factors given as a DensityArray: SVG Geodesic Distance from the
+  brush's centre with the distributor's engine (its discrete geodesic graph, truncated at the
+  radius), f = max(BrushDensity, min(1, d / BrushRadius)) computed here: the same placements,
+  bit for bit; the same again with a density array under the brush (the factors multiply).
+- The brush shrinks the shapes: Scale is the brush's factor at each centre (near BrushDensity
+  close to the centre, 1 beyond the radius) and there are more shapes than without it.
+- The panel shows the brush as ParaView's interactive sphere widget (the proxy's property group
+  BrushCenter / BrushRadius with panel_widget InteractiveSphere).
+- Bad brush parameters give an error and empty outputs; the next good run works.
+
+Usage: pvpython TestDensityBrush.py --plugin <GeodesicShapes.so> --data <Data dir>
+"""
+import argparse
+import sys
+
+import numpy
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+from paraview.vtk.util.numpy_support import vtk_to_numpy
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--data", required=True)
+args = parser.parse_args()
+
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAILED:", message)
+
+
+def placements(proxy):
+    data = servermanager.Fetch(proxy, idx=0)
+    n = data.GetNumberOfPoints()
+    if n == 0:
+        return {"count": 0}
+    points = vtk_to_numpy(data.GetPoints().GetData()).copy()
+    arrays = {name: vtk_to_numpy(data.GetPointData().GetArray(name)).copy()
+              for name in ("Scale", "ClassId", "Direction", "FaceId")}
+    return dict(count=n, points=points, **arrays)
+
+
+def same(a, b):
+    # (paraview.simple's star import shadows the built-in all.)
+    return a["count"] == b["count"] and not [
+        k for k in a if k != "count" and not numpy.array_equal(a[k], b[k])]
+
+
+LoadPlugin(args.plugin, remote=False, ns=globals())
+
+mesh = PLYReader(FileNames=[args.data + "/bumpy_sphere.ply"])
+msdt = MSDTSource(ShapeFileNames=[args.data + "/shapes/star.png"], AngleBins=24, DistanceSteps=24)
+field = CrossField(Input=mesh)
+field.UpdatePipeline()
+surface = servermanager.Fetch(field)
+points = vtk_to_numpy(surface.GetPoints().GetData())
+# The brush centre: a little off the surface above a vertex (the filter snaps it).
+center = (points[40] * 1.02).tolist()
+radius, density = 0.7, 0.25
+common = dict(Table=msdt, ShapeSize=0.08, Seed=3, NumberOfThreads=2,
+              DirectionArray=["CELLS", "Direction"])  # (the same on every input)
+
+plain = ShapeDistributor(Input=field, **common)
+without = placements(plain)
+
+brushed = ShapeDistributor(Input=field, BrushCenter=center, BrushRadius=radius,
+                           BrushDensity=density, **common)
+with_brush = placements(brushed)
+check(with_brush["count"] > without["count"] + 10,
+      "the brush adds shapes: %d with it, %d without" % (with_brush["count"], without["count"]))
+
+# The same factors from SVG Geodesic Distance with the distributor's engine (K 50, its DGG of
+# accuracy 0.1, truncated at the radius: NaN beyond it, factor 1).
+source = PointSource(Center=center, NumberOfPoints=1, Radius=0.0)
+distance = SVGGeodesicDistance(Input=field, Sources=source, Solver="DGG (accuracy-bounded)",
+                               Accuracy=0.1, MaximumDistance=radius)
+factors = ProgrammableFilter(Input=distance, CopyArrays=1)  # (the field's Direction passes)
+factors.Script = """
+import numpy
+d = inputs[0].PointData["GeodesicDistance"]
+f = numpy.maximum(%r, numpy.minimum(1.0, d / %r))
+output.PointData.append(numpy.where(numpy.isnan(d), 1.0, f), "BrushFactor")
+output.PointData.append(0.8 * numpy.where(numpy.isnan(d), 1.0, f), "BrushTimesDensity")
+output.PointData.append(numpy.full(len(d), 0.8), "Density")
+""" % (density, radius)
+factors.UpdatePipeline()
+f = vtk_to_numpy(servermanager.Fetch(factors).GetPointData().GetArray("BrushFactor"))
+check(abs(f.min() - density) < 0.05 and f.max() == 1.0 and (f < 1.0).sum() > 20,
+      "the factors span BrushDensity (%g) .. 1: %g .. %g, %d below 1" % (
+          density, f.min(), f.max(), (f < 1.0).sum()))
+
+as_array = ShapeDistributor(Input=factors, DensityArray=["POINTS", "BrushFactor"], **common)
+check(same(placements(as_array), with_brush),
+      "the brush and its factors given as a DensityArray place the same shapes")
+
+# Scale is the factor at each centre: below 0.5 near the brush's centre, 1 far from it.
+scale = with_brush["Scale"]
+check(scale.min() < 0.5 and scale.min() >= density - 1e-12 and scale.max() == 1.0,
+      "Scale spans the brush's factors: %g .. %g" % (scale.min(), scale.max()))
+
+# Under a density array the factors multiply.
+brushed_density = ShapeDistributor(Input=factors, DensityArray=["POINTS", "Density"],
+                                   BrushCenter=center, BrushRadius=radius, BrushDensity=density,
+                                   **common)
+product = ShapeDistributor(Input=factors, DensityArray=["POINTS", "BrushTimesDensity"], **common)
+check(same(placements(brushed_density), placements(product)),
+      "brush over a DensityArray equals the product of the two as a DensityArray")
+
+# The panel: BrushCenter and BrushRadius form an interactive sphere widget's group.
+pdm = servermanager.vtkSMProxyManager.GetProxyManager().GetActiveSessionProxyManager() \
+    .GetProxyDefinitionManager()
+xml = pdm.GetCollapsedProxyDefinition("filters", "ShapeDistributor", None, True)
+widget = None
+for i in range(xml.GetNumberOfNestedElements()):
+    element = xml.GetNestedElement(i)
+    if element.GetName() == "PropertyGroup" and element.GetAttribute("panel_widget"):
+        functions = {}
+        for j in range(element.GetNumberOfNestedElements()):
+            p = element.GetNestedElement(j)
+            functions[p.GetAttribute("function")] = p.GetAttribute("name")
+        widget = (element.GetAttribute("panel_widget"), functions)
+check(widget == ("InteractiveSphere", {"Center": "BrushCenter", "Radius": "BrushRadius"}),
+      "the brush's panel group is the sphere widget: %r" % (widget,))
+
+# Bad parameters: errors and empty outputs; then a good run again.
+for name, value in (("BrushRadius", -1.0), ("BrushRadius", float("inf")),
+                    ("BrushDensity", 0.0), ("BrushDensity", 1.5),
+                    ("BrushCenter", [1e6, 0.0, 0.0])):
+    setattr(brushed, name, value)
+    check(placements(brushed)["count"] == 0, "%s = %r gives an empty output" % (name, value))
+    brushed.BrushRadius, brushed.BrushDensity, brushed.BrushCenter = radius, density, center
+check(same(placements(brushed), with_brush), "the brush runs again after bad parameters")
+
+if failures:
+    print("%d failure(s)" % len(failures))
+    sys.exit(1)
+print("OK")
