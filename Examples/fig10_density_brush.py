@@ -1,11 +1,13 @@
 """Paper Fig. 10: a density brush, f = max(0.25, min(1, d / r)) inside a geodesic disk.
 
     pvpython Examples/fig10_density_brush.py [--output output] [--check]
-SVG Geodesic Distance from the centre of a 10 x 10 square gives d; a Calculator turns it into
-the density factor f (shapes f times their size: small near the centre); Shape Distributor
-places the project's stars. Prints the count per unit area times f^2 in rings around the centre
-(constant when the count follows 1 / f^2) and writes fig10_brush.png. --check: exit with an
-error unless every ring is within 15% of their mean and the smallest shapes sit at the centre.
+Shape Distributor's density brush (BrushCenter at the centre of a 10 x 10 square, BrushRadius
+r, BrushDensity 0.25: d from the distributor's own geodesic engine) places the project's stars,
+f times their size: small near the centre. Prints the count per unit area times f^2 in rings
+around the centre (constant when the count follows 1 / f^2) and writes fig10_brush.png (the
+square shaded by f, which on a plane is the formula of the Euclidean distance). --check: exit
+with an error unless every ring is within 15% of their mean and the smallest shapes sit at the
+centre.
 """
 import argparse
 import math
@@ -33,14 +35,12 @@ n = 120
 plane = Plane(Origin=[0, 0, 0], Point1=[10, 0, 0], Point2=[0, 10, 0], XResolution=n, YResolution=n)
 square = Calculator(Input=Triangulate(Input=plane), AttributeType="Cell Data",
                     ResultArrayName="Direction", Function="iHat")
-centre = (n // 2) * (n + 1) + n // 2  # the grid point at (5, 5)
-distance = SVGGeodesicDistance(Input=square, SourceVertexIds=[centre])
-density = Calculator(Input=distance, ResultArrayName="Density",
-                     Function="max(0.25, min(1.0, GeodesicDistance / %g))" % args.radius)
 msdt = MSDTSource(ShapeFileNames=[args.shape])
-shapes = ShapeDistributor(Input=density, Table=msdt, ShapeSize=0.3, Seed=1)
+shapes = ShapeDistributor(Input=square, Table=msdt, ShapeSize=0.3, Seed=1)
 shapes.DirectionArray = ["CELLS", "Direction"]
-shapes.DensityArray = ["POINTS", "Density"]
+shapes.BrushCenter = [5.0, 5.0, 0.0]
+shapes.BrushRadius = args.radius
+shapes.BrushDensity = 0.25
 shapes.UpdatePipeline()
 placed = servermanager.Fetch(shapes, idx=0)
 pts = vtk_to_numpy(placed.GetPoints().GetData()).astype(float)
@@ -59,6 +59,10 @@ smallest = pts[numpy.argmin(scale)]
 print("smallest shape (f = %.2f) at distance %.2f from the centre" % (
     scale.min(), math.hypot(smallest[0] - 5, smallest[1] - 5)))
 
+# The brush's factor, for the picture only (on the plane d is the Euclidean distance).
+density = Calculator(Input=square, ResultArrayName="Density",
+                     Function="max(0.25, min(1.0, sqrt((coordsX - 5)^2 + (coordsY - 5)^2) / %g))"
+                     % args.radius)
 view = CreateRenderView()
 view.ViewSize = [700, 700]
 view.OrientationAxesVisibility = 0
