@@ -274,6 +274,8 @@ void WriteSilhouettes(const gs::SafeDistanceTables& tables, int ts, vtkImageData
   for (int c = 0; c < m; ++c)
   {
     const double r = tables.Classes[c].Radius;
+    // The square about the class circle, [-r, r]^2, onto the texture square [0, 1]^2: the
+    // decals' convention (gs::DecalTextureCoordinate, ShapeDecal.h).
     const gs::SilhouetteMask mask =
       gs::RasterizeShape(tables.Classes[c].Outline, ts, ts, { -r, -r }, 2.0 * r / ts);
     for (std::size_t k = 0; k < mask.Inside.size(); ++k)

@@ -1,5 +1,6 @@
 // Decals: the faces a shape covers with texture coordinates (the inverse of its map: a short
 // shape's polar chart, a long shape's CurveGrid), split where the map is not affine over a face.
+#include "ShapeDecal.h"
 #include "ShapeDistributorImpl.h"
 
 #include "GeodesicShooting.h"
@@ -377,7 +378,7 @@ struct DecalBuilder
 
   Vec2 ToTexture(const Vec2& q) const
   {
-    return Vec2{ 0.5 * (q.x / ShapeClass.Radius + 1.0), 0.5 * (q.y / ShapeClass.Radius + 1.0) };
+    return DecalTextureCoordinate(q, ShapeClass.Radius);
   }
 
   // Sorts the vertices; the texels that draw: the silhouette's bounding box (2% of the

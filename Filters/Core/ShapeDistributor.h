@@ -50,6 +50,8 @@
 #pragma once
 
 #include "SafeDistanceTable.h"
+#include "ShapeDecal.h"
+#include "ShapeMap.h"
 #include "ShapeOutline.h"
 #include "Status.h"
 #include "SurfaceCurve.h"
@@ -192,66 +194,6 @@ struct ShapeDistribution
 {
   std::vector<PlacedShape> Shapes;
   ShapeDistributionStatistics Statistics;
-};
-
-/// A decal: triangles on the mesh faces a shape covers, with texture coordinates per corner
-/// mapping the square around the class circle onto [0, 1]^2 (the convention of MSDT Source's
-/// silhouettes: class point r (2 u - 1, 2 v - 1)); every texture coordinate lies in [0, 1]^2
-/// (triangles are cut at the square's border, so that no renderer, texture setting or exporter
-/// draws a neighbouring repeat of the texture). A triangle is a whole mesh face or, where the
-/// shape's map is not affine over the face (a long shape bending inside a face), a piece of one:
-/// its corners are barycentric coordinates in that face.
-struct ShapeDecal
-{
-  std::vector<int> Faces; ///< the mesh face of each triangle
-  std::vector<std::array<std::array<double, 3>, 3>> Corners; ///< per corner, barycentric in the face
-  std::vector<std::array<Vec2, 3>> TextureCoordinates;
-  /// The texture coordinate at surface point p as a renderer draws it (linear in the triangle
-  /// holding p); false when no triangle holds it.
-  bool TextureCoordinate(const SurfacePoint& p, Vec2& uv) const;
-  /// The same for the point of barycentric coordinates `bary` in face Faces[k], when it lies in
-  /// triangle k.
-  bool TextureCoordinateIn(std::size_t k, const std::array<double, 3>& bary, Vec2& uv) const;
-};
-
-/// A long shape's drawing map (arc length along its curve, then across along the perpendicular
-/// geodesic) sampled on a grid of (along, across) nodes, and its inverse near the shape.
-struct CurveGrid
-{
-  struct Node
-  {
-    bool Valid = false;
-    SurfacePoint At;
-    Vec3 Position;
-    Vec2 ClassPoint; ///< normalized units
-  };
-  const TriangleMesh* Mesh = nullptr;
-  int Columns = 0, Rows = 0;
-  double Step = 0.0; ///< the larger grid spacing (world units)
-  std::vector<Node> Nodes; ///< column-major: node (i, j) is Nodes[i * Rows + j]
-
-  /// The class point of position X, the nearest node searched from node `start` by descent
-  /// over the grid: the affine map of the grid triangle nearest X (extended beyond the grid's
-  /// border). `distance` (optional): X's distance to that triangle. False without valid nodes.
-  bool Locate(const Vec3& X, int start, Vec2& p, double* distance, int* nearest = nullptr) const;
-  /// Indexes the nodes by position (needed by ClassPoint).
-  void Index();
-  /// The class point of a surface point near the shape; false when it lies farther than half a
-  /// grid step from the grid (beyond the shape and its margin, or on another sheet nearby).
-  /// `hint` (optional, in and out): a node to start from (the previous point's, for points
-  /// along a curve); -1: none.
-  bool ClassPoint(const SurfacePoint& x, Vec2& p, int* hint = nullptr) const;
-  /// The vertices the shape is drawn on (its decal's faces have all three corners among them),
-  /// each once with a node near it: the corners of the faces holding nodes (with that node,
-  /// nodes in order), then their neighbours (with the node of the corner reaching them first).
-  std::vector<std::pair<int, int>> Vertices() const;
-
-private:
-  // Valid nodes by cells of twice the grid step over the nodes' bounding box.
-  double CellSize = 1.0;
-  Vec3 Origin;
-  std::array<int, 3> Dims{ { 0, 0, 0 } };
-  std::vector<int> CellStart, CellNodes;
 };
 
 class ShapeDistributor

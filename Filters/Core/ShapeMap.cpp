@@ -3,6 +3,7 @@
 // then across along the perpendicular geodesic). Outlines are the class outline pushed forward;
 // CurveGrid samples a long shape's map and inverts it near the shape.
 #include "ShapeDistributorImpl.h"
+#include "ShapeMap.h"
 
 #include "GeodesicShooting.h"
 

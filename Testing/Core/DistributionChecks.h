@@ -8,6 +8,7 @@
 #pragma once
 
 #include "SafeDistanceTable.h"
+#include "ShapeDecal.h"
 #include "ShapeDistributor.h"
 #include "ShapeOverlapOracle.h"
 #include "GeodesicPolarCoordinates.h"
@@ -34,11 +35,11 @@ inline std::vector<std::vector<gs::OutlinePiece>> Outlines(const gs::ShapeDistri
   return out;
 }
 
-/// The class point (normalized class frame) a decal's texture coordinate uv stands for: the
-/// texture square [0, 1]^2 is the square about the class circle of radius `radius`.
+/// The class point (normalized class frame) a decal's texture coordinate uv stands for (the
+/// convention of ShapeDecal.h).
 inline gs::Vec2 ClassPointOfTexture(const gs::Vec2& uv, double radius)
 {
-  return gs::Vec2{ (2.0 * uv.x - 1.0) * radius, (2.0 * uv.y - 1.0) * radius };
+  return gs::DecalClassPoint(uv, radius);
 }
 
 /// What a decal draws, read on a fixed lattice of every decal triangle's face (28 barycentric
