@@ -959,10 +959,23 @@ bool vtkShapeDistributor::ReadDensity(const Cache& cache, Run& run)
 //------------------------------------------------------------------------------
 bool vtkShapeDistributor::ApplyBrush(Cache& cache, Run& run)
 {
-  const gs::Result<gs::SurfacePoint> center = cache.Locator().Snap(this->BrushCenter);
+  // The closest surface point, however far the sphere widget's centre was dragged off the
+  // surface (from inside a closed mesh too), unless it lies beyond the bounding box diagonal:
+  // a point in other units or another frame.
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  const gs::Result<gs::SurfacePoint> center = cache.Locator().Snap(this->BrushCenter, true);
   if (!center.Ok())
   {
     vtkErrorMacro("BrushCenter: " << center.Message() << ".");
+    return false;
+  }
+  const double away = gs::Norm(mesh.Position(*center) -
+    gs::Vec3(this->BrushCenter[0], this->BrushCenter[1], this->BrushCenter[2]));
+  if (away > mesh.BoundingBoxDiagonal())
+  {
+    vtkErrorMacro("BrushCenter lies " << away << " from the surface, more than its bounding box "
+                                      << "diagonal (" << mesh.BoundingBoxDiagonal()
+                                      << "): check its coordinates.");
     return false;
   }
   gs::DensityBrush brush;
@@ -970,7 +983,7 @@ bool vtkShapeDistributor::ApplyBrush(Cache& cache, Run& run)
   brush.Radius = this->BrushRadius;
   brush.Density = this->BrushDensity;
   const gs::Result<std::vector<double>> factors =
-    gs::BrushFactors(cache.Mesh.Build.Mesh, cache.Graph(), brush, this->UsedThreads());
+    gs::BrushFactors(mesh, cache.Graph(), brush, this->UsedThreads());
   if (!factors.Ok())
   {
     vtkErrorMacro("Density brush: " << factors.Message() << ".");

@@ -214,7 +214,8 @@ public:
 
   ///@{
   /// The density brush (Wang et al. 2016, Fig. 10): around BrushCenter (world coordinates,
-  /// snapped to the closest surface point) shapes shrink to BrushDensity times their size and
+  /// snapped to the closest surface point; farther from the surface than its bounding box
+  /// diagonal is an error) shapes shrink to BrushDensity times their size and
   /// grow back linearly with the geodesic distance d from it, to their full size at BrushRadius:
   /// f = max(BrushDensity, min(1, d / BrushRadius)), d from the distributor's own engine (its
   /// graph; the exact solver with K = 0), multiplied by DensityArray's factors where both are

@@ -137,6 +137,12 @@ for name, value in (("BrushRadius", -1.0), ("BrushRadius", float("inf")),
     brushed.BrushRadius, brushed.BrushDensity, brushed.BrushCenter = radius, density, center
 check(same(placements(brushed), with_brush), "the brush runs again after bad parameters")
 
+# A centre dragged inside the closed surface (here its middle, 1 from every point of the sphere)
+# snaps to the closest surface point too.
+inside = ShapeDistributor(Input=field, BrushCenter=[0.0, 0.0, 0.0], BrushRadius=radius,
+                          BrushDensity=density, **common)
+check(placements(inside)["count"] > without["count"], "a brush centred inside the surface")
+
 if failures:
     print("%d failure(s)" % len(failures))
     sys.exit(1)
