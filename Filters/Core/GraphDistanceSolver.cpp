@@ -33,7 +33,6 @@
 #include <omp.h>
 #endif
 
-
 namespace gs
 {
 

@@ -31,7 +31,6 @@
 #include <omp.h>
 #endif
 
-
 namespace gs
 {
 
