@@ -15,16 +15,9 @@
 #include <limits>
 #include <memory>
 
-#include <cerrno>
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
-#endif
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
 #endif
 
 #ifdef _OPENMP
@@ -42,6 +35,7 @@ namespace
 // stencils went from 3.9 KB to 2.1 KB per vertex with the gathering in slabs).
 void ReturnFreedMemory()
 {
+#include <unistd.h>
 #if defined(__GLIBC__)
   malloc_trim(0);
 #endif

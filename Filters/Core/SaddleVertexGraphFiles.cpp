@@ -2,36 +2,21 @@
 // against its mesh (Verify).
 #include "SaddleVertexGraph.h"
 
-#include "DiscreteGeodesicGraph.h"
 #include "ExactGeodesic.h"
 #include "Hash.h"
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <memory>
+#include <string>
 
 #include <cerrno>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace gs
 {
