@@ -704,11 +704,12 @@ bool vtkShapeDistributor::CheckParameters()
   }
   if (this->BrushRadius > 0.0)
   {
-    if (!(this->BrushDensity > 0.0 && this->BrushDensity <= 1.0))
+    // (The brush's own check, before any work.)
+    if (const gs::Status checked =
+          gs::CheckBrushParameters(this->BrushRadius, this->BrushDensity);
+        !checked.Ok())
     {
-      vtkErrorMacro("BrushDensity (the size factor at the brush's centre) must lie in (0, 1]; it "
-                    "is "
-        << this->BrushDensity << ".");
+      vtkErrorMacro("BrushRadius, BrushDensity: " << checked.Message() << ".");
       return false;
     }
     if (!std::isfinite(this->BrushCenter[0]) || !std::isfinite(this->BrushCenter[1]) ||
@@ -963,19 +964,10 @@ bool vtkShapeDistributor::ApplyBrush(Cache& cache, Run& run)
   // surface (from inside a closed mesh too), unless it lies beyond the bounding box diagonal:
   // a point in other units or another frame.
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const gs::Result<gs::SurfacePoint> center = cache.Locator().Snap(this->BrushCenter, true);
+  const gs::Result<gs::SurfacePoint> center = cache.Locator().Snap(this->BrushCenter, 1.0);
   if (!center.Ok())
   {
     vtkErrorMacro("BrushCenter: " << center.Message() << ".");
-    return false;
-  }
-  const double away = gs::Norm(mesh.Position(*center) -
-    gs::Vec3(this->BrushCenter[0], this->BrushCenter[1], this->BrushCenter[2]));
-  if (away > mesh.BoundingBoxDiagonal())
-  {
-    vtkErrorMacro("BrushCenter lies " << away << " from the surface, more than its bounding box "
-                                      << "diagonal (" << mesh.BoundingBoxDiagonal()
-                                      << "): check its coordinates.");
     return false;
   }
   gs::DensityBrush brush;

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 //------------------------------------------------------------------------------
 vtkSurfacePointLocator::vtkSurfacePointLocator(const vtkSurfaceMeshConverter::Result& mesh)
@@ -18,14 +20,14 @@ vtkSurfacePointLocator::vtkSurfacePointLocator(const vtkSurfaceMeshConverter::Re
 {
   this->Locator->SetDataSet(mesh.Triangles);
   this->Locator->BuildLocator();
-  this->MaximumDistance = MaximumDistanceFraction * mesh.Triangles->GetLength();
+  this->Diagonal = mesh.Triangles->GetLength();
 }
 
 //------------------------------------------------------------------------------
 vtkSurfacePointLocator::~vtkSurfacePointLocator() = default;
 
 //------------------------------------------------------------------------------
-gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::Snap(const double x[3], bool anyDistance)
+gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::Snap(const double x[3], double maximumFraction)
 {
   if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
   {
@@ -41,11 +43,13 @@ gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::Snap(const double x[3], boo
   {
     return gs::Status::Error("could not be snapped to the surface");
   }
-  if (!anyDistance && std::sqrt(dist2) > this->MaximumDistance)
+  if (std::sqrt(dist2) > maximumFraction * this->Diagonal)
   {
-    return gs::Status::Error("it lies " + std::to_string(std::sqrt(dist2)) +
-      " from the surface, more than a quarter of the mesh's bounding box diagonal (" +
-      std::to_string(this->MaximumDistance) + "): check its coordinates");
+    std::ostringstream message;
+    message << "it lies " << std::sqrt(dist2) << " from the surface, more than "
+            << maximumFraction << " times the mesh's bounding box diagonal ("
+            << this->Diagonal << "): check its coordinates";
+    return gs::Status::Error(message.str());
   }
   // Barycentric coordinates in the triangle's point order, then matched to the core face's
   // corners by vertex (the mesh builder may have re-oriented the face). The locator used
@@ -89,7 +93,8 @@ gs::Result<std::vector<gs::SurfacePoint>> vtkSurfacePointLocator::SnapCurve(
   // The polyline's own points must be near the surface; the samples between them (a chord of a
   // curved surface) may be farther.
   auto add = [&](const double x[3], vtkIdType pointId, bool sample) {
-    const gs::Result<gs::SurfacePoint> snapped = this->Snap(x, sample);
+    const gs::Result<gs::SurfacePoint> snapped =
+      this->Snap(x, sample ? std::numeric_limits<double>::infinity() : MaximumDistanceFraction);
     if (!snapped.Ok())
     {
       return gs::Status::Error("point " + std::to_string(pointId) + ": " + snapped.Message());

@@ -31,10 +31,11 @@ public:
 
   // The closest surface point to x (on a vertex, an edge or inside a face; always returned as a
   // face point with barycentric coordinates in the core face's corner order). Fails, saying why,
-  // for non-finite coordinates, when x cannot be snapped, or (unless `anyDistance`) when x is
-  // farther from the surface than MaximumDistanceFraction of the mesh's bounding box diagonal (a
-  // point in the wrong units or frame, not a point on this surface).
-  gs::Result<gs::SurfacePoint> Snap(const double x[3], bool anyDistance = false);
+  // for non-finite coordinates, when x cannot be snapped, or when x is farther from the surface
+  // than `maximumFraction` of the mesh's bounding box diagonal (a point in the wrong units or
+  // frame, not a point on this surface; infinity: any distance).
+  gs::Result<gs::SurfacePoint> Snap(
+    const double x[3], double maximumFraction = MaximumDistanceFraction);
   static constexpr double MaximumDistanceFraction = 0.25;
 
   // A polyline of `points` (ids[0 .. n)) as a curve on the surface: each segment is sampled at
@@ -53,7 +54,7 @@ private:
   const vtkSurfaceMeshConverter::Result& Mesh;
   vtkSmartPointer<vtkStaticCellLocator> Locator;
   vtkSmartPointer<vtkGenericCell> Cell; // scratch cell for the queries
-  double MaximumDistance = 0.0;          // MaximumDistanceFraction x the bounding box diagonal
+  double Diagonal = 0.0;                 // of the mesh's bounding box
 };
 
 #endif

@@ -10,21 +10,30 @@
 namespace gs
 {
 
-Result<std::vector<double>> BrushFactors(const TriangleMesh& mesh, const SaddleVertexGraph* graph,
-  const DensityBrush& brush, int threads)
+Status CheckBrushParameters(double radius, double density)
 {
-  if (!(brush.Radius > 0.0) || !std::isfinite(brush.Radius))
+  if (!(radius > 0.0) || !std::isfinite(radius))
   {
     std::ostringstream message;
-    message << "the brush radius must be positive and finite (it is " << brush.Radius << ")";
+    message << "the brush radius must be positive and finite (it is " << radius << ")";
     return Status::Error(message.str());
   }
-  if (!(brush.Density > 0.0 && brush.Density <= 1.0))
+  if (!(density > 0.0 && density <= 1.0))
   {
     std::ostringstream message;
     message << "the brush density (the size factor at its centre) must lie in (0, 1] (it is "
-            << brush.Density << ")";
+            << density << ")";
     return Status::Error(message.str());
+  }
+  return Status();
+}
+
+Result<std::vector<double>> BrushFactors(const TriangleMesh& mesh, const SaddleVertexGraph* graph,
+  const DensityBrush& brush, int threads)
+{
+  if (const Status checked = CheckBrushParameters(brush.Radius, brush.Density); !checked.Ok())
+  {
+    return checked;
   }
   if (const Status valid = mesh.CheckPoint(brush.Center); !valid.Ok())
   {

@@ -26,6 +26,10 @@ struct DensityBrush
   double Density = 0.25; // the factor at the centre, in (0, 1]
 };
 
+// Ok when the radius is positive and finite and the density lies in (0, 1]; otherwise an error
+// saying which is wrong.
+Status CheckBrushParameters(double radius, double density);
+
 // The brush's factor at every vertex: 1 at and beyond Radius and on parts of the mesh the centre
 // does not reach. Fails on a radius that is not positive and finite, a density outside (0, 1],
 // an invalid centre (TriangleMesh::CheckPoint), or a graph of another mesh. `threads`: for the
