@@ -10,6 +10,8 @@ BrushDensity) on the bundled bumpy sphere with the bundled star.
 - The panel shows the brush as ParaView's interactive sphere widget (the proxy's property group
   BrushCenter / BrushRadius with panel_widget InteractiveSphere).
 - Bad brush parameters give an error and empty outputs; the next good run works.
+- On the planar grid (a boundary) with a long class beside the star: both placed under the brush,
+  no overlap of the drawn outlines (VerifyOverlaps).
 
 Usage: pvpython TestDensityBrush.py --plugin <GeodesicShapes.so> --data <Data dir>
 """
@@ -142,6 +144,24 @@ check(same(placements(brushed), with_brush), "the brush runs again after bad par
 inside = ShapeDistributor(Input=field, BrushCenter=[0.0, 0.0, 0.0], BrushRadius=radius,
                           BrushDensity=density, **common)
 check(placements(inside)["count"] > without["count"], "a brush centred inside the surface")
+
+# On a mesh with a boundary, with a long class (the fish, split into parts, bending with the
+# field) beside the star: both classes placed under the brush, no two overlapping by their drawn
+# outlines (VerifyOverlaps, independent of the tables).
+grid = PLYReader(FileNames=[args.data + "/planar_grid.ply"])
+grid_field = CrossField(Input=grid)
+two = MSDTSource(ShapeFileNames=[args.data + "/shapes/star.png", args.data + "/shapes/fish.png"],
+                 AngleBins=24, DistanceSteps=24)
+bounded = ShapeDistributor(Input=grid_field, Table=two, ShapeSize=0.06, Seed=2, NumberOfThreads=2,
+                           BrushCenter=[0.5, 0.5, 0.0], BrushRadius=0.35, BrushDensity=0.4,
+                           VerifyOverlaps=1)
+bounded_data = servermanager.Fetch(bounded, idx=0)
+classes = vtk_to_numpy(bounded_data.GetPointData().GetArray("ClassId"))
+bounded_scale = vtk_to_numpy(bounded_data.GetPointData().GetArray("Scale"))
+pairs = bounded_data.GetFieldData().GetArray("OverlappingPairs").GetValue(0)
+check(set(numpy.unique(classes)) == {0, 1} and bounded_scale.min() < 0.6 and pairs == 0,
+      "brush on the grid with a long class: classes %s, Scale from %.2f, %d overlapping pairs" % (
+          numpy.unique(classes), bounded_scale.min(), pairs))
 
 if failures:
     print("%d failure(s)" % len(failures))
