@@ -400,7 +400,7 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
       // streamline) at this centre: no need to build the shape.
       const bool covered = DeadForClass(cls, centre.Face) ||
         (Tables.Classes[cls].Parts.size() > 1 &&
-          CentreCovered(centre, cls, DensityAt(centre), scratch));
+          CentreCovered(centre, cls, DensityAt(centre), 0, scratch));
       batch[i].Valid = !covered && MakeShape(centre, cls, rng, batch[i].Shape, nullptr, &scratch);
       batch[i].Reason = batch[i].Valid ? Record::Rejection::None
         : covered                      ? Record::Rejection::Tables
@@ -424,7 +424,7 @@ bool ShapeDistributor::Impl::PlacePart(int face, const Vec3& x, const Vec3& tang
 }
 
 bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
-  const Vec3* prefer, std::vector<int>* precheck) const
+  const Vec3* prefer, std::vector<int>* precheck, std::uint64_t key) const
 {
   s = PlacedShape();
   s.ClassId = cls;
@@ -505,6 +505,7 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
       Record partial;
       partial.Shape.ClassId = cls;
       partial.Shape.Scale = s.Scale;
+      partial.Key = key;
       for (std::size_t k = 0; k < BehindParts[cls].size(); ++k)
       {
         const int part = BehindParts[cls][k];

@@ -161,7 +161,7 @@ bool ShapeDistributor::Impl::CheapConflict(const Record& c, std::vector<int>& sc
   for (int x : scratch)
   {
     const Record& X = Accepted[x];
-    if (X.Shape.Scale >= c.Shape.Scale && ConflictInCharts(X, c))
+    if (X.Key <= c.Key && X.Shape.Scale >= c.Shape.Scale && ConflictInCharts(X, c))
     {
       return true;
     }
@@ -202,7 +202,7 @@ bool ShapeDistributor::Impl::FullConflict(const Record& c, std::vector<int>& scr
   for (int y : scratch)
   {
     const Record& Y = Accepted[y];
-    if (Y.Shape.Scale < c.Shape.Scale && ConflictInCharts(c, Y))
+    if (Y.Key <= c.Key && Y.Shape.Scale < c.Shape.Scale && ConflictInCharts(c, Y))
     {
       return true;
     }
@@ -210,7 +210,8 @@ bool ShapeDistributor::Impl::FullConflict(const Record& c, std::vector<int>& scr
   return false;
 }
 
-bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, double scale, std::vector<int>& scratch) const
+bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, double scale,
+  std::uint64_t key, std::vector<int>& scratch) const
 {
   if (CircleMode || Clearance[cls] < 0.0)
   {
@@ -227,6 +228,10 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
   for (int x : scratch)
   {
     const Record& X = Accepted[x];
+    if (X.Key > key)
+    {
+      continue; // (decided after the candidate: see Record::Key)
+    }
     const double unit = Options.ShapeSize * X.Shape.Scale;
     const ClassRegion& region = Regions[X.Shape.ClassId];
     for (std::size_t i = 0; i < X.Shape.Parts.size() && i < X.Charts.size(); ++i)
@@ -406,6 +411,10 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
       return true; // (aborted: the round is dropped, whatever this says)
     }
     const Record& X = Accepted[x];
+    if (X.Key > c.Key)
+    {
+      continue;
+    }
     const double unitX = Options.ShapeSize * X.Shape.Scale;
     const double radiusX = Tables.Classes[X.Shape.ClassId].Radius * unitX;
     if (Norm(X.Shape.Position - c.Shape.Position) >= radiusX + radiusC)

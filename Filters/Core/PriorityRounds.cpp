@@ -40,88 +40,13 @@ bool ShapeDistributor::Impl::RunRounds(
       stats.Maximal = true; // no face left where a shape could fit
       break;
     }
-    const int n = static_cast<int>(batch.size());
     lap(stats.GenerateSeconds);
-    if (Poll())
+    if (Poll() || !DecideRound(batch, greedy, seeding, threads, run, stats))
     {
       return false;
     }
-    stats.Candidates += n;
-    long long charts = 0;
-    double chartSeconds = 0.0;
-    // (a) Cheap checks against the shapes of previous rounds (no chart needed).
-    CheapChecks(batch, threads);
-    // (b) Survivors that may conflict with each other.
-    std::vector<int> survivors;
-    for (int i = 0; i < n; ++i)
-    {
-      if (!batch[i].Rejected)
-      {
-        survivors.push_back(i);
-      }
-    }
-    const std::vector<std::vector<int>> above = HigherPriorityNeighbours(batch, survivors, threads);
-    if (Poll())
-    {
-      return false;
-    }
-    // (c) Waves: a survivor is decided once all its higher-priority neighbours are; it is then
-    // checked against every accepted shape (those of this round included) and, if free, gets
-    // its charts and is accepted. Candidates of one wave are never neighbours, so this is
-    // sequential dart throwing in priority order, with charts only for accepted shapes (and
-    // the rare ones a smaller neighbour rejects).
-    const int roundStart = static_cast<int>(Accepted.size());
-    std::vector<char> state(n, 2); // 0 undecided, 1 accepted, 2 rejected
-    for (int i : survivors)
-    {
-      state[i] = 0;
-    }
-    std::vector<int> acceptedAs(n, -1); // id in Accepted
-    if (seeding)
-    {
-      PlantSeed(batch, survivors, state, acceptedAs, charts);
-    }
-    else
-    {
-      DecideInWaves(batch, survivors, above, state, acceptedAs, threads, run, charts, chartSeconds);
-    }
-    stats.Charts += charts;
-    stats.ChartCpuSeconds += chartSeconds;
-    lap(stats.CheckSeconds);
-    if (Poll())
-    {
-      return false; // (the round's decisions were cut short: nothing of it is kept)
-    }
-    for (int i = 0; i < n; ++i)
-    {
-      if (state[i] == 1)
-      {
-        continue;
-      }
-      switch (batch[i].Reason)
-      {
-        case Record::Rejection::WithoutShape:
-          ++stats.RejectedWithoutShape;
-          break;
-        case Record::Rejection::Tables:
-          ++stats.RejectedByTables;
-          break;
-        case Record::Rejection::Faithful:
-          ++stats.RejectedByFaithfulCheck;
-          break;
-        case Record::Rejection::Drawn:
-          ++stats.RejectedByDrawnCheck;
-          break;
-        case Record::Rejection::None:
-        default:
-          break;
-      }
-    }
-    run.FaithfulFirst = stats.RejectedByFaithfulCheck > run.ChartedThenTables;
-    // (d) Priority order: consecutive failures and MaximumShapes may end the run inside the
-    // round; shapes after that point are taken back.
-    const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
-    TakeBack(roundStart, cut, state, acceptedAs);
+    clock = std::chrono::steady_clock::now();
+    const int roundStart = static_cast<int>(Accepted.size()) - run.AcceptedInRound;
     std::vector<int> nextFront;
     for (int id = roundStart; id < static_cast<int>(Accepted.size()); ++id)
     {
@@ -161,6 +86,97 @@ bool ShapeDistributor::Impl::RunRounds(
     }
   }
   stats.ConsecutiveFailures = run.Consecutive;
+  return true;
+}
+
+bool ShapeDistributor::Impl::DecideRound(std::vector<Record>& batch, bool greedy, bool seeding,
+  int threads, RunState& run, ShapeDistributionStatistics& stats)
+{
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&clock](double& into) {
+    const auto now = std::chrono::steady_clock::now();
+    into += std::chrono::duration<double>(now - clock).count();
+    clock = now;
+  };
+  const int n = static_cast<int>(batch.size());
+  stats.Candidates += n;
+  long long charts = 0;
+  double chartSeconds = 0.0;
+  // (a) Cheap checks against the shapes of previous rounds (no chart needed).
+  CheapChecks(batch, threads);
+  // (b) Survivors that may conflict with each other.
+  std::vector<int> survivors;
+  for (int i = 0; i < n; ++i)
+  {
+    if (!batch[i].Rejected)
+    {
+      survivors.push_back(i);
+    }
+  }
+  const std::vector<std::vector<int>> above = HigherPriorityNeighbours(batch, survivors, threads);
+  if (Poll())
+  {
+    return false;
+  }
+  // (c) Waves: a survivor is decided once all its higher-priority neighbours are; it is then
+  // checked against every accepted shape (those of this round included) and, if free, gets
+  // its charts and is accepted. Candidates of one wave are never neighbours, so this is
+  // sequential dart throwing in priority order, with charts only for accepted shapes (and
+  // the rare ones a smaller neighbour rejects).
+  const int roundStart = static_cast<int>(Accepted.size());
+  std::vector<char> state(n, 2); // 0 undecided, 1 accepted, 2 rejected
+  for (int i : survivors)
+  {
+    state[i] = 0;
+  }
+  std::vector<int> acceptedAs(n, -1); // id in Accepted
+  if (seeding)
+  {
+    PlantSeed(batch, survivors, state, acceptedAs, charts);
+  }
+  else
+  {
+    DecideInWaves(batch, survivors, above, state, acceptedAs, threads, run, charts, chartSeconds);
+  }
+  stats.Charts += charts;
+  stats.ChartCpuSeconds += chartSeconds;
+  lap(stats.CheckSeconds);
+  if (Poll())
+  {
+    return false; // (the round's decisions were cut short: nothing of it is kept)
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    if (state[i] == 1)
+    {
+      continue;
+    }
+    switch (batch[i].Reason)
+    {
+      case Record::Rejection::WithoutShape:
+        ++stats.RejectedWithoutShape;
+        break;
+      case Record::Rejection::Tables:
+        ++stats.RejectedByTables;
+        break;
+      case Record::Rejection::Faithful:
+        ++stats.RejectedByFaithfulCheck;
+        break;
+      case Record::Rejection::Drawn:
+        ++stats.RejectedByDrawnCheck;
+        break;
+      case Record::Rejection::None:
+      default:
+        break;
+    }
+  }
+  run.FaithfulFirst = stats.RejectedByFaithfulCheck > run.ChartedThenTables;
+  // (d) Priority order: consecutive failures and MaximumShapes may end the run inside the
+  // round; shapes after that point are taken back.
+  const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
+  TakeBack(roundStart, cut, state, acceptedAs);
+  run.AcceptedInRound = static_cast<int>(Accepted.size()) - roundStart;
+  lap(stats.RoundSeconds);
   return true;
 }
 
@@ -323,6 +339,51 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
   }
 }
 
+bool ShapeDistributor::Impl::Decide(
+  Record& r, int thread, bool recheck, bool faithfulFirst, DecisionScratch& s)
+{
+  r.Rejected = true;
+  if (recheck && CheapConflict(r, s.Conflicts))
+  {
+    r.Reason = Record::Rejection::Tables;
+    return false;
+  }
+  // (A long shape: always before its charts; a short one where that saves charts.)
+  if ((!r.Shape.Curve.empty() || faithfulFirst) && Unfaithful(r))
+  {
+    r.Reason = Record::Rejection::Faithful;
+    return false;
+  }
+  if (r.Charts.empty())
+  {
+    const auto chartStart = std::chrono::steady_clock::now();
+    ComputeCharts(r, *Engines[thread]);
+    s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
+    ++s.Charts;
+  }
+  if (r.FaithfulChecked && r.Shape.Curve.empty() && (r.Charts.empty() || r.Charts[0].Entries.empty()))
+  {
+    // (Checked before its charts: read through charts that came out empty, the check
+    // would have failed, as it does when it runs after them.)
+    r.Reason = Record::Rejection::Faithful;
+    r.Charts.clear();
+    return false;
+  }
+  if (FullConflict(r, s.Conflicts))
+  {
+    r.Reason = Record::Rejection::Tables;
+    ++s.TablesAfterCharts;
+  }
+  if (r.Reason == Record::Rejection::Tables || DrawnConflict(r, s.Conflicts))
+  {
+    r.Charts.clear();
+    return false;
+  }
+  r.Rejected = false;
+  PrepareCommit(r, Marks[thread], s.Marked);
+  return true;
+}
+
 void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std::vector<int>& survivors,
   const std::vector<std::vector<int>>& above, std::vector<char>& state, std::vector<int>& acceptedAs,
   int threads, RunState& run, long long& chartCount, double& chartCpuSeconds)
@@ -344,17 +405,10 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
       (free ? ready : waiting).push_back(i);
     }
     const int nr = static_cast<int>(ready.size());
-    struct Scratch
-    {
-      std::vector<int> Conflicts, Marked;
-      long long Charts = 0, TablesAfterCharts = 0;
-      double ChartSeconds = 0.0;
-    };
     // Chunks down to one candidate: a chart costs about 0.6 ms, and waves are often short (a
     // chunk of 4 left one thread idle for up to 3 charts).
-    std::vector<Scratch> perThread(threads);
+    std::vector<DecisionScratch> perThread(threads);
     ParallelFor(nr, threads, 1, [&](int k, int thread) {
-      Scratch& s = perThread[thread];
       Record& r = batch[ready[k]];
       if (Poll())
       {
@@ -366,46 +420,9 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
       {
         recheck = recheck || state[j] == 1;
       }
-      if (recheck && CheapConflict(r, s.Conflicts))
-      {
-        r.Rejected = true;
-        r.Reason = Record::Rejection::Tables;
-        return;
-      }
-      // (A long shape: always before its charts; a short one where that saves charts.)
-      if ((!r.Shape.Curve.empty() || run.FaithfulFirst) && Unfaithful(r))
-      {
-        r.Rejected = true;
-        r.Reason = Record::Rejection::Faithful;
-        return;
-      }
-      const auto chartStart = std::chrono::steady_clock::now();
-      ComputeCharts(r, Engine(thread));
-      s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
-      ++s.Charts;
-      if (r.FaithfulChecked && r.Shape.Curve.empty() && (r.Charts.empty() || r.Charts[0].Entries.empty()))
-      {
-        // (Checked before its charts: read through charts that came out empty, the check
-        // would have failed, as it does when it runs after them.)
-        r.Rejected = true;
-        r.Reason = Record::Rejection::Faithful;
-        r.Charts.clear();
-        return;
-      }
-      if (FullConflict(r, s.Conflicts))
-      {
-        r.Reason = Record::Rejection::Tables;
-        ++s.TablesAfterCharts;
-      }
-      if (r.Reason == Record::Rejection::Tables || DrawnConflict(r, s.Conflicts))
-      {
-        r.Rejected = true;
-        r.Charts.clear();
-        return;
-      }
-      PrepareCommit(r, Marks[thread], s.Marked);
+      Decide(r, thread, recheck, run.FaithfulFirst, perThread[thread]);
     });
-    for (const Scratch& s : perThread)
+    for (const DecisionScratch& s : perThread)
     {
       charts += s.Charts;
       chartSeconds += s.ChartSeconds;

@@ -62,6 +62,7 @@ Status ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   {
     return density;
   }
+  PreparePool();
   PrepareChartMeasures();
   PrepareDeadFaces();
   PrepareLongClasses();
@@ -98,6 +99,8 @@ Status ShapeDistributor::CheckOptionRanges(const ShapeDistributionOptions& optio
     return outside("HolonomyMargin", options.HolonomyMargin, "from 0 to 100");
   if (!(options.FaithfulTolerance > 0.0) || options.FaithfulTolerance > 1.0)
     return outside("FaithfulTolerance", options.FaithfulTolerance, "above 0 and at most 1");
+  if (options.PoolLevels < 1 || options.PoolLevels > 16)
+    return outside("PoolLevels", options.PoolLevels, "from 1 to 16");
   return Status();
 }
 
@@ -256,7 +259,10 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
   I.EnsureEngines(threads);
   result.Statistics.PrepareSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const bool finished = I.RunRounds(threads, progress, result.Statistics);
+  const bool pool = I.Options.Order == CandidateOrder::PlaceKeyed &&
+    I.Options.Mode != DistributionMode::Greedy;
+  const bool finished = pool ? I.RunPool(threads, progress, result.Statistics)
+                             : I.RunRounds(threads, progress, result.Statistics);
   // (The polling belongs to this run: later queries, e.g. ProbeFitFraction, never see it.)
   I.Polling.reset();
   if (!finished)
@@ -294,9 +300,10 @@ double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
     Scratch& s = perThread[thread];
     Random rng(seed, 3, 0, static_cast<std::uint64_t>(i));
     Impl::Record r;
+    r.Key = ~std::uint64_t(0); // (judged by every accepted shape)
     const int cls = I.RandomClass(rng);
     const SurfacePoint centre = I.RandomPoint(rng, false);
-    if (!I.MakeShape(centre, cls, rng, r.Shape, nullptr, &s.Conflicts) ||
+    if (!I.MakeShape(centre, cls, rng, r.Shape, nullptr, &s.Conflicts, r.Key) ||
       I.CheapConflict(r, s.Conflicts))
     {
       return;

@@ -79,6 +79,21 @@ enum class DistributionMode
   CircumcirclePoissonDisk = 2
 };
 
+/// How the Random and CircumcirclePoissonDisk modes draw their candidates.
+enum class CandidateOrder
+{
+  /// Rounds of candidates drawn from the faces still alive, priorities in draw order; the run
+  /// ends after MaximalFailures consecutive failures.
+  Rounds = 0,
+  /// Every candidate, and its priority, is a function of (Seed, face, index): a Poisson process
+  /// of intensity 1 / f^2 per area in PoolLevels levels of doubling intensity (a level's
+  /// candidates below the previous level's in priority), decided greedily in priority order.
+  /// The result depends on each place's own density only, so a run after an edit of the
+  /// density (the same mesh, graph, tables, directions and other options) re-decides only the
+  /// candidates the edit reaches through the conflict chain, and equals a fresh run bit for bit.
+  PlaceKeyed = 1
+};
+
 /// The number of OpenMP threads that a NumberOfThreads of `requested` means: `requested` when
 /// > 0, otherwise OpenMP's default (1 without OpenMP). Results do not depend on it. (The filter
 /// caps what users ask at MaximumThreadCount(): more threads than processors only cost memory,
@@ -140,6 +155,12 @@ struct ShapeDistributionOptions
   /// behind and the streamline ahead are traced. The same placements either way, bit for bit;
   /// false only to compare the two (tests, DistributionBenchmark).
   bool EarlyRejection = true;
+  /// See CandidateOrder (Greedy mode always uses rounds).
+  CandidateOrder Order = CandidateOrder::Rounds;
+  /// PlaceKeyed: the levels of the candidate pool; level l holds 2^l candidates per class
+  /// circumscribed disc (at the local density), its candidates drawn only on faces where a
+  /// shape may still fit when the level starts.
+  int PoolLevels = 7;
 };
 
 /// One part of a placed shape (a short shape has one).
@@ -187,6 +208,10 @@ struct ShapeDistributionStatistics
   /// outlines as drawn overlap). The same for any thread count.
   long long RejectedWithoutShape = 0, RejectedByTables = 0, RejectedByFaithfulCheck = 0,
             RejectedByDrawnCheck = 0;
+  /// PlaceKeyed: candidates whose fate was decided in this run (all, for a fresh run; those an
+  /// edit reached, for an incremental one), and whether the run reused the previous run.
+  long long Redecided = 0;
+  bool Incremental = false;
 };
 
 /// What a Run placed.

@@ -10,6 +10,8 @@
 //                          check
 //   PriorityRounds.cpp     Algorithm 3: rounds of candidates accepted in priority order, in
 //                          parallel waves
+//   CandidatePool.cpp      place-keyed candidates (CandidateOrder::PlaceKeyed), decided in
+//                          key order
 //   GreedyProposals.cpp    Greedy mode: candidates around accepted shapes, densest lattices
 //   ShapeMap.cpp           the shape model: class point -> surface point (exponential map,
 //                          curve map), outlines, CurveGrid
@@ -52,7 +54,8 @@ inline std::uint64_t Mix(std::uint64_t x)
 }
 
 /// Counter-based generator: the stream of (seed, kind, round, index) is independent of threads.
-/// Kinds: 1 random candidates, 2 Greedy proposals, 3 probes, 4 Greedy candidates.
+/// Kinds: 1 random candidates, 2 Greedy proposals, 3 probes, 4 Greedy candidates, 5 pool
+/// candidates, 6 pool counts.
 struct Random
 {
   std::uint64_t State;
@@ -152,6 +155,11 @@ struct ShapeDistributor::Impl
   {
     PlacedShape Shape;
     std::vector<Chart> Charts; // one per part (empty before the chart step)
+    // The priority (CandidateOrder::PlaceKeyed; 0 in rounds): smaller is decided first. Every
+    // check judges a candidate against the accepted shapes of smaller or equal key only, which
+    // in a fresh run are all of them; a run re-deciding part of a previous one sees the
+    // accepted shapes of lower priority too, and must not be judged by them.
+    std::uint64_t Key = 0;
     bool Valid = false;
     bool Rejected = false;
     // What rejected it (ShapeDistributionStatistics' counts).
@@ -276,8 +284,9 @@ struct ShapeDistributor::Impl
   /// streamline has the same pieces, and parts are placed walking the streamline from the
   /// centre, PointOnCurve over its pieces), and a conflict of some parts is a conflict of the
   /// shape.
+  /// `key`: the candidate's Record::Key (the precheck's judges).
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
-    const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr) const;
+    const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr, std::uint64_t key = 0) const;
   /// Places part `part` (MakeShape, and its precheck on the curve behind the centre): from the
   /// curve point (face, x) with the curve's unit tangent there, `across` off the curve, its axis
   /// turned by -phiM from the curve's direction; false when it leaves the surface.
@@ -377,7 +386,8 @@ struct ShapeDistributor::Impl
   /// within the part's circle (a 2% margin for the chart). The full check would reject it too
   /// (the tables keep silhouettes apart); this one needs no curve, so long candidates skip
   /// tracing their streamlines where the surface is taken.
-  bool CentreCovered(const SurfacePoint& centre, int cls, double scale, std::vector<int>& scratch) const;
+  bool CentreCovered(const SurfacePoint& centre, int cls, double scale, std::uint64_t key,
+    std::vector<int>& scratch) const;
   /// The drawn check, after the tables accepted the candidate (its charts computed): its outline
   /// as drawn (kept in the record) against every accepted neighbour's, as VerifyOverlaps judges
   /// them: a conflict when one reaches into the other's silhouette deeper than a quarter of
@@ -418,6 +428,7 @@ struct ShapeDistributor::Impl
     // reason a candidate failing both is counted under, differ.
     bool FaithfulFirst = false;
     long long ChartedThenTables = 0; // candidates the tables rejected after their charts
+    int AcceptedInRound = 0; // the shapes the last round kept (the last ones in Accepted)
   };
   /// The rounds of a prepared run, until MaximumShapes, MaximalFailures or no live face; false
   /// when aborted by `progress`.
@@ -432,6 +443,10 @@ struct ShapeDistributor::Impl
   double Reported = 0.0; // the fraction last reported
   /// True once the run is aborted (Polling's Poll at the fraction last reported).
   bool Poll() const { return Polling && Polling->Poll(Reported); }
+  /// Decides a round's candidates (their priorities: their order in the batch): (a) to (d)
+  /// below, the kept shapes committed; false when aborted.
+  bool DecideRound(std::vector<Record>& batch, bool greedy, bool seeding, int threads, RunState& run,
+    ShapeDistributionStatistics& stats);
   /// A Greedy round's candidates: the proposals of every front shape, nearest to the first
   /// shape first (kind 4 of Random).
   void DrawGreedyBatch(const std::vector<int>& front, int round, int threads, std::vector<Record>& batch) const;
@@ -446,6 +461,19 @@ struct ShapeDistributor::Impl
   /// Greedy's random rounds: the first survivor that fits is the seed; the others are rejected.
   void PlantSeed(std::vector<Record>& batch, const std::vector<int>& survivors, std::vector<char>& state,
     std::vector<int>& acceptedAs, long long& charts);
+  /// Per-thread scratch and counts of Decide.
+  struct DecisionScratch
+  {
+    std::vector<int> Conflicts, Marked;
+    long long Charts = 0, TablesAfterCharts = 0;
+    double ChartSeconds = 0.0;
+  };
+  /// Decides one candidate whose higher-priority neighbours are decided, in the order every
+  /// caller uses: the cheap check again (`recheck`: when an accepted shape may have come since
+  /// the last one), faithfulness (first for long shapes, or `faithfulFirst`), its charts (unless
+  /// it has them), the full check, the drawn check. Accepted: true, prepared for Commit
+  /// (thread: the engine and marks used). Rejected: Record::Rejected and Reason set.
+  bool Decide(Record& r, int thread, bool recheck, bool faithfulFirst, DecisionScratch& s);
   /// (c) Survivors decided in waves (state: 0 undecided, 1 accepted, 2 rejected; acceptedAs:
   /// the id in Accepted).
   void DecideInWaves(std::vector<Record>& batch, const std::vector<int>& survivors,
@@ -457,6 +485,37 @@ struct ShapeDistributor::Impl
     ShapeDistributionStatistics& stats) const;
   /// Takes back the round's shapes after the cut, recommitting the others in priority order.
   void TakeBack(int roundStart, int cut, const std::vector<char>& state, const std::vector<int>& acceptedAs);
+
+  // ---- Place-keyed candidates (CandidatePool.cpp) ------------------------------------------
+  /// A candidate of the pool: level, face and index name it; its key, class and point in the
+  /// face follow from them (DrawPoolCandidate).
+  struct PoolCandidate
+  {
+    std::uint64_t Key = 0;
+    int Level = 0, Face = 0, Index = 0, Class = 0;
+    double A = 0.0, B = 0.0; // barycentric coordinates of corners 1 and 2
+  };
+  double PoolFootprint = 1.0; // class-weighted mean circumscribed disc area at density 1
+
+  void PreparePool();
+  /// The expected number of candidates of face f at level `level`.
+  double PoolMean(int level, int f) const;
+  /// Candidate `index` of face f at `level`; returns its generator, ready for MakeShape.
+  Random DrawPoolCandidate(int level, int f, int index, PoolCandidate& p) const;
+  /// Appends face f's candidates at `level` (a function of Seed, the face and its weight).
+  void PoolCandidates(int level, int f, std::vector<PoolCandidate>& out) const;
+  /// Key order (ties, never seen in practice, by face and index).
+  static bool PoolLess(const PoolCandidate& a, const PoolCandidate& b);
+  /// The level's candidates on faces where their class may still fit, in key order.
+  std::vector<PoolCandidate> LivePoolLevel(int level, int threads) const;
+  /// A pool candidate's record (its shape; invalid, with the reason, when none can be laid or,
+  /// with `masks`, its face is dead for its class).
+  void MakePoolRecord(const PoolCandidate& p, bool masks, Record& r, std::vector<int>& scratch) const;
+  /// A fresh PlaceKeyed run: the levels in order; false when aborted.
+  bool RunPool(int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats);
+  /// Accepted (and Placed, and the indexes' ids) in key order: the order of a greedy run,
+  /// whatever waves and rounds decided it in.
+  void SortAcceptedByKey();
 
   // ---- Greedy proposals and lattices (GreedyProposals.cpp) ------------------------------
   // Greedy: per single-part class, the densest lattice of copies turned alike that the tables

@@ -1,0 +1,270 @@
+// Place-keyed candidates (CandidateOrder::PlaceKeyed): a candidate pool that is a function of
+// (Seed, face, index) and of the face's own density, decided greedily in priority order.
+//
+// Level l of the pool is a Poisson process over the faces of intensity 2^l per class-weighted
+// circumscribed disc at the local density (face weight area / f^2); its candidates' keys sort
+// after every key of level l - 1. A fresh run decides the levels in order, each in rounds of
+// its sorted keys (PriorityRounds.cpp's DecideRound): the result is sequential greedy dart
+// throwing in key order. Level l is drawn only on the faces where a shape may still fit when it
+// starts (the dead-face masks: a candidate there would certainly be rejected), so the doubling
+// intensities are spent on the gaps left, as the rounds' failure count is.
+#include "ShapeDistributorImpl.h"
+
+#include <chrono>
+#include <climits>
+#include <cmath>
+
+namespace gs
+{
+using namespace distribution;
+
+namespace
+{
+constexpr int PoolKeyBits = 56; // below the level
+
+/// Poisson(mean) by inversion, in pieces of mean at most 200 (exp(-mean) stays normal).
+int PoissonCount(Random& rng, double mean)
+{
+  int count = 0;
+  while (mean > 0.0)
+  {
+    const double m = std::min(mean, 200.0);
+    mean -= m;
+    double p = std::exp(-m), sum = p;
+    const double u = rng.Uniform();
+    const int cap = static_cast<int>(m + 40.0 * std::sqrt(m) + 40.0);
+    int k = 0;
+    while (u > sum && k < cap)
+    {
+      ++k;
+      p *= m / k;
+      sum += p;
+    }
+    count += k;
+  }
+  return count;
+}
+} // namespace
+
+void ShapeDistributor::Impl::PreparePool()
+{
+  double weights = 0.0, discs = 0.0;
+  for (int c = 0; c < NumberOfClasses; ++c)
+  {
+    const double w = ClassCdf[c] - (c > 0 ? ClassCdf[c - 1] : 0.0);
+    const double r = Tables.Classes[c].Radius * Options.ShapeSize;
+    weights += w;
+    discs += w * Pi * r * r;
+  }
+  PoolFootprint = weights > 0.0 && discs > 0.0 ? discs / weights : 1.0;
+}
+
+double ShapeDistributor::Impl::PoolMean(int level, int f) const
+{
+  return std::ldexp(FaceWeight[f] / PoolFootprint, level);
+}
+
+Random ShapeDistributor::Impl::DrawPoolCandidate(int level, int f, int index, PoolCandidate& p) const
+{
+  Random rng(Options.Seed, 5, static_cast<std::uint64_t>(level),
+    (static_cast<std::uint64_t>(f) << 32) | static_cast<std::uint32_t>(index));
+  p.Key = (static_cast<std::uint64_t>(level + 1) << PoolKeyBits) |
+    (rng.State >> (64 - PoolKeyBits));
+  p.Level = level;
+  p.Face = f;
+  p.Index = index;
+  p.Class = RandomClass(rng);
+  double a = rng.Uniform(), b = rng.Uniform();
+  if (a + b > 1.0)
+  {
+    a = 1.0 - a;
+    b = 1.0 - b;
+  }
+  p.A = a;
+  p.B = b;
+  return rng; // (what MakeShape draws next)
+}
+
+void ShapeDistributor::Impl::PoolCandidates(int level, int f, std::vector<PoolCandidate>& out) const
+{
+  if (!(FaceWeight[f] > 0.0))
+  {
+    return;
+  }
+  Random counter(Options.Seed, 6, static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(f));
+  const int n = PoissonCount(counter, PoolMean(level, f));
+  PoolCandidate p;
+  for (int k = 0; k < n; ++k)
+  {
+    DrawPoolCandidate(level, f, k, p);
+    out.push_back(p);
+  }
+}
+
+bool ShapeDistributor::Impl::PoolLess(const PoolCandidate& a, const PoolCandidate& b)
+{
+  if (a.Key != b.Key)
+  {
+    return a.Key < b.Key;
+  }
+  return a.Face != b.Face ? a.Face < b.Face : a.Index < b.Index;
+}
+
+void ShapeDistributor::Impl::MakePoolRecord(
+  const PoolCandidate& p, bool masks, Record& r, std::vector<int>& scratch) const
+{
+  r = Record();
+  r.Key = p.Key;
+  PoolCandidate again;
+  Random rng = DrawPoolCandidate(p.Level, p.Face, p.Index, again);
+  const SurfacePoint centre = SurfacePoint::InFace(p.Face, 1.0 - p.A - p.B, p.A, p.B);
+  // As Generate: a class that certainly cannot fit in this face, or (long classes) at this
+  // centre, needs no shape.
+  const bool covered = (masks && (Dead[p.Face] || DeadForClass(p.Class, p.Face))) ||
+    (Tables.Classes[p.Class].Parts.size() > 1 &&
+      CentreCovered(centre, p.Class, DensityAt(centre), p.Key, scratch));
+  r.Valid = !covered && MakeShape(centre, p.Class, rng, r.Shape, nullptr, &scratch, p.Key);
+  r.Reason = r.Valid ? Record::Rejection::None
+    : covered        ? Record::Rejection::Tables
+                     : Record::Rejection::WithoutShape;
+}
+
+std::vector<ShapeDistributor::Impl::PoolCandidate> ShapeDistributor::Impl::LivePoolLevel(
+  int level, int threads) const
+{
+  const int nf = Mesh.NumberOfFaces();
+  constexpr int FacesPerChunk = 2048;
+  const int chunks = (nf + FacesPerChunk - 1) / FacesPerChunk;
+  std::vector<std::vector<PoolCandidate>> perChunk(chunks);
+  ParallelFor(chunks, threads, 1, [&](int c, int) {
+    std::vector<PoolCandidate>& out = perChunk[c];
+    const int end = std::min(nf, (c + 1) * FacesPerChunk);
+    for (int f = c * FacesPerChunk; f < end; ++f)
+    {
+      if (Dead[f])
+      {
+        continue;
+      }
+      const std::size_t first = out.size();
+      PoolCandidates(level, f, out);
+      std::size_t kept = first;
+      for (std::size_t k = first; k < out.size(); ++k)
+      {
+        if (!DeadForClass(out[k].Class, f))
+        {
+          out[kept++] = out[k];
+        }
+      }
+      out.resize(kept);
+    }
+  });
+  std::vector<PoolCandidate> all;
+  for (const auto& part : perChunk)
+  {
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  std::sort(all.begin(), all.end(), PoolLess);
+  return all;
+}
+
+bool ShapeDistributor::Impl::RunPool(
+  int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
+{
+  Polling.reset(new PhasePoll(progress));
+  Reported = 0.0;
+  RunState run;
+  run.FailuresToStop = LLONG_MAX; // (the pool's end is the run's)
+  const int levels = Options.PoolLevels;
+  int batches = 0;
+  for (int level = 0; level < levels && !run.Stop; ++level)
+  {
+    auto clock = std::chrono::steady_clock::now();
+    auto lap = [&clock](double& into) {
+      const auto now = std::chrono::steady_clock::now();
+      into += std::chrono::duration<double>(now - clock).count();
+      clock = now;
+    };
+    const std::vector<PoolCandidate> pool = LivePoolLevel(level, threads);
+    lap(stats.GenerateSeconds);
+    const int n = static_cast<int>(pool.size());
+    for (int start = 0; start < n && !run.Stop;)
+    {
+      const int size = std::min(n - start, 256 << std::min(batches, 4));
+      ++batches;
+      std::vector<Record> batch(size);
+      ParallelForEachThread<std::vector<int>>(size, threads, 64, [&](int i, std::vector<int>& scratch) {
+        if (Poll())
+        {
+          batch[i].Valid = false; // (aborted: the round is dropped)
+          return;
+        }
+        MakePoolRecord(pool[start + i], true, batch[i], scratch);
+      });
+      lap(stats.GenerateSeconds);
+      if (Poll() || !DecideRound(batch, false, false, threads, run, stats))
+      {
+        return false;
+      }
+      clock = std::chrono::steady_clock::now();
+      start += size;
+      stats.Rounds = batches;
+      double fraction = (level + static_cast<double>(start) / n) / levels;
+      if (Options.MaximumShapes > 0)
+      {
+        fraction = std::max(fraction, static_cast<double>(Accepted.size()) / Options.MaximumShapes);
+      }
+      run.Reported = std::max(run.Reported, std::min(0.99, fraction));
+      Reported = run.Reported;
+      if (!Polling->Report(run.Reported))
+      {
+        return false;
+      }
+    }
+  }
+  stats.ConsecutiveFailures = run.Consecutive;
+  stats.Maximal = !run.Stop; // (every level decided: maximal for the pool)
+  stats.Redecided = stats.Candidates;
+  SortAcceptedByKey();
+  return true;
+}
+
+void ShapeDistributor::Impl::SortAcceptedByKey()
+{
+  const int n = static_cast<int>(Accepted.size());
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i)
+  {
+    order[i] = i;
+  }
+  std::stable_sort(order.begin(), order.end(),
+    [this](int a, int b) { return Accepted[a].Key < Accepted[b].Key; });
+  std::vector<int> newId(n);
+  std::vector<Record> sorted;
+  sorted.reserve(n);
+  for (int k = 0; k < n; ++k)
+  {
+    newId[order[k]] = k;
+    sorted.push_back(std::move(Accepted[order[k]]));
+  }
+  Accepted.swap(sorted);
+  Placed.clear();
+  for (const Record& r : Accepted)
+  {
+    Placed.push_back(r.Shape);
+  }
+  for (auto* index : { &CoverIndex, &CentreIndex })
+  {
+    for (std::vector<int>& ids : *index)
+    {
+      for (int& id : ids)
+      {
+        id = newId[id];
+      }
+    }
+  }
+  // (Uncommit takes back the last commit; the order of commits is gone.)
+  Killed.clear();
+  KilledBy.clear();
+}
+
+} // namespace gs
