@@ -211,7 +211,10 @@ void ShapeDistributor::Impl::PrepareCommit(Record& r, std::vector<char>& mark, s
 void ShapeDistributor::Impl::Commit(Record&& r)
 {
   KilledBy.push_back(Killed.size());
-  KillFaces(r);
+  if (KillOnCommit)
+  {
+    KillFaces(r);
+  }
   const int id = static_cast<int>(Accepted.size());
   for (int v : r.Prepared ? r.Cover : ChartVertices(r))
   {
@@ -224,8 +227,15 @@ void ShapeDistributor::Impl::Commit(Record&& r)
   r.Cover.clear();
   r.Cover.shrink_to_fit();
   r.Centres.clear();
-  r.Kills.clear();
-  r.Kills.shrink_to_fit();
+  if (PoolRun && r.Prepared)
+  {
+    std::sort(r.Kills.begin(), r.Kills.end()); // (KilledBefore)
+  }
+  else
+  {
+    r.Kills.clear();
+    r.Kills.shrink_to_fit();
+  }
   r.Prepared = false;
   Placed.push_back(r.Shape);
   Accepted.push_back(std::move(r));

@@ -249,20 +249,43 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
   const auto start = std::chrono::steady_clock::now();
   ShapeDistribution result;
   Impl& I = *Internal;
+  // A PlaceKeyed run after one with the same inputs but the density re-decides the edit only.
+  const bool pool = options.Order == CandidateOrder::PlaceKeyed && options.Mode != DistributionMode::Greedy;
+  const std::uint64_t fingerprint = pool ? Impl::PoolFingerprint(tables, faceDirections, options) : 0;
+  bool incremental =
+    pool && options.MaximumShapes == 0 && I.CanRunIncrementally(fingerprint, vertexDensity);
+  Impl::LastPoolRun last = std::move(I.LastPool);
+  I.LastPool = Impl::LastPoolRun();
+  std::vector<Impl::Record> accepted;
+  std::vector<std::vector<int>> cover, centres;
+  if (incremental)
+  {
+    accepted.swap(I.Accepted);
+    cover.swap(I.CoverIndex);
+    centres.swap(I.CentreIndex);
+  }
   if (Status prepared = I.Prepare(tables, faceDirections, vertexDensity, options); !prepared.Ok())
   {
     I.Accepted.clear();
     I.Placed.clear();
     return prepared;
   }
+  I.PoolRun = pool;
+  // (The kept kills assume the largest density factor they were collected at.)
+  incremental = incremental && I.MaxFaceDensity == I.KillsMaxFaceDensity;
+  if (incremental)
+  {
+    I.Accepted.swap(accepted);
+    I.CoverIndex.swap(cover);
+    I.CentreIndex.swap(centres);
+  }
   const int threads = ThreadCount(I.Options.NumberOfThreads);
   I.EnsureEngines(threads);
   result.Statistics.PrepareSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const bool pool = I.Options.Order == CandidateOrder::PlaceKeyed &&
-    I.Options.Mode != DistributionMode::Greedy;
-  const bool finished = pool ? I.RunPool(threads, progress, result.Statistics)
-                             : I.RunRounds(threads, progress, result.Statistics);
+  const bool finished = incremental ? I.RunPoolIncremental(last.Density, progress, result.Statistics)
+    : pool                            ? I.RunPool(threads, progress, result.Statistics)
+                                      : I.RunRounds(threads, progress, result.Statistics);
   // (The polling belongs to this run: later queries, e.g. ProbeFitFraction, never see it.)
   I.Polling.reset();
   if (!finished)
@@ -270,6 +293,13 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
     I.Accepted.clear();
     I.Placed.clear();
     return Status::Aborted();
+  }
+  if (pool)
+  {
+    I.KillsMaxFaceDensity = I.MaxFaceDensity;
+    I.LastPool.Valid = true;
+    I.LastPool.Fingerprint = fingerprint;
+    I.LastPool.Density = vertexDensity;
   }
   result.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -160,7 +160,7 @@ struct ShapeDistributionOptions
   /// PlaceKeyed: the levels of the candidate pool; level l holds 2^l candidates per class
   /// circumscribed disc (at the local density), its candidates drawn only on faces where a
   /// shape may still fit when the level starts.
-  int PoolLevels = 7;
+  int PoolLevels = 10;
 };
 
 /// One part of a placed shape (a short shape has one).

@@ -175,7 +175,8 @@ struct ShapeDistributor::Impl
     // Prepared in parallel for the commit (see PrepareCommit).
     bool Prepared = false;
     std::vector<int> Cover, Centres;
-    std::vector<std::pair<int, int>> Kills; // (class, face)
+    // (class, face); kept, sorted, by a place-keyed run's accepted shapes (KilledBefore)
+    std::vector<std::pair<int, int>> Kills;
     // The outline as drawn (Outline, OutlineSpacing), once the tables accept the shape.
     std::vector<OutlinePiece> Drawn;
     bool HasDrawn = false;
@@ -516,6 +517,42 @@ struct ShapeDistributor::Impl
   /// Accepted (and Placed, and the indexes' ids) in key order: the order of a greedy run,
   /// whatever waves and rounds decided it in.
   void SortAcceptedByKey();
+
+  // Greedy in key order needs every higher-priority candidate that may conflict with a
+  // candidate decided before it. Two shapes conflict only closer than the sum of their radii,
+  // plus the holonomy margin's turn (ConflictInCharts), which the slack allows for up to half
+  // that sum: neighbours in a round (HigherPriorityNeighbours) and an edit's reach (PoolReach).
+  static constexpr double PoolNeighbourSlack = 1.5;
+  bool PoolRun = false;      // this run decides a pool (HigherPriorityNeighbours' slack)
+  bool KillOnCommit = true;  // Commit kills faces (not in an incremental run: no masks)
+  /// What the last PlaceKeyed run was given, but the density (a hash), and its density.
+  struct LastPoolRun
+  {
+    bool Valid = false;
+    std::uint64_t Fingerprint = 0;
+    std::vector<double> Density;
+  } LastPool;
+  /// A hash of everything a PlaceKeyed run depends on but the density and the thread count.
+  static std::uint64_t PoolFingerprint(const SafeDistanceTables& tables,
+    const std::vector<Vec3>& faceDirections, const ShapeDistributionOptions& options);
+  /// Whether this run may re-decide the last one's edits only.
+  bool CanRunIncrementally(std::uint64_t fingerprint, const std::vector<double>& vertexDensity) const;
+  /// The distance within which a shape of class `cls` at density `scale` may conflict with
+  /// another, beyond the other's own (world units; positions in space, which the geodesic
+  /// distance never undercuts; sqrt 2 for a long shape, drawn along paths |along| + |across|).
+  double PoolReach(int cls, double scale) const;
+  /// An incremental PlaceKeyed run after a density edit (`oldDensity`: the last run's): the
+  /// candidates of the faces whose density changed, and every lower-priority candidate within
+  /// reach of a shape whose fate changed, re-decided in key order (the others keep theirs),
+  /// until nothing changes: the result of a fresh run. False when aborted.
+  bool RunPoolIncremental(const std::vector<double>& oldDensity, const std::function<bool(double)>& progress,
+    ShapeDistributionStatistics& stats);
+  /// Whether an accepted shape of smaller key than `key` kills face f for class `cls` (see
+  /// CollectKills): a candidate there is certainly rejected, as a fresh run's masks skip it.
+  bool KilledBefore(int cls, int f, std::uint64_t key) const;
+  double KillsMaxFaceDensity = 0.0; // the MaxFaceDensity the kept Kills were collected at
+  /// Takes an accepted shape out of the indexes (its slot left empty) and returns it.
+  Record RemoveAccepted(int id);
 
   // ---- Greedy proposals and lattices (GreedyProposals.cpp) ------------------------------
   // Greedy: per single-part class, the densest lattice of copies turned alike that the tables
