@@ -205,6 +205,9 @@ void WritePlacements(const gs::ShapeDistribution& result, vtkIdType firstPolygon
     static_cast<double>(result.Statistics.RejectedByFaithfulCheck));
   single("CandidatesRejectedByDrawnCheck", static_cast<double>(result.Statistics.RejectedByDrawnCheck));
   single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
+  // (Place-keyed: the candidates decided in this run, and whether it reused the last one.)
+  single("CandidatesRedecided", static_cast<double>(result.Statistics.Redecided));
+  single("IncrementalRun", result.Statistics.Incremental ? 1.0 : 0.0);
   single("Seconds", result.Statistics.Seconds);
   single("ShapeSizeUsed", shapeSize);
   vtkNew<vtkStringArray> used;
@@ -404,6 +407,7 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ShapeSize: " << this->ShapeSize << "\n";
   os << indent << "Mode: " << this->Mode << "\n";
+  os << indent << "CandidateOrder: " << this->CandidateOrder << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaximumShapes: " << this->MaximumShapes << "\n";
   os << indent << "MaximalFailures: " << this->MaximalFailures << "\n";
@@ -738,6 +742,7 @@ bool vtkShapeDistributor::CheckParameters()
   gs::ShapeDistributionOptions ranges;
   ranges.MaximumShapes = this->MaximumShapes;
   ranges.MaximalFailures = this->MaximalFailures;
+  ranges.Order = static_cast<gs::CandidateOrder>(this->CandidateOrder);
   ranges.NumberOfThreads = this->NumberOfThreads;
   ranges.DistortionLimit = this->DistortionLimit;
   ranges.HolonomyMargin = this->HolonomyMargin;
@@ -1011,6 +1016,7 @@ bool vtkShapeDistributor::Distribute(Cache& cache, Run& run)
   options.ShapeSize = run.ShapeSize;
   options.ClassWeights = this->ClassWeights;
   options.Mode = static_cast<gs::DistributionMode>(this->Mode);
+  options.Order = static_cast<gs::CandidateOrder>(this->CandidateOrder);
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.MaximumShapes = this->MaximumShapes;
   options.MaximalFailures = this->MaximalFailures;

@@ -105,6 +105,22 @@ public:
   ///@}
 
   ///@{
+  /// How Random and Circumcircle Poisson disk modes draw candidates: ROUNDS (default: rounds
+  /// drawn from the faces still alive, until MaximalFailures consecutive failures) or
+  /// PLACE_KEYED (every candidate and its priority a function of the seed and its place; an
+  /// Apply after a change of the density only, brush or DensityArray values, re-decides what
+  /// the change reaches and keeps the rest: the same shapes as a fresh run, bit for bit; field
+  /// data CandidatesRedecided and IncrementalRun say what it did). Greedy uses rounds.
+  enum CandidateOrders
+  {
+    ROUNDS = 0,
+    PLACE_KEYED = 1
+  };
+  vtkSetMacro(CandidateOrder, int);
+  vtkGetMacro(CandidateOrder, int);
+  ///@}
+
+  ///@{
   /// Random seed. Default 0.
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
@@ -248,6 +264,7 @@ protected:
   double ShapeSize = 0.0; // 0: automatic (4% of the largest bounding-box side)
   std::vector<double> ClassWeights;
   int Mode = RANDOM;
+  int CandidateOrder = ROUNDS;
   int Seed = 0;
   int MaximumShapes = 0;
   int MaximalFailures = 10000;

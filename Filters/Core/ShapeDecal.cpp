@@ -900,7 +900,20 @@ ShapeDistributor::Impl::ExactEngineLease::~ExactEngineLease()
 
 ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
 {
-  return Internal->DecalOf(shape, tolerance);
+  // A place-keyed run keeps each shape's decal: an edit's run keeps the shapes it did not
+  // reach, and their decals with them.
+  const Impl::Record& r = Internal->Accepted.at(shape);
+  if (r.Decal && r.DecalTolerance == tolerance)
+  {
+    return *r.Decal;
+  }
+  ShapeDecal decal = Internal->DecalOf(shape, tolerance);
+  if (Internal->PoolRun)
+  {
+    r.Decal = std::make_shared<const ShapeDecal>(decal);
+    r.DecalTolerance = tolerance;
+  }
+  return decal;
 }
 
 } // namespace gs

@@ -99,6 +99,8 @@ Status ShapeDistributor::CheckOptionRanges(const ShapeDistributionOptions& optio
     return outside("HolonomyMargin", options.HolonomyMargin, "from 0 to 100");
   if (!(options.FaithfulTolerance > 0.0) || options.FaithfulTolerance > 1.0)
     return outside("FaithfulTolerance", options.FaithfulTolerance, "above 0 and at most 1");
+  if (options.Order != CandidateOrder::Rounds && options.Order != CandidateOrder::PlaceKeyed)
+    return outside("CandidateOrder", static_cast<int>(options.Order), "0 (Rounds) or 1 (PlaceKeyed)");
   if (options.PoolLevels < 1 || options.PoolLevels > 16)
     return outside("PoolLevels", options.PoolLevels, "from 1 to 16");
   return Status();

@@ -186,6 +186,9 @@ struct ShapeDistributor::Impl
     std::shared_ptr<const LogMapSnapshot> Exact;
     // Long shapes: the inverse of the drawing map (for the drawn check against long neighbours).
     std::shared_ptr<const CurveGrid> Frame;
+    // Place-keyed runs: the decal drawn (ShapeDistributor::Decal) at DecalTolerance, kept.
+    mutable std::shared_ptr<const ShapeDecal> Decal;
+    mutable double DecalTolerance = 0.0;
   };
 
   // ---- The run's inputs (Prepare) --------------------------------------------------------

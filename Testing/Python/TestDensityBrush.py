@@ -12,6 +12,8 @@ BrushDensity) on the bundled bumpy sphere with the bundled star.
 - Bad brush parameters give an error and empty outputs; the next good run works.
 - On the planar grid (a boundary) with a long class beside the star: both placed under the brush,
   no overlap of the drawn outlines (VerifyOverlaps).
+- Place-keyed candidates: a brush moved, resized and a density edited under it re-decide only
+  what they reach, and equal a fresh Shape Distributor's placements and decals bit for bit.
 
 Usage: pvpython TestDensityBrush.py --plugin <GeodesicShapes.so> --data <Data dir>
 """
@@ -90,6 +92,8 @@ f = numpy.maximum(%r, numpy.minimum(1.0, d / %r))
 output.PointData.append(numpy.where(numpy.isnan(d), 1.0, f), "BrushFactor")
 output.PointData.append(0.8 * numpy.where(numpy.isnan(d), 1.0, f), "BrushTimesDensity")
 output.PointData.append(numpy.full(len(d), 0.8), "Density")
+z = inputs[0].Points[:, 2]
+output.PointData.append(numpy.where(z > 0.5, 0.8, 1.0), "Regional")
 """ % (density, radius)
 factors.UpdatePipeline()
 f = vtk_to_numpy(servermanager.Fetch(factors).GetPointData().GetArray("BrushFactor"))
@@ -162,6 +166,47 @@ pairs = bounded_data.GetFieldData().GetArray("OverlappingPairs").GetValue(0)
 check(set(numpy.unique(classes)) == {0, 1} and bounded_scale.min() < 0.6 and pairs == 0,
       "brush on the grid with a long class: classes %s, Scale from %.2f, %d overlapping pairs" % (
           numpy.unique(classes), bounded_scale.min(), pairs))
+
+# Place-keyed candidates: the brush moved, then resized, then a density array under it that
+# differs from 1 in one region (the Apply a user makes after each drag): every run re-decides only what the edit reaches
+# (IncrementalRun 1, fewer candidates decided than a fresh run) and gives the same placements and
+# decals, bit for bit, as a fresh Shape Distributor with the final parameters.
+
+
+def field_value(data, name):
+    return data.GetFieldData().GetArray(name).GetValue(0)
+
+
+def decal_points(proxy):
+    return vtk_to_numpy(servermanager.Fetch(proxy, idx=1).GetPoints().GetData()).copy()
+
+
+keyed = dict(common, CandidateOrder="Place-keyed (edits re-place what they reach)")
+state = dict(BrushCenter=center, BrushRadius=radius, BrushDensity=density)
+edited = ShapeDistributor(Input=factors, **state, **keyed)
+edited.UpdatePipeline()
+moved = (points[40] * 0.9 + points[300] * 0.1).tolist()
+for step, change in enumerate((dict(BrushCenter=moved), dict(BrushRadius=0.8 * radius),
+                               dict(DensityArray=["POINTS", "Regional"]))):
+    for name, value in change.items():
+        setattr(edited, name, value)
+    state.update(change)
+    edited.UpdatePipeline()
+    edited_data = servermanager.Fetch(edited, idx=0)
+    fresh = ShapeDistributor(Input=factors, **state, **keyed)
+    fresh_data = servermanager.Fetch(fresh, idx=0)
+    check(field_value(edited_data, "IncrementalRun") == 1 and
+          field_value(fresh_data, "IncrementalRun") == 0,
+          "place-keyed edit %d: re-decided what it reached" % step)
+    check(field_value(edited_data, "CandidatesRedecided") <
+          0.8 * field_value(fresh_data, "CandidatesRedecided"),
+          "place-keyed edit %d: %d candidates decided, %d in a fresh run" % (
+              step, field_value(edited_data, "CandidatesRedecided"),
+              field_value(fresh_data, "CandidatesRedecided")))
+    check(same(placements(edited), placements(fresh)) and
+          numpy.array_equal(decal_points(edited), decal_points(fresh)),
+          "place-keyed edit %d: the same placements and decals as a fresh run" % step)
+    Delete(fresh)
 
 if failures:
     print("%d failure(s)" % len(failures))
