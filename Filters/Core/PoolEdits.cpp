@@ -129,7 +129,7 @@ namespace
 struct Reached
 {
   std::uint64_t Key;
-  int Level, Face, Index;
+  int Level, Face, Index; // Index < 0: the mark of (Face, Level) at its level's start
 };
 struct LaterFirst
 {
@@ -146,59 +146,24 @@ bool SameBits(double a, double b)
 {
   return std::memcmp(&a, &b, sizeof(double)) == 0;
 }
+using Cell = std::array<long long, 3>;
 } // namespace
 
-bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDensity,
-  const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
+/// One edit's run (RunPoolIncremental): what it has reached and decided.
+struct ShapeDistributor::Impl::PoolEdit
 {
-  Polling.reset(new PhasePoll(progress));
-  Reported = 0.0;
-  const auto start = std::chrono::steady_clock::now();
-  const int nf = Mesh.NumberOfFaces();
-  // The faces whose density changed: their candidates are new.
-  std::vector<char> changedVertex(Mesh.NumberOfVertices(), 0);
-  for (int v = 0; v < Mesh.NumberOfVertices(); ++v)
+  Impl& I;
+  explicit PoolEdit(Impl& owner)
+    : I(owner)
   {
-    changedVertex[v] = SameBits(oldDensity[v], Density[v]) ? 0 : 1;
   }
-  std::vector<char> changed(nf, 0);
-  std::vector<int> changedFaces;
-  for (int f = 0; f < nf; ++f)
-  {
-    for (int v : Mesh.Face(f))
-    {
-      changed[f] = changed[f] || changedVertex[v];
-    }
-    if (changed[f])
-    {
-      changedFaces.push_back(f);
-    }
-  }
+
+  // The faces whose density changed.
+  std::vector<char> Changed;
+  std::vector<int> ChangedFaces;
   // The faces by cells of space (their centroids), for the reach of a shape.
-  double maxScale = MaxFaceDensity;
-  for (const Record& r : Accepted)
-  {
-    maxScale = std::max(maxScale, r.Shape.Scale);
-  }
-  int widest = 0;
-  for (int c = 0; c < NumberOfClasses; ++c)
-  {
-    widest = Tables.Classes[c].Radius > Tables.Classes[widest].Radius ? c : widest;
-  }
-  const double maxReach = PoolReach(widest, maxScale);
-  const double cell = std::max(2.0 * maxReach, MaxEdge);
-  using Cell = std::array<long long, 3>;
-  auto cellOf = [cell](const Vec3& x) {
-    return Cell{ static_cast<long long>(std::floor(x.x / cell)),
-      static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
-  };
-  std::vector<std::pair<Cell, int>> grid(nf);
-  for (int f = 0; f < nf; ++f)
-  {
-    const auto& v = Mesh.Face(f);
-    grid[f] = { cellOf((Mesh.Position(v[0]) + Mesh.Position(v[1]) + Mesh.Position(v[2])) / 3.0), f };
-  }
-  std::sort(grid.begin(), grid.end());
+  double MaxReach = 0.0, CellSize = 1.0;
+  std::vector<std::pair<Cell, int>> Grid;
   // Every level's candidates of a face, with their positions and reaches (drawn once).
   struct Drawn
   {
@@ -206,61 +171,16 @@ bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDe
     Vec3 X;
     double Reach;
   };
-  std::unordered_map<int, std::vector<Drawn>> drawnFaces;
-  auto candidatesOf = [&](int f) -> const std::vector<Drawn>& {
-    auto it = drawnFaces.find(f);
-    if (it != drawnFaces.end())
-    {
-      return it->second;
-    }
-    std::vector<PoolCandidate> pool;
-    for (int level = 0; level < Options.PoolLevels; ++level)
-    {
-      PoolCandidates(level, f, pool);
-    }
-    std::vector<Drawn> out;
-    out.reserve(pool.size());
-    for (const PoolCandidate& p : pool)
-    {
-      const SurfacePoint centre = SurfacePoint::InFace(f, 1.0 - p.A - p.B, p.A, p.B);
-      out.push_back({ p, Mesh.Interpolate(f, centre.Bary), PoolReach(p.Class, DensityAt(centre)) });
-    }
-    return drawnFaces.emplace(f, std::move(out)).first->second;
-  };
-  std::priority_queue<Reached, std::vector<Reached>, LaterFirst> heap;
-  std::unordered_set<std::uint64_t> decided;
-  // The accepted shapes by key, and by the face of their sample.
-  std::unordered_map<std::uint64_t, int> acceptedByKey;
-  std::unordered_map<int, std::vector<std::uint64_t>> acceptedInFace;
-  auto forget = [&](const Record& r) {
-    acceptedByKey.erase(r.Key);
-    std::vector<std::uint64_t>& keys = acceptedInFace[r.Shape.Centre.Face];
-    keys.erase(std::remove(keys.begin(), keys.end(), r.Key), keys.end());
-  };
-  // The faces within `range` of x (their centroids' cells).
-  auto facesNear = [&](const Vec3& x, double range, const std::function<void(int)>& visit) {
-    const Cell c = cellOf(x);
-    const long long span = static_cast<long long>(std::ceil((range + MaxEdge) / cell));
-    for (long long dx = -span; dx <= span; ++dx)
-      for (long long dy = -span; dy <= span; ++dy)
-        for (long long dz = -span; dz <= span; ++dz)
-        {
-          const Cell q{ c[0] + dx, c[1] + dy, c[2] + dz };
-          for (auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, -1));
-               it != grid.end() && it->first == q; ++it)
-          {
-            visit(it->second);
-          }
-        }
-  };
-  // A changed face's candidates are reached through a mark at each level's start (as a fresh
-  // run draws a level on the faces alive when it starts): the kills final then decide which
-  // are drawn. A shape at x (reach: its own, key: its key) left: the larger-key candidates
-  // within reach that were rejected may fit now (those accepted stay so); faces where a final
-  // shape (of smaller key) kills a class hold no candidate of that class that could.
-  std::vector<char> alive(NumberOfClasses);
-  // Marks of (face, level): the shapes that left within reach of the face (x, reach), or
-  // none for a changed face (all its candidates).
+  std::unordered_map<int, std::vector<Drawn>> DrawnFaces;
+  // What is left to decide (key order), and what is decided.
+  std::priority_queue<Reached, std::vector<Reached>, LaterFirst> Heap;
+  std::unordered_set<std::uint64_t> Decided;
+  // The accepted shapes by key, and by the face of their sample; the slots emptied.
+  std::unordered_map<std::uint64_t, int> AcceptedByKey;
+  std::unordered_map<int, std::vector<std::uint64_t>> AcceptedInFace;
+  std::vector<char> Removed;
+  // Marks of (face, level): the shapes that left within reach of the face (x, reach), or all
+  // of the level's candidates (a changed face).
   struct Source
   {
     Vec3 X;
@@ -271,13 +191,111 @@ bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDe
     bool All = false;
     std::vector<Source> Sources;
   };
-  std::unordered_map<std::uint64_t, Mark> marks;
-  auto mark = [&](int f, int level, const Source* source) {
+  std::unordered_map<std::uint64_t, Mark> Marks;
+  std::vector<char> Alive;
+  DecisionScratch Scratch;
+
+  Cell CellOf(const Vec3& x) const
+  {
+    return Cell{ static_cast<long long>(std::floor(x.x / CellSize)),
+      static_cast<long long>(std::floor(x.y / CellSize)),
+      static_cast<long long>(std::floor(x.z / CellSize)) };
+  }
+
+  void FindChangedFaces(const std::vector<double>& oldDensity)
+  {
+    const TriangleMesh& mesh = I.Mesh;
+    std::vector<char> changedVertex(mesh.NumberOfVertices(), 0);
+    for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+    {
+      changedVertex[v] = SameBits(oldDensity[v], I.Density[v]) ? 0 : 1;
+    }
+    Changed.assign(mesh.NumberOfFaces(), 0);
+    for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+    {
+      for (int v : mesh.Face(f))
+      {
+        Changed[f] = Changed[f] || changedVertex[v];
+      }
+      if (Changed[f])
+      {
+        ChangedFaces.push_back(f);
+      }
+    }
+  }
+
+  void BuildGrid()
+  {
+    double maxScale = I.MaxFaceDensity;
+    for (const Record& r : I.Accepted)
+    {
+      maxScale = std::max(maxScale, r.Shape.Scale);
+    }
+    int widest = 0;
+    for (int c = 0; c < I.NumberOfClasses; ++c)
+    {
+      widest = I.Tables.Classes[c].Radius > I.Tables.Classes[widest].Radius ? c : widest;
+    }
+    MaxReach = I.PoolReach(widest, maxScale);
+    CellSize = std::max(2.0 * MaxReach, I.MaxEdge);
+    const TriangleMesh& mesh = I.Mesh;
+    Grid.resize(mesh.NumberOfFaces());
+    for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+    {
+      const auto& v = mesh.Face(f);
+      Grid[f] = { CellOf((mesh.Position(v[0]) + mesh.Position(v[1]) + mesh.Position(v[2])) / 3.0), f };
+    }
+    std::sort(Grid.begin(), Grid.end());
+  }
+
+  const std::vector<Drawn>& CandidatesOf(int f)
+  {
+    auto it = DrawnFaces.find(f);
+    if (it != DrawnFaces.end())
+    {
+      return it->second;
+    }
+    std::vector<PoolCandidate> pool;
+    for (int level = 0; level < I.Options.PoolLevels; ++level)
+    {
+      I.PoolCandidates(level, f, pool);
+    }
+    std::vector<Drawn> out;
+    out.reserve(pool.size());
+    for (const PoolCandidate& p : pool)
+    {
+      const SurfacePoint centre = SurfacePoint::InFace(f, 1.0 - p.A - p.B, p.A, p.B);
+      out.push_back({ p, I.Mesh.Interpolate(f, centre.Bary), I.PoolReach(p.Class, I.DensityAt(centre)) });
+    }
+    return DrawnFaces.emplace(f, std::move(out)).first->second;
+  }
+
+  /// The faces within `range` of x (their centroids' cells, an edge more).
+  template <class Visit>
+  void FacesNear(const Vec3& x, double range, Visit&& visit) const
+  {
+    const Cell c = CellOf(x);
+    const long long span = static_cast<long long>(std::ceil((range + I.MaxEdge) / CellSize));
+    for (long long dx = -span; dx <= span; ++dx)
+      for (long long dy = -span; dy <= span; ++dy)
+        for (long long dz = -span; dz <= span; ++dz)
+        {
+          const Cell q{ c[0] + dx, c[1] + dy, c[2] + dz };
+          for (auto it = std::lower_bound(Grid.begin(), Grid.end(), std::make_pair(q, -1));
+               it != Grid.end() && it->first == q; ++it)
+          {
+            visit(it->second);
+          }
+        }
+  }
+
+  void AddMark(int f, int level, const Source* source)
+  {
     const std::uint64_t id = static_cast<std::uint64_t>(f) * 64 + static_cast<std::uint64_t>(level);
-    auto inserted = marks.emplace(id, Mark());
+    auto inserted = Marks.emplace(id, Mark());
     if (inserted.second)
     {
-      heap.push({ static_cast<std::uint64_t>(level + 1) << 56, level, f, -1 });
+      Heap.push({ static_cast<std::uint64_t>(level + 1) << 56, level, f, -1 });
     }
     Mark& m = inserted.first->second;
     m.All = m.All || !source;
@@ -285,24 +303,26 @@ bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDe
     {
       m.Sources.push_back(*source);
     }
-  };
-  // Face f's candidates of `level` after `key` whose class no final shape kills there and,
-  // unless `all`, within reach of a source.
-  auto push = [&](int f, int level, std::uint64_t key, bool all, const std::vector<Source>& sources) {
+  }
+
+  /// Face f's candidates of `level` after `key` that were not accepted, whose class no final
+  /// shape (of smaller key) kills there and, unless `all`, within reach of a source.
+  void Push(int f, int level, std::uint64_t key, bool all, const std::vector<Source>& sources)
+  {
     bool any = false;
-    for (int c = 0; c < NumberOfClasses; ++c)
+    for (int c = 0; c < I.NumberOfClasses; ++c)
     {
-      alive[c] = !KilledBefore(c, f, key);
-      any = any || alive[c];
+      Alive[c] = !I.KilledBefore(c, f, key);
+      any = any || Alive[c];
     }
     if (!any)
     {
       return;
     }
-    for (const Drawn& d : candidatesOf(f))
+    for (const Drawn& d : CandidatesOf(f))
     {
-      if (d.P.Level != level || d.P.Key <= key || !alive[d.P.Class] || acceptedByKey.count(d.P.Key) ||
-        decided.count(d.P.Key))
+      if (d.P.Level != level || d.P.Key <= key || !Alive[d.P.Class] || AcceptedByKey.count(d.P.Key) ||
+        Decided.count(d.P.Key))
       {
         continue;
       }
@@ -313,170 +333,211 @@ bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDe
       }
       if (near)
       {
-        heap.push({ d.P.Key, d.P.Level, d.P.Face, d.P.Index });
+        Heap.push({ d.P.Key, d.P.Level, d.P.Face, d.P.Index });
       }
     }
-  };
-  auto reachRejected = [&](const Vec3& x, double reachOf, std::uint64_t key) {
+  }
+
+  /// A shape at x (reach: its own, key: its key) left: the larger-key candidates within reach
+  /// that were rejected may fit now (those accepted stay so); those of its level now, those of
+  /// later levels through marks at their levels' starts.
+  void ReachRejected(const Vec3& x, double reach, std::uint64_t key)
+  {
     const int level = static_cast<int>(key >> 56) - 1;
-    const Source source{ x, reachOf };
+    const Source source{ x, reach };
     const std::vector<Source> one{ source };
-    facesNear(x, reachOf + maxReach, [&](int f) {
-      push(f, level, key, false, one);
-      for (int later = level + 1; later < Options.PoolLevels; ++later)
+    FacesNear(x, reach + MaxReach, [&](int f) {
+      Push(f, level, key, false, one);
+      for (int later = level + 1; later < I.Options.PoolLevels; ++later)
       {
-        mark(f, later, &source);
+        AddMark(f, later, &source);
       }
     });
-  };
-  // A shape at x came: the larger-key accepted shapes within reach may not fit any more (those
-  // rejected stay so).
-  auto reachAccepted = [&](const Vec3& x, double reachOf, std::uint64_t key) {
-    facesNear(x, reachOf + maxReach, [&](int f) {
-      auto it = acceptedInFace.find(f);
-      if (it == acceptedInFace.end())
+  }
+
+  /// A shape at x came: the larger-key accepted shapes within reach may not fit any more (those
+  /// rejected stay so).
+  void ReachAccepted(const Vec3& x, double reach, std::uint64_t key)
+  {
+    FacesNear(x, reach + MaxReach, [&](int f) {
+      auto it = AcceptedInFace.find(f);
+      if (it == AcceptedInFace.end())
       {
         return;
       }
       for (std::uint64_t k : it->second)
       {
-        const Record& X = Accepted[acceptedByKey.at(k)];
-        if (k > key && Norm(X.Shape.Position - x) <= reachOf + PoolReach(X.Shape.ClassId, X.Shape.Scale))
+        const Record& X = I.Accepted[AcceptedByKey.at(k)];
+        if (k > key && Norm(X.Shape.Position - x) <= reach + I.PoolReach(X.Shape.ClassId, X.Shape.Scale))
         {
-          heap.push({ k, -1, f, 0 });
+          Heap.push({ k, -1, f, 0 });
         }
       }
     });
-  };
-  std::vector<char> removed(Accepted.size(), 0);
-  for (int id = 0; id < static_cast<int>(Accepted.size()); ++id)
+  }
+
+  /// The accepted shapes of the changed faces leave (their candidates are new); the changed
+  /// faces' candidates are marked at every level.
+  void Start()
   {
-    const Record& r = Accepted[id];
-    if (!changed[r.Shape.Centre.Face])
+    Alive.resize(I.NumberOfClasses);
+    Removed.assign(I.Accepted.size(), 0);
+    for (int id = 0; id < static_cast<int>(I.Accepted.size()); ++id)
     {
-      acceptedByKey.emplace(r.Key, id);
-      acceptedInFace[r.Shape.Centre.Face].push_back(r.Key);
+      const Record& r = I.Accepted[id];
+      if (!Changed[r.Shape.Centre.Face])
+      {
+        AcceptedByKey.emplace(r.Key, id);
+        AcceptedInFace[r.Shape.Centre.Face].push_back(r.Key);
+      }
+    }
+    for (int id = 0; id < static_cast<int>(I.Accepted.size()); ++id)
+    {
+      if (Changed[I.Accepted[id].Shape.Centre.Face])
+      {
+        const Record r = I.RemoveAccepted(id);
+        Removed[id] = 1;
+        ReachRejected(r.Shape.Position, I.PoolReach(r.Shape.ClassId, r.Shape.Scale), r.Key);
+      }
+    }
+    for (int f : ChangedFaces)
+    {
+      for (int level = 0; level < I.Options.PoolLevels; ++level)
+      {
+        AddMark(f, level, nullptr);
+      }
     }
   }
-  // Those of the changed faces leave (their candidates are new).
-  for (int id = 0; id < static_cast<int>(Accepted.size()); ++id)
+
+  /// Takes an accepted shape out, for its decision again.
+  Record TakeAccepted(int id)
   {
-    if (changed[Accepted[id].Shape.Centre.Face])
-    {
-      const Record r = RemoveAccepted(id);
-      removed[id] = 1;
-      reachRejected(r.Shape.Position, PoolReach(r.Shape.ClassId, r.Shape.Scale), r.Key);
-    }
+    Record r = I.RemoveAccepted(id);
+    Removed[id] = 1;
+    AcceptedByKey.erase(r.Key);
+    std::vector<std::uint64_t>& keys = AcceptedInFace[r.Shape.Centre.Face];
+    keys.erase(std::remove(keys.begin(), keys.end(), r.Key), keys.end());
+    r.Reason = Record::Rejection::None;
+    r.Rejected = false;
+    return r;
   }
-  for (int f : changedFaces)
+
+  /// Decides the next candidate (or mark) in key order, and what its change of fate reaches.
+  void DecideNext()
   {
-    for (int level = 0; level < Options.PoolLevels; ++level)
-    {
-      mark(f, level, nullptr);
-    }
-  }
-  // Key order: each candidate sees the final fates of every smaller key.
-  KillOnCommit = false;
-  DecisionScratch scratch;
-  long long polled = 0;
-  while (!heap.empty())
-  {
-    const Reached next = heap.top();
-    heap.pop();
+    const Reached next = Heap.top();
+    Heap.pop();
     if (next.Index < 0)
     {
-      // (A level's start: the kills final now decide.)
-      const Mark& m = marks.at(static_cast<std::uint64_t>(next.Face) * 64 + static_cast<std::uint64_t>(next.Level));
-      push(next.Face, next.Level, next.Key - 1, m.All, m.Sources);
-      continue;
+      // (A level's start: the kills final now decide which candidates are drawn.)
+      const Mark& m = Marks.at(static_cast<std::uint64_t>(next.Face) * 64 + static_cast<std::uint64_t>(next.Level));
+      Push(next.Face, next.Level, next.Key - 1, m.All, m.Sources);
+      return;
     }
-    if (!decided.insert(next.Key).second)
+    if (!Decided.insert(next.Key).second)
     {
-      continue;
-    }
-    if ((++polled & 63) == 0 && Poll())
-    {
-      KillOnCommit = true;
-      return false;
+      return;
     }
     Record r;
-    const auto was = acceptedByKey.find(next.Key);
-    const bool wasAccepted = was != acceptedByKey.end();
+    const auto was = AcceptedByKey.find(next.Key);
+    const bool wasAccepted = was != AcceptedByKey.end();
     bool killed = false;
     if (wasAccepted)
     {
-      const int id = was->second;
-      r = RemoveAccepted(id);
-      removed[id] = 1;
-      forget(r);
-      r.Reason = Record::Rejection::None;
-      r.Rejected = false;
-      killed = KilledBefore(r.Shape.ClassId, r.Shape.Centre.Face, r.Key);
+      r = TakeAccepted(was->second);
+      killed = I.KilledBefore(r.Shape.ClassId, r.Shape.Centre.Face, r.Key);
     }
     else
     {
       PoolCandidate p;
-      DrawPoolCandidate(next.Level, next.Face, next.Index, p);
-      killed = KilledBefore(p.Class, p.Face, p.Key);
+      I.DrawPoolCandidate(next.Level, next.Face, next.Index, p);
+      killed = I.KilledBefore(p.Class, p.Face, p.Key);
       if (!killed)
       {
-        MakePoolRecord(p, false, r, scratch.Conflicts);
+        I.MakePoolRecord(p, false, r, Scratch.Conflicts);
       }
     }
-    const bool fits = !killed && r.Valid && Decide(r, 0, true, false, scratch);
-    if (fits == wasAccepted && !fits)
+    const bool fits = !killed && r.Valid && I.Decide(r, 0, true, false, Scratch);
+    if (!fits && !wasAccepted)
     {
-      continue; // (rejected as before)
+      return; // (rejected as before)
     }
     const Vec3 x = r.Shape.Position;
-    const double reachOf = PoolReach(r.Shape.ClassId, r.Shape.Scale);
-    const std::uint64_t key = next.Key;
+    const double reach = I.PoolReach(r.Shape.ClassId, r.Shape.Scale);
     if (fits)
     {
-      acceptedByKey.emplace(key, static_cast<int>(Accepted.size()));
-      acceptedInFace[r.Shape.Centre.Face].push_back(key);
-      removed.push_back(0);
-      Commit(std::move(r));
+      AcceptedByKey.emplace(next.Key, static_cast<int>(I.Accepted.size()));
+      AcceptedInFace[r.Shape.Centre.Face].push_back(next.Key);
+      Removed.push_back(0);
+      I.Commit(std::move(r));
     }
     if (fits && !wasAccepted)
     {
-      reachAccepted(x, reachOf, key);
+      ReachAccepted(x, reach, next.Key);
     }
     else if (!fits && wasAccepted)
     {
-      reachRejected(x, reachOf, key);
+      ReachRejected(x, reach, next.Key);
     }
   }
-  KillOnCommit = true;
-  // The accepted shapes without the empty slots, in key order.
-  std::vector<int> newId(Accepted.size(), -1);
-  std::vector<Record> kept;
-  for (std::size_t id = 0; id < Accepted.size(); ++id)
+
+  /// The accepted shapes without the empty slots, in key order.
+  void Finish()
   {
-    if (!removed[id])
+    std::vector<int> newId(I.Accepted.size(), -1);
+    std::vector<Record> kept;
+    for (std::size_t id = 0; id < I.Accepted.size(); ++id)
     {
-      newId[id] = static_cast<int>(kept.size());
-      kept.push_back(std::move(Accepted[id]));
-    }
-  }
-  Accepted.swap(kept);
-  for (auto* index : { &CoverIndex, &CentreIndex })
-  {
-    for (std::vector<int>& ids : *index)
-    {
-      for (int& id : ids)
+      if (!Removed[id])
       {
-        id = newId[id];
+        newId[id] = static_cast<int>(kept.size());
+        kept.push_back(std::move(I.Accepted[id]));
       }
     }
+    I.Accepted.swap(kept);
+    for (auto* index : { &I.CoverIndex, &I.CentreIndex })
+    {
+      for (std::vector<int>& ids : *index)
+      {
+        for (int& id : ids)
+        {
+          id = newId[id];
+        }
+      }
+    }
+    I.SortAcceptedByKey();
   }
-  SortAcceptedByKey();
+};
+
+bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDensity,
+  const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
+{
+  Polling.reset(new PhasePoll(progress));
+  Reported = 0.0;
+  const auto start = std::chrono::steady_clock::now();
+  PoolEdit edit(*this);
+  edit.FindChangedFaces(oldDensity);
+  edit.BuildGrid();
+  edit.Start();
+  // Key order: each candidate sees the final fates of every smaller key.
+  KillOnCommit = false;
+  for (long long k = 1; !edit.Heap.empty(); ++k)
+  {
+    if ((k & 63) == 0 && Poll())
+    {
+      KillOnCommit = true;
+      return false;
+    }
+    edit.DecideNext();
+  }
+  KillOnCommit = true;
+  edit.Finish();
   stats.Incremental = true;
   stats.Maximal = true;
-  stats.Redecided = static_cast<long long>(decided.size());
+  stats.Redecided = static_cast<long long>(edit.Decided.size());
   stats.Candidates = stats.Redecided;
-  stats.Charts = scratch.Charts;
-  stats.ChartCpuSeconds = scratch.ChartSeconds;
+  stats.Charts = edit.Scratch.Charts;
+  stats.ChartCpuSeconds = edit.Scratch.ChartSeconds;
   stats.CheckSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }

@@ -554,6 +554,7 @@ struct ShapeDistributor::Impl
   /// CollectKills): a candidate there is certainly rejected, as a fresh run's masks skip it.
   bool KilledBefore(int cls, int f, std::uint64_t key) const;
   double KillsMaxFaceDensity = 0.0; // the MaxFaceDensity the kept Kills were collected at
+  struct PoolEdit; // (PoolEdits.cpp)
   /// Takes an accepted shape out of the indexes (its slot left empty) and returns it.
   Record RemoveAccepted(int id);
 
