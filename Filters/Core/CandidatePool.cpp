@@ -11,7 +11,6 @@
 #include "ShapeDistributorImpl.h"
 
 #include <chrono>
-#include <climits>
 #include <cmath>
 
 namespace gs
@@ -121,8 +120,7 @@ void ShapeDistributor::Impl::MakePoolRecord(
   // As Generate: a class that certainly cannot fit in this face, or (long classes) at this
   // centre, needs no shape.
   const bool covered = (masks && (Dead[p.Face] || DeadForClass(p.Class, p.Face))) ||
-    (Tables.Classes[p.Class].Parts.size() > 1 &&
-      CentreCovered(centre, p.Class, DensityAt(centre), p.Key, scratch));
+    CentreCovered(centre, p.Class, DensityAt(centre), p.Key, scratch);
   r.Valid = !covered && MakeShape(centre, p.Class, rng, r.Shape, nullptr, &scratch, p.Key);
   r.Reason = r.Valid ? Record::Rejection::None
     : covered        ? Record::Rejection::Tables
@@ -167,16 +165,107 @@ std::vector<ShapeDistributor::Impl::PoolCandidate> ShapeDistributor::Impl::LiveP
   return all;
 }
 
+void ShapeDistributor::Impl::PrepareAlone(Record& r, int thread, DecisionScratch& s) const
+{
+  // As Decide and DrawnConflict would, in their order (the same results: each is a function
+  // of the record alone).
+  if (!r.Shape.Curve.empty() && Unfaithful(r))
+  {
+    r.Rejected = true;
+    r.Reason = Record::Rejection::Faithful;
+    return;
+  }
+  const auto chartStart = std::chrono::steady_clock::now();
+  ComputeCharts(r, *Engines[thread]);
+  s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
+  ++s.Charts;
+  if (CircleMode || !Options.DrawnCheck)
+  {
+    return;
+  }
+  DrawOutline(r);
+  if (r.Shape.Curve.empty() && !r.Charts.empty() && !r.Charts[0].Entries.empty())
+  {
+    PrepareExactMap(r);
+  }
+}
+
+bool ShapeDistributor::Impl::DecidePoolSurvivors(
+  std::vector<Record>& survivors, int threads, ShapeDistributionStatistics& stats, bool& full)
+{
+  std::vector<DecisionScratch> perThread(threads);
+  ParallelFor(static_cast<int>(survivors.size()), threads, 1, [&](int i, int thread) {
+    if (!Poll())
+    {
+      PrepareAlone(survivors[i], thread, perThread[thread]);
+    }
+  });
+  if (Poll())
+  {
+    return false;
+  }
+  DecisionScratch& scratch = perThread[0];
+  for (Record& r : survivors)
+  {
+    if (full || (!r.Rejected && !Decide(r, 0, true, false, scratch)))
+    {
+      CountRejection(r, stats);
+      continue;
+    }
+    if (!r.Rejected)
+    {
+      Commit(std::move(r));
+      full = Options.MaximumShapes > 0 && static_cast<int>(Accepted.size()) >= Options.MaximumShapes;
+      continue;
+    }
+    CountRejection(r, stats);
+  }
+  for (const DecisionScratch& t : perThread)
+  {
+    stats.Charts += t.Charts;
+    stats.ChartCpuSeconds += t.ChartSeconds;
+  }
+  survivors.clear();
+  return true;
+}
+
+void ShapeDistributor::Impl::CountRejection(const Record& r, ShapeDistributionStatistics& stats)
+{
+  switch (r.Reason)
+  {
+    case Record::Rejection::WithoutShape:
+      ++stats.RejectedWithoutShape;
+      break;
+    case Record::Rejection::Tables:
+      ++stats.RejectedByTables;
+      break;
+    case Record::Rejection::Faithful:
+      ++stats.RejectedByFaithfulCheck;
+      break;
+    case Record::Rejection::Drawn:
+      ++stats.RejectedByDrawnCheck;
+      break;
+    case Record::Rejection::None:
+    default:
+      break;
+  }
+}
+
 bool ShapeDistributor::Impl::RunPool(
   int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
 {
+  // Strictly in key order: each level's candidates in chunks, checked in parallel against the
+  // shapes accepted so far (all of smaller key: a rejection then is final); the survivors get
+  // what needs the record alone (charts, outline, exact map, faithfulness) in parallel, a few
+  // per thread at a time, and are decided one by one in key order against every shape of
+  // smaller key. No neighbourhood bound is assumed between candidates decided in parallel.
   Polling.reset(new PhasePoll(progress));
   Reported = 0.0;
-  RunState run;
-  run.FailuresToStop = LLONG_MAX; // (the pool's end is the run's)
   const int levels = Options.PoolLevels;
-  int batches = 0;
-  for (int level = 0; level < levels && !run.Stop; ++level)
+  const int survivorsPerStep = 4 * threads;
+  bool full = false;
+  std::vector<Record> survivors;
+  for (int level = 0; level < levels && !full; ++level)
   {
     auto clock = std::chrono::steady_clock::now();
     auto lap = [&clock](double& into) {
@@ -187,42 +276,67 @@ bool ShapeDistributor::Impl::RunPool(
     const std::vector<PoolCandidate> pool = LivePoolLevel(level, threads);
     lap(stats.GenerateSeconds);
     const int n = static_cast<int>(pool.size());
-    for (int start = 0; start < n && !run.Stop;)
+    constexpr int Chunk = 256;
+    for (int start = 0; start < n && !full; start += Chunk)
     {
-      const int size = std::min(n - start, 256 << std::min(batches, 4));
-      ++batches;
-      std::vector<Record> batch(size);
-      ParallelForEachThread<std::vector<int>>(size, threads, 64, [&](int i, std::vector<int>& scratch) {
+      const int size = std::min(n - start, Chunk);
+      std::vector<Record> chunk(size);
+      ParallelForEachThread<std::vector<int>>(size, threads, 16, [&](int i, std::vector<int>& scratch) {
+        Record& r = chunk[i];
         if (Poll())
         {
-          batch[i].Valid = false; // (aborted: the round is dropped)
           return;
         }
-        MakePoolRecord(pool[start + i], true, batch[i], scratch);
+        MakePoolRecord(pool[start + i], true, r, scratch);
+        r.Rejected = !r.Valid || CheapConflict(r, scratch);
+        if (r.Valid && r.Rejected)
+        {
+          r.Reason = Record::Rejection::Tables;
+        }
       });
       lap(stats.GenerateSeconds);
-      if (Poll() || !DecideRound(batch, false, false, threads, run, stats))
+      if (Poll())
       {
         return false;
       }
-      clock = std::chrono::steady_clock::now();
-      start += size;
-      stats.Rounds = batches;
-      double fraction = (level + static_cast<double>(start) / n) / levels;
+      stats.Candidates += size;
+      for (Record& r : chunk)
+      {
+        if (r.Rejected)
+        {
+          CountRejection(r, stats);
+          continue;
+        }
+        survivors.push_back(std::move(r));
+        if (static_cast<int>(survivors.size()) >= survivorsPerStep &&
+          !DecidePoolSurvivors(survivors, threads, stats, full))
+        {
+          return false;
+        }
+      }
+      if ((start / Chunk) % 16 == 15 && !DecidePoolSurvivors(survivors, threads, stats, full))
+      {
+        return false; // (the rest of a long level: candidates checked against fresher shapes)
+      }
+      lap(stats.CheckSeconds);
+      ++stats.Rounds;
+      double fraction = (level + static_cast<double>(start + size) / n) / levels;
       if (Options.MaximumShapes > 0)
       {
         fraction = std::max(fraction, static_cast<double>(Accepted.size()) / Options.MaximumShapes);
       }
-      run.Reported = std::max(run.Reported, std::min(0.99, fraction));
-      Reported = run.Reported;
-      if (!Polling->Report(run.Reported))
+      Reported = std::max(Reported, std::min(0.99, fraction));
+      if (!Polling->Report(Reported))
       {
         return false;
       }
     }
+    if (!DecidePoolSurvivors(survivors, threads, stats, full))
+    {
+      return false;
+    }
   }
-  stats.ConsecutiveFailures = run.Consecutive;
-  stats.Maximal = !run.Stop; // (every level decided: maximal for the pool)
+  stats.Maximal = !full; // (every level decided: maximal for the pool)
   stats.Redecided = stats.Candidates;
   SortAcceptedByKey();
   return true;

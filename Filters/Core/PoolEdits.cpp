@@ -88,6 +88,62 @@ double ShapeDistributor::Impl::PoolReach(int cls, double scale) const
     (1.0 + Options.SafetyMargin);
 }
 
+void ShapeDistributor::Impl::StashDecals()
+{
+  DecalStash.clear();
+  for (const Record& r : Accepted)
+  {
+    if (r.Decal)
+    {
+      DecalStash[r.Key] = { r.Shape, r.Decal, r.DecalTolerance };
+    }
+  }
+}
+
+namespace
+{
+bool SamePlacement(const PlacedShape& a, const PlacedShape& b)
+{
+  auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof(x)) == 0; };
+  if (a.ClassId != b.ClassId || !same(a.Scale, b.Scale) || !same(a.Position, b.Position) ||
+    !same(a.Direction, b.Direction) || a.Parts.size() != b.Parts.size() ||
+    a.Curve.size() != b.Curve.size() || !same(a.CurveCentre, b.CurveCentre))
+  {
+    return false;
+  }
+  for (std::size_t k = 0; k < a.Parts.size(); ++k)
+  {
+    if (!same(a.Parts[k].Position, b.Parts[k].Position) || !same(a.Parts[k].Axis, b.Parts[k].Axis))
+    {
+      return false;
+    }
+  }
+  for (std::size_t k = 0; k < a.Curve.size(); ++k)
+  {
+    if (a.Curve[k].Face != b.Curve[k].Face || !same(a.Curve[k].A, b.Curve[k].A) ||
+      !same(a.Curve[k].B, b.Curve[k].B))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+void ShapeDistributor::Impl::TakeStashedDecals()
+{
+  for (Record& r : Accepted)
+  {
+    auto it = DecalStash.find(r.Key);
+    if (!r.Decal && it != DecalStash.end() && SamePlacement(it->second.Shape, r.Shape))
+    {
+      r.Decal = it->second.Decal;
+      r.DecalTolerance = it->second.Tolerance;
+    }
+  }
+  DecalStash.clear();
+}
+
 bool ShapeDistributor::Impl::KilledBefore(int cls, int f, std::uint64_t key) const
 {
   // (A killed face's corners are in the killer's chart, so in CoverIndex.)

@@ -252,9 +252,8 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
   // Parts closer in space than the sum of their circumradii (the geodesic distance is never
   // shorter), found on a grid of cells as large as the largest such sum.
   std::vector<std::vector<int>> above(batch.size());
-  const double slack = PoolRun ? PoolNeighbourSlack : 1.0;
   const double cell =
-    2.0 * RMax * Options.ShapeSize * MaxFaceDensity * (1.0 + Options.SafetyMargin) * slack;
+    2.0 * RMax * Options.ShapeSize * MaxFaceDensity * (1.0 + Options.SafetyMargin);
   auto key = [cell](const Vec3& x) {
     return std::array<long long, 3>{ static_cast<long long>(std::floor(x.x / cell)),
       static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
@@ -290,7 +289,7 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
               for (const PlacedPart& op : o.Shape.Parts)
               {
                 if (Norm(op.Position - p.Position) <=
-                  (PartRadius(p.Part) + PartRadius(op.Part)) * unit * slack * (1.0 + 1e-9))
+                  (PartRadius(p.Part) + PartRadius(op.Part)) * unit * (1.0 + 1e-9))
                 {
                   list.push_back(it->second);
                   break;

@@ -254,8 +254,18 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
   // A PlaceKeyed run after one with the same inputs but the density re-decides the edit only.
   const bool pool = options.Order == CandidateOrder::PlaceKeyed && options.Mode != DistributionMode::Greedy;
   const std::uint64_t fingerprint = pool ? Impl::PoolFingerprint(tables, faceDirections, options) : 0;
-  bool incremental =
-    pool && options.MaximumShapes == 0 && I.CanRunIncrementally(fingerprint, vertexDensity);
+  bool incremental = pool && options.MaximumShapes == 0 && options.ReuseLastRun &&
+    I.CanRunIncrementally(fingerprint, vertexDensity);
+  // (A fresh place-keyed run after one with the same inputs but the density: the shapes both
+  // place are the same, bit for bit, and keep their decals.)
+  if (pool && !incremental && I.LastPool.Valid && I.LastPool.Fingerprint == fingerprint)
+  {
+    I.StashDecals();
+  }
+  else
+  {
+    I.DecalStash.clear(); // (drawn for other tables, sizes or fields)
+  }
   Impl::LastPoolRun last = std::move(I.LastPool);
   I.LastPool = Impl::LastPoolRun();
   std::vector<Impl::Record> accepted;
@@ -298,6 +308,7 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
   }
   if (pool)
   {
+    I.TakeStashedDecals();
     I.KillsMaxFaceDensity = I.MaxFaceDensity;
     I.LastPool.Valid = true;
     I.LastPool.Fingerprint = fingerprint;

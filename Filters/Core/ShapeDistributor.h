@@ -160,7 +160,11 @@ struct ShapeDistributionOptions
   /// PlaceKeyed: the levels of the candidate pool; level l holds 2^l candidates per class
   /// circumscribed disc (at the local density), its candidates drawn only on faces where a
   /// shape may still fit when the level starts.
-  int PoolLevels = 10;
+  int PoolLevels = 8;
+  /// PlaceKeyed: a run after a change of the density only re-decides what the change reaches
+  /// (the previous run's state); false: a fresh run (the same result; for comparisons). Either
+  /// way the shapes a run shares with the previous one keep their decals.
+  bool ReuseLastRun = true;
 };
 
 /// One part of a placed shape (a short shape has one).

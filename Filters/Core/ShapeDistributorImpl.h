@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <unordered_map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -515,18 +516,25 @@ struct ShapeDistributor::Impl
   /// A pool candidate's record (its shape; invalid, with the reason, when none can be laid or,
   /// with `masks`, its face is dead for its class).
   void MakePoolRecord(const PoolCandidate& p, bool masks, Record& r, std::vector<int>& scratch) const;
+  /// What a candidate's decision needs of itself alone, in Decide's order: a long shape's
+  /// faithfulness (Rejected when it fails), its charts, outline and exact log map.
+  void PrepareAlone(Record& r, int thread, DecisionScratch& s) const;
+  /// The survivors of the cheap checks (in key order) prepared in parallel, then decided one by
+  /// one; `full` once MaximumShapes are placed. False when aborted.
+  bool DecidePoolSurvivors(std::vector<Record>& survivors, int threads, ShapeDistributionStatistics& stats,
+    bool& full);
+  static void CountRejection(const Record& r, ShapeDistributionStatistics& stats);
   /// A fresh PlaceKeyed run: the levels in order; false when aborted.
   bool RunPool(int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats);
   /// Accepted (and Placed, and the indexes' ids) in key order: the order of a greedy run,
   /// whatever waves and rounds decided it in.
   void SortAcceptedByKey();
 
-  // Greedy in key order needs every higher-priority candidate that may conflict with a
-  // candidate decided before it. Two shapes conflict only closer than the sum of their radii,
-  // plus the holonomy margin's turn (ConflictInCharts), which the slack allows for up to half
-  // that sum: neighbours in a round (HigherPriorityNeighbours) and an edit's reach (PoolReach).
+  // An edit re-decides the candidates within reach of a shape whose fate changed. Two shapes
+  // conflict only closer than the sum of their radii, plus the holonomy margin's turn
+  // (ConflictInCharts), which the slack allows for up to half that sum (PoolReach).
   static constexpr double PoolNeighbourSlack = 1.5;
-  bool PoolRun = false;      // this run decides a pool (HigherPriorityNeighbours' slack)
+  bool PoolRun = false;      // this run decides a pool (kills and decals kept)
   bool KillOnCommit = true;  // Commit kills faces (not in an incremental run: no masks)
   /// What the last PlaceKeyed run was given, but the density (a hash), and its density.
   struct LastPoolRun
@@ -555,6 +563,17 @@ struct ShapeDistributor::Impl
   bool KilledBefore(int cls, int f, std::uint64_t key) const;
   double KillsMaxFaceDensity = 0.0; // the MaxFaceDensity the kept Kills were collected at
   struct PoolEdit; // (PoolEdits.cpp)
+  /// The decals of the last run's shapes by key, with the shapes they were drawn for.
+  struct StashedDecal
+  {
+    PlacedShape Shape;
+    std::shared_ptr<const ShapeDecal> Decal;
+    double Tolerance = 0.0;
+  };
+  std::unordered_map<std::uint64_t, StashedDecal> DecalStash;
+  void StashDecals();
+  /// The stashed decals to the accepted shapes placed the same, bit for bit; the stash cleared.
+  void TakeStashedDecals();
   /// Takes an accepted shape out of the indexes (its slot left empty) and returns it.
   Record RemoveAccepted(int id);
 
