@@ -3,9 +3,8 @@
 //
 // Level l of the pool is a Poisson process over the faces of intensity 2^l per class-weighted
 // circumscribed disc at the local density (face weight area / f^2); its candidates' keys sort
-// after every key of level l - 1. A fresh run decides the levels in order, each in rounds of
-// its sorted keys (PriorityRounds.cpp's DecideRound): the result is sequential greedy dart
-// throwing in key order. Level l is drawn only on the faces where a shape may still fit when it
+// after every key of level l - 1. A fresh run decides the levels in order, each in key order
+// (RunPool): the result is sequential greedy dart throwing in key order. Level l is drawn only on the faces where a shape may still fit when it
 // starts (the dead-face masks: a candidate there would certainly be rejected), so the doubling
 // intensities are spent on the gaps left, as the rounds' failure count is.
 #include "ShapeDistributorImpl.h"

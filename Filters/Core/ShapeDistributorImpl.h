@@ -12,6 +12,8 @@
 //                          parallel waves
 //   CandidatePool.cpp      place-keyed candidates (CandidateOrder::PlaceKeyed), decided in
 //                          key order
+//   PoolEdits.cpp          a place-keyed run after a density edit: what the edit reaches
+//                          decided again, the rest kept
 //   GreedyProposals.cpp    Greedy mode: candidates around accepted shapes, densest lattices
 //   ShapeMap.cpp           the shape model: class point -> surface point (exponential map,
 //                          curve map), outlines, CurveGrid
