@@ -15,29 +15,18 @@ On the bundled torus (about 2.8 wide, area 15.75) with the bundled star and fish
 
 Usage: pvpython TestBoundedWork.py --plugin <GeodesicShapes.so> --data <Data dir>
 """
-import argparse
 import os
-import sys
 import time
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from vtkmodules.vtkCommonCore import vtkCommand
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--data", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
+
+args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED)
 LoadPlugin(args.plugin, remote=False, ns=globals())
-
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
-
 
 tables = MSDTSource(ShapeFileNames=[os.path.join(args.data, "shapes", name) for name in ("star.png", "fish.png")])
 mesh = PLYReader(FileNames=[os.path.join(args.data, "torus.ply")])
@@ -118,7 +107,4 @@ for size in (1.4, 0.01):
     check(latency is not None and latency < 2.0 and placed == 0,
           "abort at ShapeSize %g: latency %s s, %d shapes" % (size, latency, placed))
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK")
+gs_test.finish()

@@ -11,29 +11,18 @@
 
 Usage: pvpython TestCrossField.py --plugin <GeodesicShapes.so> --data <Data dir>
 """
-import argparse
 import math
 import os
-import sys
 
 import numpy
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from paraview.vtk.util.numpy_support import vtk_to_numpy
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--data", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
-
+args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED)
 
 LoadPlugin(args.plugin, remote=False, ns=globals())
 check("CrossField" in globals(), "the plugin does not define CrossField")
@@ -190,7 +179,4 @@ Render(view)
 Delete(view)
 del view
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("all checks passed")
+gs_test.finish("all checks passed")

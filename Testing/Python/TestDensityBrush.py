@@ -17,26 +17,16 @@ BrushDensity) on the bundled bumpy sphere with the bundled star.
 
 Usage: pvpython TestDensityBrush.py --plugin <GeodesicShapes.so> --data <Data dir>
 """
-import argparse
-import sys
 
 import numpy
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from paraview.vtk.util.numpy_support import vtk_to_numpy
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--data", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
+args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED)
 
 
 def placements(proxy):
@@ -208,7 +198,4 @@ for step, change in enumerate((dict(BrushCenter=moved), dict(BrushRadius=0.8 * r
           "place-keyed edit %d: the same placements and decals as a fresh run" % step)
     Delete(fresh)
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK")
+gs_test.finish()

@@ -10,25 +10,14 @@ must balance its brackets and parentheses (the cause, named with its file and li
 
 Usage: python3 TestHelpPages.py --xml <Filters dir> --help-dir <paraview_help dir>
 """
-import argparse
 import glob
 import os
 import re
-import sys
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--xml", required=True)
-parser.add_argument("--help-dir", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
-
+args = gs_test.arguments(xml=gs_test.REQUIRED, help_dir=gs_test.REQUIRED)
 
 # A repeatable property without a file list (ParaView's value list widget) shows no label of
 # its own: it must sit alone in a labelled PropertyGroup, whose label names it (Class Weights
@@ -79,7 +68,4 @@ for group, name, label in proxies:
     check([t[1] for t in titles] == [name], "%s holds the titles %s, not %s's alone" % (page, titles, name))
     check(len(html) > 1500, "%s is nearly empty (%d bytes)" % (page, len(html)))
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK: %d proxies, each with its own help page" % len(proxies))
+gs_test.finish("OK: %d proxies, each with its own help page" % len(proxies))

@@ -8,10 +8,8 @@ are installed, they are run as well; otherwise that part is skipped with a messa
 Usage: pvpython TestMSDTSource.py --plugin <GeodesicShapes.so> [--temp <writable dir>]
        [--clipart <openclipart png dir>]
 """
-import argparse
 import math
 import os
-import sys
 import tempfile
 
 import numpy
@@ -22,19 +20,10 @@ from paraview.vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--temp", default=None)
-parser.add_argument("--clipart", default="/usr/share/openclipart/png")
-args = parser.parse_args()
+import gs_test
+from gs_test import check
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
+args = gs_test.arguments(plugin=gs_test.REQUIRED, temp=None, clipart="/usr/share/openclipart/png")
 
 
 def write_png(path, inside, rgba):
@@ -249,7 +238,4 @@ else:
 for path in (disk_file, bar_file):
     os.remove(path)
 os.rmdir(temp)
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("all checks passed")
+gs_test.finish("all checks passed")

@@ -8,9 +8,7 @@
 
 Usage: python3 TestPythonPackage.py --data <Data folder>  (PYTHONPATH: the package's folder)
 """
-import argparse
 import math
-import sys
 import warnings
 
 import numpy
@@ -20,18 +18,10 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
 from vtkmodules.vtkIOPLY import vtkPLYReader
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--data", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
-
+args = gs_test.arguments(data=gs_test.REQUIRED)
 
 # Messages of filters run through the functions must not reach the output window.
 messages = vtkStringOutputWindow()
@@ -278,7 +268,4 @@ with tempfile.TemporaryDirectory() as folder:
           "cache_file: %r" % sorted(os.listdir(folder)))
 check(messages.GetOutput() == "", "messages reached the output window: %r" % messages.GetOutput()[:300])
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK")
+gs_test.finish()

@@ -11,10 +11,8 @@
 
 Usage: pvpython TestShapeDistributor.py --plugin <GeodesicShapes.so> --data <Data dir> --temp <dir>
 """
-import argparse
 import math
 import os
-import sys
 import tempfile
 
 import numpy
@@ -24,19 +22,10 @@ from paraview.vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--data", required=True)
-parser.add_argument("--temp", default=None)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
+args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED, temp=None)
 
 
 def write_png(path, inside):
@@ -284,7 +273,4 @@ image = os.path.join(temp, "shapes.png")
 SaveScreenshot(image, view)
 check(os.path.exists(image), "no screenshot")
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK")
+gs_test.finish()

@@ -9,27 +9,16 @@ must give a clear error and no shapes.
 
 Usage: pvpython TestTutorialDefaults.py --plugin <GeodesicShapes.so> --data <Data dir>
 """
-import argparse
 import os
-import sys
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--data", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
+
+args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED)
 LoadPlugin(args.plugin, remote=False, ns=globals())
-
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
-
 
 mesh = PLYReader(FileNames=[os.path.join(args.data, "bumpy_sphere.ply")])
 field = CrossField(Input=mesh)
@@ -99,7 +88,4 @@ bare.UpdatePipeline()
 check(bare.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() == 0,
       "a mesh without directions gave shapes")
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK")
+gs_test.finish()
