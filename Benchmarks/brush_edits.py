@@ -5,7 +5,8 @@ armadillo (libcgal-demo, 52K faces) by default, the bundled star, ShapeSize 1.2%
 bounding-box diagonal (about 900-1,000 stars), a cross field, 2 threads, the graph cached (the
 first run builds it). For each edit: the wall time of the Apply, the filter's phase split (field
 data PhaseSeconds), the shapes placed, the candidates decided (CandidatesRedecided) and whether
-the run re-decided the edit only (IncrementalRun).
+the run re-decided the edit only (IncrementalRun; an edit of a larger share of the pool than
+MaximumEditShare, EditShare, runs fresh).
 
 Usage: pvpython Benchmarks/brush_edits.py [--plugin GeodesicShapes.so] [--mesh mesh.off]
            [--size 0.012] [--brush 0.1]
@@ -77,9 +78,9 @@ def report(label, proxy, seconds):
     split = " ".join("%s %.2f" % (phases.GetComponentName(i), phases.GetComponent(0, i))
                      for i in range(phases.GetNumberOfComponents())
                      if phases.GetComponent(0, i) >= 0.005)
-    print("  %-16s %5.2f s  %4d shapes  decided %7d  incremental %d  | %s" % (
+    print("  %-16s %5.2f s  %4d shapes  decided %7d  incremental %d (edit share %.2f)  | %s" % (
         label, seconds, data.GetNumberOfPoints(), fd.GetArray("CandidatesRedecided").GetValue(0),
-        fd.GetArray("IncrementalRun").GetValue(0), split))
+        fd.GetArray("IncrementalRun").GetValue(0), fd.GetArray("EditShare").GetValue(0), split))
 
 
 for order in ("Rounds", "Place-keyed (edits re-place what they reach)"):

@@ -208,6 +208,7 @@ void WritePlacements(const gs::ShapeDistribution& result, vtkIdType firstPolygon
   // (Place-keyed: the candidates decided in this run, and whether it reused the last one.)
   single("CandidatesRedecided", static_cast<double>(result.Statistics.Redecided));
   single("IncrementalRun", result.Statistics.Incremental ? 1.0 : 0.0);
+  single("EditShare", result.Statistics.EditShare);
   single("Seconds", result.Statistics.Seconds);
   single("ShapeSizeUsed", shapeSize);
   vtkNew<vtkStringArray> used;

@@ -55,6 +55,20 @@ void ShapeDistributor::Impl::PreparePool()
     discs += w * Pi * r * r;
   }
   PoolFootprint = weights > 0.0 && discs > 0.0 ? discs / weights : 1.0;
+  // (PoolReach's terms per class, in units of ShapeSize times the density factor.)
+  PoolClassOffset.assign(NumberOfClasses, 0.0);
+  PoolClassChart.assign(NumberOfClasses, 0.0);
+  for (int c = 0; c < NumberOfClasses; ++c)
+  {
+    const SafeDistanceClass& k = Tables.Classes[c];
+    double part = CircleMode || k.Parts.empty() ? k.Radius : 0.0;
+    for (int p : k.Parts)
+    {
+      part = std::max(part, CircleMode ? k.Radius : Tables.Parts[p].Radius);
+    }
+    PoolClassOffset[c] = k.Parts.size() > 1 ? std::sqrt(2.0) * k.Radius : 0.0;
+    PoolClassChart[c] = part + RMax;
+  }
 }
 
 double ShapeDistributor::Impl::PoolMean(int level, int f) const

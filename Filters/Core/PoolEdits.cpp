@@ -81,11 +81,44 @@ bool ShapeDistributor::Impl::CanRunIncrementally(
     LastPool.Density.size() == vertexDensity.size() && !vertexDensity.empty();
 }
 
-double ShapeDistributor::Impl::PoolReach(int cls, double scale) const
+double ShapeDistributor::Impl::PoolReach(int clsA, double scaleA, int clsB, double scaleB) const
 {
-  const double drawn = Tables.Classes[cls].Parts.size() > 1 ? std::sqrt(2.0) : 1.0;
-  return PoolNeighbourSlack * drawn * Tables.Classes[cls].Radius * Options.ShapeSize * scale *
-    (1.0 + Options.SafetyMargin);
+  // Two shapes conflict (a) by the tables only where a part centre of one lies in a face with a
+  // corner in a chart of the other (how CheapConflict and FullConflict find them), the chart of
+  // radius at most ChartRadius (ConflictInCharts cuts the tables at the sum of the part radii,
+  // before the holonomy turn), so the part centres are within ChartRadius and a longest edge in
+  // space; (b) by their drawn outlines only when their centres are closer than the sum of their
+  // circumradii (DrawnConflict). A part centre lies within sqrt 2 class radii of its sample (a
+  // long shape is drawn along paths |along| + |across|). Positions in space: the geodesic
+  // distance never undercuts them.
+  const double size = Options.ShapeSize * (1.0 + Options.SafetyMargin);
+  const double offsetA = PoolClassOffset[clsA] * scaleA, offsetB = PoolClassOffset[clsB] * scaleB;
+  const double chartA = PoolClassChart[clsA] * scaleA, chartB = PoolClassChart[clsB] * scaleB;
+  const double tables = (offsetA + offsetB + std::max(chartA, chartB)) * size + ChartMargin;
+  const double drawn = (Tables.Classes[clsA].Radius * scaleA + Tables.Classes[clsB].Radius * scaleB) * size;
+  return std::max(tables, drawn) + MaxEdge;
+}
+
+double ShapeDistributor::Impl::EditShare(const std::vector<double>& oldDensity) const
+{
+  double changed = 0.0, total = 0.0;
+  for (int f = 0; f < Mesh.NumberOfFaces(); ++f)
+  {
+    total += FaceWeight[f];
+    double fm = 0.0;
+    bool same = true, ok = true;
+    for (int v : Mesh.Face(f))
+    {
+      same = same && std::memcmp(&oldDensity[v], &Density[v], sizeof(double)) == 0;
+      ok = ok && oldDensity[v] > 0.0 && std::isfinite(oldDensity[v]);
+      fm += oldDensity[v] / 3.0;
+    }
+    if (!same)
+    {
+      changed += std::max(FaceWeight[f], ok ? Mesh.FaceArea(f) / (fm * fm) : 0.0);
+    }
+  }
+  return total > 0.0 ? changed / total : 1.0;
 }
 
 void ShapeDistributor::Impl::StashDecals()
@@ -218,14 +251,15 @@ struct ShapeDistributor::Impl::PoolEdit
   std::vector<char> Changed;
   std::vector<int> ChangedFaces;
   // The faces by cells of space (their centroids), for the reach of a shape.
-  double MaxReach = 0.0, CellSize = 1.0;
+  double MaxScale = 1.0, CellSize = 1.0;
+  int Widest = 0; // the class of the largest circumradius
   std::vector<std::pair<Cell, int>> Grid;
   // Every level's candidates of a face, with their positions and reaches (drawn once).
   struct Drawn
   {
     PoolCandidate P;
     Vec3 X;
-    double Reach;
+    double Scale;
   };
   std::unordered_map<int, std::vector<Drawn>> DrawnFaces;
   // What is left to decide (key order), and what is decided.
@@ -240,7 +274,8 @@ struct ShapeDistributor::Impl::PoolEdit
   struct Source
   {
     Vec3 X;
-    double Reach;
+    int Class;
+    double Scale;
   };
   struct Mark
   {
@@ -282,18 +317,16 @@ struct ShapeDistributor::Impl::PoolEdit
 
   void BuildGrid()
   {
-    double maxScale = I.MaxFaceDensity;
+    MaxScale = I.MaxFaceDensity;
     for (const Record& r : I.Accepted)
     {
-      maxScale = std::max(maxScale, r.Shape.Scale);
+      MaxScale = std::max(MaxScale, r.Shape.Scale);
     }
-    int widest = 0;
     for (int c = 0; c < I.NumberOfClasses; ++c)
     {
-      widest = I.Tables.Classes[c].Radius > I.Tables.Classes[widest].Radius ? c : widest;
+      Widest = I.Tables.Classes[c].Radius > I.Tables.Classes[Widest].Radius ? c : Widest;
     }
-    MaxReach = I.PoolReach(widest, maxScale);
-    CellSize = std::max(2.0 * MaxReach, I.MaxEdge);
+    CellSize = std::max(I.PoolReach(Widest, MaxScale, Widest, MaxScale), I.MaxEdge);
     const TriangleMesh& mesh = I.Mesh;
     Grid.resize(mesh.NumberOfFaces());
     for (int f = 0; f < mesh.NumberOfFaces(); ++f)
@@ -321,7 +354,7 @@ struct ShapeDistributor::Impl::PoolEdit
     for (const PoolCandidate& p : pool)
     {
       const SurfacePoint centre = SurfacePoint::InFace(f, 1.0 - p.A - p.B, p.A, p.B);
-      out.push_back({ p, I.Mesh.Interpolate(f, centre.Bary), I.PoolReach(p.Class, I.DensityAt(centre)) });
+      out.push_back({ p, I.Mesh.Interpolate(f, centre.Bary), I.DensityAt(centre) });
     }
     return DrawnFaces.emplace(f, std::move(out)).first->second;
   }
@@ -385,7 +418,8 @@ struct ShapeDistributor::Impl::PoolEdit
       bool near = all;
       for (std::size_t k = 0; k < sources.size() && !near; ++k)
       {
-        near = Norm(d.X - sources[k].X) <= sources[k].Reach + d.Reach;
+        const Source& o = sources[k];
+        near = Norm(d.X - o.X) <= I.PoolReach(o.Class, o.Scale, d.P.Class, d.Scale);
       }
       if (near)
       {
@@ -394,15 +428,18 @@ struct ShapeDistributor::Impl::PoolEdit
     }
   }
 
-  /// A shape at x (reach: its own, key: its key) left: the larger-key candidates within reach
-  /// that were rejected may fit now (those accepted stay so); those of its level now, those of
-  /// later levels through marks at their levels' starts.
-  void ReachRejected(const Vec3& x, double reach, std::uint64_t key)
+  /// How far a shape of class `cls` at density `scale` may conflict with any other.
+  double Range(int cls, double scale) const { return I.PoolReach(cls, scale, Widest, MaxScale); }
+
+  /// A shape of class `cls` at density `scale` at x (key: its key) left: the larger-key
+  /// candidates within reach (PoolReach) that were rejected may fit now (those accepted stay
+  /// so); those of its level now, those of later levels through marks at their levels' starts.
+  void ReachRejected(const Vec3& x, int cls, double scale, std::uint64_t key)
   {
     const int level = static_cast<int>(key >> 56) - 1;
-    const Source source{ x, reach };
+    const Source source{ x, cls, scale };
     const std::vector<Source> one{ source };
-    FacesNear(x, reach + MaxReach, [&](int f) {
+    FacesNear(x, Range(cls, scale), [&](int f) {
       Push(f, level, key, false, one);
       for (int later = level + 1; later < I.Options.PoolLevels; ++later)
       {
@@ -411,11 +448,11 @@ struct ShapeDistributor::Impl::PoolEdit
     });
   }
 
-  /// A shape at x came: the larger-key accepted shapes within reach may not fit any more (those
+  /// A shape came: the larger-key accepted shapes within reach may not fit any more (those
   /// rejected stay so).
-  void ReachAccepted(const Vec3& x, double reach, std::uint64_t key)
+  void ReachAccepted(const Vec3& x, int cls, double scale, std::uint64_t key)
   {
-    FacesNear(x, reach + MaxReach, [&](int f) {
+    FacesNear(x, Range(cls, scale), [&](int f) {
       auto it = AcceptedInFace.find(f);
       if (it == AcceptedInFace.end())
       {
@@ -424,7 +461,7 @@ struct ShapeDistributor::Impl::PoolEdit
       for (std::uint64_t k : it->second)
       {
         const Record& X = I.Accepted[AcceptedByKey.at(k)];
-        if (k > key && Norm(X.Shape.Position - x) <= reach + I.PoolReach(X.Shape.ClassId, X.Shape.Scale))
+        if (k > key && Norm(X.Shape.Position - x) <= I.PoolReach(cls, scale, X.Shape.ClassId, X.Shape.Scale))
         {
           Heap.push({ k, -1, f, 0 });
         }
@@ -453,7 +490,7 @@ struct ShapeDistributor::Impl::PoolEdit
       {
         const Record r = I.RemoveAccepted(id);
         Removed[id] = 1;
-        ReachRejected(r.Shape.Position, I.PoolReach(r.Shape.ClassId, r.Shape.Scale), r.Key);
+        ReachRejected(r.Shape.Position, r.Shape.ClassId, r.Shape.Scale, r.Key);
       }
     }
     for (int f : ChangedFaces)
@@ -519,7 +556,8 @@ struct ShapeDistributor::Impl::PoolEdit
       return; // (rejected as before)
     }
     const Vec3 x = r.Shape.Position;
-    const double reach = I.PoolReach(r.Shape.ClassId, r.Shape.Scale);
+    const int cls = r.Shape.ClassId;
+    const double scale = r.Shape.Scale;
     if (fits)
     {
       AcceptedByKey.emplace(next.Key, static_cast<int>(I.Accepted.size()));
@@ -529,11 +567,11 @@ struct ShapeDistributor::Impl::PoolEdit
     }
     if (fits && !wasAccepted)
     {
-      ReachAccepted(x, reach, next.Key);
+      ReachAccepted(x, cls, scale, next.Key);
     }
     else if (!fits && wasAccepted)
     {
-      ReachRejected(x, reach, next.Key);
+      ReachRejected(x, cls, scale, next.Key);
     }
   }
 

@@ -62,8 +62,8 @@ Status ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   {
     return density;
   }
-  PreparePool();
   PrepareChartMeasures();
+  PreparePool(); // (after RMax)
   PrepareDeadFaces();
   PrepareLongClasses();
   PrepareClassRegions();
@@ -101,6 +101,8 @@ Status ShapeDistributor::CheckOptionRanges(const ShapeDistributionOptions& optio
     return outside("FaithfulTolerance", options.FaithfulTolerance, "above 0 and at most 1");
   if (options.Order != CandidateOrder::Rounds && options.Order != CandidateOrder::PlaceKeyed)
     return outside("CandidateOrder", static_cast<int>(options.Order), "0 (Rounds) or 1 (PlaceKeyed)");
+  if (!(options.MaximumEditShare >= 0.0) || options.MaximumEditShare > 1.0)
+    return outside("MaximumEditShare", options.MaximumEditShare, "from 0 to 1");
   if (options.PoolLevels < 1 || options.PoolLevels > 16)
     return outside("PoolLevels", options.PoolLevels, "from 1 to 16");
   return Status();
@@ -283,13 +285,25 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
     return prepared;
   }
   I.PoolRun = pool;
-  // (The kept kills assume the largest density factor they were collected at.)
-  incremental = incremental && I.MaxFaceDensity == I.KillsMaxFaceDensity;
   if (incremental)
   {
+    // (The kept kills assume the largest density factor they were collected at. An edit whose
+    // faces hold a large share of the pool runs fresh, in parallel: sooner, the same shapes.)
+    result.Statistics.EditShare = I.EditShare(last.Density);
+    const bool reuse = I.MaxFaceDensity == I.KillsMaxFaceDensity &&
+      result.Statistics.EditShare <= I.Options.MaximumEditShare;
     I.Accepted.swap(accepted);
-    I.CoverIndex.swap(cover);
-    I.CentreIndex.swap(centres);
+    if (reuse)
+    {
+      I.CoverIndex.swap(cover);
+      I.CentreIndex.swap(centres);
+    }
+    else
+    {
+      I.StashDecals();
+      I.Accepted.clear();
+      incremental = false;
+    }
   }
   const int threads = ThreadCount(I.Options.NumberOfThreads);
   I.EnsureEngines(threads);

@@ -165,6 +165,10 @@ struct ShapeDistributionOptions
   /// (the previous run's state); false: a fresh run (the same result; for comparisons). Either
   /// way the shapes a run shares with the previous one keep their decals.
   bool ReuseLastRun = true;
+  /// PlaceKeyed: an edit whose changed faces hold more than this share of the pool's candidates
+  /// (their face weights, before or after, over all) runs fresh, in parallel: sooner than
+  /// re-deciding most of the surface one candidate at a time, the same shapes.
+  double MaximumEditShare = 0.1;
 };
 
 /// One part of a placed shape (a short shape has one).
@@ -216,6 +220,7 @@ struct ShapeDistributionStatistics
   /// edit reached, for an incremental one), and whether the run reused the previous run.
   long long Redecided = 0;
   bool Incremental = false;
+  double EditShare = 0.0; ///< the share of the pool's candidates in the changed faces (see MaximumEditShare)
 };
 
 /// What a Run placed.

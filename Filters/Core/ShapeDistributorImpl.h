@@ -503,6 +503,9 @@ struct ShapeDistributor::Impl
     double A = 0.0, B = 0.0; // barycentric coordinates of corners 1 and 2
   };
   double PoolFootprint = 1.0; // class-weighted mean circumscribed disc area at density 1
+  // Per class, normalized: the farthest part centre from the sample (sqrt 2 class radii for a
+  // long class), and the largest part radius plus RMax (its charts' reach): see PoolReach.
+  std::vector<double> PoolClassOffset, PoolClassChart;
 
   void PreparePool();
   /// The expected number of candidates of face f at level `level`.
@@ -532,10 +535,6 @@ struct ShapeDistributor::Impl
   /// whatever waves and rounds decided it in.
   void SortAcceptedByKey();
 
-  // An edit re-decides the candidates within reach of a shape whose fate changed. Two shapes
-  // conflict only closer than the sum of their radii, plus the holonomy margin's turn
-  // (ConflictInCharts), which the slack allows for up to half that sum (PoolReach).
-  static constexpr double PoolNeighbourSlack = 1.5;
   bool PoolRun = false;      // this run decides a pool (kills and decals kept)
   bool KillOnCommit = true;  // Commit kills faces (not in an incremental run: no masks)
   /// What the last PlaceKeyed run was given, but the density (a hash), and its density.
@@ -550,10 +549,10 @@ struct ShapeDistributor::Impl
     const std::vector<Vec3>& faceDirections, const ShapeDistributionOptions& options);
   /// Whether this run may re-decide the last one's edits only.
   bool CanRunIncrementally(std::uint64_t fingerprint, const std::vector<double>& vertexDensity) const;
-  /// The distance within which a shape of class `cls` at density `scale` may conflict with
-  /// another, beyond the other's own (world units; positions in space, which the geodesic
-  /// distance never undercuts; sqrt 2 for a long shape, drawn along paths |along| + |across|).
-  double PoolReach(int cls, double scale) const;
+  /// The distance in space between their samples beyond which shapes of classes clsA and clsB
+  /// at densities scaleA and scaleB never conflict (by any check; see PoolEdits.cpp): an edit
+  /// re-decides the candidates within it of a shape whose fate changed.
+  double PoolReach(int clsA, double scaleA, int clsB, double scaleB) const;
   /// An incremental PlaceKeyed run after a density edit (`oldDensity`: the last run's): the
   /// candidates of the faces whose density changed, and every lower-priority candidate within
   /// reach of a shape whose fate changed, re-decided in key order (the others keep theirs),
@@ -564,6 +563,9 @@ struct ShapeDistributor::Impl
   /// CollectKills): a candidate there is certainly rejected, as a fresh run's masks skip it.
   bool KilledBefore(int cls, int f, std::uint64_t key) const;
   double KillsMaxFaceDensity = 0.0; // the MaxFaceDensity the kept Kills were collected at
+  /// The share of the pool's weight in the faces whose density changed from `oldDensity` (the
+  /// larger of their old and new weights over the whole new weight).
+  double EditShare(const std::vector<double>& oldDensity) const;
   struct PoolEdit; // (PoolEdits.cpp)
   /// The decals of the last run's shapes by key, with the shapes they were drawn for.
   struct StashedDecal

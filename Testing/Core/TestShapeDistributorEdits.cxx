@@ -89,6 +89,7 @@ void CheckEdits(const Scene& scene, const std::vector<std::vector<double>>& edit
   {
     ShapeDistributionOptions o = scene.Options;
     o.NumberOfThreads = threads;
+    o.MaximumEditShare = 1.0; // (every edit re-decided incrementally, however large)
     ShapeDistributor edited(scene.Mesh, scene.Graph);
     // (Fresh runs one after the other: the shapes they share keep their decals.)
     ShapeDistributionOptions again = o;
@@ -225,6 +226,16 @@ TEST(ShapeDistributorEdits, PlaceKeyedRunsAreAsDenseAsRoundsAndRerunFreshWhenMor
   EXPECT_TRUE(d->Statistics.Incremental);
   EXPECT_EQ(d->Statistics.Redecided, 0);
   EXPECT_EQ(HashRun(pool, c->Shapes), HashRun(pool, d->Shapes));
+  // An edit of most of the surface runs fresh (in parallel), with the same result.
+  const std::vector<double> wide = Brush(plane, { 4.0, 4.0, 0.0 }, 6.0, 0.5, {});
+  const Result<ShapeDistribution> w = pool.Run(tables, directions, wide, o);
+  ASSERT_TRUE(w.Ok());
+  EXPECT_FALSE(w->Statistics.Incremental);
+  EXPECT_GT(w->Statistics.EditShare, o.MaximumEditShare);
+  ShapeDistributor wideFresh(plane, nullptr);
+  const Result<ShapeDistribution> wf = wideFresh.Run(tables, directions, wide, o);
+  ASSERT_TRUE(wf.Ok());
+  EXPECT_EQ(HashRun(pool, w->Shapes), HashRun(wideFresh, wf->Shapes));
   // MaximumShapes ends a run at a count: always fresh.
   o.MaximumShapes = 10;
   const Result<ShapeDistribution> e = pool.Run(tables, directions, density, o);

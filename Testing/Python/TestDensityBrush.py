@@ -83,7 +83,7 @@ output.PointData.append(numpy.where(numpy.isnan(d), 1.0, f), "BrushFactor")
 output.PointData.append(0.8 * numpy.where(numpy.isnan(d), 1.0, f), "BrushTimesDensity")
 output.PointData.append(numpy.full(len(d), 0.8), "Density")
 z = inputs[0].Points[:, 2]
-output.PointData.append(numpy.where(z > 0.5, 0.8, 1.0), "Regional")
+output.PointData.append(numpy.where(z > 0.9, 0.8, 1.0), "Regional")
 """ % (density, radius)
 factors.UpdatePipeline()
 f = vtk_to_numpy(servermanager.Fetch(factors).GetPointData().GetArray("BrushFactor"))
@@ -172,11 +172,11 @@ def decal_points(proxy):
 
 
 keyed = dict(common, CandidateOrder="Place-keyed (edits re-place what they reach)")
-state = dict(BrushCenter=center, BrushRadius=radius, BrushDensity=density)
+state = dict(BrushCenter=center, BrushRadius=0.3, BrushDensity=0.5)  # (a small edit)
 edited = ShapeDistributor(Input=factors, **state, **keyed)
 edited.UpdatePipeline()
 moved = (points[40] * 0.9 + points[300] * 0.1).tolist()
-for step, change in enumerate((dict(BrushCenter=moved), dict(BrushRadius=0.8 * radius),
+for step, change in enumerate((dict(BrushCenter=moved), dict(BrushRadius=0.25),
                                dict(DensityArray=["POINTS", "Regional"]))):
     for name, value in change.items():
         setattr(edited, name, value)
@@ -187,7 +187,8 @@ for step, change in enumerate((dict(BrushCenter=moved), dict(BrushRadius=0.8 * r
     fresh_data = servermanager.Fetch(fresh, idx=0)
     check(field_value(edited_data, "IncrementalRun") == 1 and
           field_value(fresh_data, "IncrementalRun") == 0,
-          "place-keyed edit %d: re-decided what it reached" % step)
+          "place-keyed edit %d: re-decided what it reached (a share %.3f of the pool)" % (
+              step, field_value(edited_data, "EditShare")))
     check(field_value(edited_data, "CandidatesRedecided") <
           0.8 * field_value(fresh_data, "CandidatesRedecided"),
           "place-keyed edit %d: %d candidates decided, %d in a fresh run" % (
