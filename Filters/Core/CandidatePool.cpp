@@ -242,28 +242,6 @@ bool ShapeDistributor::Impl::DecidePoolSurvivors(
   return true;
 }
 
-void ShapeDistributor::Impl::CountRejection(const Record& r, ShapeDistributionStatistics& stats)
-{
-  switch (r.Reason)
-  {
-    case Record::Rejection::WithoutShape:
-      ++stats.RejectedWithoutShape;
-      break;
-    case Record::Rejection::Tables:
-      ++stats.RejectedByTables;
-      break;
-    case Record::Rejection::Faithful:
-      ++stats.RejectedByFaithfulCheck;
-      break;
-    case Record::Rejection::Drawn:
-      ++stats.RejectedByDrawnCheck;
-      break;
-    case Record::Rejection::None:
-    default:
-      break;
-  }
-}
-
 bool ShapeDistributor::Impl::RunPool(
   int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
 {
@@ -355,22 +333,25 @@ bool ShapeDistributor::Impl::RunPool(
   return true;
 }
 
-void ShapeDistributor::Impl::SortAcceptedByKey()
+void ShapeDistributor::Impl::SortAcceptedByKey(const std::vector<char>* removed)
 {
   const int n = static_cast<int>(Accepted.size());
-  std::vector<int> order(n);
+  std::vector<int> order;
   for (int i = 0; i < n; ++i)
   {
-    order[i] = i;
+    if (!removed || !(*removed)[i])
+    {
+      order.push_back(i);
+    }
   }
   std::stable_sort(order.begin(), order.end(),
     [this](int a, int b) { return Accepted[a].Key < Accepted[b].Key; });
-  std::vector<int> newId(n);
+  std::vector<int> newId(n, -1);
   std::vector<Record> sorted;
-  sorted.reserve(n);
-  for (int k = 0; k < n; ++k)
+  sorted.reserve(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
   {
-    newId[order[k]] = k;
+    newId[order[k]] = static_cast<int>(k);
     sorted.push_back(std::move(Accepted[order[k]]));
   }
   Accepted.swap(sorted);

@@ -576,31 +576,7 @@ struct ShapeDistributor::Impl::PoolEdit
   }
 
   /// The accepted shapes without the empty slots, in key order.
-  void Finish()
-  {
-    std::vector<int> newId(I.Accepted.size(), -1);
-    std::vector<Record> kept;
-    for (std::size_t id = 0; id < I.Accepted.size(); ++id)
-    {
-      if (!Removed[id])
-      {
-        newId[id] = static_cast<int>(kept.size());
-        kept.push_back(std::move(I.Accepted[id]));
-      }
-    }
-    I.Accepted.swap(kept);
-    for (auto* index : { &I.CoverIndex, &I.CentreIndex })
-    {
-      for (std::vector<int>& ids : *index)
-      {
-        for (int& id : ids)
-        {
-          id = newId[id];
-        }
-      }
-    }
-    I.SortAcceptedByKey();
-  }
+  void Finish() { I.SortAcceptedByKey(&Removed); }
 };
 
 bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDensity,

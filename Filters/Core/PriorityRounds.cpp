@@ -147,27 +147,9 @@ bool ShapeDistributor::Impl::DecideRound(std::vector<Record>& batch, bool greedy
   }
   for (int i = 0; i < n; ++i)
   {
-    if (state[i] == 1)
+    if (state[i] != 1)
     {
-      continue;
-    }
-    switch (batch[i].Reason)
-    {
-      case Record::Rejection::WithoutShape:
-        ++stats.RejectedWithoutShape;
-        break;
-      case Record::Rejection::Tables:
-        ++stats.RejectedByTables;
-        break;
-      case Record::Rejection::Faithful:
-        ++stats.RejectedByFaithfulCheck;
-        break;
-      case Record::Rejection::Drawn:
-        ++stats.RejectedByDrawnCheck;
-        break;
-      case Record::Rejection::None:
-      default:
-        break;
+      CountRejection(batch[i], stats);
     }
   }
   run.FaithfulFirst = stats.RejectedByFaithfulCheck > run.ChartedThenTables;
@@ -178,6 +160,28 @@ bool ShapeDistributor::Impl::DecideRound(std::vector<Record>& batch, bool greedy
   run.AcceptedInRound = static_cast<int>(Accepted.size()) - roundStart;
   lap(stats.RoundSeconds);
   return true;
+}
+
+void ShapeDistributor::Impl::CountRejection(const Record& r, ShapeDistributionStatistics& stats)
+{
+  switch (r.Reason)
+  {
+    case Record::Rejection::WithoutShape:
+      ++stats.RejectedWithoutShape;
+      break;
+    case Record::Rejection::Tables:
+      ++stats.RejectedByTables;
+      break;
+    case Record::Rejection::Faithful:
+      ++stats.RejectedByFaithfulCheck;
+      break;
+    case Record::Rejection::Drawn:
+      ++stats.RejectedByDrawnCheck;
+      break;
+    case Record::Rejection::None:
+    default:
+      break;
+  }
 }
 
 void ShapeDistributor::Impl::DrawGreedyBatch(

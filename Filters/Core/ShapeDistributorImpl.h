@@ -532,8 +532,9 @@ struct ShapeDistributor::Impl
   /// A fresh PlaceKeyed run: the levels in order; false when aborted.
   bool RunPool(int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats);
   /// Accepted (and Placed, and the indexes' ids) in key order: the order of a greedy run,
-  /// whatever waves and rounds decided it in.
-  void SortAcceptedByKey();
+  /// whatever waves and rounds decided it in; without the slots `removed` marks (an edit's,
+  /// whose ids no index holds any more).
+  void SortAcceptedByKey(const std::vector<char>* removed = nullptr);
 
   bool PoolRun = false;      // this run decides a pool (kills and decals kept)
   bool KillOnCommit = true;  // Commit kills faces (not in an incremental run: no masks)
