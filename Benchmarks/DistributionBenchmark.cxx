@@ -37,6 +37,7 @@
 //   [--mesh-only (section 4 only)] [--speed-only (its speed figures only)] [--speed-rounds R]
 //   (images: star.png, eagle.png, fish.png, bird.png from ../shared/data/meshes/shapes2d or
 //   openclipart; polygons are used when missing).
+#include "DistributorProbes.h"
 #include "../Testing/Core/DistributionChecks.h"
 #include "BenchmarkSupport.h"
 
@@ -459,7 +460,7 @@ void Figure9(const std::string& name, const SafeDistanceInput& shape, int seeds)
             WriteSvg(SvgPrefix + "_" + name + "_" + ModeName(mode) + ".svg", t, r->Shapes, o.ShapeSize);
           std::printf("    %-12s seed 0: %zu shapes, %lld candidates, %.3f s; probes that fit: %.4f%% of 1e5\n",
             ModeName(mode), r->Shapes.size(), r->Statistics.Candidates, r->Statistics.Seconds,
-            100.0 * d.ProbeFitFraction(100000, 12345));
+            100.0 * gs_test::ProbeFitFraction(d, 100000, 12345));
         }
       }
       mean[mode] = sum / seeds;
@@ -879,7 +880,7 @@ int AtScale(const std::string& meshPath, const std::vector<std::string>& images,
         }
       }
       if (threads == 1 && std::getenv("GS_PROBES"))
-        std::printf("    probes that still fit: %.4f%% of 100000\n", 100.0 * d.ProbeFitFraction(100000, 777));
+        std::printf("    probes that still fit: %.4f%% of 100000\n", 100.0 * gs_test::ProbeFitFraction(d, 100000, 777));
       if (threads == 1)
       {
         const DecalOracleResult oracle = DecalOracle(t, r->Shapes, decals);
@@ -1397,7 +1398,7 @@ int main(int argc, char* argv[])
       TotalShapes += static_cast<long long>(r.Shapes.size());
       TotalOverlaps += overlaps;
       TotalPairs += pairs;
-      std::printf("  probes that fit: %.4f%% of %d\n", 100.0 * d.ProbeFitFraction(quick ? 10000 : 100000, 777), quick ? 10000 : 100000);
+      std::printf("  probes that fit: %.4f%% of %d\n", 100.0 * gs_test::ProbeFitFraction(d, quick ? 10000 : 100000, 777), quick ? 10000 : 100000);
     }
     // Resolution insensitivity: the same surface (midpoint subdivision keeps it exactly).
     double counts[2] = { 0, 0 };

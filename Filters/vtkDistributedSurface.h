@@ -94,13 +94,13 @@ public:
   // 0's own when all are empty); nullptr elsewhere.
   vtkSmartPointer<vtkDataObject> GatherFirstNonEmpty(vtkDataObject* piece) const;
 
+private:
   // Copies the cells `cells` of `input` (in that order, grouped by kind as vtkPolyData stores
   // them: vertices, lines, polygons, strips) with the points they use (in increasing id order)
-  // and their point, cell and field data. Public for the tests.
+  // and their point, cell and field data.
   static vtkSmartPointer<vtkPolyData> ExtractCells(vtkPolyData* input, const vtkIdType* cells,
     vtkIdType numberOfCells);
 
-private:
   vtkMultiProcessController* Controller = nullptr;
   int Rank = 0;
   int Size = 1;

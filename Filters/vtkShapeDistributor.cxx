@@ -3,33 +3,27 @@
 #include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
 #include "vtkSafeDistanceTableImage.h"
+#include "vtkShapeDistributorOutput.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "OverlapCheck.h"
-#include "ParallelFor.h"
 #include "SafeDistanceTable.h"
 #include "DensityBrush.h"
 #include "DirectionField.h"
 #include "ShapeDistributor.h"
 #include "ShapeDrawing.h"
 
-#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
-#include <vtkFloatArray.h>
-#include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-#include <vtkStringArray.h>
 
 #include <algorithm>
 #include <iomanip>
@@ -149,243 +143,40 @@ vtkDataArray* FieldArray(vtkFieldData* fd, const char* name, int components)
   return a && a->GetNumberOfComponents() == components ? a : nullptr;
 }
 
-// Fills Placements: one vertex per shape with its class, scale, direction, normal and face (the
-// input's cell id), and the run's statistics as field data.
-void WritePlacements(const gs::ShapeDistribution& result, vtkIdType firstPolygon, double shapeSize,
-  const std::string& directionChoice, vtkPolyData* placements)
+// False (with an error) when no face has a usable (finite, tangent) vector; warns when over 10%
+// have none.
+bool CheckUsableDirections(vtkShapeDistributor* self, const gs::TriangleMesh& mesh,
+  const std::string& directionName, const std::vector<gs::Vec3>& directions)
 {
-  const std::vector<gs::PlacedShape>& shapes = result.Shapes;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> verts;
-  vtkNew<vtkIntArray> classId;
-  classId->SetName("ClassId");
-  vtkNew<vtkDoubleArray> scale;
-  scale->SetName("Scale");
-  vtkNew<vtkDoubleArray> direction;
-  direction->SetName("Direction");
-  direction->SetNumberOfComponents(3);
-  vtkNew<vtkDoubleArray> normal;
-  normal->SetName("Normal");
-  normal->SetNumberOfComponents(3);
-  vtkNew<vtkIdTypeArray> faceId;
-  faceId->SetName("FaceId");
-  for (const gs::PlacedShape& s : shapes)
+  // Faces whose vector is zero, not finite or normal to the surface give their shapes a random
+  // orientation (the distributor's rule): a few are normal (a field's singularities), all or
+  // most of them are a mistake the user should hear about.
+  const int nf = mesh.NumberOfFaces();
+  int unusable = 0;
+  for (int f = 0; f < nf; ++f)
   {
-    const vtkIdType id = points->InsertNextPoint(s.Position.x, s.Position.y, s.Position.z);
-    verts->InsertNextCell(1, &id);
-    classId->InsertNextValue(s.ClassId);
-    scale->InsertNextValue(s.Scale);
-    direction->InsertNextTuple3(s.Direction.x, s.Direction.y, s.Direction.z);
-    normal->InsertNextTuple3(s.Normal.x, s.Normal.y, s.Normal.z);
-    faceId->InsertNextValue(firstPolygon + s.Centre.Face);
+    const gs::Vec3& d = directions[f];
+    const gs::Vec3 n = mesh.FaceNormal(f);
+    const gs::Vec3 t = d - n * gs::Dot(n, d);
+    unusable += !(gs::IsFinite(d) && gs::Norm(t) > 1e-12 * gs::Norm(d) && gs::Norm(t) > 0.0);
   }
-  placements->SetPoints(points);
-  placements->SetVerts(verts);
-  placements->GetPointData()->AddArray(classId);
-  placements->GetPointData()->AddArray(scale);
-  placements->GetPointData()->AddArray(direction);
-  placements->GetPointData()->AddArray(normal);
-  placements->GetPointData()->AddArray(faceId);
-  placements->GetPointData()->SetActiveScalars("ClassId");
-  placements->GetPointData()->SetActiveVectors("Direction");
-  vtkFieldData* fd = placements->GetFieldData();
-  auto single = [fd](const char* name, double value) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->InsertNextValue(value);
-    fd->AddArray(a);
-  };
-  single("NumberOfCandidates", static_cast<double>(result.Statistics.Candidates));
-  single("NumberOfCharts", static_cast<double>(result.Statistics.Charts));
-  // What rejected the candidates that were not placed (ShapeDistributionStatistics).
-  single("CandidatesWithoutShape", static_cast<double>(result.Statistics.RejectedWithoutShape));
-  single("CandidatesRejectedByTables", static_cast<double>(result.Statistics.RejectedByTables));
-  single("CandidatesRejectedByFaithfulCheck",
-    static_cast<double>(result.Statistics.RejectedByFaithfulCheck));
-  single("CandidatesRejectedByDrawnCheck", static_cast<double>(result.Statistics.RejectedByDrawnCheck));
-  single("Maximal", result.Statistics.Maximal ? 1.0 : 0.0);
-  // (Place-keyed: the candidates decided in this run, and whether it reused the last one.)
-  single("CandidatesRedecided", static_cast<double>(result.Statistics.Redecided));
-  single("IncrementalRun", result.Statistics.Incremental ? 1.0 : 0.0);
-  single("EditShare", result.Statistics.EditShare);
-  single("Seconds", result.Statistics.Seconds);
-  single("ShapeSizeUsed", shapeSize);
-  vtkNew<vtkStringArray> used;
-  used->SetName("DirectionArrayUsed");
-  used->InsertNextValue(directionChoice);
-  fd->AddArray(used);
-}
-
-// VerifyOverlaps' result on Placements: Overlaps per shape, OverlappingPairs, OverlapCheckSeconds.
-void WriteOverlaps(const gs::OverlapCheckResult& found, int ns, vtkPolyData* placements)
-{
-  vtkNew<vtkIntArray> overlaps;
-  overlaps->SetName("Overlaps");
-  for (int s = 0; s < ns; ++s)
+  if (unusable == nf)
   {
-    overlaps->InsertNextValue(found.Overlaps[s]);
+    vtkErrorWithObjectMacro(self, "The DirectionArray \"" << directionName << "\" has no usable vector: all "
+                                          << nf
+                                          << " triangles get a zero, NaN or surface-normal "
+                                             "vector. Run Cross Field, or give tangent vectors.");
+    return false;
   }
-  placements->GetPointData()->AddArray(overlaps);
-  vtkNew<vtkDoubleArray> pairs, seconds;
-  pairs->SetName("OverlappingPairs");
-  pairs->InsertNextValue(static_cast<double>(found.Pairs.size()));
-  seconds->SetName("OverlapCheckSeconds");
-  seconds->InsertNextValue(found.Seconds);
-  placements->GetFieldData()->AddArray(pairs);
-  placements->GetFieldData()->AddArray(seconds);
-}
-
-vtkSmartPointer<vtkIdTypeArray> IdArray(vtkIdType n)
-{
-  vtkNew<vtkIdTypeArray> a;
-  a->SetNumberOfValues(n);
-  return vtkSmartPointer<vtkIdTypeArray>(a.GetPointer());
-}
-
-// Decals and outlines are written straight into arrays sized beforehand (per shape, its first
-// cell and point), in parallel over the shapes, lifted `lift` off the surface.
-
-// Decals: the triangles of every shape's decal with their texture coordinates; cell arrays
-// ShapeId and ClassId.
-void WriteDecals(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedShape>& shapes,
-  const std::vector<gs::ShapeDecal>& decalOf, double lift, int threads, vtkPolyData* decals)
-{
-  (void)threads;
-  const int ns = static_cast<int>(shapes.size());
-  std::vector<vtkIdType> first(ns + 1, 0);
-  for (int s = 0; s < ns; ++s)
+  if (unusable > nf / 10)
   {
-    first[s + 1] = first[s] + static_cast<vtkIdType>(decalOf[s].Faces.size());
+    vtkWarningWithObjectMacro(self, "The DirectionArray \"" << directionName << "\": " << unusable << " of " << nf
+                                            << " triangles ("
+                                            << static_cast<int>(100.0 * unusable / nf + 0.5)
+                                            << "%) get a zero, NaN or surface-normal vector: "
+                                               "shapes there get a random orientation.");
   }
-  const vtkIdType nd = first[ns];
-  vtkNew<vtkDoubleArray> xyz;
-  xyz->SetNumberOfComponents(3);
-  xyz->SetNumberOfTuples(3 * nd);
-  vtkNew<vtkFloatArray> tcoords;
-  tcoords->SetName("TextureCoordinates");
-  tcoords->SetNumberOfComponents(2);
-  tcoords->SetNumberOfTuples(3 * nd);
-  vtkNew<vtkIntArray> shapeId, classId;
-  shapeId->SetName("ShapeId");
-  classId->SetName("ClassId");
-  shapeId->SetNumberOfValues(nd);
-  classId->SetNumberOfValues(nd);
-  vtkSmartPointer<vtkIdTypeArray> offsets = IdArray(nd + 1), connectivity = IdArray(3 * nd);
-  double* x = xyz->GetPointer(0);
-  float* t = tcoords->GetPointer(0);
-  vtkIdType* o = offsets->GetPointer(0);
-  vtkIdType* c = connectivity->GetPointer(0);
-  gs::ParallelFor(ns, threads, 16, [&](int s, int) {
-    const gs::ShapeDecal& d = decalOf[s];
-    for (std::size_t k = 0; k < d.Faces.size(); ++k)
-    {
-      const vtkIdType cell = first[s] + static_cast<vtkIdType>(k);
-      for (int j = 0; j < 3; ++j)
-      {
-        const gs::Vec3 p = gs::LiftedFacePoint(mesh, d.Faces[k], d.Corners[k][j], lift);
-        const vtkIdType id = 3 * cell + j;
-        x[3 * id] = p.x;
-        x[3 * id + 1] = p.y;
-        x[3 * id + 2] = p.z;
-        t[2 * id] = static_cast<float>(d.TextureCoordinates[k][j].x);
-        t[2 * id + 1] = static_cast<float>(d.TextureCoordinates[k][j].y);
-        c[id] = id;
-      }
-      o[cell] = 3 * cell;
-      shapeId->SetValue(cell, s);
-      classId->SetValue(cell, shapes[s].ClassId);
-    }
-  });
-  o[nd] = 3 * nd;
-  vtkNew<vtkPoints> points;
-  points->SetData(xyz);
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
-  decals->SetPoints(points);
-  decals->SetPolys(polys);
-  decals->GetPointData()->SetTCoords(tcoords);
-  decals->GetCellData()->AddArray(shapeId);
-  decals->GetCellData()->AddArray(classId);
-}
-
-// Outlines: one polyline per outline piece (closed pieces repeat their first point); cell
-// arrays ShapeId and ClassId.
-void WriteOutlines(const gs::TriangleMesh& mesh, const std::vector<gs::PlacedShape>& shapes,
-  const std::vector<std::vector<gs::OutlinePiece>>& outlineOf, double lift, int threads,
-  vtkPolyData* outlines)
-{
-  (void)threads;
-  const int ns = static_cast<int>(shapes.size());
-  // Per shape: its first line and point; a closed piece repeats its first point id.
-  std::vector<vtkIdType> firstLine(ns + 1, 0), firstPoint(ns + 1, 0), firstId(ns + 1, 0);
-  for (int s = 0; s < ns; ++s)
-  {
-    vtkIdType lines = 0, points = 0, ids = 0;
-    for (const gs::OutlinePiece& piece : outlineOf[s])
-    {
-      if (piece.Points.size() >= 2)
-      {
-        ++lines;
-        points += static_cast<vtkIdType>(piece.Points.size());
-        ids += static_cast<vtkIdType>(piece.Points.size()) + (piece.Closed ? 1 : 0);
-      }
-    }
-    firstLine[s + 1] = firstLine[s] + lines;
-    firstPoint[s + 1] = firstPoint[s] + points;
-    firstId[s + 1] = firstId[s] + ids;
-  }
-  const vtkIdType nl = firstLine[ns], np = firstPoint[ns], ni = firstId[ns];
-  vtkNew<vtkDoubleArray> xyz;
-  xyz->SetNumberOfComponents(3);
-  xyz->SetNumberOfTuples(np);
-  vtkNew<vtkIntArray> shapeId, classId;
-  shapeId->SetName("ShapeId");
-  classId->SetName("ClassId");
-  shapeId->SetNumberOfValues(nl);
-  classId->SetNumberOfValues(nl);
-  vtkSmartPointer<vtkIdTypeArray> offsets = IdArray(nl + 1), connectivity = IdArray(ni);
-  double* x = xyz->GetPointer(0);
-  vtkIdType* o = offsets->GetPointer(0);
-  vtkIdType* c = connectivity->GetPointer(0);
-  gs::ParallelFor(ns, threads, 16, [&](int s, int) {
-    vtkIdType line = firstLine[s], point = firstPoint[s], id = firstId[s];
-    for (const gs::OutlinePiece& piece : outlineOf[s])
-    {
-      if (piece.Points.size() < 2)
-      {
-        continue;
-      }
-      o[line] = id;
-      shapeId->SetValue(line, s);
-      classId->SetValue(line, shapes[s].ClassId);
-      ++line;
-      const vtkIdType start = point;
-      for (const gs::SurfacePoint& q : piece.Points)
-      {
-        const gs::Vec3 p = gs::LiftedSurfacePoint(mesh, q, lift);
-        x[3 * point] = p.x;
-        x[3 * point + 1] = p.y;
-        x[3 * point + 2] = p.z;
-        c[id++] = point++;
-      }
-      if (piece.Closed)
-      {
-        c[id++] = start;
-      }
-    }
-  });
-  o[nl] = ni;
-  vtkNew<vtkPoints> points;
-  points->SetData(xyz);
-  vtkNew<vtkCellArray> lines;
-  lines->SetData(offsets, connectivity);
-  outlines->SetPoints(points);
-  outlines->SetLines(lines);
-  outlines->GetCellData()->AddArray(shapeId);
-  // (ClassId is not the active scalars: the GUI then draws the outlines in a solid colour,
-  // which stands out on any surface colouring; colour by ClassId to tell the classes apart.)
-  outlines->GetCellData()->AddArray(classId);
+  return true;
 }
 
 } // namespace
@@ -579,7 +370,7 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
 
   // 6. Placements.
-  WritePlacements(
+  vtkShapeDistributorOutput::WritePlacements(
     run.Distribution, run.FirstPolygon, run.ShapeSize, run.DirectionChoice, placements);
   this->UpdateProgress(0.87);
   if (this->CheckAbort())
@@ -669,7 +460,7 @@ bool vtkShapeDistributor::DrawShapes(
       vtkErrorMacro("VerifyOverlaps: " << found.Message() << ".");
       return false;
     }
-    WriteOverlaps(*found, static_cast<int>(shapes.size()), placements);
+    vtkShapeDistributorOutput::WriteOverlaps(*found, static_cast<int>(shapes.size()), placements);
     if (!found->Pairs.empty())
     {
       vtkWarningMacro("VerifyOverlaps: " << found->Pairs.size() << " pair(s) of shapes overlap "
@@ -684,8 +475,8 @@ bool vtkShapeDistributor::DrawShapes(
   const int threads = gs::ThreadCount(this->UsedThreads());
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
   const double lift = Lift * run.ShapeSize;
-  WriteDecals(mesh, shapes, decalOf, lift, threads, decals);
-  WriteOutlines(mesh, shapes, outlineOf, lift, threads, outlines);
+  vtkShapeDistributorOutput::WriteDecals(mesh, shapes, decalOf, lift, threads, decals);
+  vtkShapeDistributorOutput::WriteOutlines(mesh, shapes, outlineOf, lift, threads, outlines);
   run.Lap("Assembly");
   return true;
 }
@@ -786,23 +577,19 @@ bool vtkShapeDistributor::ResolveShapeSize(const Cache& cache, Run& run)
 }
 
 //------------------------------------------------------------------------------
-bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache, Run& run)
+bool vtkShapeDistributor::ChooseDirectionArray(
+  vtkPolyData* surface, std::string& name, int& association)
 {
-  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
-  vtkPolyData* surface = cache.Mesh.Surface;
-  const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
   vtkInformation* directionInfo = this->GetInputArrayInformation(0);
   const char* directionName = directionInfo && directionInfo->Has(vtkDataObject::FIELD_NAME())
     ? directionInfo->Get(vtkDataObject::FIELD_NAME())
     : nullptr;
-  int directionAssociation = directionInfo && directionInfo->Has(vtkDataObject::FIELD_ASSOCIATION())
+  association = directionInfo && directionInfo->Has(vtkDataObject::FIELD_ASSOCIATION())
     ? directionInfo->Get(vtkDataObject::FIELD_ASSOCIATION())
     : vtkDataObject::FIELD_ASSOCIATION_CELLS;
   // Unset (ParaView leaves "0" or nothing when the input's arrays were not known when the
   // filter was made): the cell array Direction (Cross Field's), its point array, then the active
   // vectors (cells, then points). The choice is the field data DirectionArrayUsed of Placements.
-  std::string& directionChoice = run.DirectionChoice;
   if (!directionName || !*directionName || std::string(directionName) == "0" ||
     std::string(directionName) == "None")
   {
@@ -819,7 +606,7 @@ bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache,
       if (f.first && f.first->GetName() && *f.first->GetName())
       {
         directionName = f.first->GetName();
-        directionAssociation = f.second;
+        association = f.second;
         break;
       }
     }
@@ -831,15 +618,32 @@ bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache,
       return false;
     }
   }
-  directionChoice = std::string(directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS ? "POINTS " : "CELLS ") + directionName;
-  if (directionAssociation != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
-    directionAssociation != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  name = directionName;
+  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
   {
-    vtkErrorMacro("The DirectionArray \"" << directionName
+    vtkErrorMacro("The DirectionArray \"" << name
                                           << "\" must be a point or cell array (association "
-                                          << directionAssociation << ").");
+                                          << association << ").");
     return false;
   }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache, Run& run)
+{
+  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
+  vtkPolyData* surface = cache.Mesh.Surface;
+  const int nf = mesh.NumberOfFaces();
+  std::string directionName;
+  int directionAssociation = vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  if (!this->ChooseDirectionArray(surface, directionName, directionAssociation))
+  {
+    return false;
+  }
+  const bool onPoints = directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  run.DirectionChoice = std::string(onPoints ? "POINTS " : "CELLS ") + directionName;
   int& symmetry = run.Symmetry;
   symmetry = 1;
   if (vtkDataArray* s = FieldArray(input->GetFieldData(), "Symmetry", 1))
@@ -854,78 +658,44 @@ bool vtkShapeDistributor::ReadDirections(vtkPolyData* input, const Cache& cache,
   }
   std::vector<gs::Vec3>& directions = run.Directions;
   directions.assign(nf, gs::Vec3{ 0, 0, 0 });
+  vtkDataArray* a = onPoints ? surface->GetPointData()->GetArray(directionName.c_str())
+                             : surface->GetCellData()->GetArray(directionName.c_str());
+  if (!a || a->GetNumberOfComponents() != 3)
   {
-    const bool onPoints = directionAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS;
-    vtkDataArray* a = onPoints ? surface->GetPointData()->GetArray(directionName)
-                               : surface->GetCellData()->GetArray(directionName);
-    if (!a || a->GetNumberOfComponents() != 3)
-    {
-      vtkErrorMacro("The DirectionArray \"" << directionName << "\" is missing from the input's "
-                    << (onPoints ? "point" : "cell") << " data or does not have 3 components.");
-      return false;
-    }
-    if (onPoints)
-    {
-      // Per face: the corners' vectors averaged N-symmetrically (a cross given by any arm).
-      std::vector<gs::Vec3> atVertex(nv, gs::Vec3{ 0, 0, 0 });
-      for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
-      {
-        const int v = i < static_cast<vtkIdType>(pointToVertex.size()) ? pointToVertex[i] : -1;
-        if (v >= 0)
-        {
-          double x[3];
-          a->GetTuple(i, x);
-          atVertex[v] = gs::Vec3{ x[0], x[1], x[2] };
-        }
-      }
-      gs::Result<std::vector<gs::Vec3>> perFace =
-        gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
-      if (!perFace.Ok())
-      {
-        vtkErrorMacro("The DirectionArray \"" << directionName << "\": " << perFace.Message()
-                                               << ".");
-        return false;
-      }
-      directions = std::move(*perFace);
-    }
-    else
-    {
-      for (int f = 0; f < nf; ++f)
-      {
-        double x[3];
-        a->GetTuple(run.FirstPolygon + f, x);
-        directions[f] = gs::Vec3{ x[0], x[1], x[2] };
-      }
-    }
-  }
-  // Faces whose vector is zero, not finite or normal to the surface give their shapes a random
-  // orientation (the distributor's rule): a few are normal (a field's singularities), all or
-  // most of them are a mistake the user should hear about.
-  int unusable = 0;
-  for (int f = 0; f < nf; ++f)
-  {
-    const gs::Vec3& d = directions[f];
-    const gs::Vec3 n = mesh.FaceNormal(f);
-    const gs::Vec3 t = d - n * gs::Dot(n, d);
-    unusable += !(gs::IsFinite(d) && gs::Norm(t) > 1e-12 * gs::Norm(d) && gs::Norm(t) > 0.0);
-  }
-  if (unusable == nf)
-  {
-    vtkErrorMacro("The DirectionArray \"" << directionName << "\" has no usable vector: all "
-                                          << nf
-                                          << " triangles get a zero, NaN or surface-normal "
-                                             "vector. Run Cross Field, or give tangent vectors.");
+    vtkErrorMacro("The DirectionArray \"" << directionName << "\" is missing from the input's "
+                  << (onPoints ? "point" : "cell") << " data or does not have 3 components.");
     return false;
   }
-  if (unusable > nf / 10)
+  if (onPoints)
   {
-    vtkWarningMacro("The DirectionArray \"" << directionName << "\": " << unusable << " of " << nf
-                                            << " triangles ("
-                                            << static_cast<int>(100.0 * unusable / nf + 0.5)
-                                            << "%) get a zero, NaN or surface-normal vector: "
-                                               "shapes there get a random orientation.");
+    // Per face: the corners' vectors averaged N-symmetrically (a cross given by any arm).
+    const std::vector<double> values =
+      vtkSurfaceMeshConverter::PointArrayOnVertices(a, cache.Mesh.Build, 0.0);
+    std::vector<gs::Vec3> atVertex(mesh.NumberOfVertices());
+    for (std::size_t v = 0; v < atVertex.size(); ++v)
+    {
+      atVertex[v] = gs::Vec3{ values[3 * v], values[3 * v + 1], values[3 * v + 2] };
+    }
+    gs::Result<std::vector<gs::Vec3>> perFace =
+      gs::FaceDirectionsFromVertices(mesh, atVertex, symmetry);
+    if (!perFace.Ok())
+    {
+      vtkErrorMacro("The DirectionArray \"" << directionName << "\": " << perFace.Message()
+                                             << ".");
+      return false;
+    }
+    directions = std::move(*perFace);
   }
-  return true;
+  else
+  {
+    for (int f = 0; f < nf; ++f)
+    {
+      double x[3];
+      a->GetTuple(run.FirstPolygon + f, x);
+      directions[f] = gs::Vec3{ x[0], x[1], x[2] };
+    }
+  }
+  return CheckUsableDirections(this, mesh, directionName, directions);
 }
 
 //------------------------------------------------------------------------------
@@ -950,15 +720,8 @@ bool vtkShapeDistributor::ReadDensity(const Cache& cache, Run& run)
                                              "not a scalar array.");
       return false;
     }
-    density.assign(nv, std::numeric_limits<double>::quiet_NaN());
-    for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
-    {
-      const int v = i < static_cast<vtkIdType>(pointToVertex.size()) ? pointToVertex[i] : -1;
-      if (v >= 0)
-      {
-        density[v] = a->GetComponent(i, 0);
-      }
-    }
+    density = vtkSurfaceMeshConverter::PointArrayOnVertices(
+      a, cache.Mesh.Build, std::numeric_limits<double>::quiet_NaN());
   }
   return true;
 }

@@ -297,6 +297,9 @@ private:
   int UsedThreads() const;
   bool ResolveShapeSize(const Cache& cache, Run& run);
   bool ReadDirections(vtkPolyData* input, const Cache& cache, Run& run);
+  // The direction array to read (DirectionArray, or the input's Direction or vectors) and its
+  // association (points or cells); false (with an error) when there is none.
+  bool ChooseDirectionArray(vtkPolyData* surface, std::string& name, int& association);
   bool ReadDensity(const Cache& cache, Run& run);
   bool UseGraph(Cache& cache);
   bool ApplyBrush(Cache& cache, Run& run);

@@ -240,3 +240,27 @@ bool vtkSurfaceMeshConverter::Report(const Result& result, vtkObject* algorithm)
   }
   return true;
 }
+
+//------------------------------------------------------------------------------
+std::vector<double> vtkSurfaceMeshConverter::PointArrayOnVertices(
+  vtkDataArray* a, const gs::MeshBuild& build, double fill)
+{
+  const int components = a->GetNumberOfComponents();
+  const std::vector<int>& pointToVertex = build.PointToVertex;
+  std::vector<double> values(
+    static_cast<std::size_t>(build.Mesh.NumberOfVertices()) * components, fill);
+  const vtkIdType n =
+    std::min(a->GetNumberOfTuples(), static_cast<vtkIdType>(pointToVertex.size()));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const int v = pointToVertex[i];
+    if (v >= 0)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        values[static_cast<std::size_t>(v) * components + c] = a->GetComponent(i, c);
+      }
+    }
+  }
+  return values;
+}

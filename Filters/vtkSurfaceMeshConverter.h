@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+class vtkDataArray;
 class vtkObject;
 
 class vtkSurfaceMeshConverter
@@ -45,6 +46,12 @@ public:
 
   // Converts `input`; never throws on bad input (Result::Status says why it is rejected).
   static Result Convert(vtkPolyData* input);
+
+  // A point array of a converted Surface read onto the mesh's vertices: values[v * components +
+  // c] (components of `a`), `fill` where no point maps to v; of points welded into one vertex,
+  // the last one's tuple.
+  static std::vector<double> PointArrayOnVertices(
+    vtkDataArray* a, const gs::MeshBuild& build, double fill);
 
   // A conversion kept while its input's points and cells are unchanged (same object, same
   // modification times); when only its arrays changed, Surface takes the new ones (a

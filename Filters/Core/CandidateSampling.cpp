@@ -423,6 +423,148 @@ bool ShapeDistributor::Impl::PlacePart(int face, const Vec3& x, const Vec3& tang
   return true;
 }
 
+Vec3 ShapeDistributor::Impl::ShapeFieldDirection(int f, const Vec3& normal, double spin,
+  const Vec3* prefer) const
+{
+  Vec3 dir = FaceDirection[f];
+  if (!(Norm(dir) > 0.0))
+  {
+    const auto& v = Mesh.Face(f);
+    return RotateTangent(Unit(Mesh.Position(v[1]) - Mesh.Position(v[0])), normal, TwoPi * spin);
+  }
+  if (prefer && Options.Symmetry > 1)
+  {
+    Vec3 best = dir;
+    double bestDot = -2.0;
+    for (int k = 0; k < Options.Symmetry; ++k)
+    {
+      const Vec3 candidate = RotateTangent(dir, normal, TwoPi * k / Options.Symmetry);
+      const double d = Dot(candidate, *prefer);
+      if (d > bestDot)
+      {
+        bestDot = d;
+        best = candidate;
+      }
+    }
+    dir = Unit(best);
+  }
+  return dir;
+}
+
+double ShapeDistributor::Impl::PartDistanceAlongCurve(int cls, int part, double scale) const
+{
+  return std::abs(Dot(Tables.Parts[part].Centre, Tables.Classes[cls].MajorAxis)) * scale;
+}
+
+bool ShapeDistributor::Impl::PlacePartOnCurve(const Streamline& line, bool behind, int cls,
+  int part, double scale, double phiM, PlacedPart& p) const
+{
+  int face = -1;
+  Vec3 x, tangent;
+  if (!PointOnCurve(Mesh, line.Pieces, PartDistanceAlongCurve(cls, part, scale), face, x, tangent))
+  {
+    return false;
+  }
+  // (0 - t, not -t: a zero component stays +0, as the opposite piece's difference gives it.)
+  return PlacePart(face, x, behind ? Vec3{ 0.0, 0.0, 0.0 } - tangent : tangent, part,
+    Cross(Tables.Classes[cls].MajorAxis, Tables.Parts[part].Centre) * scale, phiM, p);
+}
+
+bool ShapeDistributor::Impl::BehindPartsFit(DirectionFieldSolver::StreamlineTracer& tracer,
+  const PlacedShape& s, double scale, double phiM, std::vector<int>& precheck,
+  std::uint64_t key) const
+{
+  const int cls = s.ClassId;
+  Record partial;
+  partial.Shape.ClassId = cls;
+  partial.Shape.Scale = s.Scale;
+  partial.Key = key;
+  for (std::size_t k = 0; k < BehindParts[cls].size(); ++k)
+  {
+    const int part = BehindParts[cls][k];
+    const double at = PartDistanceAlongCurve(cls, part, scale);
+    tracer.Continue(at);
+    if (tracer.Line().Length < at)
+    {
+      break; // (the streamline ended: the whole shape fails in MakeLongShape)
+    }
+    PlacedPart p;
+    if (!PlacePartOnCurve(tracer.Line(), true, cls, part, scale, phiM, p))
+    {
+      return false; // (the whole shape stops at this part too)
+    }
+    partial.Shape.Parts.push_back(p);
+    // Checked when the next part needs more streamline (or at the last).
+    const bool more = k + 1 < BehindParts[cls].size() &&
+      PartDistanceAlongCurve(cls, BehindParts[cls][k + 1], scale) <= tracer.Line().Length;
+    if (!more && CheapConflict(partial, precheck))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ShapeDistributor::Impl::MakeLongShape(const Vec3& dir, PlacedShape& s,
+  std::vector<int>* precheck, std::uint64_t key) const
+{
+  // The major axis follows the field: trace the streamline both ways. A part is placed by
+  // walking its curve from the centre, so that the part nearest behind the centre is placed
+  // (and checked, in BehindPartsFit) as soon as the streamline reaches it.
+  const int cls = s.ClassId, f = s.Centre.Face;
+  const SafeDistanceClass& c = Tables.Classes[cls];
+  const double scale = Options.ShapeSize * s.Scale;
+  const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
+  s.Direction = Unit(RotateTangent(dir, s.Normal, -phiM));
+  const int n = Options.Symmetry == 1 ? 2 : Options.Symmetry;
+  const double a0 = Field->AngleInFace(f, dir);
+  const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
+  // Behind first: a candidate whose parts there conflict needs no streamline ahead, and most
+  // conflict at the part nearest the centre, which needs only the streamline up to it.
+  DirectionFieldSolver::StreamlineTracer tracer(
+    *Field, n, FieldAngles, s.Centre, a0 + Pi, backward);
+  if (precheck && Options.EarlyRejection && !CircleMode &&
+    !BehindPartsFit(tracer, s, scale, phiM, *precheck, key))
+  {
+    return false;
+  }
+  tracer.Continue();
+  const Streamline& behind = tracer.Line();
+  if (behind.Length < backward * (1.0 - 1e-9))
+  {
+    return false;
+  }
+  const Streamline ahead = Field->TraceStreamline(n, FieldAngles, s.Centre, a0, forward);
+  if (ahead.Length < forward * (1.0 - 1e-9))
+  {
+    return false;
+  }
+  for (auto it = behind.Pieces.rbegin(); it != behind.Pieces.rend(); ++it)
+  {
+    s.Curve.push_back(CurvePiece{ it->Face, it->B, it->A });
+  }
+  s.CurveCentre = behind.Length;
+  s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
+  if (CircleMode)
+  {
+    return true; // (one circle at the centre: MakeShape adds it)
+  }
+  for (int part : c.Parts)
+  {
+    PlacedPart p;
+    // (A part at the centre itself reads the curve's direction there on whichever side the
+    // curve has length: a class may end at its centre.)
+    const double along = Dot(Tables.Parts[part].Centre, c.MajorAxis);
+    const bool behindPart = along < 0.0 || (along == 0.0 && !(ahead.Length > 0.0));
+    if (!PlacePartOnCurve(behindPart ? behind : ahead, behindPart, cls, part, scale, phiM, p))
+    {
+      return false;
+    }
+    s.Parts.push_back(p);
+  }
+  return true;
+}
+
 bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
   const Vec3* prefer, std::vector<int>* precheck, std::uint64_t key) const
 {
@@ -437,133 +579,20 @@ bool ShapeDistributor::Impl::MakeShape(const SurfacePoint& centre, int cls, Rand
   const int f = centre.Face;
   s.Position = Mesh.Interpolate(f, centre.Bary);
   s.Normal = Mesh.FaceNormal(f);
-  Vec3 dir = FaceDirection[f];
   const double spin = rng.Uniform();
-  if (!(Norm(dir) > 0.0))
-  {
-    const auto& v = Mesh.Face(f);
-    dir = RotateTangent(Unit(Mesh.Position(v[1]) - Mesh.Position(v[0])), s.Normal, TwoPi * spin);
-  }
-  else if (prefer && Options.Symmetry > 1)
-  {
-    Vec3 best = dir;
-    double bestDot = -2.0;
-    for (int k = 0; k < Options.Symmetry; ++k)
-    {
-      const Vec3 candidate = RotateTangent(dir, s.Normal, TwoPi * k / Options.Symmetry);
-      const double d = Dot(candidate, *prefer);
-      if (d > bestDot)
-      {
-        bestDot = d;
-        best = candidate;
-      }
-    }
-    dir = Unit(best);
-  }
+  const Vec3 dir = ShapeFieldDirection(f, s.Normal, spin, prefer);
   const SafeDistanceClass& c = Tables.Classes[cls];
-  const double scale = Options.ShapeSize * s.Scale;
   if (c.Parts.size() <= 1)
   {
     s.Direction = dir;
   }
-  else
+  else if (!MakeLongShape(dir, s, precheck, key))
   {
-    // The major axis follows the field: trace the streamline both ways. A part is placed by
-    // walking its curve from the centre, so that the part nearest behind the centre is placed
-    // (and checked, below) as soon as the streamline reaches it.
-    const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
-    s.Direction = Unit(RotateTangent(dir, s.Normal, -phiM));
-    const int n = Options.Symmetry == 1 ? 2 : Options.Symmetry;
-    const double a0 = Field->AngleInFace(f, dir);
-    const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
-    // A part's distance from the centre along the curve, and the part placed there by walking
-    // the streamline `line` traced from the centre (behind it, the curve runs the other way).
-    auto distance = [&](int part) {
-      return std::abs(Dot(Tables.Parts[part].Centre, c.MajorAxis)) * scale;
-    };
-    auto place = [&](const Streamline& line, bool behind, int part, PlacedPart& p) {
-      int face = -1;
-      Vec3 x, tangent;
-      if (!PointOnCurve(Mesh, line.Pieces, distance(part), face, x, tangent))
-      {
-        return false;
-      }
-      // (0 - t, not -t: a zero component stays +0, as the opposite piece's difference gives it.)
-      return PlacePart(face, x, behind ? Vec3{ 0.0, 0.0, 0.0 } - tangent : tangent, part,
-        Cross(c.MajorAxis, Tables.Parts[part].Centre) * scale, phiM, p);
-    };
-    // Behind first: a candidate whose parts there conflict needs no streamline ahead, and most
-    // conflict at the part nearest the centre, which needs only the streamline up to it.
-    DirectionFieldSolver::StreamlineTracer tracer(
-      *Field, n, FieldAngles, centre, a0 + Pi, backward);
-    if (precheck && Options.EarlyRejection && !CircleMode)
-    {
-      // Stages at each behind part's distance (nearest first); at each, the parts the curve
-      // traced so far holds are checked as CheapConflict checks the whole shape (a conflict of
-      // some of its parts is a conflict of the shape). Parts computed bit for bit as the whole
-      // shape computes them: the same pieces (staging never cuts one), walked from the centre.
-      Record partial;
-      partial.Shape.ClassId = cls;
-      partial.Shape.Scale = s.Scale;
-      partial.Key = key;
-      for (std::size_t k = 0; k < BehindParts[cls].size(); ++k)
-      {
-        const int part = BehindParts[cls][k];
-        const double at = distance(part);
-        tracer.Continue(at);
-        if (tracer.Line().Length < at)
-        {
-          break; // (the streamline ended: the whole shape fails below)
-        }
-        PlacedPart p;
-        if (!place(tracer.Line(), true, part, p))
-        {
-          return false; // (the whole shape stops at this part too)
-        }
-        partial.Shape.Parts.push_back(p);
-        // Checked when the next part needs more streamline (or at the last).
-        const bool more = k + 1 < BehindParts[cls].size() &&
-          distance(BehindParts[cls][k + 1]) <= tracer.Line().Length;
-        if (!more && CheapConflict(partial, *precheck))
-        {
-          return false;
-        }
-      }
-    }
-    tracer.Continue();
-    const Streamline& behind = tracer.Line();
-    if (behind.Length < backward * (1.0 - 1e-9))
-    {
-      return false;
-    }
-    const Streamline ahead = Field->TraceStreamline(n, FieldAngles, centre, a0, forward);
-    if (ahead.Length < forward * (1.0 - 1e-9))
-    {
-      return false;
-    }
-    for (auto it = behind.Pieces.rbegin(); it != behind.Pieces.rend(); ++it)
-    {
-      s.Curve.push_back(CurvePiece{ it->Face, it->B, it->A });
-    }
-    s.CurveCentre = behind.Length;
-    s.Curve.insert(s.Curve.end(), ahead.Pieces.begin(), ahead.Pieces.end());
-    if (!CircleMode)
-    {
-      for (int part : c.Parts)
-      {
-        PlacedPart p;
-        // (A part at the centre itself reads the curve's direction there on whichever side the
-        // curve has length: a class may end at its centre.)
-        const double along = Dot(Tables.Parts[part].Centre, c.MajorAxis);
-        const bool behindPart = along < 0.0 || (along == 0.0 && !(ahead.Length > 0.0));
-        if (!place(behindPart ? behind : ahead, behindPart, part, p))
-        {
-          return false;
-        }
-        s.Parts.push_back(p);
-      }
-      return true;
-    }
+    return false;
+  }
+  else if (!CircleMode)
+  {
+    return true;
   }
   // A short class, or any class as circles: one part, at the centre.
   PlacedPart p;

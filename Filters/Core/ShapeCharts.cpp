@@ -1,6 +1,7 @@
 // Shape charts: the geodesic polar coordinates (log map) about every part centre of a shape, and
 // the accepted shapes kept with their charts: which vertices each chart holds (CoverIndex), which
-// faces hold a part centre (CentreIndex), the faces each kills; commit and take back.
+// faces hold a part centre (CentreIndex), the faces each kills; commit and take back; the pool
+// of exact chart engines (ExactEngineLease).
 #include "ShapeDistributorImpl.h"
 
 #include "GeodesicShooting.h"
@@ -277,6 +278,35 @@ ShapeDistributor::Impl::Record ShapeDistributor::Impl::Uncommit()
   KilledBy.pop_back();
   DeadSinceCdf += 1;
   return r;
+}
+
+GeodesicPolarCoordinates& ShapeDistributor::Impl::ExactEngineLease::Take()
+{
+  if (!Engine)
+  {
+    {
+      std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
+      if (!Owner.ExactPool.empty())
+      {
+        Engine = std::move(Owner.ExactPool.back());
+        Owner.ExactPool.pop_back();
+      }
+    }
+    if (!Engine)
+    {
+      Engine.reset(new GeodesicPolarCoordinates(Owner.Mesh));
+    }
+  }
+  return *Engine;
+}
+
+ShapeDistributor::Impl::ExactEngineLease::~ExactEngineLease()
+{
+  if (Engine)
+  {
+    std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
+    Owner.ExactPool.push_back(std::move(Engine));
+  }
 }
 
 } // namespace gs

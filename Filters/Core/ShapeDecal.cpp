@@ -3,6 +3,8 @@
 #include "ShapeDecal.h"
 #include "ShapeDistributorImpl.h"
 
+#include "KeyedValues.h"
+
 #include "GeodesicShooting.h"
 
 #include <algorithm>
@@ -230,80 +232,6 @@ bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
 
 namespace
 {
-// Values known per key (a vertex, or an edge's two vertices packed in 64 bits; never ~0): open
-// addressing with linear probing (the unordered_maps it replaces allocated a node per entry,
-// a tenth of the decals' time).
-template <class Value>
-class KeyedValues
-{
-public:
-  Value* Find(std::uint64_t key)
-  {
-    if (Keys.empty())
-    {
-      return nullptr;
-    }
-    for (std::size_t i = Slot(key);; i = (i + 1) & (Keys.size() - 1))
-    {
-      if (Keys[i] == key)
-      {
-        return &Values[i];
-      }
-      if (Keys[i] == Empty)
-      {
-        return nullptr;
-      }
-    }
-  }
-  Value& Insert(std::uint64_t key, const Value& value) // (key not there yet)
-  {
-    if (2 * (Count + 1) > Keys.size())
-    {
-      Grow();
-    }
-    std::size_t i = Slot(key);
-    while (Keys[i] != Empty)
-    {
-      i = (i + 1) & (Keys.size() - 1);
-    }
-    Keys[i] = key;
-    Values[i] = value;
-    ++Count;
-    return Values[i];
-  }
-
-private:
-  static constexpr std::uint64_t Empty = ~std::uint64_t(0);
-  std::size_t Slot(std::uint64_t key) const
-  {
-    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> Shift);
-  }
-  void Grow()
-  {
-    std::vector<std::uint64_t> keys(std::max<std::size_t>(64, 2 * Keys.size()), Empty);
-    std::vector<Value> values(keys.size());
-    Shift = 64;
-    for (std::size_t n = keys.size(); n > 1; n >>= 1)
-    {
-      --Shift;
-    }
-    keys.swap(Keys);
-    values.swap(Values);
-    Count = 0;
-    for (std::size_t i = 0; i < keys.size(); ++i)
-    {
-      if (keys[i] != Empty)
-      {
-        Insert(keys[i], values[i]);
-      }
-    }
-  }
-  std::vector<std::uint64_t> Keys;
-  std::vector<Value> Values;
-  std::size_t Count = 0;
-  int Shift = 64;
-};
-
 // The state of one decal as it is built: the class points of the vertices near the shape, the
 // texels that draw, the long shape's grid and the values read on it once per vertex and edge.
 struct DecalBuilder
@@ -867,35 +795,6 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
     b.AddFace(entry.first, entry.second, sense, unit, decal);
   }
   return decal;
-}
-
-GeodesicPolarCoordinates& ShapeDistributor::Impl::ExactEngineLease::Take()
-{
-  if (!Engine)
-  {
-    {
-      std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
-      if (!Owner.ExactPool.empty())
-      {
-        Engine = std::move(Owner.ExactPool.back());
-        Owner.ExactPool.pop_back();
-      }
-    }
-    if (!Engine)
-    {
-      Engine.reset(new GeodesicPolarCoordinates(Owner.Mesh));
-    }
-  }
-  return *Engine;
-}
-
-ShapeDistributor::Impl::ExactEngineLease::~ExactEngineLease()
-{
-  if (Engine)
-  {
-    std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
-    Owner.ExactPool.push_back(std::move(Engine));
-  }
 }
 
 ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const

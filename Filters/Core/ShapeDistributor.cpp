@@ -338,47 +338,6 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
   return result;
 }
 
-double ShapeDistributor::ProbeFitFraction(int probes, std::uint64_t seed)
-{
-  Impl& I = *Internal;
-  if (probes <= 0 || I.AllCdf.empty())
-  {
-    return 0.0;
-  }
-  const int threads = ThreadCount(I.Options.NumberOfThreads);
-  I.EnsureEngines(threads);
-  struct Scratch
-  {
-    std::vector<int> Conflicts;
-    long long Fits = 0;
-  };
-  std::vector<Scratch> perThread(threads);
-  ParallelFor(probes, threads, 64, [&](int i, int thread) {
-    Scratch& s = perThread[thread];
-    Random rng(seed, 3, 0, static_cast<std::uint64_t>(i));
-    Impl::Record r;
-    r.Key = ~std::uint64_t(0); // (judged by every accepted shape)
-    const int cls = I.RandomClass(rng);
-    const SurfacePoint centre = I.RandomPoint(rng, false);
-    if (!I.MakeShape(centre, cls, rng, r.Shape, nullptr, &s.Conflicts, r.Key) ||
-      I.CheapConflict(r, s.Conflicts))
-    {
-      return;
-    }
-    I.ComputeCharts(r, I.Engine(thread));
-    if (!I.FullConflict(r, s.Conflicts) && !I.DrawnConflict(r, s.Conflicts))
-    {
-      ++s.Fits;
-    }
-  });
-  long long fits = 0;
-  for (const Scratch& s : perThread)
-  {
-    fits += s.Fits;
-  }
-  return static_cast<double>(fits) / probes;
-}
-
 SurfacePoint ShapeDistributor::MapToSurface(int shape, const Vec2& p) const
 {
   return Map(shape, p).End;

@@ -38,7 +38,7 @@
 // when no front is left, random candidates seed new fronts.
 // Termination: MaximumShapes reached, or MaximalFailures consecutive candidates (in priority
 // order) rejected: a shape then fits in only about 1 / MaximalFailures of random probes
-// (ProbeFitFraction measures it).
+// (the tests' and benchmarks' ProbeFitFraction measures it).
 //
 // ONE SHAPE MODEL. A placed shape is its map class point -> surface point (Map): a short
 // shape's exponential map about its centre, a long shape's curve map above. Everything drawn or
@@ -260,10 +260,6 @@ public:
     const std::vector<Vec3>& faceDirections, const std::vector<double>& vertexDensity,
     const ShapeDistributionOptions& options, const std::function<bool(double)>& progress = nullptr);
 
-  /// After Run: the fraction of `probes` random candidates (drawn like the run's, with
-  /// field-aligned orientation) that would fit among the placed shapes.
-  double ProbeFitFraction(int probes, std::uint64_t seed);
-
   /// After Run: the surface point of class-frame point p (normalized units) of placed shape s,
   /// through the polar coordinates of its centre (short shapes) or of its curve (long shapes).
   SurfacePoint MapToSurface(int shape, const Vec2& p) const;
@@ -306,6 +302,9 @@ public:
 private:
   struct Impl;
   std::unique_ptr<Impl> Internal;
+  // The test seam (Testing/Support/DistributorProbes.cpp): measurements of a run's internals
+  // that tests and benchmarks make, not part of the API.
+  friend struct ShapeDistributorInspector;
 };
 
 } // namespace gs

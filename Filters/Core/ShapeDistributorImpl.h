@@ -4,7 +4,8 @@
 //   CandidateSampling.cpp  dart throwing: class and face distributions (area / f^2), dead-face
 //                          masks, a candidate's geometry (direction, streamline, parts)
 //   ShapeCharts.cpp        the polar charts of a shape's parts, and the accepted shapes with
-//                          their chart and centre indexes (commit, take back)
+//                          their chart and centre indexes (commit, take back); the pool of
+//                          exact chart engines
 //   ConflictRules.cpp      Algorithm 2: two shapes' parts judged in a polar chart by the safe
 //                          distance tables; the cheap centre check, the boundary and the drawn
 //                          check
@@ -294,6 +295,22 @@ struct ShapeDistributor::Impl
   /// `key`: the candidate's Record::Key (the precheck's judges).
   bool MakeShape(const SurfacePoint& centre, int cls, Random& rng, PlacedShape& s,
     const Vec3* prefer = nullptr, std::vector<int>* precheck = nullptr, std::uint64_t key = 0) const;
+  /// The direction a candidate in face f turns to: the field's (of its N, the closest to
+  /// `prefer` when given), or a direction spun by `spin` turns where the field vanishes.
+  Vec3 ShapeFieldDirection(int f, const Vec3& normal, double spin, const Vec3* prefer) const;
+  /// A long class's curve and parts (MakeShape): s holds the class, centre, scale and normal;
+  /// sets its direction, curve and (unless CircleMode) parts; false when it does not fit.
+  bool MakeLongShape(const Vec3& dir, PlacedShape& s, std::vector<int>* precheck,
+    std::uint64_t key) const;
+  /// MakeShape's staged precheck: traces `tracer` (behind the centre) up to each part of
+  /// BehindParts in turn and checks the parts placed so far; false on a conflict.
+  bool BehindPartsFit(DirectionFieldSolver::StreamlineTracer& tracer, const PlacedShape& s,
+    double scale, double phiM, std::vector<int>& precheck, std::uint64_t key) const;
+  /// A part's distance from the shape's centre along its curve, at `scale`.
+  double PartDistanceAlongCurve(int cls, int part, double scale) const;
+  /// Places `part` of class cls on the streamline `line` (behind: the curve runs the other way).
+  bool PlacePartOnCurve(const Streamline& line, bool behind, int cls, int part, double scale,
+    double phiM, PlacedPart& p) const;
   /// Places part `part` (MakeShape, and its precheck on the curve behind the centre): from the
   /// curve point (face, x) with the curve's unit tangent there, `across` off the curve, its axis
   /// turned by -phiM from the curve's direction; false when it leaves the surface.
@@ -665,6 +682,7 @@ struct ShapeDistributor::Impl
   // ---- Decals (ShapeDecal.cpp) ----------------------------------------------------------
   /// See ShapeDistributor::Decal.
   ShapeDecal DecalOf(int shape, double tolerance) const;
+  // ---- The exact engines' pool (ShapeCharts.cpp) -------------------------------------------
   // Exact geodesic polar coordinates engines for short shapes' decals and the drawn check's
   // exact log maps (PrepareExactMap): both may run on any thread, so an engine is leased from
   // the pool (Take; a new one when it is empty) and goes back to it when the lease ends.

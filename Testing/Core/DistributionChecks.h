@@ -13,17 +13,92 @@
 #include "ShapeOverlapOracle.h"
 #include "GeodesicPolarCoordinates.h"
 #include "GeodesicShooting.h"
+#include "Hash.h"
 #include "OverlapCheck.h"
 #include "TriangleMesh.h"
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <ostream>
 #include <cmath>
 #include <memory>
 #include <vector>
 
 namespace gs_test
 {
+
+/// Hashes of a run's results over every shape: Placements (position, direction, class, scale,
+/// parts with their centres and axes, the curve of a long shape), Decals (faces, corners,
+/// texture coordinates) and Outlines (surface points, class points, closure, at the drawn
+/// check's spacing); Probe is left to the caller (ProbeFitFraction).
+struct RunHashes
+{
+  std::uint64_t Placements = 0, Decals = 0, Outlines = 0;
+  int Shapes = 0;
+  double Probe = 0.0;
+  bool operator==(const RunHashes& o) const
+  {
+    return Placements == o.Placements && Decals == o.Decals && Outlines == o.Outlines &&
+      Shapes == o.Shapes && Probe == o.Probe;
+  }
+  bool operator!=(const RunHashes& o) const { return !(*this == o); }
+};
+
+inline std::ostream& operator<<(std::ostream& os, const RunHashes& h)
+{
+  return os << h.Shapes << " shapes, hashes " << std::hex << h.Placements << " " << h.Decals
+            << " " << h.Outlines << std::dec << ", probe " << h.Probe;
+}
+
+inline void AddPoint(gs::Hasher& h, const gs::SurfacePoint& p)
+{
+  h.AddValue(p.Vertex);
+  h.AddValue(p.Face);
+  h.AddValue(p.Bary);
+}
+
+inline RunHashes HashRun(const gs::ShapeDistributor& d, const std::vector<gs::PlacedShape>& shapes)
+{
+  gs::Hasher placements, decals, outlines;
+  for (const gs::PlacedShape& s : shapes)
+  {
+    placements.AddValue(s.Position);
+    placements.AddValue(s.Direction);
+    placements.AddValue(s.ClassId);
+    placements.AddValue(s.Scale);
+    for (const gs::PlacedPart& p : s.Parts)
+    {
+      placements.AddValue(p.Part);
+      AddPoint(placements, p.Centre);
+      placements.AddValue(p.Axis);
+    }
+    for (const gs::CurvePiece& c : s.Curve)
+    {
+      placements.AddValue(c.Face);
+      placements.AddValue(c.A);
+      placements.AddValue(c.B);
+    }
+    placements.AddValue(s.CurveCentre);
+  }
+  for (int s = 0; s < static_cast<int>(shapes.size()); ++s)
+  {
+    const gs::ShapeDecal decal = d.Decal(s);
+    decals.AddVector(decal.Faces);
+    decals.AddVector(decal.Corners);
+    decals.AddVector(decal.TextureCoordinates);
+    for (const gs::OutlinePiece& piece : d.Outline(s, d.OutlineSpacing()))
+    {
+      for (const gs::SurfacePoint& p : piece.Points)
+      {
+        AddPoint(outlines, p);
+      }
+      outlines.AddVector(piece.ClassPoints);
+      outlines.AddValue(piece.Closed);
+    }
+  }
+  return { placements.H, decals.H, outlines.H, static_cast<int>(shapes.size()), 0.0 };
+}
 
 /// Every shape's drawn outline at `spacing` (ShapeDistributor::Outline), as CheckOverlaps takes
 /// them.

@@ -56,4 +56,12 @@ inline gs::SafeDistanceTables PolygonTables(const std::vector<std::vector<gs::Ve
   return *r;
 }
 
+// A star (5 points, radii 1 and 0.4) and a 5 x 1 bar: a short class and a long one, split into
+// parts that bend along the field.
+inline gs::SafeDistanceTables StarAndBar()
+{
+  return PolygonTables({ gs::MakeStarPolygon(5, 1.0, 0.4),
+    { { -2.5, -0.5 }, { 2.5, -0.5 }, { 2.5, 0.5 }, { -2.5, 0.5 } } });
+}
+
 } // namespace gs_test

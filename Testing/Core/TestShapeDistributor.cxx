@@ -1,5 +1,6 @@
 // Shape distribution: conflict-freeness against an independent overlap test, determinism across
 // thread counts, modes, density, multiple classes, long shapes, maximality, bad input.
+#include "DistributorProbes.h"
 #include "DistributionChecks.h"
 #include "TestMeshes.h"
 #include "TestStatus.h"
@@ -102,7 +103,7 @@ TEST(ShapeDistributor, StarsOnAPlaneAreConflictFreeAndDenserThanCircles)
     EXPECT_TRUE(r.Statistics.Maximal);
     counts[mode] = static_cast<double>(r.Shapes.size());
     // Maximal: few random probes still fit.
-    EXPECT_LT(d.ProbeFitFraction(2000, 99), 0.01) << "mode " << static_cast<int>(mode);
+    EXPECT_LT(gs_test::ProbeFitFraction(d, 2000, 99), 0.01) << "mode " << static_cast<int>(mode);
     for (const PlacedShape& s : r.Shapes)
     {
       EXPECT_NEAR(s.Direction.x, 1.0, 1e-9);
@@ -447,6 +448,28 @@ TEST(ShapeDistributor, BadInputGetsClearErrors)
     EXPECT_NE(r.Message().find("FaithfulTolerance"), std::string::npos) << r.Message();
   }
   o.FaithfulTolerance = 0.05;
+  // The place-keyed order's options: each out of its range is named with the range.
+  o.Order = static_cast<CandidateOrder>(5);
+  r = d.Run(t, plane.Directions, {}, o);
+  EXPECT_TRUE(gs_test::FailedWith(r, "CandidateOrder")) << r.Message();
+  EXPECT_NE(r.Message().find("0 (Rounds) or 1 (PlaceKeyed)"), std::string::npos) << r.Message();
+  o.Order = CandidateOrder::PlaceKeyed;
+  for (const double share : { -0.1, 1.5, static_cast<double>(NAN) })
+  {
+    o.MaximumEditShare = share;
+    r = d.Run(t, plane.Directions, {}, o);
+    EXPECT_TRUE(gs_test::FailedWith(r, "MaximumEditShare")) << share << ": " << r.Message();
+  }
+  o.MaximumEditShare = 0.1;
+  for (const int levels : { 0, 17, -3 })
+  {
+    o.PoolLevels = levels;
+    r = d.Run(t, plane.Directions, {}, o);
+    EXPECT_TRUE(gs_test::FailedWith(r, "PoolLevels")) << levels << ": " << r.Message();
+    EXPECT_NE(r.Message().find("from 1 to 16"), std::string::npos) << r.Message();
+  }
+  o.PoolLevels = 8;
+  o.Order = CandidateOrder::Rounds;
   // A saddle vertex graph built for another mesh is refused (not silently dropped).
   const Plane other = MakePlane(5, 1.0);
   SaddleVertexGraph otherGraph;

@@ -4,11 +4,11 @@
 // outlines), for 1 and 2 threads, on a plane with a boundary (KeepInside) and on a curved mesh
 // with a saddle vertex graph, each with a long class beside the star. The results are judged
 // by VerifyOverlaps on the drawn outlines, and as dense as the rounds' dart throwing.
+#include "DistributorProbes.h"
 #include "DistributionChecks.h"
 #include "TestMeshes.h"
 #include "TestStatus.h"
 
-#include "Hash.h"
 #include "MeshGenerators.h"
 #include "OverlapCheck.h"
 #include "SaddleVertexGraph.h"
@@ -23,41 +23,6 @@ using namespace gs;
 
 namespace
 {
-SafeDistanceTables StarAndBar()
-{
-  return gs_test::PolygonTables(
-    { MakeStarPolygon(5, 1.0, 0.4), { { -2.5, -0.5 }, { 2.5, -0.5 }, { 2.5, 0.5 }, { -2.5, 0.5 } } });
-}
-
-// Placements, decals and outlines of a run.
-std::uint64_t HashRun(const ShapeDistributor& d, const std::vector<PlacedShape>& shapes)
-{
-  Hasher h;
-  for (int s = 0; s < static_cast<int>(shapes.size()); ++s)
-  {
-    const PlacedShape& p = shapes[s];
-    h.AddValue(p.Position);
-    h.AddValue(p.Direction);
-    h.AddValue(p.ClassId);
-    h.AddValue(p.Scale);
-    for (const PlacedPart& part : p.Parts)
-    {
-      h.AddValue(part.Part);
-      h.AddValue(part.Position);
-      h.AddValue(part.Axis);
-    }
-    h.AddValue(p.CurveCentre);
-    const ShapeDecal decal = d.Decal(s);
-    h.AddVector(decal.Faces);
-    h.AddVector(decal.TextureCoordinates);
-    for (const OutlinePiece& piece : d.Outline(s, d.OutlineSpacing()))
-    {
-      h.AddVector(piece.ClassPoints);
-    }
-  }
-  return h.H;
-}
-
 struct Scene
 {
   const TriangleMesh& Mesh;
@@ -83,8 +48,8 @@ std::vector<double> Brush(const TriangleMesh& mesh, const Vec3& centre, double r
 // Runs the edits one after the other on one distributor, each compared with a fresh one.
 void CheckEdits(const Scene& scene, const std::vector<std::vector<double>>& edits, const char* name)
 {
-  const SafeDistanceTables tables = StarAndBar();
-  std::uint64_t first[8] = {};
+  const SafeDistanceTables tables = gs_test::StarAndBar();
+  gs_test::RunHashes first[8] = {};
   for (const int threads : { 1, 2 })
   {
     ShapeDistributionOptions o = scene.Options;
@@ -113,9 +78,9 @@ void CheckEdits(const Scene& scene, const std::vector<std::vector<double>>& edit
         EXPECT_LT(a->Statistics.Redecided, b->Statistics.Redecided) << name << " edit " << k;
       }
       ASSERT_EQ(a->Shapes.size(), b->Shapes.size()) << name << " edit " << k;
-      const std::uint64_t h = HashRun(edited, a->Shapes);
-      EXPECT_EQ(h, HashRun(fresh, b->Shapes)) << name << " edit " << k << ", " << threads << " thread(s)";
-      EXPECT_EQ(HashRun(rerun, c->Shapes), HashRun(fresh, b->Shapes)) << name << " rerun " << k;
+      const gs_test::RunHashes h = gs_test::HashRun(edited, a->Shapes);
+      EXPECT_EQ(h, gs_test::HashRun(fresh, b->Shapes)) << name << " edit " << k << ", " << threads << " thread(s)";
+      EXPECT_EQ(gs_test::HashRun(rerun, c->Shapes), gs_test::HashRun(fresh, b->Shapes)) << name << " rerun " << k;
       if (threads == 1)
       {
         first[k] = h;
@@ -213,8 +178,8 @@ TEST(ShapeDistributorEdits, PlaceKeyedRunsAreAsDenseAsRoundsAndRerunFreshWhenMor
   // Random sequential adsorption both: the same density within a few percent, and maximal
   // (random probes that would still fit: a few per thousand at most).
   EXPECT_NEAR(static_cast<double>(b->Shapes.size()) / a->Shapes.size(), 1.0, 0.05);
-  EXPECT_LT(pool.ProbeFitFraction(2000, 7), 0.005);
-  EXPECT_LT(rounds.ProbeFitFraction(2000, 7), 0.005);
+  EXPECT_LT(gs_test::ProbeFitFraction(pool, 2000, 7), 0.005);
+  EXPECT_LT(gs_test::ProbeFitFraction(rounds, 2000, 7), 0.005);
   // Another seed, size or field: a fresh run.
   o.Seed = 2;
   const Result<ShapeDistribution> c = pool.Run(tables, directions, density, o);
@@ -225,7 +190,7 @@ TEST(ShapeDistributorEdits, PlaceKeyedRunsAreAsDenseAsRoundsAndRerunFreshWhenMor
   ASSERT_TRUE(d.Ok());
   EXPECT_TRUE(d->Statistics.Incremental);
   EXPECT_EQ(d->Statistics.Redecided, 0);
-  EXPECT_EQ(HashRun(pool, c->Shapes), HashRun(pool, d->Shapes));
+  EXPECT_EQ(gs_test::HashRun(pool, c->Shapes), gs_test::HashRun(pool, d->Shapes));
   // An edit of most of the surface runs fresh (in parallel), with the same result.
   const std::vector<double> wide = Brush(plane, { 4.0, 4.0, 0.0 }, 6.0, 0.5, {});
   const Result<ShapeDistribution> w = pool.Run(tables, directions, wide, o);
@@ -235,7 +200,7 @@ TEST(ShapeDistributorEdits, PlaceKeyedRunsAreAsDenseAsRoundsAndRerunFreshWhenMor
   ShapeDistributor wideFresh(plane, nullptr);
   const Result<ShapeDistribution> wf = wideFresh.Run(tables, directions, wide, o);
   ASSERT_TRUE(wf.Ok());
-  EXPECT_EQ(HashRun(pool, w->Shapes), HashRun(wideFresh, wf->Shapes));
+  EXPECT_EQ(gs_test::HashRun(pool, w->Shapes), gs_test::HashRun(wideFresh, wf->Shapes));
   // MaximumShapes ends a run at a count: always fresh.
   o.MaximumShapes = 10;
   const Result<ShapeDistribution> e = pool.Run(tables, directions, density, o);
@@ -255,5 +220,5 @@ TEST(ShapeDistributorEdits, PlaceKeyedRunsAreAsDenseAsRoundsAndRerunFreshWhenMor
   ShapeDistributor fresh(plane, nullptr);
   const Result<ShapeDistribution> expected = fresh.Run(tables, directions, moved, o);
   ASSERT_TRUE(expected.Ok());
-  EXPECT_EQ(HashRun(pool, after->Shapes), HashRun(fresh, expected->Shapes));
+  EXPECT_EQ(gs_test::HashRun(pool, after->Shapes), gs_test::HashRun(fresh, expected->Shapes));
 }

@@ -4,11 +4,11 @@
 // off, with and without a saddle vertex graph) hashed and compared with hashes recorded before
 // the distributor was split into files. A change of any bit fails; when a change of results is
 // intended, the test prints the new hashes to record.
+#include "DistributorProbes.h"
 #include "DistributionChecks.h"
 #include "TestMeshes.h"
 #include "TestStatus.h"
 
-#include "Hash.h"
 #include "MeshGenerators.h"
 #include "OverlapCheck.h"
 #include "SaddleVertexGraph.h"
@@ -25,70 +25,6 @@ using namespace gs;
 
 namespace
 {
-SafeDistanceTables StarAndBar()
-{
-  return gs_test::PolygonTables(
-    { MakeStarPolygon(5, 1.0, 0.4), { { -2.5, -0.5 }, { 2.5, -0.5 }, { 2.5, 0.5 }, { -2.5, 0.5 } } });
-}
-
-void AddPoint(Hasher& h, const SurfacePoint& p)
-{
-  h.AddValue(p.Vertex);
-  h.AddValue(p.Face);
-  h.AddValue(p.Bary);
-}
-
-struct Hashes
-{
-  std::uint64_t Placements = 0, Decals = 0, Outlines = 0;
-  int Shapes = 0;
-  double Probe = 0.0; // ProbeFitFraction(200, 1)
-};
-
-// Placements (what DistributionBenchmark hashes, and the scale, parts and curves), every decal
-// (faces, corners, texture coordinates) and every outline at the drawn check's spacing.
-Hashes Hash(const ShapeDistributor& d, const Result<ShapeDistribution>& r)
-{
-  Hasher placements, decals, outlines;
-  for (const PlacedShape& s : r->Shapes)
-  {
-    placements.AddValue(s.Position);
-    placements.AddValue(s.Direction);
-    placements.AddValue(s.ClassId);
-    placements.AddValue(s.Scale);
-    for (const PlacedPart& p : s.Parts)
-    {
-      placements.AddValue(p.Part);
-      AddPoint(placements, p.Centre);
-      placements.AddValue(p.Axis);
-    }
-    for (const CurvePiece& c : s.Curve)
-    {
-      placements.AddValue(c.Face);
-      placements.AddValue(c.A);
-      placements.AddValue(c.B);
-    }
-    placements.AddValue(s.CurveCentre);
-  }
-  for (int s = 0; s < static_cast<int>(r->Shapes.size()); ++s)
-  {
-    const ShapeDecal decal = d.Decal(s);
-    decals.AddVector(decal.Faces);
-    decals.AddVector(decal.Corners);
-    decals.AddVector(decal.TextureCoordinates);
-    for (const OutlinePiece& piece : d.Outline(s, d.OutlineSpacing()))
-    {
-      for (const SurfacePoint& p : piece.Points)
-      {
-        AddPoint(outlines, p);
-      }
-      outlines.AddVector(piece.ClassPoints);
-      outlines.AddValue(piece.Closed);
-    }
-  }
-  return { placements.H, decals.H, outlines.H, static_cast<int>(r->Shapes.size()), 0.0 };
-}
-
 struct Case
 {
   const char* Name;
@@ -97,7 +33,7 @@ struct Case
   bool Density;
   bool KeepInside;
   bool Graph;
-  Hashes Expected;
+  gs_test::RunHashes Expected;
 };
 
 // Recorded from a run of the distributor and recorded again, deliberately, when a change was
@@ -124,7 +60,7 @@ const Case Cases[] = {
 
 TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
 {
-  const SafeDistanceTables t = StarAndBar();
+  const SafeDistanceTables t = gs_test::StarAndBar();
   ASSERT_GT(t.Classes[1].Parts.size(), 1u);
   const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(30, 30, 6.0, 6.0));
   const TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.03));
@@ -159,15 +95,15 @@ TEST(ShapeDistributorRegression, PlacementsDecalsAndOutlinesBitForBit)
     o.Seed = 5;
     o.MaximalFailures = 300;
     o.KeepInside = c.KeepInside;
-    Hashes first;
+    gs_test::RunHashes first;
     for (const int threads : { 1, 2 })
     {
       o.NumberOfThreads = threads;
       ShapeDistributor d(mesh, c.Graph ? (c.Sphere ? &sphereGraph : &planeGraph) : nullptr);
       const Result<ShapeDistribution> r = d.Run(t, directions, density, o);
       ASSERT_TRUE(r.Ok()) << r.Message();
-      Hashes h = Hash(d, r);
-      h.Probe = d.ProbeFitFraction(200, 1);
+      gs_test::RunHashes h = gs_test::HashRun(d, r->Shapes);
+      h.Probe = gs_test::ProbeFitFraction(d, 200, 1);
       std::printf("%s, %d thread(s): %d shapes, { 0x%016" PRIx64 "ull, 0x%016" PRIx64 "ull, 0x%016" PRIx64
                   "ull, %d, %.17g }\n",
         c.Name, threads, h.Shapes, h.Placements, h.Decals, h.Outlines, h.Shapes, h.Probe);
@@ -233,15 +169,15 @@ TEST(ShapeDistributorRegression, EarlyRejectionChangesNothing)
       o.Mode = mode;
       o.Seed = 7;
       o.MaximalFailures = 2000;
-      Hashes h[2];
+      gs_test::RunHashes h[2];
       for (const bool early : { false, true })
       {
         o.EarlyRejection = early;
         ShapeDistributor d(mesh);
         const Result<ShapeDistribution> r = d.Run(t, directions, {}, o);
         ASSERT_TRUE(r.Ok()) << r.Message();
-        h[early] = Hash(d, r);
-        h[early].Probe = d.ProbeFitFraction(2000, 3);
+        h[early] = gs_test::HashRun(d, r->Shapes);
+        h[early].Probe = gs_test::ProbeFitFraction(d, 2000, 3);
         int longShapes = 0;
         for (const PlacedShape& s : r->Shapes)
           longShapes += s.Curve.empty() ? 0 : 1;
