@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Checks the shape of the code under Filters/: no function body longer than --max-function lines
-and no source file longer than --max-file lines. Prints every offender (length, file, first line,
-name) and exits with 1 when there is one.
+"""Checks the shape of the code under Filters/: no function body longer than --max-function lines,
+no source file longer than --max-file lines and, with --stages, no include that runs back up the
+core's stages. Prints every offender and exits with 1 when there is one.
 
 Functions are found by brace matching on the source with comments and string literals removed: a
 '{' at namespace or class scope whose head has a parameter list opens a function body; lambdas and
@@ -87,11 +87,47 @@ def long_functions(path, limit):
             head_start = i + 1
 
 
+INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
+
+
+def stage_offenders(core, stages):
+    """Includes in core/<stage>/ of a header that lives in a later stage's folder (stages are
+    listed first to last: each may use its own and the earlier ones'), and files of core/ that
+    are in no stage's folder."""
+    home = {}
+    for rank, stage in enumerate(stages):
+        folder = os.path.join(core, stage)
+        if not os.path.isdir(folder):
+            yield f'stage folder {folder} is missing'
+            continue
+        for name in os.listdir(folder):
+            home[name] = rank
+    for name in sorted(os.listdir(core)):
+        if name.endswith(SOURCE_SUFFIXES):
+            yield f'file {os.path.join(core, name)}: in no stage folder ({", ".join(stages)})'
+    for rank, stage in enumerate(stages):
+        folder = os.path.join(core, stage)
+        if not os.path.isdir(folder):
+            continue
+        for name in sorted(os.listdir(folder)):
+            if not name.endswith(SOURCE_SUFFIXES):
+                continue
+            with open(os.path.join(folder, name), encoding='utf-8', errors='replace') as f:
+                for header in INCLUDE.findall(f.read()):
+                    used = home.get(os.path.basename(header))
+                    if used is not None and used > rank:
+                        yield (f'include {stage}/{name} -> {stages[used]}/{header}: runs back up '
+                               f'the stages ({" -> ".join(stages)})')
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('roots', nargs='+', help='folders to scan')
     parser.add_argument('--max-function', type=int, default=120)
     parser.add_argument('--max-file', type=int, default=900)
+    parser.add_argument('--core', help='the core folder whose subfolders are the stages')
+    parser.add_argument('--stages', nargs='*', default=[],
+                        help='the core\'s stage folders, first to last')
     args = parser.parse_args()
     offenders = []
     for root in args.roots:
@@ -107,6 +143,8 @@ def main():
                 for length, first, function in long_functions(path, args.max_function):
                     offenders.append(f'function {function} at {path}:{first}: {length} lines '
                                      f'(at most {args.max_function})')
+    if args.core and args.stages:
+        offenders.extend(stage_offenders(args.core, args.stages))
     for offender in offenders:
         print(offender)
     print(f'{len(offenders)} offender(s)')

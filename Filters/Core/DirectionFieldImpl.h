@@ -55,8 +55,22 @@ struct DirectionFieldSolver::Factorization
   Eigen::SparseMatrix<double> Bff; // free rows x free columns (the factorized matrix)
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
 
+  // System: the connection Laplacian for N = Symmetry (sum over interior edges of
+  // w |u_g - R u_f|^2) plus (Alignment sigma + eps) times the face areas on the diagonal.
+  void AssembleSystem(const DirectionFieldSolver& solver, double sigma, double eps);
+  // FreeIndex, Bfc and the factorized Bff: System split into its free and constrained blocks.
+  Status FactorizeFreeBlock(const std::vector<char>& isConstrained);
+  // The free faces' right-hand side of everything but the eigenproblem: minus Bfc times the
+  // constrained values, plus the curvature alignment target.
+  Eigen::VectorXd FixedRightHandSide(const DirectionFieldSolver& solver,
+    const std::vector<double>& constrainedRe, const std::vector<double>& constrainedIm,
+    double sigma) const;
   // The smallest eigenvector of (Bff, M), M the face areas of `surface` (Rayleigh-Ritz).
   Eigen::VectorXd SmallestEigenvector(const TriangleMesh& surface, int nf) const;
+  // Inverse iteration (Knoppel et al.) on the components marked in `componentFree`, the other
+  // free faces solved with `rhsFixed`; each iterated component normalised to its area.
+  Eigen::VectorXd InverseIterationPerComponent(const TriangleMesh& surface,
+    const std::vector<char>& componentFree, const Eigen::VectorXd& rhsFixed) const;
 };
 
 struct DirectionFieldSolver::ConnectionFactorization
@@ -75,6 +89,43 @@ struct DirectionFieldSolver::ConnectionFactorization
   Eigen::SparseMatrix<double> Holonomy;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> Solver;
   std::vector<double> ComponentEuler;
+
+  // Everything that depends only on the mesh and the constrained faces: the tree-cotree
+  // decomposition, the holonomy rows and the factorization of their weighted normal equations.
+  Status Build(const DirectionFieldSolver& solver, const std::vector<int>& constrainedFaces);
+  // EdgeOf and InverseWeight (the inverse edge weights, floored relative to their mean);
+  // returns the number of interior edges.
+  int IndexInteriorEdges(const TriangleMesh& surface, const std::vector<double>& edgeWeight);
+  // ParentHalfedge, Depth and Order: a breadth-first spanning forest of the dual graph that never
+  // crosses a primal tree edge. Returns the half-edges it crosses (both twins marked).
+  std::vector<char> BuildDualForest(
+    const TriangleMesh& surface, const std::vector<char>& inPrimalTree);
+  // The half-edges crossed going from face `from` to face `to` along the dual tree.
+  std::vector<int> DualTreePath(const TriangleMesh& surface, int from, int to) const;
+  // Cycles: one homology generator per edge in neither the primal nor the dual tree.
+  void CollectCycles(const TriangleMesh& surface, const std::vector<char>& inPrimalTree,
+    const std::vector<char>& inDualTree);
+  // Paths and PathEnds: a dual path between each two consecutive constrained faces of a component.
+  void CollectConstraintPaths(const TriangleMesh& surface);
+  // RowVertices: every interior vertex and boundary loop but the last of each component (the
+  // last one's holonomy follows from the others').
+  void SelectVertexRows(const TriangleMesh& surface, int ncomp);
+  // Holonomy: the signed interior edges crossed by each row (vertices, cycles, paths).
+  void AssembleHolonomy(const TriangleMesh& surface, int ne);
+  // ComponentEuler: V - E + F of each connected component.
+  void CountComponentEuler(const TriangleMesh& surface, int ncomp);
+  // Fails unless the indices of each component sum to its Euler characteristic (Poincare-Hopf).
+  Status CheckIndexSums(const TriangleMesh& surface, const std::vector<double>& index) const;
+  // The holonomy change each row asks of the connection: the prescribed index less the angle
+  // defect (vertices), the rounding to a multiple of 2 pi / N (cycles), the constraints' relative
+  // angle (paths).
+  Eigen::VectorXd HolonomyTargets(const DirectionFieldSolver& solver, int n,
+    const std::vector<double>& index,
+    const std::vector<FaceDirectionConstraint>& constraints) const;
+  // Angles transported over the dual tree with the connection changed by `edgeRotation`, each
+  // component then rotated onto its first constraint and wrapped to [-pi, pi).
+  void IntegrateAngles(const DirectionFieldSolver& solver, const Eigen::VectorXd& edgeRotation,
+    const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles) const;
 };
 
 } // namespace gs

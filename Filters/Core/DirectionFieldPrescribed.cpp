@@ -23,6 +23,46 @@ int Find(std::vector<int>& parent, int a)
   }
   return a;
 }
+
+// A spanning forest of the primal edges (both twins marked): the boundary edges first, so that
+// every boundary loop keeps all but one of its edges in the tree, then the interior edges.
+std::vector<char> PrimalSpanningForest(const TriangleMesh& surface)
+{
+  const int nv = surface.NumberOfVertices(), nh = surface.NumberOfHalfedges();
+  std::vector<int> uf(nv);
+  for (int v = 0; v < nv; ++v)
+  {
+    uf[v] = v;
+  }
+  std::vector<char> inTree(nh, 0);
+  auto tryAdd = [&](int h) {
+    const int a = Find(uf, surface.Origin(h)), b = Find(uf, surface.Destination(h));
+    if (a != b)
+    {
+      uf[a] = b;
+      inTree[h] = 1;
+      if (surface.Twin(h) >= 0)
+      {
+        inTree[surface.Twin(h)] = 1;
+      }
+    }
+  };
+  for (int h = 0; h < nh; ++h)
+  {
+    if (surface.Twin(h) < 0)
+    {
+      tryAdd(h);
+    }
+  }
+  for (int h = 0; h < nh; ++h)
+  {
+    if (surface.Twin(h) > h)
+    {
+      tryAdd(h);
+    }
+  }
+  return inTree;
+}
 } // namespace
 
 Status DirectionFieldSolver::SolvePrescribed(int n,
@@ -79,8 +119,6 @@ Status DirectionFieldSolver::SolvePrescribed(int n,
 Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<double>& index,
   const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles)
 {
-  const int nf = Surface.NumberOfFaces(), nv = Surface.NumberOfVertices(),
-            nh = Surface.NumberOfHalfedges();
   std::vector<int> constrainedFaces;
   for (const FaceDirectionConstraint& c : constraints)
   {
@@ -90,309 +128,20 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
   if (!ConnectionCache || ConnectionCache->ConstrainedFaces != constrainedFaces)
   {
     auto cf = std::make_unique<ConnectionFactorization>();
-    cf->ConstrainedFaces = constrainedFaces;
-    // Interior edges.
-    cf->EdgeOf.assign(nh, -1);
-    int ne = 0;
-    std::vector<double> weight;
-    for (int h = 0; h < nh; ++h)
+    if (Status built = cf->Build(*this, constrainedFaces); !built.Ok())
     {
-      const int t = Surface.Twin(h);
-      if (t > h)
-      {
-        cf->EdgeOf[h] = cf->EdgeOf[t] = ne++;
-        weight.push_back(EdgeWeight[h]);
-      }
-    }
-    double meanW = 0.0;
-    for (double w : weight)
-    {
-      meanW += w;
-    }
-    meanW = ne > 0 ? meanW / ne : 1.0;
-    cf->InverseWeight.resize(ne);
-    for (int e = 0; e < ne; ++e)
-    {
-      cf->InverseWeight[e] = 1.0 / std::max(weight[e], 1e-9 * meanW);
-    }
-    // Primal spanning forest: boundary edges first (each loop minus one edge), then the rest.
-    std::vector<int> uf(nv);
-    for (int v = 0; v < nv; ++v)
-    {
-      uf[v] = v;
-    }
-    std::vector<char> inTree(nh, 0);
-    auto tryAdd = [&](int h) {
-      const int a = Find(uf, Surface.Origin(h)), b = Find(uf, Surface.Destination(h));
-      if (a != b)
-      {
-        uf[a] = b;
-        inTree[h] = 1;
-        if (Surface.Twin(h) >= 0)
-        {
-          inTree[Surface.Twin(h)] = 1;
-        }
-      }
-    };
-    for (int h = 0; h < nh; ++h)
-    {
-      if (Surface.Twin(h) < 0)
-      {
-        tryAdd(h);
-      }
-    }
-    for (int h = 0; h < nh; ++h)
-    {
-      if (Surface.Twin(h) > h)
-      {
-        tryAdd(h);
-      }
-    }
-    // Dual spanning forest avoiding the primal tree (breadth first).
-    cf->ParentHalfedge.assign(nf, -2);
-    cf->Depth.assign(nf, 0);
-    std::vector<char> inDual(nh, 0);
-    for (int root = 0; root < nf; ++root)
-    {
-      if (cf->ParentHalfedge[root] != -2)
-      {
-        continue;
-      }
-      cf->ParentHalfedge[root] = -1;
-      size_t head = cf->Order.size();
-      cf->Order.push_back(root);
-      while (head < cf->Order.size())
-      {
-        const int f = cf->Order[head++];
-        for (int c = 0; c < 3; ++c)
-        {
-          const int h = 3 * f + c, t = Surface.Twin(h);
-          if (t < 0 || inTree[h])
-          {
-            continue;
-          }
-          const int g = TriangleMesh::FaceOf(t);
-          if (cf->ParentHalfedge[g] != -2)
-          {
-            continue;
-          }
-          cf->ParentHalfedge[g] = h;
-          cf->Depth[g] = cf->Depth[f] + 1;
-          inDual[h] = inDual[t] = 1;
-          cf->Order.push_back(g);
-        }
-      }
-    }
-    auto pathBetween = [&](int a, int b) {
-      // Crossed half-edges from face a to face b along the dual tree.
-      std::vector<int> up, down;
-      while (cf->Depth[a] > cf->Depth[b])
-      {
-        up.push_back(Surface.Twin(cf->ParentHalfedge[a]));
-        a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
-      }
-      while (cf->Depth[b] > cf->Depth[a])
-      {
-        down.push_back(cf->ParentHalfedge[b]);
-        b = TriangleMesh::FaceOf(cf->ParentHalfedge[b]);
-      }
-      while (a != b)
-      {
-        up.push_back(Surface.Twin(cf->ParentHalfedge[a]));
-        a = TriangleMesh::FaceOf(cf->ParentHalfedge[a]);
-        down.push_back(cf->ParentHalfedge[b]);
-        b = TriangleMesh::FaceOf(cf->ParentHalfedge[b]);
-      }
-      up.insert(up.end(), down.rbegin(), down.rend());
-      return up;
-    };
-    for (int h = 0; h < nh; ++h)
-    {
-      const int t = Surface.Twin(h);
-      if (t > h && !inTree[h] && !inDual[h])
-      {
-        std::vector<int> cycle{ h };
-        const std::vector<int> back = pathBetween(TriangleMesh::FaceOf(t), TriangleMesh::FaceOf(h));
-        cycle.insert(cycle.end(), back.begin(), back.end());
-        cf->Cycles.push_back(cycle);
-      }
-    }
-    for (size_t i = 1; i < constrainedFaces.size(); ++i)
-    {
-      const int a = constrainedFaces[i - 1], b = constrainedFaces[i];
-      if (a == b || Surface.FaceComponent(a) != Surface.FaceComponent(b))
-      {
-        continue;
-      }
-      std::vector<int> path;
-      for (int c = 0; c < 3; ++c)
-      {
-        const int t = Surface.Twin(3 * a + c);
-        if (t >= 0 && TriangleMesh::FaceOf(t) == b)
-        {
-          path = { 3 * a + c };
-        }
-      }
-      if (path.empty())
-      {
-        path = pathBetween(a, b);
-      }
-      cf->Paths.push_back(path);
-      cf->PathEnds.emplace_back(static_cast<int>(i - 1), static_cast<int>(i));
-    }
-    // Rows: interior vertices and boundary loops (a loop's dual cycle is the union of its
-    // vertices' fans), all but the last of each component (they sum to zero).
-    const int ncomp = std::max(1, Surface.NumberOfComponents());
-    std::vector<std::pair<int, int>> candidates; // (vertex, -1) or (-1, loop)
-    std::vector<int> lastOfComponent(ncomp, -1);
-    for (int v = 0; v < nv; ++v)
-    {
-      if (!Surface.IsBoundaryVertex(v))
-      {
-        lastOfComponent[Surface.VertexComponent(v)] = static_cast<int>(candidates.size());
-        candidates.emplace_back(v, -1);
-      }
-    }
-    const auto& loops = Surface.BoundaryLoops();
-    for (int l = 0; l < static_cast<int>(loops.size()); ++l)
-    {
-      lastOfComponent[Surface.VertexComponent(loops[l][0])] = static_cast<int>(candidates.size());
-      candidates.emplace_back(-1, l);
-    }
-    std::vector<char> drop(candidates.size(), 0);
-    for (int c : lastOfComponent)
-    {
-      if (c >= 0)
-      {
-        drop[c] = 1;
-      }
-    }
-    std::vector<Eigen::Triplet<double>> trip;
-    int row = 0;
-    auto addCrossing = [&](int r, int h) {
-      const int e = cf->EdgeOf[h];
-      if (e >= 0)
-      {
-        trip.emplace_back(r, e, h < Surface.Twin(h) ? 1.0 : -1.0);
-      }
-    };
-    for (size_t i = 0; i < candidates.size(); ++i)
-    {
-      if (drop[i])
-      {
-        continue;
-      }
-      const std::vector<int> single{ candidates[i].first };
-      const std::vector<int>& vertices =
-        candidates[i].first >= 0 ? single : loops[candidates[i].second];
-      for (int v : vertices)
-      {
-        for (int h : Surface.OutgoingHalfedges(v))
-        {
-          addCrossing(row, TriangleMesh::Prev(h));
-        }
-      }
-      cf->RowVertices.push_back(vertices);
-      ++row;
-    }
-    for (const auto& cycle : cf->Cycles)
-    {
-      for (int h : cycle)
-      {
-        addCrossing(row, h);
-      }
-      ++row;
-    }
-    for (const auto& path : cf->Paths)
-    {
-      for (int h : path)
-      {
-        addCrossing(row, h);
-      }
-      ++row;
-    }
-    cf->Holonomy.resize(row, ne);
-    cf->Holonomy.setFromTriplets(trip.begin(), trip.end());
-    const Eigen::SparseMatrix<double> k =
-      cf->Holonomy * cf->InverseWeight.asDiagonal() * cf->Holonomy.transpose();
-    cf->Solver.compute(k);
-    if (cf->Solver.info() != Eigen::Success)
-    {
-      return Status::Error("factorization of the trivial-connection system failed");
-    }
-    cf->ComponentEuler.assign(ncomp, 0.0);
-    for (int v = 0; v < nv; ++v)
-    {
-      cf->ComponentEuler[Surface.VertexComponent(v)] += 1.0;
-    }
-    for (int f = 0; f < nf; ++f)
-    {
-      cf->ComponentEuler[Surface.FaceComponent(f)] += 1.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        const int h = 3 * f + c;
-        cf->ComponentEuler[Surface.FaceComponent(f)] -=
-          Surface.Twin(h) < 0 ? 1.0 : (Surface.Twin(h) > h ? 1.0 : 0.0);
-      }
+      return built;
     }
     ConnectionCache = std::move(cf);
   }
-  ConnectionFactorization& cf = *ConnectionCache;
+  const ConnectionFactorization& cf = *ConnectionCache;
 
-  // Poincare-Hopf check per component.
-  std::vector<double> sum(cf.ComponentEuler.size(), 0.0);
-  for (int v = 0; v < nv; ++v)
+  if (Status sums = cf.CheckIndexSums(Surface, index); !sums.Ok())
   {
-    sum[Surface.VertexComponent(v)] += index[v];
+    return sums;
   }
-  for (size_t c = 0; c < sum.size(); ++c)
-  {
-    if (std::abs(sum[c] - cf.ComponentEuler[c]) > 1e-6)
-    {
-      char buffer[256];
-      std::snprintf(buffer, sizeof(buffer),
-        "singularity indices sum to %g but must sum to the Euler characteristic %g%s "
-        "(boundary vertices count the field's turning against the boundary)",
-        sum[c], cf.ComponentEuler[c],
-        sum.size() > 1 ? (" of connected component " + std::to_string(c)).c_str() : "");
-      return Status::Error(buffer);
-    }
-  }
-  // Right-hand side.
-  const int rows = static_cast<int>(cf.Holonomy.rows());
-  Eigen::VectorXd b(rows);
-  int row = 0;
-  for (const std::vector<int>& vertices : cf.RowVertices)
-  {
-    double rhs = 0.0;
-    for (int v : vertices)
-    {
-      const double defect = (Surface.IsBoundaryVertex(v) ? Pi : TwoPi) - Surface.TotalAngle(v);
-      rhs += TwoPi * index[v] - defect;
-    }
-    b[row++] = rhs;
-  }
-  const double quantum = TwoPi / n;
-  for (const auto& cycle : cf.Cycles)
-  {
-    double hol = 0.0;
-    for (int h : cycle)
-    {
-      hol += Transport[h];
-    }
-    b[row++] = quantum * std::round(hol / quantum) - hol;
-  }
-  for (size_t i = 0; i < cf.Paths.size(); ++i)
-  {
-    const FaceDirectionConstraint& a = constraints[cf.PathEnds[i].first];
-    const FaceDirectionConstraint& c = constraints[cf.PathEnds[i].second];
-    double hol = 0.0;
-    for (int h : cf.Paths[i])
-    {
-      hol += Transport[h];
-    }
-    b[row++] = WrapSymmetric(AngleInFace(c.Face, c.Direction) - AngleInFace(a.Face, a.Direction) - hol, n);
-  }
+  // The smallest (weighted) change x of the connection with Holonomy x = b.
+  const Eigen::VectorXd b = cf.HolonomyTargets(*this, n, index, constraints);
   const Eigen::VectorXd lambda = cf.Solver.solve(b);
   const Eigen::VectorXd x = cf.InverseWeight.asDiagonal() * (cf.Holonomy.transpose() * lambda);
   const double residual = (cf.Holonomy * x - b).norm();
@@ -403,35 +152,384 @@ Status DirectionFieldSolver::SolvePrescribedUnique(int n, const std::vector<doub
                          "residual " +
       std::to_string(residual));
   }
-  // Transport over the dual tree, then rotate each component onto its first constraint.
-  angles.assign(nf, 0.0);
-  for (int f : cf.Order)
+  cf.IntegrateAngles(*this, x, constraints, angles);
+  return Status();
+}
+
+Status DirectionFieldSolver::ConnectionFactorization::Build(
+  const DirectionFieldSolver& solver, const std::vector<int>& constrainedFaces)
+{
+  const TriangleMesh& surface = solver.Surface;
+  ConstrainedFaces = constrainedFaces;
+  const int ne = IndexInteriorEdges(surface, solver.EdgeWeight);
+  const std::vector<char> inPrimalTree = PrimalSpanningForest(surface);
+  const std::vector<char> inDualTree = BuildDualForest(surface, inPrimalTree);
+  CollectCycles(surface, inPrimalTree, inDualTree);
+  CollectConstraintPaths(surface);
+  const int ncomp = std::max(1, surface.NumberOfComponents());
+  SelectVertexRows(surface, ncomp);
+  AssembleHolonomy(surface, ne);
+  const Eigen::SparseMatrix<double> k =
+    Holonomy * InverseWeight.asDiagonal() * Holonomy.transpose();
+  Solver.compute(k);
+  if (Solver.info() != Eigen::Success)
   {
-    const int h = cf.ParentHalfedge[f];
+    return Status::Error("factorization of the trivial-connection system failed");
+  }
+  CountComponentEuler(surface, ncomp);
+  return Status();
+}
+
+int DirectionFieldSolver::ConnectionFactorization::IndexInteriorEdges(
+  const TriangleMesh& surface, const std::vector<double>& edgeWeight)
+{
+  const int nh = surface.NumberOfHalfedges();
+  EdgeOf.assign(nh, -1);
+  int ne = 0;
+  std::vector<double> weight;
+  for (int h = 0; h < nh; ++h)
+  {
+    const int t = surface.Twin(h);
+    if (t > h)
+    {
+      EdgeOf[h] = EdgeOf[t] = ne++;
+      weight.push_back(edgeWeight[h]);
+    }
+  }
+  double meanW = 0.0;
+  for (double w : weight)
+  {
+    meanW += w;
+  }
+  meanW = ne > 0 ? meanW / ne : 1.0;
+  InverseWeight.resize(ne);
+  for (int e = 0; e < ne; ++e)
+  {
+    InverseWeight[e] = 1.0 / std::max(weight[e], 1e-9 * meanW);
+  }
+  return ne;
+}
+
+std::vector<char> DirectionFieldSolver::ConnectionFactorization::BuildDualForest(
+  const TriangleMesh& surface, const std::vector<char>& inPrimalTree)
+{
+  const int nf = surface.NumberOfFaces(), nh = surface.NumberOfHalfedges();
+  ParentHalfedge.assign(nf, -2);
+  Depth.assign(nf, 0);
+  std::vector<char> inDual(nh, 0);
+  for (int root = 0; root < nf; ++root)
+  {
+    if (ParentHalfedge[root] != -2)
+    {
+      continue;
+    }
+    ParentHalfedge[root] = -1;
+    size_t head = Order.size();
+    Order.push_back(root);
+    while (head < Order.size())
+    {
+      const int f = Order[head++];
+      for (int c = 0; c < 3; ++c)
+      {
+        const int h = 3 * f + c, t = surface.Twin(h);
+        if (t < 0 || inPrimalTree[h])
+        {
+          continue;
+        }
+        const int g = TriangleMesh::FaceOf(t);
+        if (ParentHalfedge[g] != -2)
+        {
+          continue;
+        }
+        ParentHalfedge[g] = h;
+        Depth[g] = Depth[f] + 1;
+        inDual[h] = inDual[t] = 1;
+        Order.push_back(g);
+      }
+    }
+  }
+  return inDual;
+}
+
+std::vector<int> DirectionFieldSolver::ConnectionFactorization::DualTreePath(
+  const TriangleMesh& surface, int from, int to) const
+{
+  int a = from, b = to;
+  std::vector<int> up, down;
+  while (Depth[a] > Depth[b])
+  {
+    up.push_back(surface.Twin(ParentHalfedge[a]));
+    a = TriangleMesh::FaceOf(ParentHalfedge[a]);
+  }
+  while (Depth[b] > Depth[a])
+  {
+    down.push_back(ParentHalfedge[b]);
+    b = TriangleMesh::FaceOf(ParentHalfedge[b]);
+  }
+  while (a != b)
+  {
+    up.push_back(surface.Twin(ParentHalfedge[a]));
+    a = TriangleMesh::FaceOf(ParentHalfedge[a]);
+    down.push_back(ParentHalfedge[b]);
+    b = TriangleMesh::FaceOf(ParentHalfedge[b]);
+  }
+  up.insert(up.end(), down.rbegin(), down.rend());
+  return up;
+}
+
+void DirectionFieldSolver::ConnectionFactorization::CollectCycles(const TriangleMesh& surface,
+  const std::vector<char>& inPrimalTree, const std::vector<char>& inDualTree)
+{
+  for (int h = 0; h < surface.NumberOfHalfedges(); ++h)
+  {
+    const int t = surface.Twin(h);
+    if (t > h && !inPrimalTree[h] && !inDualTree[h])
+    {
+      std::vector<int> cycle{ h };
+      const std::vector<int> back =
+        DualTreePath(surface, TriangleMesh::FaceOf(t), TriangleMesh::FaceOf(h));
+      cycle.insert(cycle.end(), back.begin(), back.end());
+      Cycles.push_back(cycle);
+    }
+  }
+}
+
+void DirectionFieldSolver::ConnectionFactorization::CollectConstraintPaths(
+  const TriangleMesh& surface)
+{
+  for (size_t i = 1; i < ConstrainedFaces.size(); ++i)
+  {
+    const int a = ConstrainedFaces[i - 1], b = ConstrainedFaces[i];
+    if (a == b || surface.FaceComponent(a) != surface.FaceComponent(b))
+    {
+      continue;
+    }
+    std::vector<int> path;
+    for (int c = 0; c < 3; ++c)
+    {
+      const int t = surface.Twin(3 * a + c);
+      if (t >= 0 && TriangleMesh::FaceOf(t) == b)
+      {
+        path = { 3 * a + c };
+      }
+    }
+    if (path.empty())
+    {
+      path = DualTreePath(surface, a, b);
+    }
+    Paths.push_back(path);
+    PathEnds.emplace_back(static_cast<int>(i - 1), static_cast<int>(i));
+  }
+}
+
+void DirectionFieldSolver::ConnectionFactorization::SelectVertexRows(
+  const TriangleMesh& surface, int ncomp)
+{
+  // A boundary loop's dual cycle is the union of its vertices' fans; the rows of a component sum
+  // to zero, so its last one is left out.
+  const int nv = surface.NumberOfVertices();
+  std::vector<std::pair<int, int>> candidates; // (vertex, -1) or (-1, loop)
+  std::vector<int> lastOfComponent(ncomp, -1);
+  for (int v = 0; v < nv; ++v)
+  {
+    if (!surface.IsBoundaryVertex(v))
+    {
+      lastOfComponent[surface.VertexComponent(v)] = static_cast<int>(candidates.size());
+      candidates.emplace_back(v, -1);
+    }
+  }
+  const auto& loops = surface.BoundaryLoops();
+  for (int l = 0; l < static_cast<int>(loops.size()); ++l)
+  {
+    lastOfComponent[surface.VertexComponent(loops[l][0])] = static_cast<int>(candidates.size());
+    candidates.emplace_back(-1, l);
+  }
+  std::vector<char> drop(candidates.size(), 0);
+  for (int c : lastOfComponent)
+  {
+    if (c >= 0)
+    {
+      drop[c] = 1;
+    }
+  }
+  for (size_t i = 0; i < candidates.size(); ++i)
+  {
+    if (drop[i])
+    {
+      continue;
+    }
+    const std::vector<int> single{ candidates[i].first };
+    const std::vector<int>& vertices =
+      candidates[i].first >= 0 ? single : loops[candidates[i].second];
+    RowVertices.push_back(vertices);
+  }
+}
+
+void DirectionFieldSolver::ConnectionFactorization::AssembleHolonomy(
+  const TriangleMesh& surface, int ne)
+{
+  std::vector<Eigen::Triplet<double>> trip;
+  int row = 0;
+  auto addCrossing = [&](int r, int h) {
+    const int e = EdgeOf[h];
+    if (e >= 0)
+    {
+      trip.emplace_back(r, e, h < surface.Twin(h) ? 1.0 : -1.0);
+    }
+  };
+  for (const std::vector<int>& vertices : RowVertices)
+  {
+    for (int v : vertices)
+    {
+      for (int h : surface.OutgoingHalfedges(v))
+      {
+        addCrossing(row, TriangleMesh::Prev(h));
+      }
+    }
+    ++row;
+  }
+  for (const auto& cycle : Cycles)
+  {
+    for (int h : cycle)
+    {
+      addCrossing(row, h);
+    }
+    ++row;
+  }
+  for (const auto& path : Paths)
+  {
+    for (int h : path)
+    {
+      addCrossing(row, h);
+    }
+    ++row;
+  }
+  Holonomy.resize(row, ne);
+  Holonomy.setFromTriplets(trip.begin(), trip.end());
+}
+
+void DirectionFieldSolver::ConnectionFactorization::CountComponentEuler(
+  const TriangleMesh& surface, int ncomp)
+{
+  ComponentEuler.assign(ncomp, 0.0);
+  for (int v = 0; v < surface.NumberOfVertices(); ++v)
+  {
+    ComponentEuler[surface.VertexComponent(v)] += 1.0;
+  }
+  for (int f = 0; f < surface.NumberOfFaces(); ++f)
+  {
+    ComponentEuler[surface.FaceComponent(f)] += 1.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const int h = 3 * f + c;
+      ComponentEuler[surface.FaceComponent(f)] -=
+        surface.Twin(h) < 0 ? 1.0 : (surface.Twin(h) > h ? 1.0 : 0.0);
+    }
+  }
+}
+
+Status DirectionFieldSolver::ConnectionFactorization::CheckIndexSums(
+  const TriangleMesh& surface, const std::vector<double>& index) const
+{
+  std::vector<double> sum(ComponentEuler.size(), 0.0);
+  for (int v = 0; v < surface.NumberOfVertices(); ++v)
+  {
+    sum[surface.VertexComponent(v)] += index[v];
+  }
+  for (size_t c = 0; c < sum.size(); ++c)
+  {
+    if (std::abs(sum[c] - ComponentEuler[c]) > 1e-6)
+    {
+      char buffer[256];
+      std::snprintf(buffer, sizeof(buffer),
+        "singularity indices sum to %g but must sum to the Euler characteristic %g%s "
+        "(boundary vertices count the field's turning against the boundary)",
+        sum[c], ComponentEuler[c],
+        sum.size() > 1 ? (" of connected component " + std::to_string(c)).c_str() : "");
+      return Status::Error(buffer);
+    }
+  }
+  return Status();
+}
+
+Eigen::VectorXd DirectionFieldSolver::ConnectionFactorization::HolonomyTargets(
+  const DirectionFieldSolver& solver, int n, const std::vector<double>& index,
+  const std::vector<FaceDirectionConstraint>& constraints) const
+{
+  const TriangleMesh& surface = solver.Surface;
+  const std::vector<double>& transport = solver.Transport;
+  const int rows = static_cast<int>(Holonomy.rows());
+  Eigen::VectorXd b(rows);
+  int row = 0;
+  for (const std::vector<int>& vertices : RowVertices)
+  {
+    double rhs = 0.0;
+    for (int v : vertices)
+    {
+      const double defect = (surface.IsBoundaryVertex(v) ? Pi : TwoPi) - surface.TotalAngle(v);
+      rhs += TwoPi * index[v] - defect;
+    }
+    b[row++] = rhs;
+  }
+  const double quantum = TwoPi / n;
+  for (const auto& cycle : Cycles)
+  {
+    double hol = 0.0;
+    for (int h : cycle)
+    {
+      hol += transport[h];
+    }
+    b[row++] = quantum * std::round(hol / quantum) - hol;
+  }
+  for (size_t i = 0; i < Paths.size(); ++i)
+  {
+    const FaceDirectionConstraint& a = constraints[PathEnds[i].first];
+    const FaceDirectionConstraint& c = constraints[PathEnds[i].second];
+    double hol = 0.0;
+    for (int h : Paths[i])
+    {
+      hol += transport[h];
+    }
+    b[row++] = WrapSymmetric(
+      solver.AngleInFace(c.Face, c.Direction) - solver.AngleInFace(a.Face, a.Direction) - hol, n);
+  }
+  return b;
+}
+
+void DirectionFieldSolver::ConnectionFactorization::IntegrateAngles(
+  const DirectionFieldSolver& solver, const Eigen::VectorXd& edgeRotation,
+  const std::vector<FaceDirectionConstraint>& constraints, std::vector<double>& angles) const
+{
+  const TriangleMesh& surface = solver.Surface;
+  const std::vector<double>& transport = solver.Transport;
+  const int nf = surface.NumberOfFaces();
+  angles.assign(nf, 0.0);
+  for (int f : Order)
+  {
+    const int h = ParentHalfedge[f];
     if (h < 0)
     {
       continue;
     }
-    const int e = cf.EdgeOf[h];
-    angles[f] =
-      angles[TriangleMesh::FaceOf(h)] + Transport[h] + (h < Surface.Twin(h) ? x[e] : -x[e]);
+    const int e = EdgeOf[h];
+    angles[f] = angles[TriangleMesh::FaceOf(h)] + transport[h] +
+      (h < surface.Twin(h) ? edgeRotation[e] : -edgeRotation[e]);
   }
-  std::vector<char> rotated(cf.ComponentEuler.size(), 0);
-  std::vector<double> shift(cf.ComponentEuler.size(), 0.0);
+  std::vector<char> rotated(ComponentEuler.size(), 0);
+  std::vector<double> shift(ComponentEuler.size(), 0.0);
   for (const FaceDirectionConstraint& c : constraints)
   {
-    const int comp = Surface.FaceComponent(c.Face);
+    const int comp = surface.FaceComponent(c.Face);
     if (!rotated[comp])
     {
       rotated[comp] = 1;
-      shift[comp] = AngleInFace(c.Face, c.Direction) - angles[c.Face];
+      shift[comp] = solver.AngleInFace(c.Face, c.Direction) - angles[c.Face];
     }
   }
   for (int f = 0; f < nf; ++f)
   {
-    angles[f] = WrapPi(angles[f] + shift[Surface.FaceComponent(f)]);
+    angles[f] = WrapPi(angles[f] + shift[surface.FaceComponent(f)]);
   }
-  return Status();
 }
 
 } // namespace gs

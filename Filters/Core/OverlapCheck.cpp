@@ -339,6 +339,250 @@ bool OutlineEnters(const ClassRegion& region, const std::vector<OutlinePiece>& p
   return false;
 }
 
+namespace
+{
+using CellKey = std::array<long long, 3>;
+using CellGrid = std::vector<std::pair<CellKey, int>>;
+
+// The cell of the candidate-pair grid (cubes of side `cell`) that holds x.
+CellKey PairCellOf(const Vec3& x, double cell)
+{
+  return CellKey{ static_cast<long long>(std::floor(x.x / cell)),
+    static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
+}
+
+// The circumradius of every shape (world units); `largest` receives the largest of them.
+std::vector<double> ShapeRadii(const std::vector<PlacedShape>& shapes,
+  const SafeDistanceTables& tables, double size, double& largest)
+{
+  const int n = static_cast<int>(shapes.size());
+  std::vector<double> radius(n);
+  largest = 0.0;
+  for (int s = 0; s < n; ++s)
+  {
+    radius[s] = tables.Classes[shapes[s].ClassId].Radius * size * shapes[s].Scale;
+    largest = std::max(largest, radius[s]);
+  }
+  return radius;
+}
+
+// Every shape's (cell, index) on the candidate-pair grid, sorted: the shapes of a cell are
+// found by binary search.
+CellGrid SortedCellGrid(const std::vector<PlacedShape>& shapes, double cell)
+{
+  CellGrid grid;
+  for (int s = 0; s < static_cast<int>(shapes.size()); ++s)
+  {
+    grid.emplace_back(PairCellOf(shapes[s].Position, cell), s);
+  }
+  std::sort(grid.begin(), grid.end());
+  return grid;
+}
+
+// Long shapes: the inverse of their drawing map near them (`frames`), and the sorted vertices
+// of that frame (`drawnOn`). A long shape is drawn on the faces whose corners are all among its
+// frame's vertices (its decal's): a point elsewhere, though near the frame in space (another
+// layer of the surface, geodesically far), is not in it.
+void LoadLongShapeFrames(const ShapeDistributor& distributor, int threads,
+  std::vector<std::shared_ptr<const CurveGrid>>& frames, std::vector<std::vector<int>>& drawnOn)
+{
+  const std::vector<PlacedShape>& shapes = distributor.Shapes();
+  const int n = static_cast<int>(shapes.size());
+  ParallelFor(n, threads, 8, [&](int s, int) {
+    if (!shapes[s].Curve.empty())
+    {
+      frames[s] = distributor.Frame(s);
+      if (frames[s])
+      {
+        for (const auto& vertexNode : frames[s]->Vertices())
+        {
+          drawnOn[s].push_back(vertexNode.first);
+        }
+        std::sort(drawnOn[s].begin(), drawnOn[s].end());
+      }
+    }
+  });
+}
+
+// Each shape's neighbours, sorted: the shapes whose centres are closer in space than the sum of
+// the circumradii (the geodesic distance is never shorter), from the cells around its own.
+std::vector<std::vector<int>> FindNeighbours(const std::vector<PlacedShape>& shapes,
+  const CellGrid& grid, const std::vector<double>& radius, double cell, int threads)
+{
+  const int n = static_cast<int>(shapes.size());
+  std::vector<std::vector<int>> neighbours(n);
+  ParallelFor(n, threads, 16, [&](int a, int) {
+    const CellKey c = PairCellOf(shapes[a].Position, cell);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz)
+        {
+          const CellKey q{ c[0] + dx, c[1] + dy, c[2] + dz };
+          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, 0));
+          for (; it != grid.end() && it->first == q; ++it)
+          {
+            const int b = it->second;
+            if (b != a && Norm(shapes[b].Position - shapes[a].Position) < radius[a] + radius[b])
+            {
+              neighbours[a].push_back(b);
+            }
+          }
+        }
+    std::sort(neighbours[a].begin(), neighbours[a].end());
+  });
+  return neighbours;
+}
+
+// Reads the drawn outline of one shape in the class frame of another, through the inverse of
+// the map that draws the latter.
+struct OutlineReader
+{
+  const ShapeDistributor& Distributor;
+  const std::vector<PlacedShape>& Shapes;
+  const std::vector<std::vector<OutlinePiece>>& Outlines;
+  const std::vector<ClassRegion>& Regions;
+  const std::vector<double>& Radius;
+  const std::vector<std::shared_ptr<const CurveGrid>>& Frames;
+  const std::vector<std::vector<int>>& DrawnOn;
+  const TriangleMesh& Mesh;
+  double Size; // the distribution's shape size (world units per class unit at scale 1)
+
+  // Does the drawn outline of `b` reach deeper than `depth` (a's class units) into `a`'s
+  // silhouette? (Points farther in space from a's centre than sqrt(2) times its circumradius
+  // are outside it: a's outline is drawn along paths of length |along| + |across| at most.)
+  // `exact`: a's exact log map, or null.
+  bool Enters(int a, int b, double depth, const GeodesicPolarCoordinates* exact) const
+  {
+    const Vec3 centre = Shapes[a].Position;
+    const double reach = 1.4143 * Radius[a] + Mesh.MeanEdgeLength();
+    const TriangleMesh& mesh = Mesh;
+    auto near = [&](const SurfacePoint& x) { return Norm(mesh.Position(x) - centre) <= reach; };
+    if (!Shapes[a].Curve.empty())
+    {
+      return EntersLong(a, b, depth, near);
+    }
+    if (exact)
+    {
+      // a's exact log map (computed by the caller), in class units.
+      const double inverse = 1.0 / (Size * Shapes[a].Scale);
+      return OutlineEnters(Regions[Shapes[a].ClassId], Outlines[b],
+        [exact, inverse, &near](const SurfacePoint& x, Vec2& p) {
+          if (!near(x) || !exact->LogMapAt(x, p))
+          {
+            return false;
+          }
+          p = p * inverse;
+          return true;
+        },
+        depth, &mesh, inverse);
+    }
+    // (The placement's reading: the exact log map the drawn check kept, or the chart; a jump
+    // across the map's cut locus is tested at its ends only, as above.)
+    const ShapeDistributor& distributor = Distributor;
+    return OutlineEnters(Regions[Shapes[a].ClassId], Outlines[b],
+      [&distributor, a, &near](const SurfacePoint& x, Vec2& p) { return near(x) && distributor.ClassPoint(a, x, p); },
+      depth, &mesh, 1.0 / (Size * Shapes[a].Scale));
+  }
+
+  // Enters for a long shape `a`: read through its frame, on the faces it is drawn on.
+  template <class Near>
+  bool EntersLong(int a, int b, double depth, const Near& near) const
+  {
+    const CurveGrid& frame = *Frames[a];
+    const std::vector<int>& vertices = DrawnOn[a];
+    const TriangleMesh& mesh = Mesh;
+    auto in = [&vertices, &mesh](const SurfacePoint& x) {
+      auto has = [&vertices](int v) { return std::binary_search(vertices.begin(), vertices.end(), v); };
+      if (x.IsVertex())
+      {
+        return has(x.Vertex);
+      }
+      const auto& c = mesh.Face(x.Face);
+      return has(c[0]) && has(c[1]) && has(c[2]);
+    };
+    int hint = -1;
+    return OutlineEnters(Regions[Shapes[a].ClassId], Outlines[b],
+      [&frame, &near, &in, &hint](
+        const SurfacePoint& x, Vec2& p) { return near(x) && in(x) && frame.ClassPoint(x, p, &hint); },
+      depth);
+  }
+};
+
+// Per shape a, the sorted neighbours whose outlines enter it (read in a's frame, computed
+// once: short shapes through their exact log map when `options.ExactCharts` and it computes).
+// Shapes that `poll` skips are left empty.
+std::vector<std::vector<int>> FindEntering(const OutlineReader& reader,
+  const std::vector<std::vector<int>>& neighbours, double spacing, double tolerance,
+  const OverlapCheckOptions& options, int threads, PhasePoll& poll)
+{
+  const std::vector<PlacedShape>& shapes = reader.Shapes;
+  const std::vector<double>& radius = reader.Radius;
+  const TriangleMesh& mesh = reader.Mesh;
+  const double size = reader.Size;
+  const int n = static_cast<int>(shapes.size());
+  std::vector<std::vector<int>> entering(n);
+  ParallelForEachThread<std::unique_ptr<GeodesicPolarCoordinates>>(n, threads, 8,
+    [&](int a, std::unique_ptr<GeodesicPolarCoordinates>& engine) {
+      if (neighbours[a].empty() || poll.Skip(a))
+      {
+        return;
+      }
+      const GeodesicPolarCoordinates* exact = nullptr;
+      if (options.ExactCharts && shapes[a].Curve.empty())
+      {
+        if (!engine)
+        {
+          engine.reset(new GeodesicPolarCoordinates(mesh));
+        }
+        // Every face that meets the circle (and an outline spacing beyond it) has its corners in
+        // the map (ComputeCoveringDisc).
+        const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
+        if (std::isfinite(reference) &&
+          engine->ComputeCoveringDisc(shapes[a].Centre, radius[a] + spacing, reference).Ok())
+        {
+          exact = engine.get();
+        }
+      }
+      for (int b : neighbours[a])
+      {
+        const double depth = tolerance * std::min(radius[a], radius[b]);
+        if (reader.Enters(a, b, depth / (size * shapes[a].Scale), exact))
+        {
+          entering[a].push_back(b);
+        }
+      }
+    });
+  return entering;
+}
+
+// The overlapping pairs (a < b: either outline enters the other shape) into `result`, with each
+// shape's count of overlaps; returns the number of neighbouring pairs examined.
+long long CollectOverlappingPairs(const std::vector<std::vector<int>>& neighbours,
+  const std::vector<std::vector<int>>& entering, OverlapCheckResult& result)
+{
+  long long examined = 0;
+  for (int a = 0; a < static_cast<int>(neighbours.size()); ++a)
+  {
+    for (int b : neighbours[a])
+    {
+      if (b < a)
+      {
+        continue;
+      }
+      ++examined;
+      if (std::binary_search(entering[a].begin(), entering[a].end(), b) ||
+        std::binary_search(entering[b].begin(), entering[b].end(), a))
+      {
+        result.Pairs.emplace_back(a, b);
+        ++result.Overlaps[a];
+        ++result.Overlaps[b];
+      }
+    }
+  }
+  return examined;
+}
+} // namespace
+
 Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   const std::vector<std::vector<OutlinePiece>>& outlines, const OverlapCheckOptions& options)
 {
@@ -366,176 +610,26 @@ Result<OverlapCheckResult> CheckOverlaps(const ShapeDistributor& distributor,
   }
   // Circumradius of every shape (world units), and candidate pairs from a grid of cells as
   // wide as the largest circle diameter.
-  std::vector<double> radius(n);
   double rmax = 0.0;
-  for (int s = 0; s < n; ++s)
-  {
-    radius[s] = tables.Classes[shapes[s].ClassId].Radius * size * shapes[s].Scale;
-    rmax = std::max(rmax, radius[s]);
-  }
+  const std::vector<double> radius = ShapeRadii(shapes, tables, size, rmax);
   const double cell = 2.0 * rmax;
-  auto key = [cell](const Vec3& x) {
-    return std::array<long long, 3>{ static_cast<long long>(std::floor(x.x / cell)),
-      static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
-  };
-  std::vector<std::pair<std::array<long long, 3>, int>> grid;
-  for (int s = 0; s < n; ++s)
-  {
-    grid.emplace_back(key(shapes[s].Position), s);
-  }
-  std::sort(grid.begin(), grid.end());
-  // Long shapes: the inverse of their drawing map near them.
-  // A long shape is drawn on the faces whose corners are all among its frame's vertices (its
-  // decal's): a point elsewhere, though near the frame in space (another layer of the surface,
-  // geodesically far), is not in it.
+  const CellGrid grid = SortedCellGrid(shapes, cell);
   std::vector<std::shared_ptr<const CurveGrid>> frames(n);
   std::vector<std::vector<int>> drawnOn(n);
   const int threads = ThreadCount(options.NumberOfThreads);
-  ParallelFor(n, threads, 8, [&](int s, int) {
-    if (!shapes[s].Curve.empty())
-    {
-      frames[s] = distributor.Frame(s);
-      if (frames[s])
-      {
-        for (const auto& vertexNode : frames[s]->Vertices())
-        {
-          drawnOn[s].push_back(vertexNode.first);
-        }
-        std::sort(drawnOn[s].begin(), drawnOn[s].end());
-      }
-    }
-  });
-  // Does the drawn outline of `b` reach deeper than the tolerance into `a`'s silhouette? (Points
-  // farther in space from a's centre than sqrt(2) times its circumradius are outside it: a's
-  // outline is drawn along paths of length |along| + |across| at most.)
-  const TriangleMesh& mesh = distributor.Mesh();
-  auto enters = [&](int a, int b, double depth, const GeodesicPolarCoordinates* exact) {
-    const Vec3 centre = shapes[a].Position;
-    const double reach = 1.4143 * radius[a] + mesh.MeanEdgeLength();
-    auto near = [&](const SurfacePoint& x) {
-      return Norm(mesh.Position(x) - centre) <= reach;
-    };
-    if (!shapes[a].Curve.empty())
-    {
-      const CurveGrid& frame = *frames[a];
-      const std::vector<int>& vertices = drawnOn[a];
-      auto in = [&vertices, &mesh](const SurfacePoint& x) {
-        auto has = [&vertices](int v) { return std::binary_search(vertices.begin(), vertices.end(), v); };
-        if (x.IsVertex())
-        {
-          return has(x.Vertex);
-        }
-        const auto& c = mesh.Face(x.Face);
-        return has(c[0]) && has(c[1]) && has(c[2]);
-      };
-      int hint = -1;
-      return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
-        [&frame, &near, &in, &hint](
-          const SurfacePoint& x, Vec2& p) { return near(x) && in(x) && frame.ClassPoint(x, p, &hint); },
-        depth);
-    }
-    if (exact)
-    {
-      // a's exact log map (computed by the caller), in class units.
-      const double inverse = 1.0 / (size * shapes[a].Scale);
-      return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
-        [exact, inverse, &near](const SurfacePoint& x, Vec2& p) {
-          if (!near(x) || !exact->LogMapAt(x, p))
-          {
-            return false;
-          }
-          p = p * inverse;
-          return true;
-        },
-        depth, &mesh, inverse);
-    }
-    // (The placement's reading: the exact log map the drawn check kept, or the chart; a jump
-    // across the map's cut locus is tested at its ends only, as above.)
-    return OutlineEnters(regions[shapes[a].ClassId], outlines[b],
-      [&distributor, a, &near](const SurfacePoint& x, Vec2& p) { return near(x) && distributor.ClassPoint(a, x, p); },
-      depth, &mesh, 1.0 / (size * shapes[a].Scale));
-  };
-  // Each shape's neighbours: the shapes whose centres are closer in space than the sum of the
-  // circumradii (the geodesic distance is never shorter).
-  std::vector<std::vector<int>> neighbours(n);
-  ParallelFor(n, threads, 16, [&](int a, int) {
-    const std::array<long long, 3> c = key(shapes[a].Position);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz)
-        {
-          const std::array<long long, 3> q{ c[0] + dx, c[1] + dy, c[2] + dz };
-          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(q, 0));
-          for (; it != grid.end() && it->first == q; ++it)
-          {
-            const int b = it->second;
-            if (b != a && Norm(shapes[b].Position - shapes[a].Position) < radius[a] + radius[b])
-            {
-              neighbours[a].push_back(b);
-            }
-          }
-        }
-    std::sort(neighbours[a].begin(), neighbours[a].end());
-  });
+  LoadLongShapeFrames(distributor, threads, frames, drawnOn);
+  const OutlineReader reader{ distributor, shapes, outlines, regions, radius, frames, drawnOn,
+    distributor.Mesh(), size };
+  const std::vector<std::vector<int>> neighbours = FindNeighbours(shapes, grid, radius, cell, threads);
   // Which neighbours' outlines enter each shape (read in its frame, computed once).
-  const double spacing = distributor.OutlineSpacing();
-  std::vector<std::vector<int>> entering(n);
   PhasePoll poll(options.Progress, n);
-  ParallelForEachThread<std::unique_ptr<GeodesicPolarCoordinates>>(n, threads, 8,
-    [&](int a, std::unique_ptr<GeodesicPolarCoordinates>& engine) {
-      if (neighbours[a].empty() || poll.Skip(a))
-      {
-        return;
-      }
-      const GeodesicPolarCoordinates* exact = nullptr;
-      if (options.ExactCharts && shapes[a].Curve.empty())
-      {
-        if (!engine)
-        {
-          engine.reset(new GeodesicPolarCoordinates(mesh));
-        }
-        // Every face that meets the circle (and an outline spacing beyond it) has its corners in
-        // the map (ComputeCoveringDisc).
-        const double reference = TangentAngle(mesh, shapes[a].Centre, shapes[a].Direction);
-        if (std::isfinite(reference) &&
-          engine->ComputeCoveringDisc(shapes[a].Centre, radius[a] + spacing, reference).Ok())
-        {
-          exact = engine.get();
-        }
-      }
-      for (int b : neighbours[a])
-      {
-        const double depth = tolerance * std::min(radius[a], radius[b]);
-        if (enters(a, b, depth / (size * shapes[a].Scale), exact))
-        {
-          entering[a].push_back(b);
-        }
-      }
-    });
+  const std::vector<std::vector<int>> entering = FindEntering(
+    reader, neighbours, distributor.OutlineSpacing(), tolerance, options, threads, poll);
   if (poll.WasAborted())
   {
     return Status::Aborted();
   }
-  long long examined = 0;
-  for (int a = 0; a < n; ++a)
-  {
-    for (int b : neighbours[a])
-    {
-      if (b < a)
-      {
-        continue;
-      }
-      ++examined;
-      if (std::binary_search(entering[a].begin(), entering[a].end(), b) ||
-        std::binary_search(entering[b].begin(), entering[b].end(), a))
-      {
-        result.Pairs.emplace_back(a, b);
-        ++result.Overlaps[a];
-        ++result.Overlaps[b];
-      }
-    }
-  }
-  result.PairsExamined = examined;
+  result.PairsExamined = CollectOverlappingPairs(neighbours, entering, result);
   result.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

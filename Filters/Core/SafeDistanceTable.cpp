@@ -316,6 +316,177 @@ Status CheckTableOptions(const SafeDistanceOptions& options)
 }
 } // namespace
 
+namespace
+{
+// Every ring point of `input`, in ring order; fails naming the shape when a point is not finite.
+Status CollectRingPoints(const SafeDistanceInput& input, std::vector<Vec2>& points)
+{
+  for (const auto& ring : input.Shape.Rings)
+  {
+    for (const Vec2& p : ring)
+    {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      {
+        return Status::Error("shape '" + input.Name + "' has non-finite coordinates");
+      }
+      points.push_back(p);
+    }
+  }
+  return Status();
+}
+
+// The rings of `shape` in normalized units: origin at `centre`, divided by `scale`.
+void AddNormalizedRings(const Shape2D& shape, const Vec2& centre, double scale, Shape2D& outline)
+{
+  for (const auto& ring : shape.Rings)
+  {
+    std::vector<Vec2> r;
+    r.reserve(ring.size());
+    for (const Vec2& p : ring)
+    {
+      r.push_back((p - centre) * (1.0 / scale));
+    }
+    outline.Rings.push_back(std::move(r));
+  }
+}
+
+// The principal axes of a class's area through its centroid, and the extent of its outline
+// along them (long shapes are cut across the major axis, Fig. 7).
+struct PrincipalFrame
+{
+  Vec2 U, V;  // major and minor axes (unit vectors)
+  Vec2 Origin; // the area's centroid
+  double ULo = 1e300, UHi = -1e300, VLo = 1e300, VHi = -1e300;
+};
+
+// The principal frame of `outline`, whose even-odd area is `filledArea`.
+PrincipalFrame ComputePrincipalFrame(const Shape2D& outline, double filledArea)
+{
+  const Moments m = AreaMoments(outline, outline.Rings[0][0], filledArea);
+  const double angle = 0.5 * std::atan2(2.0 * m.Sxy, m.Sxx - m.Syy);
+  PrincipalFrame frame;
+  const Vec2 u{ std::cos(angle), std::sin(angle) }, v{ -u.y, u.x };
+  const Vec2 o{ m.Cx, m.Cy };
+  frame.U = u;
+  frame.V = v;
+  frame.Origin = o;
+  for (const auto& ring : outline.Rings)
+  {
+    for (const Vec2& p : ring)
+    {
+      frame.ULo = std::min(frame.ULo, Dot(p - o, u));
+      frame.UHi = std::max(frame.UHi, Dot(p - o, u));
+      frame.VLo = std::min(frame.VLo, Dot(p - o, v));
+      frame.VHi = std::max(frame.VHi, Dot(p - o, v));
+    }
+  }
+  return frame;
+}
+
+// The boundary of part k of `parts` (slices of equal width across the major axis); for a split
+// class, also sets the part's axis and bounds.
+std::vector<Segment2> PartBoundary(
+  const Shape2D& outline, const PrincipalFrame& frame, int k, int parts, SafeDistancePart& part)
+{
+  const Vec2& o = frame.Origin;
+  const Vec2& u = frame.U;
+  if (parts == 1)
+  {
+    return StripBoundary(outline, o, u, -1e300, 1e300, false, false);
+  }
+  const double ulo = frame.ULo, uhi = frame.UHi;
+  const double lo = ulo + (uhi - ulo) * k / parts, hi = ulo + (uhi - ulo) * (k + 1) / parts;
+  std::vector<Segment2> edges = StripBoundary(
+    outline, o, u, k == 0 ? -1e300 : lo, k == parts - 1 ? 1e300 : hi, k > 0, k < parts - 1);
+  part.Axis = u;
+  part.From = k == 0 ? -1e300 : lo + Dot(o, u);
+  part.To = k == parts - 1 ? 1e300 : hi + Dot(o, u);
+  return edges;
+}
+
+// Gives `part` its circle (the class circle when the class is not split, else the smallest
+// circle around its boundary) and its boundary `edges` relative to that circle's centre.
+void SetPartCircle(SafeDistancePart& part, std::vector<Segment2>&& edges, int parts, double classRadius)
+{
+  std::vector<Vec2> ends;
+  for (const Segment2& e : edges)
+  {
+    ends.push_back(e.A);
+    ends.push_back(e.B);
+  }
+  const Circle circle = parts == 1 ? Circle{ { 0.0, 0.0 }, classRadius }
+                                   : SmallestEnclosingCircle(ends);
+  part.Centre = circle.Centre;
+  part.Radius = circle.Radius;
+  for (Segment2& e : edges)
+  {
+    e.A = e.A - circle.Centre;
+    e.B = e.B - circle.Centre;
+    part.Radius = std::max({ part.Radius, Norm(e.A), Norm(e.B) });
+  }
+  part.Edges = std::move(edges);
+}
+
+// Cuts class `cls` (id `classId`) into `parts` slices across its major axis and appends the
+// non-empty ones to `allParts`, recording their indices in the class.
+void AddClassParts(SafeDistanceClass& cls, const PrincipalFrame& frame, int classId, int parts,
+  std::vector<SafeDistancePart>& allParts)
+{
+  for (int k = 0; k < parts; ++k)
+  {
+    SafeDistancePart part;
+    part.ClassId = classId;
+    part.Index = static_cast<int>(cls.Parts.size());
+    std::vector<Segment2> edges = PartBoundary(cls.Outline, frame, k, parts, part);
+    if (edges.empty())
+      continue;
+    SetPartCircle(part, std::move(edges), parts, cls.Radius);
+    cls.Parts.push_back(static_cast<int>(allParts.size()));
+    allParts.push_back(std::move(part));
+  }
+}
+
+// Appends class `classId` made from `input` to `tables`: its circle, normalized outline,
+// principal axes and parts. The first class sets the tables' scale.
+Status AddClass(const SafeDistanceInput& input, int classId, const SafeDistanceOptions& options,
+  SafeDistanceTables& tables)
+{
+  const Shape2D& shape = input.Shape;
+  std::vector<Vec2> points;
+  if (Status finite = CollectRingPoints(input, points); !finite.Ok())
+  {
+    return finite;
+  }
+  const double filled = points.size() < 3 ? 0.0 : shape.FilledArea();
+  if (!(filled > 0.0))
+  {
+    return Status::Error("shape '" + input.Name +
+      "' is empty: its rings enclose no area under the even-odd rule");
+  }
+  SafeDistanceClass cls;
+  cls.Name = input.Name;
+  cls.SourceCircle = SmallestEnclosingCircle(points);
+  if (classId == 0)
+  {
+    tables.Scale = cls.SourceCircle.Radius;
+  }
+  cls.Radius = cls.SourceCircle.Radius / tables.Scale;
+  AddNormalizedRings(shape, cls.SourceCircle.Centre, tables.Scale, cls.Outline);
+  const double scale2 = 1.0 / (tables.Scale * tables.Scale);
+  const PrincipalFrame frame = ComputePrincipalFrame(cls.Outline, filled * scale2);
+  cls.MajorAxis = frame.U;
+  cls.AspectRatio = (frame.UHi - frame.ULo) / std::max(frame.VHi - frame.VLo, 1e-300);
+  int parts = 1;
+  if (cls.AspectRatio > options.MaximumAspectRatio)
+  {
+    parts = static_cast<int>(std::ceil(cls.AspectRatio / options.MaximumAspectRatio));
+  }
+  AddClassParts(cls, frame, classId, parts, tables.Parts);
+  tables.Classes.push_back(std::move(cls));
+  return Status();
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 Result<SafeDistanceTables> ComputeSafeDistanceParts(
   const std::vector<SafeDistanceInput>& shapes, const SafeDistanceOptions& options)
@@ -329,114 +500,13 @@ Result<SafeDistanceTables> ComputeSafeDistanceParts(
     return aspect;
   }
   SafeDistanceTables tables;
-
   // Classes: circles, normalization, moments, parts.
   for (std::size_t c = 0; c < shapes.size(); ++c)
   {
-    const Shape2D& shape = shapes[c].Shape;
-    std::vector<Vec2> points;
-    for (const auto& ring : shape.Rings)
+    if (Status added = AddClass(shapes[c], static_cast<int>(c), options, tables); !added.Ok())
     {
-      for (const Vec2& p : ring)
-      {
-        if (!std::isfinite(p.x) || !std::isfinite(p.y))
-        {
-          return Status::Error("shape '" + shapes[c].Name + "' has non-finite coordinates");
-        }
-        points.push_back(p);
-      }
+      return added;
     }
-    const double filled = points.size() < 3 ? 0.0 : shape.FilledArea();
-    if (!(filled > 0.0))
-    {
-      return Status::Error("shape '" + shapes[c].Name +
-        "' is empty: its rings enclose no area under the even-odd rule");
-    }
-    SafeDistanceClass cls;
-    cls.Name = shapes[c].Name;
-    cls.SourceCircle = SmallestEnclosingCircle(points);
-    if (c == 0)
-    {
-      tables.Scale = cls.SourceCircle.Radius;
-    }
-    cls.Radius = cls.SourceCircle.Radius / tables.Scale;
-    for (const auto& ring : shape.Rings)
-    {
-      std::vector<Vec2> r;
-      r.reserve(ring.size());
-      for (const Vec2& p : ring)
-      {
-        r.push_back((p - cls.SourceCircle.Centre) * (1.0 / tables.Scale));
-      }
-      cls.Outline.Rings.push_back(std::move(r));
-    }
-    // Principal axes of the area (Fig. 7: long shapes are cut across the major axis).
-    const double scale2 = 1.0 / (tables.Scale * tables.Scale);
-    const Moments m = AreaMoments(cls.Outline, cls.Outline.Rings[0][0], filled * scale2);
-    const double angle = 0.5 * std::atan2(2.0 * m.Sxy, m.Sxx - m.Syy);
-    const Vec2 u{ std::cos(angle), std::sin(angle) }, v{ -u.y, u.x };
-    const Vec2 o{ m.Cx, m.Cy };
-    double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
-    for (const auto& ring : cls.Outline.Rings)
-    {
-      for (const Vec2& p : ring)
-      {
-        ulo = std::min(ulo, Dot(p - o, u));
-        uhi = std::max(uhi, Dot(p - o, u));
-        vlo = std::min(vlo, Dot(p - o, v));
-        vhi = std::max(vhi, Dot(p - o, v));
-      }
-    }
-    cls.MajorAxis = u;
-    cls.AspectRatio = (uhi - ulo) / std::max(vhi - vlo, 1e-300);
-    int parts = 1;
-    if (cls.AspectRatio > options.MaximumAspectRatio)
-    {
-      parts = static_cast<int>(std::ceil(cls.AspectRatio / options.MaximumAspectRatio));
-    }
-    const int classId = static_cast<int>(c);
-    for (int k = 0; k < parts; ++k)
-    {
-      SafeDistancePart part;
-      part.ClassId = classId;
-      part.Index = static_cast<int>(cls.Parts.size());
-      std::vector<Segment2> edges;
-      if (parts == 1)
-      {
-        edges = StripBoundary(cls.Outline, o, u, -1e300, 1e300, false, false);
-      }
-      else
-      {
-        const double lo = ulo + (uhi - ulo) * k / parts, hi = ulo + (uhi - ulo) * (k + 1) / parts;
-        edges = StripBoundary(cls.Outline, o, u, k == 0 ? -1e300 : lo,
-          k == parts - 1 ? 1e300 : hi, k > 0, k < parts - 1);
-        part.Axis = u;
-        part.From = k == 0 ? -1e300 : lo + Dot(o, u);
-        part.To = k == parts - 1 ? 1e300 : hi + Dot(o, u);
-      }
-      if (edges.empty())
-        continue;
-      std::vector<Vec2> ends;
-      for (const Segment2& e : edges)
-      {
-        ends.push_back(e.A);
-        ends.push_back(e.B);
-      }
-      const Circle circle = parts == 1 ? Circle{ { 0.0, 0.0 }, cls.Radius }
-                                       : SmallestEnclosingCircle(ends);
-      part.Centre = circle.Centre;
-      part.Radius = circle.Radius;
-      for (Segment2& e : edges)
-      {
-        e.A = e.A - circle.Centre;
-        e.B = e.B - circle.Centre;
-        part.Radius = std::max({ part.Radius, Norm(e.A), Norm(e.B) });
-      }
-      part.Edges = std::move(edges);
-      cls.Parts.push_back(static_cast<int>(tables.Parts.size()));
-      tables.Parts.push_back(std::move(part));
-    }
-    tables.Classes.push_back(std::move(cls));
   }
   return tables;
 }
@@ -467,11 +537,188 @@ Status CheckSafeDistanceOptions(const SafeDistanceOptions& options)
   return CheckAspectRatio(options);
 }
 
+namespace
+{
+// Whether the computation goes on: no callback, or the callback says so at fraction `value`.
+bool ReportProgress(const std::function<bool(double)>& progress, double value)
+{
+  return !progress || progress(value);
+}
+
+// The row grid of the extent profiles and the rotation sampling of their angle bins.
+struct ProfileGrid
+{
+  int AngleBins = 1;       // ka
+  int RotationSamples = 1; // s: rotations sampled per bin
+  double BinWidth = 0.0;   // w
+  double Dilation = 0.0;   // widening of the segments that covers the rotations between samples
+  int Rows = 2;
+  double Y = 0.0;   // the rows cover [-Y, Y]
+  double H = 0.0;   // row height
+  double Eps = 0.0; // rounding of rotations
+  bool Conservative = true;
+};
+
+// Sets the table settings of `tables` from `options` (the rotation samples: as asked, or
+// enough for the distance steps in conservative mode, 1 otherwise) and empties its values.
+void SetTableSettings(SafeDistanceTables& tables, const SafeDistanceOptions& options)
+{
+  const int ka = options.AngleBins, kr = options.DistanceSteps;
+  tables.AngleBins = ka;
+  tables.DistanceSteps = kr;
+  tables.Conservative = options.Conservative;
+  tables.RotationSamples = !options.Conservative
+    ? 1
+    : (options.RotationSamples > 0
+          ? options.RotationSamples
+          : std::max(1, static_cast<int>(std::ceil(8.0 * Pi * kr / ka - 1e-9))));
+  tables.Values.clear();
+}
+
+// The profile grid for the parts of `tables`: rows over the largest part radius plus the
+// rotation dilation.
+ProfileGrid MakeProfileGrid(const SafeDistanceTables& tables, const SafeDistanceOptions& options)
+{
+  ProfileGrid grid;
+  grid.AngleBins = options.AngleBins;
+  grid.RotationSamples = tables.RotationSamples;
+  grid.Conservative = options.Conservative;
+  grid.BinWidth = 2.0 * Pi / grid.AngleBins;
+  grid.Dilation =
+    options.Conservative ? 2.0 * std::sin(grid.BinWidth / (4.0 * grid.RotationSamples)) : 0.0;
+  double maxRadius = 0.0;
+  for (const auto& part : tables.Parts)
+  {
+    maxRadius = std::max(maxRadius, part.Radius);
+  }
+  grid.Rows = options.Rows;
+  grid.Y = maxRadius * (1.0 + grid.Dilation) * (1.0 + 1e-9) + 1e-12;
+  grid.H = 2.0 * grid.Y / grid.Rows;
+  grid.Eps = options.Conservative ? 1e-12 * maxRadius : 0.0;
+  return grid;
+}
+
+// The extent profile of `part` at angle bin `bin`, over its rotation samples, into the bin's
+// rows `right` and `left` and its first and last occupied rows.
+void ProfileBin(const SafeDistancePart& part, const ProfileGrid& grid, int bin, double* right,
+  double* left, int& first, int& last)
+{
+  const int s = grid.RotationSamples;
+  const double w = grid.BinWidth;
+  for (int k = 0; k < s; ++k)
+  {
+    const double theta = grid.Conservative ? bin * w + ((k + 0.5) / s - 0.5) * w : bin * w;
+    const double cs = std::cos(theta), sn = std::sin(theta);
+    for (const Segment2& e : part.Edges)
+    {
+      const Vec2 a{ cs * e.A.x - sn * e.A.y, sn * e.A.x + cs * e.A.y };
+      const Vec2 b{ cs * e.B.x - sn * e.B.y, sn * e.B.x + cs * e.B.y };
+      const double delta = grid.Dilation * std::max(Norm(e.A), Norm(e.B)) + grid.Eps;
+      AddSegment(a, b, delta, grid.Y, grid.H, grid.Rows, right, left, first, last);
+    }
+  }
+}
+
+// Extent profiles of every part at every angle bin, on one row grid over [-Y, Y] (one
+// parallel job per part and bin). Sets `aborted` when the progress callback says stop.
+std::vector<Profile> ComputeProfiles(const SafeDistanceTables& tables, const ProfileGrid& grid,
+  const std::function<bool(double)>& progress, std::atomic<bool>& aborted)
+{
+  const int P = tables.NumberOfParts();
+  const int ka = grid.AngleBins, rows = grid.Rows;
+  std::vector<Profile> profiles(P);
+  for (auto& p : profiles)
+  {
+    p.Right.assign(static_cast<std::size_t>(ka) * rows, -Empty);
+    p.Left.assign(static_cast<std::size_t>(ka) * rows, Empty);
+    p.FirstRow.assign(ka, rows);
+    p.LastRow.assign(ka, -1);
+  }
+  const long long profileJobs = static_cast<long long>(P) * ka;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long long job = 0; job < profileJobs; ++job)
+  {
+    if (aborted.load(std::memory_order_relaxed))
+      continue;
+    const int pi = static_cast<int>(job / ka), bin = static_cast<int>(job % ka);
+    Profile& prof = profiles[pi];
+    double* right = &prof.Right[static_cast<std::size_t>(bin) * rows];
+    double* left = &prof.Left[static_cast<std::size_t>(bin) * rows];
+    int first = rows, last = -1;
+    ProfileBin(tables.Parts[pi], grid, bin, right, left, first, last);
+    prof.FirstRow[bin] = first;
+    prof.LastRow[bin] = last;
+#ifdef _OPENMP
+    if (omp_get_thread_num() == 0)
+#endif
+    {
+      if (!ReportProgress(progress, 0.05 + 0.25 * static_cast<double>(job) / profileJobs))
+        aborted = true;
+    }
+  }
+  return profiles;
+}
+
+// Row j of the table of parts (a, b) into `out` (ka entries): per bin i of A, the largest
+// right extent of A minus left extent of B over their common rows, rounded up to the step grid
+// and capped at maxD.
+void FillTableRow(const Profile& A, const Profile& B, int j, int ka, int rows, double maxD,
+  double step, double* out)
+{
+  const double* left = &B.Left[static_cast<std::size_t>(j) * rows];
+  for (int i = 0; i < ka; ++i)
+  {
+    const double* right = &A.Right[static_cast<std::size_t>(i) * rows];
+    const int r0 = std::max(A.FirstRow[i], B.FirstRow[j]);
+    const int r1 = std::min(A.LastRow[i], B.LastRow[j]);
+    double D = 0.0;
+    for (int r = r0; r <= r1; ++r)
+    {
+      D = std::max(D, right[r] - left[r]);
+    }
+    out[i] = std::min(std::ceil(D / step) * step, maxD);
+  }
+}
+
+// The tables: D = max over rows of (right extent of A - left extent of B), rounded up to the
+// step grid and capped at r_a + r_b (the circles cannot overlap beyond). One parallel job per
+// table row (profiles of `rows` rows per bin); sets `aborted` when the progress callback says
+// stop.
+void ComputeTables(SafeDistanceTables& tables, const std::vector<Profile>& profiles, int rows,
+  const std::function<bool(double)>& progress, std::atomic<bool>& aborted)
+{
+  const int P = tables.NumberOfParts();
+  const int ka = tables.AngleBins, kr = tables.DistanceSteps;
+  const std::size_t tableSize = static_cast<std::size_t>(ka) * ka;
+  tables.Values.assign(static_cast<std::size_t>(P) * P * tableSize, 0.0);
+  const long long tableJobs = static_cast<long long>(P) * P * ka; // one job per table row j
+#pragma omp parallel for schedule(dynamic, 4)
+  for (long long job = 0; job < tableJobs; ++job)
+  {
+    if (aborted.load(std::memory_order_relaxed))
+      continue;
+    const int pair = static_cast<int>(job / ka), j = static_cast<int>(job % ka);
+    const int a = pair / P, b = pair % P;
+    const double maxD = tables.Parts[a].Radius + tables.Parts[b].Radius;
+    const double step = maxD / kr;
+    double* out = &tables.Values[pair * tableSize + static_cast<std::size_t>(j) * ka];
+    FillTableRow(profiles[a], profiles[b], j, ka, rows, maxD, step, out);
+#ifdef _OPENMP
+    if (omp_get_thread_num() == 0)
+#endif
+    {
+      if (!ReportProgress(progress, 0.3 + 0.7 * static_cast<double>(job) / tableJobs))
+        aborted = true;
+    }
+  }
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 Result<SafeDistanceTables> ComputeSafeDistanceValues(SafeDistanceTables parts,
   const SafeDistanceOptions& options, const std::function<bool(double)>& progress)
 {
-  const int ka = options.AngleBins, kr = options.DistanceSteps;
+  const int ka = options.AngleBins;
   if (parts.Parts.empty())
   {
     return Status::Error("no shape");
@@ -484,129 +731,26 @@ Result<SafeDistanceTables> ComputeSafeDistanceValues(SafeDistanceTables parts,
   {
     return size;
   }
-  auto report = [&](double value) { return !progress || progress(value); };
-  if (!report(0.05))
+  if (!ReportProgress(progress, 0.05))
   {
     return Status::Aborted();
   }
 
   SafeDistanceTables tables = std::move(parts);
-  tables.AngleBins = ka;
-  tables.DistanceSteps = kr;
-  tables.Conservative = options.Conservative;
-  tables.RotationSamples = !options.Conservative
-    ? 1
-    : (options.RotationSamples > 0
-          ? options.RotationSamples
-          : std::max(1, static_cast<int>(std::ceil(8.0 * Pi * kr / ka - 1e-9))));
-  tables.Values.clear();
-
-  // 2. Extent profiles of every part at every angle bin, on one row grid over [-Y, Y].
-  const int P = tables.NumberOfParts();
-  const int s = tables.RotationSamples;
-  const double w = 2.0 * Pi / ka;
-  const double dilation = options.Conservative ? 2.0 * std::sin(w / (4.0 * s)) : 0.0;
-  double maxRadius = 0.0;
-  for (const auto& part : tables.Parts)
-  {
-    maxRadius = std::max(maxRadius, part.Radius);
-  }
-  const int rows = options.Rows;
-  const double Y = maxRadius * (1.0 + dilation) * (1.0 + 1e-9) + 1e-12;
-  const double h = 2.0 * Y / rows;
-  const double eps = options.Conservative ? 1e-12 * maxRadius : 0.0; // rounding of rotations
-  std::vector<Profile> profiles(P);
-  for (auto& p : profiles)
-  {
-    p.Right.assign(static_cast<std::size_t>(ka) * rows, -Empty);
-    p.Left.assign(static_cast<std::size_t>(ka) * rows, Empty);
-    p.FirstRow.assign(ka, rows);
-    p.LastRow.assign(ka, -1);
-  }
+  SetTableSettings(tables, options);
+  const ProfileGrid grid = MakeProfileGrid(tables, options);
   std::atomic<bool> aborted(false);
-  const long long profileJobs = static_cast<long long>(P) * ka;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long long job = 0; job < profileJobs; ++job)
-  {
-    if (aborted.load(std::memory_order_relaxed))
-      continue;
-    const int pi = static_cast<int>(job / ka), bin = static_cast<int>(job % ka);
-    const SafeDistancePart& part = tables.Parts[pi];
-    Profile& prof = profiles[pi];
-    double* right = &prof.Right[static_cast<std::size_t>(bin) * rows];
-    double* left = &prof.Left[static_cast<std::size_t>(bin) * rows];
-    int first = rows, last = -1;
-    for (int k = 0; k < s; ++k)
-    {
-      const double theta =
-        options.Conservative ? bin * w + ((k + 0.5) / s - 0.5) * w : bin * w;
-      const double cs = std::cos(theta), sn = std::sin(theta);
-      for (const Segment2& e : part.Edges)
-      {
-        const Vec2 a{ cs * e.A.x - sn * e.A.y, sn * e.A.x + cs * e.A.y };
-        const Vec2 b{ cs * e.B.x - sn * e.B.y, sn * e.B.x + cs * e.B.y };
-        const double delta = dilation * std::max(Norm(e.A), Norm(e.B)) + eps;
-        AddSegment(a, b, delta, Y, h, rows, right, left, first, last);
-      }
-    }
-    prof.FirstRow[bin] = first;
-    prof.LastRow[bin] = last;
-#ifdef _OPENMP
-    if (omp_get_thread_num() == 0)
-#endif
-    {
-      if (!report(0.05 + 0.25 * static_cast<double>(job) / profileJobs))
-        aborted = true;
-    }
-  }
+  const std::vector<Profile> profiles = ComputeProfiles(tables, grid, progress, aborted);
   if (aborted)
   {
     return Status::Aborted();
   }
-
-  // 3. Tables: D = max over rows of (right extent of A - left extent of B), rounded up to the
-  //    step grid and capped at r_a + r_b (the circles cannot overlap beyond).
-  const std::size_t tableSize = static_cast<std::size_t>(ka) * ka;
-  tables.Values.assign(static_cast<std::size_t>(P) * P * tableSize, 0.0);
-  const long long tableJobs = static_cast<long long>(P) * P * ka; // one job per table row j
-#pragma omp parallel for schedule(dynamic, 4)
-  for (long long job = 0; job < tableJobs; ++job)
-  {
-    if (aborted.load(std::memory_order_relaxed))
-      continue;
-    const int pair = static_cast<int>(job / ka), j = static_cast<int>(job % ka);
-    const int a = pair / P, b = pair % P;
-    const Profile& A = profiles[a];
-    const Profile& B = profiles[b];
-    const double maxD = tables.Parts[a].Radius + tables.Parts[b].Radius;
-    const double step = maxD / kr;
-    const double* left = &B.Left[static_cast<std::size_t>(j) * rows];
-    double* out = &tables.Values[pair * tableSize + static_cast<std::size_t>(j) * ka];
-    for (int i = 0; i < ka; ++i)
-    {
-      const double* right = &A.Right[static_cast<std::size_t>(i) * rows];
-      const int r0 = std::max(A.FirstRow[i], B.FirstRow[j]);
-      const int r1 = std::min(A.LastRow[i], B.LastRow[j]);
-      double D = 0.0;
-      for (int r = r0; r <= r1; ++r)
-      {
-        D = std::max(D, right[r] - left[r]);
-      }
-      out[i] = std::min(std::ceil(D / step) * step, maxD);
-    }
-#ifdef _OPENMP
-    if (omp_get_thread_num() == 0)
-#endif
-    {
-      if (!report(0.3 + 0.7 * static_cast<double>(job) / tableJobs))
-        aborted = true;
-    }
-  }
+  ComputeTables(tables, profiles, grid.Rows, progress, aborted);
   if (aborted)
   {
     return Status::Aborted();
   }
-  report(1.0);
+  ReportProgress(progress, 1.0);
   return tables;
 }
 
