@@ -49,15 +49,15 @@ void ShapeDistributor::Impl::PreparePool()
   double weights = 0.0, discs = 0.0;
   for (int c = 0; c < NumberOfClasses; ++c)
   {
-    const double w = ClassCdf[c] - (c > 0 ? ClassCdf[c - 1] : 0.0);
+    const double w = Sampling.ClassCdf[c] - (c > 0 ? Sampling.ClassCdf[c - 1] : 0.0);
     const double r = Tables.Classes[c].Radius * Options.ShapeSize;
     weights += w;
     discs += w * Pi * r * r;
   }
-  PoolFootprint = weights > 0.0 && discs > 0.0 ? discs / weights : 1.0;
+  Pool.Footprint = weights > 0.0 && discs > 0.0 ? discs / weights : 1.0;
   // (PoolReach's terms per class, in units of ShapeSize times the density factor.)
-  PoolClassOffset.assign(NumberOfClasses, 0.0);
-  PoolClassChart.assign(NumberOfClasses, 0.0);
+  Pool.ClassOffset.assign(NumberOfClasses, 0.0);
+  Pool.ClassChart.assign(NumberOfClasses, 0.0);
   for (int c = 0; c < NumberOfClasses; ++c)
   {
     const SafeDistanceClass& k = Tables.Classes[c];
@@ -66,14 +66,14 @@ void ShapeDistributor::Impl::PreparePool()
     {
       part = std::max(part, CircleMode ? k.Radius : Tables.Parts[p].Radius);
     }
-    PoolClassOffset[c] = k.Parts.size() > 1 ? std::sqrt(2.0) * k.Radius : 0.0;
-    PoolClassChart[c] = part + RMax;
+    Pool.ClassOffset[c] = k.Parts.size() > 1 ? std::sqrt(2.0) * k.Radius : 0.0;
+    Pool.ClassChart[c] = part + Measures.RMax;
   }
 }
 
 double ShapeDistributor::Impl::PoolMean(int level, int f) const
 {
-  return std::ldexp(FaceWeight[f] / PoolFootprint, level);
+  return std::ldexp(Sampling.FaceWeight[f] / Pool.Footprint, level);
 }
 
 Random ShapeDistributor::Impl::DrawPoolCandidate(int level, int f, int index, PoolCandidate& p) const
@@ -85,7 +85,7 @@ Random ShapeDistributor::Impl::DrawPoolCandidate(int level, int f, int index, Po
   p.Level = level;
   p.Face = f;
   p.Index = index;
-  p.Class = RandomClass(rng);
+  p.Class = Sampling.RandomClass(rng);
   double a = rng.Uniform(), b = rng.Uniform();
   if (a + b > 1.0)
   {
@@ -99,7 +99,7 @@ Random ShapeDistributor::Impl::DrawPoolCandidate(int level, int f, int index, Po
 
 void ShapeDistributor::Impl::PoolCandidates(int level, int f, std::vector<PoolCandidate>& out) const
 {
-  if (!(FaceWeight[f] > 0.0))
+  if (!(Sampling.FaceWeight[f] > 0.0))
   {
     return;
   }
@@ -132,7 +132,7 @@ void ShapeDistributor::Impl::MakePoolRecord(
   const SurfacePoint centre = SurfacePoint::InFace(p.Face, 1.0 - p.A - p.B, p.A, p.B);
   // As Generate: a class that certainly cannot fit in this face, or (long classes) at this
   // centre, needs no shape.
-  const bool covered = (masks && (Dead[p.Face] || DeadForClass(p.Class, p.Face))) ||
+  const bool covered = (masks && (Sampling.DeadFace(p.Face) || Sampling.DeadForClass(p.Class, p.Face))) ||
     CentreCovered(centre, p.Class, DensityAt(centre), p.Key, scratch);
   r.Valid = !covered && MakeShape(centre, p.Class, rng, r.Shape, nullptr, &scratch, p.Key);
   r.Reason = r.Valid ? Record::Rejection::None
@@ -152,7 +152,7 @@ std::vector<ShapeDistributor::Impl::PoolCandidate> ShapeDistributor::Impl::LiveP
     const int end = std::min(nf, (c + 1) * FacesPerChunk);
     for (int f = c * FacesPerChunk; f < end; ++f)
     {
-      if (Dead[f])
+      if (Sampling.DeadFace(f))
       {
         continue;
       }
@@ -161,7 +161,7 @@ std::vector<ShapeDistributor::Impl::PoolCandidate> ShapeDistributor::Impl::LiveP
       std::size_t kept = first;
       for (std::size_t k = first; k < out.size(); ++k)
       {
-        if (!DeadForClass(out[k].Class, f))
+        if (!Sampling.DeadForClass(out[k].Class, f))
         {
           out[kept++] = out[k];
         }
@@ -189,7 +189,7 @@ void ShapeDistributor::Impl::PrepareAlone(Record& r, int thread, DecisionScratch
     return;
   }
   const auto chartStart = std::chrono::steady_clock::now();
-  ComputeCharts(r, *Engines[thread]);
+  ComputeCharts(r, *PerThread.Engines[thread]);
   s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
   ++s.Charts;
   if (CircleMode || !Options.DrawnCheck)
@@ -228,7 +228,7 @@ bool ShapeDistributor::Impl::DecidePoolSurvivors(
     if (!r.Rejected)
     {
       Commit(std::move(r));
-      full = Options.MaximumShapes > 0 && static_cast<int>(Accepted.size()) >= Options.MaximumShapes;
+      full = Options.MaximumShapes > 0 && static_cast<int>(Accepted.Records.size()) >= Options.MaximumShapes;
       continue;
     }
     CountRejection(r, stats);
@@ -250,8 +250,8 @@ bool ShapeDistributor::Impl::RunPool(
   // what needs the record alone (charts, outline, exact map, faithfulness) in parallel, a few
   // per thread at a time, and are decided one by one in key order against every shape of
   // smaller key. No neighbourhood bound is assumed between candidates decided in parallel.
-  Polling.reset(new PhasePoll(progress));
-  Reported = 0.0;
+  Progress.Polling.reset(new PhasePoll(progress));
+  Progress.Reported = 0.0;
   const int levels = Options.PoolLevels;
   const int survivorsPerStep = 4 * threads;
   bool full = false;
@@ -314,10 +314,10 @@ bool ShapeDistributor::Impl::RunPool(
       double fraction = (level + static_cast<double>(start + size) / n) / levels;
       if (Options.MaximumShapes > 0)
       {
-        fraction = std::max(fraction, static_cast<double>(Accepted.size()) / Options.MaximumShapes);
+        fraction = std::max(fraction, static_cast<double>(Accepted.Records.size()) / Options.MaximumShapes);
       }
-      Reported = std::max(Reported, std::min(0.99, fraction));
-      if (!Polling->Report(Reported))
+      Progress.Reported = std::max(Progress.Reported, std::min(0.99, fraction));
+      if (!Progress.Polling->Report(Progress.Reported))
       {
         return false;
       }
@@ -335,44 +335,8 @@ bool ShapeDistributor::Impl::RunPool(
 
 void ShapeDistributor::Impl::SortAcceptedByKey(const std::vector<char>* removed)
 {
-  const int n = static_cast<int>(Accepted.size());
-  std::vector<int> order;
-  for (int i = 0; i < n; ++i)
-  {
-    if (!removed || !(*removed)[i])
-    {
-      order.push_back(i);
-    }
-  }
-  std::stable_sort(order.begin(), order.end(),
-    [this](int a, int b) { return Accepted[a].Key < Accepted[b].Key; });
-  std::vector<int> newId(n, -1);
-  std::vector<Record> sorted;
-  sorted.reserve(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k)
-  {
-    newId[order[k]] = static_cast<int>(k);
-    sorted.push_back(std::move(Accepted[order[k]]));
-  }
-  Accepted.swap(sorted);
-  Placed.clear();
-  for (const Record& r : Accepted)
-  {
-    Placed.push_back(r.Shape);
-  }
-  for (auto* index : { &CoverIndex, &CentreIndex })
-  {
-    for (std::vector<int>& ids : *index)
-    {
-      for (int& id : ids)
-      {
-        id = newId[id];
-      }
-    }
-  }
-  // (Uncommit takes back the last commit; the order of commits is gone.)
-  Killed.clear();
-  KilledBy.clear();
+  Accepted.SortByKey(removed);
+  Sampling.ForgetKillLog(); // (Uncommit takes back the last commit; the order of commits is gone.)
 }
 
 } // namespace gs

@@ -28,7 +28,7 @@ Status ShapeDistributor::Impl::PrepareClassWeights()
     return Status::Error("ClassWeights has " + std::to_string(w.size()) + " values for " +
       std::to_string(Tables.Classes.size()) + " classes");
   }
-  ClassCdf.clear();
+  Sampling.ClassCdf.clear();
   double sum = 0.0;
   for (double x : w)
   {
@@ -37,7 +37,7 @@ Status ShapeDistributor::Impl::PrepareClassWeights()
       return Status::Error("ClassWeights must be non-negative finite numbers");
     }
     sum += x;
-    ClassCdf.push_back(sum);
+    Sampling.ClassCdf.push_back(sum);
   }
   if (!(sum > 0.0))
   {
@@ -80,9 +80,9 @@ Status ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& ver
       std::to_string(vertexDensity.size()) + " given for " + std::to_string(nv) + " vertices)");
   }
   Density = vertexDensity;
-  FaceWeight.assign(nf, 0.0);
-  AllCdf.assign(nf, 0.0);
-  MaxFaceDensity = 0.0;
+  Sampling.FaceWeight.assign(nf, 0.0);
+  Sampling.AllCdf.assign(nf, 0.0);
+  Sampling.MaxFaceDensity = 0.0;
   double total = 0.0;
   double minimumScale = std::numeric_limits<double>::infinity();
   for (int f = 0; f < nf; ++f)
@@ -100,22 +100,19 @@ Status ShapeDistributor::Impl::PrepareFaceWeights(const std::vector<double>& ver
     }
     if (ok)
     {
-      FaceWeight[f] = Mesh.FaceArea(f) / (fm * fm);
-      total += FaceWeight[f];
+      Sampling.FaceWeight[f] = Mesh.FaceArea(f) / (fm * fm);
+      total += Sampling.FaceWeight[f];
       minimumScale = std::min(minimumScale, fm);
       for (int v : Mesh.Face(f))
       {
-        MaxFaceDensity = std::max(MaxFaceDensity, Density.empty() ? 1.0 : Density[v]);
+        Sampling.MaxFaceDensity = std::max(Sampling.MaxFaceDensity, Density.empty() ? 1.0 : Density[v]);
       }
     }
-    AllCdf[f] = total;
+    Sampling.AllCdf[f] = total;
   }
-  Dead.assign(nf, 0);
   NumberOfClasses = static_cast<int>(Tables.Classes.size());
-  DeadFor.assign(static_cast<std::size_t>(NumberOfClasses) * nf, 0);
-  Killed.clear();
-  KilledBy.clear();
-  BuildCdf();
+  Sampling.Reset(nf, NumberOfClasses);
+  Sampling.BuildCdf();
   if (!(total > 0.0))
   {
     return Status::Error("no face has a positive density factor at all its corners");
@@ -163,23 +160,23 @@ Status ShapeDistributor::Impl::CheckShapeSizeAgainstSurface() const
   {
     largestRadius = std::max(largestRadius, c.Radius);
   }
-  const double extent = largestRadius * Options.ShapeSize * MaxFaceDensity;
+  const double extent = largestRadius * Options.ShapeSize * Sampling.MaxFaceDensity;
   const double allowed = std::sqrt(largestArea / Pi);
   if (!(extent <= allowed))
   {
     std::ostringstream message;
     message << "ShapeSize " << Options.ShapeSize;
-    if (MaxFaceDensity != 1.0)
+    if (Sampling.MaxFaceDensity != 1.0)
     {
-      message << " times the largest density factor " << MaxFaceDensity;
+      message << " times the largest density factor " << Sampling.MaxFaceDensity;
     }
     message << " makes shapes larger than the surface: the largest class's circumradius would be "
             << extent << ", and a disc of that radius holds more than the area of the "
             << (Mesh.NumberOfComponents() > 1 ? "largest connected part of the " : "")
             << "surface (" << largestArea << ", the disc of radius " << allowed
             << "). Use a ShapeSize below "
-            << allowed / (largestRadius * MaxFaceDensity);
-    if (MaxFaceDensity != 1.0)
+            << allowed / (largestRadius * Sampling.MaxFaceDensity);
+    if (Sampling.MaxFaceDensity != 1.0)
     {
       message << " or smaller density factors";
     }
@@ -198,7 +195,7 @@ double ShapeDistributor::Impl::EstimatedShapes() const
     radius += c.Radius / static_cast<double>(Tables.Classes.size());
   }
   const double r = Options.ShapeSize * radius;
-  const double weight = AllCdf.empty() ? 0.0 : AllCdf.back(); // sum of area / f^2
+  const double weight = Sampling.AllCdf.empty() ? 0.0 : Sampling.AllCdf.back(); // sum of area / f^2
   return 3.0 * 0.5 * (weight / (Pi * r)) / r;
 }
 
@@ -241,14 +238,14 @@ void ShapeDistributor::Impl::PrepareDeadFaces()
   {
     const int np = CircleMode ? static_cast<int>(Tables.Classes.size()) : Tables.NumberOfParts();
     const int nc = static_cast<int>(Tables.Classes.size());
-    KillRadius.assign(static_cast<std::size_t>(np) * nc, std::numeric_limits<double>::infinity());
-    KillReach.assign(nc, 0.0);
+    Sampling.KillRadius.assign(static_cast<std::size_t>(np) * nc, std::numeric_limits<double>::infinity());
+    Sampling.KillReach.assign(nc, 0.0);
     const std::size_t ka = static_cast<std::size_t>(Tables.AngleBins);
     for (int x = 0; x < np; ++x)
     {
       for (int c = 0; c < nc; ++c)
       {
-        double& kill = KillRadius[static_cast<std::size_t>(x) * nc + c];
+        double& kill = Sampling.KillRadius[static_cast<std::size_t>(x) * nc + c];
         if (CircleMode)
         {
           kill = Tables.Classes[x].Radius + Tables.Classes[c].Radius;
@@ -274,7 +271,7 @@ void ShapeDistributor::Impl::PrepareDeadFaces()
       for (int pc : Tables.Classes[c].Parts)
       {
         const Vec2& q = Tables.Parts[pc].Centre;
-        KillReach[c] = std::max(KillReach[c],
+        Sampling.KillReach[c] = std::max(Sampling.KillReach[c],
           std::abs(Dot(q, Tables.Classes[c].MajorAxis)) +
             std::abs(Cross(Tables.Classes[c].MajorAxis, q)));
       }
@@ -285,9 +282,9 @@ void ShapeDistributor::Impl::PrepareDeadFaces()
 void ShapeDistributor::Impl::PrepareLongClasses()
 {
   const int nf = Mesh.NumberOfFaces();
-  ClassExtentMin.assign(Tables.Classes.size(), 0.0);
-  ClassExtentMax.assign(Tables.Classes.size(), 0.0);
-  BehindParts.assign(Tables.Classes.size(), {});
+  Long.ClassExtentMin.assign(Tables.Classes.size(), 0.0);
+  Long.ClassExtentMax.assign(Tables.Classes.size(), 0.0);
+  Long.BehindParts.assign(Tables.Classes.size(), {});
   bool anyLong = false;
   for (std::size_t k = 0; k < Tables.Classes.size(); ++k)
   {
@@ -312,75 +309,31 @@ void ShapeDistributor::Impl::PrepareLongClasses()
       lo = std::min(lo, a);
       hi = std::max(hi, a);
     }
-    ClassExtentMin[k] = lo;
-    ClassExtentMax[k] = hi;
+    Long.ClassExtentMin[k] = lo;
+    Long.ClassExtentMax[k] = hi;
     for (int part : c.Parts)
     {
       if (Dot(Tables.Parts[part].Centre, c.MajorAxis) < 0.0)
       {
-        BehindParts[k].push_back(part);
+        Long.BehindParts[k].push_back(part);
       }
     }
-    std::stable_sort(BehindParts[k].begin(), BehindParts[k].end(), [&](int a, int b) {
+    std::stable_sort(Long.BehindParts[k].begin(), Long.BehindParts[k].end(), [&](int a, int b) {
       return Dot(Tables.Parts[a].Centre, c.MajorAxis) > Dot(Tables.Parts[b].Centre, c.MajorAxis);
     });
   }
   if (anyLong)
   {
-    if (!Field)
+    if (!Long.Field)
     {
-      Field.reset(new DirectionFieldSolver(Mesh));
+      Long.Field.reset(new DirectionFieldSolver(Mesh));
     }
-    FieldAngles.assign(nf, 0.0);
+    Long.FieldAngles.assign(nf, 0.0);
     for (int f = 0; f < nf; ++f)
     {
-      FieldAngles[f] = Norm(FaceDirection[f]) > 0.0 ? Field->AngleInFace(f, FaceDirection[f]) : 0.0;
+      Long.FieldAngles[f] = Norm(FaceDirection[f]) > 0.0 ? Long.Field->AngleInFace(f, FaceDirection[f]) : 0.0;
     }
   }
-}
-
-void ShapeDistributor::Impl::BuildCdf()
-{
-  const int nf = Mesh.NumberOfFaces();
-  FaceCdf.assign(nf, 0.0);
-  double total = 0.0;
-  for (int f = 0; f < nf; ++f)
-  {
-    total += Dead[f] ? 0.0 : FaceWeight[f];
-    FaceCdf[f] = total;
-  }
-  DeadSinceCdf = 0;
-}
-
-SurfacePoint ShapeDistributor::Impl::RandomPoint(Random& rng, bool live) const
-{
-  const std::vector<double>& cdf = live ? FaceCdf : AllCdf;
-  const double u = rng.Uniform() * cdf.back();
-  int f = static_cast<int>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
-  f = std::min(f, Mesh.NumberOfFaces() - 1);
-  while (f > 0 && cdf[f] == cdf[f - 1])
-  {
-    --f; // never a zero-weight face
-  }
-  double a = rng.Uniform(), b = rng.Uniform();
-  if (a + b > 1.0)
-  {
-    a = 1.0 - a;
-    b = 1.0 - b;
-  }
-  return SurfacePoint::InFace(f, 1.0 - a - b, a, b);
-}
-
-int ShapeDistributor::Impl::RandomClass(Random& rng) const
-{
-  const double u = rng.Uniform() * ClassCdf.back();
-  int k = static_cast<int>(std::upper_bound(ClassCdf.begin(), ClassCdf.end(), u) - ClassCdf.begin());
-  k = std::min(k, static_cast<int>(ClassCdf.size()) - 1);
-  while (k > 0 && ClassCdf[k] == ClassCdf[k - 1])
-  {
-    --k;
-  }
-  return k;
 }
 
 void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) const
@@ -394,11 +347,11 @@ void ShapeDistributor::Impl::Generate(std::vector<Record>& batch, int round) con
         return;
       }
       Random rng(Options.Seed, 1, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(i));
-      const int cls = RandomClass(rng);
-      const SurfacePoint centre = RandomPoint(rng);
+      const int cls = Sampling.RandomClass(rng);
+      const SurfacePoint centre = Sampling.RandomPoint(rng);
       // A class that certainly cannot fit in this face, or (long classes, whose shapes cost a
       // streamline) at this centre: no need to build the shape.
-      const bool covered = DeadForClass(cls, centre.Face) ||
+      const bool covered = Sampling.DeadForClass(cls, centre.Face) ||
         (Tables.Classes[cls].Parts.size() > 1 &&
           CentreCovered(centre, cls, DensityAt(centre), 0, scratch));
       batch[i].Valid = !covered && MakeShape(centre, cls, rng, batch[i].Shape, nullptr, &scratch);
@@ -479,9 +432,9 @@ bool ShapeDistributor::Impl::BehindPartsFit(DirectionFieldSolver::StreamlineTrac
   partial.Shape.ClassId = cls;
   partial.Shape.Scale = s.Scale;
   partial.Key = key;
-  for (std::size_t k = 0; k < BehindParts[cls].size(); ++k)
+  for (std::size_t k = 0; k < Long.BehindParts[cls].size(); ++k)
   {
-    const int part = BehindParts[cls][k];
+    const int part = Long.BehindParts[cls][k];
     const double at = PartDistanceAlongCurve(cls, part, scale);
     tracer.Continue(at);
     if (tracer.Line().Length < at)
@@ -495,8 +448,8 @@ bool ShapeDistributor::Impl::BehindPartsFit(DirectionFieldSolver::StreamlineTrac
     }
     partial.Shape.Parts.push_back(p);
     // Checked when the next part needs more streamline (or at the last).
-    const bool more = k + 1 < BehindParts[cls].size() &&
-      PartDistanceAlongCurve(cls, BehindParts[cls][k + 1], scale) <= tracer.Line().Length;
+    const bool more = k + 1 < Long.BehindParts[cls].size() &&
+      PartDistanceAlongCurve(cls, Long.BehindParts[cls][k + 1], scale) <= tracer.Line().Length;
     if (!more && CheapConflict(partial, precheck))
     {
       return false;
@@ -517,12 +470,12 @@ bool ShapeDistributor::Impl::MakeLongShape(const Vec3& dir, PlacedShape& s,
   const double phiM = std::atan2(c.MajorAxis.y, c.MajorAxis.x);
   s.Direction = Unit(RotateTangent(dir, s.Normal, -phiM));
   const int n = Options.Symmetry == 1 ? 2 : Options.Symmetry;
-  const double a0 = Field->AngleInFace(f, dir);
-  const double forward = ClassExtentMax[cls] * scale, backward = -ClassExtentMin[cls] * scale;
+  const double a0 = Long.Field->AngleInFace(f, dir);
+  const double forward = Long.ClassExtentMax[cls] * scale, backward = -Long.ClassExtentMin[cls] * scale;
   // Behind first: a candidate whose parts there conflict needs no streamline ahead, and most
   // conflict at the part nearest the centre, which needs only the streamline up to it.
   DirectionFieldSolver::StreamlineTracer tracer(
-    *Field, n, FieldAngles, s.Centre, a0 + Pi, backward);
+    *Long.Field, n, Long.FieldAngles, s.Centre, a0 + Pi, backward);
   if (precheck && Options.EarlyRejection && !CircleMode &&
     !BehindPartsFit(tracer, s, scale, phiM, *precheck, key))
   {
@@ -534,7 +487,7 @@ bool ShapeDistributor::Impl::MakeLongShape(const Vec3& dir, PlacedShape& s,
   {
     return false;
   }
-  const Streamline ahead = Field->TraceStreamline(n, FieldAngles, s.Centre, a0, forward);
+  const Streamline ahead = Long.Field->TraceStreamline(n, Long.FieldAngles, s.Centre, a0, forward);
   if (ahead.Length < forward * (1.0 - 1e-9))
   {
     return false;
@@ -614,9 +567,9 @@ void ShapeDistributor::Impl::CollectKills(const Record& r, std::vector<char>& ma
     const Chart& chart = r.Charts[k];
     for (int c = 0; c < nc; ++c)
     {
-      const double radius = KillRadius[static_cast<std::size_t>(r.Shape.Parts[k].Part) * nc + c] *
+      const double radius = Sampling.KillRadius[static_cast<std::size_t>(r.Shape.Parts[k].Part) * nc + c] *
           Options.ShapeSize * r.Shape.Scale -
-        KillReach[c] * Options.ShapeSize * MaxFaceDensity;
+        Sampling.KillReach[c] * Options.ShapeSize * Sampling.MaxFaceDensity;
       if (!(radius > 0.0))
       {
         continue;
@@ -657,35 +610,14 @@ void ShapeDistributor::Impl::CollectKills(const Record& r, std::vector<char>& ma
 
 void ShapeDistributor::Impl::KillFaces(const Record& r)
 {
+  if (r.Prepared)
+  {
+    Sampling.Kill(r.Kills);
+    return;
+  }
   std::vector<std::pair<int, int>> own;
-  if (!r.Prepared)
-  {
-    CollectKills(r, Marks[0], Marked, own); // (serial: the first thread's scratch)
-  }
-  const int nc = NumberOfClasses;
-  for (const auto& cf : r.Prepared ? r.Kills : own)
-  {
-    const int c = cf.first, f = cf.second;
-    char& dead = DeadFor[static_cast<std::size_t>(c) * Mesh.NumberOfFaces() + f];
-    if (dead)
-    {
-      continue;
-    }
-    dead = 1;
-    Killed.emplace_back(c, f);
-    bool all = true;
-    for (int o = 0; o < nc && all; ++o)
-    {
-      all = !(ClassCdf[o] > (o > 0 ? ClassCdf[o - 1] : 0.0)) ||
-        DeadFor[static_cast<std::size_t>(o) * Mesh.NumberOfFaces() + f];
-    }
-    if (all && !Dead[f])
-    {
-      Dead[f] = 1;
-      Killed.emplace_back(-1, f);
-      ++DeadSinceCdf;
-    }
-  }
+  CollectKills(r, PerThread.Marks[0], PerThread.Marked, own); // (serial: the first thread's scratch)
+  Sampling.Kill(own);
 }
 
 } // namespace gs

@@ -17,8 +17,8 @@ using namespace distribution;
 
 void ShapeDistributor::Impl::PrepareClassRegions()
 {
-  Regions.clear();
-  Clearance.assign(Tables.Classes.size(), -1.0);
+  Silhouettes.Regions.clear();
+  Silhouettes.Clearance.assign(Tables.Classes.size(), -1.0);
   {
     double largest = 0.0;
     std::vector<double> clearance(Tables.Classes.size(), -1.0);
@@ -45,10 +45,10 @@ void ShapeDistributor::Impl::PrepareClassRegions()
     }
     for (const SafeDistanceClass& c : Tables.Classes)
     {
-      Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
+      Silhouettes.Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
     }
-    Clearance = clearance;
-    MaxClearance = largest;
+    Silhouettes.Clearance = clearance;
+    Silhouettes.MaxClearance = largest;
   }
 }
 
@@ -155,12 +155,12 @@ bool ShapeDistributor::Impl::CheapConflict(const Record& c, std::vector<int>& sc
   scratch.clear();
   for (int v : CentreCorners(c))
   {
-    scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+    scratch.insert(scratch.end(), Accepted.CoverIndex[v].begin(), Accepted.CoverIndex[v].end());
   }
   SortUnique(scratch);
   for (int x : scratch)
   {
-    const Record& X = Accepted[x];
+    const Record& X = Accepted.Records[x];
     if (X.Key <= c.Key && X.Shape.Scale >= c.Shape.Scale && ConflictInCharts(X, c))
     {
       return true;
@@ -174,7 +174,7 @@ bool ShapeDistributor::Impl::TouchesBoundary(const Record& c) const
   for (std::size_t k = 0; k < c.Charts.size() && k < c.Shape.Parts.size(); ++k)
   {
     const double reach =
-      PartRadius(c.Shape.Parts[k].Part) * Options.ShapeSize * c.Shape.Scale + 0.5 * MaxEdge;
+      PartRadius(c.Shape.Parts[k].Part) * Options.ShapeSize * c.Shape.Scale + 0.5 * Measures.MaxEdge;
     const float r2 = static_cast<float>(reach * reach);
     for (const ChartEntry& e : c.Charts[k].Entries)
     {
@@ -196,12 +196,12 @@ bool ShapeDistributor::Impl::FullConflict(const Record& c, std::vector<int>& scr
   scratch.clear();
   for (int v : ChartVertices(c))
   {
-    scratch.insert(scratch.end(), CentreIndex[v].begin(), CentreIndex[v].end());
+    scratch.insert(scratch.end(), Accepted.CentreIndex[v].begin(), Accepted.CentreIndex[v].end());
   }
   SortUnique(scratch);
   for (int y : scratch)
   {
-    const Record& Y = Accepted[y];
+    const Record& Y = Accepted.Records[y];
     if (Y.Key <= c.Key && Y.Shape.Scale < c.Shape.Scale && ConflictInCharts(c, Y))
     {
       return true;
@@ -213,7 +213,7 @@ bool ShapeDistributor::Impl::FullConflict(const Record& c, std::vector<int>& scr
 bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, double scale,
   std::uint64_t key, std::vector<int>& scratch) const
 {
-  if (CircleMode || Clearance[cls] < 0.0)
+  if (CircleMode || Silhouettes.Clearance[cls] < 0.0)
   {
     return false;
   }
@@ -221,19 +221,19 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
   scratch.clear();
   for (int v : corners)
   {
-    scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+    scratch.insert(scratch.end(), Accepted.CoverIndex[v].begin(), Accepted.CoverIndex[v].end());
   }
   SortUnique(scratch);
   const Vec3 position = Mesh.Interpolate(centre.Face, centre.Bary);
   for (int x : scratch)
   {
-    const Record& X = Accepted[x];
+    const Record& X = Accepted.Records[x];
     if (X.Key > key)
     {
       continue; // (decided after the candidate: see Record::Key)
     }
     const double unit = Options.ShapeSize * X.Shape.Scale;
-    const ClassRegion& region = Regions[X.Shape.ClassId];
+    const ClassRegion& region = Silhouettes.Regions[X.Shape.ClassId];
     for (std::size_t i = 0; i < X.Shape.Parts.size() && i < X.Charts.size(); ++i)
     {
       const int pa = X.Shape.Parts[i].Part;
@@ -242,7 +242,7 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
         continue; // beyond the part's circle (the geodesic distance is never shorter)
       }
       const double margin = 0.02 * PartRadius(pa);
-      const double dilation = 0.9 * Clearance[cls] * scale / X.Shape.Scale - margin;
+      const double dilation = 0.9 * Silhouettes.Clearance[cls] * scale / X.Shape.Scale - margin;
       Vec2 q;
       if (!ChartPoint(X.Charts[i], centre, unit, q))
       {
@@ -253,7 +253,7 @@ bool ShapeDistributor::Impl::CentreCovered(const SurfacePoint& centre, int cls, 
         continue;
       }
       const Vec2 p = Tables.Parts[pa].Centre + q;
-      if (dilation >= 0.0 ? region.Within(p, std::min(dilation, MaxClearance)) : region.DeeplyInside(p, -dilation))
+      if (dilation >= 0.0 ? region.Within(p, std::min(dilation, Silhouettes.MaxClearance)) : region.DeeplyInside(p, -dilation))
       {
         return true;
       }
@@ -392,13 +392,13 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
   scratch.clear();
   for (int v : CentreCorners(c))
   {
-    scratch.insert(scratch.end(), CoverIndex[v].begin(), CoverIndex[v].end());
+    scratch.insert(scratch.end(), Accepted.CoverIndex[v].begin(), Accepted.CoverIndex[v].end());
   }
   for (const Chart& chart : c.Charts)
   {
     for (const ChartEntry& e : chart.Entries)
     {
-      scratch.insert(scratch.end(), CentreIndex[e.Vertex].begin(), CentreIndex[e.Vertex].end());
+      scratch.insert(scratch.end(), Accepted.CentreIndex[e.Vertex].begin(), Accepted.CentreIndex[e.Vertex].end());
     }
   }
   SortUnique(scratch);
@@ -410,7 +410,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
     {
       return true; // (aborted: the round is dropped, whatever this says)
     }
-    const Record& X = Accepted[x];
+    const Record& X = Accepted.Records[x];
     if (X.Key > c.Key)
     {
       continue;
@@ -438,7 +438,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
     // tested at its ends only.)
     if (shortX &&
       OutlineEnters(
-        Regions[X.Shape.ClassId], c.Drawn,
+        Silhouettes.Regions[X.Shape.ClassId], c.Drawn,
         [this, &X](const SurfacePoint& q, Vec2& p) { return ClassPointOf(X, q, p); },
         depth / unitX, X.Exact ? &Mesh : nullptr, 1.0 / unitX))
     {
@@ -447,7 +447,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
     int hint = -1;
     if (!shortX && X.Frame &&
       OutlineEnters(
-        Regions[X.Shape.ClassId], c.Drawn,
+        Silhouettes.Regions[X.Shape.ClassId], c.Drawn,
         [&X, &nearX, &hint](
           const SurfacePoint& q, Vec2& p) { return nearX(q) && X.Frame->ClassPoint(q, p, &hint); },
         depth / unitX))
@@ -456,7 +456,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
     }
     if (shortC && X.HasDrawn &&
       OutlineEnters(
-        Regions[c.Shape.ClassId], X.Drawn,
+        Silhouettes.Regions[c.Shape.ClassId], X.Drawn,
         [this, &c](const SurfacePoint& q, Vec2& p) { return ClassPointOf(c, q, p); },
         depth / unitC, c.Exact ? &Mesh : nullptr, 1.0 / unitC))
     {
@@ -465,7 +465,7 @@ bool ShapeDistributor::Impl::DrawnConflict(Record& c, std::vector<int>& scratch)
     hint = -1;
     if (!shortC && c.Frame && X.HasDrawn &&
       OutlineEnters(
-        Regions[c.Shape.ClassId], X.Drawn,
+        Silhouettes.Regions[c.Shape.ClassId], X.Drawn,
         [&c, &nearC, &hint](
           const SurfacePoint& q, Vec2& p) { return nearC(q) && c.Frame->ClassPoint(q, p, &hint); },
         depth / unitC))

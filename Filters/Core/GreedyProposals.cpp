@@ -23,7 +23,7 @@ void ShapeDistributor::Impl::ComputeLattices()
   // pairs of boundary samples, smallest cell area first. Greedy then proposes the lattice
   // neighbours of each placed shape, so that a cluster grows as one crystal instead of grains
   // of two-contact growth that leave gaps where they meet.
-  ClassLattice.assign(Tables.Classes.size(), {});
+  Lattices.ByClass.assign(Tables.Classes.size(), {});
   if (Options.Mode != DistributionMode::Greedy || CircleMode)
   {
     return;
@@ -41,16 +41,16 @@ void ShapeDistributor::Impl::ComputeLattices()
     const std::size_t ka = static_cast<std::size_t>(Tables.AngleBins);
     const std::size_t pair = static_cast<std::size_t>(p) * Tables.Parts.size() + p;
     h.Add(Tables.Values.data() + pair * ka * ka, ka * ka * sizeof(double));
-    auto it = LatticeCache.find(h.H);
-    if (it == LatticeCache.end())
+    auto it = Lattices.Cache.find(h.H);
+    if (it == Lattices.Cache.end())
     {
-      if (LatticeCache.size() >= 64)
+      if (Lattices.Cache.size() >= 64)
       {
-        LatticeCache.clear();
+        Lattices.Cache.clear();
       }
-      it = LatticeCache.emplace(h.H, PartLattice(p)).first;
+      it = Lattices.Cache.emplace(h.H, PartLattice(p)).first;
     }
-    ClassLattice[c] = it->second;
+    Lattices.ByClass[c] = it->second;
   }
 }
 
@@ -170,9 +170,9 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
   int parentId, int round, int slot) const
 {
   std::vector<Proposal> out;
-  const Record& A = Accepted[parentId];
+  const Record& A = Accepted.Records[parentId];
   Random rng(Options.Seed, 2, static_cast<std::uint64_t>(round), static_cast<std::uint64_t>(slot));
-  const int cls = RandomClass(rng);
+  const int cls = Sampling.RandomClass(rng);
   const SafeDistanceClass& ac = Tables.Classes[A.Shape.ClassId];
   const SafeDistanceClass& cc = Tables.Classes[cls];
   const double unit = Options.ShapeSize * A.Shape.Scale * (1.0 + Options.SafetyMargin);
@@ -192,7 +192,7 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
   // lengths: the lattice vectors' lengths; empty: each proposal lies on A's contact curve
   // (reach(beta)).
   std::vector<double> betas, lengths;
-  if (cls == A.Shape.ClassId && !ClassLattice[cls].empty())
+  if (cls == A.Shape.ClassId && !Lattices.ByClass[cls].empty())
   {
     LatticeDirections(contact, cls, betas, lengths);
   }
@@ -215,14 +215,14 @@ std::vector<ShapeDistributor::Impl::Proposal> ShapeDistributor::Impl::Propose(
 std::vector<ShapeDistributor::Impl::Neighbour> ShapeDistributor::Impl::NeighboursInChart(
   int parentId, int pa, int pc) const
 {
-  const Record& A = Accepted[parentId];
+  const Record& A = Accepted.Records[parentId];
   std::vector<Neighbour> near;
   std::vector<int> ids;
   if (!A.Charts.empty())
   {
     for (const ChartEntry& e : A.Charts[0].Entries)
     {
-      ids.insert(ids.end(), CentreIndex[e.Vertex].begin(), CentreIndex[e.Vertex].end());
+      ids.insert(ids.end(), Accepted.CentreIndex[e.Vertex].begin(), Accepted.CentreIndex[e.Vertex].end());
     }
   }
   SortUnique(ids);
@@ -232,7 +232,7 @@ std::vector<ShapeDistributor::Impl::Neighbour> ShapeDistributor::Impl::Neighbour
     {
       continue;
     }
-    const Record& B = Accepted[id];
+    const Record& B = Accepted.Records[id];
     if (B.Shape.Parts.size() != 1)
     {
       continue;
@@ -286,7 +286,7 @@ void ShapeDistributor::Impl::LatticeDirections(const Contact& contact, int cls, 
 {
   // The lattice neighbours of A that no placed neighbour already rules out.
   const double unit = contact.Unit;
-  for (const Vec2& w : ClassLattice[cls])
+  for (const Vec2& w : Lattices.ByClass[cls])
   {
     const Vec2 P = w * unit;
     bool free = true;
@@ -343,10 +343,10 @@ void ShapeDistributor::Impl::ShootProposals(const Record& A, int cls, const Cont
   for (std::size_t k = 0; k < betas.size(); ++k)
   {
     const double beta = betas[k];
-    const double d = (k < lengths.size() ? lengths[k] : contact.Reach(beta)) * (1.0 + 1e-6) + 1e-9 * MaxEdge;
+    const double d = (k < lengths.size() ? lengths[k] : contact.Reach(beta)) * (1.0 + 1e-6) + 1e-9 * Measures.MaxEdge;
     const GeodesicShot shot = ShootGeodesic(Mesh, A.Shape.Centre, a0 + beta, d);
-    if (shot.ReachedBoundary || shot.End.Face < 0 || !(FaceWeight[shot.End.Face] > 0.0) ||
-      DeadForClass(cls, shot.End.Face))
+    if (shot.ReachedBoundary || shot.End.Face < 0 || !(Sampling.FaceWeight[shot.End.Face] > 0.0) ||
+      Sampling.DeadForClass(cls, shot.End.Face))
     {
       continue; // off the surface or in a region without density
     }
@@ -359,7 +359,7 @@ void ShapeDistributor::Impl::ShootProposals(const Record& A, int cls, const Cont
       // The parent's own choice among the N directions (its class axis for short shapes).
       p.Prefer = ac.Parts.size() <= 1 ? A.Shape.Direction : p.Prefer;
     }
-    p.Key = Norm(Mesh.Interpolate(p.Centre.Face, p.Centre.Bary) - Accepted[0].Shape.Position);
+    p.Key = Norm(Mesh.Interpolate(p.Centre.Face, p.Centre.Bary) - Accepted.Records[0].Shape.Position);
     out.push_back(p);
   }
 }

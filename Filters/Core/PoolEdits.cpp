@@ -77,8 +77,8 @@ bool ShapeDistributor::Impl::CanRunIncrementally(
   std::uint64_t fingerprint, const std::vector<double>& vertexDensity) const
 {
   // (The caller checks MaximumShapes: it ends a run at a count, which no edit's reach bounds.)
-  return LastPool.Valid && LastPool.Fingerprint == fingerprint &&
-    LastPool.Density.size() == vertexDensity.size() && !vertexDensity.empty();
+  return Pool.Last.Valid && Pool.Last.Fingerprint == fingerprint &&
+    Pool.Last.Density.size() == vertexDensity.size() && !vertexDensity.empty();
 }
 
 double ShapeDistributor::Impl::PoolReach(int clsA, double scaleA, int clsB, double scaleB) const
@@ -92,11 +92,11 @@ double ShapeDistributor::Impl::PoolReach(int clsA, double scaleA, int clsB, doub
   // long shape is drawn along paths |along| + |across|). Positions in space: the geodesic
   // distance never undercuts them.
   const double size = Options.ShapeSize * (1.0 + Options.SafetyMargin);
-  const double offsetA = PoolClassOffset[clsA] * scaleA, offsetB = PoolClassOffset[clsB] * scaleB;
-  const double chartA = PoolClassChart[clsA] * scaleA, chartB = PoolClassChart[clsB] * scaleB;
-  const double tables = (offsetA + offsetB + std::max(chartA, chartB)) * size + ChartMargin;
+  const double offsetA = Pool.ClassOffset[clsA] * scaleA, offsetB = Pool.ClassOffset[clsB] * scaleB;
+  const double chartA = Pool.ClassChart[clsA] * scaleA, chartB = Pool.ClassChart[clsB] * scaleB;
+  const double tables = (offsetA + offsetB + std::max(chartA, chartB)) * size + Measures.ChartMargin;
   const double drawn = (Tables.Classes[clsA].Radius * scaleA + Tables.Classes[clsB].Radius * scaleB) * size;
-  return std::max(tables, drawn) + MaxEdge;
+  return std::max(tables, drawn) + Measures.MaxEdge;
 }
 
 double ShapeDistributor::Impl::EditShare(const std::vector<double>& oldDensity) const
@@ -104,7 +104,7 @@ double ShapeDistributor::Impl::EditShare(const std::vector<double>& oldDensity) 
   double changed = 0.0, total = 0.0;
   for (int f = 0; f < Mesh.NumberOfFaces(); ++f)
   {
-    total += FaceWeight[f];
+    total += Sampling.FaceWeight[f];
     double fm = 0.0;
     bool same = true, ok = true;
     for (int v : Mesh.Face(f))
@@ -115,7 +115,7 @@ double ShapeDistributor::Impl::EditShare(const std::vector<double>& oldDensity) 
     }
     if (!same)
     {
-      changed += std::max(FaceWeight[f], ok ? Mesh.FaceArea(f) / (fm * fm) : 0.0);
+      changed += std::max(Sampling.FaceWeight[f], ok ? Mesh.FaceArea(f) / (fm * fm) : 0.0);
     }
   }
   return total > 0.0 ? changed / total : 1.0;
@@ -123,12 +123,12 @@ double ShapeDistributor::Impl::EditShare(const std::vector<double>& oldDensity) 
 
 void ShapeDistributor::Impl::StashDecals()
 {
-  DecalStash.clear();
-  for (const Record& r : Accepted)
+  Pool.DecalStash.clear();
+  for (const Record& r : Accepted.Records)
   {
     if (r.Decal)
     {
-      DecalStash[r.Key] = { r.Shape, r.Decal, r.DecalTolerance };
+      Pool.DecalStash[r.Key] = { r.Shape, r.Decal, r.DecalTolerance };
     }
   }
 }
@@ -165,16 +165,16 @@ bool SamePlacement(const PlacedShape& a, const PlacedShape& b)
 
 void ShapeDistributor::Impl::TakeStashedDecals()
 {
-  for (Record& r : Accepted)
+  for (Record& r : Accepted.Records)
   {
-    auto it = DecalStash.find(r.Key);
-    if (!r.Decal && it != DecalStash.end() && SamePlacement(it->second.Shape, r.Shape))
+    auto it = Pool.DecalStash.find(r.Key);
+    if (!r.Decal && it != Pool.DecalStash.end() && SamePlacement(it->second.Shape, r.Shape))
     {
       r.Decal = it->second.Decal;
       r.DecalTolerance = it->second.Tolerance;
     }
   }
-  DecalStash.clear();
+  Pool.DecalStash.clear();
 }
 
 bool ShapeDistributor::Impl::KilledBefore(int cls, int f, std::uint64_t key) const
@@ -183,9 +183,9 @@ bool ShapeDistributor::Impl::KilledBefore(int cls, int f, std::uint64_t key) con
   const std::pair<int, int> cf(cls, f);
   for (int v : Mesh.Face(f))
   {
-    for (int id : CoverIndex[v])
+    for (int id : Accepted.CoverIndex[v])
     {
-      const Record& X = Accepted[id];
+      const Record& X = Accepted.Records[id];
       if (X.Key < key && std::binary_search(X.Kills.begin(), X.Kills.end(), cf))
       {
         return true;
@@ -197,20 +197,8 @@ bool ShapeDistributor::Impl::KilledBefore(int cls, int f, std::uint64_t key) con
 
 ShapeDistributor::Impl::Record ShapeDistributor::Impl::RemoveAccepted(int id)
 {
-  Record r = std::move(Accepted[id]);
-  Accepted[id] = Record();
-  auto drop = [id](std::vector<int>& ids) {
-    ids.erase(std::remove(ids.begin(), ids.end(), id), ids.end());
-  };
-  for (int v : ChartVertices(r))
-  {
-    drop(CoverIndex[v]);
-  }
-  for (int v : CentreCorners(r))
-  {
-    drop(CentreIndex[v]);
-  }
-  return r;
+  const Record& r = Accepted.Records[id];
+  return Accepted.Remove(id, ChartVertices(r), CentreCorners(r));
 }
 
 namespace
@@ -317,8 +305,8 @@ struct ShapeDistributor::Impl::PoolEdit
 
   void BuildGrid()
   {
-    MaxScale = I.MaxFaceDensity;
-    for (const Record& r : I.Accepted)
+    MaxScale = I.Sampling.MaxFaceDensity;
+    for (const Record& r : I.Accepted.Records)
     {
       MaxScale = std::max(MaxScale, r.Shape.Scale);
     }
@@ -326,7 +314,7 @@ struct ShapeDistributor::Impl::PoolEdit
     {
       Widest = I.Tables.Classes[c].Radius > I.Tables.Classes[Widest].Radius ? c : Widest;
     }
-    CellSize = std::max(I.PoolReach(Widest, MaxScale, Widest, MaxScale), I.MaxEdge);
+    CellSize = std::max(I.PoolReach(Widest, MaxScale, Widest, MaxScale), I.Measures.MaxEdge);
     const TriangleMesh& mesh = I.Mesh;
     Grid.resize(mesh.NumberOfFaces());
     for (int f = 0; f < mesh.NumberOfFaces(); ++f)
@@ -364,7 +352,7 @@ struct ShapeDistributor::Impl::PoolEdit
   void FacesNear(const Vec3& x, double range, Visit&& visit) const
   {
     const Cell c = CellOf(x);
-    const long long span = static_cast<long long>(std::ceil((range + I.MaxEdge) / CellSize));
+    const long long span = static_cast<long long>(std::ceil((range + I.Measures.MaxEdge) / CellSize));
     for (long long dx = -span; dx <= span; ++dx)
       for (long long dy = -span; dy <= span; ++dy)
         for (long long dz = -span; dz <= span; ++dz)
@@ -460,7 +448,7 @@ struct ShapeDistributor::Impl::PoolEdit
       }
       for (std::uint64_t k : it->second)
       {
-        const Record& X = I.Accepted[AcceptedByKey.at(k)];
+        const Record& X = I.Accepted.Records[AcceptedByKey.at(k)];
         if (k > key && Norm(X.Shape.Position - x) <= I.PoolReach(cls, scale, X.Shape.ClassId, X.Shape.Scale))
         {
           Heap.push({ k, -1, f, 0 });
@@ -474,19 +462,19 @@ struct ShapeDistributor::Impl::PoolEdit
   void Start()
   {
     Alive.resize(I.NumberOfClasses);
-    Removed.assign(I.Accepted.size(), 0);
-    for (int id = 0; id < static_cast<int>(I.Accepted.size()); ++id)
+    Removed.assign(I.Accepted.Records.size(), 0);
+    for (int id = 0; id < static_cast<int>(I.Accepted.Records.size()); ++id)
     {
-      const Record& r = I.Accepted[id];
+      const Record& r = I.Accepted.Records[id];
       if (!Changed[r.Shape.Centre.Face])
       {
         AcceptedByKey.emplace(r.Key, id);
         AcceptedInFace[r.Shape.Centre.Face].push_back(r.Key);
       }
     }
-    for (int id = 0; id < static_cast<int>(I.Accepted.size()); ++id)
+    for (int id = 0; id < static_cast<int>(I.Accepted.Records.size()); ++id)
     {
-      if (Changed[I.Accepted[id].Shape.Centre.Face])
+      if (Changed[I.Accepted.Records[id].Shape.Centre.Face])
       {
         const Record r = I.RemoveAccepted(id);
         Removed[id] = 1;
@@ -560,7 +548,7 @@ struct ShapeDistributor::Impl::PoolEdit
     const double scale = r.Shape.Scale;
     if (fits)
     {
-      AcceptedByKey.emplace(next.Key, static_cast<int>(I.Accepted.size()));
+      AcceptedByKey.emplace(next.Key, static_cast<int>(I.Accepted.Records.size()));
       AcceptedInFace[r.Shape.Centre.Face].push_back(next.Key);
       Removed.push_back(0);
       I.Commit(std::move(r));
@@ -582,25 +570,25 @@ struct ShapeDistributor::Impl::PoolEdit
 bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDensity,
   const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
 {
-  Polling.reset(new PhasePoll(progress));
-  Reported = 0.0;
+  Progress.Polling.reset(new PhasePoll(progress));
+  Progress.Reported = 0.0;
   const auto start = std::chrono::steady_clock::now();
   PoolEdit edit(*this);
   edit.FindChangedFaces(oldDensity);
   edit.BuildGrid();
   edit.Start();
   // Key order: each candidate sees the final fates of every smaller key.
-  KillOnCommit = false;
+  Pool.KillOnCommit = false;
   for (long long k = 1; !edit.Heap.empty(); ++k)
   {
     if ((k & 63) == 0 && Poll())
     {
-      KillOnCommit = true;
+      Pool.KillOnCommit = true;
       return false;
     }
     edit.DecideNext();
   }
-  KillOnCommit = true;
+  Pool.KillOnCommit = true;
   edit.Finish();
   stats.Incremental = true;
   stats.Maximal = true;

@@ -15,8 +15,8 @@ using namespace distribution;
 bool ShapeDistributor::Impl::RunRounds(
   int threads, const std::function<bool(double)>& progress, ShapeDistributionStatistics& stats)
 {
-  Polling.reset(new PhasePoll(progress));
-  Reported = 0.0;
+  Progress.Polling.reset(new PhasePoll(progress));
+  Progress.Reported = 0.0;
   RunState run;
   run.FailuresToStop = Options.MaximalFailures > 0 ? Options.MaximalFailures : 10000;
   const bool greedyMode = Options.Mode == DistributionMode::Greedy;
@@ -46,9 +46,9 @@ bool ShapeDistributor::Impl::RunRounds(
       return false;
     }
     clock = std::chrono::steady_clock::now();
-    const int roundStart = static_cast<int>(Accepted.size()) - run.AcceptedInRound;
+    const int roundStart = static_cast<int>(Accepted.Records.size()) - run.AcceptedInRound;
     std::vector<int> nextFront;
-    for (int id = roundStart; id < static_cast<int>(Accepted.size()); ++id)
+    for (int id = roundStart; id < static_cast<int>(Accepted.Records.size()); ++id)
     {
       nextFront.push_back(id);
     }
@@ -76,11 +76,11 @@ bool ShapeDistributor::Impl::RunRounds(
     double fraction = static_cast<double>(run.Consecutive) / static_cast<double>(run.FailuresToStop);
     if (Options.MaximumShapes > 0)
     {
-      fraction = std::max(fraction, static_cast<double>(Accepted.size()) / Options.MaximumShapes);
+      fraction = std::max(fraction, static_cast<double>(Accepted.Records.size()) / Options.MaximumShapes);
     }
     run.Reported = std::max(run.Reported, std::min(0.99, fraction));
-    Reported = run.Reported;
-    if (!Polling->Report(run.Reported))
+    Progress.Reported = run.Reported;
+    if (!Progress.Polling->Report(run.Reported))
     {
       return false;
     }
@@ -123,7 +123,7 @@ bool ShapeDistributor::Impl::DecideRound(std::vector<Record>& batch, bool greedy
   // its charts and is accepted. Candidates of one wave are never neighbours, so this is
   // sequential dart throwing in priority order, with charts only for accepted shapes (and
   // the rare ones a smaller neighbour rejects).
-  const int roundStart = static_cast<int>(Accepted.size());
+  const int roundStart = static_cast<int>(Accepted.Records.size());
   std::vector<char> state(n, 2); // 0 undecided, 1 accepted, 2 rejected
   for (int i : survivors)
   {
@@ -157,7 +157,7 @@ bool ShapeDistributor::Impl::DecideRound(std::vector<Record>& batch, bool greedy
   // round; shapes after that point are taken back.
   const int cut = CutRound(state, roundStart, greedy, seeding, run, stats);
   TakeBack(roundStart, cut, state, acceptedAs);
-  run.AcceptedInRound = static_cast<int>(Accepted.size()) - roundStart;
+  run.AcceptedInRound = static_cast<int>(Accepted.Records.size()) - roundStart;
   lap(stats.RoundSeconds);
   return true;
 }
@@ -216,11 +216,11 @@ void ShapeDistributor::Impl::DrawGreedyBatch(
 bool ShapeDistributor::Impl::DrawRandomBatch(
   int round, bool seeding, RunState& run, std::vector<Record>& batch)
 {
-  if (DeadSinceCdf > 0)
+  if (Sampling.KilledSinceCdf() > 0)
   {
-    BuildCdf();
+    Sampling.BuildCdf();
   }
-  if (!AnyLiveFace())
+  if (!Sampling.AnyLiveFace())
   {
     return false;
   }
@@ -257,7 +257,7 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
   // shorter), found on a grid of cells as large as the largest such sum.
   std::vector<std::vector<int>> above(batch.size());
   const double cell =
-    2.0 * RMax * Options.ShapeSize * MaxFaceDensity * (1.0 + Options.SafetyMargin);
+    2.0 * Measures.RMax * Options.ShapeSize * Sampling.MaxFaceDensity * (1.0 + Options.SafetyMargin);
   auto key = [cell](const Vec3& x) {
     return std::array<long long, 3>{ static_cast<long long>(std::floor(x.x / cell)),
       static_cast<long long>(std::floor(x.y / cell)), static_cast<long long>(std::floor(x.z / cell)) };
@@ -333,7 +333,7 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
       continue;
     }
     state[i] = 1;
-    acceptedAs[i] = static_cast<int>(Accepted.size());
+    acceptedAs[i] = static_cast<int>(Accepted.Records.size());
     Commit(std::move(r));
     break;
   }
@@ -361,7 +361,7 @@ bool ShapeDistributor::Impl::Decide(
   if (r.Charts.empty())
   {
     const auto chartStart = std::chrono::steady_clock::now();
-    ComputeCharts(r, *Engines[thread]);
+    ComputeCharts(r, *PerThread.Engines[thread]);
     s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
     ++s.Charts;
   }
@@ -384,7 +384,7 @@ bool ShapeDistributor::Impl::Decide(
     return false;
   }
   r.Rejected = false;
-  PrepareCommit(r, Marks[thread], s.Marked);
+  PrepareCommit(r, PerThread.Marks[thread], s.Marked);
   return true;
 }
 
@@ -440,7 +440,7 @@ void ShapeDistributor::Impl::DecideInWaves(std::vector<Record>& batch, const std
         continue;
       }
       state[i] = 1;
-      acceptedAs[i] = static_cast<int>(Accepted.size());
+      acceptedAs[i] = static_cast<int>(Accepted.Records.size());
       Commit(std::move(batch[i]));
     }
     undecided.swap(waiting);
@@ -500,9 +500,9 @@ void ShapeDistributor::Impl::TakeBack(
     return;
   }
   std::vector<std::pair<int, Record>> kept; // (priority, record)
-  while (static_cast<int>(Accepted.size()) > roundStart)
+  while (static_cast<int>(Accepted.Records.size()) > roundStart)
   {
-    const int id = static_cast<int>(Accepted.size()) - 1;
+    const int id = static_cast<int>(Accepted.Records.size()) - 1;
     int i = 0;
     while (acceptedAs[i] != id)
     {

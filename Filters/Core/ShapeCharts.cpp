@@ -1,7 +1,7 @@
-// Shape charts: the geodesic polar coordinates (log map) about every part centre of a shape, and
-// the accepted shapes kept with their charts: which vertices each chart holds (CoverIndex), which
-// faces hold a part centre (CentreIndex), the faces each kills; commit and take back; the pool
-// of exact chart engines (ExactEngineLease).
+// Shape charts: the geodesic polar coordinates (log map) about every part centre of a shape;
+// what indexes an accepted shape (its chart's vertices, the corners of its centres' faces);
+// commit and take back, which keep the accepted shapes (AcceptedShapes) and the sampling state
+// (SamplingState) in step; the pool of exact chart engines (ExactEngineLease).
 #include "ShapeDistributorImpl.h"
 
 #include "GeodesicShooting.h"
@@ -16,29 +16,29 @@ using namespace distribution;
 void ShapeDistributor::Impl::PrepareChartMeasures()
 {
   const int nv = Mesh.NumberOfVertices();
-  MaxEdge = Mesh.LongestEdgeLength();
-  ChartMargin = 2.0 * Mesh.MeanEdgeLength();
-  if (static_cast<int>(Defect.size()) != nv)
+  Measures.MaxEdge = Mesh.LongestEdgeLength();
+  Measures.ChartMargin = 2.0 * Mesh.MeanEdgeLength();
+  if (static_cast<int>(Measures.Defect.size()) != nv)
   {
-    Defect.assign(nv, 0.0);
+    Measures.Defect.assign(nv, 0.0);
     for (int v = 0; v < nv; ++v)
     {
-      Defect[v] = Mesh.IsBoundaryVertex(v) ? 0.0 : std::abs(TwoPi - Mesh.TotalAngle(v));
+      Measures.Defect[v] = Mesh.IsBoundaryVertex(v) ? 0.0 : std::abs(TwoPi - Mesh.TotalAngle(v));
     }
   }
-  RMax = 0.0;
+  Measures.RMax = 0.0;
   if (CircleMode)
   {
     for (const SafeDistanceClass& c : Tables.Classes)
     {
-      RMax = std::max(RMax, c.Radius);
+      Measures.RMax = std::max(Measures.RMax, c.Radius);
     }
   }
   else
   {
     for (const SafeDistancePart& p : Tables.Parts)
     {
-      RMax = std::max(RMax, p.Radius);
+      Measures.RMax = std::max(Measures.RMax, p.Radius);
     }
   }
 }
@@ -46,25 +46,25 @@ void ShapeDistributor::Impl::PrepareChartMeasures()
 void ShapeDistributor::Impl::EnsureEngines(int threads)
 {
   const int nv = Mesh.NumberOfVertices();
-  if (static_cast<int>(Marks.size()) < threads)
+  if (static_cast<int>(PerThread.Marks.size()) < threads)
   {
-    Marks.resize(threads);
+    PerThread.Marks.resize(threads);
   }
-  for (auto& m : Marks)
+  for (auto& m : PerThread.Marks)
   {
     if (static_cast<int>(m.size()) != nv)
     {
       m.assign(nv, 0);
     }
   }
-  const int have = static_cast<int>(Engines.size());
+  const int have = static_cast<int>(PerThread.Engines.size());
   if (have >= threads)
   {
     return;
   }
-  Engines.resize(threads);
+  PerThread.Engines.resize(threads);
   ParallelFor(threads - have, threads - have, 1,
-    [&](int k, int) { Engines[have + k].reset(new GeodesicPolarCoordinates(Mesh, Graph)); });
+    [&](int k, int) { PerThread.Engines[have + k].reset(new GeodesicPolarCoordinates(Mesh, Graph)); });
 }
 
 void ShapeDistributor::Impl::ComputeCharts(Record& r, GeodesicPolarCoordinates& engine) const
@@ -92,7 +92,7 @@ void ShapeDistributor::Impl::ComputeCharts(Record& r, GeodesicPolarCoordinates& 
     double defects = 0.0;
     for (const ChartEntry& e : c.Entries)
     {
-      defects += Defect[e.Vertex];
+      defects += Measures.Defect[e.Vertex];
     }
     const double radius = ChartRadius(r.Shape, p);
     c.Roughness = static_cast<float>(defects / (Pi * radius * radius));
@@ -211,24 +211,23 @@ void ShapeDistributor::Impl::PrepareCommit(Record& r, std::vector<char>& mark, s
 
 void ShapeDistributor::Impl::Commit(Record&& r)
 {
-  KilledBy.push_back(Killed.size());
-  if (KillOnCommit)
+  Sampling.BeginShape();
+  if (Pool.KillOnCommit)
   {
     KillFaces(r);
   }
-  const int id = static_cast<int>(Accepted.size());
-  for (int v : r.Prepared ? r.Cover : ChartVertices(r))
+  std::vector<int> cover, centres;
+  if (r.Prepared)
   {
-    CoverIndex[v].push_back(id);
+    cover.swap(r.Cover);
+    centres.swap(r.Centres);
   }
-  for (int v : r.Prepared ? r.Centres : CentreCorners(r))
+  else
   {
-    CentreIndex[v].push_back(id);
+    cover = ChartVertices(r);
+    centres = CentreCorners(r);
   }
-  r.Cover.clear();
-  r.Cover.shrink_to_fit();
-  r.Centres.clear();
-  if (PoolRun && r.Prepared)
+  if (Pool.Active && r.Prepared)
   {
     std::sort(r.Kills.begin(), r.Kills.end()); // (KilledBefore)
   }
@@ -238,45 +237,14 @@ void ShapeDistributor::Impl::Commit(Record&& r)
     r.Kills.shrink_to_fit();
   }
   r.Prepared = false;
-  Placed.push_back(r.Shape);
-  Accepted.push_back(std::move(r));
+  Accepted.Add(std::move(r), cover, centres);
 }
 
 ShapeDistributor::Impl::Record ShapeDistributor::Impl::Uncommit()
 {
-  const int id = static_cast<int>(Accepted.size()) - 1;
-  Record r = std::move(Accepted.back());
-  Accepted.pop_back();
-  Placed.pop_back();
-  for (int v : ChartVertices(r))
-  {
-    if (!CoverIndex[v].empty() && CoverIndex[v].back() == id)
-    {
-      CoverIndex[v].pop_back();
-    }
-  }
-  for (int v : CentreCorners(r))
-  {
-    if (!CentreIndex[v].empty() && CentreIndex[v].back() == id)
-    {
-      CentreIndex[v].pop_back();
-    }
-  }
-  for (std::size_t k = KilledBy[id]; k < Killed.size(); ++k)
-  {
-    if (Killed[k].first < 0)
-    {
-      Dead[Killed[k].second] = 0;
-    }
-    else
-    {
-      DeadFor[static_cast<std::size_t>(Killed[k].first) * Mesh.NumberOfFaces() + Killed[k].second] =
-        0;
-    }
-  }
-  Killed.resize(KilledBy[id]);
-  KilledBy.pop_back();
-  DeadSinceCdf += 1;
+  const Record& last = Accepted.Records.back();
+  Record r = Accepted.TakeLast(ChartVertices(last), CentreCorners(last));
+  Sampling.ReviveLast();
   return r;
 }
 
@@ -285,11 +253,11 @@ GeodesicPolarCoordinates& ShapeDistributor::Impl::ExactEngineLease::Take()
   if (!Engine)
   {
     {
-      std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
-      if (!Owner.ExactPool.empty())
+      std::lock_guard<std::mutex> lock(Owner.ExactEngines.Mutex);
+      if (!Owner.ExactEngines.Free.empty())
       {
-        Engine = std::move(Owner.ExactPool.back());
-        Owner.ExactPool.pop_back();
+        Engine = std::move(Owner.ExactEngines.Free.back());
+        Owner.ExactEngines.Free.pop_back();
       }
     }
     if (!Engine)
@@ -304,8 +272,8 @@ ShapeDistributor::Impl::ExactEngineLease::~ExactEngineLease()
 {
   if (Engine)
   {
-    std::lock_guard<std::mutex> lock(Owner.ExactPoolMutex);
-    Owner.ExactPool.push_back(std::move(Engine));
+    std::lock_guard<std::mutex> lock(Owner.ExactEngines.Mutex);
+    Owner.ExactEngines.Free.push_back(std::move(Engine));
   }
 }
 

@@ -736,10 +736,10 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
 ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
 {
   ShapeDecal decal;
-  const PlacedShape& s = Placed.at(shape);
+  const PlacedShape& s = Accepted.Placed.at(shape);
   const SafeDistanceClass& c = Tables.Classes[s.ClassId];
   const double scale = Options.ShapeSize * s.Scale;
-  const double reach = c.Radius * scale + MaxEdge;
+  const double reach = c.Radius * scale + Measures.MaxEdge;
   DecalBuilder b(Mesh, c, tolerance);
   // Class-frame coordinates (normalized) of the vertices near the shape.
   ExactEngineLease exact(*this); // (taken from the pool only for a short shape)
@@ -774,7 +774,7 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
     }
     CurveShapeVertices(*b.Grid, b.Local, &b.Far);
     std::sort(b.Far.begin(), b.Far.end());
-    b.Region = &Regions[s.ClassId];
+    b.Region = &Silhouettes.Regions[s.ClassId];
   }
   b.Start();
   double orientation = 0.0;
@@ -801,13 +801,13 @@ ShapeDecal ShapeDistributor::Decal(int shape, double tolerance) const
 {
   // A place-keyed run keeps each shape's decal: an edit's run keeps the shapes it did not
   // reach, and their decals with them.
-  const Impl::Record& r = Internal->Accepted.at(shape);
+  const Impl::Record& r = Internal->Accepted.Records.at(shape);
   if (r.Decal && r.DecalTolerance == tolerance)
   {
     return *r.Decal;
   }
   ShapeDecal decal = Internal->DecalOf(shape, tolerance);
-  if (Internal->PoolRun)
+  if (Internal->Pool.Active)
   {
     r.Decal = std::make_shared<const ShapeDecal>(decal);
     r.DecalTolerance = tolerance;

@@ -67,10 +67,7 @@ Status ShapeDistributor::Impl::Prepare(const SafeDistanceTables& tables,
   PrepareDeadFaces();
   PrepareLongClasses();
   PrepareClassRegions();
-  Accepted.clear();
-  Placed.clear();
-  CoverIndex.assign(Mesh.NumberOfVertices(), {});
-  CentreIndex.assign(Mesh.NumberOfVertices(), {});
+  Accepted.Reset(Mesh.NumberOfVertices());
   return Status();
 }
 
@@ -223,7 +220,7 @@ ShapeDistributor::~ShapeDistributor() = default;
 
 const std::vector<PlacedShape>& ShapeDistributor::Shapes() const
 {
-  return Internal->Placed;
+  return Internal->Accepted.Placed;
 }
 
 const TriangleMesh& ShapeDistributor::Mesh() const
@@ -243,7 +240,7 @@ const ShapeDistributionOptions& ShapeDistributor::Options() const
 
 bool ShapeDistributor::ClassPoint(int shape, const SurfacePoint& x, Vec2& p) const
 {
-  return Internal->ClassPointOf(Internal->Accepted.at(shape), x, p);
+  return Internal->ClassPointOf(Internal->Accepted.Records.at(shape), x, p);
 }
 
 Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables,
@@ -260,48 +257,48 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
     I.CanRunIncrementally(fingerprint, vertexDensity);
   // (A fresh place-keyed run after one with the same inputs but the density: the shapes both
   // place are the same, bit for bit, and keep their decals.)
-  if (pool && !incremental && I.LastPool.Valid && I.LastPool.Fingerprint == fingerprint)
+  if (pool && !incremental && I.Pool.Last.Valid && I.Pool.Last.Fingerprint == fingerprint)
   {
     I.StashDecals();
   }
   else
   {
-    I.DecalStash.clear(); // (drawn for other tables, sizes or fields)
+    I.Pool.DecalStash.clear(); // (drawn for other tables, sizes or fields)
   }
-  Impl::LastPoolRun last = std::move(I.LastPool);
-  I.LastPool = Impl::LastPoolRun();
+  Impl::LastPoolRun last = std::move(I.Pool.Last);
+  I.Pool.Last = Impl::LastPoolRun();
   std::vector<Impl::Record> accepted;
   std::vector<std::vector<int>> cover, centres;
   if (incremental)
   {
-    accepted.swap(I.Accepted);
-    cover.swap(I.CoverIndex);
-    centres.swap(I.CentreIndex);
+    accepted.swap(I.Accepted.Records);
+    cover.swap(I.Accepted.CoverIndex);
+    centres.swap(I.Accepted.CentreIndex);
   }
   if (Status prepared = I.Prepare(tables, faceDirections, vertexDensity, options); !prepared.Ok())
   {
-    I.Accepted.clear();
-    I.Placed.clear();
+    I.Accepted.Records.clear();
+    I.Accepted.Placed.clear();
     return prepared;
   }
-  I.PoolRun = pool;
+  I.Pool.Active = pool;
   if (incremental)
   {
     // (The kept kills assume the largest density factor they were collected at. An edit whose
     // faces hold a large share of the pool runs fresh, in parallel: sooner, the same shapes.)
     result.Statistics.EditShare = I.EditShare(last.Density);
-    const bool reuse = I.MaxFaceDensity == I.KillsMaxFaceDensity &&
+    const bool reuse = I.Sampling.MaxFaceDensity == I.Pool.KillsMaxFaceDensity &&
       result.Statistics.EditShare <= I.Options.MaximumEditShare;
-    I.Accepted.swap(accepted);
+    I.Accepted.Records.swap(accepted);
     if (reuse)
     {
-      I.CoverIndex.swap(cover);
-      I.CentreIndex.swap(centres);
+      I.Accepted.CoverIndex.swap(cover);
+      I.Accepted.CentreIndex.swap(centres);
     }
     else
     {
       I.StashDecals();
-      I.Accepted.clear();
+      I.Accepted.Records.clear();
       incremental = false;
     }
   }
@@ -313,24 +310,24 @@ Result<ShapeDistribution> ShapeDistributor::Run(const SafeDistanceTables& tables
     : pool                            ? I.RunPool(threads, progress, result.Statistics)
                                       : I.RunRounds(threads, progress, result.Statistics);
   // (The polling belongs to this run: later queries, e.g. ProbeFitFraction, never see it.)
-  I.Polling.reset();
+  I.Progress.Polling.reset();
   if (!finished)
   {
-    I.Accepted.clear();
-    I.Placed.clear();
+    I.Accepted.Records.clear();
+    I.Accepted.Placed.clear();
     return Status::Aborted();
   }
   if (pool)
   {
     I.TakeStashedDecals();
-    I.KillsMaxFaceDensity = I.MaxFaceDensity;
-    I.LastPool.Valid = true;
-    I.LastPool.Fingerprint = fingerprint;
-    I.LastPool.Density = vertexDensity;
+    I.Pool.KillsMaxFaceDensity = I.Sampling.MaxFaceDensity;
+    I.Pool.Last.Valid = true;
+    I.Pool.Last.Fingerprint = fingerprint;
+    I.Pool.Last.Density = vertexDensity;
   }
   result.Statistics.Seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.Shapes = I.Placed;
+  result.Shapes = I.Accepted.Placed;
   if (progress)
   {
     progress(1.0);
@@ -345,17 +342,17 @@ SurfacePoint ShapeDistributor::MapToSurface(int shape, const Vec2& p) const
 
 MappedPoint ShapeDistributor::Map(int shape, const Vec2& p) const
 {
-  return Internal->MapShape(Internal->Placed.at(shape), p);
+  return Internal->MapShape(Internal->Accepted.Placed.at(shape), p);
 }
 
 std::vector<OutlinePiece> ShapeDistributor::Outline(int shape, double spacing) const
 {
-  const Impl::Record& r = Internal->Accepted.at(shape);
+  const Impl::Record& r = Internal->Accepted.Records.at(shape);
   if (r.HasDrawn && spacing == Internal->OutlineSpacing())
   {
     return r.Drawn; // drawn when the shape was checked
   }
-  return Internal->OutlineOf(Internal->Placed.at(shape), spacing);
+  return Internal->OutlineOf(Internal->Accepted.Placed.at(shape), spacing);
 }
 
 } // namespace gs

@@ -1,16 +1,20 @@
 // The Shape Distributor's private state and the concepts it is made of (not installed; included
-// only by the distributor's own files). ShapeDistributor.h describes the model; each concept
-// lives in a file named after it:
-//   CandidateSampling.cpp  dart throwing: class and face distributions (area / f^2), dead-face
-//                          masks, a candidate's geometry (direction, streamline, parts)
-//   ShapeCharts.cpp        the polar charts of a shape's parts, and the accepted shapes with
-//                          their chart and centre indexes (commit, take back); the pool of
-//                          exact chart engines
+// only by the distributor's own files and its tests' seam). ShapeDistributor.h describes the
+// model. The state has owners, each a member group below (at most 20 members in all):
+//   SamplingState.h/.cpp   Sampling: class and face distributions, dead faces, the kill log
+//   AcceptedShapes.cpp     Accepted: the accepted shapes and their vertex indexes (add, take
+//                          back, remove, reorder by key)
+// and each concept lives in a file named after it:
+//   CandidateSampling.cpp  dart throwing: the weights and masks prepared, a candidate's geometry
+//                          (direction, streamline, parts), the faces a shape kills
+//   ShapeCharts.cpp        the polar charts of a shape's parts; commit and take back (the
+//                          accepted shapes and the sampling state together); the pool of exact
+//                          chart engines
 //   ConflictRules.cpp      Algorithm 2: two shapes' parts judged in a polar chart by the safe
 //                          distance tables; the cheap centre check, the boundary and the drawn
 //                          check
 //   PriorityRounds.cpp     Algorithm 3: rounds of candidates accepted in priority order, in
-//                          parallel waves
+//                          parallel waves (Decide: the one order of the checks)
 //   CandidatePool.cpp      place-keyed candidates (CandidateOrder::PlaceKeyed), decided in
 //                          key order
 //   PoolEdits.cpp          a place-keyed run after a density edit: what the edit reaches
@@ -25,10 +29,12 @@
 #pragma once
 
 #include "DirectionField.h"
+#include "DistributionRandom.h"
 #include "GeodesicPolarCoordinates.h"
 #include "OverlapCheck.h"
 #include "ParallelFor.h"
 #include "PhasePoll.h"
+#include "SamplingState.h"
 #include "ShapeDistributor.h"
 
 #include <algorithm>
@@ -48,31 +54,6 @@ namespace distribution
 {
 constexpr double Pi = 3.14159265358979323846;
 constexpr double TwoPi = 2.0 * Pi;
-
-inline std::uint64_t Mix(std::uint64_t x)
-{
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-/// Counter-based generator: the stream of (seed, kind, round, index) is independent of threads.
-/// Kinds: 1 random candidates, 2 Greedy proposals, 3 probes, 4 Greedy candidates, 5 pool
-/// candidates, 6 pool counts.
-struct Random
-{
-  std::uint64_t State;
-  Random(std::uint64_t seed, std::uint64_t kind, std::uint64_t round, std::uint64_t index)
-    : State(Mix(Mix(Mix(seed ^ Mix(kind)) ^ round) ^ index))
-  {
-  }
-  double Uniform()
-  {
-    State = Mix(State);
-    return static_cast<double>(State >> 11) * (1.0 / 9007199254740992.0);
-  }
-};
 
 struct ChartEntry
 {
@@ -202,7 +183,6 @@ struct ShapeDistributor::Impl
   std::vector<Vec3> FaceDirection; // unit, in the face plane; zero: none
   std::vector<double> Density;     // per vertex (empty: 1)
   int NumberOfClasses = 0;
-  double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
 
   /// Checks the inputs and sets up every concept's state for a run.
   Status Prepare(const SafeDistanceTables& tables, const std::vector<Vec3>& faceDirections,
@@ -216,11 +196,7 @@ struct ShapeDistributor::Impl
   }
 
   // ---- Candidate sampling (CandidateSampling.cpp) ---------------------------------------
-  std::vector<double> ClassCdf;    // cumulative class weights
-  std::vector<double> FaceCdf;     // cumulative face weights (live faces only)
-  std::vector<double> FaceWeight;  // area / f^2 (0: no density)
-  std::vector<double> AllCdf;      // cumulative face weights of all faces (probes)
-  double MaxFaceDensity = 1.0;
+  distribution::SamplingState Sampling;
   /// An error when the largest class at the largest density factor has a circumscribed disc
   /// holding more area than the largest connected part of the surface (PrepareFaceWeights).
   Status CheckShapeSizeAgainstSurface() const;
@@ -232,18 +208,15 @@ struct ShapeDistributor::Impl
   Status CheckMemory() const;
   static constexpr double ShortShapeBytes = 40e3;
   static constexpr double LongShapeBytes = 160e3;
-  std::vector<char> Dead;          // faces where no candidate can fit any more
-  int DeadSinceCdf = 0;            // faces killed since FaceCdf was built
-  std::vector<double> KillRadius;  // per (part, class) (normalized): see CollectKills
-  std::vector<double> KillReach;   // per class (normalized): see CollectKills
-  std::vector<char> DeadFor;       // per (class, face): no candidate of that class fits there
-  std::vector<std::pair<int, int>> Killed; // (class or -1 for all, face) killed, in order
-  std::vector<std::size_t> KilledBy; // per accepted shape: its first entry in Killed
-  std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
-  // A long class's parts behind its centre, nearest first.
-  std::vector<std::vector<int>> BehindParts;
-  std::unique_ptr<DirectionFieldSolver> Field; // long classes: streamlines
-  std::vector<double> FieldAngles;
+  /// What tracing long classes needs (PrepareLongClasses).
+  struct LongClasses
+  {
+    std::vector<double> ClassExtentMin, ClassExtentMax; // outline extent along the major axis
+    // A long class's parts behind its centre, nearest first.
+    std::vector<std::vector<int>> BehindParts;
+    std::unique_ptr<DirectionFieldSolver> Field; // streamlines
+    std::vector<double> FieldAngles;
+  } Long;
 
   /// ClassWeights as a distribution.
   Status PrepareClassWeights();
@@ -266,17 +239,6 @@ struct ShapeDistributor::Impl
     const auto& f = Mesh.Face(p.Face);
     return p.Bary[0] * Density[f[0]] + p.Bary[1] * Density[f[1]] + p.Bary[2] * Density[f[2]];
   }
-  /// Rebuilds the sampling distribution over the faces still alive.
-  void BuildCdf();
-  bool AnyLiveFace() const { return FaceCdf.back() > 0.0; }
-  bool DeadForClass(int c, int f) const
-  {
-    return DeadFor[static_cast<std::size_t>(c) * Mesh.NumberOfFaces() + f] != 0;
-  }
-  /// A face drawn with probability area / f^2 (live faces only, or all), a uniform point in it.
-  SurfacePoint RandomPoint(Random& rng, bool live = true) const;
-  /// A class drawn by ClassWeights.
-  int RandomClass(Random& rng) const;
   /// Fills a round's batch of random candidates (parallel; kind 1 of Random).
   void Generate(std::vector<Record>& batch, int round) const;
   /// Builds a candidate's geometry at `centre` (a face point) for class `cls`: the direction,
@@ -329,16 +291,41 @@ struct ShapeDistributor::Impl
   void KillFaces(const Record& r);
 
   // ---- Shape charts and the accepted shapes (ShapeCharts.cpp) ---------------------------
-  std::vector<Record> Accepted;
-  std::vector<PlacedShape> Placed;
-  std::vector<std::vector<int>> CoverIndex;  // vertex -> accepted shapes whose chart holds it
-  std::vector<std::vector<int>> CentreIndex; // vertex -> accepted shapes with a part centre in a face of it
-  double MaxEdge = 0.0;
-  double ChartMargin = 0.0; // beyond the largest safe distance: two mean edge lengths
-  std::vector<double> Defect; // per vertex: |2 pi - angle sum| (interior vertices)
-  std::vector<std::unique_ptr<GeodesicPolarCoordinates>> Engines; // per thread
-  std::vector<std::vector<char>> Marks; // per thread, per vertex, all 0 between uses
-  std::vector<int> Marked;
+  /// The accepted shapes and the indexes the conflict checks look them up by.
+  struct AcceptedShapes
+  {
+    std::vector<Record> Records;
+    std::vector<PlacedShape> Placed; // Records' shapes
+    std::vector<std::vector<int>> CoverIndex;  // vertex -> accepted shapes whose chart holds it
+    std::vector<std::vector<int>> CentreIndex; // vertex -> accepted shapes with a part centre in a face of it
+
+    /// No shape, empty indexes over `vertices` vertices.
+    void Reset(int vertices);
+    /// Appends r, indexed at its chart vertices `cover` and centre corners `centres`; its id.
+    int Add(Record&& r, const std::vector<int>& cover, const std::vector<int>& centres);
+    /// Takes the last shape out (its index entries at `cover` and `centres`, the ones Add made).
+    Record TakeLast(const std::vector<int>& cover, const std::vector<int>& centres);
+    /// Takes shape `id` out of the indexes (its slot left empty, ids unchanged) and returns it.
+    Record Remove(int id, const std::vector<int>& cover, const std::vector<int>& centres);
+    /// Records (and Placed, and the indexes' ids) in key order, without the slots `removed`
+    /// marks (optional).
+    void SortByKey(const std::vector<char>* removed);
+  } Accepted;
+  /// What the charts' radii and roughness need (PrepareChartMeasures).
+  struct ChartMeasures
+  {
+    double RMax = 0.0; // largest part radius (class radius in Circumcircle mode), normalized
+    double MaxEdge = 0.0;
+    double ChartMargin = 0.0; // beyond the largest safe distance: two mean edge lengths
+    std::vector<double> Defect; // per vertex: |2 pi - angle sum| (interior vertices)
+  } Measures;
+  /// Per thread of the parallel loops: a geodesic engine and scratch marks.
+  struct ThreadScratch
+  {
+    std::vector<std::unique_ptr<GeodesicPolarCoordinates>> Engines;
+    std::vector<std::vector<char>> Marks; // per vertex, all 0 between uses
+    std::vector<int> Marked;              // the calling thread's marked vertices
+  } PerThread;
 
   /// MaxEdge, ChartMargin, Defect and RMax: what the charts' radii and roughness need.
   void PrepareChartMeasures();
@@ -346,9 +333,9 @@ struct ShapeDistributor::Impl
   /// chart margin, enough to hold every centre the part could conflict with.
   double ChartRadius(const PlacedShape& s, const PlacedPart& p) const
   {
-    return (PartRadius(p.Part) + RMax) * Options.ShapeSize * s.Scale *
+    return (PartRadius(p.Part) + Measures.RMax) * Options.ShapeSize * s.Scale *
       (1.0 + Options.SafetyMargin) +
-      ChartMargin;
+      Measures.ChartMargin;
   }
   /// The charts of the record's parts (log map about each part centre, x axis the part's axis).
   void ComputeCharts(Record& r, GeodesicPolarCoordinates& engine) const;
@@ -372,15 +359,18 @@ struct ShapeDistributor::Impl
   /// Per-thread geodesic engines and scratch marks for `threads` threads.
   void EnsureEngines(int threads);
   // The engine of a ParallelFor thread (0: the calling thread's, also outside parallel loops).
-  GeodesicPolarCoordinates& Engine(int thread) { return *Engines[thread]; }
+  GeodesicPolarCoordinates& Engine(int thread) { return *PerThread.Engines[thread]; }
 
   // ---- The conflict test, Algorithm 2 (ConflictRules.cpp) ------------------------------
   // Per class: its silhouette for point queries, and the clearance of its centre (the distance
   // from the class origin, the point a candidate is centred at, to the outline; -1 when the
   // origin is outside the silhouette). See CentreCovered.
-  std::vector<ClassRegion> Regions;
-  std::vector<double> Clearance;
-  double MaxClearance = 0.0; // the regions' reach for Within
+  struct ClassSilhouettes
+  {
+    std::vector<ClassRegion> Regions;
+    std::vector<double> Clearance;
+    double MaxClearance = 0.0; // the regions' reach for Within
+  } Silhouettes;
 
   /// Regions, Clearance and MaxClearance of the classes.
   void PrepareClassRegions();
@@ -463,10 +453,13 @@ struct ShapeDistributor::Impl
   // caller's callback is polled from inside the rounds too (PhasePoll: on the calling thread,
   // at most every 0.1 s); every loop of the round stops early once it is aborted. Set for the
   // duration of a run only.
-  std::unique_ptr<PhasePoll> Polling;
-  double Reported = 0.0; // the fraction last reported
+  struct RunProgress
+  {
+    std::unique_ptr<PhasePoll> Polling;
+    double Reported = 0.0; // the fraction last reported
+  } Progress;
   /// True once the run is aborted (Polling's Poll at the fraction last reported).
-  bool Poll() const { return Polling && Polling->Poll(Reported); }
+  bool Poll() const { return Progress.Polling && Progress.Polling->Poll(Progress.Reported); }
   /// Decides a round's candidates (their priorities: their order in the batch): (a) to (d)
   /// below, the kept shapes committed; false when aborted.
   bool DecideRound(std::vector<Record>& batch, bool greedy, bool seeding, int threads, RunState& run,
@@ -519,11 +512,6 @@ struct ShapeDistributor::Impl
     int Level = 0, Face = 0, Index = 0, Class = 0;
     double A = 0.0, B = 0.0; // barycentric coordinates of corners 1 and 2
   };
-  double PoolFootprint = 1.0; // class-weighted mean circumscribed disc area at density 1
-  // Per class, normalized: the farthest part centre from the sample (sqrt 2 class radii for a
-  // long class), and the largest part radius plus RMax (its charts' reach): see PoolReach.
-  std::vector<double> PoolClassOffset, PoolClassChart;
-
   void PreparePool();
   /// The expected number of candidates of face f at level `level`.
   double PoolMean(int level, int f) const;
@@ -553,15 +541,13 @@ struct ShapeDistributor::Impl
   /// whose ids no index holds any more).
   void SortAcceptedByKey(const std::vector<char>* removed = nullptr);
 
-  bool PoolRun = false;      // this run decides a pool (kills and decals kept)
-  bool KillOnCommit = true;  // Commit kills faces (not in an incremental run: no masks)
   /// What the last PlaceKeyed run was given, but the density (a hash), and its density.
   struct LastPoolRun
   {
     bool Valid = false;
     std::uint64_t Fingerprint = 0;
     std::vector<double> Density;
-  } LastPool;
+  };
   /// A hash of everything a PlaceKeyed run depends on but the density and the thread count.
   static std::uint64_t PoolFingerprint(const SafeDistanceTables& tables,
     const std::vector<Vec3>& faceDirections, const ShapeDistributionOptions& options);
@@ -580,7 +566,6 @@ struct ShapeDistributor::Impl
   /// Whether an accepted shape of smaller key than `key` kills face f for class `cls` (see
   /// CollectKills): a candidate there is certainly rejected, as a fresh run's masks skip it.
   bool KilledBefore(int cls, int f, std::uint64_t key) const;
-  double KillsMaxFaceDensity = 0.0; // the MaxFaceDensity the kept Kills were collected at
   /// The share of the pool's weight in the faces whose density changed from `oldDensity` (the
   /// larger of their old and new weights over the whole new weight).
   double EditShare(const std::vector<double>& oldDensity) const;
@@ -592,7 +577,19 @@ struct ShapeDistributor::Impl
     std::shared_ptr<const ShapeDecal> Decal;
     double Tolerance = 0.0;
   };
-  std::unordered_map<std::uint64_t, StashedDecal> DecalStash;
+  /// The place-keyed runs' state.
+  struct PoolState
+  {
+    double Footprint = 1.0; // class-weighted mean circumscribed disc area at density 1
+    // Per class, normalized: the farthest part centre from the sample (sqrt 2 class radii for
+    // a long class), and the largest part radius plus RMax (its charts' reach): see PoolReach.
+    std::vector<double> ClassOffset, ClassChart;
+    bool Active = false;       // this run decides a pool (kills and decals kept)
+    bool KillOnCommit = true;  // Commit kills faces (not in an incremental run: no masks)
+    LastPoolRun Last;
+    double KillsMaxFaceDensity = 0.0; // the MaxFaceDensity the kept Kills were collected at
+    std::unordered_map<std::uint64_t, StashedDecal> DecalStash;
+  } Pool;
   void StashDecals();
   /// The stashed decals to the accepted shapes placed the same, bit for bit; the stash cleared.
   void TakeStashedDecals();
@@ -602,11 +599,14 @@ struct ShapeDistributor::Impl
   // ---- Greedy proposals and lattices (GreedyProposals.cpp) ------------------------------
   // Greedy: per single-part class, the densest lattice of copies turned alike that the tables
   // admit (six neighbour vectors in the shape's frame, normalized units); empty: none.
-  std::vector<std::vector<Vec2>> ClassLattice;
-  // Lattices found in earlier runs, by a hash of what they depend on (the part's radius and
-  // its own table): a re-run with the same tables (a new seed, say) skips the search (35-160
-  // ms for 4 classes at 64-128 angle bins).
-  std::map<std::uint64_t, std::vector<Vec2>> LatticeCache;
+  struct ClassLattices
+  {
+    std::vector<std::vector<Vec2>> ByClass;
+    // Lattices found in earlier runs, by a hash of what they depend on (the part's radius and
+    // its own table): a re-run with the same tables (a new seed, say) skips the search (35-160
+    // ms for 4 classes at 64-128 angle bins).
+    std::map<std::uint64_t, std::vector<Vec2>> Cache;
+  } Lattices;
 
   void ComputeLattices();
   /// The densest lattice for part p (see ComputeLattices); empty when the search finds none.
@@ -686,8 +686,12 @@ struct ShapeDistributor::Impl
   // Exact geodesic polar coordinates engines for short shapes' decals and the drawn check's
   // exact log maps (PrepareExactMap): both may run on any thread, so an engine is leased from
   // the pool (Take; a new one when it is empty) and goes back to it when the lease ends.
-  mutable std::mutex ExactPoolMutex;
-  mutable std::vector<std::unique_ptr<GeodesicPolarCoordinates>> ExactPool;
+  struct ExactEnginePool
+  {
+    std::mutex Mutex;
+    std::vector<std::unique_ptr<GeodesicPolarCoordinates>> Free;
+  };
+  mutable ExactEnginePool ExactEngines;
   class ExactEngineLease
   {
   public:

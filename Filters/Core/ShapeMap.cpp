@@ -353,14 +353,14 @@ void ShapeDistributor::Impl::CurveShapeVertices(const CurveGrid& grid, std::vect
 
 std::shared_ptr<const CurveGrid> ShapeDistributor::Impl::FrameOf(int shape) const
 {
-  const PlacedShape& s = Placed.at(shape);
+  const PlacedShape& s = Accepted.Placed.at(shape);
   if (s.Curve.empty())
   {
     return nullptr;
   }
-  if (Accepted.at(shape).Frame)
+  if (Accepted.Records.at(shape).Frame)
   {
-    return Accepted.at(shape).Frame;
+    return Accepted.Records.at(shape).Frame;
   }
   auto grid = std::make_shared<CurveGrid>(BuildCurveGrid(s, Tables.Classes[s.ClassId]));
   grid->Index();

@@ -9,7 +9,7 @@ double ShapeDistributorInspector::ProbeFitFraction(
   ShapeDistributor& d, int probes, std::uint64_t seed)
 {
   ShapeDistributor::Impl& I = *d.Internal;
-  if (probes <= 0 || I.AllCdf.empty())
+  if (probes <= 0 || I.Sampling.AllCdf.empty())
   {
     return 0.0;
   }
@@ -26,8 +26,8 @@ double ShapeDistributorInspector::ProbeFitFraction(
     distribution::Random rng(seed, 3, 0, static_cast<std::uint64_t>(i));
     ShapeDistributor::Impl::Record r;
     r.Key = ~std::uint64_t(0); // (judged by every accepted shape)
-    const int cls = I.RandomClass(rng);
-    const SurfacePoint centre = I.RandomPoint(rng, false);
+    const int cls = I.Sampling.RandomClass(rng);
+    const SurfacePoint centre = I.Sampling.RandomPoint(rng, false);
     if (!I.MakeShape(centre, cls, rng, r.Shape, nullptr, &s.Conflicts, r.Key) ||
       I.CheapConflict(r, s.Conflicts))
     {

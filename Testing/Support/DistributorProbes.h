@@ -10,6 +10,9 @@ namespace gs
 {
 struct ShapeDistributorInspector
 {
+  /// The distributor's private state, for the unit tests of its owners (they include
+  /// ShapeDistributorImpl.h).
+  using Impl = ShapeDistributor::Impl;
   static double ProbeFitFraction(ShapeDistributor& d, int probes, std::uint64_t seed);
 };
 } // namespace gs
