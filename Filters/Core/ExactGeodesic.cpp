@@ -430,6 +430,117 @@ void ExactGeodesicSolver::FinalizeUpTo(double key)
   }
 }
 
+void ExactGeodesicSolver::AddSource(int i, SurfacePoint s)
+{
+  if (!s.IsVertex())
+  {
+    // Normalize; a point at a corner is a vertex source.
+    std::array<double, 3> b = s.Bary;
+    for (double& x : b)
+    {
+      x = std::max(x, 0.0);
+    }
+    const double sum = b[0] + b[1] + b[2];
+    for (double& x : b)
+    {
+      x /= sum;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      if (b[k] > 1.0 - 1e-12)
+      {
+        s = SurfacePoint::AtVertex(Surface.Face(s.Face)[k]);
+        break;
+      }
+    }
+    if (!s.IsVertex())
+    {
+      const Vec3 p = Surface.Interpolate(s.Face, b);
+      AddFaceSourceWindows(s.Face, p, i, s.Face);
+      for (int k = 0; k < 3; ++k)
+      {
+        // On an edge: the face across it holds the source too.
+        const int e = 3 * s.Face + (k + 1) % 3; // edge opposite corner k
+        if (b[k] < 1e-12 && Surface.Twin(e) >= 0)
+        {
+          AddFaceSourceWindows(Surface.Twin(e) / 3, p, i, s.Face);
+        }
+      }
+      return;
+    }
+  }
+  UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, LazyAngle(), LazyAngle(), i);
+  if (!Propagated[s.Vertex])
+  {
+    Propagated[s.Vertex] = 1;
+    PropagateFromVertex(s.Vertex, 0.0, i);
+  }
+}
+
+std::size_t ExactGeodesicSolver::MarkTargets(const ExactGeodesicOptions& options)
+{
+  std::size_t targets = 0;
+  if (options.StopOnceFinal && !options.StopOnceFinal->empty())
+  {
+    Target.resize(Surface.NumberOfVertices(), 0);
+    for (int v : *options.StopOnceFinal)
+    {
+      if (v >= 0 && v < Surface.NumberOfVertices() && !Target[v])
+      {
+        Target[v] = 1;
+        ++targets;
+      }
+    }
+  }
+  return targets;
+}
+
+bool ExactGeodesicSolver::ProcessWindows(
+  double maxDistance, std::size_t maxFinal, std::size_t targetsLeft)
+{
+  // StopOnceFinal: targetsLeft counts its distinct vertices not final yet (checked as FinalOrder
+  // grows; `seen` of them checked so far).
+  std::size_t seen = 0;
+  const bool targeted = targetsLeft > 0;
+  while (!Queue.Empty())
+  {
+    Window w = Dequeue();
+    if (w.Key > maxDistance)
+    {
+      break;
+    }
+    FinalizeUpTo(w.Key);
+    if (maxFinal > 0 && FinalOrder.size() >= maxFinal)
+    {
+      return true;
+    }
+    for (; targeted && seen < FinalOrder.size(); ++seen)
+    {
+      targetsLeft -= Target[FinalOrder[seen]];
+    }
+    if (targeted && targetsLeft == 0)
+    {
+      return true;
+    }
+    if (w.H < 0)
+    {
+      const int v = -1 - w.H;
+      if (!Propagated[v] && Dist[v] == w.Key)
+      {
+        Propagated[v] = 1;
+        PropagateFromVertex(v, w.Key, w.Src);
+      }
+      continue;
+    }
+    // Vertex distances may have dropped since the window was queued: trim it again.
+    if (Trim(w))
+    {
+      Propagate(w);
+    }
+  }
+  return false;
+}
+
 Status ExactGeodesicSolver::Solve(
   const std::vector<SurfacePoint>& sources, const ExactGeodesicOptions& options)
 {
@@ -451,106 +562,12 @@ Status ExactGeodesicSolver::Solve(
 
   for (int i = 0; i < static_cast<int>(sources.size()); ++i)
   {
-    SurfacePoint s = sources[i];
-    if (!s.IsVertex())
-    {
-      // Normalize; a point at a corner is a vertex source.
-      std::array<double, 3> b = s.Bary;
-      for (double& x : b)
-      {
-        x = std::max(x, 0.0);
-      }
-      const double sum = b[0] + b[1] + b[2];
-      for (double& x : b)
-      {
-        x /= sum;
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        if (b[k] > 1.0 - 1e-12)
-        {
-          s = SurfacePoint::AtVertex(Surface.Face(s.Face)[k]);
-          break;
-        }
-      }
-      if (!s.IsVertex())
-      {
-        const Vec3 p = Surface.Interpolate(s.Face, b);
-        AddFaceSourceWindows(s.Face, p, i, s.Face);
-        for (int k = 0; k < 3; ++k)
-        {
-          // On an edge: the face across it holds the source too.
-          const int e = 3 * s.Face + (k + 1) % 3; // edge opposite corner k
-          if (b[k] < 1e-12 && Surface.Twin(e) >= 0)
-          {
-            AddFaceSourceWindows(Surface.Twin(e) / 3, p, i, s.Face);
-          }
-        }
-        continue;
-      }
-    }
-    UpdateVertex(s.Vertex, 0.0, i, -1, 0.0, LazyAngle(), LazyAngle(), i);
-    if (!Propagated[s.Vertex])
-    {
-      Propagated[s.Vertex] = 1;
-      PropagateFromVertex(s.Vertex, 0.0, i);
-    }
+    AddSource(i, sources[i]);
   }
 
-  // StopOnceFinal: its distinct vertices not final yet (checked as FinalOrder grows).
-  std::size_t targetsLeft = 0, seen = 0;
-  if (options.StopOnceFinal && !options.StopOnceFinal->empty())
-  {
-    Target.resize(Surface.NumberOfVertices(), 0);
-    for (int v : *options.StopOnceFinal)
-    {
-      if (v >= 0 && v < Surface.NumberOfVertices() && !Target[v])
-      {
-        Target[v] = 1;
-        ++targetsLeft;
-      }
-    }
-  }
-  const bool targeted = targetsLeft > 0;
-  bool truncated = false;
-  while (!Queue.Empty())
-  {
-    Window w = Dequeue();
-    if (w.Key > maxDistance)
-    {
-      break;
-    }
-    FinalizeUpTo(w.Key);
-    if (maxFinal > 0 && FinalOrder.size() >= maxFinal)
-    {
-      truncated = true;
-      break;
-    }
-    for (; targeted && seen < FinalOrder.size(); ++seen)
-    {
-      targetsLeft -= Target[FinalOrder[seen]];
-    }
-    if (targeted && targetsLeft == 0)
-    {
-      truncated = true;
-      break;
-    }
-    if (w.H < 0)
-    {
-      const int v = -1 - w.H;
-      if (!Propagated[v] && Dist[v] == w.Key)
-      {
-        Propagated[v] = 1;
-        PropagateFromVertex(v, w.Key, w.Src);
-      }
-      continue;
-    }
-    // Vertex distances may have dropped since the window was queued: trim it again.
-    if (Trim(w))
-    {
-      Propagate(w);
-    }
-  }
+  const std::size_t targets = MarkTargets(options);
+  const bool targeted = targets > 0;
+  const bool truncated = ProcessWindows(maxDistance, maxFinal, targets);
   if (!truncated)
   {
     FinalizeUpTo(maxDistance);

@@ -133,6 +133,15 @@ private:
   void AddFaceSourceWindows(int f, const Vec3& p, int src, int sourceFace);
   bool Trim(Window& w) const;
   void FinalizeUpTo(double key);
+  // Solve's steps. Source i: a vertex source spreads its windows, a face point (or a point on an
+  // edge) seeds the windows of its face (and of the face across the edge).
+  void AddSource(int i, SurfacePoint s);
+  // Marks StopOnceFinal's vertices in Target; returns how many distinct ones there are.
+  std::size_t MarkTargets(const ExactGeodesicOptions& options);
+  // Propagates windows in order of their keys until the queue is empty or past maxDistance;
+  // true when it stopped early instead (maxFinal vertices final, or the targetsLeft marked
+  // targets all final).
+  bool ProcessWindows(double maxDistance, std::size_t maxFinal, std::size_t targetsLeft);
 
   const TriangleMesh& Surface; // (Mesh() returns it)
   // Position of the opposite vertex of each half-edge in the half-edge's frame.

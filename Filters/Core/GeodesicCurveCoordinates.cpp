@@ -12,6 +12,113 @@
 namespace gs
 {
 
+namespace
+{
+// Samples within rounding of a vertex (a curve through mesh vertices) are that vertex: a face
+// point a hair's breadth from a corner makes needle-thin windows.
+void SnapSamplesToVertices(const TriangleMesh& mesh, std::vector<SurfacePoint>& samples)
+{
+  for (SurfacePoint& sample : samples)
+  {
+    for (int k = 0; k < 3 && !sample.IsVertex(); ++k)
+    {
+      if (sample.Bary[k] > 1.0 - 1e-7)
+      {
+        sample = SurfacePoint::AtVertex(mesh.Face(sample.Face)[k]);
+      }
+    }
+  }
+}
+
+// The arc length of each sample SampleCurvePieces makes along `pieces`, and the curve's
+// direction there (0 on a zero-length piece); `length` (0 on entry) becomes the curve's length.
+void SampleArcs(const std::vector<CurvePiece>& pieces, double spacing, std::vector<double>& arc,
+  std::vector<Vec3>& direction, double& length)
+{
+  for (const CurvePiece& piece : pieces)
+  {
+    const double pieceLength = Norm(piece.B - piece.A);
+    const int steps = std::max(1, static_cast<int>(std::ceil(pieceLength / spacing)));
+    for (int i = 0; i <= steps; ++i)
+    {
+      arc.push_back(length + pieceLength * i / steps);
+      direction.push_back(piece.B - piece.A);
+      if (pieceLength == 0.0)
+      {
+        break;
+      }
+    }
+    length += pieceLength;
+  }
+}
+
+// The curve's tangent angle at each sample. A zero-length piece (a point of the curve alone)
+// takes the direction of its nearest neighbour along the curve. Then each direction becomes a
+// tangent angle in the convention the solver uses for that sample (its face's frame, or the fan
+// of the vertex it is). (Pieces shorter than `tiny`, a millionth of an edge, e.g. the tracer's
+// steps off a vertex, count as points: their direction is noise.)
+std::vector<double> SampleTangents(const TriangleMesh& mesh,
+  const std::vector<SurfacePoint>& samples, const std::vector<Vec3>& direction, double tiny)
+{
+  std::vector<double> tangent(samples.size(), NaN);
+  for (std::size_t i = 0; i < samples.size(); ++i)
+  {
+    Vec3 d = direction[i];
+    for (std::size_t j = 1; j < samples.size() && !(Norm(d) > tiny); ++j)
+    {
+      if (i + j < samples.size() && Norm(direction[i + j]) > tiny)
+        d = direction[i + j];
+      else if (j <= i && Norm(direction[i - j]) > tiny)
+        d = direction[i - j];
+    }
+    const SurfacePoint at = samples[i].IsVertex()
+      ? samples[i]
+      : SurfacePoint::InFace(samples[i].Face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
+    tangent[i] = TangentAngle(mesh, at, d);
+  }
+  return tangent;
+}
+
+// Straight runs of the curve: consecutive samples whose directions agree. Each sample gets the
+// arc lengths of its run's first and last samples (runStart and runEnd, sized by the caller). A
+// foot that projects past the end of its run, where the curve turns, is the turning point
+// itself (the offset curve goes round it on the outer side).
+void StraightRuns(const std::vector<Vec3>& direction, const std::vector<double>& arc, double tiny,
+  std::vector<double>& runStart, std::vector<double>& runEnd)
+{
+  const std::size_t n = runStart.size();
+  std::size_t first = 0;
+  Vec3 runDirection;
+  for (std::size_t i = 0; i <= n; ++i)
+  {
+    bool turns = i == n;
+    if (!turns && Norm(direction[i]) > tiny)
+    {
+      const Vec3 u = direction[i] / Norm(direction[i]);
+      turns = Norm(runDirection) > 0.0 && Norm(Cross(u, runDirection)) + (Dot(u, runDirection) < 0.0 ? 1.0 : 0.0) > 1e-9;
+      if (!turns)
+      {
+        runDirection = u;
+      }
+    }
+    if (turns)
+    {
+      // Samples first .. i-1 form a run from arc[first] to arc[i-1].
+      for (std::size_t j = first; j < i; ++j)
+      {
+        runStart[j] = arc[first];
+        runEnd[j] = arc[i - 1];
+      }
+      first = i;
+      if (i < n)
+      {
+        runDirection = direction[i] / Norm(direction[i]);
+      }
+    }
+  }
+}
+} // namespace
+
 Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& curve, double radius)
 {
   for (int v : InsideList)
@@ -44,102 +151,23 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
     return valid;
   }
   CurvePieces = TraceSurfaceCurve(Mesh, curve);
-  const std::vector<CurvePiece>& pieces = CurvePieces;
   // Samples along the pieces (as SampleCurvePieces makes them), with their arc length and the
   // curve's tangent angle there.
   const double spacing = ExactCurveSampleSpacing * Mesh.MeanEdgeLength();
-  std::vector<SurfacePoint> samples = SampleCurvePieces(Mesh, pieces, spacing);
-  // Samples within rounding of a vertex (a curve through mesh vertices) are that vertex: a face
-  // point a hair's breadth from a corner makes needle-thin windows.
-  for (SurfacePoint& sample : samples)
-  {
-    for (int k = 0; k < 3 && !sample.IsVertex(); ++k)
-    {
-      if (sample.Bary[k] > 1.0 - 1e-7)
-      {
-        sample = SurfacePoint::AtVertex(Mesh.Face(sample.Face)[k]);
-      }
-    }
-  }
+  std::vector<SurfacePoint> samples = SampleCurvePieces(Mesh, CurvePieces, spacing);
+  SnapSamplesToVertices(Mesh, samples);
   std::vector<double> arc;
-  std::vector<Vec3> direction; // the curve's direction at each sample (0 on a zero-length piece)
-  for (const CurvePiece& piece : pieces)
-  {
-    const double length = Norm(piece.B - piece.A);
-    const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing)));
-    for (int i = 0; i <= steps; ++i)
-    {
-      arc.push_back(CurveResult.Length + length * i / steps);
-      direction.push_back(piece.B - piece.A);
-      if (length == 0.0)
-      {
-        break;
-      }
-    }
-    CurveResult.Length += length;
-  }
+  std::vector<Vec3> direction;
+  SampleArcs(CurvePieces, spacing, arc, direction, CurveResult.Length);
   if (!(CurveResult.Length > 0.0) || arc.size() != samples.size())
   {
     return Status::Error("the curve has zero length");
   }
-  // A zero-length piece (a point of the curve alone) takes the direction of its nearest
-  // neighbour along the curve. Then each direction becomes a tangent angle in the convention
-  // the solver uses for that sample (its face's frame, or the fan of the vertex it is).
-  // (Pieces shorter than a millionth of an edge, e.g. the tracer's steps off a vertex, count as
-  // points: their direction is noise.)
   const double tiny = 1e-6 * Mesh.MeanEdgeLength();
-  std::vector<double> tangent(samples.size(), NaN);
-  for (std::size_t i = 0; i < samples.size(); ++i)
-  {
-    Vec3 d = direction[i];
-    for (std::size_t j = 1; j < samples.size() && !(Norm(d) > tiny); ++j)
-    {
-      if (i + j < samples.size() && Norm(direction[i + j]) > tiny)
-        d = direction[i + j];
-      else if (j <= i && Norm(direction[i - j]) > tiny)
-        d = direction[i - j];
-    }
-    const SurfacePoint at = samples[i].IsVertex()
-      ? samples[i]
-      : SurfacePoint::InFace(samples[i].Face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
-    tangent[i] = TangentAngle(Mesh, at, d);
-  }
-  // A few edges beyond the radius, so that the offset curves near the radius can be traced.
-  // Straight runs of the curve: consecutive samples whose directions agree. A foot that
-  // projects past the end of its run, where the curve turns, is the turning point itself (the
-  // offset curve goes round it on the outer side).
+  const std::vector<double> tangent = SampleTangents(Mesh, samples, direction, tiny);
   std::vector<double> runStart(samples.size(), 0.0), runEnd(samples.size(), CurveResult.Length);
-  {
-    std::size_t first = 0;
-    Vec3 runDirection;
-    for (std::size_t i = 0; i <= samples.size(); ++i)
-    {
-      bool turns = i == samples.size();
-      if (!turns && Norm(direction[i]) > tiny)
-      {
-        const Vec3 u = direction[i] / Norm(direction[i]);
-        turns = Norm(runDirection) > 0.0 && Norm(Cross(u, runDirection)) + (Dot(u, runDirection) < 0.0 ? 1.0 : 0.0) > 1e-9;
-        if (!turns)
-        {
-          runDirection = u;
-        }
-      }
-      if (turns)
-      {
-        // Samples first .. i-1 form a run from arc[first] to arc[i-1].
-        for (std::size_t j = first; j < i; ++j)
-        {
-          runStart[j] = arc[first];
-          runEnd[j] = arc[i - 1];
-        }
-        first = i;
-        if (i < samples.size())
-        {
-          runDirection = direction[i] / Norm(direction[i]);
-        }
-      }
-    }
-  }
+  StraightRuns(direction, arc, tiny, runStart, runEnd);
+  // A few edges beyond the radius, so that the offset curves near the radius can be traced.
   ExactGeodesicOptions options;
   options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * Mesh.MeanEdgeLength() : 0.0;
   if (const Status solved = Solver.Solve(samples, options); !solved.Ok())
@@ -147,6 +175,17 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
     return solved;
   }
   InsideList = Solver.FinalVertices();
+  PlaceCurveFeet(arc, tangent, runStart, runEnd);
+  SnapCurveCorners(tiny);
+  KeepWithinCurveRadius(radius);
+  Solved = true;
+  return Status();
+}
+
+void GeodesicPolarCoordinates::PlaceCurveFeet(const std::vector<double>& arc,
+  const std::vector<double>& tangent, const std::vector<double>& runStart,
+  const std::vector<double>& runEnd)
+{
   for (int v : InsideList)
   {
     const double d = Solver.Distance(v);
@@ -185,10 +224,14 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
     Foot[v] = foot; // unclamped: continues past the ends along the end's direction
     Across[v] = d == 0.0 ? 0.0 : side * across; // offset from the (extended) curve's line
   }
+}
+
+void GeodesicPolarCoordinates::SnapCurveCorners(double tiny)
+{
   // Corners of the faces the curve crosses: the exact straight distance to the piece inside the
   // face (the samples are 1/16 edge apart: close to the curve that matters).
   double start = 0.0;
-  for (const CurvePiece& piece : pieces)
+  for (const CurvePiece& piece : CurvePieces)
   {
     const Vec3 ab = piece.B - piece.A;
     const double length = Norm(ab);
@@ -220,6 +263,10 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
     }
     start += length;
   }
+}
+
+void GeodesicPolarCoordinates::KeepWithinCurveRadius(double radius)
+{
   // u along each offset curve (the paper's Fig. 3): for every vertex beside the curve, the arc
   // length along its own offset curve (the level set of |delta| on its side) back to where its
   // foot reaches the curve's start, over the length between the two ends.
@@ -259,8 +306,6 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
     }
   }
   InsideList = std::move(inside);
-  Solved = true;
-  return Status();
 }
 
 double GeodesicPolarCoordinates::WalkOffsetCurve(int v, bool curveOnLeft, double stopAt) const

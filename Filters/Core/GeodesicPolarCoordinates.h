@@ -157,6 +157,15 @@ private:
   // Curve mode: arc length along v's offset curve until the foot parameter reaches stopAt,
   // walking with the curve on the left or right; -1 if it cannot.
   double WalkOffsetCurve(int v, bool curveOnLeft, double stopAt) const;
+  // ComputeCurve's steps after the solve from the curve's samples: each vertex's offset, arc
+  // length, foot and distance from the foot's tangent line from its source sample (arc length,
+  // tangent angle, straight run of each sample); the exact distance for the corners of the
+  // faces the curve crosses (pieces longer than tiny); then u along each offset curve, and only
+  // the vertices within the radius kept.
+  void PlaceCurveFeet(const std::vector<double>& arc, const std::vector<double>& tangent,
+    const std::vector<double>& runStart, const std::vector<double>& runEnd);
+  void SnapCurveCorners(double tiny);
+  void KeepWithinCurveRadius(double radius);
   SurfacePoint InverseIsoCurve(double rho, double theta) const;
   // Arc length along the iso-curve of v's level from v round to where it crosses the reference
   // geodesic, and the loop's length; false if it is not a closed loop or misses the reference.

@@ -209,6 +209,91 @@ void VirtualSourceSolver::SeedAround(int v, double sigma)
   });
 }
 
+namespace
+{
+// Where the path through a crossing bends: nowhere, at an end of the edge crossed (A or B), or
+// at the far corner D of the face left.
+enum class Bend
+{
+  None,
+  AtA,
+  AtB,
+  AtD
+};
+
+// The source of the face being left, in the frame of the half-edge it crosses into (origin
+// A = Origin(ht), x along ht towards B = Destination(ht), y > 0 into the next face), and the
+// tests that route a path from it through the crossing.
+struct CrossingSource
+{
+  double L;              // the edge's length
+  double Sx, Sy, Tx, Ty; // the segment from (Sx, Sy) to (Tx, Ty), one point when !Segment
+  bool Segment;
+  // The edge the face left was entered by, A - D or D - B with D = (Dx, Dy) its far corner. A
+  // line that passes through this edge but not through that one leaves the faces the source
+  // was unfolded over, beyond D; where D is a saddle (or a boundary vertex a path may bend at:
+  // CheckD), the line is no path at all and the path bends at D instead. (Elsewhere the line
+  // stays: the error of going on straight past a vertex whose angle is near or below 2 pi is
+  // smaller than a bend's.)
+  double Dx, Dy;
+  int Entry; // the half-edge the source is seen through in the face left
+  int Hs;    // the half-edge crossed, in the face left
+  bool CheckD;
+
+  // The point of the source nearest to (x, y): where the path to it starts.
+  void Nearest(double x, double y, double& ex, double& ey) const
+  {
+    ex = Sx;
+    ey = Sy;
+    if (Segment)
+    {
+      const double vx = Tx - Sx, vy = Ty - Sy, vv = vx * vx + vy * vy;
+      const double u = vv > 0.0 ? std::min(std::max(((x - Sx) * vx + (y - Sy) * vy) / vv, 0.0), 1.0) : 0.0;
+      ex = Sx + u * vx;
+      ey = Sy + u * vy;
+    }
+  }
+  // Does the line from (ex, ey) to (x, y) (y > 0) miss the entry edge beyond D? (The sides of
+  // that line that D and the entry edge's other end, A or B, lie on: both on one side, D the
+  // nearer.)
+  bool BeyondD(double ex, double ey, double x, double y) const
+  {
+    if (!CheckD)
+    {
+      return false;
+    }
+    const double ux = x - ex, uy = y - ey;
+    const double sD = ux * (Dy - ey) - uy * (Dx - ex);
+    const double sE = Entry == TriangleMesh::Next(Hs) ? ux * (-ey) - uy * (-ex)
+                                                      : ux * (-ey) - uy * (L - ex);
+    return sD * sE > 0.0 && std::abs(sD) < std::abs(sE);
+  }
+  // The path from (ex, ey) to (x, y) through this crossing: straight when the line passes
+  // through the edge (a line through an end of it passes, up to rounding: on flat meshes that
+  // line is the geodesic, and the bend there would tie with it) and past D as above, else bent
+  // at the end it misses or at D. A source in front of the edge's line goes around the nearer
+  // end.
+  Bend Route(double ex, double ey, double x, double y) const
+  {
+    if (ey <= 0.0)
+    {
+      const double t = ex + (x - ex) * (-ey) / (y - ey), slack = 1e-9 * L;
+      return t < -slack ? Bend::AtA
+        : t > L + slack ? Bend::AtB
+        : BeyondD(ex, ey, x, y) ? Bend::AtD
+                                : Bend::None;
+    }
+    return Hypot(ex, ey) + Hypot(x, y) <= Hypot(ex - L, ey) + Hypot(x - L, y) ? Bend::AtA
+                                                                            : Bend::AtB;
+  }
+  void BendPoint(Bend b, double& bx, double& by) const
+  {
+    bx = b == Bend::AtA ? 0.0 : b == Bend::AtB ? L : Dx;
+    by = b == Bend::AtD ? Dy : 0.0;
+  }
+};
+} // namespace
+
 void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
 {
   ++Stats.Crossings;
@@ -223,96 +308,42 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
   const EdgeView out = ViewOf(from, k);
   const EdgeView in = ViewOf(to, kt);
   const double l = out.Length;
-  // The source, the segment from (sx, sy) to (tx, ty) (one point for point sources), in the frame
-  // of ht (origin A = Origin(ht), x along ht towards B = Destination(ht), y > 0 into the next
-  // face): hs's frame turned by half a turn about the edge's midpoint.
+  // The source in the frame of ht: hs's frame turned by half a turn about the edge's midpoint.
   auto toEdge = [&](double x, double y, double& ex, double& ey) {
     const double qx = x - out.Ox, qy = y - out.Oy;
     ex = l - (qx * out.Ux + qy * out.Uy);
     ey = -(out.Ux * qy - out.Uy * qx);
   };
-  double sx, sy, tx, ty;
-  toEdge(from.Sx, from.Sy, sx, sy);
-  const bool segment = from.Tx != from.Sx || from.Ty != from.Sy;
-  if (segment)
+  CrossingSource source;
+  source.L = l;
+  toEdge(from.Sx, from.Sy, source.Sx, source.Sy);
+  source.Segment = from.Tx != from.Sx || from.Ty != from.Sy;
+  if (source.Segment)
   {
-    toEdge(from.Tx, from.Ty, tx, ty);
+    toEdge(from.Tx, from.Ty, source.Tx, source.Ty);
   }
   else
   {
-    tx = sx;
-    ty = sy;
+    source.Tx = source.Sx;
+    source.Ty = source.Sy;
   }
+  source.Dx = l - out.Px;
+  source.Dy = -out.Py;
+  source.Entry = from.Entry;
+  source.Hs = hs;
+  source.CheckD = from.Entry >= 0 && (from.Corner[(k + 2) % 3] & BendFlag);
+  const double sx = source.Sx, sy = source.Sy, tx = source.Tx, ty = source.Ty;
   const double sigma = from.Sigma;
   const double px = in.Px, py = in.Py;
   const double gx = (l + px) / 3.0, gy = py / 3.0; // the next face's centroid
-  // The point of the source nearest to (x, y): where the path to it starts.
-  auto nearest = [&](double x, double y, double& ex, double& ey) {
-    ex = sx;
-    ey = sy;
-    if (segment)
-    {
-      const double vx = tx - sx, vy = ty - sy, vv = vx * vx + vy * vy;
-      const double u = vv > 0.0 ? std::min(std::max(((x - sx) * vx + (y - sy) * vy) / vv, 0.0), 1.0) : 0.0;
-      ex = sx + u * vx;
-      ey = sy + u * vy;
-    }
-  };
-
-  // The edge the face left was entered by, A - D or D - B with D its far corner. A line that
-  // passes through this edge but not through that one leaves the faces the source was unfolded
-  // over, beyond D; where D is a saddle (or a boundary vertex a path may bend at), the line is
-  // no path at all and the path bends at D instead. (Elsewhere the line stays: the error of
-  // going on straight past a vertex whose angle is near or below 2 pi is smaller than a bend's.)
-  const double dx = l - out.Px, dy = -out.Py;
-  const int entry = from.Entry;
-  const bool checkD = entry >= 0 && (from.Corner[(k + 2) % 3] & BendFlag);
-  // Does the line from (ex, ey) to (x, y) (y > 0) miss the entry edge beyond D? (The sides of
-  // that line that D and the entry edge's other end, A or B, lie on: both on one side, D the
-  // nearer.)
-  auto beyondD = [&](double ex, double ey, double x, double y) {
-    if (!checkD)
-    {
-      return false;
-    }
-    const double ux = x - ex, uy = y - ey;
-    const double sD = ux * (dy - ey) - uy * (dx - ex);
-    const double sE = entry == TriangleMesh::Next(hs) ? ux * (-ey) - uy * (-ex)
-                                                      : ux * (-ey) - uy * (l - ex);
-    return sD * sE > 0.0 && std::abs(sD) < std::abs(sE);
-  };
-  // The path from (ex, ey) to (x, y) through this crossing: straight when the line passes
-  // through the edge (a line through an end of it passes, up to rounding: on flat meshes that
-  // line is the geodesic, and the bend there would tie with it) and past D as above, else bent
-  // at the end it misses or at D. A source in front of the edge's line goes around the nearer
-  // end.
-  enum Bend
-  {
-    None,
-    AtA,
-    AtB,
-    AtD
-  };
-  auto route = [&](double ex, double ey, double x, double y) {
-    if (ey <= 0.0)
-    {
-      const double t = ex + (x - ex) * (-ey) / (y - ey), slack = 1e-9 * l;
-      return t < -slack ? AtA : t > l + slack ? AtB : beyondD(ex, ey, x, y) ? AtD : None;
-    }
-    return Hypot(ex, ey) + Hypot(x, y) <= Hypot(ex - l, ey) + Hypot(x - l, y) ? AtA : AtB;
-  };
-  auto bendPoint = [&](Bend b, double& bx, double& by) {
-    bx = b == AtA ? 0.0 : b == AtB ? l : dx;
-    by = b == AtD ? dy : 0.0;
-  };
 
   double ex, ey;
-  nearest(gx, gy, ex, ey);
-  const Bend bend = route(ex, ey, gx, gy);
+  source.Nearest(gx, gy, ex, ey);
+  const Bend bend = source.Route(ex, ey, gx, gy);
   double nsx = sx, nsy = sy, ntx = tx, nty = ty, nsigma = sigma, kx = ex, ky = ey;
-  if (bend != None)
+  if (bend != Bend::None)
   {
-    bendPoint(bend, kx, ky);
+    source.BendPoint(bend, kx, ky);
     nsigma = sigma + Hypot(ex - kx, ey - ky);
     nsx = ntx = kx;
     nsy = nty = ky;
@@ -321,19 +352,19 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
   // The opposite vertex P through this crossing, whatever the face decides: the centroid's bend
   // when it bends, else its own path.
   double dP;
-  if (bend != None)
+  if (bend != Bend::None)
   {
     dP = nsigma + Hypot(px - kx, py - ky);
   }
   else
   {
     double fx, fy;
-    nearest(px, py, fx, fy);
-    const Bend b = route(fx, fy, px, py);
+    source.Nearest(px, py, fx, fy);
+    const Bend b = source.Route(fx, fy, px, py);
     double bx = fx, by = fy;
-    if (b != None)
+    if (b != Bend::None)
     {
-      bendPoint(b, bx, by);
+      source.BendPoint(b, bx, by);
     }
     dP = sigma + Hypot(fx - bx, fy - by) + Hypot(px - bx, py - by);
   }
@@ -352,10 +383,10 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
   // The new state in the next face's frame.
   const double nx = in.Ox + nsx * in.Ux - nsy * in.Uy;
   const double ny = in.Oy + nsx * in.Uy + nsy * in.Ux;
-  const bool carried = segment && bend == None;
+  const bool carried = source.Segment && bend == Bend::None;
   SetSource(to, nx, ny, carried ? in.Ox + ntx * in.Ux - nty * in.Uy : nx,
     carried ? in.Oy + ntx * in.Uy + nty * in.Ux : ny, nsigma, key,
-    bend == AtA || bend == AtB ? -1 : ht, // a source at A or B lies in the face
+    bend == Bend::AtA || bend == Bend::AtB ? -1 : ht, // a source at A or B lies in the face
     kt);
 }
 
@@ -365,8 +396,7 @@ Status VirtualSourceSolver::Solve(
   return Solve(sources, std::vector<std::vector<CurvePiece>>(), options);
 }
 
-Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
-  const std::vector<std::vector<CurvePiece>>& runs, const VirtualSourceOptions& options)
+void VirtualSourceSolver::BeginSolve()
 {
   if (++Epoch == 0)
   {
@@ -384,23 +414,17 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
   }
   Current = 0;
   Stats = VirtualSourceStatistics();
-  std::vector<CurvePiece> pieces;
-  for (const std::vector<CurvePiece>& run : runs)
-  {
-    pieces.insert(pieces.end(), run.begin(), run.end());
-  }
-  if (sources.empty() && pieces.empty())
-  {
-    return Status::Error("no source given");
-  }
-  if (const Status valid = Surface.CheckPoints(sources, "source"); !sources.empty() && !valid.Ok())
-  {
-    return valid;
-  }
+}
+
+namespace
+{
+// Fails for a piece that lies in no face of the mesh or has a non-finite end.
+Status CheckPieces(const TriangleMesh& mesh, const std::vector<CurvePiece>& pieces)
+{
   for (std::size_t i = 0; i < pieces.size(); ++i)
   {
     const CurvePiece& piece = pieces[i];
-    if (piece.Face < 0 || piece.Face >= Surface.NumberOfFaces() || !std::isfinite(piece.A.x) ||
+    if (piece.Face < 0 || piece.Face >= mesh.NumberOfFaces() || !std::isfinite(piece.A.x) ||
       !std::isfinite(piece.A.y) || !std::isfinite(piece.A.z) || !std::isfinite(piece.B.x) ||
       !std::isfinite(piece.B.y) || !std::isfinite(piece.B.z))
     {
@@ -408,10 +432,12 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
         " lies in no face of the mesh or has a non-finite end");
     }
   }
-  const bool limited = options.MaximumDistance > 0.0 && std::isfinite(options.MaximumDistance);
-  Horizon = limited ? options.MaximumDistance + Surface.LongestEdgeLength() : Inf;
-  Tolerance = 1e-12 * BucketWidth;
+  return Status();
+}
+} // namespace
 
+void VirtualSourceSolver::SeedPoints(const std::vector<SurfacePoint>& sources)
+{
   for (const SurfacePoint& source : sources)
   {
     if (source.IsVertex())
@@ -434,6 +460,10 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
     const double sy = b[2] * r.Cy / sum;
     Seed(source.Face, sx, sy, sx, sy);
   }
+}
+
+void VirtualSourceSolver::SeedRuns(const std::vector<std::vector<CurvePiece>>& runs)
+{
   for (const std::vector<CurvePiece>& run : runs)
   {
     double total = 0.0;
@@ -466,7 +496,10 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
       Seed(piece.Face, ax, ay, bx, by);
     }
   }
+}
 
+bool VirtualSourceSolver::ProcessBuckets(const VirtualSourceOptions& options)
+{
   const std::int64_t numFaces = std::max(1, Surface.NumberOfFaces());
   std::int64_t nextReport = ProgressStride;
   for (; Current < Buckets.size(); ++Current)
@@ -509,11 +542,45 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
           {
             Buckets[Current].clear();
           }
-          return Status::Aborted();
+          return false;
         }
       }
     }
     Buckets[Current].clear();
+  }
+  return true;
+}
+
+Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
+  const std::vector<std::vector<CurvePiece>>& runs, const VirtualSourceOptions& options)
+{
+  BeginSolve();
+  std::vector<CurvePiece> pieces;
+  for (const std::vector<CurvePiece>& run : runs)
+  {
+    pieces.insert(pieces.end(), run.begin(), run.end());
+  }
+  if (sources.empty() && pieces.empty())
+  {
+    return Status::Error("no source given");
+  }
+  if (const Status valid = Surface.CheckPoints(sources, "source"); !sources.empty() && !valid.Ok())
+  {
+    return valid;
+  }
+  if (const Status valid = CheckPieces(Surface, pieces); !valid.Ok())
+  {
+    return valid;
+  }
+  const bool limited = options.MaximumDistance > 0.0 && std::isfinite(options.MaximumDistance);
+  Horizon = limited ? options.MaximumDistance + Surface.LongestEdgeLength() : Inf;
+  Tolerance = 1e-12 * BucketWidth;
+
+  SeedPoints(sources);
+  SeedRuns(runs);
+  if (!ProcessBuckets(options))
+  {
+    return Status::Aborted();
   }
   if (limited)
   {

@@ -136,6 +136,14 @@ private:
   void Cross(const FaceRecord& from, int f, int k);
   void SeedAround(int v, double sigma);
   void PushVertex(int v, double key);
+  // Solve's steps: a fresh state (a new epoch, no distance, empty buckets); the faces and
+  // vertices about the point sources; the faces of the curve pieces, each seeded with its whole
+  // run; then the buckets in order, false when the progress callback aborts (every vertex then
+  // unreached).
+  void BeginSolve();
+  void SeedPoints(const std::vector<SurfacePoint>& sources);
+  void SeedRuns(const std::vector<std::vector<CurvePiece>>& runs);
+  bool ProcessBuckets(const VirtualSourceOptions& options);
   // A shorter distance for the vertex of a corner. A vertex paths may bend at (BendFlag) is
   // queued at that distance: when the front gets there and no shorter distance came since, it
   // becomes the source of the faces around it (SeedAround).
