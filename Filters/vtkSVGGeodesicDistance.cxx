@@ -5,11 +5,8 @@
 #include "vtkSaddleVertexGraphCache.h"
 #include "vtkSurfacePointLocator.h"
 
-#include "ExactGeodesic.h"
-#include "VirtualSourceGeodesic.h"
-#include "SVGGeodesicSolver.h"
+#include "GeodesicEngine.h"
 #include "SaddleVertexGraph.h"
-#include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 
 #include <vtkCellArray.h>
@@ -36,12 +33,11 @@ vtkStandardNewMacro(vtkSVGGeodesicDistance);
 
 // The converted mesh and what is derived from it (vtkCachedSurface), kept while the input mesh
 // is unchanged, so that changing only the sources or parameters does not redo them, and the
-// solvers over it.
+// engines over it.
 struct vtkSVGGeodesicDistance::Cache : vtkCachedSurface
 {
-  std::unique_ptr<gs::ExactGeodesicSolver> Exact; // refers to Mesh.Build.Mesh; on demand
-  std::unique_ptr<gs::SVGGeodesicSolver> SVG;     // over Mesh.Build.Mesh and Graph()
-  std::unique_ptr<gs::VirtualSourceSolver> VirtualSources; // refers to Mesh.Build.Mesh; on demand
+  // Per Solver, made on demand over Mesh.Build.Mesh (and Graph(): one graph engine at a time).
+  std::unique_ptr<gs::GeodesicEngine> Engines[gs::NumberOfGeodesicSolvers];
 };
 
 // One Execute's sources, step to step.
@@ -65,21 +61,11 @@ vtkSVGGeodesicDistance::~vtkSVGGeodesicDistance() = default;
 //------------------------------------------------------------------------------
 const char* vtkSVGGeodesicDistance::GetSolverName(int solver)
 {
-  switch (solver)
+  if (solver < 0 || solver >= gs::NumberOfGeodesicSolvers)
   {
-    case EXACT:
-      return "Exact";
-    case SVG_LABEL_CORRECTING:
-      return "SVG (label-correcting)";
-    case SVG_DIJKSTRA:
-      return "SVG (Dijkstra)";
-    case DGG:
-      return "DGG (accuracy-bounded)";
-    case VIRTUAL_SOURCES:
-      return "Virtual sources (no precompute)";
-    default:
-      return "unknown";
+    return "unknown";
   }
+  return gs::GeodesicSolverName(static_cast<gs::GeodesicSolver>(solver));
 }
 
 //------------------------------------------------------------------------------
@@ -299,10 +285,24 @@ bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
   {
     return false; // aborted, or the error is reported
   }
-  if (graphChanged || !cache.SVG)
+  std::unique_ptr<gs::GeodesicEngine>& engine = cache.Engines[this->Solver];
+  if (graphChanged || !engine)
   {
-    cache.SVG.reset();
-    cache.SVG.reset(new gs::SVGGeodesicSolver(cache.Mesh.Build.Mesh, *cache.Graph()));
+    for (auto& other : cache.Engines)
+    {
+      if (other && gs::GeodesicSolverUsesGraph(other->Solver()))
+      {
+        other.reset(); // (over the previous graph, or a second copy of the per-node data)
+      }
+    }
+    gs::Result<std::unique_ptr<gs::GeodesicEngine>> made = gs::MakeGeodesicEngine(
+      static_cast<gs::GeodesicSolver>(this->Solver), cache.Mesh.Build.Mesh, cache.Graph());
+    if (!made.Ok())
+    {
+      vtkErrorMacro("The geodesic solver cannot use the graph: " << made.Message() << ".");
+      return false;
+    }
+    engine = std::move(*made);
   }
   return true;
 }
@@ -310,100 +310,33 @@ bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
 //------------------------------------------------------------------------------
 bool vtkSVGGeodesicDistance::Solve(Cache& cache, Run& run)
 {
-  const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  gs::Status solved;
-  if (this->UsesGraph())
+  std::unique_ptr<gs::GeodesicEngine>& engine = cache.Engines[this->Solver];
+  if (!engine) // (graph engines are made with their graph, UseGraph)
   {
-    gs::SVGSolveOptions options;
-    options.Algorithm = this->Solver == SVG_DIJKSTRA ? gs::GraphAlgorithm::Dijkstra
-                                                     : gs::GraphAlgorithm::LabelCorrecting;
-    options.MaximumDistance = this->MaximumDistance;
-    options.Refine = this->UnfoldingRefinement;
-    // The refinement of large solves on every core (the same distances to the bit).
-    options.NumberOfThreads = 0;
-    if (run.CurveSources.empty())
+    gs::Result<std::unique_ptr<gs::GeodesicEngine>> made =
+      gs::MakeGeodesicEngine(static_cast<gs::GeodesicSolver>(this->Solver), cache.Mesh.Build.Mesh);
+    if (!made.Ok())
     {
-      solved = cache.SVG->Solve(run.PointSources, options);
+      vtkErrorMacro("The geodesic solver cannot be made: " << made.Message() << ".");
+      return false;
     }
-    else
-    {
-      // Point sources join the curve solve as one-point curves.
-      for (const gs::SurfacePoint& p : run.PointSources)
-      {
-        run.CurveSources.push_back({ p });
-      }
-      solved = cache.SVG->SolveCurves(run.CurveSources, options);
-    }
+    engine = std::move(*made);
   }
-  else
+  gs::GeodesicSources sources;
+  sources.Points = std::move(run.PointSources);
+  sources.Curves = std::move(run.CurveSources);
+  gs::GeodesicSolveOptions options;
+  options.MaximumDistance = this->MaximumDistance;
+  options.UnfoldingRefinement = this->UnfoldingRefinement;
+  options.NumberOfThreads = 0; // (graph refinement of large solves on every core: the same bits)
+  options.Progress = [this](double fraction) {
+    this->UpdateProgress(0.1 + 0.8 * fraction);
+    return !this->CheckAbort();
+  };
+  const gs::Status solved = engine->Solve(sources, options);
+  if (solved.IsAborted())
   {
-    // Curves: traced across faces; the virtual sources carry the pieces as segments, the exact
-    // solver runs from dense samples of them.
-    std::vector<gs::SurfacePoint> pointSources = run.PointSources;
-    std::vector<std::vector<gs::CurvePiece>> runs; // straight, point to point
-    for (const auto& curve : run.CurveSources)
-    {
-      if (this->Solver == VIRTUAL_SOURCES)
-      {
-        // Runs as long as the curve goes straight in space (a straight line snapped onto a
-        // flat part of the mesh is one run, its distance exact).
-        std::size_t i = 0;
-        while (i + 1 < curve.size())
-        {
-          const gs::Vec3 p = mesh.Position(curve[i]);
-          std::size_t j = i + 1;
-          while (j + 1 < curve.size())
-          {
-            const gs::Vec3 d = mesh.Position(curve[j]) - p, e = mesh.Position(curve[j + 1]) - p;
-            const double nd = gs::Norm(d), ne = gs::Norm(e);
-            if (!(nd > 0.0 && ne > nd && gs::Norm(gs::Cross(d, e)) <= 1e-9 * nd * ne))
-            {
-              break;
-            }
-            ++j;
-          }
-          runs.push_back(gs::TraceSurfaceCurve(mesh, { curve[i], curve[j] }));
-          i = j;
-        }
-        if (curve.size() == 1)
-        {
-          pointSources.push_back(curve[0]);
-        }
-        continue;
-      }
-      const std::vector<gs::CurvePiece> traced = gs::TraceSurfaceCurve(mesh, curve);
-      const std::vector<gs::SurfacePoint> samples =
-        gs::SampleCurvePieces(mesh, traced, gs::ExactCurveSampleSpacing * mesh.MeanEdgeLength());
-      pointSources.insert(pointSources.end(), samples.begin(), samples.end());
-    }
-    if (this->Solver == VIRTUAL_SOURCES)
-    {
-      if (!cache.VirtualSources)
-      {
-        cache.VirtualSources.reset(new gs::VirtualSourceSolver(mesh));
-      }
-      gs::VirtualSourceOptions options;
-      options.MaximumDistance = this->MaximumDistance;
-      options.Progress = [this](double fraction) {
-        this->UpdateProgress(0.1 + 0.8 * fraction);
-        return !this->CheckAbort();
-      };
-      solved = cache.VirtualSources->Solve(pointSources, runs, options);
-      if (solved.IsAborted())
-      {
-        return false;
-      }
-    }
-    else
-    {
-      if (!cache.Exact)
-      {
-        cache.Exact.reset(new gs::ExactGeodesicSolver(mesh));
-      }
-      gs::ExactGeodesicOptions options;
-      options.MaximumDistance = this->MaximumDistance;
-      solved = cache.Exact->Solve(pointSources, options);
-    }
+    return false;
   }
   if (!solved.Ok())
   {
@@ -418,6 +351,7 @@ void vtkSVGGeodesicDistance::WriteOutput(const Cache& cache, const Run& run, vtk
 {
   const std::vector<int>& pointToVertex = cache.Mesh.Build.PointToVertex;
   const bool useGraph = this->UsesGraph();
+  const gs::GeodesicEngine& engine = *cache.Engines[this->Solver];
   const double nan = std::numeric_limits<double>::quiet_NaN();
   vtkNew<vtkDoubleArray> distance;
   distance->SetName(this->ResultArrayName.c_str());
@@ -429,9 +363,7 @@ void vtkSVGGeodesicDistance::WriteOutput(const Cache& cache, const Run& run, vtk
     double d = nan;
     if (v >= 0)
     {
-      d = useGraph                            ? cache.SVG->Distance(v)
-        : this->Solver == VIRTUAL_SOURCES ? cache.VirtualSources->Distance(v)
-                                          : cache.Exact->Distance(v);
+      d = engine.Distance(v);
     }
     if (!std::isfinite(d) || (this->MaximumDistance > 0.0 && d > this->MaximumDistance))
     {

@@ -1,0 +1,221 @@
+// The engines behind GeodesicEngine: exact window propagation, shortest paths on a saddle
+// vertex (or discrete geodesic) graph, and virtual source propagation; and how each takes
+// curve sources.
+#include "GeodesicEngine.h"
+
+#include "ExactGeodesic.h"
+#include "SVGGeodesicSolver.h"
+#include "SaddleVertexGraph.h"
+#include "SurfaceCurve.h"
+#include "VirtualSourceGeodesic.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace gs
+{
+
+const char* GeodesicSolverName(GeodesicSolver solver)
+{
+  switch (solver)
+  {
+    case GeodesicSolver::Exact:
+      return "Exact";
+    case GeodesicSolver::SVGLabelCorrecting:
+      return "SVG (label-correcting)";
+    case GeodesicSolver::SVGDijkstra:
+      return "SVG (Dijkstra)";
+    case GeodesicSolver::DGG:
+      return "DGG (accuracy-bounded)";
+    case GeodesicSolver::VirtualSources:
+      return "Virtual sources (no precompute)";
+  }
+  return "";
+}
+
+bool GeodesicSolverUsesGraph(GeodesicSolver solver)
+{
+  return solver == GeodesicSolver::SVGLabelCorrecting || solver == GeodesicSolver::SVGDijkstra ||
+    solver == GeodesicSolver::DGG;
+}
+
+std::vector<double> GeodesicEngine::Distances() const
+{
+  std::vector<double> d(static_cast<std::size_t>(Surface.NumberOfVertices()));
+  for (int v = 0; v < Surface.NumberOfVertices(); ++v)
+  {
+    d[v] = Distance(v);
+  }
+  return d;
+}
+
+double GeodesicEngine::DepartureAngle(int) const
+{
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace
+{
+/// Exact window propagation; curves are densely sampled (ExactCurveSampleSpacing), the exact
+/// reference for distances to a curve.
+class ExactEngine final : public GeodesicEngine
+{
+public:
+  explicit ExactEngine(const TriangleMesh& mesh)
+    : GeodesicEngine(mesh)
+    , Solver_(mesh)
+  {
+  }
+  GeodesicSolver Solver() const override { return GeodesicSolver::Exact; }
+  Status Solve(const GeodesicSources& sources, const GeodesicSolveOptions& options) override
+  {
+    std::vector<SurfacePoint> points = sources.Points;
+    for (const auto& curve : sources.Curves)
+    {
+      const std::vector<CurvePiece> traced = TraceSurfaceCurve(Surface, curve);
+      const std::vector<SurfacePoint> samples =
+        SampleCurvePieces(Surface, traced, ExactCurveSampleSpacing * Surface.MeanEdgeLength());
+      points.insert(points.end(), samples.begin(), samples.end());
+    }
+    ExactGeodesicOptions exact;
+    exact.MaximumDistance = options.MaximumDistance;
+    return Solver_.Solve(points, exact);
+  }
+  double Distance(int v) const override { return Solver_.Distance(v); }
+  double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
+
+private:
+  ExactGeodesicSolver Solver_;
+};
+
+/// Shortest paths on a graph (SVG or DGG, as built), refined by geodesic triangle unfolding;
+/// curves are solved as curves, points joining them as one-point curves.
+class GraphEngine final : public GeodesicEngine
+{
+public:
+  GraphEngine(GeodesicSolver solver, const TriangleMesh& mesh, const SaddleVertexGraph& graph)
+    : GeodesicEngine(mesh)
+    , Kind(solver)
+    , Solver_(mesh, graph)
+  {
+  }
+  GeodesicSolver Solver() const override { return Kind; }
+  Status Solve(const GeodesicSources& sources, const GeodesicSolveOptions& options) override
+  {
+    SVGSolveOptions svg;
+    svg.Algorithm =
+      Kind == GeodesicSolver::SVGDijkstra ? GraphAlgorithm::Dijkstra : GraphAlgorithm::LabelCorrecting;
+    svg.MaximumDistance = options.MaximumDistance;
+    svg.Refine = options.UnfoldingRefinement;
+    svg.NumberOfThreads = options.NumberOfThreads;
+    if (sources.Curves.empty())
+    {
+      return Solver_.Solve(sources.Points, svg);
+    }
+    std::vector<std::vector<SurfacePoint>> curves = sources.Curves;
+    for (const SurfacePoint& p : sources.Points)
+    {
+      curves.push_back({ p });
+    }
+    return Solver_.SolveCurves(curves, svg);
+  }
+  double Distance(int v) const override { return Solver_.Distance(v); }
+  double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
+
+private:
+  GeodesicSolver Kind;
+  SVGGeodesicSolver Solver_;
+};
+
+/// Virtual source propagation; a curve goes in as runs, each as long as the curve goes straight
+/// in space (a straight line snapped onto a flat part of the mesh is one run, its distance
+/// exact), carried as segments.
+class VirtualSourceEngine final : public GeodesicEngine
+{
+public:
+  explicit VirtualSourceEngine(const TriangleMesh& mesh)
+    : GeodesicEngine(mesh)
+    , Solver_(mesh)
+  {
+  }
+  GeodesicSolver Solver() const override { return GeodesicSolver::VirtualSources; }
+  Status Solve(const GeodesicSources& sources, const GeodesicSolveOptions& options) override
+  {
+    std::vector<SurfacePoint> points = sources.Points;
+    std::vector<std::vector<CurvePiece>> runs;
+    for (const auto& curve : sources.Curves)
+    {
+      AddStraightRuns(curve, runs);
+      if (curve.size() == 1)
+      {
+        points.push_back(curve[0]);
+      }
+    }
+    VirtualSourceOptions vsp;
+    vsp.MaximumDistance = options.MaximumDistance;
+    vsp.Progress = options.Progress;
+    return Solver_.Solve(points, runs, vsp);
+  }
+  double Distance(int v) const override { return Solver_.Distance(v); }
+
+private:
+  void AddStraightRuns(const std::vector<SurfacePoint>& curve, std::vector<std::vector<CurvePiece>>& runs) const
+  {
+    std::size_t i = 0;
+    while (i + 1 < curve.size())
+    {
+      const Vec3 p = Surface.Position(curve[i]);
+      std::size_t j = i + 1;
+      while (j + 1 < curve.size())
+      {
+        const Vec3 d = Surface.Position(curve[j]) - p, e = Surface.Position(curve[j + 1]) - p;
+        const double nd = Norm(d), ne = Norm(e);
+        if (!(nd > 0.0 && ne > nd && Norm(Cross(d, e)) <= 1e-9 * nd * ne))
+        {
+          break;
+        }
+        ++j;
+      }
+      runs.push_back(TraceSurfaceCurve(Surface, { curve[i], curve[j] }));
+      i = j;
+    }
+  }
+  VirtualSourceSolver Solver_;
+};
+} // namespace
+
+Result<std::unique_ptr<GeodesicEngine>> MakeGeodesicEngine(
+  GeodesicSolver solver, const TriangleMesh& mesh, const SaddleVertexGraph* graph)
+{
+  std::unique_ptr<GeodesicEngine> engine;
+  switch (solver)
+  {
+    case GeodesicSolver::Exact:
+      engine.reset(new ExactEngine(mesh));
+      break;
+    case GeodesicSolver::VirtualSources:
+      engine.reset(new VirtualSourceEngine(mesh));
+      break;
+    case GeodesicSolver::SVGLabelCorrecting:
+    case GeodesicSolver::SVGDijkstra:
+    case GeodesicSolver::DGG:
+    {
+      if (!graph)
+      {
+        return Status::Error(std::string("the ") + GeodesicSolverName(solver) + " solver needs a graph");
+      }
+      if (Status fits = graph->CheckMesh(mesh); !fits.Ok())
+      {
+        return fits;
+      }
+      engine.reset(new GraphEngine(solver, mesh, *graph));
+      break;
+    }
+    default:
+      return Status::Error("unknown geodesic solver " + std::to_string(static_cast<int>(solver)));
+  }
+  return Result<std::unique_ptr<GeodesicEngine>>(std::move(engine));
+}
+
+} // namespace gs
