@@ -40,7 +40,8 @@ parser.add_argument("--cache", default="", help="CacheFileName of the saddle ver
 parser.add_argument("--verify", action="store_true", help="VerifyOverlaps on")
 parser.add_argument("--graph-accuracy", type=float, default=None,
                     help="GraphAccuracy (default: the filter's, 0.1): 0 the saddle vertex graph "
-                         "of K = 50, else the discrete geodesic graph of that accuracy")
+                         "of K = 50 (Solver 'SVG (label-correcting)'), else the discrete "
+                         "geodesic graph of that accuracy")
 parser.add_argument("--threads", type=int, nargs="+", default=[1, 2])
 args = parser.parse_args()
 
@@ -98,7 +99,9 @@ dist = ShapeDistributor(Input=field, Table=msdt, ShapeSize=args.size * diagonal,
 dist.DirectionArray = ["POINTS", "Dir"]
 dist.CacheFileName = args.cache
 dist.VerifyOverlaps = 1 if args.verify else 0
-if args.graph_accuracy is not None:
+if args.graph_accuracy == 0:
+    dist.Solver = "SVG (label-correcting)"
+elif args.graph_accuracy is not None:
     dist.GraphAccuracy = args.graph_accuracy
 msdt.UpdatePipeline()
 field.UpdatePipeline()

@@ -32,7 +32,7 @@ from compare_paraview_fmm import PARAVIEW_FMM, SEED_SCRIPT, errors, fetch_array,
 
 ENGINES = [
     ("Virtual sources (no precompute)", {}),
-    ("DGG (accuracy-bounded)", {"Accuracy": 0.1}),
+    ("DGG (accuracy-bounded)", {"GraphAccuracy": 0.1}),
     ("SVG (label-correcting)", {"K": 50}),
     ("Exact", {}),
 ]

@@ -153,7 +153,7 @@ nearest = int(numpy.argmin(((points - numpy.array(brush)) ** 2).sum(axis=1)))
 # (The discrete geodesic graph of accuracy 0.1: the graph the Shape Distributor's charts use by
 # default, built once for both.)
 distance = SVGGeodesicDistance(Input=field, SourceVertexIds=[nearest],
-                               Solver="DGG (accuracy-bounded)", Accuracy=0.1)
+                               Solver="DGG (accuracy-bounded)", GraphAccuracy=0.1)
 progress_bar(distance, "SVG Geodesic Distance")
 density = Calculator(Input=distance, ResultArrayName="Density",
                      Function="max(0.45, min(1.0, GeodesicDistance / %g))" % (0.9 * radius))

@@ -4,6 +4,8 @@
 
 #include "SaddleVertexGraph.h"
 
+#include <vtkAlgorithm.h>
+
 //------------------------------------------------------------------------------
 vtkCachedSurface::vtkCachedSurface() = default;
 
@@ -78,16 +80,57 @@ bool vtkCachedSurface::UseSaddleVertexGraph(vtkAlgorithm* algorithm,
 }
 
 //------------------------------------------------------------------------------
-gs::SaddleVertexGraphOptions vtkCachedSurface::GraphOptions(int k, double accuracy)
+bool vtkCachedSurface::CheckEngine(vtkAlgorithm* algorithm, int solver,
+  const std::vector<gs::GeodesicSolver>& allowed, int k)
+{
+  bool known = false;
+  std::string names;
+  for (gs::GeodesicSolver a : allowed)
+  {
+    known = known || static_cast<int>(a) == solver;
+    names += (names.empty() ? "" : ", ") + std::to_string(static_cast<int>(a)) + " = " +
+      gs::GeodesicSolverName(a);
+  }
+  if (!known)
+  {
+    vtkErrorWithObjectMacro(algorithm, "Unknown Solver " << solver << " (" << names << ").");
+    return false;
+  }
+  if (gs::GeodesicSolverUsesGraph(static_cast<gs::GeodesicSolver>(solver)) && k < 1)
+  {
+    vtkErrorWithObjectMacro(algorithm, "K must be at least 1 for the "
+        << gs::GeodesicSolverName(static_cast<gs::GeodesicSolver>(solver)) << " solver; it is " << k
+        << ".");
+    return false;
+  }
+  return true;
+}
+
+gs::SaddleVertexGraphOptions vtkCachedSurface::GraphOptions(
+  int solver, int k, double graphAccuracy, bool reachedStencil)
 {
   gs::SaddleVertexGraphOptions options;
   options.K = k;
-  if (accuracy != 0.0)
+  if (solver == static_cast<int>(gs::GeodesicSolver::DGG))
   {
     options.Construction = gs::GraphConstruction::DiscreteGeodesic;
-    options.Accuracy = accuracy;
+    options.Accuracy = graphAccuracy;
+    options.ReachedStencil = reachedStencil;
   }
   return options;
+}
+
+bool vtkCachedSurface::UseEngineGraph(vtkAlgorithm* algorithm, int solver, int k,
+  double graphAccuracy, const std::string& fileName, double progressStart, double progressSpan,
+  bool& changed, vtkSaddleVertexGraphCache::Origin* origin)
+{
+  if (!gs::GeodesicSolverUsesGraph(static_cast<gs::GeodesicSolver>(solver)))
+  {
+    changed = this->UseNoSaddleVertexGraph();
+    return true;
+  }
+  return this->UseSaddleVertexGraph(algorithm, GraphOptions(solver, k, graphAccuracy), fileName,
+    progressStart, progressSpan, changed, origin);
 }
 
 //------------------------------------------------------------------------------

@@ -12,6 +12,7 @@
 #include "vtkSaddleVertexGraphCache.h"
 #include "vtkSurfaceMeshConverter.h"
 
+#include "GeodesicEngine.h"
 #include "Status.h"
 #include "SurfacePoint.h"
 
@@ -60,9 +61,21 @@ public:
     const std::string& fileName,
     double progressStart, double progressSpan, bool& changed,
     vtkSaddleVertexGraphCache::Origin* origin = nullptr);
-  // The graph the filters' engine properties ask for: the saddle vertex graph of K, or with a
-  // non-zero accuracy the discrete geodesic graph of that accuracy (whose range the core checks).
-  static gs::SaddleVertexGraphOptions GraphOptions(int k, double accuracy);
+  // The filters' engine properties, one vocabulary: Solver (gs::GeodesicSolver's values and
+  // names), K (graph solvers) and GraphAccuracy (DGG). Checks that Solver is one of `allowed`
+  // (the engines the filter offers) and K is at least 1 for a graph solver; false with an error
+  // reported on `algorithm` otherwise.
+  static bool CheckEngine(vtkAlgorithm* algorithm, int solver,
+    const std::vector<gs::GeodesicSolver>& allowed, int k);
+  // The graph Solver solves on: the saddle vertex graph of K, or for DGG the discrete geodesic
+  // graph of K and GraphAccuracy (whose range the core checks) and `reachedStencil`.
+  static gs::SaddleVertexGraphOptions GraphOptions(
+    int solver, int k, double graphAccuracy, bool reachedStencil = false);
+  // The graph of `solver` in use (UseSaddleVertexGraph with GraphOptions), or none for an
+  // engine without one (UseNoSaddleVertexGraph, `changed` then says whether one was in use).
+  bool UseEngineGraph(vtkAlgorithm* algorithm, int solver, int k, double graphAccuracy,
+    const std::string& fileName, double progressStart, double progressSpan, bool& changed,
+    vtkSaddleVertexGraphCache::Origin* origin = nullptr);
   // No saddle vertex graph in use (an exact engine); true when one was.
   bool UseNoSaddleVertexGraph();
   // The saddle vertex graph in use (null: none).

@@ -149,9 +149,9 @@ int vtkGeodesicPolarCoordinates::Execute(vtkPolyData* input, vtkPointSet* source
   // 4. Theta's zero as a tangent angle at the source.
   this->ResolveReferenceAngle(cache, run);
 
-  // 5. Solve: exact geodesics truncated at the radius (K = 0), or on a geodesic graph from the
-  //    process-wide cache (built with progress 0.3 .. 0.7 when new): the saddle vertex graph of
-  //    K, or with a GraphAccuracy the discrete geodesic graph of that accuracy.
+  // 5. Solve: exact geodesics truncated at the radius (Solver EXACT), or on a geodesic graph
+  //    from the process-wide cache (built with progress 0.3 .. 0.7 when new): the saddle vertex
+  //    graph of K, or the discrete geodesic graph of K and GraphAccuracy.
   if (!this->Solve(cache, run))
   {
     return 1;
@@ -234,10 +234,10 @@ bool vtkGeodesicPolarCoordinates::FindSource(Cache& cache, vtkPointSet* source, 
     // Curve coordinates are (u, delta) from exact geodesics: say so when a setting is ignored.
     const bool referenceSet = this->ReferenceDirection[0] != 0.0 ||
       this->ReferenceDirection[1] != 0.0 || this->ReferenceDirection[2] != 0.0;
-    if (referenceSet || this->AngleMode != GEODESIC_DIRECTION || this->K > 0)
+    if (referenceSet || this->AngleMode != GEODESIC_DIRECTION || this->Solver != EXACT)
     {
-      vtkWarningMacro("Curve source: ReferenceDirection, AngleMode and K apply to point sources "
-                      "only and are ignored (offset and arc length from exact geodesics).");
+      vtkWarningMacro("Curve source: ReferenceDirection, AngleMode and Solver apply to point "
+                      "sources only and are ignored (offset and arc length from exact geodesics).");
     }
   }
   else if (source)
@@ -308,20 +308,15 @@ void vtkGeodesicPolarCoordinates::ResolveReferenceAngle(const Cache& cache, Run&
 bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
 {
   const gs::TriangleMesh& mesh = cache.Mesh.Build.Mesh;
-  if (this->K < 0)
+  if (!vtkCachedSurface::CheckEngine(this, this->Solver,
+        { gs::GeodesicSolver::Exact, gs::GeodesicSolver::SVGLabelCorrecting, gs::GeodesicSolver::DGG },
+        this->K))
   {
-    vtkErrorMacro("K must be 0 (exact engine) or at least 1 (saddle vertex graph); it is "
-      << this->K << ".");
     return false;
   }
   bool graphChanged = false;
-  if (this->K == 0)
-  {
-    graphChanged = cache.UseNoSaddleVertexGraph();
-  }
-  else if (!cache.UseSaddleVertexGraph(this,
-             vtkCachedSurface::GraphOptions(this->K, this->GraphAccuracy), std::string(), 0.3, 0.4,
-             graphChanged))
+  if (!cache.UseEngineGraph(this, this->Solver, this->K, this->GraphAccuracy, std::string(), 0.3,
+        0.4, graphChanged))
   {
     return false; // aborted, or the error is reported
   }
@@ -452,7 +447,8 @@ void vtkGeodesicPolarCoordinates::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AngleMode: " << this->AngleMode << " (" << GetAngleModeName(this->AngleMode)
      << ")\n";
   os << indent << "DecalSize: " << this->DecalSize << "\n";
-  os << indent << "K: " << this->K << (this->K == 0 ? " (exact engine)" : " (saddle vertex graph)")
-     << "\n";
+  os << indent << "Solver: " << this->Solver << " ("
+     << gs::GeodesicSolverName(static_cast<gs::GeodesicSolver>(this->Solver)) << ")\n";
+  os << indent << "K: " << this->K << "\n";
   os << indent << "GraphAccuracy: " << this->GraphAccuracy << "\n";
 }

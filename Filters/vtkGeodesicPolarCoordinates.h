@@ -15,7 +15,7 @@
  * geodesic offset (positive on the left of the curve's direction, normal up) and u in [0, 1] the
  * normalized arc length along the point's own offset curve between the curve's ends (Offset and
  * ArcLength arrays; DecalCoordinates (u, delta / DecalSize + 0.5); field data CurveLength;
- * computed with exact geodesics whatever K).
+ * computed with exact geodesics whatever the Solver).
  *
  * Input port 0 ("Input", vtkPolyData): the surface. As in vtkSVGGeodesicDistance, polygons with
  * more than three points and triangle strips are triangulated (with a warning), vertex and line
@@ -43,8 +43,11 @@
  *    loci; points whose iso-curve is not a closed loop keep the geodesic direction, with a
  *    warning).
  *  - DecalSize (default 1, > 0): side of the square image mapped by DecalCoordinates.
- *  - K (default 0): 0 computes with exact geodesics; K >= 1 with the saddle vertex graph of that
- *    K (shared process-wide with SVG Geodesic Distance; faster on large patches).
+ *  - Solver (default EXACT), K (default 50), GraphAccuracy (default 1e-3): the geodesic engine,
+ *    in SVG Geodesic Distance's vocabulary: EXACT (0) exact geodesics truncated at Radius;
+ *    SVG_LABEL_CORRECTING (1) the saddle vertex graph of K; DGG (3) the discrete geodesic graph
+ *    of K and GraphAccuracy (graphs shared process-wide with the other filters; faster on large
+ *    patches once built).
  *
  * Output (vtkPolyData): the input surface (its triangulation when it had to be triangulated)
  * with double point arrays
@@ -129,19 +132,33 @@ public:
   vtkGetMacro(DecalSize, double);
   ///@}
 
+  /// Values of the Solver property: the engines with departure angles, numbered as SVG
+  /// Geodesic Distance's Solver (gs::GeodesicSolver).
+  enum SolverType
+  {
+    EXACT = 0,                ///< exact geodesics truncated at Radius (no set-up)
+    SVG_LABEL_CORRECTING = 1, ///< the saddle vertex graph of K
+    DGG = 3                   ///< the discrete geodesic graph of K and GraphAccuracy
+  };
   ///@{
-  /// Engine: 0 (default) exact geodesics truncated at Radius (exact rho and theta, no set-up);
-  /// K >= 1: the saddle vertex graph with that K (built once per mesh and shared with the other
-  /// filters of the suite; rho near-exact, theta within a fraction of a degree; several times
-  /// faster on large patches once the graph exists). Negative values are an error.
+  /// Engine for point sources: EXACT (default: exact rho and theta, nothing to build),
+  /// SVG_LABEL_CORRECTING or DGG (graphs built once per mesh and shared with the other filters
+  /// of the suite; rho near-exact, theta within a fraction of a degree; several times faster on
+  /// large patches once the graph exists). Other values are an error.
+  vtkSetMacro(Solver, int);
+  vtkGetMacro(Solver, int);
+  ///@}
+
+  ///@{
+  /// Graph solvers: the number of nearest vertices each vertex is linked within (at least 1;
+  /// default 50; clamped to the number of vertices).
   vtkSetMacro(K, int);
   vtkGetMacro(K, int);
   ///@}
 
   ///@{
-  /// With K >= 1: 0 (default) uses the saddle vertex graph of K; an accuracy (1e-5 .. 0.1) uses
-  /// the discrete geodesic graph of that relative accuracy instead (as SVG Geodesic Distance's
-  /// DGG solver, sharing its cache). Other values are an error.
+  /// DGG: the graph's largest relative error, 1e-5 .. 0.1 (default 1e-3); other values are an
+  /// error.
   vtkSetMacro(GraphAccuracy, double);
   vtkGetMacro(GraphAccuracy, double);
   ///@}
@@ -171,8 +188,9 @@ private:
   double ReferenceDirection[3] = { 0.0, 0.0, 0.0 };
   int AngleMode = GEODESIC_DIRECTION;
   double DecalSize = 1.0;
-  int K = 0;
-  double GraphAccuracy = 0.0;
+  int Solver = EXACT;
+  int K = 50;
+  double GraphAccuracy = 1e-3;
 
   // Converted mesh, locator and polar-coordinate solver, reused while the input is unchanged.
   struct Cache;

@@ -69,6 +69,12 @@ const char* vtkSVGGeodesicDistance::GetSolverName(int solver)
 }
 
 //------------------------------------------------------------------------------
+bool vtkSVGGeodesicDistance::UsesGraph() const
+{
+  return gs::GeodesicSolverUsesGraph(static_cast<gs::GeodesicSolver>(this->Solver));
+}
+
+//------------------------------------------------------------------------------
 void vtkSVGGeodesicDistance::AddSourceVertexId(vtkIdType id)
 {
   this->SourceVertexIds.push_back(id);
@@ -273,14 +279,8 @@ bool vtkSVGGeodesicDistance::FindSources(Cache& cache, vtkPointSet* sources, Run
 bool vtkSVGGeodesicDistance::UseGraph(Cache& cache, Run& run)
 {
   bool graphChanged = false;
-  gs::SaddleVertexGraphOptions options;
-  options.K = this->K;
-  if (this->Solver == DGG)
-  {
-    options.Construction = gs::GraphConstruction::DiscreteGeodesic;
-    options.Accuracy = this->Accuracy; // (0 included: the core rejects what is out of range)
-    options.ReachedStencil = this->ReachedStencil;
-  }
+  const gs::SaddleVertexGraphOptions options =
+    vtkCachedSurface::GraphOptions(this->Solver, this->K, this->GraphAccuracy, this->ReachedStencil);
   if (!cache.UseSaddleVertexGraph(this, options, this->CacheFileName, 0.1, 0.7, graphChanged, &run.GraphOrigin))
   {
     return false; // aborted, or the error is reported
@@ -414,7 +414,7 @@ void vtkSVGGeodesicDistance::PrintSelf(ostream& os, vtkIndent indent)
      << (this->MaximumDistance > 0.0 ? "" : " (unlimited)") << "\n";
   os << indent << "ResultArrayName: " << this->ResultArrayName << "\n";
   os << indent << "K: " << this->K << "\n";
-  os << indent << "Accuracy: " << this->Accuracy << "\n";
+  os << indent << "GraphAccuracy: " << this->GraphAccuracy << "\n";
   os << indent << "ReachedStencil: " << this->ReachedStencil << "\n";
   os << indent << "CacheFileName: "
      << (this->CacheFileName.empty() ? "(none)" : this->CacheFileName) << "\n";

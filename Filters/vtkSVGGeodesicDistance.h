@@ -10,7 +10,7 @@
  *    K = 50) and much faster per solve than the exact solver. Both give the same distances; the
  *    label-correcting search (SLF insertion, LLL extraction) is the faster one.
  *  - DGG (3): shortest paths on a discrete geodesic graph (Wang, Fang, Wu, Xin, He 2017;
- *    Filters/Core/DiscreteGeodesicGraph.h) built for the relative error Accuracy (default 1e-3):
+ *    Filters/Core/DiscreteGeodesicGraph.h) built for the relative error GraphAccuracy (default 1e-3):
  *    only the direct geodesics that no route through another vertex approximates within it,
  *    reaching as far as needed; the same solve (label-correcting, unfolding refinement) and
  *    cache as the SVG solvers.
@@ -46,9 +46,9 @@
  *
  * Properties: Solver; SourceVertexIds; MaximumDistance (0: unlimited); ResultArrayName;
  * for the SVG solvers K (geodesic disk size of the graph, default 50, at least 1, clamped to the
- * number of vertices), for DGG Accuracy (1e-5 .. 0.1) and ReachedStencil (advanced), for both
+ * number of vertices), for DGG GraphAccuracy (1e-5 .. 0.1) and ReachedStencil (advanced), for both
  * CacheFileName (optional file the graph is loaded from when it matches the mesh and K, or
- * Accuracy and ReachedStencil, and saved to otherwise; a stale or corrupt file is rebuilt with
+ * GraphAccuracy and ReachedStencil, and saved to otherwise; a stale or corrupt file is rebuilt with
  * a warning) and
  * UnfoldingRefinement (refine graph distances by geodesic triangle unfolding: exact on
  * developable surfaces, 2-8x more accurate on curved ones; default on).
@@ -96,7 +96,7 @@ public:
     EXACT = 0,                ///< exact polyhedral geodesics (window propagation)
     SVG_LABEL_CORRECTING = 1, ///< saddle vertex graph, label-correcting search (SLF/LLL)
     SVG_DIJKSTRA = 2,         ///< saddle vertex graph, binary-heap Dijkstra
-    DGG = 3,                  ///< discrete geodesic graph of Accuracy, label-correcting search
+    DGG = 3,                  ///< discrete geodesic graph of GraphAccuracy, label-correcting search
     VIRTUAL_SOURCES = 4       ///< virtual source propagation: no precomputation, approximate
   };
 
@@ -152,15 +152,15 @@ public:
   /// the direct geodesics that no route through another vertex approximates within it). Default
   /// 1e-3; 1e-5 .. 0.1 (outside is an error). Measured against the exact solver: the largest
   /// error stays below it, the mean is 10-20 times smaller (README, "Geodesic engines").
-  vtkSetMacro(Accuracy, double);
-  vtkGetMacro(Accuracy, double);
+  vtkSetMacro(GraphAccuracy, double);
+  vtkGetMacro(GraphAccuracy, double);
   ///@}
 
   ///@{
   /// DGG solver (advanced): each vertex's polar stencil, over which UnfoldingRefinement
   /// unfolds, also holds the vertices the graph's construction reached along direct geodesics
   /// but did not link (the graph itself, hence the distances without refinement, are the same).
-  /// Off by default. On: at Accuracy 0.1 the refined mean error is 2-3x smaller (below the
+  /// Off by default. On: at GraphAccuracy 0.1 the refined mean error is 2-3x smaller (below the
   /// saddle vertex graph's with K = 50 on the meshes measured), for about twice the graph's
   /// memory, a build about 1.2x longer and a refined solve 20-30% slower (README, "Geodesic
   /// engines"). On irregular flat meshes, where the refinement over the links alone is exact or
@@ -174,7 +174,7 @@ public:
 
   ///@{
   /// SVG solvers: optional cache file for the graph. When set, the graph is loaded from it if
-  /// it was saved for the same mesh geometry and K (DGG: Accuracy and ReachedStencil);
+  /// it was saved for the same mesh geometry and K (DGG: GraphAccuracy and ReachedStencil);
   /// otherwise it is built and saved there. A missing file is silent, a stale or corrupt one
   /// gets a warning (and is rebuilt), a failed save is a warning. Default empty (no file).
   vtkSetStdStringFromCharMacro(CacheFileName);
@@ -215,7 +215,7 @@ private:
   double MaximumDistance = 0.0;
   std::string ResultArrayName = "GeodesicDistance";
   int K = 50;
-  double Accuracy = 1e-3;
+  double GraphAccuracy = 1e-3;
   bool ReachedStencil = false;
   std::string CacheFileName;
   bool UnfoldingRefinement = true;
@@ -228,7 +228,7 @@ private:
   struct Run; // one Execute's sources
   bool FindSources(Cache& cache, vtkPointSet* sources, Run& run);
   /// The graph solvers (SVG, DGG): a graph built or loaded before the first distance.
-  bool UsesGraph() const { return this->Solver != EXACT && this->Solver != VIRTUAL_SOURCES; }
+  bool UsesGraph() const;
   bool UseGraph(Cache& cache, Run& run);
   bool Solve(Cache& cache, Run& run);
   void WriteOutput(const Cache& cache, const Run& run, vtkPolyData* output);

@@ -211,6 +211,8 @@ void vtkShapeDistributor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FaithfulCheck: " << this->FaithfulCheck << "\n";
   os << indent << "DecalTolerance: " << this->DecalTolerance << "\n";
   os << indent << "VerifyOverlaps: " << this->VerifyOverlaps << "\n";
+  os << indent << "Solver: " << this->Solver << " ("
+     << gs::GeodesicSolverName(static_cast<gs::GeodesicSolver>(this->Solver)) << ")\n";
   os << indent << "K: " << this->K << "\n";
   os << indent << "GraphAccuracy: " << this->GraphAccuracy << "\n";
   os << indent << "CacheFileName: " << this->CacheFileName << "\n";
@@ -347,8 +349,9 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
   }
   run.Lap("Input");
 
-  // 4. The geodesic graph of the charts (shared, cached: the saddle vertex graph of K, or with a
-  //    GraphAccuracy the discrete geodesic graph; none for K = 0) and the distributor.
+  // 4. The geodesic graph of the charts (shared, cached: the saddle vertex graph of K, or the
+  //    discrete geodesic graph of K and GraphAccuracy; none for Solver EXACT) and the
+  //    distributor.
   if (!this->UseGraph(cache))
   {
     return 1;
@@ -394,13 +397,8 @@ int vtkShapeDistributor::Execute(vtkPolyData* input, vtkImageData* tableImage,
 bool vtkShapeDistributor::UseGraph(Cache& cache)
 {
   bool graphChanged = false;
-  if (this->K == 0)
-  {
-    graphChanged = cache.UseNoSaddleVertexGraph();
-  }
-  else if (!cache.UseSaddleVertexGraph(this,
-             vtkCachedSurface::GraphOptions(this->K, this->GraphAccuracy), this->CacheFileName,
-             0.05, 0.35, graphChanged))
+  if (!cache.UseEngineGraph(this, this->Solver, this->K, this->GraphAccuracy, this->CacheFileName,
+        0.05, 0.35, graphChanged))
   {
     return false; // aborted, or the error is reported
   }
@@ -523,10 +521,10 @@ bool vtkShapeDistributor::CheckParameters()
       << this->DecalTolerance << ").");
     return false;
   }
-  if (this->K < 0)
+  if (!vtkCachedSurface::CheckEngine(this, this->Solver,
+        { gs::GeodesicSolver::Exact, gs::GeodesicSolver::SVGLabelCorrecting, gs::GeodesicSolver::DGG },
+        this->K))
   {
-    vtkErrorMacro(
-      "K must be >= 0 (0: exact charts, without a saddle vertex graph); it is " << this->K << ".");
     return false;
   }
   // The options the distributor checks itself, checked here before any work (the same ranges

@@ -7,8 +7,8 @@
  * field, scaled by a density field and accepted only when no placed shape and no higher-priority
  * candidate conflicts with them, conflicts being read from minimum safe distance tables (MSDT
  * Source) at the geodesic distance and relative angles of the two shapes (geodesic polar
- * coordinates about each shape's centre: saddle vertex graph with K > 0, exact geodesics with
- * K = 0). Long shapes (classes split into parts by MSDT Source) lie along a streamline of the
+ * coordinates about each shape's centre, from the engine Solver: the discrete geodesic graph by
+ * default, the saddle vertex graph, or exact geodesics). Long shapes (classes split into parts by MSDT Source) lie along a streamline of the
  * field and bend with it.
  *
  * Input port 0 ("Input", vtkPolyData): the surface (polygons triangulated, as in the other
@@ -45,7 +45,7 @@
  *
  * Errors (vtkErrorMacro, empty outputs): a mesh the core rejects, missing or wrong-typed
  * arrays, missing or inconsistent tables, ShapeSize < 0 or absurdly small for the mesh,
- * ClassWeights of the wrong length or all zero, unknown Mode, K < 0, negative MaximumShapes or
+ * ClassWeights of the wrong length or all zero, unknown Mode or Solver, K < 1 for a graph solver, negative MaximumShapes or
  * NumberOfThreads. Progress is reported and the run can be aborted.
  *
  * Example (pvpython):
@@ -208,16 +208,32 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  /// Values of the Solver property: the engines of the shapes' polar charts, numbered as SVG
+  /// Geodesic Distance's Solver (gs::GeodesicSolver).
+  enum SolverType
+  {
+    EXACT = 0,                ///< exact geodesics (no graph, slower charts)
+    SVG_LABEL_CORRECTING = 1, ///< the saddle vertex graph of K
+    DGG = 3                   ///< the discrete geodesic graph of K and GraphAccuracy
+  };
   ///@{
-  /// Saddle vertex graph size (default 50); 0: exact geodesics for the polar charts.
+  /// Engine of the shapes' geodesic polar charts (and the brush's distance): DGG (default),
+  /// SVG_LABEL_CORRECTING or EXACT. Graphs are built once per mesh geometry and parameters and
+  /// shared with the other filters. Other values are an error.
+  vtkSetMacro(Solver, int);
+  vtkGetMacro(Solver, int);
+  ///@}
+
+  ///@{
+  /// Graph solvers: the number of nearest vertices each vertex is linked within (at least 1;
+  /// default 50; clamped to the number of vertices).
   vtkSetMacro(K, int);
   vtkGetMacro(K, int);
   ///@}
 
   ///@{
-  /// With K >= 1: an accuracy (1e-5 .. 0.1; default 0.1) uses the discrete geodesic graph of
-  /// that relative accuracy (as SVG Geodesic Distance's DGG solver, sharing its cache); 0 the
-  /// saddle vertex graph of K. Other values are an error.
+  /// DGG: the graph's largest relative error, 1e-5 .. 0.1 (default 0.1); other values are an
+  /// error.
   vtkSetMacro(GraphAccuracy, double);
   vtkGetMacro(GraphAccuracy, double);
   ///@}
@@ -234,7 +250,7 @@ public:
   /// diagonal is an error) shapes shrink to BrushDensity times their size and
   /// grow back linearly with the geodesic distance d from it, to their full size at BrushRadius:
   /// f = max(BrushDensity, min(1, d / BrushRadius)), d from the distributor's own engine (its
-  /// graph; the exact solver with K = 0), multiplied by DensityArray's factors where both are
+  /// graph; the exact solver with Solver EXACT), multiplied by DensityArray's factors where both are
   /// given. BrushRadius 0 (the default): no brush; otherwise it must be positive and finite,
   /// BrushDensity (default 0.25) in (0, 1] and BrushCenter finite. In the GUI the brush is a
   /// sphere widget the user drags in the render view.
@@ -276,6 +292,7 @@ protected:
   bool FaithfulCheck = true;
   double DecalTolerance = 0.01;
   bool VerifyOverlaps = false;
+  int Solver = DGG;
   int K = 50;
   double GraphAccuracy = 0.1;
   std::string CacheFileName;

@@ -88,10 +88,11 @@ for name, (vertices, triangles) in meshes.items():
 # Geodesic Polar Coordinates: exact and graph charts, a point, a curve, both angle modes.
 for name, (vertices, triangles) in meshes.items():
     extent = float((vertices.max(axis=0) - vertices.min(axis=0)).max())
-    for k in (0, 50):
+    for solver, label in (("exact", "k=0"), ("svg", "k=50")):
         for mode in ("geodesic", "arc-length"):
-            c = gs.polar_coordinates((vertices, triangles), 7, 0.4 * extent, k=k, angle_mode=mode)
-            report("polar %s k=%d %s" % (name, k, mode), digest(c.rho, c.theta, c.decal))
+            c = gs.polar_coordinates((vertices, triangles), 7, 0.4 * extent, solver=solver, k=50,
+                                     angle_mode=mode)
+            report("polar %s %s %s" % (name, label, mode), digest(c.rho, c.theta, c.decal))
     curve = vertices[[3, len(vertices) // 7, len(vertices) // 6]]
     c = gs.polar_coordinates((vertices, triangles), curve, 0.3 * extent)
     report("polar %s curve" % name, digest(c.offset, c.arc_length, c.decal))
@@ -129,7 +130,7 @@ for name in ("bumpy_sphere", "torus", "lshape"):
         "circumcircle": dict(tables=star, mode="circumcircle"),
         "four density": dict(tables=four, mode="random", density=density),
         "long": dict(tables=banana, mode="random"),
-        "exact charts": dict(tables=star, mode="random", k=0),
+        "exact charts": dict(tables=star, mode="random", solver="exact"),
         "brush": dict(tables=star, mode="random",
                       brush=(vertices[11], 0.3 * extent, 0.3)),
         "keep inside": dict(tables=four, mode="greedy", keep_inside=True),

@@ -112,14 +112,30 @@ def _copy(polydata):
     return out
 
 
+# The geodesic engines, one vocabulary for every function (the filters' Solver property):
+# solver, k (graph solvers) and graph_accuracy ("dgg").
 _SOLVERS = {"svg": vtkSVGGeodesicDistance.SVG_LABEL_CORRECTING,
             "svg-dijkstra": vtkSVGGeodesicDistance.SVG_DIJKSTRA,
             "dgg": vtkSVGGeodesicDistance.DGG,
             "exact": vtkSVGGeodesicDistance.EXACT,
             "virtual sources": vtkSVGGeodesicDistance.VIRTUAL_SOURCES}
+# The engines with departure angles (polar coordinates and the distributor's charts).
+_CHART_SOLVERS = ("exact", "svg", "dgg")
 
 
-def geodesic_distance(mesh, sources=None, curves=(), solver="virtual sources", k=50, accuracy=1e-3,
+def _solver(solver, allowed):
+    if solver not in allowed:
+        raise ValueError("solver must be one of %s, not %r" % (sorted(allowed), solver))
+    return _SOLVERS[solver]
+
+
+def _set_engine(f, solver, allowed, k, graph_accuracy):
+    f.SetSolver(_solver(solver, allowed))
+    f.SetK(int(k))
+    f.SetGraphAccuracy(float(graph_accuracy))
+
+
+def geodesic_distance(mesh, sources=None, curves=(), solver="virtual sources", k=50, graph_accuracy=1e-3,
                       maximum_distance=0.0, cache_file=None, return_vtk=False,
                       reached_stencil=False, progress=None):
     """Geodesic distance (shortest path on the surface) from sources to every vertex.
@@ -132,23 +148,19 @@ def geodesic_distance(mesh, sources=None, curves=(), solver="virtual sources", k
         flat meshes, a mean relative error of 1e-3 to 1.9e-3 on the real meshes measured, up to
         3.4e-3 on regular-grid tori; straight curves on flat parts exact), "svg" (saddle vertex graph, label-correcting: near-exact, fast once the graph
         is built), "svg-dijkstra", "dgg" (discrete geodesic graph: largest relative error
-        within `accuracy`), or "exact" (exact polyhedral geodesics).
-    k: the graph's neighbourhood size (SVG solvers; default 50). accuracy: the DGG's largest
-        relative error, 1e-5 .. 0.1 (default 1e-3). maximum_distance: stop there
+        within `graph_accuracy`), or "exact" (exact polyhedral geodesics).
+    k: the graph's neighbourhood size (graph solvers; default 50). graph_accuracy: the DGG's
+        largest relative error, 1e-5 .. 0.1 (default 1e-3). maximum_distance: stop there
         (0: none; beyond it NaN). cache_file: where the graph is saved and read back.
     reached_stencil: "dgg" only: refine over the vertices the graph's construction reached,
         not only its links (the filter's ReachedStencil: a 2-3x smaller mean error at
-        accuracy 0.1 for twice the graph's memory).
+        graph_accuracy 0.1 for twice the graph's memory).
     Returns an (n,) array of distances (NaN where unreachable), and the filter's output too
     when return_vtk is true.
     """
-    if solver not in _SOLVERS:
-        raise ValueError("solver must be one of %s, not %r" % (sorted(_SOLVERS), solver))
     f = vtkSVGGeodesicDistance()
     f.SetInputData(as_polydata(mesh))
-    f.SetSolver(_SOLVERS[solver])
-    f.SetK(int(k))
-    f.SetAccuracy(float(accuracy))
+    _set_engine(f, solver, _SOLVERS, k, graph_accuracy)
     f.SetReachedStencil(bool(reached_stencil))
     f.SetMaximumDistance(float(maximum_distance))
     if cache_file:
@@ -194,15 +206,16 @@ class PolarCoordinates:
         self.decal = _point_array(output, "DecalCoordinates")
 
 
-def polar_coordinates(mesh, source, radius, reference_direction=None, k=0, decal_size=None,
-                      angle_mode="geodesic", progress=None):
+def polar_coordinates(mesh, source, radius, reference_direction=None, solver="exact", k=50,
+                      graph_accuracy=1e-3, decal_size=None, angle_mode="geodesic", progress=None):
     """Geodesic polar coordinates of the vertices within ``radius`` of a source.
 
     source: a vertex index, a point ((3,) array, snapped to the surface) or a curve ((k, 3)
         array with k >= 2: curve coordinates, offset and arc length).
     radius: how far (geodesic distance). reference_direction: the direction of angle 0 at the
-        source (projected onto the surface; default the filter's). k: 0 exact geodesics (default),
-        >= 1 the saddle vertex graph with that K. decal_size: side of the square that the decal
+        source (projected onto the surface; default the filter's). solver: "exact" (default:
+        exact geodesics), "svg" (the saddle vertex graph of k) or "dgg" (the discrete geodesic
+        graph of k and graph_accuracy), as geodesic_distance names them. decal_size: side of the square that the decal
         coordinates map to [0, 1]^2 (default 2 radius; with an infinite radius, twice the mesh's
         bounding box diagonal). angle_mode: "geodesic" (the direction of
         the geodesic at the source) or "arc-length" (proportional to arc length along each
@@ -214,7 +227,7 @@ def polar_coordinates(mesh, source, radius, reference_direction=None, k=0, decal
     f.SetInputData(polydata)
     radius = float(radius)
     f.SetRadius(radius)
-    f.SetK(int(k))
+    _set_engine(f, solver, _CHART_SOLVERS, k, graph_accuracy)
     if decal_size is None:
         # Twice the radius (the decal's inscribed disc is the geodesic disc); a radius that is
         # not finite (the whole surface, or an error the filter names) leaves the decal the
@@ -395,7 +408,7 @@ _MODES = {"random": vtkShapeDistributor.RANDOM, "greedy": vtkShapeDistributor.GR
 
 def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, density=None,
                       mode="random", seed=0, class_weights=None, maximum_shapes=0,
-                      keep_inside=False, verify_overlaps=False, threads=0, k=50,
+                      keep_inside=False, verify_overlaps=False, threads=0, solver="dgg", k=50,
                       graph_accuracy=0.1, brush=None, progress=None):
     """Places shapes on the surface without any two overlapping (Wang et al. 2016).
 
@@ -416,9 +429,10 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
         surface fills; then smaller classes fill gaps and exceed their share). maximum_shapes:
         stop there (0: none).
     keep_inside: keep shapes off the mesh boundary. verify_overlaps: check the result by the
-    drawn outlines (Distribution.overlapping_pairs). threads: 0 all. k: 0 for exact charts
-    (no graph). graph_accuracy: the charts' discrete geodesic graph's accuracy (1e-5 .. 0.1,
-    default 0.1); 0: the saddle vertex graph of k instead.
+    drawn outlines (Distribution.overlapping_pairs). threads: 0 all. solver: the charts'
+    engine, "dgg" (default: the discrete geodesic graph of k and graph_accuracy, default 0.1),
+    "svg" (the saddle vertex graph of k) or "exact" (no graph), as geodesic_distance names
+    them.
     brush: (center, radius, density), the paper's density brush: around center (3 world
         coordinates, snapped to the surface) shapes shrink to density (in (0, 1]) times their
         size and grow back linearly with the geodesic distance d from it, to their full size
@@ -476,8 +490,7 @@ def distribute_shapes(mesh, tables, size=None, directions=None, symmetry=None, d
     f.SetKeepInside(bool(keep_inside))
     f.SetVerifyOverlaps(bool(verify_overlaps))
     f.SetNumberOfThreads(int(threads))
-    f.SetK(int(k))
-    f.SetGraphAccuracy(float(graph_accuracy))
+    _set_engine(f, solver, _CHART_SOLVERS, k, graph_accuracy)
     if brush is not None:
         try:
             center, radius, brush_density = brush

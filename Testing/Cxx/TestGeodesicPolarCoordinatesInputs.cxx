@@ -57,8 +57,9 @@ struct Parameters
   double Reference[3] = { 0.0, 0.0, 0.0 };
   double DecalSize = 1.0;
   int AngleMode = vtkGeodesicPolarCoordinates::GEODESIC_DIRECTION;
-  int K = 0;
-  double GraphAccuracy = 0.0;
+  int Solver = vtkGeodesicPolarCoordinates::EXACT;
+  int K = 50;
+  double GraphAccuracy = 1e-3;
   vtkPointSet* Source = nullptr;
 };
 
@@ -92,6 +93,7 @@ RunResult Run(vtkPolyData* mesh, const Parameters& p)
   filter->SetReferenceDirection(p.Reference[0], p.Reference[1], p.Reference[2]);
   filter->SetDecalSize(p.DecalSize);
   filter->SetAngleMode(p.AngleMode);
+  filter->SetSolver(p.Solver);
   filter->SetK(p.K);
   filter->SetGraphAccuracy(p.GraphAccuracy);
   if (p.Source)
@@ -525,9 +527,10 @@ void TestCurveSource(vtkPolyData* grid)
   Check(!Mentions(r.Warnings, "Curve source"), test, "warning with the default settings");
   // Settings that apply to point sources only are ignored, with a warning, and change nothing.
   p.AngleMode = vtkGeodesicPolarCoordinates::ISO_CURVE_ARC_LENGTH;
+  p.Solver = vtkGeodesicPolarCoordinates::SVG_LABEL_CORRECTING;
   p.K = 20;
   const RunResult ignored = Run(grid, p);
-  Check(Mentions(ignored.Warnings, "Curve source"), test, "no warning for AngleMode and K");
+  Check(Mentions(ignored.Warnings, "Curve source"), test, "no warning for AngleMode and Solver");
   vtkDoubleArray* offset2 = ignored.Array("Offset");
   bool same = offset2 && offset2->GetNumberOfTuples() == offset->GetNumberOfTuples();
   for (vtkIdType i = 0; same && i < offset->GetNumberOfTuples(); ++i)
@@ -574,14 +577,16 @@ void TestIsoCurveMode(vtkPolyData* grid)
     "no warning for iso-curves meeting the boundary");
 }
 
-// The graph engines (the saddle vertex graph of K, and with GraphAccuracy the discrete
-// geodesic graph) against the exact engine on the plane.
+// The graph engines (the saddle vertex graph of K, and the discrete geodesic graph of
+// GraphAccuracy) against the exact engine on the plane.
 void TestGraphEngine(vtkPolyData* grid, double graphAccuracy)
 {
   const std::string test = graphAccuracy > 0.0 ? "DiscreteGeodesicGraphEngine" : "GraphEngine";
   Parameters p;
   p.SourceVertexId = 10 * 21 + 10;
   p.Radius = 0.8;
+  p.Solver = graphAccuracy > 0.0 ? vtkGeodesicPolarCoordinates::DGG
+                                 : vtkGeodesicPolarCoordinates::SVG_LABEL_CORRECTING;
   p.K = 50;
   p.GraphAccuracy = graphAccuracy;
   const RunResult r = Run(grid, p);
@@ -595,7 +600,7 @@ void TestGraphEngine(vtkPolyData* grid, double graphAccuracy)
   double ref[3];
   // theta's zero: the exact engine's first edge, read from an exact run.
   Parameters e = p;
-  e.K = 0;
+  e.Solver = vtkGeodesicPolarCoordinates::EXACT;
   const RunResult exact = Run(grid, e);
   double worstRho = 0, worstTheta = 0;
   int inside = 0;
@@ -621,8 +626,11 @@ void TestGraphEngine(vtkPolyData* grid, double graphAccuracy)
     ExpectRejected("GraphAccuracyOutOfRange", grid, p, "accuracy");
     return;
   }
-  p.K = -1;
-  ExpectRejected("NegativeK", grid, p, "K must be");
+  p.K = 0;
+  ExpectRejected("NoK", grid, p, "K must be at least 1");
+  p.K = 50;
+  p.Solver = 2; // (SVG (Dijkstra): SVG Geodesic Distance's only)
+  ExpectRejected("UnknownSolver", grid, p, "Unknown Solver 2");
 }
 
 int main(int argc, char* argv[])

@@ -599,7 +599,7 @@ void TestDiscreteGeodesicGraph()
     vtkNew<vtkSVGGeodesicDistance> filter;
     filter->SetInputData(mesh);
     filter->SetSolver(vtkSVGGeodesicDistance::DGG);
-    filter->SetAccuracy(accuracy);
+    filter->SetGraphAccuracy(accuracy);
     filter->SetUnfoldingRefinement(refine);
     filter->SetCacheFileName(file.c_str());
     for (vtkIdType id : ids)
@@ -666,7 +666,7 @@ void TestDiscreteGeodesicGraph()
     vtkNew<vtkSVGGeodesicDistance> filter;
     filter->SetInputData(mesh);
     filter->SetSolver(vtkSVGGeodesicDistance::DGG);
-    filter->SetAccuracy(0.1);
+    filter->SetGraphAccuracy(0.1);
     filter->SetReachedStencil(reached);
     filter->SetUnfoldingRefinement(refine);
     for (vtkIdType id : ids)

@@ -424,7 +424,12 @@ int main(int, char*[])
   {
     Run run(Plane(4), tables);
     run.Filter->SetK(-3);
-    ExpectError(run, "negative K", "K");
+    ExpectError(run, "negative K", "K must be at least 1");
+  }
+  {
+    Run run(Plane(4), tables);
+    run.Filter->SetSolver(4); // (Virtual sources: no polar charts)
+    ExpectError(run, "solver without charts", "Unknown Solver 4");
   }
   // Each option out of range: an error naming the property and its value.
   {
@@ -464,9 +469,9 @@ int main(int, char*[])
   }
   {
     Run run(Plane(8), tables);
-    run.Filter->SetK(0); // exact charts
+    run.Filter->SetSolver(vtkShapeDistributor::EXACT); // exact charts
     run.Update();
-    Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() > 0, "K = 0", "exact charts should work");
+    Check(run.Messages->Errors.empty() && run.Out(0)->GetNumberOfPoints() > 0, "Solver EXACT", "exact charts should work");
   }
   {
     // Charts on a discrete geodesic graph: shapes, none overlapping by the drawn check.

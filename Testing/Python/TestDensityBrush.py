@@ -73,7 +73,7 @@ check(with_brush["count"] > without["count"] + 10,
 # accuracy 0.1, truncated at the radius: NaN beyond it, factor 1).
 source = PointSource(Center=center, NumberOfPoints=1, Radius=0.0)
 distance = SVGGeodesicDistance(Input=field, Sources=source, Solver="DGG (accuracy-bounded)",
-                               Accuracy=0.1, MaximumDistance=radius)
+                               GraphAccuracy=0.1, MaximumDistance=radius)
 factors = ProgrammableFilter(Input=distance, CopyArrays=1)  # (the field's Direction passes)
 factors.Script = """
 import numpy

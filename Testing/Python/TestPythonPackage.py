@@ -89,13 +89,13 @@ for solver in ("svg", "svg-dijkstra", "dgg", "exact", "virtual sources"):
           % (solver, numpy.abs(g - euclid).max()))
 # The discrete geodesic graph with reached stencils: exact on the plane too, and closer than
 # the links-only stencils on the sphere (against the exact solver).
-g = gs.geodesic_distance((plane_v, plane_f), centre, solver="dgg", accuracy=0.1, reached_stencil=True)
+g = gs.geodesic_distance((plane_v, plane_f), centre, solver="dgg", graph_accuracy=0.1, reached_stencil=True)
 check(numpy.allclose(g, euclid, atol=1e-9), "dgg reached_stencil on a plane: off by %g"
       % numpy.abs(g - euclid).max())
 exact_sphere = gs.geodesic_distance((V, F), 7, solver="exact")
 mean_error = {}
 for reached in (False, True):
-    d = gs.geodesic_distance((V, F), 7, solver="dgg", accuracy=0.1, reached_stencil=reached)
+    d = gs.geodesic_distance((V, F), 7, solver="dgg", graph_accuracy=0.1, reached_stencil=reached)
     far = exact_sphere > 0
     mean_error[reached] = numpy.mean(numpy.abs(d[far] - exact_sphere[far]) / exact_sphere[far])
 print("dgg accuracy 0.1 on the sphere: mean relative error %.3g with reached_stencil, %.3g without"
@@ -162,7 +162,7 @@ check(3.0 < len(dense) / len(by_face) < 5.0, "density 0.5: %d against %d" % (len
 brush_centre, radius = V[7] * 1.01, 0.6
 brushed = gs.distribute_shapes((V, F), star, directions=faces_dir, size=0.1, seed=2,
                                brush=(brush_centre, radius, 0.25))
-d = gs.geodesic_distance((V, F), [brush_centre], solver="dgg", accuracy=0.1, maximum_distance=radius)
+d = gs.geodesic_distance((V, F), [brush_centre], solver="dgg", graph_accuracy=0.1, maximum_distance=radius)
 factors = numpy.where(numpy.isfinite(d), numpy.maximum(0.25, numpy.minimum(1.0, d / radius)), 1.0)
 as_density = gs.distribute_shapes((V, F), star, directions=faces_dir, size=0.1, seed=2,
                                   density=factors)

@@ -131,9 +131,9 @@ if all(r is not None for r in results.values()):
     same = abs(results["SVG (label-correcting)"] - results["SVG (Dijkstra)"]).max()
     check(same <= 1e-9, "label-correcting and Dijkstra differ by %g" % same)
 
-# 3b. The accuracy-bounded solver by its name: its largest error within the Accuracy asked for.
+# 3b. The accuracy-bounded solver by its name: its largest error within the GraphAccuracy asked for.
 dgg = SVGGeodesicDistance(Input=torus, SourceVertexIds=[0, 1000],
-                          Solver="DGG (accuracy-bounded)", Accuracy=0.01)
+                          Solver="DGG (accuracy-bounded)", GraphAccuracy=0.01)
 output, distances = run(dgg)
 if distances is not None and exact is not None:
     relative = abs(distances[mask] - exact[mask]) / exact[mask]
