@@ -123,10 +123,6 @@ public:
   vtkGetMacro(TextureSize, int);
   ///@}
 
-  /// How many times the shapes were read and split into parts since construction (at most once
-  /// per change of their inputs, see the class comment). For tests and diagnostics.
-  int GetNumberOfShapeLoads() const { return this->NumberOfShapeLoads; }
-
   /// Connect the optional polygons (port 0).
   void SetPolygonsConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(0, output); }
   void SetPolygonsData(vtkDataObject* data) { this->SetInputDataObject(0, data); }
@@ -158,7 +154,10 @@ private:
 
   struct ShapeCache; // classes and parts of the last read, with what they were read from
   std::unique_ptr<ShapeCache> Shapes;
+  // How many times the shapes were read and split into parts since construction (at most once
+  // per change of their inputs, see the class comment): read by the tests' seam.
   int NumberOfShapeLoads = 0;
+  friend struct vtkMSDTSourceInspector;
 
   std::vector<std::string> ShapeFileNames;
   int AngleBins = 64;

@@ -26,6 +26,12 @@
 #include <string>
 #include <thread>
 
+// The test seam of vtkMSDTSource (a friend): how often it read and split its shapes.
+struct vtkMSDTSourceInspector
+{
+  static int ShapeLoads(vtkMSDTSource* source) { return source->NumberOfShapeLoads; }
+};
+
 namespace
 {
 int Failures = 0;
@@ -108,7 +114,7 @@ int main(int argc, char* argv[])
   const int texturesExtent[6] = { 0, 31, 0, 31, 0, 0 };
   CHECK(WholeExtentIs(source, 0, tablesExtent));
   CHECK(WholeExtentIs(source, 2, texturesExtent));
-  CHECK(source->GetNumberOfShapeLoads() == 1);
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(source) == 1);
   double spacing[3] = { 0, 0, 0 };
   source->GetOutputInformation(0)->Get(vtkDataObject::SPACING(), spacing);
   CHECK(std::abs(spacing[0] - 2 * 3.14159265358979323846 / 24) < 1e-12 && spacing[2] == 1.0);
@@ -124,7 +130,7 @@ int main(int argc, char* argv[])
   shiftScale->SetScale(2.0);
   shiftScale->SetOutputScalarTypeToDouble();
   shiftScale->Update();
-  CHECK(source->GetNumberOfShapeLoads() == 1); // RequestData used the cached parts
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(source) == 1); // RequestData used the cached parts
   vtkImageData* tables = source->GetTablesOutput();
   vtkImageData* scaled = shiftScale->GetOutput();
   int dims[3] = { 0, 0, 0 };
@@ -168,13 +174,13 @@ int main(int argc, char* argv[])
   const int smaller[6] = { 0, 11, 0, 11, 0, 15 };
   CHECK(WholeExtentIs(source, 0, smaller));
   source->Update();
-  CHECK(source->GetNumberOfShapeLoads() == 1);
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(source) == 1);
   source->GetTablesOutput()->GetDimensions(dims);
   CHECK(dims[0] == 12 && dims[2] == 16);
 
   source->SetMaximumAspectRatio(10.0); // the bar is no longer split: 2 parts, 4 tables
   source->Update();
-  CHECK(source->GetNumberOfShapeLoads() == 2);
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(source) == 2);
   source->GetTablesOutput()->GetDimensions(dims);
   CHECK(dims[2] == 4);
 
@@ -189,12 +195,12 @@ int main(int argc, char* argv[])
   }
   source->Modified();
   source->Update();
-  CHECK(source->GetNumberOfShapeLoads() == 3);
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(source) == 3);
   source->GetTablesOutput()->GetDimensions(dims);
   CHECK(dims[2] == 4); // aspect 10 is not above 10: still 2 parts
   source->Modified();   // nothing changed on disk: no read
   source->Update();
-  CHECK(source->GetNumberOfShapeLoads() == 3);
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(source) == 3);
 
   // 4. Polygons from an upstream algorithm: known in the information pass as well.
   vtkNew<vtkRegularPolygonSource> hexagon;
@@ -213,10 +219,10 @@ int main(int argc, char* argv[])
   all->SetVOI(0, 7, 0, 7, 0, 0);
   all->Update();
   CHECK(all->GetOutput()->GetNumberOfPoints() == 64);
-  CHECK(polygons->GetNumberOfShapeLoads() == 1);
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(polygons) == 1);
   hexagon->SetNumberOfSides(4); // upstream change: read again
   all->Update();
-  CHECK(polygons->GetNumberOfShapeLoads() == 2);
+  CHECK(vtkMSDTSourceInspector::ShapeLoads(polygons) == 2);
 
   std::filesystem::remove(square);
   std::filesystem::remove(bar);
