@@ -3,7 +3,7 @@
  * @brief Smooth N-direction fields (vector, line or cross fields) on a triangle mesh, with user
  * singularities and stroke constraints.
  *
- * A thin wrapper over gs::DirectionFieldSolver (Filters/Core/DirectionField.h). The field is
+ * A thin wrapper over gs::DirectionFieldSolver (Filters/Core/Fields/DirectionField.h). The field is
  * piecewise constant per triangle, expressed with the discrete Levi-Civita connection.
  *
  * Modes:

@@ -3,7 +3,7 @@
  * @brief Geodesic polar coordinates (rho, theta) about a point of a triangle mesh, and decal
  * texture coordinates.
  *
- * A thin wrapper over gs::GeodesicPolarCoordinates (Filters/Core/GeodesicPolarCoordinates.h;
+ * A thin wrapper over gs::GeodesicPolarCoordinates (Filters/Core/Fields/GeodesicPolarCoordinates.h;
  * Wang et al. 2016, Section 3.3): for every point of the input surface closer than Radius to the
  * source, rho is the geodesic distance (exact polyhedral geodesics, truncated at Radius) and
  * theta the direction in which the shortest geodesic leaves the source (the log map), measured

@@ -8,7 +8,7 @@
  * optional input port. For every ordered pair of shapes (parts, see below) and every pair of
  * angle bins it computes the smallest centre distance at which the two shapes cannot overlap
  * (Wang et al. 2016, Sec. 4.2, Algorithm 1), conservative over whole angle bins:
- * Filters/Core/SafeDistanceTable.h states the exact convention. In short: shape A at the origin
+ * Filters/Core/Shapes/SafeDistanceTable.h states the exact convention. In short: shape A at the origin
  * rotated by alpha_A about its circle centre, B at (d, 0) rotated by alpha_B; bin i is centred on
  * i * 2pi / AngleBins; for all angles in bins (i, j) and every d >= SafeDistance(i, j) the
  * interiors are disjoint. Values are multiples of (r_A + r_B) / DistanceSteps, at most r_A + r_B.

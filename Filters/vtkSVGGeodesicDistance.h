@@ -5,19 +5,19 @@
  * Computes, for every point of the input surface, the length of the shortest path on the
  * surface (not through space) to the nearest source. Five solvers (property Solver):
  *  - SVG_LABEL_CORRECTING (1) and SVG_DIJKSTRA (2): shortest paths on a saddle vertex
- *    graph (Ying, Wang, He 2013; Filters/Core/SaddleVertexGraph.h, SVGGeodesicSolver.h), built
+ *    graph (Ying, Wang, He 2013; Filters/Core/Geodesics/SaddleVertexGraph.h, SVGGeodesicSolver.h), built
  *    once per mesh geometry and K and then reused: near-exact (mean relative error about 1e-3 at
  *    K = 50) and much faster per solve than the exact solver. Both give the same distances; the
  *    label-correcting search (SLF insertion, LLL extraction) is the faster one.
  *  - DGG (3): shortest paths on a discrete geodesic graph (Wang, Fang, Wu, Xin, He 2017;
- *    Filters/Core/DiscreteGeodesicGraph.h) built for the relative error GraphAccuracy (default 1e-3):
+ *    Filters/Core/Geodesics/DiscreteGeodesicGraph.h) built for the relative error GraphAccuracy (default 1e-3):
  *    only the direct geodesics that no route through another vertex approximates within it,
  *    reaching as far as needed; the same solve (label-correcting, unfolding refinement) and
  *    cache as the SVG solvers.
  *  - EXACT (0): exact polyhedral geodesics by window propagation (Chen-Han / ICH family,
- *    Filters/Core/ExactGeodesic.h), the ground truth the graph solvers are measured against.
+ *    Filters/Core/Geodesics/ExactGeodesic.h), the ground truth the graph solvers are measured against.
  *  - VIRTUAL_SOURCES (4, default): virtual source propagation (after Trettner, Bommes,
- *    Kobbelt 2021; Filters/Core/VirtualSourceGeodesic.h): nothing to build, linear time, exact
+ *    Kobbelt 2021; Filters/Core/Geodesics/VirtualSourceGeodesic.h): nothing to build, linear time, exact
  *    on flat and developable meshes and a mean relative error of 1e-3 to 1.9e-3 on the real
  *    meshes measured (up to 3.4e-3 on regular-grid tori): the soonest first answer
  *    (Benchmarks/geodesic_engines.py).

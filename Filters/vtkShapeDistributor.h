@@ -2,7 +2,7 @@
  * @class vtkShapeDistributor
  * @brief Conflict-free, anisotropic, multi-class distribution of 2D shapes on a triangle mesh.
  *
- * A thin wrapper over gs::ShapeDistributor (Filters/Core/ShapeDistributor.h; Wang et al. 2016,
+ * A thin wrapper over gs::ShapeDistributor (Filters/Core/Distribution/ShapeDistributor.h; Wang et al. 2016,
  * Section 4 and Algorithm 3): parallel dart throwing whose candidates are oriented by a direction
  * field, scaled by a density field and accepted only when no placed shape and no higher-priority
  * candidate conflicts with them, conflicts being read from minimum safe distance tables (MSDT

@@ -1,5 +1,5 @@
 // An exact overlap test between two placed polygonal regions, written independently of the
-// safe distance table code (Filters/Core/SafeDistanceTable.cpp) to check it: used by
+// safe distance table code (Filters/Core/Shapes/SafeDistanceTable.cpp) to check it: used by
 // TestSafeDistanceTable and Benchmarks/MSDTBenchmark.
 //
 // Regions are even-odd sets of closed rings, in coordinates relative to the shape's circle
