@@ -15,28 +15,26 @@ two pieces along a plane (a .pvtp of two .vtp, with global point and cell ids), 
      (the reassembled surface is then the serial reader's: piece 0, then piece 1),
 and compares point and cell arrays (matched by coordinates) and the placed shapes.
 """
-import argparse
 import glob
 import os
 import shutil
 import socket
 import subprocess
-import sys
 import time
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--data", required=True)
-parser.add_argument("--work", required=True)
-parser.add_argument("--run", help="one run: write its outputs into this folder")
-parser.add_argument("--mesh", help="run: the input mesh (.ply or .pvtp)")
-parser.add_argument("--connect", help="run: host:port of a pvserver")
-parser.add_argument("--brush", type=int, default=-1, help="run: brush vertex id")
-parser.add_argument("--pvbatch", default="pvbatch")
-parser.add_argument("--mpiexec", default="mpiexec")
-parser.add_argument("--pvserver", default="pvserver")
-parser.add_argument("--pvpython", default="pvpython")
-args = parser.parse_args()
+import gs_test
+from gs_test import check
+
+# The driver's options, and the sub-runs' (which the driver passes with the common ones):
+#   --run      one run: write its outputs into this folder
+#   --mesh     the run's input mesh (.ply or .pvtp)
+#   --connect  host:port of a pvserver to run on
+#   --brush    the brush vertex id (a serial vertex id)
+args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED, work=gs_test.REQUIRED,
+                         run=None, mesh=None, connect=None, brush=-1,
+                         pvbatch="pvbatch", mpiexec="mpiexec", pvserver="pvserver",
+                         pvpython="pvpython")
+args.brush = int(args.brush)
 
 SHAPES = ["star.png", "gull.png", "leaf.png", "fish.png"]
 TIMEOUT = 600
@@ -222,14 +220,13 @@ def compare(reference, candidate, label, expected_pieces=None):
     """Point and cell arrays of the polar output, then placements and outlines."""
     import numpy
     from paraview.vtk.util.numpy_support import vtk_to_numpy
-    failures = []
+    failed_before = len(gs_test.failures)
     ref = pieces(reference, "polar")
     got = pieces(candidate, "polar")
     if expected_pieces is not None:
         sizes = [p.GetNumberOfCells() for p in got]
-        if sizes != expected_pieces:
-            failures.append("%s: pieces of %s cells, expected each process's input piece %s" % (
-                label, sizes, expected_pieces))
+        check(sizes == expected_pieces, "%s: pieces of %s cells, expected each process's input piece %s"
+              % (label, sizes, expected_pieces))
     ref_points, got_points = {}, {}
     for pieces_, table in ((ref, ref_points), (got, got_points)):
         for data in pieces_:
@@ -240,31 +237,32 @@ def compare(reference, candidate, label, expected_pieces=None):
                     array = pd.GetArray(name)
                     values.append(array.GetTuple1(i) if array else float("inf"))
                 k = key_point(data.GetPoint(i))
-                if k in table and not numpy.allclose(table[k], values, rtol=0, atol=1e-9,
-                                                     equal_nan=True):
-                    failures.append("%s: a point shared by two pieces has two values" % label)
+                check(k not in table or numpy.allclose(table[k], values, rtol=0, atol=1e-9,
+                                                       equal_nan=True),
+                      "%s: a point shared by two pieces has two values" % label)
                 table[k] = values
-    if set(ref_points) != set(got_points):
-        failures.append("%s: %d points, serial %d" % (label, len(got_points), len(ref_points)))
+    check(set(ref_points) == set(got_points),
+          "%s: %d points, serial %d" % (label, len(got_points), len(ref_points)))
     worst = 0.0
     for k, values in ref_points.items():
         if k in got_points:
             a, b = numpy.array(values), numpy.array(got_points[k])
             both = numpy.isfinite(a) & numpy.isfinite(b)
-            if (numpy.isfinite(a) != numpy.isfinite(b)).any():
-                failures.append("%s: NaN pattern differs at %s" % (label, k))
-                break
+            same_nans = not (numpy.isfinite(a) != numpy.isfinite(b)).any()
+            check(same_nans, "%s: NaN pattern differs at %s" % (label, k))
+            if not same_nans:
+                break  # one such point is reported
             if both.any():
                 worst = max(worst, float(numpy.abs(a[both] - b[both]).max()))
-    if worst > 1e-9:
-        failures.append("%s: point arrays differ by %.3g" % (label, worst))
+    check(worst <= 1e-9, "%s: point arrays differ by %.3g" % (label, worst))
 
     def cells(pieces_):
         table = {}
         for data in pieces_:
             direction = data.GetCellData().GetArray("Direction")
-            if data.GetNumberOfCells() and direction is None:
-                failures.append("%s: no Direction cell array" % label)
+            has_direction = not data.GetNumberOfCells() or direction is not None
+            check(has_direction, "%s: no Direction cell array" % label)
+            if not has_direction:
                 return table
             for c in range(data.GetNumberOfCells()):
                 ids = data.GetCell(c).GetPointIds()
@@ -272,44 +270,45 @@ def compare(reference, candidate, label, expected_pieces=None):
                 table[k] = direction.GetTuple3(c)
         return table
     ref_cells, got_cells = cells(ref), cells(got)
-    if set(ref_cells) != set(got_cells):
-        failures.append("%s: %d cells, serial %d" % (label, len(got_cells), len(ref_cells)))
-    else:
+    same_cells = set(ref_cells) == set(got_cells)
+    check(same_cells, "%s: %d cells, serial %d" % (label, len(got_cells), len(ref_cells)))
+    if same_cells:
         d = max(max(abs(a - b) for a, b in zip(ref_cells[k], got_cells[k])) for k in ref_cells)
-        if d > 1e-9:
-            failures.append("%s: Direction differs by %.3g" % (label, d))
+        check(d <= 1e-9, "%s: Direction differs by %.3g" % (label, d))
 
     for name, arrays in (("placements", ("ClassId", "Scale", "Direction", "FaceId")),
                          ("outlines", ("ShapeId", "ClassId"))):
         ref_d = [p for p in pieces(reference, name) if p.GetNumberOfPoints()]
         got_d = [p for p in pieces(candidate, name) if p.GetNumberOfPoints()]
-        if len(ref_d) != 1 or len(got_d) != 1:
-            failures.append("%s: %s on %d processes (expected all on process 0)" % (label, name, len(got_d)))
+        on_process_0 = len(ref_d) == 1 and len(got_d) == 1
+        check(on_process_0, "%s: %s on %d processes (serial %d; expected all on process 0)"
+              % (label, name, len(got_d), len(ref_d)))
+        if not on_process_0:
             continue
         a, b = ref_d[0], got_d[0]
-        if (a.GetNumberOfPoints(), a.GetNumberOfCells()) != (b.GetNumberOfPoints(), b.GetNumberOfCells()):
-            failures.append("%s: %s has %d points / %d cells, serial %d / %d" % (
-                label, name, b.GetNumberOfPoints(), b.GetNumberOfCells(), a.GetNumberOfPoints(),
-                a.GetNumberOfCells()))
+        same_size = ((a.GetNumberOfPoints(), a.GetNumberOfCells())
+                     == (b.GetNumberOfPoints(), b.GetNumberOfCells()))
+        check(same_size, "%s: %s has %d points / %d cells, serial %d / %d" % (
+            label, name, b.GetNumberOfPoints(), b.GetNumberOfCells(), a.GetNumberOfPoints(),
+            a.GetNumberOfCells()))
+        if not same_size:
             continue
         pa = vtk_to_numpy(a.GetPoints().GetData())
         pb = vtk_to_numpy(b.GetPoints().GetData())
-        if abs(pa - pb).max() > 1e-9:
-            failures.append("%s: %s points differ by %.3g" % (label, name, abs(pa - pb).max()))
+        check(abs(pa - pb).max() <= 1e-9,
+              "%s: %s points differ by %.3g" % (label, name, abs(pa - pb).max()))
         for array in arrays:
             attributes_a = a.GetPointData() if name == "placements" else a.GetCellData()
             attributes_b = b.GetPointData() if name == "placements" else b.GetCellData()
             va = vtk_to_numpy(attributes_a.GetArray(array)).astype(float)
             vb = vtk_to_numpy(attributes_b.GetArray(array)).astype(float)
-            if abs(va - vb).max() > 1e-9:
-                failures.append("%s: %s %s differs" % (label, name, array))
+            check(abs(va - vb).max() <= 1e-9, "%s: %s %s differs" % (label, name, array))
     placed = [p for p in pieces(reference, "placements") if p.GetNumberOfPoints()]
     n_shapes = placed[0].GetNumberOfPoints() if placed else 0
-    if n_shapes < 50:
-        failures.append("%s: only %d shapes in the serial run" % (label, n_shapes))
+    check(n_shapes >= 50, "%s: only %d shapes in the serial run" % (label, n_shapes))
+    identical = len(gs_test.failures) == failed_before
     print("%s: %d points, %d cells, %d shapes compared with the serial run; %s" % (
-        label, len(ref_points), len(ref_cells), n_shapes, "identical" if not failures else "DIFFERENT"))
-    return failures
+        label, len(ref_points), len(ref_cells), n_shapes, "identical" if identical else "DIFFERENT"))
 
 
 def free_port():
@@ -345,17 +344,20 @@ def driver():
         result = subprocess.run(command, env=env, timeout=TIMEOUT, stdout=subprocess.PIPE,
                                 stderr=subprocess.STDOUT, universal_newlines=True)
         print("%s: %.1f s" % (label, time.time() - start))
-        if result.returncode != 0 or "ERR|" in result.stdout:
+        passed = result.returncode == 0 and "ERR|" not in result.stdout
+        if not passed:
             print(result.stdout)
-            sys.exit("%s failed (exit %d)" % (label, result.returncode))
+        check(passed, "%s failed (exit %d%s)" % (label, result.returncode,
+                                                ", ParaView errors" if "ERR|" in result.stdout else ""))
+        if not passed:
+            gs_test.finish()  # the later runs and comparisons need this run's outputs
 
-    failures = []
     folders = {k: os.path.join(work, k) for k in ("serial", "mpi", "server", "serial-noids", "mpi-noids")}
     run([args.pvbatch, me] + common + ["--run", folders["serial"], "--mesh", mesh], "serial pvbatch")
     run(mpi + [args.pvbatch, "--symmetric", me] + common + ["--run", folders["mpi"], "--mesh", with_ids],
         "mpiexec -n 2 pvbatch --symmetric")
-    failures += compare(folders["serial"], folders["mpi"], "pvbatch, 2 processes, global ids",
-                        input_pieces(with_ids))
+    compare(folders["serial"], folders["mpi"], "pvbatch, 2 processes, global ids",
+            input_pieces(with_ids))
 
     # pvserver with 2 processes, a pvpython client.
     port = free_port()
@@ -372,8 +374,9 @@ def driver():
             if "Accepting connection" in line:
                 ready = True
                 break
+        check(ready, "pvserver did not start")
         if not ready:
-            sys.exit("pvserver did not start")
+            gs_test.finish()  # no server to connect to
         run([args.pvpython, me] + common + ["--run", folders["server"], "--mesh", with_ids,
                                          "--connect", "localhost:%d" % port], "pvserver, 2 processes")
     finally:
@@ -382,7 +385,7 @@ def driver():
             server.wait(timeout=30)
         except subprocess.TimeoutExpired:
             server.kill()
-    failures += compare(folders["serial"], folders["server"], "pvserver, 2 processes, global ids")
+    compare(folders["serial"], folders["server"], "pvserver, 2 processes, global ids")
 
     # Without global ids: the reassembled surface is the serial reader's (piece 0 then piece 1).
     run([args.pvbatch, me] + common + ["--run", folders["serial-noids"], "--mesh", without_ids],
@@ -390,13 +393,9 @@ def driver():
     run(mpi + [args.pvbatch, "--symmetric", me] + common + ["--run", folders["mpi-noids"], "--mesh",
                                                            without_ids],
         "mpiexec -n 2 pvbatch --symmetric, pieces without ids")
-    failures += compare(folders["serial-noids"], folders["mpi-noids"], "pvbatch, 2 processes, no ids",
-                        input_pieces(without_ids))
-
-    if failures:
-        print("\n".join(failures))
-        sys.exit(1)
-    print("TestMPI passed")
+    compare(folders["serial-noids"], folders["mpi-noids"], "pvbatch, 2 processes, no ids",
+            input_pieces(without_ids))
+    gs_test.finish("TestMPI passed")
 
 
 if args.run:

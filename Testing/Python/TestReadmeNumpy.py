@@ -7,22 +7,21 @@ sizes comparable, as the snippet's comment promises).
 
 Usage: python3 TestReadmeNumpy.py --readme <README.md> --data <Data dir>
 """
-import argparse
 import os
 import re
-import sys
 import tempfile
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--readme", required=True)
-parser.add_argument("--data", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
+
+args = gs_test.arguments(readme=gs_test.REQUIRED, data=gs_test.REQUIRED)
 
 text = open(args.readme).read()
 blocks = re.findall(r"```python numpy\n(.*?)```", text, flags=re.S)
 print("%d numpy snippet(s)" % len(blocks))
+check(blocks, "no ```python numpy block in the README")
 if not blocks:
-    sys.exit("FAILED: no ```python numpy block in the README")
+    gs_test.finish()  # nothing to run
 scratch = tempfile.mkdtemp(prefix="readme-numpy-")
 os.symlink(os.path.abspath(args.data), os.path.join(scratch, "Data"))
 os.chdir(scratch)
@@ -35,7 +34,8 @@ import numpy  # noqa: E402
 
 classes = numpy.bincount(numpy.asarray(placed.class_ids), minlength=2) if placed is not None else None
 print("shapes per class:", classes)
-if placed is None or len(placed.positions) < 50 or classes is None or min(classes[:2]) < 10:
-    print("FAILED: the snippet placed %s" % (classes,))
-    sys.exit(1)
-print("OK")
+check(placed is not None and len(placed.positions) >= 50 and classes is not None
+      and min(classes[:2]) >= 10,
+      "the snippet placed %s shape(s), per class %s (expected at least 50, and 10 of each class)"
+      % (None if placed is None else len(placed.positions), classes))
+gs_test.finish()

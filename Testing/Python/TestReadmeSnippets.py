@@ -7,24 +7,22 @@ distributor of the Shape Distributor snippet must have placed shapes.
 
 Usage: pvpython TestReadmeSnippets.py --readme <README.md> --data <Data dir> --build <build dir>
 """
-import argparse
 import os
 import re
-import sys
 import tempfile
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--readme", required=True)
-parser.add_argument("--data", required=True)
-parser.add_argument("--build", required=True)
-args = parser.parse_args()
+import gs_test
+from gs_test import check
+
+args = gs_test.arguments(readme=gs_test.REQUIRED, data=gs_test.REQUIRED, build=gs_test.REQUIRED)
 
 with open(args.readme) as f:
     text = f.read()
 blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
 print("%d python snippet(s)" % len(blocks))
+check(len(blocks) >= 2, "expected the README's pvpython snippets (at least 2 ```python blocks)")
 if len(blocks) < 2:
-    sys.exit("expected the README's pvpython snippets")
+    gs_test.finish()  # nothing to run
 
 scratch = tempfile.mkdtemp(prefix="readme-snippets-")
 os.symlink(os.path.abspath(args.data), os.path.join(scratch, "Data"))
@@ -35,18 +33,13 @@ for k, block in enumerate(blocks):
     print("--- snippet %d" % (k + 1))
     exec(compile(block, "README.md snippet %d" % (k + 1), "exec"), scope)
 
-failures = []
 shapes = scope.get("shapes")
-if shapes is None:
-    failures.append("the snippets define no 'shapes'")
-else:
+check(shapes is not None, "the snippets define no 'shapes'")
+if shapes is not None:
     shapes.UpdatePipeline()
     n = shapes.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
     print("shapes placed by the README's Shape Distributor snippet:", n)
-    if n == 0:
-        failures.append("the README's Shape Distributor snippet placed no shape")
-if not os.path.exists(os.path.join(scratch, "torus_distance.vtp")):
-    failures.append("the first snippet's SaveData wrote nothing")
-for f in failures:
-    print("FAILED:", f)
-sys.exit(1 if failures else 0)
+    check(n != 0, "the README's Shape Distributor snippet placed no shape")
+check(os.path.exists(os.path.join(scratch, "torus_distance.vtp")),
+      "the first snippet's SaveData wrote nothing")
+gs_test.finish()
