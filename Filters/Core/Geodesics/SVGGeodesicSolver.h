@@ -117,6 +117,21 @@ private:
   template <class DistanceOf>
   bool RefineVertex(int x, bool unfold, bool angles, const DistanceOf& distanceOf, double& best,
     double& bestAngle) const;
+  // RefineVertex's steps (SVGUnfoldingRefinement.cpp): the stencil entry towards the source
+  // (the graph predecessor's, or the nearest neighbour's route); the cone about it (its
+  // bounds, then its pairs relaxed and unfolded, with angles one at a time); the angle carried
+  // over from a cone neighbour.
+  struct ConeScan;
+  template <class DistanceOf>
+  std::int64_t ArrivalEntry(
+    int x, std::int64_t begin, std::int64_t end, const DistanceOf& distanceOf) const;
+  void ConeBounds(ConeScan& s) const;
+  template <class DistanceOf>
+  void ScanCone(ConeScan& s, const DistanceOf& distanceOf) const;
+  void UnfoldPairWithAngle(ConeScan& s, std::int64_t e1, std::int64_t e2, double c1, double c2,
+    double p1x, double p1y, double p2x, double p2y, double d1, double d2) const;
+  template <class DistanceOf>
+  void AngleThroughNeighbour(const ConeScan& s, const DistanceOf& distanceOf) const;
   // The place of v's graph predecessor in v's stencil (-1: none).
   int StencilIndexOfPredecessor(int v) const;
   // A sweep follows the distance order, random in memory: for the positions of Order it visits

@@ -35,12 +35,10 @@ namespace
 // stencils went from 3.9 KB to 2.1 KB per vertex with the gathering in slabs).
 void ReturnFreedMemory()
 {
-#include <unistd.h>
 #if defined(__GLIBC__)
   malloc_trim(0);
 #endif
 }
-
 
 // Build memory per vertex and per unit of K (bytes), above the peaks SVGBenchmark measured on
 // armadillo, refined_elephant and mannequin-devil: 4.9-5.0 KB per vertex at K = 50, 9.2-10.1 KB
@@ -205,6 +203,329 @@ int SaddleVertexGraph::EffectiveK(const SaddleVertexGraphOptions& options, int n
     : std::min(options.K, numberOfVertices);
 }
 
+namespace
+{
+// Build refuses, before allocating, a request whose estimated peak exceeds 80% of the memory the
+// system can give now: an error saying how much it needs and what to ask for instead.
+Status CheckBuildMemory(int nv, int k, const SaddleVertexGraphOptions& options)
+{
+  const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
+  const double estimate = SaddleVertexGraph::EstimatedBuildBytes(nv, options);
+  const double available = SaddleVertexGraph::AvailableMemoryBytes();
+  if (available > 0 && estimate > 0.8 * available)
+  {
+    return Status::Error(
+      (dgg ? "a discrete geodesic graph with the accuracy " + std::to_string(options.Accuracy)
+           : "a saddle vertex graph with K = " + std::to_string(k)) +
+      " on " + std::to_string(nv) + " vertices needs about " +
+      std::to_string(static_cast<long long>(estimate / 1048576.0)) +
+      " MiB while building, more than the " +
+      std::to_string(static_cast<long long>(available / 1048576.0)) + " MiB available; " +
+      (dgg ? "ask for a coarser accuracy (memory grows as 1 / sqrt(accuracy))"
+           : "lower K (memory grows linearly with K)"));
+  }
+  return Status();
+}
+} // namespace
+
+// Build's steps and what they hand on (the graph's arrays are filled in node order, see
+// OrderNodes): each node's solve makes a block of its own (SolveNodes, MakeStencil); the blocks
+// are gathered into the stencil array and the links' arrays (GatherBlocks); both directions of
+// every link and mesh edge are bucketed by node (BucketEntries); each bucket keeps the smallest
+// weight per target, into the adjacency (KeepShortestEntries).
+struct SaddleVertexGraph::Builder
+{
+  Builder(SaddleVertexGraph& graph, const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+    int k)
+    : Graph(graph)
+    , Mesh(mesh)
+    , Options(options)
+    , Nv(mesh.NumberOfVertices())
+    , K(k)
+    , Dgg(options.Construction == GraphConstruction::DiscreteGeodesic)
+    // (ReachedStencil: the reached, covered vertices join the stencils, not the links.)
+    , ReachedStencil(Dgg && options.ReachedStencil)
+    , BuildThreads(options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads())
+    , FillThreads(std::min(BuildThreads, 8))
+    , Made(Nv)
+    , StencilSize(Nv, 0)
+  {
+    Graph.WrapXY.assign(2 * static_cast<std::size_t>(Nv), 0.0);
+  }
+
+  // Solves every node on the build's threads (false when the progress callback aborts). The
+  // calling thread reports (and may abort) every 16 of its own nodes.
+  bool SolveNodes(const ProgressCallback& progress)
+  {
+    std::atomic<int> done(0);
+    std::atomic<bool> aborted(false);
+#pragma omp parallel num_threads(BuildThreads)
+    {
+      // (Each engine allocates per-vertex state: only the one this graph uses is made.)
+      std::unique_ptr<ExactGeodesicSolver> solver(Dgg ? nullptr : new ExactGeodesicSolver(Mesh));
+      ExactGeodesicOptions opt;
+      opt.MaximumFinalVertices = K;
+      std::unique_ptr<DGGPropagation> propagation(Dgg ? new DGGPropagation(Mesh) : nullptr);
+      std::vector<DGGPropagation::Link> links, reached;
+      std::vector<int> order;
+      const double epsilon = DGGEpsilonPerAccuracy * Options.Accuracy;
+      int masterCount = 0;
+      // Sources in node order: consecutive solves then cover overlapping neighbourhoods, whose
+      // mesh data and solver state the previous solve left in the cache.
+#pragma omp for schedule(dynamic, 64)
+      for (int node = 0; node < Nv; ++node)
+      {
+        if (aborted.load(std::memory_order_relaxed))
+        {
+          continue;
+        }
+        const int s = Graph.VertexOf[node];
+        if (Dgg)
+        {
+          propagation->Run(s, epsilon, links, ReachedStencil ? &reached : nullptr);
+        }
+        else
+        {
+          static_cast<void>(solver->Solve(s, opt)); // s is a vertex of the mesh: accepted
+          links.clear();
+          for (int v : solver->FinalVertices())
+          {
+            if (v != s && solver->IsDirect(v))
+            {
+              links.push_back({ v, solver->Distance(v), solver->DepartureAngle(v) });
+            }
+          }
+        }
+        MakeStencil(node, links, ReachedStencil ? &reached : nullptr, order);
+        const int n = ++done;
+#ifdef _OPENMP
+        const bool master = omp_get_thread_num() == 0;
+#else
+        const bool master = true;
+#endif
+        // The calling thread reports (and may abort) every few of its own vertices.
+        if (master && progress && (++masterCount % 16 == 0) && !progress(0.95 * n / Nv))
+        {
+          aborted = true;
+        }
+      }
+    }
+    return !aborted;
+  }
+
+  // Node n's block: its polar stencil (its vertex's links, then, with `reached`, its reached
+  // vertices, sorted by departure angle, ties by that order, at (r cos a, r sin a); the first
+  // entry also turned by the vertex's total angle, into WrapXY, for the pair that closes the
+  // fan), then its links (target vertex in Target, length in X). `order`: scratch.
+  void MakeStencil(int n, const std::vector<DGGPropagation::Link>& links,
+    const std::vector<DGGPropagation::Link>* reached, std::vector<int>& order)
+  {
+    const std::size_t nl = links.size(), size = nl + (reached ? reached->size() : 0);
+    auto item = [&](std::size_t i) -> const DGGPropagation::Link& {
+      return i < nl ? links[i] : (*reached)[i - nl];
+    };
+    order.resize(size);
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      order[i] = static_cast<int>(i);
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double aa = item(a).Angle, ab = item(b).Angle;
+      return aa < ab || (aa == ab && a < b);
+    });
+    std::vector<StencilEntry>& out = Made[n];
+    out.resize(size + nl);
+    StencilSize[n] = static_cast<int>(size);
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      const DGGPropagation::Link& l = item(static_cast<std::size_t>(order[i]));
+      const double r = l.Distance, a = l.Angle;
+      out[i].Target = Graph.NodeOf[l.Target];
+      out[i].X = r * std::cos(a);
+      out[i].Y = r * std::sin(a);
+      if (i == 0)
+      {
+        const double wrapped = a + Mesh.TotalAngle(Graph.VertexOf[n]);
+        Graph.WrapXY[2 * static_cast<std::size_t>(n)] = r * std::cos(wrapped);
+        Graph.WrapXY[2 * static_cast<std::size_t>(n) + 1] = r * std::sin(wrapped);
+      }
+    }
+    for (std::size_t i = 0; i < nl; ++i)
+    {
+      out[size + i] = { links[i].Distance, 0.0, links[i].Target };
+    }
+  }
+
+  // The blocks, gathered into the stencil array and the links' arrays, in slabs of nodes in
+  // order (each slab on the build's threads): the stencil array is allocated without being
+  // written, so that its pages become resident as the slabs fill them, while the blocks gathered
+  // are freed and handed back to the system after each slab. The blocks and the array are then
+  // never both resident whole (with reached stencils they are most of the graph).
+  void GatherBlocks()
+  {
+    Graph.StencilOffsets.assign(Nv + 1, 0);
+    LinkOffsets.assign(Nv + 1, 0);
+    for (int n = 0; n < Nv; ++n)
+    {
+      Graph.StencilOffsets[n + 1] = Graph.StencilOffsets[n] + StencilSize[n];
+      LinkOffsets[n + 1] =
+        LinkOffsets[n] + static_cast<std::int64_t>(Made[n].size()) - StencilSize[n];
+    }
+    Graph.Stencil.clear();
+    Graph.Stencil.resize(Graph.StencilOffsets[Nv]);
+    LinkTargets.resize(LinkOffsets[Nv]); // vertices
+    LinkLengths.resize(LinkOffsets[Nv]);
+    // (Slabs of about 32 MB of stencil, at most 32: handing memory back costs a pass over the
+    // heap, about 1 ms, which a small graph need not pay for every 1/32 of its nodes.)
+    const int slabs = static_cast<int>(std::min<std::int64_t>(32,
+      1 + Graph.StencilOffsets[Nv] * static_cast<std::int64_t>(sizeof(StencilEntry)) / GatherSlabBytes));
+    for (int slab = 0; slab < slabs; ++slab)
+    {
+      const int first = static_cast<int>(static_cast<long long>(Nv) * slab / slabs);
+      const int last = static_cast<int>(static_cast<long long>(Nv) * (slab + 1) / slabs);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(BuildThreads)
+      for (int n = first; n < last; ++n)
+      {
+        const std::vector<StencilEntry>& block = Made[n];
+        std::copy(block.begin(), block.begin() + StencilSize[n],
+          Graph.Stencil.begin() + Graph.StencilOffsets[n]);
+        for (std::int64_t i = 0; i < LinkOffsets[n + 1] - LinkOffsets[n]; ++i)
+        {
+          const StencilEntry& link = block[StencilSize[n] + i];
+          LinkTargets[LinkOffsets[n] + i] = link.Target;
+          LinkLengths[LinkOffsets[n] + i] = link.X;
+        }
+        std::vector<StencilEntry>().swap(Made[n]);
+      }
+      ReturnFreedMemory();
+    }
+    std::vector<std::vector<StencilEntry>>().swap(Made);
+    std::vector<int>().swap(StencilSize);
+  }
+
+  // Calls add(bucket node, other node, weight) for both directions of every link and mesh edge.
+  template <class Add>
+  void ForEachEntry(const Add& add) const
+  {
+    for (int s = 0; s < Nv; ++s)
+    {
+      const int ns = Graph.NodeOf[s];
+      for (std::int64_t e = LinkOffsets[ns]; e < LinkOffsets[ns + 1]; ++e)
+      {
+        const int target = Graph.NodeOf[LinkTargets[e]];
+        add(ns, target, LinkLengths[e]);
+        add(target, ns, LinkLengths[e]);
+      }
+    }
+    for (int h = 0; h < Mesh.NumberOfHalfedges(); ++h)
+    {
+      const int a = Graph.NodeOf[Mesh.Origin(h)], b = Graph.NodeOf[Mesh.Destination(h)];
+      add(a, b, Mesh.EdgeLength(h));
+      add(b, a, Mesh.EdgeLength(h));
+    }
+  }
+
+  // Symmetrize and add the mesh edges: every entry into its node's bucket of Raw (Count: the
+  // buckets' offsets). Each thread fills the buckets of its own range of nodes, visiting every
+  // entry in the same order (the buckets come out as a serial fill makes them, for any thread
+  // count; the random writes, most of the time, are shared out). Counting and filling walk the
+  // entries with the same visitor, so that they agree.
+  void BucketEntries()
+  {
+    Count.assign(Nv + 1, 0);
+#pragma omp parallel num_threads(FillThreads)
+    {
+      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+      const int lo = static_cast<int>(static_cast<long long>(Nv) * t / nt);
+      const int hi = static_cast<int>(static_cast<long long>(Nv) * (t + 1) / nt);
+      ForEachEntry([&](int bucket, int, double) {
+        if (bucket >= lo && bucket < hi)
+        {
+          Count[bucket + 1]++;
+        }
+      });
+#pragma omp barrier
+#pragma omp single
+      {
+        for (int n = 0; n < Nv; ++n)
+        {
+          Count[n + 1] += Count[n];
+        }
+        Raw.resize(static_cast<std::size_t>(Count[Nv]));
+        Fill.assign(Count.begin(), Count.end() - 1);
+      }
+      ForEachEntry([&](int bucket, int other, double weight) {
+        if (bucket >= lo && bucket < hi)
+        {
+          Raw[Fill[bucket]++] = { other, weight };
+        }
+      });
+    }
+    std::vector<int>().swap(LinkTargets);
+    std::vector<double>().swap(LinkLengths);
+  }
+
+  // Each bucket sorted, keeping the smallest weight per target (both directions of a link then
+  // carry the same value), into the graph's adjacency.
+  void KeepShortestEntries()
+  {
+    std::vector<std::int64_t> kept(Nv + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(BuildThreads)
+    for (int n = 0; n < Nv; ++n)
+    {
+      auto first = Raw.begin() + Count[n], last = Raw.begin() + Count[n + 1];
+      std::sort(first, last);
+      // Sorted by (target, weight): the first of each run is the smallest weight.
+      auto out = first;
+      for (auto it = first; it != last; ++it)
+      {
+        if (out == first || (out - 1)->first != it->first)
+        {
+          *out++ = *it;
+        }
+      }
+      kept[n + 1] = out - first;
+    }
+    Graph.Offsets.assign(Nv + 1, 0);
+    for (int n = 0; n < Nv; ++n)
+    {
+      Graph.Offsets[n + 1] = Graph.Offsets[n] + kept[n + 1];
+    }
+    Graph.Targets.resize(Graph.Offsets[Nv]);
+    Graph.Weights.resize(Graph.Offsets[Nv]);
+#pragma omp parallel for schedule(static) num_threads(FillThreads)
+    for (int n = 0; n < Nv; ++n)
+    {
+      for (std::int64_t i = 0; i < kept[n + 1]; ++i)
+      {
+        Graph.Targets[Graph.Offsets[n] + i] = Raw[Count[n] + i].first;
+        Graph.Weights[Graph.Offsets[n] + i] = Raw[Count[n] + i].second;
+      }
+    }
+    std::vector<std::pair<int, double>>().swap(Raw); // before the link index adds its array
+  }
+
+  SaddleVertexGraph& Graph;
+  const TriangleMesh& Mesh;
+  const SaddleVertexGraphOptions& Options;
+  const int Nv, K;
+  const bool Dgg, ReachedStencil;
+  const int BuildThreads, FillThreads;
+  // Per node, what its solve made: its stencil, then its links (see MakeStencil); the size of
+  // the stencil part. One block a node, so that the blocks freed behind the gathering leave
+  // whole pages free to hand back.
+  std::vector<std::vector<StencilEntry>> Made;
+  std::vector<int> StencilSize;
+  // The links gathered by node: Link*[LinkOffsets[n] .. LinkOffsets[n + 1]) (target vertices).
+  std::vector<std::int64_t> LinkOffsets;
+  std::vector<int> LinkTargets;
+  std::vector<double> LinkLengths;
+  // Both directions of the links and mesh edges, (other node, weight) bucketed by node at Count;
+  // Fill: the buckets' next free places while they fill.
+  std::vector<std::int64_t> Count, Fill;
+  std::vector<std::pair<int, double>> Raw;
+};
+
 Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
   const ProgressCallback& progress)
 {
@@ -222,269 +543,22 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
   const int k = std::min(options.K, nv);
   // Refuse before allocating what the machine cannot give now.
-  const double estimate = EstimatedBuildBytes(nv, options);
-  const double available = AvailableMemoryBytes();
-  if (available > 0 && estimate > 0.8 * available)
+  if (Status fits = CheckBuildMemory(nv, k, options); !fits.Ok())
   {
-    return Status::Error(
-      (dgg ? "a discrete geodesic graph with the accuracy " + std::to_string(options.Accuracy)
-           : "a saddle vertex graph with K = " + std::to_string(k)) +
-      " on " + std::to_string(nv) + " vertices needs about " +
-      std::to_string(static_cast<long long>(estimate / 1048576.0)) +
-      " MiB while building, more than the " +
-      std::to_string(static_cast<long long>(available / 1048576.0)) + " MiB available; " +
-      (dgg ? "ask for a coarser accuracy (memory grows as 1 / sqrt(accuracy))"
-           : "lower K (memory grows linearly with K)"));
+    return fits;
   }
 
   // Nodes: the vertices in Z-order (see OrderNodes).
   OrderNodes(mesh);
-  // What each node's solve finds, in one block per node (made by the thread that solves it): its
-  // polar stencil (see makeStencil), then its links (target vertex in Target, length in X).
-  // Gathered below into the graph's stencil array and the links' arrays; one block a node, so
-  // that the blocks freed behind the gathering leave whole pages free to hand back.
-  std::vector<std::vector<StencilEntry>> made(nv);
-  std::vector<int> stencilSize(nv, 0);
-  WrapXY.assign(2 * static_cast<std::size_t>(nv), 0.0);
-  // (ReachedStencil: the reached, covered vertices join the stencils, not the links.)
-  const bool reachedStencil = dgg && options.ReachedStencil;
-  // Node n's polar stencil: its vertex's links, then (with `reached`) its reached vertices,
-  // sorted by departure angle (ties by that order), at (r cos a, r sin a); the first entry also
-  // turned by the vertex's total angle, for the pair that closes the fan. `order`: scratch.
-  auto makeStencil = [&](int n, const std::vector<DGGPropagation::Link>& links,
-                       const std::vector<DGGPropagation::Link>* reached, std::vector<int>& order) {
-    const std::size_t nl = links.size(), size = nl + (reached ? reached->size() : 0);
-    auto item = [&](std::size_t i) -> const DGGPropagation::Link& {
-      return i < nl ? links[i] : (*reached)[i - nl];
-    };
-    order.resize(size);
-    for (std::size_t i = 0; i < size; ++i)
-    {
-      order[i] = static_cast<int>(i);
-    }
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      const double aa = item(a).Angle, ab = item(b).Angle;
-      return aa < ab || (aa == ab && a < b);
-    });
-    std::vector<StencilEntry>& out = made[n];
-    out.resize(size + nl);
-    stencilSize[n] = static_cast<int>(size);
-    for (std::size_t i = 0; i < size; ++i)
-    {
-      const DGGPropagation::Link& l = item(static_cast<std::size_t>(order[i]));
-      const double r = l.Distance, a = l.Angle;
-      out[i].Target = NodeOf[l.Target];
-      out[i].X = r * std::cos(a);
-      out[i].Y = r * std::sin(a);
-      if (i == 0)
-      {
-        const double wrapped = a + mesh.TotalAngle(VertexOf[n]);
-        WrapXY[2 * static_cast<std::size_t>(n)] = r * std::cos(wrapped);
-        WrapXY[2 * static_cast<std::size_t>(n) + 1] = r * std::sin(wrapped);
-      }
-    }
-    for (std::size_t i = 0; i < nl; ++i)
-    {
-      out[size + i] = { links[i].Distance, 0.0, links[i].Target };
-    }
-  };
-  std::atomic<int> done(0);
-  std::atomic<bool> aborted(false);
-  const int buildThreads =
-    options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
-#pragma omp parallel num_threads(buildThreads)
-  {
-    // (Each engine allocates per-vertex state: only the one this graph uses is made.)
-    std::unique_ptr<ExactGeodesicSolver> solver(dgg ? nullptr : new ExactGeodesicSolver(mesh));
-    ExactGeodesicOptions opt;
-    opt.MaximumFinalVertices = k;
-    std::unique_ptr<DGGPropagation> propagation(dgg ? new DGGPropagation(mesh) : nullptr);
-    std::vector<DGGPropagation::Link> links, reached;
-    std::vector<int> order;
-    const double epsilon = DGGEpsilonPerAccuracy * options.Accuracy;
-    int masterCount = 0;
-    // Sources in node order: consecutive solves then cover overlapping neighbourhoods, whose
-    // mesh data and solver state the previous solve left in the cache.
-#pragma omp for schedule(dynamic, 64)
-    for (int node = 0; node < nv; ++node)
-    {
-      if (aborted.load(std::memory_order_relaxed))
-      {
-        continue;
-      }
-      const int s = VertexOf[node];
-      if (dgg)
-      {
-        propagation->Run(s, epsilon, links, reachedStencil ? &reached : nullptr);
-      }
-      else
-      {
-        static_cast<void>(solver->Solve(s, opt)); // s is a vertex of the mesh: accepted
-        links.clear();
-        for (int v : solver->FinalVertices())
-        {
-          if (v != s && solver->IsDirect(v))
-          {
-            links.push_back({ v, solver->Distance(v), solver->DepartureAngle(v) });
-          }
-        }
-      }
-      makeStencil(node, links, reachedStencil ? &reached : nullptr, order);
-      const int n = ++done;
-#ifdef _OPENMP
-      const bool master = omp_get_thread_num() == 0;
-#else
-      const bool master = true;
-#endif
-      // The calling thread reports (and may abort) every few of its own vertices.
-      if (master && progress && (++masterCount % 16 == 0) && !progress(0.95 * n / nv))
-      {
-        aborted = true;
-      }
-    }
-  }
-  if (aborted)
+  Builder builder(*this, mesh, options, k);
+  if (!builder.SolveNodes(progress))
   {
     return Status::Aborted();
   }
-
   // Everything below is laid out by node (the vertices in Z-order, see OrderNodes).
-
-  // The blocks, gathered into the stencil array and the links' arrays, in slabs of nodes in
-  // order (each slab on the build's threads): the stencil array is allocated without being
-  // written, so that its pages become resident as the slabs fill them, while the blocks gathered
-  // are freed and handed back to the system after each slab. The blocks and the array are then
-  // never both resident whole (with reached stencils they are most of the graph).
-  StencilOffsets.assign(nv + 1, 0);
-  std::vector<std::int64_t> linkOffsets(nv + 1, 0);
-  for (int n = 0; n < nv; ++n)
-  {
-    StencilOffsets[n + 1] = StencilOffsets[n] + stencilSize[n];
-    linkOffsets[n + 1] =
-      linkOffsets[n] + static_cast<std::int64_t>(made[n].size()) - stencilSize[n];
-  }
-  Stencil.clear();
-  Stencil.resize(StencilOffsets[nv]);
-  std::vector<int> linkTargets(linkOffsets[nv]); // vertices
-  std::vector<double> linkLengths(linkOffsets[nv]);
-  // (Slabs of about 32 MB of stencil, at most 32: handing memory back costs a pass over the
-  // heap, about 1 ms, which a small graph need not pay for every 1/32 of its nodes.)
-  const int slabs = static_cast<int>(std::min<std::int64_t>(32,
-    1 + StencilOffsets[nv] * static_cast<std::int64_t>(sizeof(StencilEntry)) / GatherSlabBytes));
-  for (int slab = 0; slab < slabs; ++slab)
-  {
-    const int first = static_cast<int>(static_cast<long long>(nv) * slab / slabs);
-    const int last = static_cast<int>(static_cast<long long>(nv) * (slab + 1) / slabs);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(buildThreads)
-    for (int n = first; n < last; ++n)
-    {
-      const std::vector<StencilEntry>& block = made[n];
-      std::copy(block.begin(), block.begin() + stencilSize[n], Stencil.begin() + StencilOffsets[n]);
-      for (std::int64_t i = 0; i < linkOffsets[n + 1] - linkOffsets[n]; ++i)
-      {
-        const StencilEntry& link = block[stencilSize[n] + i];
-        linkTargets[linkOffsets[n] + i] = link.Target;
-        linkLengths[linkOffsets[n] + i] = link.X;
-      }
-      std::vector<StencilEntry>().swap(made[n]);
-    }
-    ReturnFreedMemory();
-  }
-  std::vector<std::vector<StencilEntry>>().swap(made);
-  std::vector<int>().swap(stencilSize);
-
-  // Symmetrize and add the mesh edges; duplicates keep the smallest weight, so that both
-  // directions of a link carry the same value. Each thread fills the buckets of its own range of
-  // nodes, visiting every entry in the same order (the buckets come out as a serial fill makes
-  // them, for any thread count; the random writes, most of the time, are shared out). Counting
-  // and filling walk the entries with the same visitor, so that they agree.
-  const int fillThreads = std::min(buildThreads, 8);
-  std::vector<std::int64_t> count(nv + 1, 0);
-  std::vector<std::int64_t> fill;
-  std::vector<std::pair<int, double>> raw;
-  // Calls add(bucket node, other node, weight) for both directions of every link and mesh edge.
-  auto forEachEntry = [&](auto&& add) {
-    for (int s = 0; s < nv; ++s)
-    {
-      const int ns = NodeOf[s];
-      for (std::int64_t e = linkOffsets[ns]; e < linkOffsets[ns + 1]; ++e)
-      {
-        const int target = NodeOf[linkTargets[e]];
-        add(ns, target, linkLengths[e]);
-        add(target, ns, linkLengths[e]);
-      }
-    }
-    for (int h = 0; h < mesh.NumberOfHalfedges(); ++h)
-    {
-      const int a = NodeOf[mesh.Origin(h)], b = NodeOf[mesh.Destination(h)];
-      add(a, b, mesh.EdgeLength(h));
-      add(b, a, mesh.EdgeLength(h));
-    }
-  };
-#pragma omp parallel num_threads(fillThreads)
-  {
-    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    const int lo = static_cast<int>(static_cast<long long>(nv) * t / nt);
-    const int hi = static_cast<int>(static_cast<long long>(nv) * (t + 1) / nt);
-    forEachEntry([&](int bucket, int, double) {
-      if (bucket >= lo && bucket < hi)
-      {
-        count[bucket + 1]++;
-      }
-    });
-#pragma omp barrier
-#pragma omp single
-    {
-      for (int n = 0; n < nv; ++n)
-      {
-        count[n + 1] += count[n];
-      }
-      raw.resize(static_cast<std::size_t>(count[nv]));
-      fill.assign(count.begin(), count.end() - 1);
-    }
-    forEachEntry([&](int bucket, int other, double weight) {
-      if (bucket >= lo && bucket < hi)
-      {
-        raw[fill[bucket]++] = { other, weight };
-      }
-    });
-  }
-  std::vector<int>().swap(linkTargets);
-  std::vector<double>().swap(linkLengths);
-  std::vector<std::int64_t> kept(nv + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(buildThreads)
-  for (int n = 0; n < nv; ++n)
-  {
-    auto first = raw.begin() + count[n], last = raw.begin() + count[n + 1];
-    std::sort(first, last);
-    // Sorted by (target, weight): the first of each run is the smallest weight.
-    auto out = first;
-    for (auto it = first; it != last; ++it)
-    {
-      if (out == first || (out - 1)->first != it->first)
-      {
-        *out++ = *it;
-      }
-    }
-    kept[n + 1] = out - first;
-  }
-  Offsets.assign(nv + 1, 0);
-  for (int n = 0; n < nv; ++n)
-  {
-    Offsets[n + 1] = Offsets[n] + kept[n + 1];
-  }
-  Targets.resize(Offsets[nv]);
-  Weights.resize(Offsets[nv]);
-#pragma omp parallel for schedule(static) num_threads(fillThreads)
-  for (int n = 0; n < nv; ++n)
-  {
-    for (std::int64_t i = 0; i < kept[n + 1]; ++i)
-    {
-      Targets[Offsets[n] + i] = raw[count[n] + i].first;
-      Weights[Offsets[n] + i] = raw[count[n] + i].second;
-    }
-  }
-  std::vector<std::pair<int, double>>().swap(raw); // before the link index adds its array
+  builder.GatherBlocks();
+  builder.BucketEntries();
+  builder.KeepShortestEntries();
   IndexLinksInStencils();
   if (progress && !progress(1.0))
   {
@@ -494,7 +568,7 @@ Status SaddleVertexGraph::Build(const TriangleMesh& mesh, const SaddleVertexGrap
   Construction = options.Construction;
   K = EffectiveK(options, nv);
   Accuracy = dgg ? options.Accuracy : 0.0;
-  ReachedStencil = reachedStencil;
+  ReachedStencil = builder.ReachedStencil;
   Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return Status();
 }

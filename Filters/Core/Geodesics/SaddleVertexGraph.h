@@ -301,6 +301,8 @@ private:
   std::vector<int> NodeOf, VertexOf;
   void OrderNodes(const TriangleMesh& mesh);
   void IndexLinksInStencils();
+  // Build's steps after OrderNodes and the state they hand each other (SaddleVertexGraph.cpp).
+  struct Builder;
   GraphConstruction Construction = GraphConstruction::SaddleVertex;
   int K = 0;
   double Accuracy = 0.0;

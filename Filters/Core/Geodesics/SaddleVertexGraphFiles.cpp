@@ -127,6 +127,243 @@ private:
   std::FILE* File;
   bool Good = true;
 };
+
+// The fields of a cache file after its magic, in file order, which its checksum covers in the
+// same order: Save writes and sums the graph's, Load sums what it read.
+struct CacheFields
+{
+  const std::uint64_t& MeshHash;
+  const void* Key; // K (int32) for a saddle vertex graph, the accuracy (double) otherwise
+  std::size_t KeySize;
+  const double& Seconds;
+  const std::int64_t& Nv;
+  const std::int64_t& Ne;
+  const std::vector<std::int64_t>& Offsets;
+  const std::vector<int>& Targets;
+  const std::vector<double>& Weights;
+  const std::int64_t& Ns;
+  const std::vector<std::int64_t>& StencilOffsets;
+  // The stencil as the file stores it: targets, distances and positions in arrays of their own.
+  const std::vector<int>& StencilTargets;
+  const std::vector<double>& StencilR;
+  const std::vector<double>& StencilXY;
+  const std::vector<double>& WrapXY;
+  const std::vector<int>& VertexOf;
+
+  // Calls f(data, bytes) for each field, in file order.
+  template <class F>
+  void ForEach(const F& f) const
+  {
+    auto array = [&f](const auto& v) { f(v.data(), v.size() * sizeof(v[0])); };
+    f(&MeshHash, sizeof(MeshHash));
+    f(Key, KeySize);
+    f(&Seconds, sizeof(Seconds));
+    f(&Nv, sizeof(Nv));
+    f(&Ne, sizeof(Ne));
+    array(Offsets);
+    array(Targets);
+    array(Weights);
+    f(&Ns, sizeof(Ns));
+    array(StencilOffsets);
+    array(StencilTargets);
+    array(StencilR);
+    array(StencilXY);
+    array(WrapXY);
+    array(VertexOf);
+  }
+  std::uint64_t Checksum() const
+  {
+    Hasher sum;
+    ForEach([&sum](const void* data, std::size_t n) { sum.Add(data, n); });
+    return sum.H;
+  }
+};
+
+// What Load reads of a cache file, in file order (see CacheFields), and the node order derived
+// from it (NodeOf).
+struct CacheFile
+{
+  explicit CacheFile(bool dgg)
+    : Dgg(dgg)
+  {
+  }
+  // Where the key is read: the accuracy for a discrete geodesic graph, K otherwise.
+  void* Key() { return Dgg ? static_cast<void*>(&Accuracy) : static_cast<void*>(&K); }
+  std::int64_t KeySize() const { return Dgg ? sizeof(Accuracy) : sizeof(K); }
+  CacheFields Fields()
+  {
+    return { Hash, Key(), static_cast<std::size_t>(KeySize()), Seconds, Nv, Ne, Offsets, Targets,
+      Weights, Ns, StencilOffsets, StencilTargets, StencilR, StencilXY, WrapXY, VertexOf };
+  }
+
+  const bool Dgg;
+  std::int64_t Size = 0; // bytes
+  // Size of everything before the stencil count.
+  std::int64_t LinksEnd = 0;
+  char FileMagic[8] = {};
+  std::uint64_t Hash = 0;
+  std::int32_t K = 0;
+  double Accuracy = 0.0;
+  double Seconds = 0.0;
+  std::int64_t Nv = 0, Ne = 0;
+  std::vector<std::int64_t> Offsets;
+  std::vector<int> Targets;
+  std::vector<double> Weights;
+  std::int64_t Ns = -1;
+  std::vector<std::int64_t> StencilOffsets;
+  std::vector<int> StencilTargets;
+  std::vector<double> StencilR, StencilXY, WrapXY;
+  std::vector<int> VertexOf, NodeOf;
+  std::uint64_t Stored = 0; // the checksum
+};
+
+// Reads the magic and the header (Load): an error when the file is not a graph cache file of
+// the kind and format version asked for, was made for another mesh, accuracy or K, or is not as
+// long as its header says.
+Status ReadHeader(FileReader& in, const std::string& path, std::uint64_t meshHash,
+  const SaddleVertexGraphOptions& options, CacheFile& f)
+{
+  const bool dgg = f.Dgg;
+  const int k = options.K;
+  in.read(f.FileMagic, sizeof(f.FileMagic));
+  const bool reachedStencil = dgg && options.ReachedStencil;
+  const char* expected = dgg ? (reachedStencil ? DGRMagic : DGGMagic) : Magic;
+  if (in && std::memcmp(f.FileMagic, expected, 5) != 0 && GraphKind(f.FileMagic))
+  {
+    return Status::Error(
+      path + " holds " + GraphKind(f.FileMagic) + ", not " + GraphKind(expected));
+  }
+  in.read(reinterpret_cast<char*>(&f.Hash), sizeof(f.Hash));
+  in.read(static_cast<char*>(f.Key()), f.KeySize());
+  in.read(reinterpret_cast<char*>(&f.Seconds), sizeof(f.Seconds));
+  in.read(reinterpret_cast<char*>(&f.Nv), sizeof(f.Nv));
+  in.read(reinterpret_cast<char*>(&f.Ne), sizeof(f.Ne));
+  if (!in || std::memcmp(f.FileMagic, expected, sizeof(Magic)) != 0)
+  {
+    // (Format 004 added the node order; earlier files are rebuilt.)
+    return Status::Error(in && std::memcmp(f.FileMagic, expected, 5) == 0
+      ? path + " is a geodesic graph cache file of another format version"
+      : path + " is not a geodesic graph cache file");
+  }
+  if (f.Hash != meshHash)
+  {
+    return Status::Error(path + " was made for another mesh");
+  }
+  // K is clamped to the vertex count when building: compare the clamped request.
+  if (dgg && f.Accuracy != options.Accuracy)
+  {
+    return Status::Error(path + " was made for the accuracy " + std::to_string(f.Accuracy) +
+      ", not " + std::to_string(options.Accuracy));
+  }
+  if (!dgg && f.Nv >= 1 && static_cast<std::int64_t>(f.K) != std::min<std::int64_t>(k, f.Nv))
+  {
+    return Status::Error(
+      path + " was made with K = " + std::to_string(f.K) + ", not " + std::to_string(k));
+  }
+  const std::int64_t header =
+    sizeof(Magic) + sizeof(f.Hash) + f.KeySize() + sizeof(f.Seconds) + 2 * sizeof(std::int64_t);
+  // Size of everything before the stencil count, and what the stencil adds for ns entries.
+  f.LinksEnd = header + (f.Nv + 1) * 8 + f.Ne * 12;
+  if (f.Nv < 1 || f.Ne < 0 || f.Nv > (1LL << 31) || f.Ne > (1LL << 40) || f.Size < f.LinksEnd + 16)
+  {
+    return Status::Error(path + " is truncated or corrupt (size does not match its header)");
+  }
+  return Status();
+}
+
+// Reads the arrays after the header, up to the checksum (Load): the links, then, once the file's
+// size matches the stencil's count, the stencil and the node order.
+Status ReadArrays(FileReader& in, const std::string& path, CacheFile& f)
+{
+  const std::int64_t nv = f.Nv, ne = f.Ne;
+  f.Offsets.resize(nv + 1);
+  f.Targets.resize(ne);
+  f.Weights.resize(ne);
+  in.read(reinterpret_cast<char*>(f.Offsets.data()), f.Offsets.size() * sizeof(std::int64_t));
+  in.read(reinterpret_cast<char*>(f.Targets.data()), f.Targets.size() * sizeof(int));
+  in.read(reinterpret_cast<char*>(f.Weights.data()), f.Weights.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(&f.Ns), sizeof(f.Ns));
+  const std::int64_t ns = f.Ns;
+  if (!in || ns < 0 || ns > (1LL << 40) ||
+    f.Size != f.LinksEnd + 8 + (nv + 1) * 8 + ns * (4 + 8 + 16) + 16 * nv + 4 * nv + 8)
+  {
+    return Status::Error(path + " is truncated or corrupt (size does not match its header)");
+  }
+  f.StencilOffsets.resize(nv + 1);
+  f.StencilTargets.resize(ns);
+  f.StencilR.resize(ns);
+  f.StencilXY.resize(2 * ns);
+  f.WrapXY.resize(2 * nv);
+  f.VertexOf.resize(nv);
+  in.read(reinterpret_cast<char*>(f.StencilOffsets.data()),
+    f.StencilOffsets.size() * sizeof(std::int64_t));
+  in.read(reinterpret_cast<char*>(f.StencilTargets.data()), f.StencilTargets.size() * sizeof(int));
+  in.read(reinterpret_cast<char*>(f.StencilR.data()), f.StencilR.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(f.StencilXY.data()), f.StencilXY.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(f.WrapXY.data()), f.WrapXY.size() * sizeof(double));
+  in.read(reinterpret_cast<char*>(f.VertexOf.data()), f.VertexOf.size() * sizeof(int));
+  in.read(reinterpret_cast<char*>(&f.Stored), sizeof(f.Stored));
+  if (!in)
+  {
+    return Status::Error(path + " is truncated");
+  }
+  return Status();
+}
+
+// Structural checks, so that even a forged file with a valid checksum cannot cause
+// out-of-range reads: offsets, link and stencil targets and values, and the node order (a
+// permutation of the vertices, whose inverse goes to NodeOf).
+Status CheckStructure(const std::string& path, CacheFile& f)
+{
+  const std::int64_t nv = f.Nv, ne = f.Ne, ns = f.Ns;
+  auto validOffsets = [nv](const std::vector<std::int64_t>& o, std::int64_t total) {
+    if (o[0] != 0 || o[nv] != total)
+      return false;
+    for (std::int64_t v = 0; v < nv; ++v)
+      if (o[v + 1] < o[v])
+        return false;
+    return true;
+  };
+  if (!validOffsets(f.Offsets, ne) || !validOffsets(f.StencilOffsets, ns))
+  {
+    return Status::Error(path + " is corrupt (bad offsets)");
+  }
+  for (std::int64_t e = 0; e < ne; ++e)
+  {
+    if (f.Targets[e] < 0 || f.Targets[e] >= nv || !(f.Weights[e] >= 0.0) ||
+      !std::isfinite(f.Weights[e]))
+    {
+      return Status::Error(path + " is corrupt (bad link)");
+    }
+  }
+  for (std::int64_t e = 0; e < ns; ++e)
+  {
+    if (f.StencilTargets[e] < 0 || f.StencilTargets[e] >= nv || !std::isfinite(f.StencilR[e]) ||
+      !std::isfinite(f.StencilXY[2 * e]) || !std::isfinite(f.StencilXY[2 * e + 1]))
+    {
+      return Status::Error(path + " is corrupt (bad stencil)");
+    }
+  }
+  for (double w : f.WrapXY)
+  {
+    if (!std::isfinite(w))
+    {
+      return Status::Error(path + " is corrupt (bad stencil)");
+    }
+  }
+  // The node order must be a permutation of the vertices.
+  f.NodeOf.assign(nv, -1);
+  for (std::int64_t n = 0; n < nv; ++n)
+  {
+    const int v = f.VertexOf[n];
+    if (v < 0 || v >= nv || f.NodeOf[v] >= 0)
+    {
+      return Status::Error(path + " is corrupt (bad node order)");
+    }
+    f.NodeOf[v] = static_cast<int>(n);
+  }
+  return Status();
+}
 } // namespace
 
 Status SaddleVertexGraph::CheckCacheFileName(const std::string& path)
@@ -192,15 +429,6 @@ Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) 
   const void* key = dgg ? static_cast<const void*>(&accuracy) : static_cast<const void*>(&k);
   const std::size_t keySize = dgg ? sizeof(accuracy) : sizeof(k);
   const double seconds = Seconds;
-  Hasher sum;
-  sum.Add(&meshHash, sizeof(meshHash));
-  sum.Add(key, keySize);
-  sum.Add(&seconds, sizeof(seconds));
-  sum.Add(&nv, sizeof(nv));
-  sum.Add(&ne, sizeof(ne));
-  sum.AddVector(Offsets);
-  sum.AddVector(Targets);
-  sum.AddVector(Weights);
   // The stencil as the file stores it: targets, distances and positions in arrays of their own.
   const std::int64_t ns = static_cast<std::int64_t>(Stencil.size());
   std::vector<int> stencilTargets(ns);
@@ -212,30 +440,12 @@ Status SaddleVertexGraph::Save(const std::string& path, std::uint64_t meshHash) 
     stencilXY[2 * e] = Stencil[e].X;
     stencilXY[2 * e + 1] = Stencil[e].Y;
   }
-  sum.Add(&ns, sizeof(ns));
-  sum.AddVector(StencilOffsets);
-  sum.AddVector(stencilTargets);
-  sum.AddVector(stencilR);
-  sum.AddVector(stencilXY);
-  sum.AddVector(WrapXY);
-  sum.AddVector(VertexOf);
+  const CacheFields fields{ meshHash, key, keySize, seconds, nv, ne, Offsets, Targets, Weights, ns,
+    StencilOffsets, stencilTargets, stencilR, stencilXY, WrapXY, VertexOf };
+  const std::uint64_t sum = fields.Checksum();
   put(dgg ? (ReachedStencil ? DGRMagic : DGGMagic) : Magic, sizeof(Magic));
-  put(&meshHash, sizeof(meshHash));
-  put(key, keySize);
-  put(&seconds, sizeof(seconds));
-  put(&nv, sizeof(nv));
-  put(&ne, sizeof(ne));
-  put(Offsets.data(), Offsets.size() * sizeof(std::int64_t));
-  put(Targets.data(), Targets.size() * sizeof(int));
-  put(Weights.data(), Weights.size() * sizeof(double));
-  put(&ns, sizeof(ns));
-  put(StencilOffsets.data(), StencilOffsets.size() * sizeof(std::int64_t));
-  put(stencilTargets.data(), stencilTargets.size() * sizeof(int));
-  put(stencilR.data(), stencilR.size() * sizeof(double));
-  put(stencilXY.data(), stencilXY.size() * sizeof(double));
-  put(WrapXY.data(), WrapXY.size() * sizeof(double));
-  put(VertexOf.data(), VertexOf.size() * sizeof(int));
-  put(&sum.H, sizeof(sum.H));
+  fields.ForEach(put);
+  put(&sum, sizeof(sum));
   const int writeError = good ? 0 : errno;
   // On disk before the rename, so that a crash cannot leave the new name on a partial file.
   good = good && ::fsync(fd) == 0;
@@ -269,7 +479,6 @@ Status SaddleVertexGraph::Load(
   const std::string& path, std::uint64_t meshHash, const SaddleVertexGraphOptions& options)
 {
   const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
-  const int k = options.K;
   Clear();
   // (A FIFO or a device is never read: opened without blocking, then checked on the open
   // descriptor, so that nothing put at the path meanwhile can block the read either.)
@@ -286,174 +495,44 @@ Status SaddleVertexGraph::Load(
     return Status::Error(path + " is not a regular file");
   }
   FileReader in(fd);
-  const std::int64_t fileSize = static_cast<std::int64_t>(st.st_size);
-  char magic[8] = {};
-  std::uint64_t hash = 0;
-  std::int32_t fileK = 0;
-  double fileAccuracy = 0.0;
-  void* key = dgg ? static_cast<void*>(&fileAccuracy) : static_cast<void*>(&fileK);
-  const std::int64_t keySize = dgg ? sizeof(fileAccuracy) : sizeof(fileK);
-  double seconds = 0.0;
-  std::int64_t nv = 0, ne = 0;
-  in.read(magic, sizeof(magic));
-  const bool reachedStencil = dgg && options.ReachedStencil;
-  const char* expected = dgg ? (reachedStencil ? DGRMagic : DGGMagic) : Magic;
-  if (in && std::memcmp(magic, expected, 5) != 0 && GraphKind(magic))
+  CacheFile file(dgg);
+  file.Size = static_cast<std::int64_t>(st.st_size);
+  if (const Status header = ReadHeader(in, path, meshHash, options, file); !header.Ok())
   {
-    return Status::Error(
-      path + " holds " + GraphKind(magic) + ", not " + GraphKind(expected));
+    return header;
   }
-  in.read(reinterpret_cast<char*>(&hash), sizeof(hash));
-  in.read(static_cast<char*>(key), keySize);
-  in.read(reinterpret_cast<char*>(&seconds), sizeof(seconds));
-  in.read(reinterpret_cast<char*>(&nv), sizeof(nv));
-  in.read(reinterpret_cast<char*>(&ne), sizeof(ne));
-  if (!in || std::memcmp(magic, expected, sizeof(Magic)) != 0)
+  if (const Status arrays = ReadArrays(in, path, file); !arrays.Ok())
   {
-    // (Format 004 added the node order; earlier files are rebuilt.)
-    return Status::Error(in && std::memcmp(magic, expected, 5) == 0
-      ? path + " is a geodesic graph cache file of another format version"
-      : path + " is not a geodesic graph cache file");
+    return arrays;
   }
-  if (hash != meshHash)
-  {
-    return Status::Error(path + " was made for another mesh");
-  }
-  // K is clamped to the vertex count when building: compare the clamped request.
-  if (dgg && fileAccuracy != options.Accuracy)
-  {
-    return Status::Error(path + " was made for the accuracy " + std::to_string(fileAccuracy) +
-      ", not " + std::to_string(options.Accuracy));
-  }
-  if (!dgg && nv >= 1 && static_cast<std::int64_t>(fileK) != std::min<std::int64_t>(k, nv))
-  {
-    return Status::Error(
-      path + " was made with K = " + std::to_string(fileK) + ", not " + std::to_string(k));
-  }
-  const std::int64_t header =
-    sizeof(Magic) + sizeof(hash) + keySize + sizeof(seconds) + 2 * sizeof(std::int64_t);
-  // Size of everything before the stencil count, and what the stencil adds for ns entries.
-  const std::int64_t linksEnd = header + (nv + 1) * 8 + ne * 12;
-  if (nv < 1 || ne < 0 || nv > (1LL << 31) || ne > (1LL << 40) || fileSize < linksEnd + 16)
-  {
-    return Status::Error(path + " is truncated or corrupt (size does not match its header)");
-  }
-  std::vector<std::int64_t> offsets(nv + 1);
-  std::vector<int> targets(ne);
-  std::vector<double> weights(ne);
-  std::int64_t ns = -1;
-  in.read(reinterpret_cast<char*>(offsets.data()), offsets.size() * sizeof(std::int64_t));
-  in.read(reinterpret_cast<char*>(targets.data()), targets.size() * sizeof(int));
-  in.read(reinterpret_cast<char*>(weights.data()), weights.size() * sizeof(double));
-  in.read(reinterpret_cast<char*>(&ns), sizeof(ns));
-  if (!in || ns < 0 || ns > (1LL << 40) ||
-    fileSize != linksEnd + 8 + (nv + 1) * 8 + ns * (4 + 8 + 16) + 16 * nv + 4 * nv + 8)
-  {
-    return Status::Error(path + " is truncated or corrupt (size does not match its header)");
-  }
-  std::vector<std::int64_t> stencilOffsets(nv + 1);
-  std::vector<int> stencilTargets(ns);
-  std::vector<double> stencilR(ns), stencilXY(2 * ns), wrapXY(2 * nv);
-  std::vector<int> vertexOf(nv);
-  std::uint64_t stored = 0;
-  in.read(reinterpret_cast<char*>(stencilOffsets.data()), stencilOffsets.size() * sizeof(std::int64_t));
-  in.read(reinterpret_cast<char*>(stencilTargets.data()), stencilTargets.size() * sizeof(int));
-  in.read(reinterpret_cast<char*>(stencilR.data()), stencilR.size() * sizeof(double));
-  in.read(reinterpret_cast<char*>(stencilXY.data()), stencilXY.size() * sizeof(double));
-  in.read(reinterpret_cast<char*>(wrapXY.data()), wrapXY.size() * sizeof(double));
-  in.read(reinterpret_cast<char*>(vertexOf.data()), vertexOf.size() * sizeof(int));
-  in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
-  if (!in)
-  {
-    return Status::Error(path + " is truncated");
-  }
-  Hasher sum;
-  sum.Add(&hash, sizeof(hash));
-  sum.Add(key, static_cast<std::size_t>(keySize));
-  sum.Add(&seconds, sizeof(seconds));
-  sum.Add(&nv, sizeof(nv));
-  sum.Add(&ne, sizeof(ne));
-  sum.AddVector(offsets);
-  sum.AddVector(targets);
-  sum.AddVector(weights);
-  sum.Add(&ns, sizeof(ns));
-  sum.AddVector(stencilOffsets);
-  sum.AddVector(stencilTargets);
-  sum.AddVector(stencilR);
-  sum.AddVector(stencilXY);
-  sum.AddVector(wrapXY);
-  sum.AddVector(vertexOf);
-  if (sum.H != stored)
+  if (file.Fields().Checksum() != file.Stored)
   {
     return Status::Error(path + " is corrupt (checksum mismatch)");
   }
-  // Structural checks, so that even a forged file with a valid checksum cannot cause
-  // out-of-range reads.
-  auto validOffsets = [nv](const std::vector<std::int64_t>& o, std::int64_t total) {
-    if (o[0] != 0 || o[nv] != total)
-      return false;
-    for (std::int64_t v = 0; v < nv; ++v)
-      if (o[v + 1] < o[v])
-        return false;
-    return true;
-  };
-  if (!validOffsets(offsets, ne) || !validOffsets(stencilOffsets, ns))
+  if (const Status formed = CheckStructure(path, file); !formed.Ok())
   {
-    return Status::Error(path + " is corrupt (bad offsets)");
+    return formed;
   }
-  for (std::int64_t e = 0; e < ne; ++e)
+  Offsets = std::move(file.Offsets);
+  Targets = std::move(file.Targets);
+  Weights = std::move(file.Weights);
+  StencilOffsets = std::move(file.StencilOffsets);
+  Stencil.resize(file.Ns);
+  for (std::int64_t e = 0; e < file.Ns; ++e)
   {
-    if (targets[e] < 0 || targets[e] >= nv || !(weights[e] >= 0.0) || !std::isfinite(weights[e]))
-    {
-      return Status::Error(path + " is corrupt (bad link)");
-    }
+    Stencil[e].Target = file.StencilTargets[e];
+    Stencil[e].X = file.StencilXY[2 * e];
+    Stencil[e].Y = file.StencilXY[2 * e + 1];
   }
-  for (std::int64_t e = 0; e < ns; ++e)
-  {
-    if (stencilTargets[e] < 0 || stencilTargets[e] >= nv || !std::isfinite(stencilR[e]) ||
-      !std::isfinite(stencilXY[2 * e]) || !std::isfinite(stencilXY[2 * e + 1]))
-    {
-      return Status::Error(path + " is corrupt (bad stencil)");
-    }
-  }
-  for (double w : wrapXY)
-  {
-    if (!std::isfinite(w))
-    {
-      return Status::Error(path + " is corrupt (bad stencil)");
-    }
-  }
-  // The node order must be a permutation of the vertices.
-  std::vector<int> nodeOf(nv, -1);
-  for (std::int64_t n = 0; n < nv; ++n)
-  {
-    const int v = vertexOf[n];
-    if (v < 0 || v >= nv || nodeOf[v] >= 0)
-    {
-      return Status::Error(path + " is corrupt (bad node order)");
-    }
-    nodeOf[v] = static_cast<int>(n);
-  }
-  Offsets = std::move(offsets);
-  Targets = std::move(targets);
-  Weights = std::move(weights);
-  StencilOffsets = std::move(stencilOffsets);
-  Stencil.resize(ns);
-  for (std::int64_t e = 0; e < ns; ++e)
-  {
-    Stencil[e].Target = stencilTargets[e];
-    Stencil[e].X = stencilXY[2 * e];
-    Stencil[e].Y = stencilXY[2 * e + 1];
-  }
-  WrapXY = std::move(wrapXY);
-  VertexOf = std::move(vertexOf);
-  NodeOf = std::move(nodeOf);
+  WrapXY = std::move(file.WrapXY);
+  VertexOf = std::move(file.VertexOf);
+  NodeOf = std::move(file.NodeOf);
   IndexLinksInStencils();
   Construction = options.Construction;
-  K = dgg ? 0 : fileK;
-  Accuracy = dgg ? fileAccuracy : 0.0;
-  ReachedStencil = reachedStencil;
-  Seconds = std::isfinite(seconds) && seconds >= 0.0 ? seconds : 0.0;
+  K = dgg ? 0 : file.K;
+  Accuracy = dgg ? file.Accuracy : 0.0;
+  ReachedStencil = dgg && options.ReachedStencil;
+  Seconds = std::isfinite(file.Seconds) && file.Seconds >= 0.0 ? file.Seconds : 0.0;
   return Status();
 }
 
