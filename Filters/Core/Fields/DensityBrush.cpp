@@ -1,7 +1,7 @@
 #include "DensityBrush.h"
 
-#include "ExactGeodesic.h"
-#include "SVGGeodesicSolver.h"
+#include "GeodesicEngine.h"
+#include "SaddleVertexGraph.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,30 +39,23 @@ Result<std::vector<double>> BrushFactors(const TriangleMesh& mesh, const SaddleV
   {
     return Status::Error("the brush centre: " + valid.Message());
   }
-  std::vector<double> distance;
-  if (graph)
+  // The distance from the centre by the caller's engine: its graph's, or exact geodesics.
+  Result<std::unique_ptr<GeodesicEngine>> engine =
+    MakeGeodesicEngine(graph ? GraphSolverOf(*graph) : GeodesicSolver::Exact, mesh, graph);
+  if (!engine.Ok())
   {
-    SVGGeodesicSolver solver(mesh, *graph);
-    SVGSolveOptions options;
-    options.MaximumDistance = brush.Radius;
-    options.NumberOfThreads = threads;
-    if (const Status solved = solver.Solve({ brush.Center }, options); !solved.Ok())
-    {
-      return solved;
-    }
-    distance = solver.Distances();
+    return Status(engine);
   }
-  else
+  GeodesicSources sources;
+  sources.Points = { brush.Center };
+  GeodesicSolveOptions options;
+  options.MaximumDistance = brush.Radius;
+  options.NumberOfThreads = threads;
+  if (const Status solved = (*engine)->Solve(sources, options); !solved.Ok())
   {
-    ExactGeodesicSolver solver(mesh);
-    ExactGeodesicOptions options;
-    options.MaximumDistance = brush.Radius;
-    if (const Status solved = solver.Solve({ brush.Center }, options); !solved.Ok())
-    {
-      return solved;
-    }
-    distance = solver.Distances();
+    return solved;
   }
+  const std::vector<double> distance = (*engine)->Distances();
   std::vector<double> factors(distance.size(), 1.0);
   for (std::size_t v = 0; v < distance.size(); ++v)
   {

@@ -40,6 +40,12 @@ bool GeodesicSolverUsesGraph(GeodesicSolver solver)
     solver == GeodesicSolver::DGG;
 }
 
+GeodesicSolver GraphSolverOf(const SaddleVertexGraph& graph)
+{
+  return graph.GetConstruction() == GraphConstruction::DiscreteGeodesic ? GeodesicSolver::DGG
+                                                                        : GeodesicSolver::SVGLabelCorrecting;
+}
+
 std::vector<double> GeodesicEngine::Distances() const
 {
   std::vector<double> d(static_cast<std::size_t>(Surface.NumberOfVertices()));
@@ -83,6 +89,7 @@ public:
     return Solver_.Solve(points, exact);
   }
   double Distance(int v) const override { return Solver_.Distance(v); }
+  std::vector<double> Distances() const override { return Solver_.Distances(); }
   double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
 
 private:
@@ -121,6 +128,7 @@ public:
     return Solver_.SolveCurves(curves, svg);
   }
   double Distance(int v) const override { return Solver_.Distance(v); }
+  std::vector<double> Distances() const override { return Solver_.Distances(); }
   double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
 
 private:
@@ -158,6 +166,7 @@ public:
     return Solver_.Solve(points, runs, vsp);
   }
   double Distance(int v) const override { return Solver_.Distance(v); }
+  std::vector<double> Distances() const override { return Solver_.Distances(); }
 
 private:
   void AddStraightRuns(const std::vector<SurfacePoint>& curve, std::vector<std::vector<CurvePiece>>& runs) const

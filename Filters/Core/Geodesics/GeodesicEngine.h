@@ -33,6 +33,9 @@ constexpr int NumberOfGeodesicSolvers = 5;
 const char* GeodesicSolverName(GeodesicSolver solver);
 /// Whether the engine solves on a graph built beforehand (SaddleVertexGraph, DGG's included).
 bool GeodesicSolverUsesGraph(GeodesicSolver solver);
+/// The engine that solves on `graph` as it was built: DGG for a discrete geodesic graph, SVG
+/// (label-correcting) for a saddle vertex graph.
+GeodesicSolver GraphSolverOf(const SaddleVertexGraph& graph);
 
 /// Sources of a solve: points (vertices or face points) and curves (polylines of surface points,
 /// consecutive points joined by the straight surface path, TraceSurfaceCurve). A one-point curve
@@ -68,7 +71,7 @@ public:
   /// Vertex v's distance after the last solve (infinity: not reached).
   virtual double Distance(int v) const = 0;
   /// Every vertex's distance (infinity where unreached).
-  std::vector<double> Distances() const;
+  virtual std::vector<double> Distances() const;
   /// The angle at which v's geodesic leaves a single point source, where the engine computes it
   /// (ExactGeodesicSolver::DepartureAngle's convention); NaN otherwise.
   virtual double DepartureAngle(int v) const;
