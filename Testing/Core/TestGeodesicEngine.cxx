@@ -249,3 +249,53 @@ TEST(GeodesicEngine, AProgressCallbackAbortsTheEnginesThatReportProgress)
   ASSERT_TRUE(gs_test::Succeeded((*e)->Solve(sources, options)));
   EXPECT_NEAR((*e)->Distance(large.NumberOfVertices() - 1), std::sqrt(2.0), 1e-9);
 }
+
+TEST(GeodesicEngine, ReachedSetsAndDepartureAnglesAgreeAcrossEngines)
+{
+  const int centre = Plane().NumberOfVertices() / 2;
+  GeodesicSources sources;
+  sources.Points = { SurfacePoint::AtVertex(centre) };
+  GeodesicSolveOptions options;
+  options.MaximumDistance = 0.6;
+  options.Angles = true;
+  const std::unique_ptr<GeodesicEngine> exact = Engine(GeodesicSolver::Exact);
+  ASSERT_TRUE(exact && exact->Solve(sources, options).Ok());
+  // The exact engine's reached vertices come in order of distance.
+  const std::vector<int> exactReached = exact->Reached();
+  for (std::size_t i = 1; i < exactReached.size(); ++i)
+  {
+    ASSERT_LE(exact->Distance(exactReached[i - 1]), exact->Distance(exactReached[i]));
+  }
+  for (GeodesicSolver solver : AllSolvers)
+  {
+    const std::unique_ptr<GeodesicEngine> e = Engine(solver);
+    ASSERT_TRUE(e && e->Solve(sources, options).Ok());
+    std::vector<int> reached = e->Reached();
+    std::sort(reached.begin(), reached.end());
+    int finite = 0;
+    for (int v = 0; v < Plane().NumberOfVertices(); ++v)
+    {
+      const bool listed = std::binary_search(reached.begin(), reached.end(), v);
+      EXPECT_EQ(listed, std::isfinite(e->Distance(v))) << GeodesicSolverName(solver) << " vertex " << v;
+      finite += listed ? 1 : 0;
+    }
+    EXPECT_GT(finite, 20) << GeodesicSolverName(solver);
+    if (solver == GeodesicSolver::VirtualSources)
+    {
+      EXPECT_TRUE(std::isnan(e->DepartureAngle(exactReached.back()))); // (not computed)
+      continue;
+    }
+    // Departure angles (modulo the full turn) within a degree of the exact ones.
+    double worst = 0.0;
+    for (int v : exactReached)
+    {
+      if (v == centre || !std::isfinite(e->Distance(v)))
+      {
+        continue;
+      }
+      const double d = std::remainder(e->DepartureAngle(v) - exact->DepartureAngle(v), 2.0 * M_PI);
+      worst = std::max(worst, std::abs(d));
+    }
+    EXPECT_LT(worst, M_PI / 180.0) << GeodesicSolverName(solver);
+  }
+}

@@ -19,7 +19,8 @@ GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh, con
   GraphError = graph ? graph->CheckMesh(mesh) : Status();
   if (graph && GraphError.Ok())
   {
-    Svg.reset(new SVGGeodesicSolver(mesh, *graph));
+    Result<std::unique_ptr<GeodesicEngine>> engine = MakeGeodesicEngine(GraphSolverOf(*graph), mesh, graph);
+    GraphEngine = engine.Ok() ? std::move(*engine) : nullptr;
   }
   VertexRho.assign(Mesh.NumberOfVertices(), NaN);
   VertexTheta.assign(Mesh.NumberOfVertices(), NaN);
@@ -85,7 +86,7 @@ Result<double> GeodesicPolarCoordinates::ComputeCoveringDisc(
     }
   }
   const double bound = radius + 1.01 * Mesh.LongestEdgeLength();
-  if (Svg || !std::isfinite(radius)) // (a graph engine, or the whole surface)
+  if (GraphEngine || !std::isfinite(radius)) // (a graph engine, or the whole surface)
   {
     if (Status computed = Compute(source, bound, referenceAngle); !computed.Ok())
     {
@@ -188,24 +189,28 @@ Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius
     ? Mesh.TotalAngle(source.Vertex)
     : TwoPi;
   Reference = referenceAngle;
-  if (Svg)
+  if (GraphEngine)
   {
-    SVGSolveOptions options;
+    GeodesicEngine& engine = *GraphEngine;
+    GeodesicSources sources;
+    sources.Points = { source };
+    GeodesicSolveOptions options;
     options.MaximumDistance = maxDistance;
     options.Angles = true;
-    if (const Status solved = Svg->Solve({ source }, options); !solved.Ok())
+    options.NumberOfThreads = 1; // (with angles, the refinement runs on one thread anyway)
+    if (const Status solved = engine.Solve(sources, options); !solved.Ok())
     {
       return solved;
     }
-    for (int v : Svg->Reached())
+    for (int v : engine.Reached())
     {
-      if (Svg->Distance(v) <= radius)
+      if (engine.Distance(v) <= radius)
       {
         InsideList.push_back(v);
       }
     }
     std::sort(InsideList.begin(), InsideList.end(), [&](int a, int b) {
-      return Svg->Distance(a) < Svg->Distance(b) || (Svg->Distance(a) == Svg->Distance(b) && a < b);
+      return engine.Distance(a) < engine.Distance(b) || (engine.Distance(a) == engine.Distance(b) && a < b);
     });
   }
   else
@@ -222,8 +227,8 @@ Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius
   Source = source;
   for (int v : InsideList)
   {
-    VertexRho[v] = Svg ? Svg->Distance(v) : Solver.Distance(v);
-    const double raw = Svg ? Svg->DepartureAngle(v) : Solver.DepartureAngle(v);
+    VertexRho[v] = GraphEngine ? GraphEngine->Distance(v) : Solver.Distance(v);
+    const double raw = GraphEngine ? GraphEngine->DepartureAngle(v) : Solver.DepartureAngle(v);
     // The source vertex itself is the pole: angle 0 by convention.
     VertexTheta[v] = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
   }

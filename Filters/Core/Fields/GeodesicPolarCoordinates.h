@@ -14,7 +14,7 @@
 #pragma once
 
 #include "ExactGeodesic.h"
-#include "SVGGeodesicSolver.h"
+#include "GeodesicEngine.h"
 #include "SaddleVertexGraph.h"
 #include "Status.h"
 #include "SurfaceCurve.h"
@@ -174,7 +174,7 @@ private:
 
   const TriangleMesh& Mesh;
   ExactGeodesicSolver Solver;
-  std::unique_ptr<SVGGeodesicSolver> Svg;
+  std::unique_ptr<GeodesicEngine> GraphEngine; // point sources on the graph (null: exact)
   std::vector<int> InsideList;
   SurfacePoint Source;
   double Reference = 0.0;

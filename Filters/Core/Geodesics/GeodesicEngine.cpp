@@ -90,6 +90,7 @@ public:
   }
   double Distance(int v) const override { return Solver_.Distance(v); }
   std::vector<double> Distances() const override { return Solver_.Distances(); }
+  const std::vector<int>& Reached() const override { return Solver_.FinalVertices(); }
   double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
 
 private:
@@ -116,6 +117,7 @@ public:
     svg.MaximumDistance = options.MaximumDistance;
     svg.Refine = options.UnfoldingRefinement;
     svg.NumberOfThreads = options.NumberOfThreads;
+    svg.Angles = options.Angles;
     if (sources.Curves.empty())
     {
       return Solver_.Solve(sources.Points, svg);
@@ -129,6 +131,7 @@ public:
   }
   double Distance(int v) const override { return Solver_.Distance(v); }
   std::vector<double> Distances() const override { return Solver_.Distances(); }
+  const std::vector<int>& Reached() const override { return Solver_.Reached(); }
   double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
 
 private:
@@ -167,8 +170,21 @@ public:
   }
   double Distance(int v) const override { return Solver_.Distance(v); }
   std::vector<double> Distances() const override { return Solver_.Distances(); }
+  const std::vector<int>& Reached() const override
+  {
+    ReachedVertices.clear();
+    for (int v = 0; v < Surface.NumberOfVertices(); ++v)
+    {
+      if (std::isfinite(Solver_.Distance(v)))
+      {
+        ReachedVertices.push_back(v);
+      }
+    }
+    return ReachedVertices;
+  }
 
 private:
+  mutable std::vector<int> ReachedVertices; // Reached()'s buffer
   void AddStraightRuns(const std::vector<SurfacePoint>& curve, std::vector<std::vector<CurvePiece>>& runs) const
   {
     std::size_t i = 0;

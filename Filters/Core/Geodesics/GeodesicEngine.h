@@ -55,6 +55,10 @@ struct GeodesicSolveOptions
   /// Graph engines: threads of the refinement of large solves (0: every core; the same
   /// distances to the bit for any number).
   int NumberOfThreads = 0;
+  /// Also the departure angles from a single point source (DepartureAngle): graph engines
+  /// compute them only when asked (their refinement then runs on one thread); the exact engine
+  /// always does; the virtual sources never.
+  bool Angles = false;
   /// Called with the fraction done (engines that report it); false aborts the solve
   /// (Status::Aborted(), every vertex unreached).
   std::function<bool(double)> Progress;
@@ -72,6 +76,9 @@ public:
   virtual double Distance(int v) const = 0;
   /// Every vertex's distance (infinity where unreached).
   virtual std::vector<double> Distances() const;
+  /// The vertices the last solve reached: the exact engine's in the order they became final
+  /// (by distance), the others' in no particular order.
+  virtual const std::vector<int>& Reached() const = 0;
   /// The angle at which v's geodesic leaves a single point source, where the engine computes it
   /// (ExactGeodesicSolver::DepartureAngle's convention); NaN otherwise.
   virtual double DepartureAngle(int v) const;
