@@ -310,8 +310,9 @@ std::vector<std::vector<int>> ShapeDistributor::Impl::HigherPriorityNeighbours(
 void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::vector<int>& survivors,
   std::vector<char>& state, std::vector<int>& acceptedAs, long long& charts)
 {
-  // Greedy seeds one shape per random round: the first survivor that fits, in order.
-  std::vector<int> scratch;
+  // Greedy seeds one shape per random round: the first survivor that fits, in order (decided
+  // as every candidate is, Decide).
+  DecisionScratch scratch;
   for (int i : survivors)
   {
     Record& r = batch[i];
@@ -319,15 +320,7 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
     {
       break;
     }
-    ComputeCharts(r, Engine(0));
-    ++charts;
-    if (FullConflict(r, scratch))
-    {
-      r.Reason = Record::Rejection::Tables;
-      state[i] = 2;
-      continue;
-    }
-    if (DrawnConflict(r, scratch))
+    if (!Decide(r, 0, false, false, scratch))
     {
       state[i] = 2;
       continue;
@@ -337,6 +330,7 @@ void ShapeDistributor::Impl::PlantSeed(std::vector<Record>& batch, const std::ve
     Commit(std::move(r));
     break;
   }
+  charts += scratch.Charts;
   for (int i : survivors)
   {
     state[i] = state[i] == 0 ? 2 : state[i]; // after the seed: beyond the cut below
