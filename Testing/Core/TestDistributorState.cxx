@@ -4,10 +4,12 @@
 #include "DistributorProbes.h"
 #include "SamplingState.h"
 #include "ShapeDistributorImpl.h"
+#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <vector>
 
@@ -220,4 +222,30 @@ TEST(AcceptedShapes, RemoveLeavesTheSlotAndSortByKeyRenumbers)
   }
   EXPECT_EQ(IndexedKeys(a, a.CoverIndex), coverKeys);
   EXPECT_EQ(IndexedKeys(a, a.CentreIndex), centreKeys);
+}
+
+TEST(ClassSilhouettes, ClearanceIsTheCentresDistanceToTheOutlineOrNoneOutside)
+{
+  using ClassSilhouettes = gs::ShapeDistributorInspector::Impl::ClassSilhouettes;
+  // A square about its centre, and a U whose centre lies in its slot (outside the silhouette).
+  const gs::SafeDistanceTables tables = gs_test::PolygonTables({
+    { { -1, -1 }, { 1, -1 }, { 1, 1 }, { -1, 1 } },
+    { { -3, -3 }, { 3, -3 }, { 3, 3 }, { 1, 3 }, { 1, -1 }, { -1, -1 }, { -1, 3 }, { -3, 3 } },
+  });
+  ASSERT_EQ(tables.Classes.size(), 2u);
+  ClassSilhouettes s;
+  s.Prepare(tables.Classes);
+  ASSERT_EQ(s.Regions.size(), 2u);
+  ASSERT_EQ(s.Clearance.size(), 2u);
+  // The square's centre is an inscribed radius (half the side) from its outline: its
+  // circumradius over sqrt 2.
+  EXPECT_NEAR(s.Clearance[0], tables.Classes[0].Radius / std::sqrt(2.0), 1e-9 * tables.Classes[0].Radius);
+  EXPECT_EQ(s.Clearance[1], -1.0);
+  EXPECT_EQ(s.MaxClearance, s.Clearance[0]);
+  EXPECT_TRUE(s.Regions[0].Inside(gs::Vec2{ 0.0, 0.0 }));
+  EXPECT_FALSE(s.Regions[1].Inside(gs::Vec2{ 0.0, 0.0 }));
+  // A second Prepare starts afresh.
+  s.Prepare({ tables.Classes[1] });
+  EXPECT_EQ(s.Regions.size(), 1u);
+  EXPECT_EQ(s.MaxClearance, 0.0);
 }

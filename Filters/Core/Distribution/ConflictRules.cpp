@@ -14,42 +14,38 @@ namespace gs
 {
 using namespace distribution;
 
-
-void ShapeDistributor::Impl::PrepareClassRegions()
+void ShapeDistributor::Impl::ClassSilhouettes::Prepare(const std::vector<SafeDistanceClass>& classes)
 {
-  Silhouettes.Regions.clear();
-  Silhouettes.Clearance.assign(Tables.Classes.size(), -1.0);
+  Regions.clear();
+  double largest = 0.0;
+  std::vector<double> clearance(classes.size(), -1.0);
+  for (std::size_t k = 0; k < classes.size(); ++k)
   {
-    double largest = 0.0;
-    std::vector<double> clearance(Tables.Classes.size(), -1.0);
-    for (std::size_t k = 0; k < Tables.Classes.size(); ++k)
+    const SafeDistanceClass& c = classes[k];
+    ClassRegion probe(c.Outline.Rings, c.Radius, 0.0);
+    if (probe.Inside(Vec2{ 0.0, 0.0 }))
     {
-      const SafeDistanceClass& c = Tables.Classes[k];
-      ClassRegion probe(c.Outline.Rings, c.Radius, 0.0);
-      if (probe.Inside(Vec2{ 0.0, 0.0 }))
+      double d = std::numeric_limits<double>::infinity();
+      for (const auto& ring : c.Outline.Rings)
       {
-        double d = std::numeric_limits<double>::infinity();
-        for (const auto& ring : c.Outline.Rings)
+        for (std::size_t i = 0, n = ring.size(); i < n; ++i)
         {
-          for (std::size_t i = 0, n = ring.size(); i < n; ++i)
-          {
-            const Vec2 a = ring[i], ab = ring[(i + 1) % n] - ring[i];
-            const double l2 = Dot(ab, ab);
-            const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, -Dot(a, ab) / l2)) : 0.0;
-            d = std::min(d, Norm(a + ab * t));
-          }
+          const Vec2 a = ring[i], ab = ring[(i + 1) % n] - ring[i];
+          const double l2 = Dot(ab, ab);
+          const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, -Dot(a, ab) / l2)) : 0.0;
+          d = std::min(d, Norm(a + ab * t));
         }
-        clearance[k] = d;
-        largest = std::max(largest, d);
       }
+      clearance[k] = d;
+      largest = std::max(largest, d);
     }
-    for (const SafeDistanceClass& c : Tables.Classes)
-    {
-      Silhouettes.Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
-    }
-    Silhouettes.Clearance = clearance;
-    Silhouettes.MaxClearance = largest;
   }
+  for (const SafeDistanceClass& c : classes)
+  {
+    Regions.emplace_back(c.Outline.Rings, c.Radius, std::max(largest, 0.01 * c.Radius));
+  }
+  Clearance = clearance;
+  MaxClearance = largest;
 }
 
 bool ShapeDistributor::Impl::ConflictInCharts(const Record& X, const Record& Y) const

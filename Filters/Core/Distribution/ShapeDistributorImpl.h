@@ -370,10 +370,13 @@ struct ShapeDistributor::Impl
     std::vector<ClassRegion> Regions;
     std::vector<double> Clearance;
     double MaxClearance = 0.0; // the regions' reach for Within
+
+    /// Regions, Clearance and MaxClearance of `classes` (their outlines, in class units).
+    void Prepare(const std::vector<SafeDistanceClass>& classes);
   } Silhouettes;
 
-  /// Regions, Clearance and MaxClearance of the classes.
-  void PrepareClassRegions();
+  /// Silhouettes of the tables' classes (ClassSilhouettes::Prepare).
+  void PrepareClassRegions() { Silhouettes.Prepare(Tables.Classes); }
   /// The tables' safe distance of parts a and b at angles alphaA, alphaB (normalized); the sum
   /// of the class radii in Circumcircle mode.
   double SafeDistance(int a, int b, double alphaA, double alphaB) const
