@@ -124,12 +124,11 @@ int vtkSVGGeodesicDistance::Execute(vtkPolyData* input, vtkPointSet* sources, vt
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
 
-  if (this->Solver < EXACT || this->Solver > VIRTUAL_SOURCES)
+  if (!vtkCachedSurface::CheckEngine(this, this->Solver,
+        { gs::GeodesicSolver::Exact, gs::GeodesicSolver::SVGLabelCorrecting,
+          gs::GeodesicSolver::SVGDijkstra, gs::GeodesicSolver::DGG, gs::GeodesicSolver::VirtualSources },
+        this->K))
   {
-    vtkErrorMacro("Unknown Solver " << this->Solver
-                                    << " (0 = Exact, 1 = SVG (label-correcting), 2 = SVG (Dijkstra), "
-                                       "3 = DGG (accuracy-bounded), 4 = Virtual sources (no "
-                                       "precompute)).");
     return 1;
   }
   if (this->ResultArrayName.empty())

@@ -123,14 +123,10 @@ _SOLVERS = {"svg": vtkSVGGeodesicDistance.SVG_LABEL_CORRECTING,
 _CHART_SOLVERS = ("exact", "svg", "dgg")
 
 
-def _solver(solver, allowed):
+def _set_engine(f, solver, allowed, k, graph_accuracy):
     if solver not in allowed:
         raise ValueError("solver must be one of %s, not %r" % (sorted(allowed), solver))
-    return _SOLVERS[solver]
-
-
-def _set_engine(f, solver, allowed, k, graph_accuracy):
-    f.SetSolver(_solver(solver, allowed))
+    f.SetSolver(_SOLVERS[solver])
     f.SetK(int(k))
     f.SetGraphAccuracy(float(graph_accuracy))
 

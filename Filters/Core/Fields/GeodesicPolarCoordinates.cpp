@@ -16,10 +16,11 @@ GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh, con
   : Mesh(mesh)
   , Solver(mesh)
 {
-  GraphError = graph ? graph->CheckMesh(mesh) : Status();
-  if (graph && GraphError.Ok())
+  if (graph)
   {
+    // (A graph of another mesh: the error Compute and ComputeCurve return.)
     Result<std::unique_ptr<GeodesicEngine>> engine = MakeGeodesicEngine(GraphSolverOf(*graph), mesh, graph);
+    GraphError = engine;
     GraphEngine = engine.Ok() ? std::move(*engine) : nullptr;
   }
   VertexRho.assign(Mesh.NumberOfVertices(), NaN);

@@ -46,16 +46,6 @@ GeodesicSolver GraphSolverOf(const SaddleVertexGraph& graph)
                                                                         : GeodesicSolver::SVGLabelCorrecting;
 }
 
-std::vector<double> GeodesicEngine::Distances() const
-{
-  std::vector<double> d(static_cast<std::size_t>(Surface.NumberOfVertices()));
-  for (int v = 0; v < Surface.NumberOfVertices(); ++v)
-  {
-    d[v] = Distance(v);
-  }
-  return d;
-}
-
 double GeodesicEngine::DepartureAngle(int) const
 {
   return std::numeric_limits<double>::quiet_NaN();

@@ -75,7 +75,7 @@ public:
   /// Vertex v's distance after the last solve (infinity: not reached).
   virtual double Distance(int v) const = 0;
   /// Every vertex's distance (infinity where unreached).
-  virtual std::vector<double> Distances() const;
+  virtual std::vector<double> Distances() const = 0;
   /// The vertices the last solve reached: the exact engine's in the order they became final
   /// (by distance), the others' in no particular order.
   virtual const std::vector<int>& Reached() const = 0;
