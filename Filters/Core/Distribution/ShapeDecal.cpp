@@ -232,6 +232,42 @@ bool ShapeDecal::TextureCoordinate(const SurfacePoint& p, Vec2& uv) const
 
 namespace
 {
+// The texels of class c that draw: the silhouette's bounding box, 2% of the circumradius around
+// it (for texture filtering), within the class square (texture coordinates).
+void TexelBox(const SafeDistanceClass& c, Vec2& lo, Vec2& hi)
+{
+  lo = Vec2{ 1.0, 1.0 };
+  hi = Vec2{ 0.0, 0.0 };
+  for (const auto& ring : c.Outline.Rings)
+  {
+    for (const Vec2& p : ring)
+    {
+      const Vec2 u = DecalTextureCoordinate(p, c.Radius);
+      lo = Vec2{ std::min(lo.x, u.x), std::min(lo.y, u.y) };
+      hi = Vec2{ std::max(hi.x, u.x), std::max(hi.y, u.y) };
+    }
+  }
+  lo = Vec2{ std::max(0.0, lo.x - 0.01), std::max(0.0, lo.y - 0.01) };
+  hi = Vec2{ std::min(1.0, hi.x + 0.01), std::min(1.0, hi.y + 0.01) };
+  if (!(lo.x <= hi.x && lo.y <= hi.y))
+  {
+    lo = Vec2{ 0.0, 0.0 };
+    hi = Vec2{ 1.0, 1.0 };
+  }
+}
+
+// How far from the centre (class units) the texel box reaches: its farthest corner.
+double TexelBoxReach(const SafeDistanceClass& c)
+{
+  Vec2 lo, hi;
+  TexelBox(c, lo, hi);
+  double reach = 0.0;
+  for (const Vec2& u : { lo, hi, Vec2{ lo.x, hi.y }, Vec2{ hi.x, lo.y } })
+  {
+    reach = std::max(reach, Norm(DecalClassPoint(u, c.Radius)));
+  }
+  return reach;
+}
 // The state of one decal as it is built: the class points of the vertices near the shape, the
 // texels that draw, the long shape's grid and the values read on it once per vertex and edge.
 struct DecalBuilder
@@ -326,22 +362,7 @@ struct DecalBuilder
         Slots.Index[Local[i].first] = static_cast<int>(i);
       }
     }
-    for (const auto& ring : ShapeClass.Outline.Rings)
-    {
-      for (const Vec2& p : ring)
-      {
-        const Vec2 u = ToTexture(p);
-        Lo = Vec2{ std::min(Lo.x, u.x), std::min(Lo.y, u.y) };
-        Hi = Vec2{ std::max(Hi.x, u.x), std::max(Hi.y, u.y) };
-      }
-    }
-    Lo = Vec2{ std::max(0.0, Lo.x - 0.01), std::max(0.0, Lo.y - 0.01) };
-    Hi = Vec2{ std::min(1.0, Hi.x + 0.01), std::min(1.0, Hi.y + 0.01) };
-    if (!(Lo.x <= Hi.x && Lo.y <= Hi.y))
-    {
-      Lo = Vec2{ 0.0, 0.0 };
-      Hi = Vec2{ 1.0, 1.0 };
-    }
+    TexelBox(ShapeClass, Lo, Hi);
     if (Grid)
     {
       for (int k = 0; k < static_cast<int>(Grid->Nodes.size()) && FirstValid < 0; ++k)
@@ -739,7 +760,6 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
   const PlacedShape& s = Accepted.Placed.at(shape);
   const SafeDistanceClass& c = Tables.Classes[s.ClassId];
   const double scale = Options.ShapeSize * s.Scale;
-  const double reach = c.Radius * scale + Measures.MaxEdge;
   DecalBuilder b(Mesh, c, tolerance);
   // Class-frame coordinates (normalized) of the vertices near the shape.
   ExactEngineLease exact(*this); // (taken from the pool only for a short shape)
@@ -747,17 +767,27 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
   {
     // The exact polar coordinates of the centre (the inverse of the geodesic shots that draw the
     // outline), not the placement's chart: its graph's departure angles can be off by degrees
-    // behind saddles, which would draw the shape where it is not.
+    // behind saddles, which would draw the shape where it is not. Over every face that meets
+    // the disc its texel box reaches (the faces that can draw; the longest edge of the whole
+    // mesh as a margin made the chart 2-3 times larger on a scan).
     GeodesicPolarCoordinates& engine = exact.Take();
     const double reference = TangentAngle(Mesh, s.Centre, s.Direction);
-    if (!std::isfinite(reference) || !engine.Compute(s.Centre, reach, reference).Ok())
+    if (!std::isfinite(reference) ||
+      !engine.ComputeCoveringDisc(s.Centre, TexelBoxReach(c) * scale, reference).Ok())
     {
       return decal;
     }
     b.Exact = &engine;
     b.ExactUnit = scale;
+    // The decal's vertices: those within the circumradius plus the mesh's longest edge, as
+    // ever (the chart now stops sooner where the edges are shorter).
+    const double reach = c.Radius * scale + Measures.MaxEdge;
     for (int v : engine.Inside())
     {
+      if (!(engine.Rho(v) <= reach))
+      {
+        break; // (Inside is by increasing rho)
+      }
       Vec2 q;
       engine.LogMapAt(SurfacePoint::AtVertex(v), q);
       b.Local.emplace_back(v, q * (1.0 / scale));
