@@ -256,15 +256,14 @@ void TexelBox(const SafeDistanceClass& c, Vec2& lo, Vec2& hi)
   }
 }
 
-// How far from the centre (class units) the texel box reaches: its farthest corner.
-double TexelBoxReach(const SafeDistanceClass& c)
+// How far from the centre (class units, circumradius r) the texel box [lo, hi] reaches: its
+// farthest corner.
+double TexelBoxReach(const Vec2& lo, const Vec2& hi, double r)
 {
-  Vec2 lo, hi;
-  TexelBox(c, lo, hi);
   double reach = 0.0;
   for (const Vec2& u : { lo, hi, Vec2{ lo.x, hi.y }, Vec2{ hi.x, lo.y } })
   {
-    reach = std::max(reach, Norm(DecalClassPoint(u, c.Radius)));
+    reach = std::max(reach, Norm(DecalClassPoint(u, r)));
   }
   return reach;
 }
@@ -280,7 +279,7 @@ struct DecalBuilder
   double ExactUnit = 1.0;
   double TolUV = 0.0;                    // texture units per circumradius
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
-  Vec2 Lo{ 1.0, 1.0 }, Hi{ 0.0, 0.0 };   // the texels that draw
+  Vec2 Lo, Hi;                           // the texels that draw (TexelBox)
   int Hint = -1, FirstValid = -1;
   // Long shapes: the grid nodes whose class points lie in the texels that draw, by face (face,
   // barycentric coordinates), sorted. A piece of a face holding one meets the shape, whatever its
@@ -319,6 +318,7 @@ struct DecalBuilder
     , ShapeClass(c)
     , TolUV(tolerance > 0.0 ? 0.5 * tolerance : 0.0)
   {
+    TexelBox(ShapeClass, Lo, Hi);
   }
 
   // Vertex v's class point (null: not near the shape), through the thread's vertex-indexed
@@ -345,9 +345,9 @@ struct DecalBuilder
     return DecalTextureCoordinate(q, ShapeClass.Radius);
   }
 
-  // Sorts the vertices; the texels that draw: the silhouette's bounding box (2% of the
-  // circumradius around it, for texture filtering) within the class square. Faces whose texture
-  // triangle misses it would draw only transparent texels: not in the decal.
+  // Sorts and indexes the vertices. (The texels that draw, Lo and Hi, are set at construction:
+  // faces whose texture triangle misses them would draw only transparent texels, not in the
+  // decal.)
   void Start()
   {
     std::sort(Local.begin(), Local.end(),
@@ -362,7 +362,6 @@ struct DecalBuilder
         Slots.Index[Local[i].first] = static_cast<int>(i);
       }
     }
-    TexelBox(ShapeClass, Lo, Hi);
     if (Grid)
     {
       for (int k = 0; k < static_cast<int>(Grid->Nodes.size()) && FirstValid < 0; ++k)
@@ -767,20 +766,20 @@ ShapeDecal ShapeDistributor::Impl::DecalOf(int shape, double tolerance) const
   {
     // The exact polar coordinates of the centre (the inverse of the geodesic shots that draw the
     // outline), not the placement's chart: its graph's departure angles can be off by degrees
-    // behind saddles, which would draw the shape where it is not. Over every face that meets
-    // the disc its texel box reaches (the faces that can draw; the longest edge of the whole
-    // mesh as a margin made the chart 2-3 times larger on a scan).
+    // behind saddles, which would draw the shape where it is not. The chart covers the faces
+    // that meet the disc the texel box reaches (ComputeCoveringDisc: a margin of each face's own
+    // edges, not the mesh's longest edge everywhere).
     GeodesicPolarCoordinates& engine = exact.Take();
     const double reference = TangentAngle(Mesh, s.Centre, s.Direction);
     if (!std::isfinite(reference) ||
-      !engine.ComputeCoveringDisc(s.Centre, TexelBoxReach(c) * scale, reference).Ok())
+      !engine.ComputeCoveringDisc(s.Centre, TexelBoxReach(b.Lo, b.Hi, c.Radius) * scale, reference)
+         .Ok())
     {
       return decal;
     }
     b.Exact = &engine;
     b.ExactUnit = scale;
-    // The decal's vertices: those within the circumradius plus the mesh's longest edge, as
-    // ever (the chart now stops sooner where the edges are shorter).
+    // The decal's vertices: those within the circumradius plus the mesh's longest edge.
     const double reach = c.Radius * scale + Measures.MaxEdge;
     for (int v : engine.Inside())
     {
