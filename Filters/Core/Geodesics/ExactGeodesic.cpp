@@ -366,23 +366,10 @@ void ExactGeodesicSolver::Propagate(Window w)
     {
       // New frame: origin A, x along A -> C.
       const double b = Surface.EdgeLength(t);
-      const window_geometry::LeftFrame frame(cx, cy, b);
-      const window_geometry::ChildWindow child =
-        window_geometry::MakeChild(frame, b, ix, iy, w.B0, w.B1, false, right);
-      Window c;
-      c.Ix = child.Ix;
-      c.Iy = child.Iy;
-      c.B0 = child.B0;
-      c.B1 = child.B1;
-      if (c.B1 > c.B0)
-      {
-        c.H = t;
-        c.Sigma = w.Sigma;
-        c.Src = w.Src;
-        c.Root = w.Root;
-        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(cy, cx) : w.Phi;
-        PushWindow(c);
-      }
+      PushChild(w, t,
+        window_geometry::MakeChild(
+          window_geometry::LeftFrame(cx, cy, b), b, ix, iy, w.B0, w.B1, false, right),
+        cy, cx);
     }
   }
   if (right)
@@ -392,25 +379,32 @@ void ExactGeodesicSolver::Propagate(Window w)
     {
       // New frame: origin C, x along C -> B.
       const double a = Surface.EdgeLength(t);
-      const window_geometry::RightFrame frame(cx, cy, L, a);
-      const window_geometry::ChildWindow child =
-        window_geometry::MakeChild(frame, a, ix, iy, w.B0, w.B1, left, false);
-      Window c;
-      c.Ix = child.Ix;
-      c.Iy = child.Iy;
-      c.B0 = child.B0;
-      c.B1 = child.B1;
-      if (c.B1 > c.B0)
-      {
-        c.H = t;
-        c.Sigma = w.Sigma;
-        c.Src = w.Src;
-        c.Root = w.Root;
-        c.Phi = w.Src >= 0 ? w.Phi + std::atan2(-cy, L - cx) : w.Phi;
-        PushWindow(c);
-      }
+      PushChild(w, t,
+        window_geometry::MakeChild(
+          window_geometry::RightFrame(cx, cy, L, a), a, ix, iy, w.B0, w.B1, left, false),
+        -cy, L - cx);
     }
   }
+}
+
+void ExactGeodesicSolver::PushChild(const Window& w, int t,
+  const window_geometry::ChildWindow& child, double towardsY, double towardsX)
+{
+  if (!(child.B1 > child.B0))
+  {
+    return;
+  }
+  Window c;
+  c.Ix = child.Ix;
+  c.Iy = child.Iy;
+  c.B0 = child.B0;
+  c.B1 = child.B1;
+  c.H = t;
+  c.Sigma = w.Sigma;
+  c.Src = w.Src;
+  c.Root = w.Root;
+  c.Phi = w.Src >= 0 ? w.Phi + std::atan2(towardsY, towardsX) : w.Phi;
+  PushWindow(c);
 }
 
 void ExactGeodesicSolver::FinalizeUpTo(double key)

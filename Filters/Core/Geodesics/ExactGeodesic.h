@@ -129,6 +129,10 @@ private:
   void Enqueue(const Window& w);
   Window Dequeue();
   void Propagate(Window w);
+  // Queues the child of w on half-edge t (nothing when it is empty); (towardsX, towardsY) is the
+  // direction of t's frame x axis in w's frame, which turns a real source's departure angle.
+  void PushChild(const Window& w, int t, const window_geometry::ChildWindow& child,
+    double towardsY, double towardsX);
   void PropagateFromVertex(int v, double sigma, int src);
   void AddFaceSourceWindows(int f, const Vec3& p, int src, int sourceFace);
   bool Trim(Window& w) const;
