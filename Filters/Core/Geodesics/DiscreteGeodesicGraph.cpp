@@ -43,7 +43,7 @@ void InheritAnchors(const Window& w, Window& c, const Frame& frame, double slack
 }
 } // namespace
 
-DGGPropagation::DGGPropagation(const TriangleMesh& mesh)
+DGGPropagation::DGGPropagation(const TriangleMesh& mesh, double lengthScale)
   : Mesh(mesh)
 {
   window_geometry::HalfedgeFrames(Mesh, Cx, Cy, FanAngle);
@@ -55,7 +55,8 @@ DGGPropagation::DGGPropagation(const TriangleMesh& mesh)
   AngleY.assign(nv, 0.0);
   CrossHalfedge.assign(nv, -1);
   CrossX.assign(nv, 0.0);
-  Tolerance = 1e-11 * std::max(Mesh.BoundingBoxDiagonal(), 1e-300);
+  Tolerance =
+    1e-11 * std::max(lengthScale > 0.0 ? lengthScale : Mesh.BoundingBoxDiagonal(), 1e-300);
 }
 
 void DGGPropagation::Reset()
@@ -367,10 +368,13 @@ void DGGPropagation::Run(
   }
   Dist[s] = 0.0;
   Touched.push_back(s);
+  const bool fenced = Fence && Fence->size() == static_cast<std::size_t>(Mesh.NumberOfFaces());
+  Fenced = false;
   const int start = Mesh.VertexHalfedge(s);
   int h = start;
   do
   {
+    Fenced = Fenced || (fenced && (*Fence)[static_cast<std::size_t>(h / 3)]);
     // Face(h) with h: s -> a, Next(h): a -> b, Prev(h): b -> s.
     const int opp = TriangleMesh::Next(h);
     const int a = Mesh.Destination(h);
@@ -402,6 +406,7 @@ void DGGPropagation::Run(
   while (!Queue.Empty())
   {
     Window w = Queue.Pop();
+    Fenced = Fenced || (fenced && (*Fence)[static_cast<std::size_t>(w.H / 3)]);
     // Vertex distances may have dropped since the window was queued.
     if (Trim(w))
     {

@@ -49,7 +49,9 @@ class DGGPropagation
 {
 public:
   // The mesh must outlive the object; reused for many sources (each Run resets what it touched).
-  explicit DGGPropagation(const TriangleMesh& mesh);
+  // `lengthScale` sets the distance tolerance as in ExactGeodesicSolver (0: the mesh's bounding
+  // box diagonal).
+  explicit DGGPropagation(const TriangleMesh& mesh, double lengthScale = 0.0);
 
   struct Link
   {
@@ -63,6 +65,10 @@ public:
   // vertices reached, whose best arrival was covered (the source excluded), with the length and
   // direction of that arrival's direct geodesic.
   void Run(int s, double epsilon, std::vector<Link>& links, std::vector<Link>* reached = nullptr);
+  // Faces the propagation must not enter (one flag per face; null: none), as
+  // ExactGeodesicOptions::Fence; FenceReached says whether the last Run entered one.
+  void SetFence(const std::vector<unsigned char>* fence) { Fence = fence; }
+  bool FenceReached() const { return Fenced; }
 
   const DGGStatistics& Statistics() const { return Stats; }
 
@@ -110,6 +116,8 @@ private:
   std::vector<int> Touched;
   window_geometry::WindowQueue<Window> Queue;
   double Tolerance = 0.0;
+  const std::vector<unsigned char>* Fence = nullptr;
+  bool Fenced = false;
   DGGStatistics Stats;
 };
 

@@ -14,7 +14,7 @@ using window_geometry::Hypot;
 using window_geometry::SegmentDistance;
 } // namespace
 
-ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
+ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh, double lengthScale)
   : Surface(mesh)
 {
   window_geometry::HalfedgeFrames(Surface, Cx, Cy, FanAngle);
@@ -30,7 +30,8 @@ ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh)
   Propagated.assign(nv, 0);
   // Distances are compared with an absolute tolerance well above rounding noise and far below
   // any meaningful length of the mesh.
-  Tolerance = 1e-11 * std::max(Surface.BoundingBoxDiagonal(), 1e-300);
+  Tolerance =
+    1e-11 * std::max(lengthScale > 0.0 ? lengthScale : Surface.BoundingBoxDiagonal(), 1e-300);
 }
 
 void ExactGeodesicSolver::Reset()
@@ -199,6 +200,10 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
   {
     // Face f = face(h) with h: v -> a, Next(h): a -> b, Prev(h): b -> v; its corner at v spans
     // [FanAngle[h], FanAngle[h] + beta] about v.
+    if (Fence && (*Fence)[static_cast<std::size_t>(h / 3)])
+    {
+      Fenced = true;
+    }
     const int opp = TriangleMesh::Next(h);
     const int a = Surface.Destination(h);
     const int b = Surface.Origin(TriangleMesh::Prev(h));
@@ -526,6 +531,10 @@ bool ExactGeodesicSolver::ProcessWindows(
       }
       continue;
     }
+    if (Fence && (*Fence)[static_cast<std::size_t>(w.H / 3)])
+    {
+      Fenced = true;
+    }
     // Vertex distances may have dropped since the window was queued: trim it again.
     if (Trim(w))
     {
@@ -539,6 +548,10 @@ Status ExactGeodesicSolver::Solve(
   const std::vector<SurfacePoint>& sources, const ExactGeodesicOptions& options)
 {
   Reset();
+  Fence = options.Fence && options.Fence->size() == static_cast<std::size_t>(Surface.NumberOfFaces())
+    ? options.Fence
+    : nullptr;
+  Fenced = false;
   if (sources.empty())
   {
     return Status::Error("no source given");

@@ -38,6 +38,11 @@ struct ExactGeodesicOptions
   // Stop once every vertex listed is final (null or empty: no such stop; MaximumDistance still
   // bounds the solve). The vertices final by then are exact; the others are unreachable.
   const std::vector<int>* StopOnceFinal = nullptr;
+  // Faces the solve must not enter, one flag per face (null: none). A solve on a piece of a
+  // larger surface marks the faces that have a vertex whose other faces are missing: one that
+  // enters none of them computed what it would on the whole surface (FenceReached says whether
+  // it did; the solve itself goes on regardless).
+  const std::vector<unsigned char>* Fence = nullptr;
 };
 
 struct ExactGeodesicStatistics
@@ -53,8 +58,10 @@ class ExactGeodesicSolver
 public:
   static constexpr double Unreachable = std::numeric_limits<double>::infinity();
 
-  // The mesh must outlive the solver.
-  explicit ExactGeodesicSolver(const TriangleMesh& mesh);
+  // The mesh must outlive the solver. Distances are compared with an absolute tolerance of
+  // 1e-11 times `lengthScale`, the mesh's bounding box diagonal when 0 (a piece of a larger
+  // surface passes the whole surface's, so that it decides as a solve on the whole would).
+  explicit ExactGeodesicSolver(const TriangleMesh& mesh, double lengthScale = 0.0);
 
   // Multi-source solve. Fails (and leaves every distance unreachable) when there is no source or
   // a source is invalid (see TriangleMesh::CheckPoint), the message saying which and why.
@@ -97,6 +104,9 @@ public:
 
   const ExactGeodesicStatistics& Statistics() const { return Stats; }
   const TriangleMesh& Mesh() const { return Surface; }
+  // Whether the last solve entered a face of ExactGeodesicOptions::Fence (a window propagated
+  // into it or a vertex of it spread its windows).
+  bool FenceReached() const { return Fenced; }
 
 private:
   struct Window
@@ -174,6 +184,8 @@ private:
   };
   std::vector<VertexKey> VertexQueue; // binary heap of tentative vertex distances
   double Tolerance = 0.0;             // absolute distance tolerance (scaled to the mesh)
+  const std::vector<unsigned char>* Fence = nullptr; // the solve's fence (options)
+  bool Fenced = false;
   ExactGeodesicStatistics Stats;
 };
 

@@ -115,6 +115,11 @@ double SaddleVertexGraph::EstimatedBuildBytes(
   return EstimatedBuildBytes(numberOfVertices, static_cast<int>(std::ceil(k)));
 }
 
+double SaddleVertexGraph::DiscreteGeodesicEpsilon(double accuracy)
+{
+  return DGGEpsilonPerAccuracy * accuracy;
+}
+
 int SaddleVertexGraph::LocalDiskSize() const
 {
   if (Construction == GraphConstruction::SaddleVertex)
@@ -268,7 +273,7 @@ struct SaddleVertexGraph::Builder
       std::unique_ptr<DGGPropagation> propagation(Dgg ? new DGGPropagation(Mesh) : nullptr);
       std::vector<DGGPropagation::Link> links, reached;
       std::vector<int> order;
-      const double epsilon = DGGEpsilonPerAccuracy * Options.Accuracy;
+      const double epsilon = DiscreteGeodesicEpsilon(Options.Accuracy);
       int masterCount = 0;
       // Sources in node order: consecutive solves then cover overlapping neighbourhoods, whose
       // mesh data and solver state the previous solve left in the cache.

@@ -108,6 +108,9 @@ public:
   // whose edge-sized gaps between seeds cost at most its epsilon (about 0.45 / epsilon
   // vertices, at least 50; see DiscreteGeodesicGraph.h for epsilon).
   int LocalDiskSize() const;
+  // The epsilon of the discrete geodesic graph's propagation (DGGPropagation::Run) for the
+  // accuracy asked for (see DiscreteGeodesicGraph.h).
+  static double DiscreteGeodesicEpsilon(double accuracy);
   double BuildSeconds() const { return Seconds; }
   std::size_t MemoryBytes() const;
   // Build gathers the per-vertex stencils into the graph's array in slabs of nodes holding about

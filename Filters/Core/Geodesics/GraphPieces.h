@@ -1,0 +1,120 @@
+// The saddle vertex graph or discrete geodesic graph of a surface partitioned over processes,
+// and shortest paths on it, without any process holding the whole surface or the whole graph.
+//
+// PieceGraph: each process solves from the vertices it owns (SurfacePiece) on its piece, as
+// SaddleVertexGraph::Build does on the whole surface, with the piece's faces that have an
+// incomplete vertex as a fence: a solve that stayed inside it computed what the whole surface
+// gives (the same faces and vertices in the same relative order, the same tolerance); the
+// vertices whose solve reached the fence are solved again once the band has grown (its width
+// doubles each time). Each link then goes to the owner of its other end, so that every process
+// holds the whole adjacency of its vertices: both directions of every link and mesh edge, the
+// smallest weight per target, as in the serial graph.
+//
+// PieceDistanceSolver: shortest paths by rounds. Each process runs Dijkstra on its vertices; a
+// link to another process's vertex sends the distance it offers to that process at the end of
+// the round; a global sum of the messages sent decides when nothing changed. The result is the
+// serial graph's shortest path distances to the bit: with positive weights and rounded additions
+// that are monotone, every order of relaxation reaches the same smallest fixed point.
+//
+// What is not here yet: the unfolding refinement and surface-point or curve sources (the filter
+// gathers the surface for those).
+#pragma once
+
+#include "PieceCommunicator.h"
+#include "SaddleVertexGraph.h"
+#include "Status.h"
+#include "SurfacePiece.h"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace gs
+{
+
+class PieceGraph
+{
+public:
+  // Collective. Builds the adjacency of the vertices `piece` owns, growing the piece's band until
+  // every solve stays inside it. Fails on every process when one fails (invalid options, a piece
+  // that cannot grow) or aborts (the progress callback, called on the calling thread with the
+  // fraction of this process's vertices done, returned false). K is clamped to the whole
+  // surface's vertex count, as SaddleVertexGraph::Build does.
+  Status Build(SurfacePiece& piece, const SaddleVertexGraphOptions& options,
+    PieceCommunicator& comm, const ProgressCallback& progress = nullptr);
+
+  // Owned vertices are numbered 0 .. NumberOfOwned() - 1 in increasing global id.
+  int NumberOfOwned() const { return static_cast<int>(OwnedIds.size()); }
+  std::int64_t OwnedId(int i) const { return OwnedIds[static_cast<std::size_t>(i)]; }
+  // The owned number of a global id (-1 when this process does not own it).
+  int OwnedIndex(std::int64_t globalId) const;
+  // Adjacency of owned vertex i: entries Begin(i) .. End(i), sorted by target global id.
+  std::int64_t Begin(int i) const { return Offsets[static_cast<std::size_t>(i)]; }
+  std::int64_t End(int i) const { return Offsets[static_cast<std::size_t>(i) + 1]; }
+  std::int64_t TargetId(std::int64_t e) const { return Entries[static_cast<std::size_t>(e)].Id; }
+  // The target's owned number on this process, or -1 - (its owner's rank).
+  int Target(std::int64_t e) const { return Entries[static_cast<std::size_t>(e)].Local; }
+  double Weight(std::int64_t e) const { return Entries[static_cast<std::size_t>(e)].Weight; }
+  // Directed entries over all processes (as SaddleVertexGraph::NumberOfEntries).
+  std::int64_t GlobalNumberOfEntries() const { return GlobalEntries; }
+  // Vertices solved again after the band grew, over all processes, and the band's final width.
+  std::int64_t GlobalResolved() const { return Resolved; }
+  int Rings() const { return BandRings; }
+  double BuildSeconds() const { return Seconds; }
+
+private:
+  struct Entry
+  {
+    std::int64_t Id;
+    double Weight;
+    int Local;
+  };
+  // A link found by an owned vertex's solve, in global ids.
+  struct FoundLink
+  {
+    std::int64_t Source, Target;
+    double Weight;
+    int TargetOwner;
+  };
+  // Build's steps: the owned vertices' solves (again for those that reached the fence, after the
+  // band has grown), into `found` by owned number; then the adjacency from them.
+  Status SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOptions& options, int k,
+    PieceCommunicator& comm, const ProgressCallback& progress,
+    std::vector<std::vector<FoundLink>>& found);
+  void Assemble(const SurfacePiece& piece, std::vector<std::vector<FoundLink>>& found,
+    PieceCommunicator& comm);
+  std::vector<std::int64_t> OwnedIds;
+  std::vector<std::int64_t> Offsets;
+  std::vector<Entry> Entries;
+  std::int64_t GlobalEntries = 0, Resolved = 0;
+  int BandRings = 0;
+  double Seconds = 0.0;
+};
+
+class PieceDistanceSolver
+{
+public:
+  // The graph must outlive the solver.
+  explicit PieceDistanceSolver(const PieceGraph& graph);
+
+  // Collective. Seeds: (global vertex id, initial distance); every process may pass the whole
+  // list (each keeps those it owns). Vertices farther than maxDistance (> 0) stay unreached
+  // (infinite). Fails on every process when a seed's id is owned by no process.
+  Status Solve(const std::vector<std::pair<std::int64_t, double>>& seeds, double maxDistance,
+    PieceCommunicator& comm);
+  // Distance of owned vertex i (infinite where unreached).
+  double Distance(int i) const { return Dist[static_cast<std::size_t>(i)]; }
+  // Collective. The distance of every vertex of `piece` listed in `wanted` (local vertices of
+  // the piece, each complete), from their owners; infinite where unreached.
+  std::vector<double> Fetch(
+    const SurfacePiece& piece, const std::vector<int>& wanted, PieceCommunicator& comm) const;
+  // Rounds of the last solve (exchanges of distances).
+  int Rounds() const { return NumRounds; }
+
+private:
+  const PieceGraph& Graph;
+  std::vector<double> Dist;
+  int NumRounds = 0;
+};
+
+} // namespace gs

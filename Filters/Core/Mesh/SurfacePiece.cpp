@@ -1,0 +1,410 @@
+#include "SurfacePiece.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+
+namespace gs
+{
+
+namespace
+{
+// Every process fails when one does: the first failing rank's message goes to all.
+Status Agree(const Status& mine, PieceCommunicator& comm)
+{
+  const std::int64_t failed = comm.Sum(mine.Ok() ? 0 : 1);
+  if (failed == 0)
+  {
+    return Status();
+  }
+  const int first = static_cast<int>(comm.Min(mine.Ok() ? std::numeric_limits<double>::max()
+                                                         : static_cast<double>(comm.Rank())));
+  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.Size())), in;
+  if (comm.Rank() == first)
+  {
+    for (ByteBuffer& b : out)
+    {
+      b.assign(mine.Message().begin(), mine.Message().end());
+    }
+  }
+  comm.Exchange(out, in);
+  const ByteBuffer& text = in[static_cast<std::size_t>(first)];
+  std::string message(text.begin(), text.end());
+  if (message.empty())
+  {
+    message = "the surface's pieces could not be put together";
+  }
+  return Status::Error(first == comm.Rank() ? message
+                                            : "process " + std::to_string(first) + ": " + message);
+}
+} // namespace
+
+void SurfacePiece::AddFace(std::int64_t id, const FaceRecord& face)
+{
+  auto [it, added] = Faces.emplace(id, face);
+  if (!added)
+  {
+    it->second.Owner = std::min(it->second.Owner, face.Owner);
+  }
+  for (const std::int64_t v : face.V)
+  {
+    VertexRecord& r = Vertices[v];
+    r.Owner = std::min(r.Owner, face.Owner);
+  }
+}
+
+Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicator& comm)
+{
+  MyRank = comm.Rank();
+  NumRings = 0;
+  Faces.clear();
+  Vertices.clear();
+  OwnStar.clear();
+  std::vector<std::int64_t> frontier;
+
+  Status valid;
+  const std::size_t np = own.Points.size(), nt = own.Triangles.size();
+  if (own.PointIds.size() != np || own.TriangleIds.size() != nt)
+  {
+    valid = Status::Error("every point and every triangle needs a global id");
+  }
+  for (std::size_t t = 0; t < nt && valid.Ok(); ++t)
+  {
+    for (const int k : own.Triangles[t])
+    {
+      if (k < 0 || static_cast<std::size_t>(k) >= np)
+      {
+        valid = Status::Error("triangle " + std::to_string(own.TriangleIds[t]) +
+          " uses a point that is not in its piece");
+        break;
+      }
+    }
+  }
+  // Vertices: every point used, by id (a point listed twice under one id must sit in one place).
+  const int maxOwner = std::numeric_limits<int>::max();
+  for (std::size_t t = 0; t < nt && valid.Ok(); ++t)
+  {
+    for (const int k : own.Triangles[t])
+    {
+      const std::int64_t id = own.PointIds[static_cast<std::size_t>(k)];
+      const Vec3& p = own.Points[static_cast<std::size_t>(k)];
+      auto [it, added] = Vertices.emplace(id, VertexRecord{ p, maxOwner, false });
+      if (!added && !(it->second.P.x == p.x && it->second.P.y == p.y && it->second.P.z == p.z))
+      {
+        valid = Status::Error("point id " + std::to_string(id) + " is used at two positions");
+      }
+    }
+  }
+  if (const Status agreed = Agree(valid, comm); !agreed.Ok())
+  {
+    Vertices.clear();
+    return agreed;
+  }
+
+  // Own faces; the edges used once among them bound the own region: their vertices have faces
+  // on other processes (or on the surface's boundary) and are the first requests.
+  std::map<std::pair<std::int64_t, std::int64_t>, int> edgeUses;
+  for (std::size_t t = 0; t < nt; ++t)
+  {
+    FaceRecord face;
+    for (int k = 0; k < 3; ++k)
+    {
+      face.V[static_cast<std::size_t>(k)] =
+        own.PointIds[static_cast<std::size_t>(own.Triangles[t][static_cast<std::size_t>(k)])];
+    }
+    face.Owner = MyRank;
+    AddFace(own.TriangleIds[t], face);
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::int64_t a = face.V[static_cast<std::size_t>(k)];
+      const std::int64_t b = face.V[static_cast<std::size_t>((k + 1) % 3)];
+      ++edgeUses[{ std::min(a, b), std::max(a, b) }];
+      OwnStar[a].push_back(own.TriangleIds[t]);
+    }
+  }
+  for (auto& [id, list] : OwnStar)
+  {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  for (const auto& [edge, uses] : edgeUses)
+  {
+    if (uses == 1)
+    {
+      frontier.push_back(edge.first);
+      frontier.push_back(edge.second);
+    }
+  }
+  std::sort(frontier.begin(), frontier.end());
+  frontier.erase(std::unique(frontier.begin(), frontier.end()), frontier.end());
+  // The other own vertices are surrounded by own faces: complete already.
+  for (auto& [id, r] : Vertices)
+  {
+    r.Complete = !std::binary_search(frontier.begin(), frontier.end(), id);
+  }
+
+  // The whole surface's bounding box, as TriangleMesh computes it.
+  Vec3 lo(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity());
+  Vec3 hi = lo * -1.0;
+  for (const auto& [id, r] : Vertices)
+  {
+    lo = Vec3(std::min(lo.x, r.P.x), std::min(lo.y, r.P.y), std::min(lo.z, r.P.z));
+    hi = Vec3(std::max(hi.x, r.P.x), std::max(hi.y, r.P.y), std::max(hi.z, r.P.z));
+  }
+  lo = Vec3(comm.Min(lo.x), comm.Min(lo.y), comm.Min(lo.z));
+  hi = Vec3(comm.Max(hi.x), comm.Max(hi.y), comm.Max(hi.z));
+  Diagonal = std::isfinite(lo.x) ? Norm(hi - lo) : 0.0;
+
+  GatherRing(Incomplete(), comm); // the faces around the own vertices: their owners are known
+  return Grow(rings, comm);
+}
+
+std::vector<std::int64_t> SurfacePiece::Incomplete() const
+{
+  std::vector<std::int64_t> ids;
+  for (const auto& [id, r] : Vertices)
+  {
+    if (!r.Complete)
+    {
+      ids.push_back(id);
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+std::vector<std::int64_t> SurfacePiece::Pinched() const
+{
+  // Each face adds the two spokes (v, x) of each of its incomplete vertices v; a spoke used once
+  // ends a fan: more than two such ends, more than one fan.
+  std::map<std::pair<std::int64_t, std::int64_t>, int> spokes;
+  for (const auto& [id, face] : Faces)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::int64_t v = face.V[static_cast<std::size_t>(k)];
+      if (!Vertices.at(v).Complete)
+      {
+        ++spokes[{ v, face.V[static_cast<std::size_t>((k + 1) % 3)] }];
+        ++spokes[{ v, face.V[static_cast<std::size_t>((k + 2) % 3)] }];
+      }
+    }
+  }
+  std::vector<std::int64_t> ids;
+  std::int64_t current = 0;
+  int ends = 0;
+  for (auto it = spokes.begin(); it != spokes.end(); ++it)
+  {
+    if (it == spokes.begin() || it->first.first != current)
+    {
+      current = it->first.first;
+      ends = 0;
+    }
+    if (it->second == 1 && ++ends == 3)
+    {
+      ids.push_back(current);
+    }
+  }
+  return ids;
+}
+
+Status SurfacePiece::Grow(int rings, PieceCommunicator& comm)
+{
+  for (int r = 0; r < rings; ++r)
+  {
+    GatherRing(Incomplete(), comm);
+    ++NumRings;
+  }
+  // Where the band's edge meets itself at a vertex (two fans of faces), the piece would not be
+  // a manifold mesh: such vertices get their whole star, until none is left.
+  while (true)
+  {
+    const std::vector<std::int64_t> pinched = Pinched();
+    if (comm.Sum(static_cast<std::int64_t>(pinched.size())) == 0)
+    {
+      break;
+    }
+    GatherRing(pinched, comm);
+  }
+  return MakeMesh(comm);
+}
+
+void SurfacePiece::GatherRing(const std::vector<std::int64_t>& request, PieceCommunicator& comm)
+{
+  const std::size_t size = static_cast<std::size_t>(comm.Size());
+  std::vector<ByteBuffer> requests(size), asked;
+  {
+    ByteBuffer mine;
+    ByteWriter w(mine);
+    for (const std::int64_t v : request)
+    {
+      w.Put(v);
+    }
+    for (std::size_t q = 0; q < size; ++q)
+    {
+      if (static_cast<int>(q) != MyRank)
+      {
+        requests[q] = mine;
+      }
+    }
+  }
+  comm.Exchange(requests, asked);
+
+  // Answer each process with the own faces around the vertices it asked for.
+  std::vector<ByteBuffer> answers(size), answered;
+  std::vector<std::int64_t> faces;
+  for (std::size_t q = 0; q < size; ++q)
+  {
+    if (static_cast<int>(q) == MyRank)
+    {
+      continue;
+    }
+    faces.clear();
+    ByteReader r(asked[q]);
+    std::int64_t v = 0;
+    while (r.Get(v))
+    {
+      const auto it = OwnStar.find(v);
+      if (it != OwnStar.end())
+      {
+        faces.insert(faces.end(), it->second.begin(), it->second.end());
+      }
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    ByteWriter w(answers[q]);
+    for (const std::int64_t f : faces)
+    {
+      const FaceRecord& face = Faces.at(f);
+      w.Put(f);
+      for (const std::int64_t id : face.V)
+      {
+        w.Put(id);
+        w.Put(Vertices.at(id).P);
+      }
+    }
+  }
+  comm.Exchange(answers, answered);
+
+  for (std::size_t q = 0; q < size; ++q)
+  {
+    if (static_cast<int>(q) == MyRank)
+    {
+      continue;
+    }
+    ByteReader r(answered[q]);
+    std::int64_t f = 0;
+    while (r.Get(f))
+    {
+      FaceRecord face;
+      face.Owner = static_cast<int>(q);
+      for (std::int64_t& id : face.V)
+      {
+        Vec3 p;
+        r.Get(id);
+        r.Get(p);
+        if (Vertices.find(id) == Vertices.end())
+        {
+          Vertices.emplace(id, VertexRecord{ p, std::numeric_limits<int>::max(), false });
+        }
+      }
+      AddFace(f, face);
+    }
+  }
+  for (const std::int64_t v : request)
+  {
+    Vertices.at(v).Complete = true;
+  }
+}
+
+Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
+{
+  FaceIds.clear();
+  FaceIds.reserve(Faces.size());
+  for (const auto& [id, face] : Faces)
+  {
+    FaceIds.push_back(id);
+  }
+  std::sort(FaceIds.begin(), FaceIds.end());
+  VertexIds.clear();
+  VertexIds.reserve(Vertices.size());
+  for (const auto& [id, r] : Vertices)
+  {
+    VertexIds.push_back(id);
+  }
+  std::sort(VertexIds.begin(), VertexIds.end());
+  LocalOf.clear();
+  std::vector<Vec3> points(VertexIds.size());
+  for (std::size_t i = 0; i < VertexIds.size(); ++i)
+  {
+    LocalOf.emplace(VertexIds[i], static_cast<int>(i));
+    points[i] = Vertices.at(VertexIds[i]).P;
+  }
+  std::vector<std::array<long long, 3>> triangles(FaceIds.size());
+  FaceOwners.assign(FaceIds.size(), -1);
+  for (std::size_t f = 0; f < FaceIds.size(); ++f)
+  {
+    const FaceRecord& face = Faces.at(FaceIds[f]);
+    for (int k = 0; k < 3; ++k)
+    {
+      triangles[f][static_cast<std::size_t>(k)] = LocalOf.at(face.V[static_cast<std::size_t>(k)]);
+    }
+    FaceOwners[f] = face.Owner;
+  }
+
+  Status made;
+  Result<MeshBuild> built = TriangleMeshBuilder::Build(points, triangles);
+  if (!built.Ok())
+  {
+    made = Status::Error(built.Message());
+  }
+  else if (built->Mesh.NumberOfVertices() != static_cast<int>(points.size()) ||
+    built->NumberOfWeldedPoints > 0)
+  {
+    made = Status::Error("points of different global ids coincide, or a vertex is pinched "
+                         "between faces that share no edge");
+  }
+  if (const Status agreed = Agree(made, comm); !agreed.Ok())
+  {
+    Local = TriangleMesh();
+    return agreed;
+  }
+  Local = std::move(built->Mesh);
+
+  Owners.assign(VertexIds.size(), -1);
+  OwnedCount = 0;
+  for (std::size_t v = 0; v < VertexIds.size(); ++v)
+  {
+    const VertexRecord& r = Vertices.at(VertexIds[v]);
+    if (r.Complete)
+    {
+      Owners[v] = r.Owner;
+      OwnedCount += r.Owner == MyRank ? 1 : 0;
+    }
+  }
+  FenceFaces.assign(FaceIds.size(), 0);
+  for (int f = 0; f < Local.NumberOfFaces(); ++f)
+  {
+    for (const int v : Local.Face(f))
+    {
+      if (Owners[static_cast<std::size_t>(v)] < 0)
+      {
+        FenceFaces[static_cast<std::size_t>(f)] = 1;
+      }
+    }
+  }
+  GlobalVertexCount = comm.Sum(OwnedCount);
+  return Status();
+}
+
+int SurfacePiece::Vertex(std::int64_t globalId) const
+{
+  const auto it = LocalOf.find(globalId);
+  return it == LocalOf.end() ? -1 : it->second;
+}
+
+} // namespace gs

@@ -1,0 +1,111 @@
+// One process's part of a triangle surface partitioned over processes (MPI), with a band of
+// its neighbours' faces around it: what a geodesic computation on the piece needs so that it
+// decides as it would on the whole surface, without any process holding the whole surface.
+//
+// Every face belongs to one process (the one whose input holds it); every vertex to one process,
+// the lowest rank among those holding a face of it. Points and faces carry global ids (the same
+// point has the same id on every process); the piece's mesh numbers its faces and vertices in
+// global id order, as a serial run on the whole surface put together in id order does, so that
+// a computation touching only complete vertices visits them in the serial order.
+//
+// The band grows a ring of faces at a time: each process sends the ids of the vertices on its
+// band's edge to every other, which answer with their own faces that touch them. A vertex is
+// complete once every face of the surface around it is in the piece; the fence is the piece's
+// faces with an incomplete vertex: a solve that enters none of them (ExactGeodesicOptions::Fence)
+// saw the surface as it is.
+#pragma once
+
+#include "PieceCommunicator.h"
+#include "Status.h"
+#include "TriangleMesh.h"
+#include "Vector.h"
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace gs
+{
+
+// A process's own faces.
+struct PieceTriangles
+{
+  std::vector<Vec3> Points;
+  std::vector<std::int64_t> PointIds; // global ids, one per point
+  std::vector<std::array<int, 3>> Triangles; // indices into Points
+  std::vector<std::int64_t> TriangleIds;     // global ids, one per triangle
+};
+
+class SurfacePiece
+{
+public:
+  // Collective. Takes this process's faces and gathers `rings` rings of faces around them (at
+  // least the faces of its own faces' vertices). Fails on every process, with a message, when
+  // any process's input is malformed (sizes, a triangle's index out of range, a point used with
+  // two positions) or its piece does not make a mesh the way the whole surface would (welded
+  // coincident points under different ids, non-manifold pieces, degenerate faces).
+  Status Build(const PieceTriangles& own, int rings, PieceCommunicator& comm);
+  // Collective: `rings` more rings.
+  Status Grow(int rings, PieceCommunicator& comm);
+
+  const TriangleMesh& Mesh() const { return Local; }
+  int Rank() const { return MyRank; }
+  // Rings gathered around the own faces.
+  int Rings() const { return NumRings; }
+  std::int64_t GlobalId(int v) const { return VertexIds[static_cast<std::size_t>(v)]; }
+  // The rank owning vertex v (-1 when v is incomplete: not every process holding it is known).
+  int Owner(int v) const { return Owners[static_cast<std::size_t>(v)]; }
+  bool IsOwned(int v) const { return Owners[static_cast<std::size_t>(v)] == MyRank; }
+  bool IsComplete(int v) const { return Owners[static_cast<std::size_t>(v)] >= 0; }
+  // Whether face f is one of this process's own (not a band face).
+  bool IsOwnFace(int f) const { return FaceOwners[static_cast<std::size_t>(f)] == MyRank; }
+  std::int64_t FaceId(int f) const { return FaceIds[static_cast<std::size_t>(f)]; }
+  // The faces with an incomplete vertex.
+  const std::vector<unsigned char>& Fence() const { return FenceFaces; }
+  // The local vertex of a global point id (-1 when it is not in the piece).
+  int Vertex(std::int64_t globalId) const;
+  // The whole surface's bounding box diagonal (the scale of the solvers' tolerances).
+  double LengthScale() const { return Diagonal; }
+  // Vertices owned by this process, and over all processes.
+  std::int64_t NumberOfOwnedVertices() const { return OwnedCount; }
+  std::int64_t GlobalNumberOfVertices() const { return GlobalVertexCount; }
+
+private:
+  struct FaceRecord
+  {
+    std::array<std::int64_t, 3> V;
+    int Owner;
+  };
+  struct VertexRecord
+  {
+    Vec3 P;
+    int Owner;     // lowest rank of the faces seen around it
+    bool Complete; // every face around it seen
+  };
+  void AddFace(std::int64_t id, const FaceRecord& face);
+  // Requests the faces around the vertices `request` (of every process's own faces) and adds
+  // them: those vertices are complete, the ones they bring are not.
+  void GatherRing(const std::vector<std::int64_t>& request, PieceCommunicator& comm);
+  // The incomplete vertices, and those of them whose faces in the piece form several fans.
+  std::vector<std::int64_t> Incomplete() const;
+  std::vector<std::int64_t> Pinched() const;
+  // Makes the piece's mesh from the records (collective: the processes agree on failure).
+  Status MakeMesh(PieceCommunicator& comm);
+
+  int MyRank = 0;
+  int NumRings = 0;
+  std::unordered_map<std::int64_t, FaceRecord> Faces;
+  std::unordered_map<std::int64_t, VertexRecord> Vertices;
+  // This process's own faces by global vertex id (to answer requests).
+  std::unordered_map<std::int64_t, std::vector<std::int64_t>> OwnStar;
+  TriangleMesh Local;
+  std::vector<std::int64_t> VertexIds, FaceIds;
+  std::vector<int> Owners, FaceOwners;
+  std::vector<unsigned char> FenceFaces;
+  std::unordered_map<std::int64_t, int> LocalOf;
+  double Diagonal = 0.0;
+  std::int64_t OwnedCount = 0, GlobalVertexCount = 0;
+};
+
+} // namespace gs

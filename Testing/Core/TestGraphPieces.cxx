@@ -1,0 +1,229 @@
+// The graph of a surface partitioned over processes (GraphPieces.h), on threads standing for
+// the processes: each process's adjacency equals the serial graph's for its vertices, entry for
+// entry and weight for weight, and the distances equal the serial graph solve's to the bit, for
+// several process counts and partitions (slabs, pieces with holes and islands), on a closed
+// curved mesh, a regular plane with a boundary (ties everywhere) and a torus, for both graphs.
+#include "GraphPieces.h"
+#include "MeshGenerators.h"
+#include "SaddleVertexGraph.h"
+#include "TestMeshes.h"
+#include "TestStatus.h"
+#include "ThreadPieces.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <string>
+
+using namespace gs;
+
+namespace
+{
+// One partitioned run: every owned vertex's adjacency (target id, weight) and distance.
+struct PartitionedRun
+{
+  std::map<std::int64_t, std::vector<std::pair<std::int64_t, double>>> Adjacency;
+  std::map<std::int64_t, double> Distance;
+  std::map<std::int64_t, int> Owner;
+  std::vector<std::vector<double>> Fetched; // per rank, the distances of its own faces' vertices
+  std::vector<std::vector<std::int64_t>> FetchedIds;
+  std::int64_t Resolved = 0;
+  int Rings = 0, Rounds = 0;
+  bool Ok = true;
+  std::string Message;
+};
+
+PartitionedRun RunPieces(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
+  const SaddleVertexGraphOptions& options, const std::vector<std::int64_t>& sources,
+  double maxDistance)
+{
+  PartitionedRun run;
+  run.Fetched.resize(static_cast<std::size_t>(processes));
+  run.FetchedIds.resize(static_cast<std::size_t>(processes));
+  std::mutex lock;
+  gs_test::ThreadHub hub(processes);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    auto fail = [&](const Status& s) {
+      std::lock_guard<std::mutex> guard(lock);
+      run.Ok = false;
+      run.Message = s.Message();
+    };
+    SurfacePiece piece;
+    if (const Status s = piece.Build(gs_test::PieceOf(mesh, part, rank), 0, comm); !s.Ok())
+    {
+      return fail(s);
+    }
+    PieceGraph graph;
+    SaddleVertexGraphOptions o = options;
+    o.NumberOfThreads = 1;
+    if (const Status s = graph.Build(piece, o, comm); !s.Ok())
+    {
+      return fail(s);
+    }
+    PieceDistanceSolver solver(graph);
+    std::vector<std::pair<std::int64_t, double>> seeds;
+    for (const std::int64_t s : sources)
+    {
+      seeds.push_back({ s, 0.0 });
+    }
+    if (const Status s = solver.Solve(seeds, maxDistance, comm); !s.Ok())
+    {
+      return fail(s);
+    }
+    std::vector<int> wanted;
+    for (int f = 0; f < piece.Mesh().NumberOfFaces(); ++f)
+    {
+      if (piece.IsOwnFace(f))
+      {
+        for (const int v : piece.Mesh().Face(f))
+        {
+          wanted.push_back(v);
+        }
+      }
+    }
+    const std::vector<double> fetched = solver.Fetch(piece, wanted, comm);
+    std::lock_guard<std::mutex> guard(lock);
+    for (int i = 0; i < graph.NumberOfOwned(); ++i)
+    {
+      auto& list = run.Adjacency[graph.OwnedId(i)];
+      for (std::int64_t e = graph.Begin(i); e < graph.End(i); ++e)
+      {
+        list.push_back({ graph.TargetId(e), graph.Weight(e) });
+      }
+      run.Distance[graph.OwnedId(i)] = solver.Distance(i);
+      run.Owner[graph.OwnedId(i)] = rank;
+    }
+    run.Fetched[static_cast<std::size_t>(rank)] = fetched;
+    for (const int v : wanted)
+    {
+      run.FetchedIds[static_cast<std::size_t>(rank)].push_back(piece.GlobalId(v));
+    }
+    run.Resolved = graph.GlobalResolved();
+    run.Rings = std::max(run.Rings, graph.Rings());
+    run.Rounds = solver.Rounds();
+  });
+  return run;
+}
+
+// Builds the serial graph and compares a partitioned run with it.
+void ExpectSameAsSerial(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+  const std::vector<int>& part, int processes, const std::vector<std::int64_t>& sources,
+  double maxDistance = 0.0)
+{
+  SaddleVertexGraph serial;
+  ASSERT_TRUE(gs_test::Succeeded(serial.Build(mesh, options, nullptr)));
+  GraphDistanceSolver solve(serial);
+  std::vector<std::pair<int, double>> seeds;
+  for (const std::int64_t s : sources)
+  {
+    seeds.push_back({ serial.Node(static_cast<int>(s)), 0.0 });
+  }
+  solve.Solve(seeds, GraphAlgorithm::LabelCorrecting, maxDistance);
+
+  const PartitionedRun run = RunPieces(mesh, part, processes, options, sources, maxDistance);
+  ASSERT_TRUE(run.Ok) << run.Message;
+  ASSERT_EQ(run.Distance.size(), static_cast<std::size_t>(mesh.NumberOfVertices()))
+    << "every vertex owned by exactly one process";
+  std::int64_t entries = 0, differ = 0, distances = 0;
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+  {
+    const int n = serial.Node(v);
+    std::vector<std::pair<std::int64_t, double>> expected;
+    for (std::int64_t e = serial.Begin(n); e < serial.End(n); ++e)
+    {
+      expected.push_back({ serial.Vertex(serial.Target(e)), serial.Weight(e) });
+    }
+    std::sort(expected.begin(), expected.end());
+    const auto& got = run.Adjacency.at(v);
+    entries += static_cast<std::int64_t>(expected.size());
+    if (got != expected)
+    {
+      ++differ;
+      if (differ <= 3)
+      {
+        ADD_FAILURE() << "vertex " << v << " (process " << run.Owner.at(v) << "): "
+                      << got.size() << " entries, serial " << expected.size();
+      }
+    }
+    const double d = solve.Distance(n), dp = run.Distance.at(v);
+    if (!(d == dp || (std::isinf(d) && std::isinf(dp))))
+    {
+      ++distances;
+      if (distances <= 3)
+      {
+        ADD_FAILURE() << "vertex " << v << ": distance " << dp << ", serial " << d;
+      }
+    }
+  }
+  EXPECT_EQ(differ, 0) << "of " << mesh.NumberOfVertices() << " vertices";
+  EXPECT_EQ(distances, 0);
+  // The copies every process fetched for its own faces' vertices are the owners' values.
+  for (std::size_t r = 0; r < run.Fetched.size(); ++r)
+  {
+    for (std::size_t j = 0; j < run.Fetched[r].size(); ++j)
+    {
+      const double expected = run.Distance.at(run.FetchedIds[r][j]);
+      ASSERT_TRUE(run.Fetched[r][j] == expected ||
+        (std::isinf(expected) && std::isinf(run.Fetched[r][j])));
+    }
+  }
+  std::printf("P = %d: %lld entries, band %d rings, %lld vertices solved again, %d rounds\n",
+    processes, static_cast<long long>(entries), run.Rings, static_cast<long long>(run.Resolved),
+    run.Rounds);
+}
+
+SaddleVertexGraphOptions Svg(int k)
+{
+  SaddleVertexGraphOptions o;
+  o.K = k;
+  return o;
+}
+
+SaddleVertexGraphOptions Dgg(double accuracy)
+{
+  SaddleVertexGraphOptions o;
+  o.Construction = GraphConstruction::DiscreteGeodesic;
+  o.Accuracy = accuracy;
+  return o;
+}
+} // namespace
+
+TEST(GraphPieces, SaddleVertexGraphOnCurvedClosedMesh)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
+  for (const int p : { 2, 3 })
+  {
+    ExpectSameAsSerial(mesh, Svg(50), gs_test::PartitionFaces(mesh, p, Vec3(1, 0.3, 0.1)), p,
+      { 0, 400 });
+  }
+  ExpectSameAsSerial(
+    mesh, Svg(30), gs_test::PartitionFaces(mesh, 4, Vec3(0.2, 1, 0.5), 5), 4, { 17 });
+}
+
+TEST(GraphPieces, SaddleVertexGraphOnRegularPlaneWithBoundary)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
+  ExpectSameAsSerial(mesh, Svg(50), gs_test::PartitionFaces(mesh, 3, Vec3(1, 0, 0)), 3, { 5 });
+  ExpectSameAsSerial(
+    mesh, Svg(50), gs_test::PartitionFaces(mesh, 2, Vec3(1, 1, 0), 3), 2, { 260 }, 0.9);
+}
+
+TEST(GraphPieces, DiscreteGeodesicGraphOnTorus)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(MakeTorus(1.0, 0.35, 40, 16));
+  ExpectSameAsSerial(mesh, Dgg(0.01), gs_test::PartitionFaces(mesh, 3, Vec3(1, 0.2, 0)), 3,
+    { 3 });
+  ExpectSameAsSerial(mesh, Dgg(0.01), gs_test::PartitionFaces(mesh, 2, Vec3(0, 1, 0), 4), 2,
+    { 100, 500 });
+}
+
+TEST(GraphPieces, SourceOwnedByNoProcessFailsEverywhere)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(MakePlanarGrid(6, 6, 1.0, 1.0));
+  const PartitionedRun run =
+    RunPieces(mesh, gs_test::PartitionFaces(mesh, 2, Vec3(1, 0, 0)), 2, Svg(10), { 1000 }, 0.0);
+  EXPECT_FALSE(run.Ok);
+  EXPECT_NE(run.Message.find("not a point"), std::string::npos) << run.Message;
+}
