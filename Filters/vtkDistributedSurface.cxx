@@ -305,6 +305,15 @@ vtkSmartPointer<vtkPolyData> vtkDistributedSurface::ExtractCells(
 }
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> vtkDistributedSurface::OwnCells(vtkPolyData* piece)
+{
+  vtkSmartPointer<vtkPolyData> own = PrepareForGather(piece, 0);
+  own->GetCellData()->RemoveArray(OriginProcessArrayName());
+  own->GetCellData()->RemoveArray(OriginCellArrayName());
+  return own;
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkPolyData> vtkDistributedSurface::GatherSurface(vtkPolyData* piece) const
 {
   vtkSmartPointer<vtkPolyData> mine = PrepareForGather(piece, this->Rank);

@@ -54,9 +54,14 @@ public:
   explicit vtkDistributedSurface(vtkInformation* outputInformation);
 
   explicit operator bool() const { return this->Controller != nullptr; }
+  vtkMultiProcessController* GetController() const { return this->Controller; }
   bool IsRoot() const { return this->Rank == 0; }
   int GetRank() const { return this->Rank; }
   int GetNumberOfProcesses() const { return this->Size; }
+
+  // A piece's own cells: its non-ghost cells with every point and array, ghost arrays removed
+  // (what GatherSurface sends and what a filter working on pieces outputs).
+  static vtkSmartPointer<vtkPolyData> OwnCells(vtkPolyData* piece);
 
   // Collective. On process 0 the whole surface (see above); nullptr elsewhere.
   vtkSmartPointer<vtkPolyData> GatherSurface(vtkPolyData* piece) const;

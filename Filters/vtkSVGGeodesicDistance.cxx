@@ -3,6 +3,7 @@
 #include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
 #include "vtkSaddleVertexGraphCache.h"
+#include "vtkSurfacePieces.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "GeodesicEngine.h"
@@ -15,6 +16,7 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
@@ -112,10 +114,113 @@ int vtkSVGGeodesicDistance::FillInputPortInformation(int port, vtkInformation* i
 int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Under MPI, the graph solvers' distances from vertex ids without refinement are computed on
+  // the pieces when they carry global ids (the same decision on every process: it depends on
+  // properties and on CanUse, which is collective); everything else gathers the surface.
+  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (distributed && input && output && this->UsesGraph() && !this->UnfoldingRefinement &&
+    inputVector[1]->GetNumberOfInformationObjects() == 0 && this->CacheFileName.empty())
+  {
+    if (!this->Pieces)
+    {
+      this->Pieces.reset(new vtkSurfacePieces(distributed.GetController()));
+    }
+    vtkSmartPointer<vtkPolyData> own = vtkDistributedSurface::OwnCells(input);
+    std::string why;
+    if (this->Pieces->CanUse(own, why))
+    {
+      return this->ExecutePieces(input, own, output);
+    }
+    vtkDebugMacro("Gathering the surface: " << why << ".");
+  }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
-    [this](vtkPolyData* input, const std::vector<vtkPointSet*>& auxiliaries, vtkPolyData* output) {
-      return this->Execute(input, auxiliaries[0], output);
+    [this](vtkPolyData* whole, const std::vector<vtkPointSet*>& auxiliaries, vtkPolyData* result) {
+      return this->Execute(whole, auxiliaries[0], result);
     });
+}
+
+//------------------------------------------------------------------------------
+int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output)
+{
+  output->Initialize(); // empty unless everything succeeds
+  this->UpdateProgress(0.0);
+  // (Property checks: the same outcome on every process.)
+  if (!vtkCachedSurface::CheckEngine(this, this->Solver,
+        { gs::GeodesicSolver::SVGLabelCorrecting, gs::GeodesicSolver::SVGDijkstra,
+          gs::GeodesicSolver::DGG },
+        this->K))
+  {
+    return 1;
+  }
+  if (this->ResultArrayName.empty() || !(this->MaximumDistance >= 0.0) ||
+    this->SourceVertexIds.empty())
+  {
+    vtkErrorMacro(<< (this->ResultArrayName.empty() ? "ResultArrayName is empty."
+                        : this->SourceVertexIds.empty()
+                        ? "No source: set SourceVertexIds or connect source points or lines to "
+                          "the Sources port (with at least one point)."
+                        : "MaximumDistance must be at least 0 (0 or infinity: unlimited)."));
+    return 1;
+  }
+  bool built = false;
+  if (!this->Pieces->UseGraph(this, own, input->GetMTime(),
+        vtkCachedSurface::GraphOptions(this->Solver, this->K, this->GraphAccuracy,
+          this->ReachedStencil),
+        0.1, 0.8, built))
+  {
+    return 1;
+  }
+  std::vector<double> distances;
+  if (!this->Pieces->Distances(this, this->SourceVertexIds, this->MaximumDistance, distances))
+  {
+    return 1;
+  }
+  vtkNew<vtkDoubleArray> distance;
+  distance->SetName(this->ResultArrayName.c_str());
+  distance->SetNumberOfTuples(static_cast<vtkIdType>(distances.size()));
+  for (size_t i = 0; i < distances.size(); ++i)
+  {
+    distance->SetValue(static_cast<vtkIdType>(i), distances[i]);
+  }
+  output->ShallowCopy(own);
+  output->GetPointData()->AddArray(distance);
+  output->GetPointData()->SetActiveScalars(distance->GetName());
+
+  // The graph as the serial field data describes it, and this process's share of the work.
+  const gs::PieceGraph& graph = this->Pieces->Graph();
+  const gs::SurfacePiece& piece = this->Pieces->Piece();
+  vtkNew<vtkFieldData> fieldData;
+  fieldData->ShallowCopy(own->GetFieldData());
+  auto addDouble = [&fieldData](const char* name, double value) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fieldData->AddArray(a);
+  };
+  auto addInt = [&fieldData](const char* name, int value) {
+    vtkNew<vtkIntArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fieldData->AddArray(a);
+  };
+  addDouble("SVGMeanDegree",
+    piece.GlobalNumberOfVertices() > 0
+      ? static_cast<double>(graph.GlobalNumberOfEntries()) /
+        static_cast<double>(piece.GlobalNumberOfVertices())
+      : 0.0);
+  addDouble("SVGBuildSeconds", graph.BuildSeconds());
+  vtkNew<vtkStringArray> origin;
+  origin->SetName("SVGGraphOrigin");
+  origin->InsertNextValue(built ? "built" : "memory");
+  fieldData->AddArray(origin);
+  addInt("PieceFaces", piece.Mesh().NumberOfFaces());
+  addInt("PieceOwnedVertices", static_cast<int>(piece.NumberOfOwnedVertices()));
+  addInt("PieceBandRings", piece.Rings());
+  output->SetFieldData(fieldData);
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 //------------------------------------------------------------------------------

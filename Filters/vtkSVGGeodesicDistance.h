@@ -83,6 +83,8 @@
 #include <string> // for std::string
 #include <vector> // for std::vector
 
+class vtkSurfacePieces;
+
 class GEODESICSHAPESFILTERS_EXPORT vtkSVGGeodesicDistance : public vtkPolyDataAlgorithm
 {
 public:
@@ -204,6 +206,10 @@ protected:
   // RequestData's work on the whole surface (the input itself, or under MPI the gathered
   // surface on process 0).
   int Execute(vtkPolyData* input, vtkPointSet* sources, vtkPolyData* output);
+  // Under MPI, a graph solver without unfolding refinement from SourceVertexIds on pieces with
+  // global ids: each process works on its own cells (`own`, ghost cells dropped) and a band of
+  // its neighbours' (vtkSurfacePieces), nothing gathered.
+  int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output);
 
 
 private:
@@ -223,6 +229,8 @@ private:
   // Converted mesh, locator, solvers and graph, reused while the input mesh is unchanged.
   struct Cache;
   std::unique_ptr<Cache> MeshCache;
+  // Under MPI: this process's piece, band and graph, reused while the input is unchanged.
+  std::unique_ptr<vtkSurfacePieces> Pieces;
 
   // Execute's steps (vtkSVGGeodesicDistance.cxx); each reports its own errors.
   struct Run; // one Execute's sources

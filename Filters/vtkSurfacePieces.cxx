@@ -1,0 +1,294 @@
+#include "vtkSurfacePieces.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkCommunicator.h>
+#include <vtkDataArray.h>
+#include <vtkMultiProcessController.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace
+{
+// Message tags of the exchanges.
+enum Tags
+{
+  EXCHANGE_LENGTH = 470311,
+  EXCHANGE_BYTES = 470312,
+  TELL_WHY = 470313
+};
+
+vtkIdType GlobalId(vtkDataArray* ids, vtkIdType i)
+{
+  return static_cast<vtkIdType>(ids->GetComponent(i, 0));
+}
+
+// What a process lacks to work on its piece in place ("" when nothing).
+std::string Lacks(vtkPolyData* piece)
+{
+  if (!piece || piece->GetNumberOfCells() == 0)
+  {
+    return ""; // an empty piece takes part with nothing
+  }
+  if (piece->GetNumberOfStrips() > 0)
+  {
+    return "triangle strips";
+  }
+  if (!piece->GetPointData()->GetGlobalIds() || !piece->GetCellData()->GetGlobalIds())
+  {
+    return "global point and cell ids";
+  }
+  auto it = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* pts;
+    it->GetCurrentCell(n, pts);
+    if (n != 3)
+    {
+      return "triangles only (polygons of " + std::to_string(n) + " points)";
+    }
+  }
+  return "";
+}
+} // namespace
+
+// The core's transport over the controller. Exchange: every pair of processes swaps its two
+// buffers, the pairs taken in one global order (the lower rank sends first): the earliest pair
+// not done always has both processes ready, so blocking sends cannot deadlock.
+class vtkSurfacePieces::Communicator : public gs::PieceCommunicator
+{
+public:
+  explicit Communicator(vtkMultiProcessController* controller)
+    : Controller(controller)
+  {
+  }
+  int Rank() const override { return Controller->GetLocalProcessId(); }
+  int Size() const override { return Controller->GetNumberOfProcesses(); }
+  void Exchange(
+    const std::vector<gs::ByteBuffer>& outgoing, std::vector<gs::ByteBuffer>& incoming) override
+  {
+    const int me = Rank(), size = Size();
+    incoming.assign(static_cast<std::size_t>(size), {});
+    incoming[static_cast<std::size_t>(me)] = outgoing[static_cast<std::size_t>(me)];
+    for (int a = 0; a < size; ++a)
+    {
+      for (int b = a + 1; b < size; ++b)
+      {
+        if (me != a && me != b)
+        {
+          continue;
+        }
+        const int other = me == a ? b : a;
+        if (me == a)
+        {
+          Send(outgoing[static_cast<std::size_t>(other)], other);
+          Receive(incoming[static_cast<std::size_t>(other)], other);
+        }
+        else
+        {
+          Receive(incoming[static_cast<std::size_t>(other)], other);
+          Send(outgoing[static_cast<std::size_t>(other)], other);
+        }
+      }
+    }
+  }
+  std::int64_t Sum(std::int64_t value) override
+  {
+    long long in = value, out = 0;
+    Controller->AllReduce(&in, &out, 1, vtkCommunicator::SUM_OP);
+    return out;
+  }
+  double Min(double value) override { return Reduce(value, vtkCommunicator::MIN_OP); }
+  double Max(double value) override { return Reduce(value, vtkCommunicator::MAX_OP); }
+
+private:
+  void Send(const gs::ByteBuffer& bytes, int to)
+  {
+    vtkIdType length = static_cast<vtkIdType>(bytes.size());
+    Controller->Send(&length, 1, to, EXCHANGE_LENGTH);
+    if (length > 0)
+    {
+      Controller->Send(reinterpret_cast<const char*>(bytes.data()), length, to, EXCHANGE_BYTES);
+    }
+  }
+  void Receive(gs::ByteBuffer& bytes, int from)
+  {
+    vtkIdType length = 0;
+    Controller->Receive(&length, 1, from, EXCHANGE_LENGTH);
+    bytes.resize(static_cast<std::size_t>(std::max<vtkIdType>(length, 0)));
+    if (length > 0)
+    {
+      Controller->Receive(reinterpret_cast<char*>(bytes.data()), length, from, EXCHANGE_BYTES);
+    }
+  }
+  double Reduce(double value, int operation)
+  {
+    double out = value;
+    Controller->AllReduce(&value, &out, 1, operation);
+    return out;
+  }
+
+  vtkMultiProcessController* Controller;
+};
+
+//------------------------------------------------------------------------------
+vtkSurfacePieces::vtkSurfacePieces(vtkMultiProcessController* controller)
+  : Comm(new Communicator(controller))
+{
+}
+
+vtkSurfacePieces::~vtkSurfacePieces() = default;
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::CanUse(vtkPolyData* ownCells, std::string& why)
+{
+  const std::string lacks = Lacks(ownCells);
+  const double first = Comm->Min(
+    lacks.empty() ? std::numeric_limits<double>::max() : static_cast<double>(Comm->Rank()));
+  if (first == std::numeric_limits<double>::max())
+  {
+    why.clear();
+    return true;
+  }
+  std::vector<gs::ByteBuffer> out(static_cast<std::size_t>(Comm->Size())), in;
+  if (Comm->Rank() == static_cast<int>(first))
+  {
+    for (gs::ByteBuffer& b : out)
+    {
+      b.assign(lacks.begin(), lacks.end());
+    }
+  }
+  Comm->Exchange(out, in);
+  const gs::ByteBuffer& text = in[static_cast<std::size_t>(first)];
+  why = "process " + std::to_string(static_cast<int>(first)) + "'s piece lacks " +
+    std::string(text.begin(), text.end());
+  return false;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
+  const gs::SaddleVertexGraphOptions& options, double from, double to, bool& built)
+{
+  built = false;
+  const bool same = this->HasGraph && key == this->Key &&
+    options.Construction == this->Options.Construction && options.K == this->Options.K &&
+    options.Accuracy == this->Options.Accuracy;
+  if (Comm->Sum(same ? 0 : 1) == 0)
+  {
+    return true;
+  }
+  this->HasGraph = false;
+  this->PointVertex.clear();
+
+  // This process's triangles, with their points' and their own global ids.
+  gs::PieceTriangles own;
+  std::vector<int> pointOf(static_cast<std::size_t>(ownCells->GetNumberOfPoints()), -1);
+  if (ownCells->GetNumberOfPolys() > 0)
+  {
+    vtkDataArray* pointIds = ownCells->GetPointData()->GetGlobalIds();
+    vtkDataArray* cellIds = ownCells->GetCellData()->GetGlobalIds();
+    const vtkIdType firstPoly = ownCells->GetNumberOfVerts() + ownCells->GetNumberOfLines();
+    auto it = vtk::TakeSmartPointer(ownCells->GetPolys()->NewIterator());
+    vtkIdType cell = firstPoly;
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+    {
+      vtkIdType n;
+      const vtkIdType* pts;
+      it->GetCurrentCell(n, pts);
+      std::array<int, 3> t{};
+      for (int k = 0; k < 3; ++k)
+      {
+        int& p = pointOf[static_cast<std::size_t>(pts[k])];
+        if (p < 0)
+        {
+          double x[3];
+          ownCells->GetPoint(pts[k], x);
+          p = static_cast<int>(own.Points.size());
+          own.Points.emplace_back(x[0], x[1], x[2]);
+          own.PointIds.push_back(GlobalId(pointIds, pts[k]));
+        }
+        t[static_cast<std::size_t>(k)] = p;
+      }
+      own.Triangles.push_back(t);
+      own.TriangleIds.push_back(GlobalId(cellIds, cell));
+    }
+  }
+  gs::Status status = this->SurfacePieceState.Build(own, 0, *Comm);
+  if (status.Ok())
+  {
+    status = this->GraphState.Build(this->SurfacePieceState, options, *Comm,
+      [self, from, to](double fraction) {
+        self->UpdateProgress(from + (to - from) * fraction);
+        return !self->CheckAbort();
+      });
+  }
+  if (status.IsAborted())
+  {
+    return false;
+  }
+  if (!status.Ok())
+  {
+    vtkErrorWithObjectMacro(self, "The distributed surface: " << status.Message() << ".");
+    return false;
+  }
+  this->PointVertex.assign(pointOf.size(), -1);
+  for (std::size_t i = 0; i < pointOf.size(); ++i)
+  {
+    if (pointOf[i] >= 0)
+    {
+      this->PointVertex[i] =
+        this->SurfacePieceState.Vertex(own.PointIds[static_cast<std::size_t>(pointOf[i])]);
+    }
+  }
+  this->HasGraph = true;
+  this->Key = key;
+  this->Options = options;
+  built = true;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources,
+  double maxDistance, std::vector<double>& perPoint)
+{
+  std::vector<std::pair<std::int64_t, double>> seeds;
+  for (const vtkIdType id : sources)
+  {
+    seeds.push_back({ static_cast<std::int64_t>(id), 0.0 });
+  }
+  gs::PieceDistanceSolver solver(this->GraphState);
+  if (const gs::Status solved = solver.Solve(seeds, maxDistance, *Comm); !solved.Ok())
+  {
+    vtkErrorWithObjectMacro(self, "Source vertex ids: " << solved.Message() << ".");
+    return false;
+  }
+  std::vector<int> wanted;
+  for (const int v : this->PointVertex)
+  {
+    if (v >= 0)
+    {
+      wanted.push_back(v);
+    }
+  }
+  const std::vector<double> fetched = solver.Fetch(this->SurfacePieceState, wanted, *Comm);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  perPoint.assign(this->PointVertex.size(), nan);
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < this->PointVertex.size(); ++i)
+  {
+    if (this->PointVertex[i] >= 0)
+    {
+      const double d = fetched[j++];
+      perPoint[i] = std::isfinite(d) && !(maxDistance > 0.0 && d > maxDistance) ? d : nan;
+    }
+  }
+  return true;
+}
