@@ -40,19 +40,6 @@ SHAPES = ["star.png", "gull.png", "leaf.png", "fish.png"]
 TIMEOUT = 600
 
 
-def mpi_env():
-    # pvpython initialised MPI as a singleton: its OpenMPI/PMIx variables would make the
-    # children believe they are part of this job.
-    env = {k: v for k, v in os.environ.items()
-           if not k.startswith(("OMPI_", "PMIX_", "ORTE_", "OPAL_"))}
-    env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
-    env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
-    env["OMPI_MCA_rmaps_base_oversubscribe"] = "1"
-    # The process that waits for process 0 yields its core instead of polling.
-    env["OMPI_MCA_mpi_yield_when_idle"] = "1"
-    return env
-
-
 # ---------------------------------------------------------------------------------------------
 def run_pipeline():
     """One run of the pipeline: in pvbatch (serial or each MPI process) or connected to pvserver."""
@@ -336,7 +323,7 @@ def driver():
     brush = locator.FindClosestPoint(0.0, -1.0, 0.0)
     me = os.path.abspath(__file__)
     common = ["--plugin", args.plugin, "--data", args.data, "--work", work, "--brush", str(brush)]
-    env = mpi_env()
+    env = gs_test.mpi_env()
     mpi = [args.mpiexec, "-n", "2"]
 
     def run(command, label):

@@ -6,6 +6,7 @@ verdict (the tests run as scripts; their folder is on the module path).
     gs_test.finish()                   # exit 1 after any failed check, else print the verdict
 """
 import argparse
+import os
 import sys
 
 REQUIRED = object()
@@ -38,3 +39,16 @@ def finish(verdict="OK"):
         print("%d failure(s)" % len(failures))
         sys.exit(1)
     print(verdict)
+
+
+def mpi_env():
+    """The environment of an mpiexec child of a test: pvpython initialised MPI as a singleton,
+    and its OpenMPI/PMIx variables would make the children believe they are part of its job."""
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("OMPI_", "PMIX_", "ORTE_", "OPAL_"))}
+    env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
+    env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
+    env["OMPI_MCA_rmaps_base_oversubscribe"] = "1"
+    # A process that waits for another yields its core instead of polling.
+    env["OMPI_MCA_mpi_yield_when_idle"] = "1"
+    return env
