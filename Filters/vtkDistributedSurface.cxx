@@ -307,6 +307,21 @@ vtkSmartPointer<vtkPolyData> vtkDistributedSurface::ExtractCells(
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkPolyData> vtkDistributedSurface::OwnCells(vtkPolyData* piece)
 {
+  vtkUnsignedCharArray* ghosts = piece ? piece->GetCellGhostArray() : nullptr;
+  bool duplicates = false;
+  for (vtkIdType c = 0; ghosts && c < ghosts->GetNumberOfTuples() && !duplicates; ++c)
+  {
+    duplicates = (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL) != 0;
+  }
+  if (piece && !duplicates)
+  {
+    // No ghost cell to drop: the piece itself (shallow), without its ghost arrays.
+    auto own = vtkSmartPointer<vtkPolyData>::New();
+    own->ShallowCopy(piece);
+    own->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+    own->GetPointData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+    return own;
+  }
   vtkSmartPointer<vtkPolyData> own = PrepareForGather(piece, 0);
   own->GetCellData()->RemoveArray(OriginProcessArrayName());
   own->GetCellData()->RemoveArray(OriginCellArrayName());

@@ -51,7 +51,10 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
   const auto start = std::chrono::steady_clock::now();
   OwnedIds.clear();
   Offsets.assign(1, 0);
-  Entries.clear();
+  Targets.clear();
+  Weights.clear();
+  RemoteIds.clear();
+  RemoteOwners.clear();
   GlobalEntries = Resolved = 0;
   if (const Status valid = SaddleVertexGraph::CheckOptions(options); !valid.Ok())
   {
@@ -152,14 +155,14 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
             }
           }
         }
-        std::vector<FoundLink>& mine = found[static_cast<std::size_t>(OwnedIndex(id))];
-        mine.clear();
-        for (const DGGPropagation::Link& l : links)
+        // (Sized exactly: these lists are most of the build's memory until they are assembled.)
+        std::vector<FoundLink> mine(links.size());
+        for (std::size_t j = 0; j < links.size(); ++j)
         {
-          const int owner = piece.Owner(l.Target);
-          outside = outside || owner < 0;
-          mine.push_back({ id, piece.GlobalId(l.Target), l.Distance, owner });
+          outside = outside || piece.Owner(links[j].Target) < 0;
+          mine[j] = { piece.GlobalId(links[j].Target), links[j].Distance };
         }
+        found[static_cast<std::size_t>(OwnedIndex(id))].swap(mine);
         fenced[static_cast<std::size_t>(i)] = outside ? 1 : 0;
         const std::size_t n = ++done;
 #ifdef _OPENMP
@@ -205,83 +208,136 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
 void PieceGraph::Assemble(const SurfacePiece& piece,
   std::vector<std::vector<FoundLink>>& found, PieceCommunicator& comm)
 {
-  // Both directions of every link and mesh edge, bucketed by owned vertex; the reverse of a link
-  // whose target another process owns goes to that process.
-  const TriangleMesh& mesh = piece.Mesh();
-  std::vector<std::vector<Entry>> buckets(OwnedIds.size());
+  // The reverse of each link whose target another process owns goes to that process.
+  const int me = comm.Rank();
+  const std::size_t n = OwnedIds.size();
+  auto ownerOf = [&piece](std::int64_t id) { return piece.Owner(piece.Vertex(id)); };
   std::vector<ByteBuffer> outgoing(static_cast<std::size_t>(comm.Size())), incoming;
-  std::vector<ByteWriter> writers;
-  for (ByteBuffer& b : outgoing)
-  {
-    writers.emplace_back(b);
-  }
-  for (std::size_t i = 0; i < OwnedIds.size(); ++i)
+  for (std::size_t i = 0; i < n; ++i)
   {
     for (const FoundLink& l : found[i])
     {
-      buckets[i].push_back({ l.Target, l.Weight, l.TargetOwner });
-      if (l.TargetOwner == comm.Rank())
+      const int owner = ownerOf(l.Target);
+      if (owner != me)
       {
-        buckets[static_cast<std::size_t>(OwnedIndex(l.Target))].push_back(
-          { l.Source, l.Weight, comm.Rank() });
-      }
-      else
-      {
-        ByteWriter& w = writers[static_cast<std::size_t>(l.TargetOwner)];
+        ByteWriter w(outgoing[static_cast<std::size_t>(owner)]);
         w.Put(l.Target);
-        w.Put(l.Source);
+        w.Put(OwnedIds[i]);
         w.Put(l.Weight);
       }
     }
-    std::vector<FoundLink>().swap(found[i]);
-    const int v = piece.Vertex(OwnedIds[i]);
-    mesh.ForEachOutgoingHalfedge(v, [&](int h) {
-      const int a = mesh.Destination(h), b = mesh.Origin(TriangleMesh::Prev(h));
-      buckets[i].push_back({ piece.GlobalId(a), mesh.EdgeLength(h), piece.Owner(a) });
-      buckets[i].push_back(
-        { piece.GlobalId(b), mesh.EdgeLength(TriangleMesh::Prev(h)), piece.Owner(b) });
-    });
   }
   comm.Exchange(outgoing, incoming);
-  for (std::size_t q = 0; q < incoming.size(); ++q)
-  {
-    if (static_cast<int>(q) == comm.Rank())
+  outgoing.clear();
+
+  // Both directions of every link and mesh edge, bucketed by owned vertex (counted, then
+  // filled: one array of raw entries), then each bucket sorted with the smallest weight kept per
+  // target. Received sources' owners are their senders.
+  const TriangleMesh& mesh = piece.Mesh();
+  std::unordered_map<std::int64_t, int> sentBy;
+  std::vector<std::int64_t> count(n + 1, 0);
+  auto forEachEntry = [&](const auto& add) {
+    for (std::size_t i = 0; i < n; ++i)
     {
-      continue;
-    }
-    ByteReader r(incoming[q]);
-    std::int64_t target = 0, source = 0;
-    double weight = 0.0;
-    while (r.Get(target) && r.Get(source) && r.Get(weight))
-    {
-      const int i = OwnedIndex(target);
-      if (i >= 0)
+      for (const FoundLink& l : found[i])
       {
-        buckets[static_cast<std::size_t>(i)].push_back({ source, weight, static_cast<int>(q) });
+        add(i, l.Target, l.Weight);
+        const int t = OwnedIndex(l.Target);
+        if (t >= 0)
+        {
+          add(static_cast<std::size_t>(t), OwnedIds[i], l.Weight);
+        }
+      }
+      mesh.ForEachOutgoingHalfedge(piece.Vertex(OwnedIds[i]), [&](int h) {
+        add(i, piece.GlobalId(mesh.Destination(h)), mesh.EdgeLength(h));
+        add(i, piece.GlobalId(mesh.Origin(TriangleMesh::Prev(h))),
+          mesh.EdgeLength(TriangleMesh::Prev(h)));
+      });
+    }
+    for (std::size_t q = 0; q < incoming.size(); ++q)
+    {
+      ByteReader r(incoming[q]);
+      std::int64_t target = 0, source = 0;
+      double weight = 0.0;
+      while (static_cast<int>(q) != me && r.Get(target) && r.Get(source) && r.Get(weight))
+      {
+        const int i = OwnedIndex(target);
+        if (i >= 0)
+        {
+          add(static_cast<std::size_t>(i), source, weight);
+          sentBy.emplace(source, static_cast<int>(q));
+        }
       }
     }
-  }
-  std::int64_t entries = 0;
-  for (std::size_t i = 0; i < buckets.size(); ++i)
+  };
+  forEachEntry([&count](std::size_t i, std::int64_t, double) { ++count[i + 1]; });
+  for (std::size_t i = 0; i < n; ++i)
   {
-    std::vector<Entry>& b = buckets[i];
-    std::sort(b.begin(), b.end(), [](const Entry& x, const Entry& y) {
-      return x.Id < y.Id || (x.Id == y.Id && x.Weight < y.Weight);
+    count[i + 1] += count[i];
+  }
+  std::vector<RawEntry> raw(static_cast<std::size_t>(count[n]));
+  {
+    std::vector<std::int64_t> fill(count.begin(), count.end() - 1);
+    forEachEntry([&](std::size_t i, std::int64_t target, double weight) {
+      raw[static_cast<std::size_t>(fill[i]++)] = { target, weight };
     });
-    for (std::size_t j = 0; j < b.size(); ++j)
+  }
+  std::vector<std::vector<FoundLink>>().swap(found);
+  incoming.clear();
+
+  GlobalEntries = comm.Sum(Compact(piece, raw, count, sentBy));
+}
+
+std::int64_t PieceGraph::Compact(const SurfacePiece& piece, std::vector<RawEntry>& raw,
+  const std::vector<std::int64_t>& count, const std::unordered_map<std::int64_t, int>& sentBy)
+{
+  const std::size_t n = OwnedIds.size();
+  Offsets.assign(n + 1, 0);
+  std::int64_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto first = raw.begin() + count[i], last = raw.begin() + count[i + 1];
+    std::sort(first, last);
+    for (auto it = first; it != last; ++it)
     {
-      if (j == 0 || b[j].Id != b[j - 1].Id)
+      if (it == first || (it - 1)->Target != it->Target)
       {
-        Entry e = b[j];
-        e.Local = e.Local == comm.Rank() ? OwnedIndex(e.Id) : -1 - e.Local;
-        Entries.push_back(e);
-        ++entries;
+        raw[static_cast<std::size_t>(kept++)] = *it; // (kept <= it: in place)
       }
     }
-    Offsets.push_back(entries);
-    std::vector<Entry>().swap(b);
+    Offsets[i + 1] = kept;
   }
-  GlobalEntries = comm.Sum(entries);
+  raw.resize(static_cast<std::size_t>(kept));
+  raw.shrink_to_fit();
+
+  // Remote targets get slots (in id order); entries hold owned numbers or slots.
+  for (const RawEntry& e : raw)
+  {
+    if (OwnedIndex(e.Target) < 0)
+    {
+      RemoteIds.push_back(e.Target);
+    }
+  }
+  std::sort(RemoteIds.begin(), RemoteIds.end());
+  RemoteIds.erase(std::unique(RemoteIds.begin(), RemoteIds.end()), RemoteIds.end());
+  RemoteOwners.resize(RemoteIds.size());
+  for (std::size_t r = 0; r < RemoteIds.size(); ++r)
+  {
+    const int v = piece.Vertex(RemoteIds[r]);
+    const int owner = v >= 0 ? piece.Owner(v) : -1;
+    RemoteOwners[r] = owner >= 0 ? owner : sentBy.at(RemoteIds[r]);
+  }
+  Targets.resize(raw.size());
+  Weights.resize(raw.size());
+  for (std::size_t e = 0; e < raw.size(); ++e)
+  {
+    const int t = OwnedIndex(raw[e].Target);
+    Targets[e] = t >= 0 ? t
+                        : -1 - static_cast<int>(std::lower_bound(RemoteIds.begin(), RemoteIds.end(),
+                                                  raw[e].Target) - RemoteIds.begin());
+    Weights[e] = raw[e].Weight;
+  }
+  return kept;
 }
 
 PieceDistanceSolver::PieceDistanceSolver(const PieceGraph& graph)
@@ -325,7 +381,7 @@ Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, doub
   }
 
   // The best distance sent so far to each vertex of another process.
-  std::unordered_map<std::int64_t, double> sent;
+  std::vector<double> sent(static_cast<std::size_t>(Graph.NumberOfRemote()), Inf);
   const std::size_t size = static_cast<std::size_t>(comm.Size());
   while (true)
   {
@@ -356,13 +412,12 @@ Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, doub
           }
           continue;
         }
-        const std::int64_t id = Graph.TargetId(e);
-        const auto it = sent.find(id);
-        if (it == sent.end() || nd < it->second)
+        double& best = sent[static_cast<std::size_t>(-1 - t)];
+        if (nd < best)
         {
-          sent[id] = nd;
-          ByteWriter w(outgoing[static_cast<std::size_t>(-1 - t)]);
-          w.Put(id);
+          best = nd;
+          ByteWriter w(outgoing[static_cast<std::size_t>(Graph.RemoteOwner(-1 - t))]);
+          w.Put(Graph.RemoteId(-1 - t));
           w.Put(nd);
           ++messages;
         }

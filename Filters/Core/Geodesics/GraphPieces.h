@@ -26,6 +26,7 @@
 #include "SurfacePiece.h"
 
 #include <cstdint>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -51,10 +52,18 @@ public:
   // Adjacency of owned vertex i: entries Begin(i) .. End(i), sorted by target global id.
   std::int64_t Begin(int i) const { return Offsets[static_cast<std::size_t>(i)]; }
   std::int64_t End(int i) const { return Offsets[static_cast<std::size_t>(i) + 1]; }
-  std::int64_t TargetId(std::int64_t e) const { return Entries[static_cast<std::size_t>(e)].Id; }
-  // The target's owned number on this process, or -1 - (its owner's rank).
-  int Target(std::int64_t e) const { return Entries[static_cast<std::size_t>(e)].Local; }
-  double Weight(std::int64_t e) const { return Entries[static_cast<std::size_t>(e)].Weight; }
+  // The target's owned number on this process, or -1 - r for the remote vertex r (a vertex of
+  // another process: RemoteId, RemoteOwner).
+  int Target(std::int64_t e) const { return Targets[static_cast<std::size_t>(e)]; }
+  double Weight(std::int64_t e) const { return Weights[static_cast<std::size_t>(e)]; }
+  std::int64_t TargetId(std::int64_t e) const
+  {
+    const int t = Target(e);
+    return t >= 0 ? OwnedId(t) : RemoteId(-1 - t);
+  }
+  int NumberOfRemote() const { return static_cast<int>(RemoteIds.size()); }
+  std::int64_t RemoteId(int r) const { return RemoteIds[static_cast<std::size_t>(r)]; }
+  int RemoteOwner(int r) const { return RemoteOwners[static_cast<std::size_t>(r)]; }
   // Directed entries over all processes (as SaddleVertexGraph::NumberOfEntries).
   std::int64_t GlobalNumberOfEntries() const { return GlobalEntries; }
   // Vertices solved again after the band grew, over all processes, and the band's final width.
@@ -63,18 +72,11 @@ public:
   double BuildSeconds() const { return Seconds; }
 
 private:
-  struct Entry
-  {
-    std::int64_t Id;
-    double Weight;
-    int Local;
-  };
-  // A link found by an owned vertex's solve, in global ids.
+  // A link found by an owned vertex's solve (its target's global id).
   struct FoundLink
   {
-    std::int64_t Source, Target;
+    std::int64_t Target;
     double Weight;
-    int TargetOwner;
   };
   // Build's steps: the owned vertices' solves (again for those that reached the fence, after the
   // band has grown), into `found` by owned number; then the adjacency from them.
@@ -83,9 +85,27 @@ private:
     std::vector<std::vector<FoundLink>>& found);
   void Assemble(const SurfacePiece& piece, std::vector<std::vector<FoundLink>>& found,
     PieceCommunicator& comm);
+  // Assemble's last step: each owned vertex's bucket of `raw` (count: the buckets' offsets)
+  // sorted, the smallest weight kept per target, into the adjacency; remote targets get slots
+  // (their owners from the piece, else from `sentBy`, the process that sent the link). Returns
+  // the entries kept.
+  struct RawEntry
+  {
+    std::int64_t Target;
+    double Weight;
+    bool operator<(const RawEntry& o) const
+    {
+      return Target < o.Target || (Target == o.Target && Weight < o.Weight);
+    }
+  };
+  std::int64_t Compact(const SurfacePiece& piece, std::vector<RawEntry>& raw,
+    const std::vector<std::int64_t>& count, const std::unordered_map<std::int64_t, int>& sentBy);
   std::vector<std::int64_t> OwnedIds;
   std::vector<std::int64_t> Offsets;
-  std::vector<Entry> Entries;
+  std::vector<int> Targets;
+  std::vector<double> Weights;
+  std::vector<std::int64_t> RemoteIds; // sorted
+  std::vector<int> RemoteOwners;
   std::int64_t GlobalEntries = 0, Resolved = 0;
   int BandRings = 0;
   double Seconds = 0.0;

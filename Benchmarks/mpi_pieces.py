@@ -1,0 +1,231 @@
+"""SVG Geodesic Distance on a surface spread over MPI processes: memory and time per process
+count, on pieces (nothing gathered) against the serial run and the gathering route.
+
+For the mesh (a file, or `file:S` subdivided S times at edge midpoints) and each process count P,
+the faces are split into P slabs (x + 0.3 y of their centroids, equal counts) written as a
+partitioned .pvtp with global point and cell ids (Debian's ParaView 5.11 cannot run Redistribute
+DataSet: its expat rejects the raw binary the filter writes between processes). Then, in
+separate processes with nothing else running:
+  serial   pvbatch on the whole mesh (the reference distances and memory);
+  pieces   mpiexec -n P pvbatch --symmetric, UnfoldingRefinement off: each process works on its
+           piece and a band of its neighbours' faces (vtkSurfacePieces);
+  gather   the same with UnfoldingRefinement on, which gathers the surface on process 0 and
+           builds the graph there (what every run did before the pieces route).
+Per process: peak resident memory added by the filter (ru_maxrss after the first Apply minus
+before it), the first Apply (band, graph, solve), a further source, the faces the process held.
+OMP_NUM_THREADS is 2 / P (at least 1): P > 2 oversubscribes the 2-core machine, and is marked so.
+
+    pvpython Benchmarks/mpi_pieces.py --plugin build/lib/paraview-5.11/plugins/GeodesicShapes/GeodesicShapes.so \\
+        build/bench-data/data/meshes/refined_elephant.off:2 --processes 1 2 4 [--solver svg|dgg]
+"""
+import argparse
+import glob
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+SOLVERS = {"svg": {"Solver": "SVG (label-correcting)", "K": 50},
+           "dgg": {"Solver": "DGG (accuracy-bounded)", "GraphAccuracy": 0.1}}
+SOURCES = [0, 1000]  # serial vertex ids: the first Apply, then a further source
+
+
+def run_one(args):
+    """One process of a run: the pipeline, then its figures (a JSON file per process)."""
+    import resource
+    from paraview.simple import LoadPlugin, PLYReader, XMLPartitionedPolydataReader
+    import vtk
+    LoadPlugin(args.plugin, remote=False, ns=globals())
+    controller = vtk.vtkMultiProcessController.GetGlobalController()
+    rank = controller.GetLocalProcessId() if controller else 0
+    if args.mesh.endswith(".pvtp"):
+        mesh = XMLPartitionedPolydataReader(FileName=[args.mesh])
+    else:
+        mesh = PLYReader(FileNames=[args.mesh])
+    mesh.UpdatePipeline()
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    distance = globals()["SVGGeodesicDistance"](Input=mesh, SourceVertexIds=[SOURCES[0]],
+                                               UnfoldingRefinement=int(args.refine),
+                                               **SOLVERS[args.solver])
+    start = time.perf_counter()
+    distance.UpdatePipeline()
+    first = time.perf_counter() - start
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    data = distance.GetClientSideObject().GetOutputDataObject(0)
+    writer = vtk.vtkXMLPolyDataWriter()
+    writer.SetDataModeToBinary()
+    writer.SetFileName(os.path.join(args.out, "distance_%d.vtp" % rank))
+    writer.SetInputData(data)
+    writer.Write()
+    distance.SourceVertexIds = [SOURCES[1]]
+    start = time.perf_counter()
+    distance.UpdatePipeline()
+    further = time.perf_counter() - start
+    faces = data.GetFieldData().GetArray("PieceFaces")
+    with open(os.path.join(args.out, "figures_%d.json" % rank), "w") as f:
+        f.write(json.dumps({
+        "rank": rank, "first": first, "further": further, "peak_mb": (peak - before) / 1024.0,
+        "cells": data.GetNumberOfCells(),
+        "held": faces.GetValue(0) if faces is not None else None}))
+
+
+def split(ply, parts, folder):
+    """The mesh in `parts` slabs with global ids, as a .pvtp."""
+    import numpy
+    import vtk
+    from vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    reader = vtk.vtkPLYReader()
+    reader.SetFileName(ply)
+    reader.Update()
+    whole = reader.GetOutput()
+    points = vtk_to_numpy(whole.GetPoints().GetData()).astype(float)
+    cells = vtk_to_numpy(whole.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    centres = points[cells].mean(axis=1)
+    order = numpy.argsort(centres[:, 0] + 0.3 * centres[:, 1], kind="stable")
+    part = numpy.empty(len(cells), dtype=int)
+    part[order] = numpy.arange(len(cells)) * parts // len(cells)
+    os.makedirs(folder, exist_ok=True)
+    names = []
+    for p in range(parts):
+        mine = numpy.nonzero(part == p)[0]
+        used = numpy.unique(cells[mine])
+        remap = numpy.full(len(points), -1, dtype=numpy.int64)
+        remap[used] = numpy.arange(len(used))
+        piece = vtk.vtkPolyData()
+        piece_points = vtk.vtkPoints()
+        piece_points.SetData(numpy_to_vtk(points[used], deep=True))
+        piece.SetPoints(piece_points)
+        polys = vtk.vtkCellArray()
+        polys.SetData(numpy_to_vtk(numpy.arange(0, 3 * len(mine) + 1, 3, dtype=numpy.int64),
+                                   deep=True, array_type=vtk.VTK_ID_TYPE),
+                      numpy_to_vtk(remap[cells[mine]].ravel(), deep=True,
+                                   array_type=vtk.VTK_ID_TYPE))
+        piece.SetPolys(polys)
+        for attributes, ids, name in ((piece.GetPointData(), used, "GlobalPointIds"),
+                                      (piece.GetCellData(), mine, "GlobalCellIds")):
+            a = numpy_to_vtk(ids.astype(numpy.int64), deep=True, array_type=vtk.VTK_ID_TYPE)
+            a.SetName(name)
+            attributes.SetGlobalIds(a)
+        name = "piece_%d.vtp" % p
+        writer = vtk.vtkXMLPolyDataWriter()
+        writer.SetDataModeToBinary()
+        writer.SetFileName(os.path.join(folder, name))
+        writer.SetInputData(piece)
+        writer.Write()
+        names.append(name)
+    pvtp = os.path.join(folder, "mesh.pvtp")
+    with open(pvtp, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="1.0" '
+                'byte_order="LittleEndian" header_type="UInt64">\n<PPolyData GhostLevel="0">\n'
+                '<PPointData GlobalIds="GlobalPointIds"><PDataArray type="Int64" '
+                'Name="GlobalPointIds"/></PPointData>\n<PCellData GlobalIds="GlobalCellIds">'
+                '<PDataArray type="Int64" Name="GlobalCellIds"/></PCellData>\n'
+                '<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n')
+        for n in names:
+            f.write('<Piece Source="%s"/>\n' % n)
+        f.write('</PPolyData>\n</VTKFile>\n')
+    return pvtp, len(cells)
+
+
+def distances(folder):
+    """Distances by point coordinates over a run's output pieces."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+    table = {}
+    for path in sorted(glob.glob(os.path.join(folder, "distance_*.vtp"))):
+        reader = vtk.vtkXMLPolyDataReader()
+        reader.SetFileName(path)
+        reader.Update()
+        data = reader.GetOutput()
+        xyz = vtk_to_numpy(data.GetPoints().GetData())
+        d = vtk_to_numpy(data.GetPointData().GetArray("GeodesicDistance"))
+        table.update(zip(map(tuple, xyz.tolist()), d.tolist()))
+    return table
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("mesh", nargs="?")
+    parser.add_argument("--plugin", required=True)
+    parser.add_argument("--processes", type=int, nargs="+", default=[1, 2, 4])
+    parser.add_argument("--solver", choices=sorted(SOLVERS), default="svg")
+    parser.add_argument("--no-gather", action="store_true", help="skip the gathering runs")
+    parser.add_argument("--cores", type=int, default=os.cpu_count())
+    # One process of a run (internal).
+    parser.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--refine", type=int, default=0, help=argparse.SUPPRESS)
+    parser.add_argument("--out", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.one:
+        run_one(args)
+        return
+
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from geodesic_engines import mesh_file  # noqa: E402
+    import math
+    work = tempfile.mkdtemp(prefix="gs_mpi_pieces_")
+    ply = mesh_file(args.mesh, work)
+    me = os.path.abspath(__file__)
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("OMPI_", "PMIX_", "ORTE_", "OPAL_"))}
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_mpi_yield_when_idle="1")
+
+    def run(label, processes, mesh, refine):
+        out = os.path.join(work, label)
+        os.makedirs(out, exist_ok=True)
+        command = ["pvbatch", me, mesh, "--plugin", args.plugin, "--solver", args.solver,
+                   "--one", "--refine", str(refine), "--out", out]
+        if processes > 1:
+            command = ["mpiexec", "-n", str(processes), "pvbatch", "--symmetric"] + command[1:]
+        env["OMP_NUM_THREADS"] = str(max(1, args.cores // processes))
+        result = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                universal_newlines=True)
+        figures = []
+        for path in glob.glob(os.path.join(out, "figures_*.json")):
+            with open(path) as f:
+                figures.append(json.load(f))
+        figures.sort(key=lambda f: f["rank"])
+        if result.returncode != 0 or len(figures) != processes:
+            print(result.stdout)
+            sys.exit("%s failed" % label)
+        return out, figures
+
+    reference, serial = run("serial", 1, ply, 0)
+    ref = distances(reference)
+    nfaces = None
+    print("%s, %s; peak = resident memory added by the filter; first = first Apply "
+          "(band, graph, solve); further = another source" % (args.mesh, SOLVERS[args.solver]))
+    print("%-26s %6s %10s %9s %9s %12s %s" % ("run", "P", "peak MB", "first s", "next s",
+                                             "faces held", "largest rel. difference"))
+
+    def report(label, p, figures, out, compare=True):
+        got = distances(out)
+        worst = max((abs(got[k] - v) / v for k, v in ref.items()
+                     if k in got and v > 0 and math.isfinite(v) and math.isfinite(got[k])),
+                    default=0.0) if compare else float("nan")
+        flag = " (oversubscribed)" if p > args.cores else ""
+        print("%-26s %6d %10s %9.2f %9.2f %12s %.3g%s" % (
+            label, p, "/".join("%.0f" % f["peak_mb"] for f in figures),
+            max(f["first"] for f in figures), max(f["further"] for f in figures),
+            "/".join(str(f["held"]) for f in figures) if figures[0]["held"] is not None else "-",
+            worst, flag))
+
+    report("serial", 1, serial, reference)
+    for p in args.processes:
+        if p < 2:
+            continue
+        pvtp, nfaces = split(ply, p, os.path.join(work, "split%d" % p))
+        out, figures = run("pieces%d" % p, p, pvtp, 0)
+        report("pieces (nothing gathered)", p, figures, out)
+        if not args.no_gather:
+            out, figures = run("gather%d" % p, p, pvtp, 1)
+            report("gather (refinement on)", p, figures, out, compare=False)
+    print("faces: %s; outputs in %s" % (nfaces, work))
+
+
+if __name__ == "__main__":
+    main()
