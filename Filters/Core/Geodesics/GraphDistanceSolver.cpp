@@ -129,8 +129,13 @@ void GraphDistanceSolver::SolveLabelCorrecting(double limit)
     auto relax = [&](std::int64_t e) {
       const int v = targets[e];
       const double nd = du + weights[e];
-      if (!(nd < dist[v]) || !(nd <= limit))
+      if (!(nd <= dist[v]) || !(nd <= limit))
       {
+        return;
+      }
+      if (nd == dist[v])
+      {
+        KeepSmallerPredecessor(v, e, u);
         return;
       }
       ++relaxations;
@@ -166,7 +171,8 @@ void GraphDistanceSolver::SolveLabelCorrecting(double limit)
     {
       const __m128d nd = _mm_add_pd(du2, _mm_loadu_pd(weights + e));
       const __m128d old = _mm_set_pd(dist[targets[e + 1]], dist[targets[e]]);
-      const int better = _mm_movemask_pd(_mm_cmplt_pd(nd, old));
+      // (<=: a tie may change the predecessor, see KeepSmallerPredecessor.)
+      const int better = _mm_movemask_pd(_mm_cmple_pd(nd, old));
       if (better & 1)
       {
         relax(e);
@@ -213,7 +219,11 @@ void GraphDistanceSolver::SolveDijkstra(double limit)
     {
       const int v = Graph.Target(e);
       const double nd = it.D + Graph.Weight(e);
-      if (nd < Dist[v] && nd <= limit)
+      if (nd == Dist[v] && nd <= limit)
+      {
+        KeepSmallerPredecessor(v, e, it.V);
+      }
+      else if (nd < Dist[v] && nd <= limit)
       {
         ++NumRelaxations;
         if (Dist[v] == Inf)

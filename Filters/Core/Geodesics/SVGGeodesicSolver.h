@@ -173,11 +173,11 @@ private:
   // The sweep's order: reached nodes sorted by distance (radix sort on 32-bit keys).
   std::vector<std::pair<std::uint32_t, int>> Order, OrderScratch;
   std::vector<std::size_t> OrderCounts; // the sort's digit counts
+  std::vector<std::pair<int, double>> Lowered; // the sequential sweep's refined distances of a key
   // RefineInParallel, per node: its refined distance (NaN until its thread has refined it, and
-  // between solves) and its place in Order (read for equal sort keys only).
+  // between solves).
   std::unique_ptr<std::atomic<double>[]> Refined;
   std::size_t RefinedCount = 0;
-  std::vector<std::int64_t> Position;
 };
 
 } // namespace gs

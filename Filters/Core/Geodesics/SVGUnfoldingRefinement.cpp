@@ -253,12 +253,24 @@ void SVGGeodesicSolver::Refine(
   const std::int64_t count = static_cast<std::int64_t>(Order.size());
   auto next = [](std::int64_t k) { return k + 1; };
   SweepPrefetch prefetch = StartPrefetch(0, count, next);
-  // (In place: a vertex's distance changes at its turn only, so that the vertices before it in
-  // the order give their refined distances, those after it their graph distances.)
+  // (In place, a sort key at a time: the vertices of smaller keys give their refined distances,
+  // those of the same key or larger their graph distances; the distances of one key change
+  // together once the key is done. Which of several vertices of one key comes first then does
+  // not matter: it depended on the order of the graph search.)
   auto distanceOf = [this](int u) { return GraphSolver.Distance(u); };
+  std::vector<std::pair<int, double>>& lowered = Lowered;
+  lowered.clear();
   for (std::int64_t i = 0; i < count; ++i)
   {
     Prefetch(prefetch, count, next);
+    if (i > 0 && Order[i].first != Order[i - 1].first)
+    {
+      for (const auto& l : lowered)
+      {
+        GraphSolver.Lower(l.first, l.second);
+      }
+      lowered.clear();
+    }
     const int x = Order[i].second;
     if (Exact[x])
     {
@@ -271,7 +283,7 @@ void SVGGeodesicSolver::Refine(
     }
     if (best < GraphSolver.Distance(x) && best <= limit)
     {
-      GraphSolver.Lower(x, best);
+      lowered.push_back({ x, best });
     }
     if (angles)
     {
@@ -279,17 +291,20 @@ void SVGGeodesicSolver::Refine(
       AngleSet.push_back(x);
     }
   }
+  for (const auto& l : lowered)
+  {
+    GraphSolver.Lower(l.first, l.second);
+  }
 }
 
 void SVGGeodesicSolver::RefineInParallel(double limit, int threads)
 {
   // The sequential sweep's result to the bit, on several threads: each takes blocks of the
-  // order in turn, and a vertex reads the refined distance of the stencil neighbours before it
-  // in the order (waiting for it when another thread has not yet reached it) and the graph
-  // distance of those after it, as the sweep in place does. Refined distances go to their own
-  // array (NaN: not yet refined) until every thread is done, so that no thread sees a later
-  // vertex's refined distance. Before or after: by the sort key, and by the place in the order
-  // for vertices of equal keys (both reached then: places of earlier solves are never read).
+  // order in turn, and a vertex reads the refined distance of the stencil neighbours of smaller
+  // sort keys (waiting for it when another thread has not yet reached it) and the graph distance
+  // of the others, as the sweep in place does. Refined distances go to their own array (NaN: not
+  // yet refined) until every thread is done, so that no thread sees a later vertex's refined
+  // distance.
   const std::int64_t count = static_cast<std::int64_t>(Order.size());
   const std::size_t nodes = Graph.NumberOfVertices();
   if (!Refined || RefinedCount != nodes)
@@ -300,7 +315,6 @@ void SVGGeodesicSolver::RefineInParallel(double limit, int threads)
     {
       Refined[v].store(NaN, std::memory_order_relaxed);
     }
-    Position.assign(nodes, 0);
   }
   constexpr std::int64_t block = 256;
 #pragma omp parallel num_threads(threads)
@@ -315,17 +329,11 @@ void SVGGeodesicSolver::RefineInParallel(double limit, int threads)
       ++k;
       return k % block == 0 ? k + (team - 1) * block : k;
     };
-    for (std::int64_t k = me * block; k < count; k = next(k))
-    {
-      Position[Order[k].second] = k;
-    }
-#pragma omp barrier
-    std::int64_t i = 0;
     std::uint32_t key = 0;
-    auto distanceOf = [this, &i, &key](int u) {
+    auto distanceOf = [this, &key](int u) {
       const double graph = GraphSolver.Distance(u);
       const std::uint32_t k = SortKey(graph);
-      if (k > key || (k == key && Position[u] >= i)) // after x in the order, or unreached
+      if (k >= key) // not before x in the order, or unreached
       {
         return graph;
       }
@@ -341,7 +349,7 @@ void SVGGeodesicSolver::RefineInParallel(double limit, int threads)
       return d;
     };
     SweepPrefetch prefetch = StartPrefetch(me * block, count, next);
-    for (i = me * block; i < count; i = next(i))
+    for (std::int64_t i = me * block; i < count; i = next(i))
     {
       Prefetch(prefetch, count, next);
       const int x = Order[i].second;

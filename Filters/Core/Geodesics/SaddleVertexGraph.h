@@ -335,7 +335,9 @@ public:
   // Nodes reached by the last solve (unordered).
   const std::vector<int>& Reached() const { return Touched; }
   std::int64_t Relaxations() const { return NumRelaxations; }
-  // The node whose link gave v its distance (-1 for seeds and unreached vertices).
+  // The node whose link gave v its distance (-1 for seeds and unreached vertices). When several
+  // links give it exactly, the one from the smallest mesh vertex (a rule that does not depend on
+  // the order of the search, so that a search over processes finds the same).
   int Predecessor(int v) const { return Pred[v].Vertex; }
   // The link (adjacency entry of the predecessor) that gave v its distance, or -1.
   std::int64_t PredecessorLink(int v) const { return Pred[v].Link; }
@@ -344,6 +346,15 @@ public:
   void Lower(int v, double d) { Dist[v] = d; }
 
 private:
+  // A tie: link e from u gives v exactly its distance; it becomes v's predecessor link when u's
+  // mesh vertex is smaller than the predecessor's (a seed keeps none).
+  void KeepSmallerPredecessor(int v, std::int64_t e, int u)
+  {
+    if (Pred[v].Vertex >= 0 && Graph.Vertex(u) < Graph.Vertex(Pred[v].Vertex))
+    {
+      Pred[v] = { e, u };
+    }
+  }
   void SolveLabelCorrecting(double maxDistance);
   void SolveDijkstra(double maxDistance);
 
