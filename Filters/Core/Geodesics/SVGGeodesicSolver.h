@@ -73,7 +73,7 @@ public:
   static constexpr double ConeCosine = 0.966;
   // The cone is tried once more about the stencil neighbour of its pairs that gives the
   // shortest route, when that route is shorter than the arrival's by more than this fraction
-  // (RefineVertex; 0: re-centred for any shorter route, 20-30% slower on curved meshes with
+  // (StencilUnfolding::RefineVertex; 0: re-centred for any shorter route, 20-30% slower on curved meshes with
   // reached stencils for no smaller error; 3e-3: half the gain on the jittered plane).
   static constexpr double ArrivalMoveMargin = 1e-3;
   // Spacing of the samples seeding the exact solve near a curve, in mean edge lengths.
@@ -110,28 +110,9 @@ private:
     std::int64_t parallelMinimum = 0);
   // The same sweep (distances only) on several threads, with the same result.
   void RefineInParallel(double limit, int threads);
-  // Vertex x's refined distance (`best`, never below the floor a discrete geodesic graph
-  // guarantees) and, with `angles`, its departure angle, from its stencil neighbours' distances
-  // as `distanceOf` gives them; false when x has nothing to unfold from (it keeps its graph
-  // distance).
-  template <class DistanceOf>
-  bool RefineVertex(int x, bool unfold, bool angles, const DistanceOf& distanceOf, double& best,
-    double& bestAngle) const;
-  // RefineVertex's steps (SVGUnfoldingRefinement.cpp): the stencil entry towards the source
-  // (the graph predecessor's, or the nearest neighbour's route); the cone about it (its
-  // bounds, then its pairs relaxed and unfolded, with angles one at a time); the angle carried
-  // over from a cone neighbour.
-  struct ConeScan;
-  template <class DistanceOf>
-  std::int64_t ArrivalEntry(
-    int x, std::int64_t begin, std::int64_t end, const DistanceOf& distanceOf) const;
-  void ConeBounds(ConeScan& s) const;
-  template <class DistanceOf>
-  void ScanCone(ConeScan& s, const DistanceOf& distanceOf) const;
-  void UnfoldPairWithAngle(ConeScan& s, std::int64_t e1, std::int64_t e2, double c1, double c2,
-    double p1x, double p1y, double p2x, double p2y, double d1, double d2) const;
-  template <class DistanceOf>
-  void AngleThroughNeighbour(const ConeScan& s, const DistanceOf& distanceOf) const;
+  // The solve's per-vertex state as the unfolding kernel (StencilUnfolding.h) reads it: graph
+  // distances, predecessors and their places in the stencils, closed fans, angles, the floor.
+  struct SolveState;
   // The place of v's graph predecessor in v's stencil (-1: none).
   int StencilIndexOfPredecessor(int v) const;
   // A sweep follows the distance order, random in memory: for the positions of Order it visits
