@@ -63,6 +63,23 @@ void GraphDistanceSolver::Solve(const std::vector<std::pair<int, double>>& seeds
   }
 }
 
+void GraphDistanceSolver::PrefetchQueued(std::size_t head, std::size_t size) const
+{
+  // The queue says which vertices come next: their adjacency (a random place in memory, most of
+  // the solve's time otherwise) is fetched while the front is scanned, the offsets a little
+  // earlier. (LLL may still move them back; measured 1.5x faster on 26K-vertex meshes.)
+  const std::size_t cap = Ring.size();
+  auto wrap = [cap](std::size_t i) { return i >= cap ? i - cap : i; };
+  if (size > 5)
+  {
+    Graph.PrefetchOffsets(Ring[wrap(head + 5)]);
+  }
+  if (size > 1)
+  {
+    Graph.PrefetchAdjacency(Ring[wrap(head + 1)]);
+  }
+}
+
 void GraphDistanceSolver::SolveLabelCorrecting(double limit)
 {
   // A circular deque holding each vertex at most once. SLF (small label first): a vertex whose
@@ -105,17 +122,7 @@ void GraphDistanceSolver::SolveLabelCorrecting(double limit)
     const int u = ring[head];
     head = wrap(head + 1);
     --size;
-    // The queue says which vertices come next: their adjacency (a random place in memory, most
-    // of the solve's time otherwise) is fetched while u is scanned, the offsets a little earlier.
-    // (LLL may still move them back; measured 1.5x faster on 26K-vertex meshes.)
-    if (size > 5)
-    {
-      Graph.PrefetchOffsets(ring[wrap(head + 5)]);
-    }
-    if (size > 1)
-    {
-      Graph.PrefetchAdjacency(ring[wrap(head + 1)]);
-    }
+    PrefetchQueued(head, size);
     inQueue[u] = 0;
     sum -= dist[u];
     if (size == 0)

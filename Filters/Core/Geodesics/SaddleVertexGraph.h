@@ -355,6 +355,9 @@ private:
       Pred[v] = { e, u };
     }
   }
+  // The label-correcting queue's next vertices' adjacency and offsets into the cache (the queue
+  // in Ring from `head`, `size` vertices).
+  void PrefetchQueued(std::size_t head, std::size_t size) const;
   void SolveLabelCorrecting(double maxDistance);
   void SolveDijkstra(double maxDistance);
 
