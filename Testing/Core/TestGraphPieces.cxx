@@ -1,10 +1,12 @@
 // The graph of a surface partitioned over processes (GraphPieces.h), on threads standing for
-// the processes: each process's adjacency equals the serial graph's for its vertices, entry for
-// entry and weight for weight, and the distances equal the serial graph solve's to the bit, for
+// the processes: each process's adjacency and polar stencils equal the serial graph's for its
+// vertices, entry for entry, and the distances, graph and refined by unfolding, equal the serial
+// solvers' to the bit, for
 // several process counts and partitions (slabs, pieces with holes and islands), on a closed
 // curved mesh, a regular plane with a boundary (ties everywhere) and a torus, for both graphs.
 #include "GraphPieces.h"
 #include "MeshGenerators.h"
+#include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
 #include "TestMeshes.h"
 #include "TestStatus.h"
@@ -16,6 +18,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <tuple>
 
 using namespace gs;
 
@@ -25,12 +28,14 @@ namespace
 struct PartitionedRun
 {
   std::map<std::int64_t, std::vector<std::pair<std::int64_t, double>>> Adjacency;
-  std::map<std::int64_t, double> Distance;
+  std::map<std::int64_t, double> Distance, Refined;
+  // Each owned vertex's stencil: (x, y, target id) in order, then the wrap as (x, y, -1).
+  std::map<std::int64_t, std::vector<std::tuple<double, double, std::int64_t>>> Stencil;
   std::map<std::int64_t, int> Owner;
   std::vector<std::vector<double>> Fetched; // per rank, the distances of its own faces' vertices
   std::vector<std::vector<std::int64_t>> FetchedIds;
   std::int64_t Resolved = 0;
-  int Rings = 0, Rounds = 0;
+  int Rings = 0, Rounds = 0, Refinements = 0;
   bool Ok = true;
   std::string Message;
 };
@@ -83,6 +88,11 @@ PartitionedRun RunPieces(const TriangleMesh& mesh, const std::vector<int>& part,
         }
       }
     }
+    PieceDistanceSolver refiner(graph);
+    if (const Status s = refiner.Solve(seeds, maxDistance, comm, true); !s.Ok())
+    {
+      return fail(s);
+    }
     const std::vector<double> fetched = solver.Fetch(piece, wanted, comm);
     std::lock_guard<std::mutex> guard(lock);
     for (int i = 0; i < graph.NumberOfOwned(); ++i)
@@ -93,6 +103,15 @@ PartitionedRun RunPieces(const TriangleMesh& mesh, const std::vector<int>& part,
         list.push_back({ graph.TargetId(e), graph.Weight(e) });
       }
       run.Distance[graph.OwnedId(i)] = solver.Distance(i);
+      run.Refined[graph.OwnedId(i)] = refiner.Distance(i);
+      auto& stencil = run.Stencil[graph.OwnedId(i)];
+      for (std::int64_t e = graph.StencilBegin(i); e < graph.StencilEnd(i); ++e)
+      {
+        const int t = graph.StencilTarget(e);
+        stencil.push_back({ graph.StencilX(e), graph.StencilY(e),
+          t >= 0 ? graph.OwnedId(t) : graph.RemoteId(-1 - t) });
+      }
+      stencil.push_back({ graph.StencilWrapX(i), graph.StencilWrapY(i), -1 });
       run.Owner[graph.OwnedId(i)] = rank;
     }
     run.Fetched[static_cast<std::size_t>(rank)] = fetched;
@@ -103,6 +122,7 @@ PartitionedRun RunPieces(const TriangleMesh& mesh, const std::vector<int>& part,
     run.Resolved = graph.GlobalResolved();
     run.Rings = std::max(run.Rings, graph.Rings());
     run.Rounds = solver.Rounds();
+    run.Refinements = refiner.Refinements();
   });
   return run;
 }
@@ -121,6 +141,15 @@ void ExpectSameAsSerial(const TriangleMesh& mesh, const SaddleVertexGraphOptions
     seeds.push_back({ serial.Node(static_cast<int>(s)), 0.0 });
   }
   solve.Solve(seeds, GraphAlgorithm::LabelCorrecting, maxDistance);
+  SVGGeodesicSolver refined(mesh, serial);
+  std::vector<SurfacePoint> points;
+  for (const std::int64_t s : sources)
+  {
+    points.push_back(SurfacePoint::AtVertex(static_cast<int>(s)));
+  }
+  SVGSolveOptions refineOptions;
+  refineOptions.MaximumDistance = maxDistance;
+  ASSERT_TRUE(gs_test::Succeeded(refined.Solve(points, refineOptions)));
 
   const PartitionedRun run = RunPieces(mesh, part, processes, options, sources, maxDistance);
   ASSERT_TRUE(run.Ok) << run.Message;
@@ -157,6 +186,36 @@ void ExpectSameAsSerial(const TriangleMesh& mesh, const SaddleVertexGraphOptions
       }
     }
   }
+  // Stencils as the serial graph's, and the refined distances as the serial solver's.
+  std::int64_t stencils = 0, refinedDiffer = 0;
+  double worst = 0.0;
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+  {
+    const int n = serial.Node(v);
+    std::vector<std::tuple<double, double, std::int64_t>> expected;
+    for (std::int64_t e = serial.StencilBegin(n); e < serial.StencilEnd(n); ++e)
+    {
+      expected.push_back(
+        { serial.StencilX(e), serial.StencilY(e), serial.Vertex(serial.StencilTarget(e)) });
+    }
+    expected.push_back({ serial.StencilWrapX(n), serial.StencilWrapY(n), -1 });
+    stencils += run.Stencil.at(v) != expected ? 1 : 0;
+    const double d = refined.Distance(v), dp = run.Refined.at(v);
+    if (!(d == dp || (std::isinf(d) && std::isinf(dp))))
+    {
+      ++refinedDiffer;
+      worst = std::max(worst, std::abs(d - dp) / d);
+    }
+  }
+  std::int64_t lowered = 0;
+  for (const auto& [id, d] : run.Refined)
+  {
+    lowered += d < run.Distance.at(id) ? 1 : 0;
+  }
+  EXPECT_GT(lowered, mesh.NumberOfVertices() / 10) << "the refinement lowered few distances";
+  EXPECT_EQ(stencils, 0) << "stencils differ from the serial graph's";
+  EXPECT_EQ(refinedDiffer, 0) << "refined distances differ from the serial solver's, by up to "
+                              << worst << " relative";
   EXPECT_EQ(differ, 0) << "of " << mesh.NumberOfVertices() << " vertices";
   EXPECT_EQ(distances, 0);
   // The copies every process fetched for its own faces' vertices are the owners' values.
@@ -169,9 +228,10 @@ void ExpectSameAsSerial(const TriangleMesh& mesh, const SaddleVertexGraphOptions
         (std::isinf(expected) && std::isinf(run.Fetched[r][j])));
     }
   }
-  std::printf("P = %d: %lld entries, band %d rings, %lld vertices solved again, %d rounds\n",
+  std::printf("P = %d: %lld entries, band %d rings, %lld vertices solved again, %d rounds, "
+              "%d refinement rounds\n",
     processes, static_cast<long long>(entries), run.Rings, static_cast<long long>(run.Resolved),
-    run.Rounds);
+    run.Rounds, run.Refinements);
 }
 
 SaddleVertexGraphOptions Svg(int k)
@@ -215,7 +275,9 @@ TEST(GraphPieces, DiscreteGeodesicGraphOnTorus)
   const TriangleMesh mesh = gs_test::BuildMesh(MakeTorus(1.0, 0.35, 40, 16));
   ExpectSameAsSerial(mesh, Dgg(0.01), gs_test::PartitionFaces(mesh, 3, Vec3(1, 0.2, 0)), 3,
     { 3 });
-  ExpectSameAsSerial(mesh, Dgg(0.01), gs_test::PartitionFaces(mesh, 2, Vec3(0, 1, 0), 4), 2,
+  SaddleVertexGraphOptions reached = Dgg(0.01);
+  reached.ReachedStencil = true; // (stencils hold the reached vertices too)
+  ExpectSameAsSerial(mesh, reached, gs_test::PartitionFaces(mesh, 2, Vec3(0, 1, 0), 4), 2,
     { 100, 500 });
 }
 

@@ -39,6 +39,14 @@ int InitialRings(const SaddleVertexGraphOptions& options, int k)
 }
 } // namespace
 
+int PieceGraph::Encode(std::int64_t globalId) const
+{
+  const int t = OwnedIndex(globalId);
+  return t >= 0 ? t
+                : -1 - static_cast<int>(std::lower_bound(RemoteIds.begin(), RemoteIds.end(), globalId) -
+                    RemoteIds.begin());
+}
+
 int PieceGraph::OwnedIndex(std::int64_t globalId) const
 {
   const auto it = std::lower_bound(OwnedIds.begin(), OwnedIds.end(), globalId);
@@ -51,6 +59,10 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
   const auto start = std::chrono::steady_clock::now();
   OwnedIds.clear();
   Offsets.assign(1, 0);
+  StencilOffsets.assign(1, 0);
+  Stencil.clear();
+  WrapXY.clear();
+  Interior.clear();
   Targets.clear();
   Weights.clear();
   RemoteIds.clear();
@@ -60,6 +72,8 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
   {
     return valid; // (the same options on every process: every one fails)
   }
+  Construction = options.Construction;
+  Accuracy = Construction == GraphConstruction::DiscreteGeodesic ? options.Accuracy : 0.0;
   const int k = SaddleVertexGraph::EffectiveK(options,
     static_cast<int>(std::min<std::int64_t>(piece.GlobalNumberOfVertices(),
       std::numeric_limits<int>::max())));
@@ -80,7 +94,7 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
   }
   // OwnedIds is sorted: the piece numbers its vertices in global id order.
 
-  std::vector<std::vector<FoundLink>> found(OwnedIds.size());
+  std::vector<OwnedSolve> found(OwnedIds.size());
   if (const Status solved = SolveOwned(piece, options, k, comm, progress, found); !solved.Ok())
   {
     return solved;
@@ -95,37 +109,101 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
   return Status();
 }
 
-Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOptions& options, int k,
-  PieceCommunicator& comm, const ProgressCallback& progress,
-  std::vector<std::vector<FoundLink>>& found)
+// One thread's solves from owned vertices on the piece (as SaddleVertexGraph's build solves):
+// the links and the polar stencil of a vertex, and whether the solve reached the piece's fence.
+struct PieceGraph::VertexSolver
 {
-  const bool dgg = options.Construction == GraphConstruction::DiscreteGeodesic;
-  const double epsilon = SaddleVertexGraph::DiscreteGeodesicEpsilon(options.Accuracy);
+  VertexSolver(const SurfacePiece& piece, const SaddleVertexGraphOptions& options, int k)
+    : Piece(piece)
+    , Dgg(options.Construction == GraphConstruction::DiscreteGeodesic)
+    , ReachedStencil(Dgg && options.ReachedStencil)
+    , Epsilon(SaddleVertexGraph::DiscreteGeodesicEpsilon(options.Accuracy))
+  {
+    // (Each engine allocates per-vertex state: only the one this graph uses is made.)
+    if (Dgg)
+    {
+      Propagation.reset(new DGGPropagation(piece.Mesh(), piece.LengthScale()));
+      Propagation->SetFence(&piece.Fence());
+    }
+    else
+    {
+      Solver.reset(new ExactGeodesicSolver(piece.Mesh(), piece.LengthScale()));
+    }
+    Options.MaximumFinalVertices = k;
+    Options.Fence = &piece.Fence();
+  }
+
+  bool operator()(int s, OwnedSolve& made)
+  {
+    bool outside = false;
+    Links.clear();
+    Reached.clear();
+    if (Dgg)
+    {
+      Propagation->Run(s, Epsilon, Links, ReachedStencil ? &Reached : nullptr);
+      outside = Propagation->FenceReached();
+    }
+    else
+    {
+      static_cast<void>(Solver->Solve(s, Options)); // s is a vertex of the mesh: accepted
+      outside = Solver->FenceReached();
+      for (const int v : Solver->FinalVertices())
+      {
+        if (v != s && Solver->IsDirect(v))
+        {
+          Links.push_back({ v, Solver->Distance(v), Solver->DepartureAngle(v) });
+        }
+      }
+    }
+    // (Sized exactly: these lists are most of the build's memory until they are assembled.)
+    made.Links.resize(Links.size());
+    for (std::size_t j = 0; j < Links.size(); ++j)
+    {
+      made.Links[j] = { Piece.GlobalId(Links[j].Target), Links[j].Distance };
+    }
+    // The polar stencil, as SaddleVertexGraph lays it out.
+    const std::size_t nl = Links.size();
+    auto item = [&](std::size_t j) -> const DGGPropagation::Link& {
+      return j < nl ? Links[j] : Reached[j - nl];
+    };
+    made.Stencil.resize(nl + Reached.size());
+    LayOutPolarStencil(
+      made.Stencil.size(), [&](std::size_t j) { return item(j).Distance; },
+      [&](std::size_t j) { return item(j).Angle; }, Piece.Mesh().TotalAngle(s), Order,
+      [&](std::size_t at, std::size_t j, double x, double y) {
+        outside = outside || Piece.Owner(item(j).Target) < 0;
+        made.Stencil[at] = { x, y, Piece.GlobalId(item(j).Target) };
+      },
+      made.WrapX, made.WrapY);
+    made.Interior = !Piece.Mesh().IsBoundaryVertex(s);
+    return outside;
+  }
+
+  const SurfacePiece& Piece;
+  const bool Dgg, ReachedStencil;
+  const double Epsilon;
+  std::unique_ptr<ExactGeodesicSolver> Solver;
+  std::unique_ptr<DGGPropagation> Propagation;
+  ExactGeodesicOptions Options;
+  std::vector<DGGPropagation::Link> Links, Reached;
+  std::vector<int> Order;
+};
+
+Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOptions& options, int k,
+  PieceCommunicator& comm, const ProgressCallback& progress, std::vector<OwnedSolve>& found)
+{
   const int threads = options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
   std::vector<std::int64_t> pending = OwnedIds;
   const std::size_t total = std::max<std::size_t>(OwnedIds.size(), 1);
   std::size_t solved = 0;
   while (true)
   {
-    const TriangleMesh& mesh = piece.Mesh();
-    const std::vector<unsigned char>& fence = piece.Fence();
     std::vector<unsigned char> fenced(pending.size(), 0);
     std::atomic<bool> aborted(false);
     std::atomic<std::size_t> done(0);
 #pragma omp parallel num_threads(threads)
     {
-      std::unique_ptr<ExactGeodesicSolver> solver(
-        dgg ? nullptr : new ExactGeodesicSolver(mesh, piece.LengthScale()));
-      std::unique_ptr<DGGPropagation> propagation(
-        dgg ? new DGGPropagation(mesh, piece.LengthScale()) : nullptr);
-      if (propagation)
-      {
-        propagation->SetFence(&fence);
-      }
-      ExactGeodesicOptions opt;
-      opt.MaximumFinalVertices = k;
-      opt.Fence = &fence;
-      std::vector<DGGPropagation::Link> links;
+      VertexSolver solve(piece, options, k);
       int count = 0;
 #pragma omp for schedule(dynamic, 64)
       for (std::int64_t i = 0; i < static_cast<std::int64_t>(pending.size()); ++i)
@@ -135,34 +213,9 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
           continue;
         }
         const std::int64_t id = pending[static_cast<std::size_t>(i)];
-        const int s = piece.Vertex(id);
-        bool outside = false;
-        links.clear();
-        if (dgg)
-        {
-          propagation->Run(s, epsilon, links);
-          outside = propagation->FenceReached();
-        }
-        else
-        {
-          static_cast<void>(solver->Solve(s, opt)); // s is a vertex of the mesh: accepted
-          outside = solver->FenceReached();
-          for (const int v : solver->FinalVertices())
-          {
-            if (v != s && solver->IsDirect(v))
-            {
-              links.push_back({ v, solver->Distance(v), 0.0 });
-            }
-          }
-        }
-        // (Sized exactly: these lists are most of the build's memory until they are assembled.)
-        std::vector<FoundLink> mine(links.size());
-        for (std::size_t j = 0; j < links.size(); ++j)
-        {
-          outside = outside || piece.Owner(links[j].Target) < 0;
-          mine[j] = { piece.GlobalId(links[j].Target), links[j].Distance };
-        }
-        found[static_cast<std::size_t>(OwnedIndex(id))].swap(mine);
+        OwnedSolve made;
+        const bool outside = solve(piece.Vertex(id), made);
+        found[static_cast<std::size_t>(OwnedIndex(id))] = std::move(made);
         fenced[static_cast<std::size_t>(i)] = outside ? 1 : 0;
         const std::size_t n = ++done;
 #ifdef _OPENMP
@@ -205,8 +258,8 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
   return Status();
 }
 
-void PieceGraph::Assemble(const SurfacePiece& piece,
-  std::vector<std::vector<FoundLink>>& found, PieceCommunicator& comm)
+void PieceGraph::Assemble(
+  const SurfacePiece& piece, std::vector<OwnedSolve>& found, PieceCommunicator& comm)
 {
   // The reverse of each link whose target another process owns goes to that process.
   const int me = comm.Rank();
@@ -215,7 +268,7 @@ void PieceGraph::Assemble(const SurfacePiece& piece,
   std::vector<ByteBuffer> outgoing(static_cast<std::size_t>(comm.Size())), incoming;
   for (std::size_t i = 0; i < n; ++i)
   {
-    for (const FoundLink& l : found[i])
+    for (const FoundLink& l : found[i].Links)
     {
       const int owner = ownerOf(l.Target);
       if (owner != me)
@@ -239,7 +292,7 @@ void PieceGraph::Assemble(const SurfacePiece& piece,
   auto forEachEntry = [&](const auto& add) {
     for (std::size_t i = 0; i < n; ++i)
     {
-      for (const FoundLink& l : found[i])
+      for (const FoundLink& l : found[i].Links)
       {
         add(i, l.Target, l.Weight);
         const int t = OwnedIndex(l.Target);
@@ -282,14 +335,17 @@ void PieceGraph::Assemble(const SurfacePiece& piece,
       raw[static_cast<std::size_t>(fill[i]++)] = { target, weight };
     });
   }
-  std::vector<std::vector<FoundLink>>().swap(found);
   incoming.clear();
-
-  GlobalEntries = comm.Sum(Compact(piece, raw, count, sentBy));
+  for (OwnedSolve& f : found)
+  {
+    std::vector<FoundLink>().swap(f.Links);
+  }
+  GlobalEntries = comm.Sum(Compact(piece, raw, count, sentBy, found));
 }
 
 std::int64_t PieceGraph::Compact(const SurfacePiece& piece, std::vector<RawEntry>& raw,
-  const std::vector<std::int64_t>& count, const std::unordered_map<std::int64_t, int>& sentBy)
+  const std::vector<std::int64_t>& count, const std::unordered_map<std::int64_t, int>& sentBy,
+  std::vector<OwnedSolve>& found)
 {
   const std::size_t n = OwnedIds.size();
   Offsets.assign(n + 1, 0);
@@ -310,12 +366,23 @@ std::int64_t PieceGraph::Compact(const SurfacePiece& piece, std::vector<RawEntry
   raw.resize(static_cast<std::size_t>(kept));
   raw.shrink_to_fit();
 
-  // Remote targets get slots (in id order); entries hold owned numbers or slots.
+  // Remote targets (of links and stencils) get slots (in id order); entries hold owned numbers
+  // or slots.
   for (const RawEntry& e : raw)
   {
     if (OwnedIndex(e.Target) < 0)
     {
       RemoteIds.push_back(e.Target);
+    }
+  }
+  for (const OwnedSolve& f : found)
+  {
+    for (const StencilItem& item : f.Stencil)
+    {
+      if (OwnedIndex(item.Target) < 0)
+      {
+        RemoteIds.push_back(item.Target);
+      }
     }
   }
   std::sort(RemoteIds.begin(), RemoteIds.end());
@@ -327,15 +394,34 @@ std::int64_t PieceGraph::Compact(const SurfacePiece& piece, std::vector<RawEntry
     const int owner = v >= 0 ? piece.Owner(v) : -1;
     RemoteOwners[r] = owner >= 0 ? owner : sentBy.at(RemoteIds[r]);
   }
+  RemoteIds.shrink_to_fit();
   Targets.resize(raw.size());
   Weights.resize(raw.size());
   for (std::size_t e = 0; e < raw.size(); ++e)
   {
-    const int t = OwnedIndex(raw[e].Target);
-    Targets[e] = t >= 0 ? t
-                        : -1 - static_cast<int>(std::lower_bound(RemoteIds.begin(), RemoteIds.end(),
-                                                  raw[e].Target) - RemoteIds.begin());
+    Targets[e] = Encode(raw[e].Target);
     Weights[e] = raw[e].Weight;
+  }
+  // The stencils, in one array.
+  StencilOffsets.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    StencilOffsets[i + 1] = StencilOffsets[i] + static_cast<std::int64_t>(found[i].Stencil.size());
+  }
+  Stencil.resize(static_cast<std::size_t>(StencilOffsets[n]));
+  WrapXY.resize(2 * n);
+  Interior.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (std::size_t j = 0; j < found[i].Stencil.size(); ++j)
+    {
+      const StencilItem& item = found[i].Stencil[j];
+      Stencil[static_cast<std::size_t>(StencilOffsets[i]) + j] = { item.X, item.Y, Encode(item.Target) };
+    }
+    WrapXY[2 * i] = found[i].WrapX;
+    WrapXY[2 * i + 1] = found[i].WrapY;
+    Interior[i] = found[i].Interior ? 1 : 0;
+    OwnedSolve().Swap(found[i]);
   }
   return kept;
 }
@@ -346,13 +432,13 @@ PieceDistanceSolver::PieceDistanceSolver(const PieceGraph& graph)
 }
 
 Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, double>>& seeds,
-  double maxDistance, PieceCommunicator& comm)
+  double maxDistance, PieceCommunicator& comm, bool refine)
 {
   const double limit = maxDistance > 0.0 ? maxDistance : Inf;
-  Dist.assign(static_cast<std::size_t>(Graph.NumberOfOwned()), Inf);
-  NumRounds = 0;
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  const std::size_t n = static_cast<std::size_t>(Graph.NumberOfOwned());
+  Dist.assign(n, Inf);
+  Pred.assign(n, -1);
+  NumRounds = RefinementRounds = 0;
   std::vector<std::int64_t> ids;
   for (const auto& s : seeds)
   {
@@ -370,18 +456,52 @@ Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, doub
     return Status::Error(ids.empty() ? "no source given"
                                      : "a source vertex id is not a point of the surface");
   }
+  std::vector<int> owned;
   for (const auto& s : seeds)
   {
     const int i = Graph.OwnedIndex(s.first);
     if (i >= 0 && s.second <= limit && s.second < Dist[static_cast<std::size_t>(i)])
     {
       Dist[static_cast<std::size_t>(i)] = s.second;
-      heap.push({ s.second, i });
+      owned.push_back(i);
     }
   }
+  SolveGraph(owned, limit, comm);
+  if (refine)
+  {
+    Refine(owned, limit, comm);
+  }
+  return Status();
+}
 
-  // The best distance sent so far to each vertex of another process.
-  std::vector<double> sent(static_cast<std::size_t>(Graph.NumberOfRemote()), Inf);
+void PieceDistanceSolver::SolveGraph(
+  const std::vector<int>& seeds, double limit, PieceCommunicator& comm)
+{
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  for (const int i : seeds)
+  {
+    heap.push({ Dist[static_cast<std::size_t>(i)], i });
+  }
+  // v reached at d through u (global id): the smaller distance, or on a tie the predecessor of
+  // smaller id (GraphDistanceSolver's rule), a seed keeping none.
+  auto offer = [&](int v, double d, std::int64_t u) {
+    double& dv = Dist[static_cast<std::size_t>(v)];
+    std::int64_t& pv = Pred[static_cast<std::size_t>(v)];
+    if (d < dv)
+    {
+      dv = d;
+      pv = u;
+      heap.push({ d, v });
+    }
+    else if (d == dv && pv >= 0 && u < pv)
+    {
+      pv = u;
+    }
+  };
+  // The best distance (and its source) sent so far to each vertex of another process.
+  std::vector<std::pair<double, std::int64_t>> sent(
+    static_cast<std::size_t>(Graph.NumberOfRemote()), { Inf, 0 });
   const std::size_t size = static_cast<std::size_t>(comm.Size());
   while (true)
   {
@@ -395,6 +515,7 @@ Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, doub
       {
         continue;
       }
+      const std::int64_t uid = Graph.OwnedId(top.second);
       for (std::int64_t e = Graph.Begin(top.second); e < Graph.End(top.second); ++e)
       {
         const double nd = top.first + Graph.Weight(e);
@@ -405,20 +526,17 @@ Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, doub
         const int t = Graph.Target(e);
         if (t >= 0)
         {
-          if (nd < Dist[static_cast<std::size_t>(t)])
-          {
-            Dist[static_cast<std::size_t>(t)] = nd;
-            heap.push({ nd, t });
-          }
+          offer(t, nd, uid);
           continue;
         }
-        double& best = sent[static_cast<std::size_t>(-1 - t)];
-        if (nd < best)
+        auto& best = sent[static_cast<std::size_t>(-1 - t)];
+        if (nd < best.first || (nd == best.first && uid < best.second))
         {
-          best = nd;
+          best = { nd, uid };
           ByteWriter w(outgoing[static_cast<std::size_t>(Graph.RemoteOwner(-1 - t))]);
           w.Put(Graph.RemoteId(-1 - t));
           w.Put(nd);
+          w.Put(uid);
           ++messages;
         }
       }
@@ -431,25 +549,19 @@ Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, doub
     }
     for (std::size_t q = 0; q < size; ++q)
     {
-      if (static_cast<int>(q) == comm.Rank())
-      {
-        continue;
-      }
       ByteReader r(incoming[q]);
-      std::int64_t id = 0;
+      std::int64_t id = 0, from = 0;
       double d = 0.0;
-      while (r.Get(id) && r.Get(d))
+      while (static_cast<int>(q) != comm.Rank() && r.Get(id) && r.Get(d) && r.Get(from))
       {
         const int i = Graph.OwnedIndex(id);
-        if (i >= 0 && d < Dist[static_cast<std::size_t>(i)])
+        if (i >= 0)
         {
-          Dist[static_cast<std::size_t>(i)] = d;
-          heap.push({ d, i });
+          offer(i, d, from);
         }
       }
     }
   }
-  return Status();
 }
 
 std::vector<double> PieceDistanceSolver::Fetch(

@@ -25,6 +25,7 @@
 #include "Status.h"
 #include "SurfacePiece.h"
 
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 #include <utility>
@@ -62,6 +63,28 @@ public:
     return t >= 0 ? OwnedId(t) : RemoteId(-1 - t);
   }
   int NumberOfRemote() const { return static_cast<int>(RemoteIds.size()); }
+  // A global id as Target encodes it: its owned number, or -1 - its remote slot (an id that is
+  // neither gives a slot that is not its own).
+  int Encode(std::int64_t globalId) const;
+  // The polar stencil of owned vertex i, as SaddleVertexGraph's (its targets encoded as Target's):
+  // what the unfolding refinement reads (StencilUnfolding.h).
+  std::int64_t StencilBegin(int i) const { return StencilOffsets[static_cast<std::size_t>(i)]; }
+  std::int64_t StencilEnd(int i) const { return StencilOffsets[static_cast<std::size_t>(i) + 1]; }
+  int StencilTarget(std::int64_t e) const { return Stencil[static_cast<std::size_t>(e)].Target; }
+  double StencilX(std::int64_t e) const { return Stencil[static_cast<std::size_t>(e)].X; }
+  double StencilY(std::int64_t e) const { return Stencil[static_cast<std::size_t>(e)].Y; }
+  double StencilDistance(std::int64_t e) const
+  {
+    const StencilEntry& s = Stencil[static_cast<std::size_t>(e)];
+    return std::sqrt(s.X * s.X + s.Y * s.Y);
+  }
+  double StencilWrapX(int i) const { return WrapXY[2 * static_cast<std::size_t>(i)]; }
+  double StencilWrapY(int i) const { return WrapXY[2 * static_cast<std::size_t>(i) + 1]; }
+  // Whether owned vertex i's stencil is a closed fan (not a boundary vertex).
+  bool IsInterior(int i) const { return Interior[static_cast<std::size_t>(i)] != 0; }
+  // The construction and accuracy the graph was built with.
+  GraphConstruction GetConstruction() const { return Construction; }
+  double GetAccuracy() const { return Accuracy; }
   std::int64_t RemoteId(int r) const { return RemoteIds[static_cast<std::size_t>(r)]; }
   int RemoteOwner(int r) const { return RemoteOwners[static_cast<std::size_t>(r)]; }
   // Directed entries over all processes (as SaddleVertexGraph::NumberOfEntries).
@@ -72,19 +95,35 @@ public:
   double BuildSeconds() const { return Seconds; }
 
 private:
-  // A link found by an owned vertex's solve (its target's global id).
+  // What an owned vertex's solve found: its links and its polar stencil (targets' global ids).
   struct FoundLink
   {
     std::int64_t Target;
     double Weight;
   };
+  struct StencilItem
+  {
+    double X, Y;
+    std::int64_t Target;
+  };
+  struct OwnedSolve
+  {
+    std::vector<FoundLink> Links;
+    std::vector<StencilItem> Stencil;
+    double WrapX = 0.0, WrapY = 0.0;
+    bool Interior = false;
+    void Swap(OwnedSolve& o)
+    {
+      Links.swap(o.Links);
+      Stencil.swap(o.Stencil);
+    }
+  };
+  struct VertexSolver;
   // Build's steps: the owned vertices' solves (again for those that reached the fence, after the
   // band has grown), into `found` by owned number; then the adjacency from them.
   Status SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOptions& options, int k,
-    PieceCommunicator& comm, const ProgressCallback& progress,
-    std::vector<std::vector<FoundLink>>& found);
-  void Assemble(const SurfacePiece& piece, std::vector<std::vector<FoundLink>>& found,
-    PieceCommunicator& comm);
+    PieceCommunicator& comm, const ProgressCallback& progress, std::vector<OwnedSolve>& found);
+  void Assemble(const SurfacePiece& piece, std::vector<OwnedSolve>& found, PieceCommunicator& comm);
   // Assemble's last step: each owned vertex's bucket of `raw` (count: the buckets' offsets)
   // sorted, the smallest weight kept per target, into the adjacency; remote targets get slots
   // (their owners from the piece, else from `sentBy`, the process that sent the link). Returns
@@ -99,13 +138,26 @@ private:
     }
   };
   std::int64_t Compact(const SurfacePiece& piece, std::vector<RawEntry>& raw,
-    const std::vector<std::int64_t>& count, const std::unordered_map<std::int64_t, int>& sentBy);
+    const std::vector<std::int64_t>& count, const std::unordered_map<std::int64_t, int>& sentBy,
+    std::vector<OwnedSolve>& found);
+
   std::vector<std::int64_t> OwnedIds;
   std::vector<std::int64_t> Offsets;
   std::vector<int> Targets;
   std::vector<double> Weights;
   std::vector<std::int64_t> RemoteIds; // sorted
   std::vector<int> RemoteOwners;
+  struct StencilEntry
+  {
+    double X, Y;
+    int Target;
+  };
+  std::vector<std::int64_t> StencilOffsets;
+  std::vector<StencilEntry> Stencil;
+  std::vector<double> WrapXY;
+  std::vector<unsigned char> Interior;
+  GraphConstruction Construction = GraphConstruction::SaddleVertex;
+  double Accuracy = 0.0;
   std::int64_t GlobalEntries = 0, Resolved = 0;
   int BandRings = 0;
   double Seconds = 0.0;
@@ -117,24 +169,35 @@ public:
   // The graph must outlive the solver.
   explicit PieceDistanceSolver(const PieceGraph& graph);
 
-  // Collective. Seeds: (global vertex id, initial distance); every process may pass the whole
+  // Collective. Seeds: (global vertex id, initial distance); every process passes the whole
   // list (each keeps those it owns). Vertices farther than maxDistance (> 0) stay unreached
-  // (infinite). Fails on every process when a seed's id is owned by no process.
+  // (infinite). With `refine`, the graph distances are refined by geodesic triangle unfolding
+  // as SVGGeodesicSolver refines them from vertex sources (the seeds keep theirs). Fails on
+  // every process when a seed's id is owned by no process.
   Status Solve(const std::vector<std::pair<std::int64_t, double>>& seeds, double maxDistance,
-    PieceCommunicator& comm);
+    PieceCommunicator& comm, bool refine = false);
   // Distance of owned vertex i (infinite where unreached).
   double Distance(int i) const { return Dist[static_cast<std::size_t>(i)]; }
   // Collective. The distance of every vertex of `piece` listed in `wanted` (local vertices of
   // the piece, each complete), from their owners; infinite where unreached.
   std::vector<double> Fetch(
     const SurfacePiece& piece, const std::vector<int>& wanted, PieceCommunicator& comm) const;
-  // Rounds of the last solve (exchanges of distances).
+  // Rounds of the last solve (exchanges of distances), and of its refinement.
   int Rounds() const { return NumRounds; }
+  int Refinements() const { return RefinementRounds; }
 
 private:
+  // Solve's steps: Dijkstra by rounds from the seeds (owned numbers, their distances set), with
+  // predecessors; then the refinement sweep by rounds (PieceRefinement in GraphPieces.cpp).
+  void SolveGraph(const std::vector<int>& seeds, double limit, PieceCommunicator& comm);
+  void Refine(const std::vector<int>& seeds, double limit, PieceCommunicator& comm);
+  struct Sweep;
+  struct SweepRounds;
+
   const PieceGraph& Graph;
   std::vector<double> Dist;
-  int NumRounds = 0;
+  std::vector<std::int64_t> Pred; // global id of the predecessor (-1: a seed or unreached)
+  int NumRounds = 0, RefinementRounds = 0;
 };
 
 } // namespace gs

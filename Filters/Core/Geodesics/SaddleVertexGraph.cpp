@@ -329,32 +329,18 @@ struct SaddleVertexGraph::Builder
     auto item = [&](std::size_t i) -> const DGGPropagation::Link& {
       return i < nl ? links[i] : (*reached)[i - nl];
     };
-    order.resize(size);
-    for (std::size_t i = 0; i < size; ++i)
-    {
-      order[i] = static_cast<int>(i);
-    }
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      const double aa = item(a).Angle, ab = item(b).Angle;
-      return aa < ab || (aa == ab && a < b);
-    });
     std::vector<StencilEntry>& out = Made[n];
     out.resize(size + nl);
     StencilSize[n] = static_cast<int>(size);
-    for (std::size_t i = 0; i < size; ++i)
-    {
-      const DGGPropagation::Link& l = item(static_cast<std::size_t>(order[i]));
-      const double r = l.Distance, a = l.Angle;
-      out[i].Target = Graph.NodeOf[l.Target];
-      out[i].X = r * std::cos(a);
-      out[i].Y = r * std::sin(a);
-      if (i == 0)
-      {
-        const double wrapped = a + Mesh.TotalAngle(Graph.VertexOf[n]);
-        Graph.WrapXY[2 * static_cast<std::size_t>(n)] = r * std::cos(wrapped);
-        Graph.WrapXY[2 * static_cast<std::size_t>(n) + 1] = r * std::sin(wrapped);
-      }
-    }
+    LayOutPolarStencil(
+      size, [&](std::size_t i) { return item(i).Distance; },
+      [&](std::size_t i) { return item(i).Angle; }, Mesh.TotalAngle(Graph.VertexOf[n]), order,
+      [&](std::size_t k, std::size_t i, double x, double y) {
+        out[k].Target = Graph.NodeOf[item(i).Target];
+        out[k].X = x;
+        out[k].Y = y;
+      },
+      Graph.WrapXY[2 * static_cast<std::size_t>(n)], Graph.WrapXY[2 * static_cast<std::size_t>(n) + 1]);
     for (std::size_t i = 0; i < nl; ++i)
     {
       out[size + i] = { links[i].Distance, 0.0, links[i].Target };

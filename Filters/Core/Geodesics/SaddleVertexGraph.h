@@ -313,6 +313,38 @@ private:
   double Seconds = 0.0;
 };
 
+// A vertex's polar stencil laid out (SaddleVertexGraph's stencils, and those of a partitioned
+// surface's pieces: the same arithmetic): entries 0 .. size - 1, of geodesic length distance(i)
+// leaving the vertex at angle(i), sorted by angle (ties by index) into `order`; emit(k, i, x, y)
+// places entry i k-th at (r cos a, r sin a); (wrapX, wrapY) is the first one turned by the
+// vertex's total angle, for the pair that closes the fan.
+template <class Distance, class Angle, class Emit>
+void LayOutPolarStencil(std::size_t size, const Distance& distance, const Angle& angle,
+  double totalAngle, std::vector<int>& order, const Emit& emit, double& wrapX, double& wrapY)
+{
+  order.resize(size);
+  for (std::size_t i = 0; i < size; ++i)
+  {
+    order[i] = static_cast<int>(i);
+  }
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const double aa = angle(static_cast<std::size_t>(a)), ab = angle(static_cast<std::size_t>(b));
+    return aa < ab || (aa == ab && a < b);
+  });
+  for (std::size_t k = 0; k < size; ++k)
+  {
+    const std::size_t i = static_cast<std::size_t>(order[k]);
+    const double r = distance(i), a = angle(i);
+    emit(k, i, r * std::cos(a), r * std::sin(a));
+    if (k == 0)
+    {
+      const double wrapped = a + totalAngle;
+      wrapX = r * std::cos(wrapped);
+      wrapY = r * std::sin(wrapped);
+    }
+  }
+}
+
 enum class GraphAlgorithm
 {
   LabelCorrecting, // SLF insertion, LLL extraction (the paper's choice)

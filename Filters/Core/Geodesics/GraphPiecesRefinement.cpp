@@ -1,0 +1,283 @@
+// The unfolding refinement of PieceDistanceSolver: SVGGeodesicSolver::Refine's sweep on a
+// surface partitioned over processes, with the same kernel (StencilUnfolding.h) and so the same
+// bits. The serial sweep refines vertices in order of their sort keys, each reading the refined
+// distances of its stencil neighbours of smaller keys and the graph distances of the others:
+// that is a dependency graph without cycles, which the processes work through by rounds. Each
+// process refines every owned vertex whose smaller-key neighbours are refined, sends the refined
+// distances other processes' stencils read, and receives theirs; a global sum of the vertices
+// left ends the rounds (each round refines at least the smallest key left anywhere).
+#include "GraphPieces.h"
+
+#include "StencilUnfolding.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace gs
+{
+
+namespace
+{
+constexpr double Inf = std::numeric_limits<double>::infinity();
+} // namespace
+
+// The sweep's state: graph and refined distances of the owned vertices and of the other
+// processes' vertices the stencils read (remote slots), and who waits for whom.
+struct PieceDistanceSolver::Sweep
+{
+  const PieceGraph& Graph;
+  std::vector<double> GraphDist, Refined;   // owned (Refined: NaN until refined)
+  std::vector<double> RemoteGraph, RemoteRefined; // remote slots
+  std::vector<int> PredIndex;               // the predecessor's place in the stencil (-1: none)
+  double FloorFraction = 0.0;
+
+  // StencilUnfolding's view of the per-vertex state (distances only: no angles).
+  double GraphDistance(int x) const { return GraphDist[static_cast<std::size_t>(x)]; }
+  int Predecessor(int) const { return -1; }
+  int PredecessorStencilIndex(int x) const { return PredIndex[static_cast<std::size_t>(x)]; }
+  bool Interior(int x) const { return Graph.IsInterior(x); }
+  double Angle(int) const { return std::numeric_limits<double>::quiet_NaN(); }
+  double AnglePeriod() const { return 0.0; }
+  double Floor() const { return FloorFraction; }
+
+  double GraphOf(int code) const
+  {
+    return code >= 0 ? GraphDist[static_cast<std::size_t>(code)]
+                     : RemoteGraph[static_cast<std::size_t>(-1 - code)];
+  }
+  double RefinedOf(int code) const
+  {
+    return code >= 0 ? Refined[static_cast<std::size_t>(code)]
+                     : RemoteRefined[static_cast<std::size_t>(-1 - code)];
+  }
+};
+
+// The sweep's steps.
+struct PieceDistanceSolver::SweepRounds
+{
+  SweepRounds(Sweep& sweep, PieceCommunicator& comm, const std::vector<std::int64_t>& pred)
+    : S(sweep)
+    , Comm(comm)
+    , Pred(pred)
+  {
+  }
+  Sweep& S;
+  PieceCommunicator& Comm;
+  const std::vector<std::int64_t>& Pred;
+  std::vector<std::pair<int, int>> Subscribers; // (owned vertex, rank reading it), sorted
+  std::vector<std::uint32_t> Key;
+  std::vector<unsigned char> Exact;
+  std::vector<int> Waiting, Ready;
+  std::vector<std::pair<std::size_t, int>> Edges; // (neighbour, dependent), sorted
+  std::int64_t Left = 0;
+
+  // The graph distances of the remote vertices the stencils read, from their owners, who note
+  // who reads which of their vertices (the subscribers of its refined distance).
+  void ReadRemoteGraphDistances()
+  {
+    const PieceGraph& graph = S.Graph;
+    const std::size_t n = S.GraphDist.size(), remotes = S.RemoteGraph.size();
+    const std::size_t size = static_cast<std::size_t>(Comm.Size());
+    std::vector<unsigned char> read(remotes, 0);
+    for (std::size_t x = 0; x < n; ++x)
+    {
+      for (std::int64_t e = graph.StencilBegin(static_cast<int>(x));
+           e < graph.StencilEnd(static_cast<int>(x)); ++e)
+      {
+        if (graph.StencilTarget(e) < 0)
+        {
+          read[static_cast<std::size_t>(-1 - graph.StencilTarget(e))] = 1;
+        }
+      }
+    }
+    std::vector<ByteBuffer> requests(size), asked, answers(size), answered;
+    for (std::size_t r = 0; r < remotes; ++r)
+    {
+      if (read[r])
+      {
+        ByteWriter(requests[static_cast<std::size_t>(graph.RemoteOwner(static_cast<int>(r)))])
+          .Put(graph.RemoteId(static_cast<int>(r)));
+      }
+    }
+    Comm.Exchange(requests, asked);
+    for (std::size_t q = 0; q < size; ++q)
+    {
+      ByteReader r(asked[q]);
+      ByteWriter w(answers[q]);
+      std::int64_t id = 0;
+      while (static_cast<int>(q) != Comm.Rank() && r.Get(id))
+      {
+        const int i = graph.OwnedIndex(id);
+        w.Put(i >= 0 ? S.GraphDist[static_cast<std::size_t>(i)] : Inf);
+        if (i >= 0)
+        {
+          Subscribers.push_back({ i, static_cast<int>(q) });
+        }
+      }
+    }
+    std::sort(Subscribers.begin(), Subscribers.end());
+    Comm.Exchange(answers, answered);
+    std::vector<ByteReader> readers;
+    for (std::size_t q = 0; q < size; ++q)
+    {
+      readers.emplace_back(answered[q]);
+    }
+    for (std::size_t r = 0; r < remotes; ++r)
+    {
+      if (read[r])
+      {
+        readers[static_cast<std::size_t>(graph.RemoteOwner(static_cast<int>(r)))].Get(
+          S.RemoteGraph[r]);
+      }
+    }
+  }
+
+  // Each reached vertex waits for its stencil neighbours of smaller keys (dependents by
+  // neighbour: owned numbers, then remote slots after the owned); the predecessors' places.
+  void FindDependencies(const std::vector<int>& seeds)
+  {
+    const PieceGraph& graph = S.Graph;
+    const std::size_t n = S.GraphDist.size();
+    Key.resize(n);
+    Exact.assign(n, 0);
+    Waiting.assign(n, 0);
+    for (std::size_t x = 0; x < n; ++x)
+    {
+      Key[x] = unfolding::SortKey(S.GraphDist[x]);
+    }
+    for (const int i : seeds)
+    {
+      Exact[static_cast<std::size_t>(i)] = 1;
+    }
+    for (std::size_t x = 0; x < n; ++x)
+    {
+      if (!(S.GraphDist[x] < Inf))
+      {
+        S.Refined[x] = S.GraphDist[x];
+        continue;
+      }
+      ++Left;
+      const int xi = static_cast<int>(x);
+      for (std::int64_t e = graph.StencilBegin(xi); e < graph.StencilEnd(xi); ++e)
+      {
+        const int code = graph.StencilTarget(e);
+        if (!Exact[x] && unfolding::SortKey(S.GraphOf(code)) < Key[x])
+        {
+          ++Waiting[x];
+          Edges.push_back(
+            { code >= 0 ? static_cast<std::size_t>(code) : n + static_cast<std::size_t>(-1 - code),
+              xi });
+        }
+        const std::int64_t target = code >= 0 ? graph.OwnedId(code) : graph.RemoteId(-1 - code);
+        if (Pred[x] >= 0 && target == Pred[x])
+        {
+          S.PredIndex[x] = static_cast<int>(e - graph.StencilBegin(xi));
+        }
+      }
+      if (Waiting[x] == 0)
+      {
+        Ready.push_back(xi);
+      }
+    }
+    std::sort(Edges.begin(), Edges.end());
+  }
+
+  // The vertices waiting for `neighbour` (an owned number, or n + a remote slot) wait for one
+  // less; those that wait no more are ready.
+  void Release(std::size_t neighbour)
+  {
+    auto it = std::lower_bound(Edges.begin(), Edges.end(), std::make_pair(neighbour, -1));
+    for (; it != Edges.end() && it->first == neighbour; ++it)
+    {
+      if (--Waiting[static_cast<std::size_t>(it->second)] == 0)
+      {
+        Ready.push_back(it->second);
+      }
+    }
+  }
+
+  // Rounds until every reached vertex is refined; returns how many.
+  int Run(double limit)
+  {
+    const PieceGraph& graph = S.Graph;
+    const std::size_t n = S.GraphDist.size();
+    const std::size_t size = static_cast<std::size_t>(Comm.Size());
+    const StencilUnfolding<PieceGraph, Sweep> kernel(graph, S);
+    std::uint32_t keyX = 0;
+    // Refined distances of smaller keys, graph distances of the others (as the serial sweep).
+    auto distanceOf = [this, &keyX](int code) {
+      const double d = S.GraphOf(code);
+      return unfolding::SortKey(d) >= keyX ? d : S.RefinedOf(code);
+    };
+    for (int rounds = 1;; ++rounds)
+    {
+      std::vector<ByteBuffer> outgoing(size), incoming;
+      while (!Ready.empty())
+      {
+        const int x = Ready.back();
+        Ready.pop_back();
+        const std::size_t xs = static_cast<std::size_t>(x);
+        keyX = Key[xs];
+        double best = Inf, angle = 0.0, value = S.GraphDist[xs];
+        if (!Exact[xs] && kernel.RefineVertex(x, true, false, distanceOf, best, angle) &&
+          best < value && best <= limit)
+        {
+          value = best;
+        }
+        S.Refined[xs] = value;
+        --Left;
+        Release(xs);
+        auto it = std::lower_bound(Subscribers.begin(), Subscribers.end(), std::make_pair(x, -1));
+        for (; it != Subscribers.end() && it->first == x; ++it)
+        {
+          ByteWriter w(outgoing[static_cast<std::size_t>(it->second)]);
+          w.Put(graph.OwnedId(x));
+          w.Put(value);
+        }
+      }
+      Comm.Exchange(outgoing, incoming);
+      for (std::size_t q = 0; q < size; ++q)
+      {
+        ByteReader r(incoming[q]);
+        std::int64_t id = 0;
+        double value = 0.0;
+        while (static_cast<int>(q) != Comm.Rank() && r.Get(id) && r.Get(value))
+        {
+          const int code = graph.Encode(id);
+          const int slot = -1 - code;
+          if (code < 0 && slot < graph.NumberOfRemote() && graph.RemoteId(slot) == id)
+          {
+            S.RemoteRefined[static_cast<std::size_t>(slot)] = value;
+            Release(n + static_cast<std::size_t>(slot));
+          }
+        }
+      }
+      if (Comm.Sum(Left) == 0)
+      {
+        return rounds;
+      }
+    }
+  }
+};
+
+void PieceDistanceSolver::Refine(
+  const std::vector<int>& seeds, double limit, PieceCommunicator& comm)
+{
+  const std::size_t n = static_cast<std::size_t>(Graph.NumberOfOwned());
+  const std::size_t remotes = static_cast<std::size_t>(Graph.NumberOfRemote());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Sweep sweep{ Graph, Dist, std::vector<double>(n, nan), std::vector<double>(remotes, Inf),
+    std::vector<double>(remotes, nan), std::vector<int>(n, -1),
+    Graph.GetConstruction() == GraphConstruction::DiscreteGeodesic
+      ? 1.0 / (1.0 + Graph.GetAccuracy())
+      : 0.0 };
+  SweepRounds rounds(sweep, comm, Pred);
+  rounds.ReadRemoteGraphDistances();
+  rounds.FindDependencies(seeds);
+  RefinementRounds = rounds.Run(limit);
+  Dist.swap(sweep.Refined);
+}
+
+} // namespace gs
