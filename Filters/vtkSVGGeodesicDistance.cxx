@@ -114,13 +114,13 @@ int vtkSVGGeodesicDistance::FillInputPortInformation(int port, vtkInformation* i
 int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI, the graph solvers' distances from vertex ids without refinement are computed on
-  // the pieces when they carry global ids (the same decision on every process: it depends on
-  // properties and on CanUse, which is collective); everything else gathers the surface.
+  // Under MPI, the graph solvers' distances from vertex ids are computed on the pieces when they
+  // carry global ids (the same decision on every process: it depends on properties and on
+  // CanUse, which is collective); everything else gathers the surface.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (distributed && input && output && this->UsesGraph() && !this->UnfoldingRefinement &&
+  if (distributed && input && output && this->UsesGraph() &&
     inputVector[1]->GetNumberOfInformationObjects() == 0 && this->CacheFileName.empty())
   {
     if (!this->Pieces)
@@ -173,7 +173,8 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, 
     return 1;
   }
   std::vector<double> distances;
-  if (!this->Pieces->Distances(this, this->SourceVertexIds, this->MaximumDistance, distances))
+  if (!this->Pieces->Distances(
+        this, this->SourceVertexIds, this->MaximumDistance, this->UnfoldingRefinement, distances))
   {
     return 1;
   }

@@ -206,9 +206,9 @@ protected:
   // RequestData's work on the whole surface (the input itself, or under MPI the gathered
   // surface on process 0).
   int Execute(vtkPolyData* input, vtkPointSet* sources, vtkPolyData* output);
-  // Under MPI, a graph solver without unfolding refinement from SourceVertexIds on pieces with
-  // global ids: each process works on its own cells (`own`, ghost cells dropped) and a band of
-  // its neighbours' (vtkSurfacePieces), nothing gathered.
+  // Under MPI, a graph solver from SourceVertexIds on pieces with global ids: each process works
+  // on its own cells (`own`, ghost cells dropped) and a band of its neighbours'
+  // (vtkSurfacePieces), nothing gathered.
   int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output);
 
 

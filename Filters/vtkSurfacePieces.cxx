@@ -257,7 +257,7 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
 
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources,
-  double maxDistance, std::vector<double>& perPoint)
+  double maxDistance, bool refine, std::vector<double>& perPoint)
 {
   std::vector<std::pair<std::int64_t, double>> seeds;
   for (const vtkIdType id : sources)
@@ -265,7 +265,7 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType
     seeds.push_back({ static_cast<std::int64_t>(id), 0.0 });
   }
   gs::PieceDistanceSolver solver(this->GraphState);
-  if (const gs::Status solved = solver.Solve(seeds, maxDistance, *Comm); !solved.Ok())
+  if (const gs::Status solved = solver.Solve(seeds, maxDistance, *Comm, refine); !solved.Ok())
   {
     vtkErrorWithObjectMacro(self, "Source vertex ids: " << solved.Message() << ".");
     return false;

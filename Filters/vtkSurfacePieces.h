@@ -47,10 +47,11 @@ public:
     const gs::SaddleVertexGraphOptions& options, double from, double to, bool& built);
 
   // Distances from the points of global ids `sources` to every point of `ownCells` (the piece
-  // UseGraph was given): NaN where unreached, beyond maxDistance (> 0) or not on a triangle.
-  // False (error on `self`) on every process when a source id is no point of the surface.
+  // UseGraph was given), refined by geodesic triangle unfolding when `refine`: NaN where
+  // unreached, beyond maxDistance (> 0) or not on a triangle. False (error on `self`) on every
+  // process when a source id is no point of the surface.
   bool Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources, double maxDistance,
-    std::vector<double>& perPoint);
+    bool refine, std::vector<double>& perPoint);
 
   const gs::SurfacePiece& Piece() const { return SurfacePieceState; }
   const gs::PieceGraph& Graph() const { return GraphState; }
