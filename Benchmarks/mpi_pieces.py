@@ -7,10 +7,12 @@ partitioned .pvtp with global point and cell ids (Debian's ParaView 5.11 cannot 
 DataSet: its expat rejects the raw binary the filter writes between processes). Then, in
 separate processes with nothing else running:
   serial   pvbatch on the whole mesh (the reference distances and memory);
-  pieces   mpiexec -n P pvbatch --symmetric, UnfoldingRefinement off: each process works on its
+  pieces   mpiexec -n P pvbatch --symmetric from SourceVertexIds: each process works on its
            piece and a band of its neighbours' faces (vtkSurfacePieces);
-  gather   the same with UnfoldingRefinement on, which gathers the surface on process 0 and
-           builds the graph there (what every run did before the pieces route).
+  gather   the same source given as a point on the Sources port, which gathers the surface on
+           process 0 and builds the graph there (what every run did before the pieces route;
+           a point source at a vertex is that vertex: the same distances).
+Both with unfolding refinement (the default), or without it with --no-refine.
 Per process: peak resident memory added by the filter (ru_maxrss after the first Apply minus
 before it), the first Apply (band, graph, solve), a further source, the faces the process held.
 OMP_NUM_THREADS is 2 / P (at least 1): P > 2 oversubscribes the 2-core machine, and is marked so.
@@ -49,6 +51,10 @@ def run_one(args):
     distance = globals()["SVGGeodesicDistance"](Input=mesh, SourceVertexIds=[SOURCES[0]],
                                                UnfoldingRefinement=int(args.refine),
                                                **SOLVERS[args.solver])
+    if args.gather:
+        # The same vertex as a point on the Sources port: the gathering route.
+        from paraview.simple import PointSource
+        distance.Sources = PointSource(Center=args.gather, NumberOfPoints=1, Radius=0.0)
     start = time.perf_counter()
     distance.UpdatePipeline()
     first = time.perf_counter() - start
@@ -60,6 +66,8 @@ def run_one(args):
     writer.SetInputData(data)
     writer.Write()
     distance.SourceVertexIds = [SOURCES[1]]
+    if args.gather:
+        distance.Sources.Center = args.gather2
     start = time.perf_counter()
     distance.UpdatePipeline()
     further = time.perf_counter() - start
@@ -156,7 +164,10 @@ def main():
     parser.add_argument("--cores", type=int, default=os.cpu_count())
     # One process of a run (internal).
     parser.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
-    parser.add_argument("--refine", type=int, default=0, help=argparse.SUPPRESS)
+    parser.add_argument("--refine", type=int, default=1, help=argparse.SUPPRESS)
+    parser.add_argument("--gather", type=float, nargs=3, help=argparse.SUPPRESS)
+    parser.add_argument("--gather2", type=float, nargs=3, help=argparse.SUPPRESS)
+    parser.add_argument("--no-refine", action="store_true", help="graph distances only")
     parser.add_argument("--out", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.one:
@@ -174,11 +185,16 @@ def main():
     env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_mpi_yield_when_idle="1")
 
-    def run(label, processes, mesh, refine):
+    refine = 0 if args.no_refine else 1
+
+    def run(label, processes, mesh, gather=False):
         out = os.path.join(work, label)
         os.makedirs(out, exist_ok=True)
         command = ["pvbatch", me, mesh, "--plugin", args.plugin, "--solver", args.solver,
                    "--one", "--refine", str(refine), "--out", out]
+        if gather:
+            command += ["--gather"] + ["%.17g" % c for c in source_points[0]]
+            command += ["--gather2"] + ["%.17g" % c for c in source_points[1]]
         if processes > 1:
             command = ["mpiexec", "-n", str(processes), "pvbatch", "--symmetric"] + command[1:]
         env["OMP_NUM_THREADS"] = str(max(1, args.cores // processes))
@@ -194,19 +210,26 @@ def main():
             sys.exit("%s failed" % label)
         return out, figures
 
-    reference, serial = run("serial", 1, ply, 0)
+    import vtk
+    reader = vtk.vtkPLYReader()
+    reader.SetFileName(ply)
+    reader.Update()
+    source_points = [reader.GetOutput().GetPoint(v) for v in SOURCES]
+    del reader
+    reference, serial = run("serial", 1, ply)
     ref = distances(reference)
     nfaces = None
-    print("%s, %s; peak = resident memory added by the filter; first = first Apply "
-          "(band, graph, solve); further = another source" % (args.mesh, SOLVERS[args.solver]))
+    print("%s, %s, unfolding refinement %s; peak = resident memory added by the filter; "
+          "first = first Apply (band, graph, solve); further = another source"
+          % (args.mesh, SOLVERS[args.solver], "on" if refine else "off"))
     print("%-26s %6s %10s %9s %9s %12s %s" % ("run", "P", "peak MB", "first s", "next s",
                                              "faces held", "largest rel. difference"))
 
-    def report(label, p, figures, out, compare=True):
+    def report(label, p, figures, out):
         got = distances(out)
         worst = max((abs(got[k] - v) / v for k, v in ref.items()
                      if k in got and v > 0 and math.isfinite(v) and math.isfinite(got[k])),
-                    default=0.0) if compare else float("nan")
+                    default=0.0)
         flag = " (oversubscribed)" if p > args.cores else ""
         print("%-26s %6d %10s %9.2f %9.2f %12s %.3g%s" % (
             label, p, "/".join("%.0f" % f["peak_mb"] for f in figures),
@@ -219,11 +242,11 @@ def main():
         if p < 2:
             continue
         pvtp, nfaces = split(ply, p, os.path.join(work, "split%d" % p))
-        out, figures = run("pieces%d" % p, p, pvtp, 0)
+        out, figures = run("pieces%d" % p, p, pvtp)
         report("pieces (nothing gathered)", p, figures, out)
         if not args.no_gather:
-            out, figures = run("gather%d" % p, p, pvtp, 1)
-            report("gather (refinement on)", p, figures, out, compare=False)
+            out, figures = run("gather%d" % p, p, pvtp, gather=True)
+            report("gather (point source)", p, figures, out)
     print("faces: %s; outputs in %s" % (nfaces, work))
 
 
