@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <string>
@@ -288,4 +289,36 @@ TEST(GraphPieces, SourceOwnedByNoProcessFailsEverywhere)
     RunPieces(mesh, gs_test::PartitionFaces(mesh, 2, Vec3(1, 0, 0)), 2, Svg(10), { 1000 }, 0.0);
   EXPECT_FALSE(run.Ok);
   EXPECT_NE(run.Message.find("not a point"), std::string::npos) << run.Message;
+}
+
+TEST(GraphPieces, MalformedPieceFailsEverywhere)
+{
+  // One process's triangle uses a point of another id twice at two positions: every process
+  // gets the error, none hangs.
+  const TriangleMesh mesh = gs_test::BuildMesh(MakePlanarGrid(6, 6, 1.0, 1.0));
+  const std::vector<int> part = gs_test::PartitionFaces(mesh, 2, Vec3(1, 0, 0));
+  std::vector<std::string> messages(2);
+  gs_test::ThreadHub hub(2);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    PieceTriangles own = gs_test::PieceOf(mesh, part, rank);
+    if (rank == 1)
+    {
+      own.PointIds.pop_back(); // a point without an id
+    }
+    SurfacePiece piece;
+    messages[static_cast<std::size_t>(rank)] = piece.Build(own, 1, comm).Message();
+  });
+  EXPECT_NE(messages[0].find("process 1"), std::string::npos) << messages[0];
+  EXPECT_NE(messages[1].find("global id"), std::string::npos) << messages[1];
+}
+
+TEST(GraphPieces, BuildRefusedBeyondTheAvailableMemoryEverywhere)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(2, 3, 0.1));
+  ::setenv("GS_AVAILABLE_MEMORY", "100000", 1); // 100 KB: less than any piece's graph needs
+  const PartitionedRun run =
+    RunPieces(mesh, gs_test::PartitionFaces(mesh, 2, Vec3(1, 0, 0)), 2, Svg(20), { 0 }, 0.0);
+  ::unsetenv("GS_AVAILABLE_MEMORY");
+  EXPECT_FALSE(run.Ok);
+  EXPECT_NE(run.Message.find("MiB"), std::string::npos) << run.Message;
 }

@@ -85,6 +85,22 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
       return grown;
     }
   }
+  // The build's memory, estimated as SaddleVertexGraph::Build does for the piece's vertices
+  // (the band's included): refused on every process when one would exceed 80% of its memory.
+  const double estimate =
+    SaddleVertexGraph::EstimatedBuildBytes(piece.Mesh().NumberOfVertices(), options);
+  const double available = SaddleVertexGraph::AvailableMemoryBytes();
+  const bool tooLarge = available > 0 && estimate > 0.8 * available;
+  if (comm.Sum(tooLarge ? 1 : 0) > 0)
+  {
+    return Status::Error(tooLarge
+        ? "the graph of this process's piece (" + std::to_string(piece.Mesh().NumberOfVertices()) +
+          " vertices with its band) needs about " +
+          std::to_string(static_cast<long long>(estimate / 1048576.0)) + " MiB while building, more than the " +
+          std::to_string(static_cast<long long>(available / 1048576.0)) +
+          " MiB available; run on more processes, or ask for a smaller K or a coarser accuracy"
+        : "another process's piece needs more memory than it has to build its graph");
+  }
   for (int v = 0; v < piece.Mesh().NumberOfVertices(); ++v)
   {
     if (piece.IsOwned(v))
