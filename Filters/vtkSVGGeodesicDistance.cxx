@@ -219,6 +219,8 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, 
   addInt("PieceFaces", piece.Mesh().NumberOfFaces());
   addInt("PieceOwnedVertices", static_cast<int>(piece.NumberOfOwnedVertices()));
   addInt("PieceBandRings", piece.Rings());
+  addInt("PieceSolveRounds", this->Pieces->SolveRounds());
+  addInt("PieceRefinementRounds", this->Pieces->RefinementRounds());
   output->SetFieldData(fieldData);
   this->UpdateProgress(1.0);
   return 1;

@@ -270,6 +270,8 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType
     vtkErrorWithObjectMacro(self, "Source vertex ids: " << solved.Message() << ".");
     return false;
   }
+  this->LastRounds = solver.Rounds();
+  this->LastRefinementRounds = solver.Refinements();
   std::vector<int> wanted;
   for (const int v : this->PointVertex)
   {

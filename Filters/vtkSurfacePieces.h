@@ -54,6 +54,9 @@ public:
     bool refine, std::vector<double>& perPoint);
 
   const gs::SurfacePiece& Piece() const { return SurfacePieceState; }
+  // Rounds of exchanges the last Distances took: the graph search's and the refinement's.
+  int SolveRounds() const { return LastRounds; }
+  int RefinementRounds() const { return LastRefinementRounds; }
   const gs::PieceGraph& Graph() const { return GraphState; }
 
 private:
@@ -62,6 +65,7 @@ private:
   gs::SurfacePiece SurfacePieceState;
   gs::PieceGraph GraphState;
   bool HasGraph = false;
+  int LastRounds = 0, LastRefinementRounds = 0;
   vtkMTimeType Key = 0;
   gs::SaddleVertexGraphOptions Options;
   std::vector<int> PointVertex; // per point of the piece's own cells: its piece vertex or -1

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -557,9 +558,26 @@ void PieceDistanceSolver::SolveGraph(
         }
       }
     }
+    // Each message ends with the sender's count of messages: the processes know together when
+    // no process sent any, without a reduction of their own.
+    for (std::size_t q = 0; q < size; ++q)
+    {
+      ByteWriter(outgoing[q]).Put(messages);
+    }
     comm.Exchange(outgoing, incoming);
     ++NumRounds;
-    if (comm.Sum(messages) == 0)
+    std::int64_t everywhere = messages;
+    for (std::size_t q = 0; q < size; ++q)
+    {
+      if (static_cast<int>(q) != comm.Rank() && incoming[q].size() >= sizeof(std::int64_t))
+      {
+        std::int64_t theirs = 0;
+        std::memcpy(&theirs, incoming[q].data() + incoming[q].size() - sizeof theirs, sizeof theirs);
+        everywhere += theirs;
+        incoming[q].resize(incoming[q].size() - sizeof theirs);
+      }
+    }
+    if (everywhere == 0)
     {
       break;
     }
@@ -587,13 +605,23 @@ std::vector<double> PieceDistanceSolver::Fetch(
   const std::size_t size = static_cast<std::size_t>(comm.Size());
   std::vector<ByteBuffer> requests(size), asked;
   std::vector<std::vector<std::size_t>> places(size);
+  // The piece's vertices and the owned ones are both in global id order: owned numbers by
+  // walking them together.
+  std::vector<int> ownedOf(static_cast<std::size_t>(piece.Mesh().NumberOfVertices()), -1);
+  for (int v = 0, i = 0; v < piece.Mesh().NumberOfVertices() && i < Graph.NumberOfOwned(); ++v)
+  {
+    if (piece.GlobalId(v) == Graph.OwnedId(i))
+    {
+      ownedOf[static_cast<std::size_t>(v)] = i++;
+    }
+  }
   for (std::size_t j = 0; j < wanted.size(); ++j)
   {
     const int v = wanted[j];
     const int owner = piece.Owner(v);
     if (owner == comm.Rank())
     {
-      result[j] = Dist[static_cast<std::size_t>(Graph.OwnedIndex(piece.GlobalId(v)))];
+      result[j] = Dist[static_cast<std::size_t>(ownedOf[static_cast<std::size_t>(v)])];
     }
     else if (owner >= 0)
     {

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -70,7 +71,8 @@ struct PieceDistanceSolver::SweepRounds
   std::vector<std::uint32_t> Key;
   std::vector<unsigned char> Exact;
   std::vector<int> Waiting, Ready;
-  std::vector<std::pair<std::size_t, int>> Edges; // (neighbour, dependent), sorted
+  std::vector<std::int64_t> DependentOffsets; // by neighbour (owned, then remote slots)
+  std::vector<int> Dependents;
   std::int64_t Left = 0;
 
   // The graph distances of the remote vertices the stencils read, from their owners, who note
@@ -134,8 +136,9 @@ struct PieceDistanceSolver::SweepRounds
     }
   }
 
-  // Each reached vertex waits for its stencil neighbours of smaller keys (dependents by
-  // neighbour: owned numbers, then remote slots after the owned); the predecessors' places.
+  // Each reached vertex waits for its stencil neighbours of smaller keys (its dependencies,
+  // counted, then listed by neighbour: owned numbers, then remote slots after the owned); the
+  // predecessors' places in the stencils.
   void FindDependencies(const std::vector<int>& seeds)
   {
     const PieceGraph& graph = S.Graph;
@@ -151,6 +154,40 @@ struct PieceDistanceSolver::SweepRounds
     {
       Exact[static_cast<std::size_t>(i)] = 1;
     }
+    DependentOffsets.assign(n + S.RemoteGraph.size() + 1, 0);
+    auto forEachDependency = [&](const auto& visit) {
+      for (std::size_t x = 0; x < n; ++x)
+      {
+        if (Exact[x] || !(S.GraphDist[x] < Inf))
+        {
+          continue;
+        }
+        const int xi = static_cast<int>(x);
+        for (std::int64_t e = graph.StencilBegin(xi); e < graph.StencilEnd(xi); ++e)
+        {
+          const int code = graph.StencilTarget(e);
+          if (unfolding::SortKey(S.GraphOf(code)) < Key[x])
+          {
+            visit(code >= 0 ? static_cast<std::size_t>(code) : n + static_cast<std::size_t>(-1 - code), xi);
+          }
+        }
+      }
+    };
+    forEachDependency([this](std::size_t neighbour, int x) {
+      ++DependentOffsets[neighbour + 1];
+      ++Waiting[static_cast<std::size_t>(x)];
+    });
+    for (std::size_t k = 0; k + 1 < DependentOffsets.size(); ++k)
+    {
+      DependentOffsets[k + 1] += DependentOffsets[k];
+    }
+    Dependents.resize(static_cast<std::size_t>(DependentOffsets.back()));
+    {
+      std::vector<std::int64_t> fill(DependentOffsets.begin(), DependentOffsets.end() - 1);
+      forEachDependency([&](std::size_t neighbour, int x) {
+        Dependents[static_cast<std::size_t>(fill[neighbour]++)] = x;
+      });
+    }
     for (std::size_t x = 0; x < n; ++x)
     {
       if (!(S.GraphDist[x] < Inf))
@@ -160,20 +197,13 @@ struct PieceDistanceSolver::SweepRounds
       }
       ++Left;
       const int xi = static_cast<int>(x);
-      for (std::int64_t e = graph.StencilBegin(xi); e < graph.StencilEnd(xi); ++e)
+      for (std::int64_t e = graph.StencilBegin(xi); e < graph.StencilEnd(xi) && Pred[x] >= 0; ++e)
       {
         const int code = graph.StencilTarget(e);
-        if (!Exact[x] && unfolding::SortKey(S.GraphOf(code)) < Key[x])
-        {
-          ++Waiting[x];
-          Edges.push_back(
-            { code >= 0 ? static_cast<std::size_t>(code) : n + static_cast<std::size_t>(-1 - code),
-              xi });
-        }
-        const std::int64_t target = code >= 0 ? graph.OwnedId(code) : graph.RemoteId(-1 - code);
-        if (Pred[x] >= 0 && target == Pred[x])
+        if ((code >= 0 ? graph.OwnedId(code) : graph.RemoteId(-1 - code)) == Pred[x])
         {
           S.PredIndex[x] = static_cast<int>(e - graph.StencilBegin(xi));
+          break;
         }
       }
       if (Waiting[x] == 0)
@@ -181,19 +211,18 @@ struct PieceDistanceSolver::SweepRounds
         Ready.push_back(xi);
       }
     }
-    std::sort(Edges.begin(), Edges.end());
   }
 
-  // The vertices waiting for `neighbour` (an owned number, or n + a remote slot) wait for one
-  // less; those that wait no more are ready.
+  // The vertices waiting for `neighbour` (an owned number, or the owned count + a remote slot)
+  // wait for one less; those that wait no more are ready.
   void Release(std::size_t neighbour)
   {
-    auto it = std::lower_bound(Edges.begin(), Edges.end(), std::make_pair(neighbour, -1));
-    for (; it != Edges.end() && it->first == neighbour; ++it)
+    for (std::int64_t k = DependentOffsets[neighbour]; k < DependentOffsets[neighbour + 1]; ++k)
     {
-      if (--Waiting[static_cast<std::size_t>(it->second)] == 0)
+      const int x = Dependents[static_cast<std::size_t>(k)];
+      if (--Waiting[static_cast<std::size_t>(x)] == 0)
       {
-        Ready.push_back(it->second);
+        Ready.push_back(x);
       }
     }
   }
@@ -237,13 +266,28 @@ struct PieceDistanceSolver::SweepRounds
           w.Put(value);
         }
       }
-      Comm.Exchange(outgoing, incoming);
+      // Each message ends with the sender's vertices left: the processes know together when
+      // none is left anywhere, without a reduction of their own.
       for (std::size_t q = 0; q < size; ++q)
       {
+        ByteWriter(outgoing[q]).Put(Left);
+      }
+      Comm.Exchange(outgoing, incoming);
+      std::int64_t everywhere = Left;
+      for (std::size_t q = 0; q < size; ++q)
+      {
+        if (static_cast<int>(q) == Comm.Rank() || incoming[q].size() < sizeof(std::int64_t))
+        {
+          continue;
+        }
+        std::int64_t theirs = 0;
+        std::memcpy(&theirs, incoming[q].data() + incoming[q].size() - sizeof theirs, sizeof theirs);
+        everywhere += theirs;
+        incoming[q].resize(incoming[q].size() - sizeof theirs);
         ByteReader r(incoming[q]);
         std::int64_t id = 0;
         double value = 0.0;
-        while (static_cast<int>(q) != Comm.Rank() && r.Get(id) && r.Get(value))
+        while (r.Get(id) && r.Get(value))
         {
           const int code = graph.Encode(id);
           const int slot = -1 - code;
@@ -254,7 +298,7 @@ struct PieceDistanceSolver::SweepRounds
           }
         }
       }
-      if (Comm.Sum(Left) == 0)
+      if (everywhere == 0)
       {
         return rounds;
       }
