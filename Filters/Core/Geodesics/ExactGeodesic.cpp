@@ -202,7 +202,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
     // [FanAngle[h], FanAngle[h] + beta] about v.
     if (Fence && (*Fence)[static_cast<std::size_t>(h / 3)])
     {
-      Fenced = true;
+      Fenced.push_back(h / 3);
     }
     const int opp = TriangleMesh::Next(h);
     const int a = Surface.Destination(h);
@@ -533,7 +533,7 @@ bool ExactGeodesicSolver::ProcessWindows(
     }
     if (Fence && (*Fence)[static_cast<std::size_t>(w.H / 3)])
     {
-      Fenced = true;
+      Fenced.push_back(w.H / 3);
     }
     // Vertex distances may have dropped since the window was queued: trim it again.
     if (Trim(w))
@@ -551,7 +551,7 @@ Status ExactGeodesicSolver::Solve(
   Fence = options.Fence && options.Fence->size() == static_cast<std::size_t>(Surface.NumberOfFaces())
     ? options.Fence
     : nullptr;
-  Fenced = false;
+  Fenced.clear();
   if (sources.empty())
   {
     return Status::Error("no source given");

@@ -105,8 +105,9 @@ public:
   const ExactGeodesicStatistics& Statistics() const { return Stats; }
   const TriangleMesh& Mesh() const { return Surface; }
   // Whether the last solve entered a face of ExactGeodesicOptions::Fence (a window propagated
-  // into it or a vertex of it spread its windows).
-  bool FenceReached() const { return Fenced; }
+  // into it or a vertex of it spread its windows), and which (each once or more).
+  bool FenceReached() const { return !Fenced.empty(); }
+  const std::vector<int>& FenceFacesEntered() const { return Fenced; }
 
 private:
   struct Window
@@ -185,7 +186,7 @@ private:
   std::vector<VertexKey> VertexQueue; // binary heap of tentative vertex distances
   double Tolerance = 0.0;             // absolute distance tolerance (scaled to the mesh)
   const std::vector<unsigned char>* Fence = nullptr; // the solve's fence (options)
-  bool Fenced = false;
+  std::vector<int> Fenced;
   ExactGeodesicStatistics Stats;
 };
 

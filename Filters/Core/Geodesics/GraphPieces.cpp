@@ -150,20 +150,25 @@ struct PieceGraph::VertexSolver
     Options.Fence = &piece.Fence();
   }
 
-  bool operator()(int s, OwnedSolve& made)
+  // Solves from piece vertex s into `made`; true when the solve reached the fence, and then
+  // `where` gets the incomplete vertices (global ids) where it did.
+  bool operator()(int s, OwnedSolve& made, std::vector<std::int64_t>& where)
   {
     bool outside = false;
     Links.clear();
     Reached.clear();
+    const std::vector<int>* entered = nullptr;
     if (Dgg)
     {
       Propagation->Run(s, Epsilon, Links, ReachedStencil ? &Reached : nullptr);
       outside = Propagation->FenceReached();
+      entered = &Propagation->FenceFacesEntered();
     }
     else
     {
       static_cast<void>(Solver->Solve(s, Options)); // s is a vertex of the mesh: accepted
       outside = Solver->FenceReached();
+      entered = &Solver->FenceFacesEntered();
       for (const int v : Solver->FinalVertices())
       {
         if (v != s && Solver->IsDirect(v))
@@ -188,11 +193,25 @@ struct PieceGraph::VertexSolver
       made.Stencil.size(), [&](std::size_t j) { return item(j).Distance; },
       [&](std::size_t j) { return item(j).Angle; }, Piece.Mesh().TotalAngle(s), Order,
       [&](std::size_t at, std::size_t j, double x, double y) {
-        outside = outside || Piece.Owner(item(j).Target) < 0;
+        if (Piece.Owner(item(j).Target) < 0)
+        {
+          outside = true;
+          where.push_back(Piece.GlobalId(item(j).Target));
+        }
         made.Stencil[at] = { x, y, Piece.GlobalId(item(j).Target) };
       },
       made.WrapX, made.WrapY);
     made.Interior = !Piece.Mesh().IsBoundaryVertex(s);
+    for (const int f : *entered)
+    {
+      for (const int v : Piece.Mesh().Face(f))
+      {
+        if (!Piece.IsComplete(v))
+        {
+          where.push_back(Piece.GlobalId(v));
+        }
+      }
+    }
     return outside;
   }
 
@@ -212,10 +231,12 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
   const int threads = options.NumberOfThreads > 0 ? options.NumberOfThreads : omp_get_max_threads();
   std::vector<std::int64_t> pending = OwnedIds;
   const std::size_t total = std::max<std::size_t>(OwnedIds.size(), 1);
+  int growth = piece.Rings() / 2;
   std::size_t solved = 0;
   while (true)
   {
     std::vector<unsigned char> fenced(pending.size(), 0);
+    std::vector<std::vector<std::int64_t>> where(pending.size());
     std::atomic<bool> aborted(false);
     std::atomic<std::size_t> done(0);
 #pragma omp parallel num_threads(threads)
@@ -231,7 +252,7 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
         }
         const std::int64_t id = pending[static_cast<std::size_t>(i)];
         OwnedSolve made;
-        const bool outside = solve(piece.Vertex(id), made);
+        const bool outside = solve(piece.Vertex(id), made, where[static_cast<std::size_t>(i)]);
         found[static_cast<std::size_t>(OwnedIndex(id))] = std::move(made);
         fenced[static_cast<std::size_t>(i)] = outside ? 1 : 0;
         const std::size_t n = ++done;
@@ -247,14 +268,16 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
         }
       }
     }
-    std::vector<std::int64_t> again;
+    std::vector<std::int64_t> again, around;
     for (std::size_t i = 0; i < pending.size(); ++i)
     {
       if (fenced[i])
       {
         again.push_back(pending[i]);
+        around.insert(around.end(), where[i].begin(), where[i].end());
       }
     }
+    where.clear();
     solved += pending.size() - again.size();
     if (comm.Sum(aborted ? 1 : 0) > 0)
     {
@@ -267,7 +290,9 @@ Status PieceGraph::SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOption
     }
     Resolved += left;
     pending.swap(again);
-    if (const Status grown = piece.Grow(std::max(piece.Rings(), 1), comm); !grown.Ok())
+    // The band grows where the solves reached its edge, by rings that double each time.
+    growth = std::max(2 * growth, 1);
+    if (const Status grown = piece.GrowAround(around, growth, comm); !grown.Ok())
     {
       return grown;
     }

@@ -219,6 +219,32 @@ Status SurfacePiece::Grow(int rings, PieceCommunicator& comm)
     GatherRing(Incomplete(), comm);
     ++NumRings;
   }
+  return Finish(comm);
+}
+
+Status SurfacePiece::GrowAround(
+  const std::vector<std::int64_t>& around, int rings, PieceCommunicator& comm)
+{
+  std::vector<std::int64_t> frontier;
+  for (const std::int64_t v : around)
+  {
+    const auto it = Vertices.find(v);
+    if (it != Vertices.end() && !it->second.Complete)
+    {
+      frontier.push_back(v);
+    }
+  }
+  std::sort(frontier.begin(), frontier.end());
+  frontier.erase(std::unique(frontier.begin(), frontier.end()), frontier.end());
+  for (int r = 0; r < rings; ++r)
+  {
+    frontier = GatherRing(frontier, comm);
+  }
+  return Finish(comm);
+}
+
+Status SurfacePiece::Finish(PieceCommunicator& comm)
+{
   // Where the band's edge meets itself at a vertex (two fans of faces), the piece would not be
   // a manifold mesh: such vertices get their whole star, until none is left.
   while (true)
@@ -233,7 +259,8 @@ Status SurfacePiece::Grow(int rings, PieceCommunicator& comm)
   return MakeMesh(comm);
 }
 
-void SurfacePiece::GatherRing(const std::vector<std::int64_t>& request, PieceCommunicator& comm)
+std::vector<std::int64_t> SurfacePiece::GatherRing(
+  const std::vector<std::int64_t>& request, PieceCommunicator& comm)
 {
   const std::size_t size = static_cast<std::size_t>(comm.Size());
   std::vector<ByteBuffer> requests(size), asked;
@@ -290,6 +317,7 @@ void SurfacePiece::GatherRing(const std::vector<std::int64_t>& request, PieceCom
   }
   comm.Exchange(answers, answered);
 
+  std::vector<std::int64_t> brought;
   for (std::size_t q = 0; q < size; ++q)
   {
     if (static_cast<int>(q) == MyRank)
@@ -310,6 +338,7 @@ void SurfacePiece::GatherRing(const std::vector<std::int64_t>& request, PieceCom
         if (Vertices.find(id) == Vertices.end())
         {
           Vertices.emplace(id, VertexRecord{ p, std::numeric_limits<int>::max(), false });
+          brought.push_back(id);
         }
       }
       AddFace(f, face);
@@ -319,6 +348,8 @@ void SurfacePiece::GatherRing(const std::vector<std::int64_t>& request, PieceCom
   {
     Vertices.at(v).Complete = true;
   }
+  std::sort(brought.begin(), brought.end());
+  return brought;
 }
 
 Status SurfacePiece::MakeMesh(PieceCommunicator& comm)

@@ -48,10 +48,14 @@ public:
   Status Build(const PieceTriangles& own, int rings, PieceCommunicator& comm);
   // Collective: `rings` more rings.
   Status Grow(int rings, PieceCommunicator& comm);
+  // Collective: `rings` rings of faces around the incomplete vertices of `around` only (global
+  // ids; the others are ignored): the band grows where a computation needs it, not all along
+  // the piece's edge. `rings` is the same on every process; `around` may differ (or be empty).
+  Status GrowAround(const std::vector<std::int64_t>& around, int rings, PieceCommunicator& comm);
 
   const TriangleMesh& Mesh() const { return Local; }
   int Rank() const { return MyRank; }
-  // Rings gathered around the own faces.
+  // Rings gathered all around the own faces (GrowAround widens the band in places).
   int Rings() const { return NumRings; }
   std::int64_t GlobalId(int v) const { return VertexIds[static_cast<std::size_t>(v)]; }
   // The rank owning vertex v (-1 when v is incomplete: not every process holding it is known).
@@ -85,8 +89,12 @@ private:
   };
   void AddFace(std::int64_t id, const FaceRecord& face);
   // Requests the faces around the vertices `request` (of every process's own faces) and adds
-  // them: those vertices are complete, the ones they bring are not.
-  void GatherRing(const std::vector<std::int64_t>& request, PieceCommunicator& comm);
+  // them: those vertices are complete, the ones they bring are not. Returns the vertices brought
+  // (in id order).
+  std::vector<std::int64_t> GatherRing(
+    const std::vector<std::int64_t>& request, PieceCommunicator& comm);
+  // Completes the pinched vertices (see Grow), then makes the mesh.
+  Status Finish(PieceCommunicator& comm);
   // The incomplete vertices, and those of them whose faces in the piece form several fans.
   std::vector<std::int64_t> Incomplete() const;
   std::vector<std::int64_t> Pinched() const;
