@@ -18,6 +18,9 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace gs
 {
@@ -25,6 +28,15 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
+
+// Blocks freed inside the heap stay resident until they are handed back to the system (the
+// per-vertex lists of the build are many small blocks).
+void ReturnFreedMemory()
+{
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
 
 // The band a solve of `options` needs at first, in rings of faces around the own faces (the
 // K-nearest disk of a regular mesh has about 3 r^2 vertices within r rings; a discrete geodesic
@@ -61,7 +73,7 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
   OwnedIds.clear();
   Offsets.assign(1, 0);
   StencilOffsets.assign(1, 0);
-  Stencil.clear();
+  Stencil.reset();
   WrapXY.clear();
   Interior.clear();
   Targets.clear();
@@ -382,6 +394,7 @@ void PieceGraph::Assemble(
   {
     std::vector<FoundLink>().swap(f.Links);
   }
+  ReturnFreedMemory();
   GlobalEntries = comm.Sum(Compact(piece, raw, count, sentBy, found));
 }
 
@@ -405,8 +418,7 @@ std::int64_t PieceGraph::Compact(const SurfacePiece& piece, std::vector<RawEntry
     }
     Offsets[i + 1] = kept;
   }
-  raw.resize(static_cast<std::size_t>(kept));
-  raw.shrink_to_fit();
+  raw.resize(static_cast<std::size_t>(kept)); // (not shrunk: a copy would double it)
 
   // Remote targets (of links and stencils) get slots (in id order); entries hold owned numbers
   // or slots.
@@ -444,26 +456,36 @@ std::int64_t PieceGraph::Compact(const SurfacePiece& piece, std::vector<RawEntry
     Targets[e] = Encode(raw[e].Target);
     Weights[e] = raw[e].Weight;
   }
+  std::vector<RawEntry>().swap(raw);
   // The stencils, in one array.
   StencilOffsets.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
   {
     StencilOffsets[i + 1] = StencilOffsets[i] + static_cast<std::int64_t>(found[i].Stencil.size());
   }
-  Stencil.resize(static_cast<std::size_t>(StencilOffsets[n]));
+  // (Allocated without being written: its pages become resident as the slabs below fill it,
+  // while the vertices' own lists are freed and handed back to the system after each slab, so
+  // that the two are never both resident whole; as SaddleVertexGraph's build gathers.)
+  Stencil.reset(new StencilEntry[static_cast<std::size_t>(StencilOffsets[n])]);
   WrapXY.resize(2 * n);
   Interior.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
+  constexpr std::size_t slabs = 16;
+  for (std::size_t slab = 0; slab < slabs; ++slab)
   {
-    for (std::size_t j = 0; j < found[i].Stencil.size(); ++j)
+    for (std::size_t i = n * slab / slabs; i < n * (slab + 1) / slabs; ++i)
     {
-      const StencilItem& item = found[i].Stencil[j];
-      Stencil[static_cast<std::size_t>(StencilOffsets[i]) + j] = { item.X, item.Y, Encode(item.Target) };
+      for (std::size_t j = 0; j < found[i].Stencil.size(); ++j)
+      {
+        const StencilItem& item = found[i].Stencil[j];
+        Stencil[static_cast<std::size_t>(StencilOffsets[i]) + j] = { item.X, item.Y,
+          Encode(item.Target) };
+      }
+      WrapXY[2 * i] = found[i].WrapX;
+      WrapXY[2 * i + 1] = found[i].WrapY;
+      Interior[i] = found[i].Interior ? 1 : 0;
+      OwnedSolve().Swap(found[i]);
     }
-    WrapXY[2 * i] = found[i].WrapX;
-    WrapXY[2 * i + 1] = found[i].WrapY;
-    Interior[i] = found[i].Interior ? 1 : 0;
-    OwnedSolve().Swap(found[i]);
+    ReturnFreedMemory();
   }
   return kept;
 }

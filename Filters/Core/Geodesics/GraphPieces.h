@@ -27,6 +27,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -153,7 +154,7 @@ private:
     int Target;
   };
   std::vector<std::int64_t> StencilOffsets;
-  std::vector<StencilEntry> Stencil;
+  std::unique_ptr<StencilEntry[]> Stencil;
   std::vector<double> WrapXY;
   std::vector<unsigned char> Interior;
   GraphConstruction Construction = GraphConstruction::SaddleVertex;
