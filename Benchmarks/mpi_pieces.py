@@ -2,9 +2,8 @@
 count, on pieces (nothing gathered) against the serial run and the gathering route.
 
 For the mesh (a file, or `file:S` subdivided S times at edge midpoints) and each process count P,
-the faces are split into P slabs (x + 0.3 y of their centroids, equal counts) written as a
-partitioned .pvtp with global point and cell ids (Debian's ParaView 5.11 cannot run Redistribute
-DataSet: its expat rejects the raw binary the filter writes between processes). Then, in
+the faces are split into P slabs with global ids (Tools/pieces.py; Debian's ParaView 5.11 cannot
+run Redistribute DataSet: its expat rejects the raw binary the filter writes between processes). Then, in
 separate processes with nothing else running:
   serial   pvbatch on the whole mesh (the reference distances and memory);
   pieces   mpiexec -n P pvbatch --symmetric from SourceVertexIds: each process works on its
@@ -79,64 +78,6 @@ def run_one(args):
         "held": faces.GetValue(0) if faces is not None else None}))
 
 
-def split(ply, parts, folder):
-    """The mesh in `parts` slabs with global ids, as a .pvtp."""
-    import numpy
-    import vtk
-    from vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-    reader = vtk.vtkPLYReader()
-    reader.SetFileName(ply)
-    reader.Update()
-    whole = reader.GetOutput()
-    points = vtk_to_numpy(whole.GetPoints().GetData()).astype(float)
-    cells = vtk_to_numpy(whole.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    centres = points[cells].mean(axis=1)
-    order = numpy.argsort(centres[:, 0] + 0.3 * centres[:, 1], kind="stable")
-    part = numpy.empty(len(cells), dtype=int)
-    part[order] = numpy.arange(len(cells)) * parts // len(cells)
-    os.makedirs(folder, exist_ok=True)
-    names = []
-    for p in range(parts):
-        mine = numpy.nonzero(part == p)[0]
-        used = numpy.unique(cells[mine])
-        remap = numpy.full(len(points), -1, dtype=numpy.int64)
-        remap[used] = numpy.arange(len(used))
-        piece = vtk.vtkPolyData()
-        piece_points = vtk.vtkPoints()
-        piece_points.SetData(numpy_to_vtk(points[used], deep=True))
-        piece.SetPoints(piece_points)
-        polys = vtk.vtkCellArray()
-        polys.SetData(numpy_to_vtk(numpy.arange(0, 3 * len(mine) + 1, 3, dtype=numpy.int64),
-                                   deep=True, array_type=vtk.VTK_ID_TYPE),
-                      numpy_to_vtk(remap[cells[mine]].ravel(), deep=True,
-                                   array_type=vtk.VTK_ID_TYPE))
-        piece.SetPolys(polys)
-        for attributes, ids, name in ((piece.GetPointData(), used, "GlobalPointIds"),
-                                      (piece.GetCellData(), mine, "GlobalCellIds")):
-            a = numpy_to_vtk(ids.astype(numpy.int64), deep=True, array_type=vtk.VTK_ID_TYPE)
-            a.SetName(name)
-            attributes.SetGlobalIds(a)
-        name = "piece_%d.vtp" % p
-        writer = vtk.vtkXMLPolyDataWriter()
-        writer.SetDataModeToBinary()
-        writer.SetFileName(os.path.join(folder, name))
-        writer.SetInputData(piece)
-        writer.Write()
-        names.append(name)
-    pvtp = os.path.join(folder, "mesh.pvtp")
-    with open(pvtp, "w") as f:
-        f.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="1.0" '
-                'byte_order="LittleEndian" header_type="UInt64">\n<PPolyData GhostLevel="0">\n'
-                '<PPointData GlobalIds="GlobalPointIds"><PDataArray type="Int64" '
-                'Name="GlobalPointIds"/></PPointData>\n<PCellData GlobalIds="GlobalCellIds">'
-                '<PDataArray type="Int64" Name="GlobalCellIds"/></PCellData>\n'
-                '<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n')
-        for n in names:
-            f.write('<Piece Source="%s"/>\n' % n)
-        f.write('</PPolyData>\n</VTKFile>\n')
-    return pvtp, len(cells)
-
-
 def distances(folder):
     """Distances by point coordinates over a run's output pieces."""
     import vtk
@@ -174,8 +115,11 @@ def main():
         run_one(args)
         return
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, here)
+    sys.path.insert(0, os.path.join(here, "..", "Tools"))
     from geodesic_engines import mesh_file  # noqa: E402
+    import pieces  # noqa: E402
     import math
     work = tempfile.mkdtemp(prefix="gs_mpi_pieces_")
     ply = mesh_file(args.mesh, work)
@@ -241,7 +185,7 @@ def main():
     for p in args.processes:
         if p < 2:
             continue
-        pvtp, nfaces = split(ply, p, os.path.join(work, "split%d" % p))
+        pvtp, _, nfaces = pieces.split(ply, p, os.path.join(work, "split%d" % p))
         out, figures = run("pieces%d" % p, p, pvtp)
         report("pieces (nothing gathered)", p, figures, out)
         if not args.no_gather:

@@ -18,12 +18,14 @@ and compares point and cell arrays (matched by coordinates) and the placed shape
 import glob
 import os
 import shutil
-import socket
-import subprocess
-import time
+import sys
 
 import gs_test
 from gs_test import check
+
+# Tools/pieces.py: a surface written as pieces with global ids.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Tools"))
+import pieces as surface_pieces  # noqa: E402
 
 # The driver's options, and the sub-runs' (which the driver passes with the common ones):
 #   --run      one run: write its outputs into this folder
@@ -43,20 +45,11 @@ TIMEOUT = 600
 # ---------------------------------------------------------------------------------------------
 def run_pipeline():
     """One run of the pipeline: in pvbatch (serial or each MPI process) or connected to pvserver."""
-    from paraview.simple import (Calculator, Connect, LoadPlugin, PLYReader, PointSource,
-                                 PolyLineSource, ProgrammableSource, SetActiveSource,
-                                 XMLPartitionedPolydataReader)
+    from paraview.simple import (Calculator, PLYReader, PointSource, PolyLineSource,
+                                 ProgrammableSource, SetActiveSource, XMLPartitionedPolydataReader)
     from paraview import servermanager
-    import vtk
 
-    rank = 0
-    if args.connect:
-        host, port = args.connect.split(":")
-        Connect(host, int(port))
-        LoadPlugin(args.plugin, remote=True, ns=globals())
-    else:
-        rank = vtk.vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
-    LoadPlugin(args.plugin, remote=False, ns=globals())
+    rank = gs_test.connect_run(args.connect, args.plugin, globals())
     CrossField, SVGGeodesicDistance, GeodesicPolarCoordinates, MSDTSource, ShapeDistributor = (
         globals()[n] for n in ("CrossField", "SVGGeodesicDistance", "GeodesicPolarCoordinates",
                                "MSDTSource", "ShapeDistributor"))
@@ -107,21 +100,13 @@ out.GetPointData().AddArray(idx)
             data = proxy.GetClientSideObject().GetOutputDataObject(port)  # this process's piece
         if data.GetNumberOfPoints() == 0:
             continue  # an empty piece (the shapes live on process 0)
-        writer = vtk.vtkXMLPolyDataWriter()
-        writer.SetDataModeToBinary()  # inline base64: Debian's expat rejects raw appended data
-        writer.SetFileName(os.path.join(args.run, "%s_%d.vtp" % (name, rank)))
-        writer.SetInputData(data)
-        writer.Write()
+        gs_test.write_polydata(data, os.path.join(args.run, "%s_%d.vtp" % (name, rank)))
     print("run %s: rank %d wrote its outputs" % (args.run, rank))
 
 
 # ---------------------------------------------------------------------------------------------
 def read(path):
-    import vtk
-    reader = vtk.vtkXMLPolyDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
+    return gs_test.read_polydata(path)
 
 
 def pieces(folder, name):
@@ -131,66 +116,14 @@ def pieces(folder, name):
 def split_mesh(mesh_file, folder, ids):
     """Two pieces of the mesh (cells by the sign of x + 0.3 y: not contiguous in id order), each
     with its used points (shared ones repeated), global ids when `ids`, as a .pvtp."""
-    import vtk
-    from paraview.vtk.util.numpy_support import numpy_to_vtk
     import numpy
-    reader = vtk.vtkPLYReader()
-    reader.SetFileName(mesh_file)
-    reader.Update()
-    whole = reader.GetOutput()
-    os.makedirs(folder, exist_ok=True)
-    names = []
-    for part in range(2):
-        piece = vtk.vtkPolyData()
-        points = vtk.vtkPoints()
-        points.SetDataTypeToDouble()
-        polys = vtk.vtkCellArray()
-        point_map = {}
-        gpids, gcids = [], []
-        for c in range(whole.GetNumberOfCells()):
-            cell = whole.GetCell(c)
-            centre = [sum(cell.GetPoints().GetPoint(k)[j] for k in range(3)) / 3 for j in range(3)]
-            if (centre[0] + 0.3 * centre[1] >= 0.0) != (part == 0):
-                continue
-            ids_ = []
-            for k in range(3):
-                p = cell.GetPointId(k)
-                if p not in point_map:
-                    point_map[p] = points.InsertNextPoint(whole.GetPoint(p))
-                    gpids.append(p)
-                ids_.append(point_map[p])
-            polys.InsertNextCell(3, ids_)
-            gcids.append(c)
-        piece.SetPoints(points)
-        piece.SetPolys(polys)
-        if ids:
-            a = numpy_to_vtk(numpy.array(gpids, dtype=numpy.int64), deep=True, array_type=vtk.VTK_ID_TYPE)
-            a.SetName("GlobalPointIds")
-            piece.GetPointData().SetGlobalIds(a)
-            b = numpy_to_vtk(numpy.array(gcids, dtype=numpy.int64), deep=True, array_type=vtk.VTK_ID_TYPE)
-            b.SetName("GlobalCellIds")
-            piece.GetCellData().SetGlobalIds(b)
-        name = "piece_%d.vtp" % part
-        writer = vtk.vtkXMLPolyDataWriter()
-        writer.SetDataModeToBinary()
-        writer.SetFileName(os.path.join(folder, name))
-        writer.SetInputData(piece)
-        writer.Write()
-        names.append(name)
-    pvtp = os.path.join(folder, "mesh.pvtp")
-    with open(pvtp, "w") as f:
-        f.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="1.0" '
-                'byte_order="LittleEndian" header_type="UInt64">\n<PPolyData GhostLevel="0">\n')
-        if ids:
-            f.write('<PPointData GlobalIds="GlobalPointIds"><PDataArray type="Int64" '
-                    'Name="GlobalPointIds"/></PPointData>\n')
-            f.write('<PCellData GlobalIds="GlobalCellIds"><PDataArray type="Int64" '
-                    'Name="GlobalCellIds"/></PCellData>\n')
-        f.write('<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n')
-        for n in names:
-            f.write('<Piece Source="%s"/>\n' % n)
-        f.write('</PPolyData>\n</VTKFile>\n')
-    return pvtp
+    from paraview.vtk.util.numpy_support import vtk_to_numpy
+    whole = surface_pieces.read_surface(mesh_file)
+    points = vtk_to_numpy(whole.GetPoints().GetData()).astype(float)
+    cells = vtk_to_numpy(whole.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    centres = points[cells].mean(axis=1)
+    part = numpy.where(centres[:, 0] + 0.3 * centres[:, 1] >= 0.0, 0, 1)
+    return surface_pieces.write_pieces(whole, part, folder, ids)[0]
 
 
 def input_pieces(pvtp):
@@ -298,14 +231,6 @@ def compare(reference, candidate, label, expected_pieces=None):
         label, len(ref_points), len(ref_cells), n_shapes, "identical" if identical else "DIFFERENT"))
 
 
-def free_port():
-    s = socket.socket()
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
-
-
 def driver():
     import vtk
     work = args.work
@@ -327,17 +252,7 @@ def driver():
     mpi = [args.mpiexec, "-n", "2"]
 
     def run(command, label):
-        start = time.time()
-        result = subprocess.run(command, env=env, timeout=TIMEOUT, stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, universal_newlines=True)
-        print("%s: %.1f s" % (label, time.time() - start))
-        passed = result.returncode == 0 and "ERR|" not in result.stdout
-        if not passed:
-            print(result.stdout)
-        check(passed, "%s failed (exit %d%s)" % (label, result.returncode,
-                                                ", ParaView errors" if "ERR|" in result.stdout else ""))
-        if not passed:
-            gs_test.finish()  # the later runs and comparisons need this run's outputs
+        gs_test.run_checked(command, label, env, TIMEOUT)
 
     folders = {k: os.path.join(work, k) for k in ("serial", "mpi", "server", "serial-noids", "mpi-noids")}
     run([args.pvbatch, me] + common + ["--run", folders["serial"], "--mesh", mesh], "serial pvbatch")
@@ -347,31 +262,9 @@ def driver():
             input_pieces(with_ids))
 
     # pvserver with 2 processes, a pvpython client.
-    port = free_port()
-    server = subprocess.Popen(mpi + [args.pvserver, "--server-port=%d" % port], env=env,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              universal_newlines=True)
-    try:
-        deadline = time.time() + 120
-        ready = False
-        while time.time() < deadline:
-            line = server.stdout.readline()
-            if not line:
-                break
-            if "Accepting connection" in line:
-                ready = True
-                break
-        check(ready, "pvserver did not start")
-        if not ready:
-            gs_test.finish()  # no server to connect to
+    with gs_test.PVServer(args.mpiexec, args.pvserver, 2, env) as port:
         run([args.pvpython, me] + common + ["--run", folders["server"], "--mesh", with_ids,
                                          "--connect", "localhost:%d" % port], "pvserver, 2 processes")
-    finally:
-        server.terminate()
-        try:
-            server.wait(timeout=30)
-        except subprocess.TimeoutExpired:
-            server.kill()
     compare(folders["serial"], folders["server"], "pvserver, 2 processes, global ids")
 
     # Without global ids: the reassembled surface is the serial reader's (piece 0 then piece 1).

@@ -9,18 +9,20 @@ and SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0
 from two vertices with a MaximumDistance.
 
 Driver (pvpython TestMPIPieces.py --plugin P --data D --work W): splits each mesh in three
-pieces (slabs of x + 0.3 y, not contiguous in id order; a .pvtp of three .vtp with global point
-and cell ids), runs the serial reference in pvbatch, then the distributed runs, and compares.
+pieces with global ids (Tools/pieces.py: slabs of x + 0.3 y, not contiguous in id order), runs
+the serial reference in pvbatch, then the distributed runs, and compares.
 """
 import glob
 import os
-import socket
 import shutil
-import subprocess
-import time
+import sys
 
 import gs_test
 from gs_test import check
+
+# Tools/pieces.py: the surface split into pieces with global ids.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Tools"))
+import pieces  # noqa: E402
 
 args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED, work=gs_test.REQUIRED,
                          run=None, meshes=None, connect=None,
@@ -41,17 +43,9 @@ RUNS = [("svg", dict(Solver="SVG (label-correcting)", K=50, SourceVertexIds=[11]
 # ---------------------------------------------------------------------------------------------
 def run_filters():
     """One run: in pvbatch (serial or each MPI process) or connected to pvserver."""
-    from paraview.simple import Connect, LoadPlugin, PLYReader, XMLPartitionedPolydataReader
+    from paraview.simple import PLYReader, XMLPartitionedPolydataReader
     from paraview import servermanager
-    import vtk
-    rank = 0
-    if args.connect:
-        host, port = args.connect.split(":")
-        Connect(host, int(port))
-        LoadPlugin(args.plugin, remote=True, ns=globals())
-    else:
-        rank = vtk.vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
-    LoadPlugin(args.plugin, remote=False, ns=globals())
+    rank = gs_test.connect_run(args.connect, args.plugin, globals())
     os.makedirs(args.run, exist_ok=True)
     for mesh_file in args.meshes.split(","):
         mesh_name = os.path.basename(os.path.dirname(mesh_file)) if mesh_file.endswith(".pvtp") \
@@ -67,82 +61,13 @@ def run_filters():
                 data = servermanager.Fetch(distance)  # every process's piece, appended
             else:
                 data = distance.GetClientSideObject().GetOutputDataObject(0)
-            writer = vtk.vtkXMLPolyDataWriter()
-            writer.SetDataModeToBinary()  # inline base64: Debian's expat rejects raw appended data
-            writer.SetFileName(os.path.join(args.run, "%s_%s_%d.vtp" % (mesh_name, name, rank)))
-            writer.SetInputData(data)
-            writer.Write()
+            gs_test.write_polydata(data, os.path.join(args.run, "%s_%s_%d.vtp" % (mesh_name, name, rank)))
     print("run %s: rank %d wrote its outputs" % (args.run, rank))
 
 
 # ---------------------------------------------------------------------------------------------
 def read(path):
-    import vtk
-    reader = vtk.vtkXMLPolyDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
-
-
-def split_mesh(mesh_file, folder):
-    """PIECES slabs of the faces by x + 0.3 y of their centroids (equal counts), each with its
-    used points and global point and cell ids, as a .pvtp; returns it and the pieces' cells."""
-    import numpy
-    import vtk
-    from paraview.vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-    reader = vtk.vtkPLYReader()
-    reader.SetFileName(mesh_file)
-    reader.Update()
-    whole = reader.GetOutput()
-    points = vtk_to_numpy(whole.GetPoints().GetData()).astype(float)
-    cells = vtk_to_numpy(whole.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    centres = points[cells].mean(axis=1)
-    order = numpy.argsort(centres[:, 0] + 0.3 * centres[:, 1], kind="stable")
-    part = numpy.empty(len(cells), dtype=int)
-    part[order] = numpy.arange(len(cells)) * PIECES // len(cells)
-    os.makedirs(folder, exist_ok=True)
-    names, sizes = [], []
-    for p in range(PIECES):
-        mine = numpy.nonzero(part == p)[0]
-        used = numpy.unique(cells[mine])
-        remap = numpy.full(len(points), -1, dtype=numpy.int64)
-        remap[used] = numpy.arange(len(used))
-        piece = vtk.vtkPolyData()
-        piece_points = vtk.vtkPoints()
-        piece_points.SetData(numpy_to_vtk(points[used], deep=True))
-        piece.SetPoints(piece_points)
-        polys = vtk.vtkCellArray()
-        polys.SetData(
-            numpy_to_vtk(numpy.arange(0, 3 * len(mine) + 1, 3, dtype=numpy.int64), deep=True,
-                         array_type=vtk.VTK_ID_TYPE),
-            numpy_to_vtk(remap[cells[mine]].ravel(), deep=True, array_type=vtk.VTK_ID_TYPE))
-        piece.SetPolys(polys)
-        for attributes, ids, array_name in ((piece.GetPointData(), used, "GlobalPointIds"),
-                                            (piece.GetCellData(), mine, "GlobalCellIds")):
-            a = numpy_to_vtk(ids.astype(numpy.int64), deep=True, array_type=vtk.VTK_ID_TYPE)
-            a.SetName(array_name)
-            attributes.SetGlobalIds(a)
-        name = "piece_%d.vtp" % p
-        writer = vtk.vtkXMLPolyDataWriter()
-        writer.SetDataModeToBinary()
-        writer.SetFileName(os.path.join(folder, name))
-        writer.SetInputData(piece)
-        writer.Write()
-        names.append(name)
-        sizes.append(len(mine))
-    pvtp = os.path.join(folder, "mesh.pvtp")
-    with open(pvtp, "w") as f:
-        f.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="1.0" '
-                'byte_order="LittleEndian" header_type="UInt64">\n<PPolyData GhostLevel="0">\n'
-                '<PPointData GlobalIds="GlobalPointIds"><PDataArray type="Int64" '
-                'Name="GlobalPointIds"/></PPointData>\n'
-                '<PCellData GlobalIds="GlobalCellIds"><PDataArray type="Int64" '
-                'Name="GlobalCellIds"/></PCellData>\n'
-                '<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n')
-        for n in names:
-            f.write('<Piece Source="%s"/>\n' % n)
-        f.write('</PPolyData>\n</VTKFile>\n')
-    return pvtp, sizes, len(cells)
+    return gs_test.read_polydata(path)
 
 
 def field(data, name):
@@ -211,7 +136,8 @@ def driver():
     meshes = [os.path.join(args.data, m + ".ply") for m in MESHES]
     split, faces, own = [], {}, {}
     for m in MESHES:
-        pvtp, sizes, total = split_mesh(os.path.join(args.data, m + ".ply"), os.path.join(work, m))
+        pvtp, sizes, total = pieces.split(os.path.join(args.data, m + ".ply"), PIECES,
+                                          os.path.join(work, m))
         split.append(pvtp)
         faces[m] = total
         own[m] = sizes
@@ -220,17 +146,7 @@ def driver():
     env = gs_test.mpi_env()
 
     def run(command, label):
-        start = time.time()
-        result = subprocess.run(command, env=env, timeout=TIMEOUT, stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, universal_newlines=True)
-        print("%s: %.1f s" % (label, time.time() - start))
-        passed = result.returncode == 0 and "ERR|" not in result.stdout
-        if not passed:
-            print(result.stdout)
-        check(passed, "%s failed (exit %d%s)" % (label, result.returncode,
-                                                ", ParaView errors" if "ERR|" in result.stdout else ""))
-        if not passed:
-            gs_test.finish()
+        gs_test.run_checked(command, label, env, TIMEOUT)
 
     serial = os.path.join(work, "serial")
     run([args.pvbatch, me] + common + ["--run", serial, "--meshes", ",".join(meshes)],
@@ -250,36 +166,12 @@ def driver():
                           % (m, name, cells, own[m]))
 
     # A 2-process pvserver with a pvpython client (the outputs fetched to the client).
-    s = socket.socket()
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
-    s.close()
-    server = subprocess.Popen([args.mpiexec, "-n", "2", args.pvserver, "--server-port=%d" % port],
-                              env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              universal_newlines=True)
-    try:
-        deadline = time.time() + 120
-        ready = False
-        while time.time() < deadline:
-            line = server.stdout.readline()
-            if not line:
-                break
-            if "Accepting connection" in line:
-                ready = True
-                break
-        check(ready, "pvserver did not start")
-        if ready:
-            folder = os.path.join(work, "server")
-            run([args.pvpython, me] + common + ["--run", folder, "--meshes", ",".join(split),
-                                                "--connect", "localhost:%d" % port],
-                "pvserver, 2 processes")
-            compare(serial, folder, "pvserver, 2 processes")
-    finally:
-        server.terminate()
-        try:
-            server.wait(timeout=30)
-        except subprocess.TimeoutExpired:
-            server.kill()
+    folder = os.path.join(work, "server")
+    with gs_test.PVServer(args.mpiexec, args.pvserver, 2, env) as port:
+        run([args.pvpython, me] + common + ["--run", folder, "--meshes", ",".join(split),
+                                            "--connect", "localhost:%d" % port],
+            "pvserver, 2 processes")
+    compare(serial, folder, "pvserver, 2 processes")
     gs_test.finish("TestMPIPieces passed")
 
 

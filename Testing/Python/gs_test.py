@@ -52,3 +52,101 @@ def mpi_env():
     # A process that waits for another yields its core instead of polling.
     env["OMPI_MCA_mpi_yield_when_idle"] = "1"
     return env
+
+
+def run_checked(command, label, env, timeout=600):
+    """Runs a sub-run (pvbatch, mpiexec, a pvpython client), prints its time and checks that it
+    succeeded without ParaView errors; a failed run ends the test (what follows needs its
+    outputs)."""
+    import subprocess
+    import time
+    start = time.time()
+    result = subprocess.run(command, env=env, timeout=timeout, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, universal_newlines=True)
+    print("%s: %.1f s" % (label, time.time() - start))
+    passed = result.returncode == 0 and "ERR|" not in result.stdout
+    if not passed:
+        print(result.stdout)
+    check(passed, "%s failed (exit %d%s)" % (label, result.returncode,
+                                            ", ParaView errors" if "ERR|" in result.stdout else ""))
+    if not passed:
+        finish()
+
+
+class PVServer:
+    """`with PVServer(mpiexec, pvserver, processes, env) as port:` a P-process pvserver on a free
+    local port, stopped on leaving; the test ends if it does not start."""
+
+    def __init__(self, mpiexec, pvserver, processes, env):
+        self.command = [mpiexec, "-n", str(processes), pvserver]
+        self.env = env
+        self.server = None
+
+    def __enter__(self):
+        import socket
+        import subprocess
+        import time
+        s = socket.socket()
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+        s.close()
+        self.server = subprocess.Popen(self.command + ["--server-port=%d" % port], env=self.env,
+                                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                       universal_newlines=True)
+        deadline = time.time() + 120
+        ready = False
+        while time.time() < deadline:
+            line = self.server.stdout.readline()
+            if not line:
+                break
+            if "Accepting connection" in line:
+                ready = True
+                break
+        check(ready, "pvserver did not start")
+        if not ready:
+            self.__exit__(None, None, None)
+            finish()  # no server to connect to
+        return port
+
+    def __exit__(self, *exc):
+        import subprocess
+        self.server.terminate()
+        try:
+            self.server.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            self.server.kill()
+        return False
+
+
+def connect_run(connect, plugin, ns):
+    """The start of a sub-run: connected to a pvserver (`connect` = host:port) or in pvbatch,
+    with the plugin loaded into `ns`; returns this process's rank (0 on a client)."""
+    from paraview.simple import Connect, LoadPlugin
+    import vtk
+    rank = 0
+    if connect:
+        host, port = connect.split(":")
+        Connect(host, int(port))
+        LoadPlugin(plugin, remote=True, ns=ns)
+    else:
+        rank = vtk.vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
+    LoadPlugin(plugin, remote=False, ns=ns)
+    return rank
+
+
+def write_polydata(data, path):
+    """A vtkPolyData as .vtp, inline base64 (Debian's expat rejects raw appended data)."""
+    import vtk
+    writer = vtk.vtkXMLPolyDataWriter()
+    writer.SetDataModeToBinary()
+    writer.SetFileName(path)
+    writer.SetInputData(data)
+    writer.Write()
+
+
+def read_polydata(path):
+    import vtk
+    reader = vtk.vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
