@@ -2,6 +2,7 @@
 
 #include "vtkCachedSurface.h"
 #include "vtkDistributedSurface.h"
+#include "vtkSurfacePieces.h"
 #include "vtkSurfacePointLocator.h"
 
 #include "GeodesicPolarCoordinates.h"
@@ -14,6 +15,7 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -100,10 +102,88 @@ int vtkGeodesicPolarCoordinates::FillInputPortInformation(int port, vtkInformati
 int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Under MPI, the exact chart about SourceVertexId (geodesic direction, a finite radius) is
+  // computed on the pieces when they carry global ids (the same decision on every process: it
+  // depends on properties and on CanUse, which is collective); everything else gathers.
+  const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (distributed && input && output && this->Solver == EXACT &&
+    this->AngleMode == GEODESIC_DIRECTION && std::isfinite(this->Radius) &&
+    inputVector[1]->GetNumberOfInformationObjects() == 0)
+  {
+    if (vtkSmartPointer<vtkPolyData> own =
+          vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input))
+    {
+      return this->ExecutePieces(input, own, output);
+    }
+  }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
-    [this](vtkPolyData* input, const std::vector<vtkPointSet*>& auxiliaries, vtkPolyData* output) {
-      return this->Execute(input, auxiliaries[0], output);
+    [this](vtkPolyData* whole, const std::vector<vtkPointSet*>& auxiliaries, vtkPolyData* result) {
+      return this->Execute(whole, auxiliaries[0], result);
     });
+}
+
+//------------------------------------------------------------------------------
+int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output)
+{
+  output->Initialize(); // empty unless everything succeeds
+  this->UpdateProgress(0.0);
+  std::vector<double> rho, theta;
+  gs::PiecePolarCoordinates chart;
+  // (CheckParameters: the same outcome on every process.)
+  if (!this->CheckParameters() || !this->Pieces->UsePiece(this, own, input->GetMTime()) ||
+    !this->Pieces->Polar(this, this->SourceVertexId, this->Radius, this->ReferenceDirection, rho,
+      theta, chart))
+  {
+    return 1;
+  }
+  if (chart.ReferenceNormal)
+  {
+    this->WarnReferenceNormal();
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const vtkIdType n = static_cast<vtkIdType>(rho.size());
+  vtkNew<vtkDoubleArray> rhoArray, thetaArray, decal;
+  rhoArray->SetName("GeodesicDistance");
+  rhoArray->SetNumberOfTuples(n);
+  thetaArray->SetName("PolarAngle");
+  thetaArray->SetNumberOfTuples(n);
+  decal->SetName("DecalCoordinates");
+  decal->SetNumberOfComponents(2);
+  decal->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double r = rho[static_cast<std::size_t>(i)], t = theta[static_cast<std::size_t>(i)];
+    if (!std::isfinite(r) || std::abs(r) > this->Radius || !std::isfinite(t))
+    {
+      r = t = nan;
+    }
+    rhoArray->SetValue(i, r);
+    thetaArray->SetValue(i, t);
+    // A square of side DecalSize centred on the source -> [0, 1]^2 (NaN stays NaN), as Execute.
+    decal->SetTypedComponent(i, 0, r * std::cos(t) / this->DecalSize + 0.5);
+    decal->SetTypedComponent(i, 1, r * std::sin(t) / this->DecalSize + 0.5);
+  }
+  SetOutputArrays(output, own, rhoArray, thetaArray, decal);
+  vtkNew<vtkFieldData> fieldData;
+  fieldData->ShallowCopy(own->GetFieldData());
+  vtkNew<vtkDoubleArray> sum;
+  sum->SetName("SourceAngleSum");
+  sum->InsertNextValue(chart.SourceAngleSum);
+  fieldData->AddArray(sum);
+  // What this process held, and the chart's process (the band grew where the chart needed).
+  for (const auto& value : { std::make_pair("PieceFaces", this->Pieces->Piece().Mesh().NumberOfFaces()),
+         std::make_pair("PieceChartFaces", chart.ChartFaces) })
+  {
+    vtkNew<vtkIntArray> a;
+    a->SetName(value.first);
+    a->InsertNextValue(value.second);
+    fieldData->AddArray(a);
+  }
+  output->SetFieldData(fieldData);
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -296,12 +376,31 @@ void vtkGeodesicPolarCoordinates::ResolveReferenceAngle(const Cache& cache, Run&
     }
     else
     {
-      vtkWarningMacro("ReferenceDirection (" << reference[0] << ", " << reference[1] << ", "
-                                             << reference[2]
-                                             << ") is normal to the surface at the source: "
-                                                "using the source's first edge instead.");
+      this->WarnReferenceNormal();
     }
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkGeodesicPolarCoordinates::SetOutputArrays(vtkPolyData* output, vtkPolyData* surface,
+  vtkDoubleArray* rho, vtkDoubleArray* theta, vtkDoubleArray* decal)
+{
+  output->ShallowCopy(surface);
+  vtkPointData* pointData = output->GetPointData();
+  pointData->AddArray(rho);
+  pointData->AddArray(theta);
+  pointData->SetActiveScalars(rho->GetName());
+  pointData->SetTCoords(decal);
+}
+
+//------------------------------------------------------------------------------
+void vtkGeodesicPolarCoordinates::WarnReferenceNormal()
+{
+  const double* reference = this->ReferenceDirection;
+  vtkWarningMacro("ReferenceDirection (" << reference[0] << ", " << reference[1] << ", "
+                                         << reference[2]
+                                         << ") is normal to the surface at the source: "
+                                            "using the source's first edge instead.");
 }
 
 //------------------------------------------------------------------------------
@@ -409,12 +508,7 @@ int vtkGeodesicPolarCoordinates::WriteOutput(const Cache& cache, const Run& run,
     }
   }
 
-  output->ShallowCopy(cache.Mesh.Surface);
-  vtkPointData* pointData = output->GetPointData();
-  pointData->AddArray(rhoArray);
-  pointData->AddArray(thetaArray);
-  pointData->SetActiveScalars(rhoArray->GetName());
-  pointData->SetTCoords(decal);
+  SetOutputArrays(output, cache.Mesh.Surface, rhoArray, thetaArray, decal);
 
   // A fresh field data object: the surface's own (shallow-copied) one is left untouched.
   vtkNew<vtkFieldData> fieldData;

@@ -78,6 +78,9 @@
 
 #include <memory> // for std::unique_ptr
 
+class vtkDoubleArray;
+class vtkSurfacePieces;
+
 class GEODESICSHAPESFILTERS_EXPORT vtkGeodesicPolarCoordinates : public vtkPolyDataAlgorithm
 {
 public:
@@ -177,6 +180,16 @@ protected:
   // RequestData's work on the whole surface (the input itself, or under MPI the gathered
   // surface on process 0).
   int Execute(vtkPolyData* input, vtkPointSet* source, vtkPolyData* output);
+  // Under MPI, the exact chart about SourceVertexId on pieces with global ids: each process
+  // outputs its own cells (`own`), the chart's process grows its band to the chart
+  // (vtkSurfacePieces::Polar), nothing gathered.
+  int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output);
+  // The warning that ReferenceDirection is normal to the surface at the source.
+  void WarnReferenceNormal();
+  // The output: `surface` (shallow) with the coordinates' arrays (rho the active scalars, the
+  // decal coordinates the texture coordinates).
+  static void SetOutputArrays(vtkPolyData* output, vtkPolyData* surface, vtkDoubleArray* rho,
+    vtkDoubleArray* theta, vtkDoubleArray* decal);
 
 
 private:
@@ -195,6 +208,8 @@ private:
   // Converted mesh, locator and polar-coordinate solver, reused while the input is unchanged.
   struct Cache;
   std::unique_ptr<Cache> MeshCache;
+  // Under MPI: this process's piece, reused while the input is unchanged.
+  std::unique_ptr<vtkSurfacePieces> Pieces;
 
   // Execute's steps (vtkGeodesicPolarCoordinates.cxx); each reports its own errors.
   struct Run; // one Execute's source and results

@@ -123,17 +123,11 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   if (distributed && input && output && this->UsesGraph() &&
     inputVector[1]->GetNumberOfInformationObjects() == 0 && this->CacheFileName.empty())
   {
-    if (!this->Pieces)
-    {
-      this->Pieces.reset(new vtkSurfacePieces(distributed.GetController()));
-    }
-    vtkSmartPointer<vtkPolyData> own = vtkDistributedSurface::OwnCells(input);
-    std::string why;
-    if (this->Pieces->CanUse(own, why))
+    if (vtkSmartPointer<vtkPolyData> own =
+          vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input))
     {
       return this->ExecutePieces(input, own, output);
     }
-    vtkDebugMacro("Gathering the surface: " << why << ".");
   }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
     [this](vtkPolyData* whole, const std::vector<vtkPointSet*>& auxiliaries, vtkPolyData* result) {

@@ -1,5 +1,8 @@
 #include "vtkSurfacePieces.h"
 
+#include "vtkDistributedSurface.h"
+
+
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -148,6 +151,28 @@ vtkSurfacePieces::vtkSurfacePieces(vtkMultiProcessController* controller)
 vtkSurfacePieces::~vtkSurfacePieces() = default;
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> vtkSurfacePieces::OwnCellsInPlace(vtkAlgorithm* self,
+  const vtkDistributedSurface& distributed, std::unique_ptr<vtkSurfacePieces>& pieces,
+  vtkPolyData* input)
+{
+  if (!pieces)
+  {
+    pieces.reset(new vtkSurfacePieces(distributed.GetController()));
+  }
+  vtkSmartPointer<vtkPolyData> own = vtkDistributedSurface::OwnCells(input);
+  std::string why;
+  if (pieces->CanUse(own, why))
+  {
+    return own;
+  }
+  if (self->GetDebug())
+  {
+    vtkGenericWarningMacro("Gathering the surface: " << why << ".");
+  }
+  return nullptr;
+}
+
+//------------------------------------------------------------------------------
 bool vtkSurfacePieces::CanUse(vtkPolyData* ownCells, std::string& why)
 {
   const std::string lacks = Lacks(ownCells);
@@ -174,23 +199,17 @@ bool vtkSurfacePieces::CanUse(vtkPolyData* ownCells, std::string& why)
 }
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
-  const gs::SaddleVertexGraphOptions& options, double from, double to, bool& built)
+bool vtkSurfacePieces::UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key)
 {
-  built = false;
-  const bool same = this->HasGraph && key == this->Key &&
-    options.Construction == this->Options.Construction && options.K == this->Options.K &&
-    options.Accuracy == this->Options.Accuracy;
-  if (Comm->Sum(same ? 0 : 1) == 0)
+  if (Comm->Sum(this->HasPiece && key == this->PieceKey ? 0 : 1) == 0)
   {
     return true;
   }
-  this->HasGraph = false;
-  this->PointVertex.clear();
-
+  this->HasPiece = this->HasGraph = false;
   // This process's triangles, with their points' and their own global ids.
   gs::PieceTriangles own;
-  std::vector<int> pointOf(static_cast<std::size_t>(ownCells->GetNumberOfPoints()), -1);
+  this->PointIds.assign(static_cast<std::size_t>(ownCells->GetNumberOfPoints()), -1);
+  std::vector<int> pointOf(this->PointIds.size(), -1);
   if (ownCells->GetNumberOfPolys() > 0)
   {
     vtkDataArray* pointIds = ownCells->GetPointData()->GetGlobalIds();
@@ -214,6 +233,7 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
           p = static_cast<int>(own.Points.size());
           own.Points.emplace_back(x[0], x[1], x[2]);
           own.PointIds.push_back(GlobalId(pointIds, pts[k]));
+          this->PointIds[static_cast<std::size_t>(pts[k])] = own.PointIds.back();
         }
         t[static_cast<std::size_t>(k)] = p;
       }
@@ -221,15 +241,37 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
       own.TriangleIds.push_back(GlobalId(cellIds, cell));
     }
   }
-  gs::Status status = this->SurfacePieceState.Build(own, 0, *Comm);
-  if (status.Ok())
+  if (const gs::Status status = this->SurfacePieceState.Build(own, 0, *Comm); !status.Ok())
   {
-    status = this->GraphState.Build(this->SurfacePieceState, options, *Comm,
-      [self, from, to](double fraction) {
-        self->UpdateProgress(from + (to - from) * fraction);
-        return !self->CheckAbort();
-      });
+    vtkErrorWithObjectMacro(self, "The distributed surface: " << status.Message() << ".");
+    return false;
   }
+  this->HasPiece = true;
+  this->PieceKey = key;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
+  const gs::SaddleVertexGraphOptions& options, double from, double to, bool& built)
+{
+  built = false;
+  if (!this->UsePiece(self, ownCells, key))
+  {
+    return false;
+  }
+  const bool same = this->HasGraph && options.Construction == this->Options.Construction &&
+    options.K == this->Options.K && options.Accuracy == this->Options.Accuracy;
+  if (Comm->Sum(same ? 0 : 1) == 0)
+  {
+    return true;
+  }
+  this->HasGraph = false;
+  const gs::Status status = this->GraphState.Build(this->SurfacePieceState, options, *Comm,
+    [self, from, to](double fraction) {
+      self->UpdateProgress(from + (to - from) * fraction);
+      return !self->CheckAbort();
+    });
   if (status.IsAborted())
   {
     return false;
@@ -239,19 +281,37 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
     vtkErrorWithObjectMacro(self, "The distributed surface: " << status.Message() << ".");
     return false;
   }
-  this->PointVertex.assign(pointOf.size(), -1);
-  for (std::size_t i = 0; i < pointOf.size(); ++i)
-  {
-    if (pointOf[i] >= 0)
-    {
-      this->PointVertex[i] =
-        this->SurfacePieceState.Vertex(own.PointIds[static_cast<std::size_t>(pointOf[i])]);
-    }
-  }
   this->HasGraph = true;
-  this->Key = key;
   this->Options = options;
   built = true;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkIdType source, double radius,
+  const double referenceDirection[3], std::vector<double>& rho, std::vector<double>& theta,
+  gs::PiecePolarCoordinates& chart)
+{
+  const gs::Status computed = gs::ComputePolarOnPieces(this->SurfacePieceState, source, radius,
+    gs::Vec3(referenceDirection[0], referenceDirection[1], referenceDirection[2]), *Comm, chart);
+  if (!computed.Ok())
+  {
+    vtkErrorWithObjectMacro(self, "Geodesic polar coordinates about the source point: "
+        << computed.Message() << ".");
+    return false;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  rho.assign(this->PointIds.size(), nan);
+  theta.assign(this->PointIds.size(), nan);
+  for (std::size_t i = 0; i < this->PointIds.size(); ++i)
+  {
+    const int v = this->PointIds[i] >= 0 ? this->SurfacePieceState.Vertex(this->PointIds[i]) : -1;
+    if (v >= 0)
+    {
+      rho[i] = chart.Rho[static_cast<std::size_t>(v)];
+      theta[i] = chart.Theta[static_cast<std::size_t>(v)];
+    }
+  }
   return true;
 }
 
@@ -272,21 +332,22 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType
   }
   this->LastRounds = solver.Rounds();
   this->LastRefinementRounds = solver.Refinements();
-  std::vector<int> wanted;
-  for (const int v : this->PointVertex)
+  std::vector<int> wanted, at(this->PointIds.size(), -1);
+  for (std::size_t i = 0; i < this->PointIds.size(); ++i)
   {
-    if (v >= 0)
+    if (this->PointIds[i] >= 0)
     {
-      wanted.push_back(v);
+      at[i] = this->SurfacePieceState.Vertex(this->PointIds[i]);
+      wanted.push_back(at[i]);
     }
   }
   const std::vector<double> fetched = solver.Fetch(this->SurfacePieceState, wanted, *Comm);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  perPoint.assign(this->PointVertex.size(), nan);
+  perPoint.assign(this->PointIds.size(), nan);
   std::size_t j = 0;
-  for (std::size_t i = 0; i < this->PointVertex.size(); ++i)
+  for (std::size_t i = 0; i < this->PointIds.size(); ++i)
   {
-    if (this->PointVertex[i] >= 0)
+    if (at[i] >= 0)
     {
       const double d = fetched[j++];
       perPoint[i] = std::isfinite(d) && !(maxDistance > 0.0 && d > maxDistance) ? d : nan;

@@ -15,6 +15,7 @@
 #define vtkSurfacePieces_h
 
 #include "GraphPieces.h"
+#include "PolarPieces.h"
 #include "SaddleVertexGraph.h"
 #include "SurfacePiece.h"
 
@@ -26,6 +27,7 @@
 #include <vector>
 
 class vtkAlgorithm;
+class vtkDistributedSurface;
 class vtkMultiProcessController;
 class vtkPolyData;
 
@@ -35,9 +37,21 @@ public:
   explicit vtkSurfacePieces(vtkMultiProcessController* controller);
   ~vtkSurfacePieces();
 
+  // Collective. A filter's route under MPI: its pieces object `pieces` (made on first use over
+  // `distributed`'s controller) and `input`'s own cells when every process's piece can be worked
+  // on in place; nullptr otherwise (the filter gathers; `self`'s debug output says why).
+  static vtkSmartPointer<vtkPolyData> OwnCellsInPlace(vtkAlgorithm* self,
+    const vtkDistributedSurface& distributed, std::unique_ptr<vtkSurfacePieces>& pieces,
+    vtkPolyData* input);
+
   // Whether every process's `ownCells` (a piece without ghost cells) can be worked on in place;
   // otherwise `why` says what the first process that cannot lacks.
   bool CanUse(vtkPolyData* ownCells, std::string& why);
+
+  // This process's piece of the surface from `ownCells` (a piece without ghost cells), kept
+  // while every process passes the same `key` (the input's modification time). Errors are
+  // reported on `self`; false on every process when one fails.
+  bool UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key);
 
   // The band and graph for `ownCells` with `options`, kept while every process passes the same
   // `key` (the input's modification time) and options; built otherwise (progress from `self`,
@@ -53,6 +67,14 @@ public:
   bool Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources, double maxDistance,
     bool refine, std::vector<double>& perPoint);
 
+  // Geodesic polar coordinates about the point of global id `source` within `radius` (finite),
+  // theta's zero from `referenceDirection` (all zero: the source's first edge), at every point
+  // of the piece UsePiece was given (NaN outside the chart); `chart` says what the chart's
+  // process found (angle sum, a reference direction normal to the surface, its faces). False
+  // (error on `self`) on every process when it fails.
+  bool Polar(vtkAlgorithm* self, vtkIdType source, double radius, const double referenceDirection[3],
+    std::vector<double>& rho, std::vector<double>& theta, gs::PiecePolarCoordinates& chart);
+
   const gs::SurfacePiece& Piece() const { return SurfacePieceState; }
   // Rounds of exchanges the last Distances took: the graph search's and the refinement's.
   int SolveRounds() const { return LastRounds; }
@@ -64,11 +86,12 @@ private:
   std::unique_ptr<Communicator> Comm;
   gs::SurfacePiece SurfacePieceState;
   gs::PieceGraph GraphState;
-  bool HasGraph = false;
+  bool HasPiece = false, HasGraph = false;
+  vtkMTimeType PieceKey = 0;
   int LastRounds = 0, LastRefinementRounds = 0;
-  vtkMTimeType Key = 0;
   gs::SaddleVertexGraphOptions Options;
-  std::vector<int> PointVertex; // per point of the piece's own cells: its piece vertex or -1
+  // Per point of the piece's own cells: its global id, or -1 when no triangle uses it.
+  std::vector<std::int64_t> PointIds;
 };
 
 #endif

@@ -4,7 +4,10 @@
 // solvers' to the bit, for
 // several process counts and partitions (slabs, pieces with holes and islands), on a closed
 // curved mesh, a regular plane with a boundary (ties everywhere) and a torus, for both graphs.
+#include "GeodesicPolarCoordinates.h"
+#include "GeodesicShooting.h"
 #include "GraphPieces.h"
+#include "PolarPieces.h"
 #include "MeshGenerators.h"
 #include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
@@ -321,4 +324,80 @@ TEST(GraphPieces, BuildRefusedBeyondTheAvailableMemoryEverywhere)
   ::unsetenv("GS_AVAILABLE_MEMORY");
   EXPECT_FALSE(run.Ok);
   EXPECT_NE(run.Message.find("MiB"), std::string::npos) << run.Message;
+}
+
+namespace
+{
+// Polar coordinates about `source` on pieces against GeodesicPolarCoordinates on the whole mesh.
+void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
+  int source, double radius, const Vec3& reference)
+{
+  GeodesicPolarCoordinates serial(mesh);
+  const SurfacePoint at = SurfacePoint::AtVertex(source);
+  const double angle = reference.x == 0.0 && reference.y == 0.0 && reference.z == 0.0
+    ? 0.0
+    : TangentAngle(mesh, at, reference);
+  ASSERT_TRUE(gs_test::Succeeded(serial.Compute(at, radius, angle)));
+  std::vector<std::map<std::int64_t, std::pair<double, double>>> got(
+    static_cast<std::size_t>(processes));
+  std::vector<std::string> errors(static_cast<std::size_t>(processes));
+  std::vector<double> sums(static_cast<std::size_t>(processes));
+  std::vector<int> held(static_cast<std::size_t>(processes));
+  gs_test::ThreadHub hub(processes);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    SurfacePiece piece;
+    PiecePolarCoordinates polar;
+    Status s = piece.Build(gs_test::PieceOf(mesh, part, rank), 0, comm);
+    if (s.Ok())
+    {
+      s = ComputePolarOnPieces(piece, source, radius, reference, comm, polar);
+    }
+    errors[static_cast<std::size_t>(rank)] = s.Message();
+    if (!s.Ok())
+    {
+      return;
+    }
+    sums[static_cast<std::size_t>(rank)] = polar.SourceAngleSum;
+    held[static_cast<std::size_t>(rank)] = polar.ChartFaces;
+    for (int v = 0; v < piece.Mesh().NumberOfVertices(); ++v)
+    {
+      got[static_cast<std::size_t>(rank)][piece.GlobalId(v)] = { polar.Rho[static_cast<std::size_t>(v)],
+        polar.Theta[static_cast<std::size_t>(v)] };
+    }
+  });
+  int inside = 0;
+  for (int r = 0; r < processes; ++r)
+  {
+    ASSERT_EQ(errors[static_cast<std::size_t>(r)], "");
+    EXPECT_EQ(sums[static_cast<std::size_t>(r)], serial.SourceAngleSum());
+    for (const auto& [id, value] : got[static_cast<std::size_t>(r)])
+    {
+      const double rho = serial.Rho(static_cast<int>(id)), theta = serial.Theta(static_cast<int>(id));
+      const bool same = (value.first == rho || (std::isnan(rho) && std::isnan(value.first))) &&
+        (value.second == theta || (std::isnan(theta) && std::isnan(value.second)));
+      EXPECT_TRUE(same) << "vertex " << id << " on process " << r << ": (" << value.first << ", "
+                        << value.second << "), serial (" << rho << ", " << theta << ")";
+      inside += r == 0 && !std::isnan(rho) ? 1 : 0;
+    }
+  }
+  EXPECT_LT(*std::max_element(held.begin(), held.end()), mesh.NumberOfFaces())
+    << "the chart's process held the whole surface";
+  std::printf("polar, P = %d: chart process held %d of %d faces\n", processes,
+    *std::max_element(held.begin(), held.end()), mesh.NumberOfFaces());
+  EXPECT_GT(static_cast<int>(serial.Inside().size()), 20);
+}
+} // namespace
+
+TEST(GraphPieces, PolarCoordinatesSpanPieces)
+{
+  // A chart about a vertex near a piece's edge reaches into the others; its process's band grows
+  // there until the exact solve within the radius stays inside.
+  const TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
+  const std::vector<int> slabs = gs_test::PartitionFaces(sphere, 3, Vec3(1, 0.3, 0.1));
+  ExpectPolarAsSerial(sphere, slabs, 3, 5, 0.6, Vec3(0, 0, 0));
+  ExpectPolarAsSerial(sphere, gs_test::PartitionFaces(sphere, 2, Vec3(0.2, 1, 0.5), 5), 2, 40,
+    0.9, Vec3(0, 0, 1));
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
+  ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3, 260, 0.5,
+    Vec3(1, 1, 0));
 }

@@ -6,7 +6,8 @@ and no process holds the whole surface.
 Meshes: the bumpy sphere (closed, saddles everywhere) and the L-shaped plane (a boundary, a
 regular grid: ties everywhere). Solvers: SVG (label-correcting, K = 50, unfolding refinement)
 and SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
-from two vertices with a MaximumDistance.
+from two vertices with a MaximumDistance; and Geodesic Polar Coordinates about a vertex (exact,
+radius 0.7, a reference direction): rho and theta as the serial run's.
 
 Driver (pvpython TestMPIPieces.py --plugin P --data D --work W): splits each mesh in three
 pieces with global ids (Tools/pieces.py: slabs of x + 0.3 y, not contiguous in id order), runs
@@ -33,11 +34,18 @@ MESHES = ["bumpy_sphere", "lshape"]
 PIECES = 3
 TIMEOUT = 600
 # (name, properties): the filters each run applies to each mesh.
-RUNS = [("svg", dict(Solver="SVG (label-correcting)", K=50, SourceVertexIds=[11])),
-        ("svg-graph", dict(Solver="SVG (Dijkstra)", K=30, SourceVertexIds=[11],
-                           UnfoldingRefinement=0)),
-        ("dgg", dict(Solver="DGG (accuracy-bounded)", GraphAccuracy=0.01,
-                     SourceVertexIds=[3, 200], MaximumDistance=1.0))]
+# (name, filter, properties, point arrays compared): the filters each run applies to each mesh.
+RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=50,
+                                            SourceVertexIds=[11]), ["GeodesicDistance"]),
+        ("svg-graph", "SVGGeodesicDistance", dict(Solver="SVG (Dijkstra)", K=30,
+                                                  SourceVertexIds=[11], UnfoldingRefinement=0),
+         ["GeodesicDistance"]),
+        ("dgg", "SVGGeodesicDistance", dict(Solver="DGG (accuracy-bounded)", GraphAccuracy=0.01,
+                                            SourceVertexIds=[3, 200], MaximumDistance=1.0),
+         ["GeodesicDistance"]),
+        ("polar", "GeodesicPolarCoordinates", dict(SourceVertexId=11, Radius=0.7,
+                                                   ReferenceDirection=[1.0, 1.0, 0.0]),
+         ["GeodesicDistance", "PolarAngle"])]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -54,8 +62,8 @@ def run_filters():
             mesh = XMLPartitionedPolydataReader(FileName=[mesh_file])
         else:
             mesh = PLYReader(FileNames=[mesh_file])
-        for name, properties in RUNS:
-            distance = globals()["SVGGeodesicDistance"](Input=mesh, **properties)
+        for name, filter_name, properties, _ in RUNS:
+            distance = globals()[filter_name](Input=mesh, **properties)
             distance.UpdatePipeline()
             if args.connect:
                 data = servermanager.Fetch(distance)  # every process's piece, appended
@@ -81,37 +89,39 @@ def compare(reference, candidate, label, processes=None, faces=None):
     than the whole surface held."""
     import math
     for mesh_name in MESHES:
-        for name, _ in RUNS:
+        for name, _, _, arrays in RUNS:
             ref = read(os.path.join(reference, "%s_%s_0.vtp" % (mesh_name, name)))
             files = sorted(glob.glob(os.path.join(candidate, "%s_%s_*.vtp" % (mesh_name, name))))
             what = "%s, %s, %s" % (label, mesh_name, name)
             got = [read(f) for f in files]
             table = {}
             for data in got:
-                d = data.GetPointData().GetArray("GeodesicDistance")
+                values = [data.GetPointData().GetArray(a) for a in arrays]
                 for i in range(data.GetNumberOfPoints()):
                     k = data.GetPoint(i)
-                    v = d.GetValue(i)
-                    check(k not in table or table[k] == v or (math.isnan(v) and math.isnan(table[k])),
+                    v = [a.GetValue(i) for a in values]
+                    check(k not in table or all(x == y or (math.isnan(x) and math.isnan(y))
+                                                for x, y in zip(table[k], v)),
                           "%s: a point shared by two pieces has two values" % what)
                     table[k] = v
-            expected = ref.GetPointData().GetArray("GeodesicDistance")
+            expected = [ref.GetPointData().GetArray(a) for a in arrays]
             worst, nans, missing = 0.0, 0, 0
             for i in range(ref.GetNumberOfPoints()):
                 k = ref.GetPoint(i)
                 if k not in table:
                     missing += 1
                     continue
-                a, b = expected.GetValue(i), table[k]
-                if math.isnan(a) or math.isnan(b):
-                    nans += math.isnan(a) != math.isnan(b)
-                else:
-                    worst = max(worst, abs(a - b) / max(abs(a), 1e-300))
+                for a, b in zip((e.GetValue(i) for e in expected), table[k]):
+                    if math.isnan(a) or math.isnan(b):
+                        nans += math.isnan(a) != math.isnan(b)
+                    else:
+                        worst = max(worst, abs(a - b) / max(abs(a), 1e-300))
+            expected = expected[0]
             reached = sum(not math.isnan(expected.GetValue(i)) for i in range(ref.GetNumberOfPoints()))
             check(missing == 0 and len(table) == ref.GetNumberOfPoints(),
                   "%s: %d points, serial %d" % (what, len(table), ref.GetNumberOfPoints()))
             check(nans == 0, "%s: %d points reached in one run only" % (what, nans))
-            check(worst <= 1e-9, "%s: distances differ by %.3g relative" % (what, worst))
+            check(worst <= 1e-9, "%s: %s differ by %.3g relative" % (what, "/".join(arrays), worst))
             check(reached > 100, "%s: only %d points reached" % (what, reached))
             line = "%s: %d points (%d reached), largest relative difference %.3g" % (
                 what, ref.GetNumberOfPoints(), reached, worst)
@@ -120,12 +130,20 @@ def compare(reference, candidate, label, processes=None, faces=None):
                 held = [field(data, "PieceFaces") for data in got]
                 check(all(h is not None for h in held),
                       "%s: a process gathered the surface instead of working on its piece" % what)
-                check(all(field(data, "SVGMeanDegree") == field(ref, "SVGMeanDegree") for data in got),
-                      "%s: the graph's mean degree differs from the serial graph's" % what)
-                if name.startswith("svg") and all(h is not None for h in held):
+                check(all(field(data, "SVGMeanDegree") == field(ref, "SVGMeanDegree") and
+                          field(data, "SourceAngleSum") == field(ref, "SourceAngleSum") for data in got),
+                      "%s: the field data differs from the serial run's" % what)
+                if name != "dgg" and all(h is not None for h in held):
                     check(max(held) < faces[mesh_name],
                           "%s: a process held %d of the %d faces" % (what, max(held), faces[mesh_name]))
                 line += "; faces held per process %s of %d" % (held, faces[mesh_name])
+                if name == "polar":
+                    # The chart spans pieces: its values reach more than one process's cells.
+                    spans = sum(any(not math.isnan(x) for x in
+                                    (data.GetPointData().GetArray("PolarAngle").GetValue(i)
+                                     for i in range(data.GetNumberOfPoints()))) for data in got)
+                    check(spans >= 2, "%s: the chart lies on %d process's piece" % (what, spans))
+                    line += "; the chart on %d pieces" % spans
             print(line)
 
 
@@ -159,7 +177,7 @@ def driver():
         if p == 3:
             # Three processes read one piece each: each outputs exactly its input piece's cells.
             for m in MESHES:
-                for name, _ in RUNS:
+                for name, _, _, _ in RUNS:
                     cells = [read(f).GetNumberOfCells() for f in sorted(
                         glob.glob(os.path.join(folder, "%s_%s_*.vtp" % (m, name))))]
                     check(cells == own[m], "%s, %s: output pieces of %s cells, input pieces %s"

@@ -12,9 +12,10 @@
 namespace gs
 {
 
-GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph)
+GeodesicPolarCoordinates::GeodesicPolarCoordinates(
+  const TriangleMesh& mesh, const SaddleVertexGraph* graph, double lengthScale)
   : Mesh(mesh)
-  , Solver(mesh)
+  , Solver(mesh, lengthScale)
 {
   if (graph)
   {

@@ -62,7 +62,10 @@ class GeodesicPolarCoordinates
 public:
   // The mesh (and graph) must outlive this object. Without a graph: the exact engine. A graph
   // built for another mesh (another number of vertices) makes Compute and ComputeCurve fail.
-  explicit GeodesicPolarCoordinates(const TriangleMesh& mesh, const SaddleVertexGraph* graph = nullptr);
+  // `lengthScale`: the exact engine's tolerance scale (ExactGeodesicSolver; 0: the mesh's
+  // bounding box diagonal; a piece of a partitioned surface passes the whole surface's).
+  explicit GeodesicPolarCoordinates(
+    const TriangleMesh& mesh, const SaddleVertexGraph* graph = nullptr, double lengthScale = 0.0);
 
   // Coordinates about `source` of every vertex closer than `radius` (> 0; infinity: the whole
   // reachable surface). `referenceAngle` is theta's zero, as a tangent angle at the source (see

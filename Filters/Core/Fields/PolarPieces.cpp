@@ -1,0 +1,157 @@
+#include "PolarPieces.h"
+
+#include "ExactGeodesic.h"
+#include "GeodesicPolarCoordinates.h"
+#include "GeodesicShooting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace gs
+{
+
+namespace
+{
+// The chart's process's result as it sends it: a status, the source's angle sum, the reference
+// flag, its faces, then (id, rho, theta) per vertex of the chart.
+ByteBuffer Pack(const Status& status, const PiecePolarCoordinates& result,
+  const GeodesicPolarCoordinates* polar, const SurfacePiece& piece)
+{
+  ByteBuffer bytes;
+  ByteWriter w(bytes);
+  const std::int32_t ok = status.Ok() ? 1 : 0;
+  w.Put(ok);
+  if (!status.Ok())
+  {
+    for (const char c : status.Message())
+    {
+      w.Put(c);
+    }
+    return bytes;
+  }
+  w.Put(result.SourceAngleSum);
+  w.Put(static_cast<std::int32_t>(result.ReferenceNormal ? 1 : 0));
+  w.Put(static_cast<std::int32_t>(result.ChartFaces));
+  for (const int v : polar->Inside())
+  {
+    w.Put(piece.GlobalId(v));
+    w.Put(polar->Rho(v));
+    w.Put(polar->Theta(v));
+  }
+  return bytes;
+}
+} // namespace
+
+Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double radius,
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  result = PiecePolarCoordinates();
+  const int local = piece.Vertex(source);
+  const bool mine = local >= 0 && piece.IsOwned(local);
+  if (comm.Sum(mine ? 1 : 0) != 1)
+  {
+    return Status::Error("vertex " + std::to_string(source) + " is not a point of the surface");
+  }
+  if (!(radius > 0.0) || !std::isfinite(radius))
+  {
+    return Status::Error("the radius must be finite and above 0");
+  }
+  const int chartRank = static_cast<int>(comm.Max(mine ? comm.Rank() : -1.0));
+
+  // The band grows where the truncated solve reaches its edge, by rings that double.
+  for (int rings = 2;; rings *= 2)
+  {
+    std::vector<std::int64_t> around;
+    if (mine)
+    {
+      ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
+      ExactGeodesicOptions options;
+      options.MaximumDistance = radius;
+      options.Fence = &piece.Fence();
+      static_cast<void>(solver.Solve(piece.Vertex(source), options)); // a vertex: accepted
+      for (const int f : solver.FenceFacesEntered())
+      {
+        for (const int v : piece.Mesh().Face(f))
+        {
+          if (!piece.IsComplete(v))
+          {
+            around.push_back(piece.GlobalId(v));
+          }
+        }
+      }
+    }
+    if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
+    {
+      break;
+    }
+    if (const Status grown = piece.GrowAround(around, rings, comm); !grown.Ok())
+    {
+      return grown;
+    }
+  }
+
+  // The chart, on its process's piece; every process gets it.
+  std::vector<ByteBuffer> outgoing(static_cast<std::size_t>(comm.Size())), incoming;
+  if (mine)
+  {
+    const TriangleMesh& mesh = piece.Mesh();
+    const SurfacePoint at = SurfacePoint::AtVertex(piece.Vertex(source));
+    double reference = 0.0;
+    const Vec3& d = referenceDirection;
+    if (!(d.x == 0.0 && d.y == 0.0 && d.z == 0.0))
+    {
+      const double angle = TangentAngle(mesh, at, d);
+      result.ReferenceNormal = !std::isfinite(angle);
+      reference = std::isfinite(angle) ? angle : 0.0;
+    }
+    GeodesicPolarCoordinates polar(mesh, nullptr, piece.LengthScale());
+    const Status computed = polar.Compute(at, radius, reference);
+    result.SourceAngleSum = polar.SourceAngleSum();
+    result.ChartFaces = mesh.NumberOfFaces();
+    const ByteBuffer packed = Pack(computed, result, &polar, piece);
+    for (ByteBuffer& b : outgoing)
+    {
+      b = packed;
+    }
+  }
+  comm.Exchange(outgoing, incoming);
+  ByteReader r(incoming[static_cast<std::size_t>(chartRank)]);
+  std::int32_t ok = 0;
+  r.Get(ok);
+  if (!ok)
+  {
+    std::string message;
+    char c = 0;
+    while (r.Get(c))
+    {
+      message += c;
+    }
+    return Status::Error(message.empty() ? "the polar coordinates failed" : message);
+  }
+  std::int32_t normal = 0, faces = 0;
+  r.Get(result.SourceAngleSum);
+  r.Get(normal);
+  r.Get(faces);
+  result.ReferenceNormal = normal != 0;
+  result.ChartFaces = faces;
+  const int nv = piece.Mesh().NumberOfVertices();
+  result.Rho.assign(static_cast<std::size_t>(nv), nan);
+  result.Theta.assign(static_cast<std::size_t>(nv), nan);
+  std::int64_t id = 0;
+  double rho = 0.0, theta = 0.0;
+  while (r.Get(id) && r.Get(rho) && r.Get(theta))
+  {
+    const int v = piece.Vertex(id);
+    if (v >= 0)
+    {
+      result.Rho[static_cast<std::size_t>(v)] = rho;
+      result.Theta[static_cast<std::size_t>(v)] = theta;
+    }
+  }
+  return Status();
+}
+
+} // namespace gs

@@ -1,0 +1,41 @@
+// Geodesic polar coordinates about a vertex of a surface partitioned over processes
+// (SurfacePiece), without any process holding the whole surface: the chart spans pieces within
+// its radius. The process owning the source grows its band where the exact solve truncated at
+// the radius reaches the band's edge (the fence), until it stays inside; it then computes the
+// coordinates on its piece as GeodesicPolarCoordinates does on the whole surface (the same
+// faces in the same order, the same tolerance: the same bits) and sends every process the
+// chart's vertices (global id, rho, theta).
+#pragma once
+
+#include "PieceCommunicator.h"
+#include "Status.h"
+#include "SurfacePiece.h"
+#include "Vector.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace gs
+{
+
+struct PiecePolarCoordinates
+{
+  // Per vertex of the piece: rho and theta (GeodesicPolarCoordinates::Rho, Theta); NaN outside
+  // the radius.
+  std::vector<double> Rho, Theta;
+  double SourceAngleSum = 0.0;
+  // Whether the reference direction was normal to the surface at the source (the first edge is
+  // used instead, as GeodesicPolarCoordinates' callers do).
+  bool ReferenceNormal = false;
+  // Faces of the chart's process's piece once its band covered the chart.
+  int ChartFaces = 0;
+};
+
+// Collective. Coordinates about the vertex of global id `source` within `radius` (finite, > 0),
+// theta's zero the tangent projection of `referenceDirection` at the source (all zero: the
+// source's first edge). Fails on every process when the id is no vertex of the surface or the
+// coordinates cannot be computed (the message of the process that computed them).
+Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double radius,
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result);
+
+} // namespace gs
