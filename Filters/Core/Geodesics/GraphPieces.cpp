@@ -11,7 +11,6 @@
 #include <functional>
 #include <limits>
 #include <memory>
-#include <queue>
 #include <string>
 #include <unordered_map>
 
@@ -28,6 +27,81 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
+
+// GraphDistanceSolver's label-correcting queue over a distance array: a circular deque holding
+// each vertex at most once; SLF (a vertex whose new label is below the front's goes to the
+// front), LLL (a front vertex whose label exceeds the queue's mean goes to the back before
+// extraction).
+class LabelQueue
+{
+public:
+  explicit LabelQueue(std::vector<double>& dist)
+    : Dist(dist)
+    , Ring(dist.size() + 1)
+    , Queued(dist.size(), 0)
+  {
+  }
+  bool Empty() const { return Count == 0; }
+  // Queues v (at its current distance) unless it is queued.
+  void Push(int v)
+  {
+    if (Queued[static_cast<std::size_t>(v)])
+    {
+      return;
+    }
+    const double d = Dist[static_cast<std::size_t>(v)];
+    Queued[static_cast<std::size_t>(v)] = 1;
+    Sum += d;
+    if (Count > 0 && d < Dist[static_cast<std::size_t>(Ring[Head])])
+    {
+      Head = Head == 0 ? Ring.size() - 1 : Head - 1;
+      Ring[Head] = v;
+    }
+    else
+    {
+      Ring[Wrap(Head + Count)] = v;
+    }
+    ++Count;
+  }
+  // v's distance becomes d (smaller), and v is queued.
+  void Lower(int v, double d)
+  {
+    double& dv = Dist[static_cast<std::size_t>(v)];
+    if (Queued[static_cast<std::size_t>(v)])
+    {
+      Sum += d - dv;
+      dv = d;
+      return;
+    }
+    dv = d;
+    Push(v);
+  }
+  int Pop()
+  {
+    const double mean = Sum / static_cast<double>(Count);
+    for (std::size_t tries = 0; tries < Count && Dist[static_cast<std::size_t>(Ring[Head])] > mean;
+         ++tries)
+    {
+      const int v = Ring[Head];
+      Head = Wrap(Head + 1);
+      Ring[Wrap(Head + Count - 1)] = v;
+    }
+    const int u = Ring[Head];
+    Head = Wrap(Head + 1);
+    --Count;
+    Queued[static_cast<std::size_t>(u)] = 0;
+    Sum = Count == 0 ? 0.0 : Sum - Dist[static_cast<std::size_t>(u)]; // (no drift across emptyings)
+    return u;
+  }
+
+private:
+  std::size_t Wrap(std::size_t i) const { return i >= Ring.size() ? i - Ring.size() : i; }
+  std::vector<double>& Dist;
+  std::vector<int> Ring;
+  std::vector<unsigned char> Queued;
+  std::size_t Head = 0, Count = 0;
+  double Sum = 0.0;
+};
 
 // Blocks freed inside the heap stay resident until they are handed back to the system (the
 // per-vertex lists of the build are many small blocks).
@@ -541,11 +615,11 @@ Status PieceDistanceSolver::Solve(const std::vector<std::pair<std::int64_t, doub
 void PieceDistanceSolver::SolveGraph(
   const std::vector<int>& seeds, double limit, PieceCommunicator& comm)
 {
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  // (Any order of relaxation gives the same distances: the serial solver's queue.)
+  LabelQueue queue(Dist);
   for (const int i : seeds)
   {
-    heap.push({ Dist[static_cast<std::size_t>(i)], i });
+    queue.Push(i);
   }
   // v reached at d through u (global id): the smaller distance, or on a tie the predecessor of
   // smaller id (GraphDistanceSolver's rule), a seed keeping none.
@@ -554,9 +628,8 @@ void PieceDistanceSolver::SolveGraph(
     std::int64_t& pv = Pred[static_cast<std::size_t>(v)];
     if (d < dv)
     {
-      dv = d;
       pv = u;
-      heap.push({ d, v });
+      queue.Lower(v, d);
     }
     else if (d == dv && pv >= 0 && u < pv)
     {
@@ -571,18 +644,14 @@ void PieceDistanceSolver::SolveGraph(
   {
     std::vector<ByteBuffer> outgoing(size), incoming;
     std::int64_t messages = 0;
-    while (!heap.empty())
+    while (!queue.Empty())
     {
-      const Item top = heap.top();
-      heap.pop();
-      if (top.first != Dist[static_cast<std::size_t>(top.second)])
+      const int u = queue.Pop();
+      const double du = Dist[static_cast<std::size_t>(u)];
+      const std::int64_t uid = Graph.OwnedId(u);
+      for (std::int64_t e = Graph.Begin(u); e < Graph.End(u); ++e)
       {
-        continue;
-      }
-      const std::int64_t uid = Graph.OwnedId(top.second);
-      for (std::int64_t e = Graph.Begin(top.second); e < Graph.End(top.second); ++e)
-      {
-        const double nd = top.first + Graph.Weight(e);
+        const double nd = du + Graph.Weight(e);
         if (!(nd <= limit))
         {
           continue;
