@@ -264,6 +264,8 @@ TEST(GraphPieces, SaddleVertexGraphOnCurvedClosedMesh)
   }
   ExpectSameAsSerial(
     mesh, Svg(30), gs_test::PartitionFaces(mesh, 4, Vec3(0.2, 1, 0.5), 5), 4, { 17 });
+  // More processes than pieces: the fourth holds no face.
+  ExpectSameAsSerial(mesh, Svg(50), gs_test::PartitionFaces(mesh, 3, Vec3(1, 0.3, 0.1)), 4, { 0 });
 }
 
 TEST(GraphPieces, SaddleVertexGraphOnRegularPlaneWithBoundary)

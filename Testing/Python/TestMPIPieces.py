@@ -1,6 +1,6 @@
 """SVG Geodesic Distance on pieces, without gathering: under `mpiexec -n P pvbatch --symmetric`
-(P = 2, 3) and a 2-process pvserver, the graph solvers from SourceVertexIds on a surface split in
-three pieces with global ids give the serial distances, each process outputs its own input cells,
+(P = 2, 3, and 4: one process without a piece) and a 2-process pvserver, the graph solvers from
+SourceVertexIds on a surface split in three pieces with global ids give the serial distances, each process outputs its own input cells,
 and no process holds the whole surface.
 
 Meshes: the bumpy sphere (closed, saddles everywhere) and the L-shaped plane (a boundary, a
@@ -169,7 +169,7 @@ def driver():
     serial = os.path.join(work, "serial")
     run([args.pvbatch, me] + common + ["--run", serial, "--meshes", ",".join(meshes)],
         "serial pvbatch")
-    for p in (2, 3):
+    for p in (2, 3, 4):  # (4: more processes than pieces, one holds nothing)
         folder = os.path.join(work, "mpi%d" % p)
         run([args.mpiexec, "-n", str(p), args.pvbatch, "--symmetric", me] + common +
             ["--run", folder, "--meshes", ",".join(split)], "mpiexec -n %d pvbatch --symmetric" % p)

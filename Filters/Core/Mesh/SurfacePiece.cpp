@@ -387,8 +387,16 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
     FaceOwners[f] = face.Owner;
   }
 
+  // A process may hold no face (more processes than pieces): its piece is empty. The surface
+  // may not be.
+  if (comm.Sum(static_cast<std::int64_t>(FaceIds.size())) == 0)
+  {
+    Local = TriangleMesh();
+    return Status::Error("the surface has no triangles");
+  }
   Status made;
-  Result<MeshBuild> built = TriangleMeshBuilder::Build(points, triangles);
+  Result<MeshBuild> built = triangles.empty() ? Result<MeshBuild>(MeshBuild())
+                                              : TriangleMeshBuilder::Build(points, triangles);
   if (!built.Ok())
   {
     made = Status::Error(built.Message());
