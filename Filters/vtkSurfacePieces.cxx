@@ -2,7 +2,6 @@
 
 #include "vtkDistributedSurface.h"
 
-
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -24,8 +23,7 @@ namespace
 enum Tags
 {
   EXCHANGE_LENGTH = 470311,
-  EXCHANGE_BYTES = 470312,
-  TELL_WHY = 470313
+  EXCHANGE_BYTES = 470312
 };
 
 vtkIdType GlobalId(vtkDataArray* ids, vtkIdType i)
@@ -175,27 +173,11 @@ vtkSmartPointer<vtkPolyData> vtkSurfacePieces::OwnCellsInPlace(vtkAlgorithm* sel
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::CanUse(vtkPolyData* ownCells, std::string& why)
 {
-  const std::string lacks = Lacks(ownCells);
-  const double first = Comm->Min(
-    lacks.empty() ? std::numeric_limits<double>::max() : static_cast<double>(Comm->Rank()));
-  if (first == std::numeric_limits<double>::max())
-  {
-    why.clear();
-    return true;
-  }
-  std::vector<gs::ByteBuffer> out(static_cast<std::size_t>(Comm->Size())), in;
-  if (Comm->Rank() == static_cast<int>(first))
-  {
-    for (gs::ByteBuffer& b : out)
-    {
-      b.assign(lacks.begin(), lacks.end());
-    }
-  }
-  Comm->Exchange(out, in);
-  const gs::ByteBuffer& text = in[static_cast<std::size_t>(first)];
-  why = "process " + std::to_string(static_cast<int>(first)) + "'s piece lacks " +
-    std::string(text.begin(), text.end());
-  return false;
+  std::string lacks;
+  const int first = gs::FirstMessage(*Comm, Lacks(ownCells), lacks);
+  why = first < 0 ? std::string()
+                  : "process " + std::to_string(first) + "'s piece lacks " + lacks;
+  return first < 0;
 }
 
 //------------------------------------------------------------------------------

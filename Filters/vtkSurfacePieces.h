@@ -1,8 +1,9 @@
-// vtkSurfacePieces: geodesic graphs and their distances on a surface spread over the processes
-// of the global controller (pvbatch --symmetric, pvserver), without gathering it: the core's
-// SurfacePiece, PieceGraph and PieceDistanceSolver (Filters/Core/Geodesics/GraphPieces.h) over
+// vtkSurfacePieces: geodesic graphs and their distances, and geodesic polar coordinates, on a
+// surface spread over the processes of the global controller (pvbatch --symmetric, pvserver),
+// without gathering it: the core's SurfacePiece, PieceGraph, PieceDistanceSolver
+// (Filters/Core/Geodesics/GraphPieces.h) and ComputePolarOnPieces (Fields/PolarPieces.h) over
 // vtkMultiProcessController. Each process keeps its own cells; it gathers from its neighbours
-// only the band of faces its vertices' solves need.
+// only the band of faces its vertices' solves (or the chart) need.
 //
 // The pieces must carry global point and cell ids (GetGlobalIds of the point and cell data:
 // Redistribute DataSet, Global Point And Cell Ids, D3, a partitioned file written with them) and

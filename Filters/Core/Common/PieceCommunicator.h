@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -78,5 +80,99 @@ private:
   const ByteBuffer& Buffer;
   std::size_t At = 0;
 };
+
+// The collective patterns built on a communicator.
+
+// Collective. The first process (in rank order) whose `message` is not empty: its rank, and its
+// message in `text`; -1 (and `text` empty) when every message is empty.
+inline int FirstMessage(PieceCommunicator& comm, const std::string& message, std::string& text)
+{
+  text.clear();
+  const double none = std::numeric_limits<double>::max();
+  const double first = comm.Min(message.empty() ? none : static_cast<double>(comm.Rank()));
+  if (first == none)
+  {
+    return -1;
+  }
+  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.Size())), in;
+  if (comm.Rank() == static_cast<int>(first))
+  {
+    for (ByteBuffer& b : out)
+    {
+      b.assign(message.begin(), message.end());
+    }
+  }
+  comm.Exchange(out, in);
+  const ByteBuffer& bytes = in[static_cast<std::size_t>(first)];
+  text.assign(bytes.begin(), bytes.end());
+  return static_cast<int>(first);
+}
+
+// Collective. Exchange whose buffers carry each sender's `count` at their end (taken off on
+// arrival): returns the sum of the counts over the processes, so that rounds of exchanges know
+// when to end without a reduction of their own.
+inline std::int64_t ExchangeCounting(PieceCommunicator& comm, std::vector<ByteBuffer>& outgoing,
+  std::vector<ByteBuffer>& incoming, std::int64_t count)
+{
+  for (ByteBuffer& b : outgoing)
+  {
+    ByteWriter(b).Put(count);
+  }
+  comm.Exchange(outgoing, incoming);
+  std::int64_t sum = count;
+  for (std::size_t q = 0; q < incoming.size(); ++q)
+  {
+    if (static_cast<int>(q) != comm.Rank() && incoming[q].size() >= sizeof(std::int64_t))
+    {
+      std::int64_t theirs = 0;
+      std::memcpy(&theirs, incoming[q].data() + incoming[q].size() - sizeof theirs, sizeof theirs);
+      sum += theirs;
+      incoming[q].resize(incoming[q].size() - sizeof theirs);
+    }
+  }
+  return sum;
+}
+
+// Collective. Each process asks others about ids: asks[q] the ids it asks process q about
+// (none of itself); answer(q, id) is the value it gives process q about `id`, called in the
+// order q asked. Returns, per process q, the values q gave, in the order asked.
+template <class Answer>
+std::vector<std::vector<double>> AskProcesses(PieceCommunicator& comm,
+  const std::vector<std::vector<std::int64_t>>& asks, const Answer& answer)
+{
+  const std::size_t size = static_cast<std::size_t>(comm.Size());
+  std::vector<ByteBuffer> requests(size), asked, answers(size), answered;
+  for (std::size_t q = 0; q < size && q < asks.size(); ++q)
+  {
+    ByteWriter w(requests[q]);
+    for (const std::int64_t id : asks[q])
+    {
+      w.Put(id);
+    }
+  }
+  comm.Exchange(requests, asked);
+  for (std::size_t q = 0; q < size; ++q)
+  {
+    ByteReader r(asked[q]);
+    ByteWriter w(answers[q]);
+    std::int64_t id = 0;
+    while (static_cast<int>(q) != comm.Rank() && r.Get(id))
+    {
+      w.Put(static_cast<double>(answer(static_cast<int>(q), id)));
+    }
+  }
+  comm.Exchange(answers, answered);
+  std::vector<std::vector<double>> values(size);
+  for (std::size_t q = 0; q < size; ++q)
+  {
+    ByteReader r(answered[q]);
+    double v = 0.0;
+    while (static_cast<int>(q) != comm.Rank() && r.Get(v))
+    {
+      values[q].push_back(v);
+    }
+  }
+  return values;
+}
 
 } // namespace gs

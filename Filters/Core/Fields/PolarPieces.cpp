@@ -72,16 +72,7 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
       options.MaximumDistance = radius;
       options.Fence = &piece.Fence();
       static_cast<void>(solver.Solve(piece.Vertex(source), options)); // a vertex: accepted
-      for (const int f : solver.FenceFacesEntered())
-      {
-        for (const int v : piece.Mesh().Face(f))
-        {
-          if (!piece.IsComplete(v))
-          {
-            around.push_back(piece.GlobalId(v));
-          }
-        }
-      }
+      piece.AppendIncompleteVertices(solver.FenceFacesEntered(), around);
     }
     if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
     {

@@ -368,16 +368,12 @@ void DGGPropagation::Run(
   }
   Dist[s] = 0.0;
   Touched.push_back(s);
-  const bool fenced = Fence && Fence->size() == static_cast<std::size_t>(Mesh.NumberOfFaces());
-  Fenced.clear();
+  Fenced.Start(Fence, Mesh.NumberOfFaces());
   const int start = Mesh.VertexHalfedge(s);
   int h = start;
   do
   {
-    if (fenced && (*Fence)[static_cast<std::size_t>(h / 3)])
-    {
-      Fenced.push_back(h / 3);
-    }
+    Fenced.Enter(h / 3);
     // Face(h) with h: s -> a, Next(h): a -> b, Prev(h): b -> s.
     const int opp = TriangleMesh::Next(h);
     const int a = Mesh.Destination(h);
@@ -409,10 +405,7 @@ void DGGPropagation::Run(
   while (!Queue.Empty())
   {
     Window w = Queue.Pop();
-    if (fenced && (*Fence)[static_cast<std::size_t>(w.H / 3)])
-    {
-      Fenced.push_back(w.H / 3);
-    }
+    Fenced.Enter(w.H / 3);
     // Vertex distances may have dropped since the window was queued.
     if (Trim(w))
     {

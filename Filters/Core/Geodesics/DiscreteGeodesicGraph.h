@@ -66,11 +66,10 @@ public:
   // direction of that arrival's direct geodesic.
   void Run(int s, double epsilon, std::vector<Link>& links, std::vector<Link>* reached = nullptr);
   // Faces the propagation must not enter (one flag per face; null: none), as
-  // ExactGeodesicOptions::Fence; FenceReached says whether the last Run entered one, and
-  // FenceFacesEntered which (each once or more).
+  // ExactGeodesicOptions::Fence; FenceFacesEntered: those the last Run entered (each once or
+  // more; empty when none).
   void SetFence(const std::vector<unsigned char>* fence) { Fence = fence; }
-  bool FenceReached() const { return !Fenced.empty(); }
-  const std::vector<int>& FenceFacesEntered() const { return Fenced; }
+  const std::vector<int>& FenceFacesEntered() const { return Fenced.Entered; }
 
   const DGGStatistics& Statistics() const { return Stats; }
 
@@ -119,7 +118,7 @@ private:
   window_geometry::WindowQueue<Window> Queue;
   double Tolerance = 0.0;
   const std::vector<unsigned char>* Fence = nullptr;
-  std::vector<int> Fenced;
+  window_geometry::FenceWatch Fenced;
   DGGStatistics Stats;
 };
 

@@ -200,10 +200,7 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
   {
     // Face f = face(h) with h: v -> a, Next(h): a -> b, Prev(h): b -> v; its corner at v spans
     // [FanAngle[h], FanAngle[h] + beta] about v.
-    if (Fence && (*Fence)[static_cast<std::size_t>(h / 3)])
-    {
-      Fenced.push_back(h / 3);
-    }
+    Fenced.Enter(h / 3);
     const int opp = TriangleMesh::Next(h);
     const int a = Surface.Destination(h);
     const int b = Surface.Origin(TriangleMesh::Prev(h));
@@ -531,10 +528,7 @@ bool ExactGeodesicSolver::ProcessWindows(
       }
       continue;
     }
-    if (Fence && (*Fence)[static_cast<std::size_t>(w.H / 3)])
-    {
-      Fenced.push_back(w.H / 3);
-    }
+    Fenced.Enter(w.H / 3);
     // Vertex distances may have dropped since the window was queued: trim it again.
     if (Trim(w))
     {
@@ -548,10 +542,7 @@ Status ExactGeodesicSolver::Solve(
   const std::vector<SurfacePoint>& sources, const ExactGeodesicOptions& options)
 {
   Reset();
-  Fence = options.Fence && options.Fence->size() == static_cast<std::size_t>(Surface.NumberOfFaces())
-    ? options.Fence
-    : nullptr;
-  Fenced.clear();
+  Fenced.Start(options.Fence, Surface.NumberOfFaces());
   if (sources.empty())
   {
     return Status::Error("no source given");

@@ -40,8 +40,8 @@ struct ExactGeodesicOptions
   const std::vector<int>* StopOnceFinal = nullptr;
   // Faces the solve must not enter, one flag per face (null: none). A solve on a piece of a
   // larger surface marks the faces that have a vertex whose other faces are missing: one that
-  // enters none of them computed what it would on the whole surface (FenceReached says whether
-  // it did; the solve itself goes on regardless).
+  // enters none of them computed what it would on the whole surface (FenceFacesEntered says
+  // where it did; the solve itself goes on regardless).
   const std::vector<unsigned char>* Fence = nullptr;
 };
 
@@ -104,10 +104,9 @@ public:
 
   const ExactGeodesicStatistics& Statistics() const { return Stats; }
   const TriangleMesh& Mesh() const { return Surface; }
-  // Whether the last solve entered a face of ExactGeodesicOptions::Fence (a window propagated
-  // into it or a vertex of it spread its windows), and which (each once or more).
-  bool FenceReached() const { return !Fenced.empty(); }
-  const std::vector<int>& FenceFacesEntered() const { return Fenced; }
+  // The faces of ExactGeodesicOptions::Fence the last solve entered (a window propagated into
+  // it or a vertex of it spread its windows), each once or more; empty when none.
+  const std::vector<int>& FenceFacesEntered() const { return Fenced.Entered; }
 
 private:
   struct Window
@@ -185,8 +184,7 @@ private:
   };
   std::vector<VertexKey> VertexQueue; // binary heap of tentative vertex distances
   double Tolerance = 0.0;             // absolute distance tolerance (scaled to the mesh)
-  const std::vector<unsigned char>* Fence = nullptr; // the solve's fence (options)
-  std::vector<int> Fenced;
+  window_geometry::FenceWatch Fenced; // the solve's fence (options)
   ExactGeodesicStatistics Stats;
 };
 

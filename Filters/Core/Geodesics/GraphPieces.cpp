@@ -7,7 +7,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -16,9 +15,6 @@
 
 #ifdef _OPENMP
 #include <omp.h>
-#endif
-#if defined(__GLIBC__)
-#include <malloc.h>
 #endif
 
 namespace gs
@@ -102,15 +98,6 @@ private:
   std::size_t Head = 0, Count = 0;
   double Sum = 0.0;
 };
-
-// Blocks freed inside the heap stay resident until they are handed back to the system (the
-// per-vertex lists of the build are many small blocks).
-void ReturnFreedMemory()
-{
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
 
 // The band a solve of `options` needs at first, in rings of faces around the own faces (the
 // K-nearest disk of a regular mesh has about 3 r^2 vertices within r rings; a discrete geodesic
@@ -240,21 +227,18 @@ struct PieceGraph::VertexSolver
   // `where` gets the incomplete vertices (global ids) where it did.
   bool operator()(int s, OwnedSolve& made, std::vector<std::int64_t>& where)
   {
-    bool outside = false;
+    const std::size_t before = where.size();
     Links.clear();
     Reached.clear();
-    const std::vector<int>* entered = nullptr;
     if (Dgg)
     {
       Propagation->Run(s, Epsilon, Links, ReachedStencil ? &Reached : nullptr);
-      outside = Propagation->FenceReached();
-      entered = &Propagation->FenceFacesEntered();
+      Piece.AppendIncompleteVertices(Propagation->FenceFacesEntered(), where);
     }
     else
     {
       static_cast<void>(Solver->Solve(s, Options)); // s is a vertex of the mesh: accepted
-      outside = Solver->FenceReached();
-      entered = &Solver->FenceFacesEntered();
+      Piece.AppendIncompleteVertices(Solver->FenceFacesEntered(), where);
       for (const int v : Solver->FinalVertices())
       {
         if (v != s && Solver->IsDirect(v))
@@ -279,26 +263,15 @@ struct PieceGraph::VertexSolver
       made.Stencil.size(), [&](std::size_t j) { return item(j).Distance; },
       [&](std::size_t j) { return item(j).Angle; }, Piece.Mesh().TotalAngle(s), Order,
       [&](std::size_t at, std::size_t j, double x, double y) {
-        if (Piece.Owner(item(j).Target) < 0)
+        if (!Piece.IsComplete(item(j).Target))
         {
-          outside = true;
           where.push_back(Piece.GlobalId(item(j).Target));
         }
         made.Stencil[at] = { x, y, Piece.GlobalId(item(j).Target) };
       },
       made.WrapX, made.WrapY);
     made.Interior = !Piece.Mesh().IsBoundaryVertex(s);
-    for (const int f : *entered)
-    {
-      for (const int v : Piece.Mesh().Face(f))
-      {
-        if (!Piece.IsComplete(v))
-        {
-          where.push_back(Piece.GlobalId(v));
-        }
-      }
-    }
-    return outside;
+    return where.size() > before;
   }
 
   const SurfacePiece& Piece;
@@ -557,7 +530,7 @@ std::int64_t PieceGraph::Compact(const SurfacePiece& piece, std::vector<RawEntry
       WrapXY[2 * i] = found[i].WrapX;
       WrapXY[2 * i + 1] = found[i].WrapY;
       Interior[i] = found[i].Interior ? 1 : 0;
-      OwnedSolve().Swap(found[i]);
+      found[i] = OwnedSolve();
     }
     ReturnFreedMemory();
   }
@@ -674,28 +647,10 @@ void PieceDistanceSolver::SolveGraph(
         }
       }
     }
-    // Each message ends with the sender's count of messages: the processes know together when
-    // no process sent any, without a reduction of their own.
-    for (std::size_t q = 0; q < size; ++q)
-    {
-      ByteWriter(outgoing[q]).Put(messages);
-    }
-    comm.Exchange(outgoing, incoming);
     ++NumRounds;
-    std::int64_t everywhere = messages;
-    for (std::size_t q = 0; q < size; ++q)
+    if (ExchangeCounting(comm, outgoing, incoming, messages) == 0)
     {
-      if (static_cast<int>(q) != comm.Rank() && incoming[q].size() >= sizeof(std::int64_t))
-      {
-        std::int64_t theirs = 0;
-        std::memcpy(&theirs, incoming[q].data() + incoming[q].size() - sizeof theirs, sizeof theirs);
-        everywhere += theirs;
-        incoming[q].resize(incoming[q].size() - sizeof theirs);
-      }
-    }
-    if (everywhere == 0)
-    {
-      break;
+      break; // (no process sent anything)
     }
     for (std::size_t q = 0; q < size; ++q)
     {
@@ -719,7 +674,7 @@ std::vector<double> PieceDistanceSolver::Fetch(
 {
   std::vector<double> result(wanted.size(), Inf);
   const std::size_t size = static_cast<std::size_t>(comm.Size());
-  std::vector<ByteBuffer> requests(size), asked;
+  std::vector<std::vector<std::int64_t>> asks(size);
   std::vector<std::vector<std::size_t>> places(size);
   // The piece's vertices and the owned ones are both in global id order: owned numbers by
   // walking them together.
@@ -741,40 +696,20 @@ std::vector<double> PieceDistanceSolver::Fetch(
     }
     else if (owner >= 0)
     {
-      ByteWriter(requests[static_cast<std::size_t>(owner)]).Put(piece.GlobalId(v));
+      asks[static_cast<std::size_t>(owner)].push_back(piece.GlobalId(v));
       places[static_cast<std::size_t>(owner)].push_back(j);
     }
   }
-  comm.Exchange(requests, asked);
-  std::vector<ByteBuffer> answers(size), answered;
-  for (std::size_t q = 0; q < size; ++q)
-  {
-    if (static_cast<int>(q) == comm.Rank())
-    {
-      continue;
-    }
-    ByteReader r(asked[q]);
-    ByteWriter w(answers[q]);
-    std::int64_t id = 0;
-    while (r.Get(id))
-    {
+  const std::vector<std::vector<double>> answers =
+    AskProcesses(comm, asks, [this](int, std::int64_t id) {
       const int i = Graph.OwnedIndex(id);
-      w.Put(i >= 0 ? Dist[static_cast<std::size_t>(i)] : Inf);
-    }
-  }
-  comm.Exchange(answers, answered);
+      return i >= 0 ? Dist[static_cast<std::size_t>(i)] : Inf;
+    });
   for (std::size_t q = 0; q < size; ++q)
   {
-    if (static_cast<int>(q) == comm.Rank())
+    for (std::size_t k = 0; k < places[q].size() && k < answers[q].size(); ++k)
     {
-      continue;
-    }
-    ByteReader r(answered[q]);
-    for (const std::size_t j : places[q])
-    {
-      double d = Inf;
-      r.Get(d);
-      result[j] = d;
+      result[places[q][k]] = answers[q][k];
     }
   }
   return result;

@@ -5,19 +5,21 @@
 // SaddleVertexGraph::Build does on the whole surface, with the piece's faces that have an
 // incomplete vertex as a fence: a solve that stayed inside it computed what the whole surface
 // gives (the same faces and vertices in the same relative order, the same tolerance); the
-// vertices whose solve reached the fence are solved again once the band has grown (its width
-// doubles each time). Each link then goes to the owner of its other end, so that every process
-// holds the whole adjacency of its vertices: both directions of every link and mesh edge, the
-// smallest weight per target, as in the serial graph.
+// vertices whose solve reached the fence are solved again once the band has grown where they
+// reached it (SurfacePiece::GrowAround, by rings that double each time). Each link then goes to
+// the owner of its other end, so that every process holds the whole adjacency and the polar
+// stencils of its vertices: both directions of every link and mesh edge, the smallest weight
+// per target, as in the serial graph.
 //
-// PieceDistanceSolver: shortest paths by rounds. Each process runs Dijkstra on its vertices; a
-// link to another process's vertex sends the distance it offers to that process at the end of
-// the round; a global sum of the messages sent decides when nothing changed. The result is the
-// serial graph's shortest path distances to the bit: with positive weights and rounded additions
-// that are monotone, every order of relaxation reaches the same smallest fixed point.
+// PieceDistanceSolver: shortest paths by rounds. Each process runs the serial label-correcting
+// search on its vertices; a link to another process's vertex sends the distance it offers (and
+// its source, for the predecessor rule of ties) to that process at the end of the round; the
+// rounds end when no process sent anything. The result is the serial graph's shortest path
+// distances to the bit: with positive weights and rounded additions that are monotone, every
+// order of relaxation reaches the same smallest fixed point. The unfolding refinement then runs
+// by rounds too (GraphPiecesRefinement.cpp), with the serial sweep's kernel.
 //
-// What is not here yet: the unfolding refinement and surface-point or curve sources (the filter
-// gathers the surface for those).
+// Surface-point and curve sources are not here (the filter gathers the surface for those).
 #pragma once
 
 #include "PieceCommunicator.h"
@@ -113,11 +115,6 @@ private:
     std::vector<StencilItem> Stencil;
     double WrapX = 0.0, WrapY = 0.0;
     bool Interior = false;
-    void Swap(OwnedSolve& o)
-    {
-      Links.swap(o.Links);
-      Stencil.swap(o.Stencil);
-    }
   };
   struct VertexSolver;
   // Build's steps: the owned vertices' solves (again for those that reached the fence, after the
@@ -125,10 +122,7 @@ private:
   Status SolveOwned(SurfacePiece& piece, const SaddleVertexGraphOptions& options, int k,
     PieceCommunicator& comm, const ProgressCallback& progress, std::vector<OwnedSolve>& found);
   void Assemble(const SurfacePiece& piece, std::vector<OwnedSolve>& found, PieceCommunicator& comm);
-  // Assemble's last step: each owned vertex's bucket of `raw` (count: the buckets' offsets)
-  // sorted, the smallest weight kept per target, into the adjacency; remote targets get slots
-  // (their owners from the piece, else from `sentBy`, the process that sent the link). Returns
-  // the entries kept.
+  // An entry of a vertex's bucket before the adjacency is made.
   struct RawEntry
   {
     std::int64_t Target;
@@ -138,6 +132,10 @@ private:
       return Target < o.Target || (Target == o.Target && Weight < o.Weight);
     }
   };
+  // Assemble's last step: each owned vertex's bucket of `raw` (count: the buckets' offsets)
+  // sorted, the smallest weight kept per target, into the adjacency; remote targets get slots
+  // (their owners from the piece, else from `sentBy`, the process that sent the link); the
+  // stencils of `found` into one array. Returns the entries kept.
   std::int64_t Compact(const SurfacePiece& piece, std::vector<RawEntry>& raw,
     const std::vector<std::int64_t>& count, const std::unordered_map<std::int64_t, int>& sentBy,
     std::vector<OwnedSolve>& found);
@@ -188,8 +186,9 @@ public:
   int Refinements() const { return RefinementRounds; }
 
 private:
-  // Solve's steps: Dijkstra by rounds from the seeds (owned numbers, their distances set), with
-  // predecessors; then the refinement sweep by rounds (PieceRefinement in GraphPieces.cpp).
+  // Solve's steps: the label-correcting search by rounds from the seeds (owned numbers, their
+  // distances set), with predecessors; then the refinement sweep by rounds
+  // (GraphPiecesRefinement.cpp).
   void SolveGraph(const std::vector<int>& seeds, double limit, PieceCommunicator& comm);
   void Refine(const std::vector<int>& seeds, double limit, PieceCommunicator& comm);
   struct Sweep;

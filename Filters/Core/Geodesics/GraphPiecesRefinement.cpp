@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -94,44 +93,32 @@ struct PieceDistanceSolver::SweepRounds
         }
       }
     }
-    std::vector<ByteBuffer> requests(size), asked, answers(size), answered;
+    std::vector<std::vector<std::int64_t>> asks(size);
+    std::vector<std::vector<std::size_t>> slots(size);
     for (std::size_t r = 0; r < remotes; ++r)
     {
       if (read[r])
       {
-        ByteWriter(requests[static_cast<std::size_t>(graph.RemoteOwner(static_cast<int>(r)))])
-          .Put(graph.RemoteId(static_cast<int>(r)));
+        const std::size_t owner = static_cast<std::size_t>(graph.RemoteOwner(static_cast<int>(r)));
+        asks[owner].push_back(graph.RemoteId(static_cast<int>(r)));
+        slots[owner].push_back(r);
       }
     }
-    Comm.Exchange(requests, asked);
-    for (std::size_t q = 0; q < size; ++q)
-    {
-      ByteReader r(asked[q]);
-      ByteWriter w(answers[q]);
-      std::int64_t id = 0;
-      while (static_cast<int>(q) != Comm.Rank() && r.Get(id))
-      {
+    const std::vector<std::vector<double>> answers =
+      AskProcesses(Comm, asks, [this, &graph](int q, std::int64_t id) {
         const int i = graph.OwnedIndex(id);
-        w.Put(i >= 0 ? S.GraphDist[static_cast<std::size_t>(i)] : Inf);
         if (i >= 0)
         {
-          Subscribers.push_back({ i, static_cast<int>(q) });
+          Subscribers.push_back({ i, q });
         }
-      }
-    }
+        return i >= 0 ? S.GraphDist[static_cast<std::size_t>(i)] : Inf;
+      });
     std::sort(Subscribers.begin(), Subscribers.end());
-    Comm.Exchange(answers, answered);
-    std::vector<ByteReader> readers;
     for (std::size_t q = 0; q < size; ++q)
     {
-      readers.emplace_back(answered[q]);
-    }
-    for (std::size_t r = 0; r < remotes; ++r)
-    {
-      if (read[r])
+      for (std::size_t k = 0; k < slots[q].size() && k < answers[q].size(); ++k)
       {
-        readers[static_cast<std::size_t>(graph.RemoteOwner(static_cast<int>(r)))].Get(
-          S.RemoteGraph[r]);
+        S.RemoteGraph[slots[q][k]] = answers[q][k];
       }
     }
   }
@@ -266,24 +253,14 @@ struct PieceDistanceSolver::SweepRounds
           w.Put(value);
         }
       }
-      // Each message ends with the sender's vertices left: the processes know together when
-      // none is left anywhere, without a reduction of their own.
+      // (The vertices left everywhere come with the messages: the rounds end when none is.)
+      const std::int64_t everywhere = ExchangeCounting(Comm, outgoing, incoming, Left);
       for (std::size_t q = 0; q < size; ++q)
       {
-        ByteWriter(outgoing[q]).Put(Left);
-      }
-      Comm.Exchange(outgoing, incoming);
-      std::int64_t everywhere = Left;
-      for (std::size_t q = 0; q < size; ++q)
-      {
-        if (static_cast<int>(q) == Comm.Rank() || incoming[q].size() < sizeof(std::int64_t))
+        if (static_cast<int>(q) == Comm.Rank())
         {
           continue;
         }
-        std::int64_t theirs = 0;
-        std::memcpy(&theirs, incoming[q].data() + incoming[q].size() - sizeof theirs, sizeof theirs);
-        everywhere += theirs;
-        incoming[q].resize(incoming[q].size() - sizeof theirs);
         ByteReader r(incoming[q]);
         std::int64_t id = 0;
         double value = 0.0;

@@ -73,8 +73,9 @@ public:
   static constexpr double ConeCosine = 0.966;
   // The cone is tried once more about the stencil neighbour of its pairs that gives the
   // shortest route, when that route is shorter than the arrival's by more than this fraction
-  // (StencilUnfolding::RefineVertex; 0: re-centred for any shorter route, 20-30% slower on curved meshes with
-  // reached stencils for no smaller error; 3e-3: half the gain on the jittered plane).
+  // (StencilUnfolding::RefineVertex; 0: re-centred for any shorter route, 20-30% slower on
+  // curved meshes with reached stencils for no smaller error; 3e-3: half the gain on the
+  // jittered plane).
   static constexpr double ArrivalMoveMargin = 1e-3;
   // Spacing of the samples seeding the exact solve near a curve, in mean edge lengths.
   static constexpr double CurveSeedSpacing = 0.125;

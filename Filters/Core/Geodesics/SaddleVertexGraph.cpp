@@ -27,18 +27,19 @@
 namespace gs
 {
 
-namespace
-{
-// Blocks freed inside the heap stay resident until they are handed back to the system: the
-// build does so after each slab of its gathering, so that the per-vertex blocks gathered and the
-// arrays they fill are not both resident whole (Build; the peak at 711K vertices with reached
-// stencils went from 3.9 KB to 2.1 KB per vertex with the gathering in slabs).
+// (The build hands freed memory back after each slab of its gathering, so that the per-vertex
+// blocks gathered and the arrays they fill are not both resident whole: the peak at 711K
+// vertices with reached stencils went from 3.9 KB to 2.1 KB per vertex with the gathering in
+// slabs.)
 void ReturnFreedMemory()
 {
 #if defined(__GLIBC__)
   malloc_trim(0);
 #endif
 }
+
+namespace
+{
 
 // Build memory per vertex and per unit of K (bytes), above the peaks SVGBenchmark measured on
 // armadillo, refined_elephant and mannequin-devil: 4.9-5.0 KB per vertex at K = 50, 9.2-10.1 KB

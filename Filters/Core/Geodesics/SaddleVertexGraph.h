@@ -43,6 +43,11 @@ inline void Prefetch(const void* p)
 #endif
 }
 
+// Blocks freed inside the heap stay resident until they are handed back to the system: builds
+// that free many small per-vertex blocks before allocating large arrays call this between the
+// two (no effect on results).
+void ReturnFreedMemory();
+
 // Called with the fraction done (0..1) from the calling thread; returning false aborts.
 using ProgressCallback = std::function<bool(double)>;
 

@@ -259,5 +259,27 @@ inline bool TrimWindow(double L, double ix, double iy, double s, double cx, doub
   return b1 - b0 > 1e-14 * L;
 }
 
+// A propagation's fence: faces it must not enter (one flag per face; a piece of a partitioned
+// surface marks those with a vertex whose other faces are missing) and those it entered, each
+// once or more. A fence of another face count, or none, watches nothing.
+struct FenceWatch
+{
+  const std::vector<unsigned char>* Faces = nullptr;
+  std::vector<int> Entered;
+
+  void Start(const std::vector<unsigned char>* faces, int numberOfFaces)
+  {
+    Faces = faces && faces->size() == static_cast<std::size_t>(numberOfFaces) ? faces : nullptr;
+    Entered.clear();
+  }
+  void Enter(int face)
+  {
+    if (Faces && (*Faces)[static_cast<std::size_t>(face)])
+    {
+      Entered.push_back(face);
+    }
+  }
+};
+
 } // namespace window_geometry
 } // namespace gs

@@ -12,30 +12,15 @@ namespace gs
 
 namespace
 {
-// Every process fails when one does: the first failing rank's message goes to all.
+// Every process fails when one does: the first failing rank's message goes to all (a failed
+// Status always has one).
 Status Agree(const Status& mine, PieceCommunicator& comm)
 {
-  const std::int64_t failed = comm.Sum(mine.Ok() ? 0 : 1);
-  if (failed == 0)
+  std::string message;
+  const int first = FirstMessage(comm, mine.Ok() ? std::string() : mine.Message(), message);
+  if (first < 0)
   {
     return Status();
-  }
-  const int first = static_cast<int>(comm.Min(mine.Ok() ? std::numeric_limits<double>::max()
-                                                         : static_cast<double>(comm.Rank())));
-  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.Size())), in;
-  if (comm.Rank() == first)
-  {
-    for (ByteBuffer& b : out)
-    {
-      b.assign(mine.Message().begin(), mine.Message().end());
-    }
-  }
-  comm.Exchange(out, in);
-  const ByteBuffer& text = in[static_cast<std::size_t>(first)];
-  std::string message(text.begin(), text.end());
-  if (message.empty())
-  {
-    message = "the surface's pieces could not be put together";
   }
   return Status::Error(first == comm.Rank() ? message
                                             : "process " + std::to_string(first) + ": " + message);
@@ -438,6 +423,21 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
   }
   GlobalVertexCount = comm.Sum(OwnedCount);
   return Status();
+}
+
+void SurfacePiece::AppendIncompleteVertices(
+  const std::vector<int>& faces, std::vector<std::int64_t>& out) const
+{
+  for (const int f : faces)
+  {
+    for (const int v : Local.Face(f))
+    {
+      if (!IsComplete(v))
+      {
+        out.push_back(GlobalId(v));
+      }
+    }
+  }
 }
 
 int SurfacePiece::Vertex(std::int64_t globalId) const

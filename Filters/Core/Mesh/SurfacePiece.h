@@ -67,6 +67,9 @@ public:
   std::int64_t FaceId(int f) const { return FaceIds[static_cast<std::size_t>(f)]; }
   // The faces with an incomplete vertex.
   const std::vector<unsigned char>& Fence() const { return FenceFaces; }
+  // Appends to `out` the incomplete vertices (global ids) of `faces` (faces of Mesh()): where a
+  // solve that entered those fence faces left the piece, for GrowAround.
+  void AppendIncompleteVertices(const std::vector<int>& faces, std::vector<std::int64_t>& out) const;
   // The local vertex of a global point id (-1 when it is not in the piece).
   int Vertex(std::int64_t globalId) const;
   // The whole surface's bounding box diagonal (the scale of the solvers' tolerances).
