@@ -17,7 +17,7 @@ before it), the first Apply (band, graph, solve), a further source, the faces th
 OMP_NUM_THREADS is 2 / P (at least 1): P > 2 oversubscribes the 2-core machine, and is marked so.
 
     pvpython Benchmarks/mpi_pieces.py --plugin build/lib/paraview-5.11/plugins/GeodesicShapes/GeodesicShapes.so \\
-        build/bench-data/data/meshes/refined_elephant.off:2 --processes 1 2 4 [--solver svg|dgg]
+        build/bench-data/data/meshes/refined_elephant.off:2 --processes 1 2 4 [--solver svg|dgg|exact]
 """
 import argparse
 import glob
@@ -29,7 +29,8 @@ import tempfile
 import time
 
 SOLVERS = {"svg": {"Solver": "SVG (label-correcting)", "K": 50},
-           "dgg": {"Solver": "DGG (accuracy-bounded)", "GraphAccuracy": 0.1}}
+           "dgg": {"Solver": "DGG (accuracy-bounded)", "GraphAccuracy": 0.1},
+           "exact": {"Solver": "Exact"}}
 SOURCES = [0, 1000]  # serial vertex ids: the first Apply, then a further source
 
 

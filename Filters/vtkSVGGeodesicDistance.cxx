@@ -120,7 +120,9 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (distributed && input && output && this->UsesGraph() &&
+  if (distributed && input && output &&
+    (this->UsesGraph() ||
+      static_cast<gs::GeodesicSolver>(this->Solver) == gs::GeodesicSolver::Exact) &&
     inputVector[1]->GetNumberOfInformationObjects() == 0 && this->CacheFileName.empty())
   {
     if (vtkSmartPointer<vtkPolyData> own =
@@ -142,12 +144,13 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, 
   this->UpdateProgress(0.0);
   // (Property checks: the same outcome on every process.)
   if (!vtkCachedSurface::CheckEngine(this, this->Solver,
-        { gs::GeodesicSolver::SVGLabelCorrecting, gs::GeodesicSolver::SVGDijkstra,
-          gs::GeodesicSolver::DGG },
+        { gs::GeodesicSolver::Exact, gs::GeodesicSolver::SVGLabelCorrecting,
+          gs::GeodesicSolver::SVGDijkstra, gs::GeodesicSolver::DGG },
         this->K))
   {
     return 1;
   }
+  const bool exact = static_cast<gs::GeodesicSolver>(this->Solver) == gs::GeodesicSolver::Exact;
   if (this->ResultArrayName.empty() || !(this->MaximumDistance >= 0.0) ||
     this->SourceVertexIds.empty())
   {
@@ -159,16 +162,21 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, 
     return 1;
   }
   bool built = false;
-  if (!this->Pieces->UseGraph(this, own, input->GetMTime(),
-        vtkCachedSurface::GraphOptions(this->Solver, this->K, this->GraphAccuracy,
-          this->ReachedStencil),
-        0.1, 0.8, built))
-  {
-    return 1;
-  }
   std::vector<double> distances;
-  if (!this->Pieces->Distances(
-        this, this->SourceVertexIds, this->MaximumDistance, this->UnfoldingRefinement, distances))
+  if (exact)
+  {
+    if (!this->Pieces->ExactDistances(
+          this, own, input->GetMTime(), this->SourceVertexIds, this->MaximumDistance, distances))
+    {
+      return 1;
+    }
+  }
+  else if (!this->Pieces->UseGraph(this, own, input->GetMTime(),
+             vtkCachedSurface::GraphOptions(
+               this->Solver, this->K, this->GraphAccuracy, this->ReachedStencil),
+             0.1, 0.8, built) ||
+    !this->Pieces->Distances(
+      this, this->SourceVertexIds, this->MaximumDistance, this->UnfoldingRefinement, distances))
   {
     return 1;
   }
@@ -200,21 +208,29 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, 
     a->InsertNextValue(value);
     fieldData->AddArray(a);
   };
-  addDouble("SVGMeanDegree",
-    piece.GlobalNumberOfVertices() > 0
-      ? static_cast<double>(graph.GlobalNumberOfEntries()) /
-        static_cast<double>(piece.GlobalNumberOfVertices())
-      : 0.0);
-  addDouble("SVGBuildSeconds", graph.BuildSeconds());
-  vtkNew<vtkStringArray> origin;
-  origin->SetName("SVGGraphOrigin");
-  origin->InsertNextValue(built ? "built" : "memory");
-  fieldData->AddArray(origin);
+  if (!exact)
+  {
+    addDouble("SVGMeanDegree",
+      piece.GlobalNumberOfVertices() > 0
+        ? static_cast<double>(graph.GlobalNumberOfEntries()) /
+          static_cast<double>(piece.GlobalNumberOfVertices())
+        : 0.0);
+    addDouble("SVGBuildSeconds", graph.BuildSeconds());
+    vtkNew<vtkStringArray> origin;
+    origin->SetName("SVGGraphOrigin");
+    origin->InsertNextValue(built ? "built" : "memory");
+    fieldData->AddArray(origin);
+    addInt("PieceRefinementRounds", this->Pieces->RefinementRounds());
+  }
+  else
+  {
+    addDouble("PieceWindowsPropagated", static_cast<double>(this->Pieces->WindowsPropagated()));
+    addDouble("PieceWindowsSent", static_cast<double>(this->Pieces->WindowsSent()));
+  }
   addInt("PieceFaces", piece.Mesh().NumberOfFaces());
   addInt("PieceOwnedVertices", static_cast<int>(piece.NumberOfOwnedVertices()));
   addInt("PieceBandRings", piece.Rings());
   addInt("PieceSolveRounds", this->Pieces->SolveRounds());
-  addInt("PieceRefinementRounds", this->Pieces->RefinementRounds());
   output->SetFieldData(fieldData);
   this->UpdateProgress(1.0);
   return 1;

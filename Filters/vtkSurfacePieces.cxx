@@ -31,6 +31,26 @@ vtkIdType GlobalId(vtkDataArray* ids, vtkIdType i)
   return static_cast<vtkIdType>(ids->GetComponent(i, 0));
 }
 
+// The core's progress callback reporting on `self` from `from` to `to`, abortable.
+gs::ProgressCallback Progress(vtkAlgorithm* self, double from, double to)
+{
+  return [self, from, to](double fraction) {
+    self->UpdateProgress(from + (to - from) * fraction);
+    return !self->CheckAbort();
+  };
+}
+
+// Whether a core step succeeded; its error reported on `self` after `what` (nothing when it
+// was aborted).
+bool Reported(vtkAlgorithm* self, const char* what, const gs::Status& status)
+{
+  if (!status.Ok() && !status.IsAborted())
+  {
+    vtkErrorWithObjectMacro(self, << what << status.Message() << ".");
+  }
+  return status.Ok();
+}
+
 // What a process lacks to work on its piece in place ("" when nothing).
 std::string Lacks(vtkPolyData* piece)
 {
@@ -223,9 +243,8 @@ bool vtkSurfacePieces::UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
       own.TriangleIds.push_back(GlobalId(cellIds, cell));
     }
   }
-  if (const gs::Status status = this->SurfacePieceState.Build(own, 0, *Comm); !status.Ok())
+  if (!Reported(self, "The distributed surface: ", this->SurfacePieceState.Build(own, 0, *Comm)))
   {
-    vtkErrorWithObjectMacro(self, "The distributed surface: " << status.Message() << ".");
     return false;
   }
   this->HasPiece = true;
@@ -249,18 +268,9 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
     return true;
   }
   this->HasGraph = false;
-  const gs::Status status = this->GraphState.Build(this->SurfacePieceState, options, *Comm,
-    [self, from, to](double fraction) {
-      self->UpdateProgress(from + (to - from) * fraction);
-      return !self->CheckAbort();
-    });
-  if (status.IsAborted())
+  if (!Reported(self, "The distributed surface: ",
+        this->GraphState.Build(this->SurfacePieceState, options, *Comm, Progress(self, from, to))))
   {
-    return false;
-  }
-  if (!status.Ok())
-  {
-    vtkErrorWithObjectMacro(self, "The distributed surface: " << status.Message() << ".");
     return false;
   }
   this->HasGraph = true;
@@ -274,26 +284,15 @@ bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkIdType source, double radius
   const double referenceDirection[3], std::vector<double>& rho, std::vector<double>& theta,
   gs::PiecePolarCoordinates& chart)
 {
-  const gs::Status computed = gs::ComputePolarOnPieces(this->SurfacePieceState, source, radius,
-    gs::Vec3(referenceDirection[0], referenceDirection[1], referenceDirection[2]), *Comm, chart);
-  if (!computed.Ok())
+  if (!Reported(self, "Geodesic polar coordinates about the source point: ",
+        gs::ComputePolarOnPieces(this->SurfacePieceState, source, radius,
+          gs::Vec3(referenceDirection[0], referenceDirection[1], referenceDirection[2]), *Comm,
+          chart)))
   {
-    vtkErrorWithObjectMacro(self, "Geodesic polar coordinates about the source point: "
-        << computed.Message() << ".");
     return false;
   }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  rho.assign(this->PointIds.size(), nan);
-  theta.assign(this->PointIds.size(), nan);
-  for (std::size_t i = 0; i < this->PointIds.size(); ++i)
-  {
-    const int v = this->PointIds[i] >= 0 ? this->SurfacePieceState.Vertex(this->PointIds[i]) : -1;
-    if (v >= 0)
-    {
-      rho[i] = chart.Rho[static_cast<std::size_t>(v)];
-      theta[i] = chart.Theta[static_cast<std::size_t>(v)];
-    }
-  }
+  rho = this->AtPoints(chart.Rho, 0.0);
+  theta = this->AtPoints(chart.Theta, 0.0);
   return true;
 }
 
@@ -307,33 +306,71 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType
     seeds.push_back({ static_cast<std::int64_t>(id), 0.0 });
   }
   gs::PieceDistanceSolver solver(this->GraphState);
-  if (const gs::Status solved = solver.Solve(seeds, maxDistance, *Comm, refine); !solved.Ok())
+  if (!Reported(self, "Source vertex ids: ", solver.Solve(seeds, maxDistance, *Comm, refine)))
   {
-    vtkErrorWithObjectMacro(self, "Source vertex ids: " << solved.Message() << ".");
     return false;
   }
   this->LastRounds = solver.Rounds();
   this->LastRefinementRounds = solver.Refinements();
-  std::vector<int> wanted, at(this->PointIds.size(), -1);
-  for (std::size_t i = 0; i < this->PointIds.size(); ++i)
+  std::vector<int> wanted;
+  for (const std::int64_t id : this->PointIds)
   {
-    if (this->PointIds[i] >= 0)
+    if (id >= 0)
     {
-      at[i] = this->SurfacePieceState.Vertex(this->PointIds[i]);
-      wanted.push_back(at[i]);
+      wanted.push_back(this->SurfacePieceState.Vertex(id));
     }
   }
   const std::vector<double> fetched = solver.Fetch(this->SurfacePieceState, wanted, *Comm);
+  std::vector<double> perVertex(
+    static_cast<std::size_t>(this->SurfacePieceState.Mesh().NumberOfVertices()),
+    std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t j = 0; j < wanted.size(); ++j)
+  {
+    perVertex[static_cast<std::size_t>(wanted[j])] = fetched[j];
+  }
+  perPoint = this->AtPoints(perVertex, maxDistance);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
+  vtkMTimeType key, const std::vector<vtkIdType>& sources, double maxDistance,
+  std::vector<double>& perPoint)
+{
+  if (!this->UsePiece(self, ownCells, key))
+  {
+    return false;
+  }
+  const std::vector<std::int64_t> ids(sources.begin(), sources.end());
+  gs::ExactPiecesResult result;
+  if (!Reported(self, "Source vertex ids: ",
+        gs::ComputeExactOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm, result,
+          Progress(self, 0.1, 0.95))))
+  {
+    return false;
+  }
+  this->LastRounds = result.Rounds;
+  this->LastRefinementRounds = 0;
+  this->LastWindows = result.WindowsPropagated;
+  this->LastWindowsSent = result.WindowsSent;
+  perPoint = this->AtPoints(result.Distance, maxDistance);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::vector<double> vtkSurfacePieces::AtPoints(
+  const std::vector<double>& perVertex, double maxDistance) const
+{
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  perPoint.assign(this->PointIds.size(), nan);
-  std::size_t j = 0;
+  std::vector<double> perPoint(this->PointIds.size(), nan);
   for (std::size_t i = 0; i < this->PointIds.size(); ++i)
   {
-    if (at[i] >= 0)
+    const int v = this->PointIds[i] >= 0 ? this->SurfacePieceState.Vertex(this->PointIds[i]) : -1;
+    if (v >= 0)
     {
-      const double d = fetched[j++];
+      const double d = perVertex[static_cast<std::size_t>(v)];
       perPoint[i] = std::isfinite(d) && !(maxDistance > 0.0 && d > maxDistance) ? d : nan;
     }
   }
-  return true;
+  return perPoint;
 }

@@ -1,7 +1,8 @@
-// vtkSurfacePieces: geodesic graphs and their distances, and geodesic polar coordinates, on a
-// surface spread over the processes of the global controller (pvbatch --symmetric, pvserver),
-// without gathering it: the core's SurfacePiece, PieceGraph, PieceDistanceSolver
-// (Filters/Core/Geodesics/GraphPieces.h) and ComputePolarOnPieces (Fields/PolarPieces.h) over
+// vtkSurfacePieces: geodesic graphs and their distances, exact distances, and geodesic polar
+// coordinates, on a surface spread over the processes of the global controller (pvbatch
+// --symmetric, pvserver), without gathering it: the core's SurfacePiece, PieceGraph,
+// PieceDistanceSolver (Filters/Core/Geodesics/GraphPieces.h), ComputeExactOnPieces
+// (Geodesics/ExactPieces.h) and ComputePolarOnPieces (Fields/PolarPieces.h) over
 // vtkMultiProcessController. Each process keeps its own cells; it gathers from its neighbours
 // only the band of faces its vertices' solves (or the chart) need.
 //
@@ -15,6 +16,7 @@
 #ifndef vtkSurfacePieces_h
 #define vtkSurfacePieces_h
 
+#include "ExactPieces.h"
 #include "GraphPieces.h"
 #include "PolarPieces.h"
 #include "SaddleVertexGraph.h"
@@ -68,6 +70,14 @@ public:
   bool Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources, double maxDistance,
     bool refine, std::vector<double>& perPoint);
 
+  // Exact distances (window propagation on the pieces, ExactPieces.h) from the points of global
+  // ids `sources` to every point of `ownCells` (the piece of UsePiece, with `key`): NaN where
+  // unreached, beyond maxDistance (> 0) or not on a triangle. Progress from `self`, abortable.
+  // False (error on `self`) on every process when a source id is no point of the surface, or
+  // when it aborted.
+  bool ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
+    const std::vector<vtkIdType>& sources, double maxDistance, std::vector<double>& perPoint);
+
   // Geodesic polar coordinates about the point of global id `source` within `radius` (finite),
   // theta's zero from `referenceDirection` (all zero: the source's first edge), at every point
   // of the piece UsePiece was given (NaN outside the chart); `chart` says what the chart's
@@ -80,6 +90,9 @@ public:
   // Rounds of exchanges the last Distances took: the graph search's and the refinement's.
   int SolveRounds() const { return LastRounds; }
   int RefinementRounds() const { return LastRefinementRounds; }
+  // This process's windows in the last ExactDistances: propagated, and sent to other processes.
+  std::int64_t WindowsPropagated() const { return LastWindows; }
+  std::int64_t WindowsSent() const { return LastWindowsSent; }
   const gs::PieceGraph& Graph() const { return GraphState; }
 
 private:
@@ -90,6 +103,10 @@ private:
   bool HasPiece = false, HasGraph = false;
   vtkMTimeType PieceKey = 0;
   int LastRounds = 0, LastRefinementRounds = 0;
+  std::int64_t LastWindows = 0, LastWindowsSent = 0;
+  // Per point of the piece's own cells: the value of its vertex in `perVertex` (a vector over the
+  // piece's mesh), NaN where it is not finite or beyond maxDistance (> 0).
+  std::vector<double> AtPoints(const std::vector<double>& perVertex, double maxDistance) const;
   gs::SaddleVertexGraphOptions Options;
   // Per point of the piece's own cells: its global id, or -1 when no triangle uses it.
   std::vector<std::int64_t> PointIds;

@@ -1,12 +1,13 @@
 """SVG Geodesic Distance on pieces, without gathering: under `mpiexec -n P pvbatch --symmetric`
-(P = 2, 3, and 4: one process without a piece) and a 2-process pvserver, the graph solvers from
-SourceVertexIds on a surface split in three pieces with global ids give the serial distances, each process outputs its own input cells,
+(P = 2, 3, and 4: one process without a piece) and a 2-process pvserver, the graph solvers and
+the exact solver from SourceVertexIds on a surface split in three pieces with global ids give the serial distances, each process outputs its own input cells,
 and no process holds the whole surface.
 
 Meshes: the bumpy sphere (closed, saddles everywhere) and the L-shaped plane (a boundary, a
 regular grid: ties everywhere). Solvers: SVG (label-correcting, K = 50, unfolding refinement)
 and SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
-from two vertices with a MaximumDistance; and Geodesic Polar Coordinates about a vertex (exact,
+from two vertices with a MaximumDistance; the exact solver (window propagation on the pieces)
+from two vertices; and Geodesic Polar Coordinates about a vertex (exact,
 radius 0.7, a reference direction): rho and theta as the serial run's.
 
 Driver (pvpython TestMPIPieces.py --plugin P --data D --work W): splits each mesh in three
@@ -42,6 +43,8 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
          ["GeodesicDistance"]),
         ("dgg", "SVGGeodesicDistance", dict(Solver="DGG (accuracy-bounded)", GraphAccuracy=0.01,
                                             SourceVertexIds=[3, 200], MaximumDistance=1.0),
+         ["GeodesicDistance"]),
+        ("exact", "SVGGeodesicDistance", dict(Solver="Exact", SourceVertexIds=[11, 200]),
          ["GeodesicDistance"]),
         ("polar", "GeodesicPolarCoordinates", dict(SourceVertexId=11, Radius=0.7,
                                                    ReferenceDirection=[1.0, 1.0, 0.0]),

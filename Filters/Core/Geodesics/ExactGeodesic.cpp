@@ -98,20 +98,49 @@ void ExactGeodesicSolver::UpdateVertex(int v, double d, int origin, int via, dou
   Root[v] = root;
   CrossHalfedge[v] = via;
   CrossX[v] = crossing;
+  if (Route)
+  {
+    RouteImprovement(v, d, root);
+    return;
+  }
   VertexQueue.push_back({ d, v });
   std::push_heap(VertexQueue.begin(), VertexQueue.end(),
     [](const VertexKey& a, const VertexKey& b) { return a.D > b.D; });
   if (Surface.IsPseudoSourceVertex(v) && !Propagated[v])
   {
-    Window e;
-    e.Key = d;
-    e.B0 = e.B1 = e.Ix = e.Iy = 0.0;
-    e.Phi = 0.0;
-    e.Sigma = d;
-    e.H = -1 - v;
-    e.Src = -1 - v;
-    e.Root = root;
-    Enqueue(e);
+    QueueVertexEvent(v, d, root);
+  }
+}
+
+void ExactGeodesicSolver::QueueVertexEvent(int v, double d, int root)
+{
+  Window e;
+  e.Key = d;
+  e.B0 = e.B1 = e.Ix = e.Iy = 0.0;
+  e.Phi = 0.0;
+  e.Sigma = d;
+  e.H = -1 - v;
+  e.Src = -1 - v;
+  e.Root = root;
+  Enqueue(e);
+}
+
+void ExactGeodesicSolver::RouteImprovement(int v, double d, int root)
+{
+  if ((*Route->OtherVertex)[v])
+  {
+    if (!Route->Listed[v])
+    {
+      Route->Listed[v] = 1;
+      Route->LeavingVertices.push_back(v);
+    }
+    return;
+  }
+  // Not final yet: a vertex spread from a longer path spreads again from this one.
+  if (Surface.IsPseudoSourceVertex(v))
+  {
+    Propagated[v] = 0;
+    QueueVertexEvent(v, d, root);
   }
 }
 
@@ -143,6 +172,11 @@ void ExactGeodesicSolver::PushWindow(Window w)
   ++Stats.WindowsCreated;
   if (!Trim(w))
   {
+    return;
+  }
+  if (Route && (*Route->OtherFace)[w.H / 3])
+  {
+    Route->Leaving.push_back(w);
     return;
   }
   Enqueue(w);
@@ -518,24 +552,28 @@ bool ExactGeodesicSolver::ProcessWindows(
     {
       return true;
     }
-    if (w.H < 0)
-    {
-      const int v = -1 - w.H;
-      if (!Propagated[v] && Dist[v] == w.Key)
-      {
-        Propagated[v] = 1;
-        PropagateFromVertex(v, w.Key, w.Src);
-      }
-      continue;
-    }
-    Fenced.Enter(w.H / 3);
-    // Vertex distances may have dropped since the window was queued: trim it again.
-    if (Trim(w))
-    {
-      Propagate(w);
-    }
+    Handle(w);
   }
   return false;
+}
+
+void ExactGeodesicSolver::Handle(Window w)
+{
+  if (w.H < 0)
+  {
+    const int v = -1 - w.H;
+    if (!Propagated[v] && Dist[v] == w.Key)
+    {
+      Propagated[v] = 1;
+      PropagateFromVertex(v, w.Key, w.Src);
+    }
+    return;
+  }
+  Fenced.Enter(w.H / 3);
+  if (Trim(w))
+  {
+    Propagate(w);
+  }
 }
 
 Status ExactGeodesicSolver::Solve(

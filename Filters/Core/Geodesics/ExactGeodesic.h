@@ -109,6 +109,9 @@ public:
   const std::vector<int>& FenceFacesEntered() const { return Fenced.Entered; }
 
 private:
+  // The solve on one piece of a surface partitioned over processes (ExactPieces.cpp) drives the
+  // solver through its Route.
+  friend class ExactPieceSolve;
   struct Window
   {
     double Key;    // smallest distance over the window (priority)
@@ -136,6 +139,15 @@ private:
   void UpdateVertex(int v, double d, int origin, int viaHalfedge, double crossing,
     const LazyAngle& inAngle, const LazyAngle& departure, int root);
   void PushWindow(Window w);
+  // Processes a window taken from the queue: a vertex event spreads the vertex's windows, an
+  // edge window is trimmed again (vertex distances may have dropped since it was queued) and
+  // propagated.
+  void Handle(Window w);
+  // After UpdateVertex improved v on a piece (Route set): a vertex of another process leaves
+  // for its owner; an own pseudo-source vertex spreads again from its new distance.
+  void RouteImprovement(int v, double d, int root);
+  // Queues pseudo-source vertex v's event: it spreads its windows from distance d when taken.
+  void QueueVertexEvent(int v, double d, int root);
   void Enqueue(const Window& w);
   Window Dequeue();
   void Propagate(Window w);
@@ -186,6 +198,17 @@ private:
   double Tolerance = 0.0;             // absolute distance tolerance (scaled to the mesh)
   window_geometry::FenceWatch Fenced; // the solve's fence (options)
   ExactGeodesicStatistics Stats;
+  // A solve on a piece: windows entering other processes' faces, and improved distances of
+  // their vertices, leave instead of being processed here; nothing is final before the end.
+  struct PieceRoute
+  {
+    const std::vector<unsigned char>* OtherFace = nullptr;   // one flag per face
+    const std::vector<unsigned char>* OtherVertex = nullptr; // one flag per vertex
+    std::vector<Window> Leaving;
+    std::vector<int> LeavingVertices;   // each once until taken
+    std::vector<unsigned char> Listed; // per vertex: in LeavingVertices
+  };
+  PieceRoute* Route = nullptr;
 };
 
 } // namespace gs

@@ -164,6 +164,11 @@ public:
   }
   bool Empty() const { return Heap.empty(); }
   std::size_t Size() const { return Heap.size(); }
+  // The smallest key queued (infinite when empty).
+  double MinKey() const
+  {
+    return Heap.empty() ? std::numeric_limits<double>::infinity() : Heap.front().Key;
+  }
   void Clear()
   {
     Heap.clear();

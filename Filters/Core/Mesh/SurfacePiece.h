@@ -64,6 +64,8 @@ public:
   bool IsComplete(int v) const { return Owners[static_cast<std::size_t>(v)] >= 0; }
   // Whether face f is one of this process's own (not a band face).
   bool IsOwnFace(int f) const { return FaceOwners[static_cast<std::size_t>(f)] == MyRank; }
+  // The rank whose input holds face f.
+  int FaceOwner(int f) const { return FaceOwners[static_cast<std::size_t>(f)]; }
   std::int64_t FaceId(int f) const { return FaceIds[static_cast<std::size_t>(f)]; }
   // The faces with an incomplete vertex.
   const std::vector<unsigned char>& Fence() const { return FenceFaces; }

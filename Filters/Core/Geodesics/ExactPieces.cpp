@@ -1,0 +1,442 @@
+#include "ExactPieces.h"
+
+#include "ExactGeodesic.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace gs
+{
+
+namespace
+{
+constexpr double Inf = std::numeric_limits<double>::infinity();
+
+// What travels between processes, each item after a tag.
+enum ItemTag : std::uint8_t
+{
+  WindowItem = 1,
+  VertexItem = 2
+};
+
+// A vertex's fan as every process holding it sees it: the direction towards its neighbour of
+// smallest global id, and the neighbour that follows it counter-clockwise (-1: none, the end of
+// a boundary fan). Two processes whose meshes orient the fan alike see the same follower.
+struct FanReference
+{
+  double Angle = 0.0;
+  std::int64_t Follower = -1;
+};
+} // namespace
+
+// Drives an ExactGeodesicSolver on one piece through its Route (a friend of the solver).
+class ExactPieceSolve
+{
+public:
+  ExactPieceSolve(const SurfacePiece& piece, PieceCommunicator& comm)
+    : Piece(piece)
+    , Mesh(piece.Mesh())
+    , Comm(comm)
+    , Solver(piece.Mesh(), piece.LengthScale())
+  {
+    const int nf = Mesh.NumberOfFaces(), nv = Mesh.NumberOfVertices();
+    OtherFace.resize(static_cast<std::size_t>(nf));
+    for (int f = 0; f < nf; ++f)
+    {
+      OtherFace[static_cast<std::size_t>(f)] = Piece.IsOwnFace(f) ? 0 : 1;
+      if (Piece.IsOwnFace(f))
+      {
+        OwnFaceOf[Piece.FaceId(f)] = f;
+      }
+    }
+    OtherVertex.resize(static_cast<std::size_t>(nv));
+    for (int v = 0; v < nv; ++v)
+    {
+      OtherVertex[static_cast<std::size_t>(v)] = Piece.IsOwned(v) ? 0 : 1;
+    }
+    Route.OtherFace = &OtherFace;
+    Route.OtherVertex = &OtherVertex;
+    Route.Listed.assign(static_cast<std::size_t>(nv), 0);
+    Solver.Route = &Route;
+  }
+  ~ExactPieceSolve() { Solver.Route = nullptr; }
+  ExactPieceSolve(const ExactPieceSolve&) = delete;
+  ExactPieceSolve& operator=(const ExactPieceSolve&) = delete;
+
+  Status Run(const std::vector<std::int64_t>& sources, double maxDistance,
+    const ProgressCallback& progress, ExactPiecesResult& result);
+
+private:
+  using Window = ExactGeodesicSolver::Window;
+  // Adds the sources this process owns; fails on every process when one is owned by none.
+  Status AddSources(const std::vector<std::int64_t>& sources);
+  // Propagates the queued windows of keys up to `threshold`, in key order.
+  void ProcessUpTo(double threshold);
+  // What left this process since the last exchange, into one buffer per process; returns the
+  // number of items.
+  std::int64_t Pack(std::vector<ByteBuffer>& out);
+  void Unpack(const std::vector<ByteBuffer>& in);
+  bool UnpackWindow(ByteReader& r);
+  bool UnpackVertex(ByteReader& r);
+  FanReference Reference(int v) const;
+  // The distances of the own faces' vertices, the others' from their owners.
+  void Collect(double limit, ExactPiecesResult& result);
+
+  const SurfacePiece& Piece;
+  const TriangleMesh& Mesh;
+  PieceCommunicator& Comm;
+  ExactGeodesicSolver Solver;
+  ExactGeodesicSolver::PieceRoute Route;
+  std::vector<unsigned char> OtherFace, OtherVertex;
+  std::unordered_map<std::int64_t, int> OwnFaceOf;
+  std::int64_t Sent = 0;
+};
+
+FanReference ExactPieceSolve::Reference(int v) const
+{
+  struct Spoke
+  {
+    std::int64_t Id;
+    double Angle;
+  };
+  Spoke spokes[64];
+  std::vector<Spoke> many;
+  int n = 0, last = -1;
+  auto add = [&](std::int64_t id, double angle) {
+    if (n < 64)
+    {
+      spokes[n] = { id, angle };
+    }
+    else
+    {
+      if (many.empty())
+      {
+        many.assign(spokes, spokes + 64);
+      }
+      many.push_back({ id, angle });
+    }
+    ++n;
+  };
+  Mesh.ForEachOutgoingHalfedge(v, [&](int h) {
+    add(Piece.GlobalId(Mesh.Destination(h)), Solver.FanAngle[static_cast<std::size_t>(h)]);
+    last = h;
+  });
+  const bool boundary = Mesh.IsBoundaryVertex(v);
+  if (boundary && last >= 0)
+  {
+    add(Piece.GlobalId(Mesh.Origin(TriangleMesh::Prev(last))), Mesh.TotalAngle(v));
+  }
+  const Spoke* all = n <= 64 ? spokes : many.data();
+  int best = 0;
+  for (int i = 1; i < n; ++i)
+  {
+    best = all[i].Id < all[best].Id ? i : best;
+  }
+  FanReference ref;
+  if (n == 0)
+  {
+    return ref;
+  }
+  ref.Angle = all[best].Angle;
+  ref.Follower = best + 1 < n ? all[best + 1].Id : boundary ? -1 : all[0].Id;
+  return ref;
+}
+
+Status ExactPieceSolve::AddSources(const std::vector<std::int64_t>& sources)
+{
+  std::vector<std::int64_t> ids = sources;
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::vector<int> owned;
+  for (const std::int64_t id : ids)
+  {
+    const int v = Piece.Vertex(id);
+    if (v >= 0 && Piece.IsOwned(v))
+    {
+      owned.push_back(v);
+    }
+  }
+  if (Comm.Sum(static_cast<std::int64_t>(owned.size())) != static_cast<std::int64_t>(ids.size()) ||
+    ids.empty())
+  {
+    return Status::Error(
+      ids.empty() ? "no source given" : "a source vertex id is not a point of the surface");
+  }
+  for (std::size_t i = 0; i < owned.size(); ++i)
+  {
+    Solver.AddSource(static_cast<int>(i), SurfacePoint::AtVertex(owned[i]));
+  }
+  return Status();
+}
+
+void ExactPieceSolve::ProcessUpTo(double threshold)
+{
+  while (!Solver.Queue.Empty() && Solver.Queue.MinKey() <= threshold)
+  {
+    Solver.Handle(Solver.Dequeue());
+  }
+}
+
+std::int64_t ExactPieceSolve::Pack(std::vector<ByteBuffer>& out)
+{
+  out.assign(static_cast<std::size_t>(Comm.Size()), ByteBuffer());
+  std::int64_t items = 0;
+  for (const Window& w : Route.Leaving)
+  {
+    const int f = w.H / 3;
+    ByteWriter put(out[static_cast<std::size_t>(Piece.FaceOwner(f))]);
+    put.Put(WindowItem);
+    put.Put(Piece.FaceId(f));
+    put.Put(Piece.GlobalId(Mesh.Origin(w.H)));
+    put.Put(Piece.GlobalId(Mesh.Destination(w.H)));
+    for (const double x : { w.Key, w.B0, w.B1, w.Ix, w.Iy, w.Sigma, w.Phi })
+    {
+      put.Put(x);
+    }
+    // A pseudo-source vertex is named by its local number: elsewhere it is just "not direct".
+    put.Put(w.Src >= 0 ? w.Src : -1);
+    put.Put(w.Root);
+    ++items;
+  }
+  Sent += static_cast<std::int64_t>(Route.Leaving.size());
+  Route.Leaving.clear();
+  for (const int v : Route.LeavingVertices)
+  {
+    Route.Listed[static_cast<std::size_t>(v)] = 0;
+    const int owner = Piece.Owner(v);
+    if (owner < 0)
+    {
+      continue; // (vertices of own faces and their neighbours are complete)
+    }
+    // The arrival direction, from the fan's reference; NaN stays NaN.
+    const FanReference ref = Reference(v);
+    double in = Solver.InAngle[static_cast<std::size_t>(v)].Value() - ref.Angle;
+    if (!Mesh.IsBoundaryVertex(v) && std::isfinite(in))
+    {
+      const double total = Mesh.TotalAngle(v);
+      in -= total * std::floor(in / total);
+    }
+    ByteWriter put(out[static_cast<std::size_t>(owner)]);
+    put.Put(VertexItem);
+    put.Put(Piece.GlobalId(v));
+    put.Put(Solver.Dist[static_cast<std::size_t>(v)]);
+    put.Put(in);
+    put.Put(ref.Follower);
+    ++items;
+  }
+  Route.LeavingVertices.clear();
+  return items;
+}
+
+bool ExactPieceSolve::UnpackWindow(ByteReader& r)
+{
+  std::int64_t faceId = 0, a = 0, b = 0;
+  Window w;
+  if (!(r.Get(faceId) && r.Get(a) && r.Get(b) && r.Get(w.Key) && r.Get(w.B0) && r.Get(w.B1) &&
+        r.Get(w.Ix) && r.Get(w.Iy) && r.Get(w.Sigma) && r.Get(w.Phi) && r.Get(w.Src) &&
+        r.Get(w.Root)))
+  {
+    return false;
+  }
+  const auto it = OwnFaceOf.find(faceId);
+  if (it == OwnFaceOf.end())
+  {
+    return false;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    const int h = 3 * it->second + k;
+    const std::int64_t o = Piece.GlobalId(Mesh.Origin(h)), d = Piece.GlobalId(Mesh.Destination(h));
+    if (o == a && d == b)
+    {
+      w.H = h;
+    }
+    else if (o == b && d == a)
+    {
+      // The face is oriented the other way here: the same frame mirrored along the edge (y
+      // still points into the face).
+      const double L = Mesh.EdgeLength(h), b0 = w.B0;
+      w.H = h;
+      w.Ix = L - w.Ix;
+      w.B0 = std::max(0.0, L - w.B1);
+      w.B1 = std::min(L, L - b0);
+    }
+    else
+    {
+      continue;
+    }
+    Solver.PushWindow(w);
+    return true;
+  }
+  return false;
+}
+
+bool ExactPieceSolve::UnpackVertex(ByteReader& r)
+{
+  std::int64_t id = 0, follower = 0;
+  double d = 0.0, in = 0.0;
+  if (!(r.Get(id) && r.Get(d) && r.Get(in) && r.Get(follower)))
+  {
+    return false;
+  }
+  const int v = Piece.Vertex(id);
+  if (v < 0 || !Piece.IsOwned(v))
+  {
+    return false;
+  }
+  ExactGeodesicSolver::LazyAngle arrival;
+  if (std::isfinite(in))
+  {
+    const FanReference ref = Reference(v);
+    double local = follower == ref.Follower ? ref.Angle + in : ref.Angle - in;
+    if (!Mesh.IsBoundaryVertex(v))
+    {
+      const double total = Mesh.TotalAngle(v);
+      local -= total * std::floor(local / total);
+    }
+    arrival = ExactGeodesicSolver::LazyAngle::Exactly(local);
+  }
+  Solver.UpdateVertex(v, d, -1, -1, 0.0, arrival, ExactGeodesicSolver::LazyAngle(), 0);
+  return true;
+}
+
+void ExactPieceSolve::Unpack(const std::vector<ByteBuffer>& in)
+{
+  for (std::size_t q = 0; q < in.size(); ++q)
+  {
+    if (static_cast<int>(q) == Comm.Rank())
+    {
+      continue;
+    }
+    ByteReader r(in[q]);
+    std::uint8_t tag = 0;
+    while (r.Get(tag))
+    {
+      const bool read = tag == WindowItem ? UnpackWindow(r) : tag == VertexItem && UnpackVertex(r);
+      if (!read)
+      {
+        break; // (a malformed message: what follows cannot be read)
+      }
+    }
+  }
+}
+
+void ExactPieceSolve::Collect(double limit, ExactPiecesResult& result)
+{
+  const int nv = Mesh.NumberOfVertices();
+  result.Distance.assign(static_cast<std::size_t>(nv), std::numeric_limits<double>::quiet_NaN());
+  for (int v = 0; v < nv; ++v)
+  {
+    if (Piece.IsOwned(v))
+    {
+      const double d = Solver.Dist[static_cast<std::size_t>(v)];
+      result.Distance[static_cast<std::size_t>(v)] = d <= limit ? d : Inf;
+    }
+  }
+  std::vector<std::vector<std::int64_t>> asks(static_cast<std::size_t>(Comm.Size()));
+  std::vector<std::vector<int>> askedFor(asks.size());
+  std::vector<unsigned char> asked(static_cast<std::size_t>(nv), 0);
+  for (int f = 0; f < Mesh.NumberOfFaces(); ++f)
+  {
+    if (!Piece.IsOwnFace(f))
+    {
+      continue;
+    }
+    for (const int v : Mesh.Face(f))
+    {
+      const int owner = Piece.Owner(v);
+      if (owner >= 0 && owner != Comm.Rank() && !asked[static_cast<std::size_t>(v)])
+      {
+        asked[static_cast<std::size_t>(v)] = 1;
+        asks[static_cast<std::size_t>(owner)].push_back(Piece.GlobalId(v));
+        askedFor[static_cast<std::size_t>(owner)].push_back(v);
+      }
+    }
+  }
+  const std::vector<std::vector<double>> answers =
+    AskProcesses(Comm, asks, [&](int, std::int64_t id) {
+      const int v = Piece.Vertex(id);
+      return v >= 0 && Piece.IsOwned(v) ? result.Distance[static_cast<std::size_t>(v)] : Inf;
+    });
+  for (std::size_t q = 0; q < asks.size(); ++q)
+  {
+    for (std::size_t i = 0; i < askedFor[q].size() && i < answers[q].size(); ++i)
+    {
+      result.Distance[static_cast<std::size_t>(askedFor[q][i])] = answers[q][i];
+    }
+  }
+}
+
+Status ExactPieceSolve::Run(const std::vector<std::int64_t>& sources, double maxDistance,
+  const ProgressCallback& progress, ExactPiecesResult& result)
+{
+  Solver.Reset();
+  Solver.Fenced.Start(nullptr, Mesh.NumberOfFaces());
+  if (const Status added = AddSources(sources); !added.Ok())
+  {
+    return added;
+  }
+  const double limit = maxDistance > 0.0 && std::isfinite(maxDistance) ? maxDistance : Inf;
+  // Each round's threshold: a step of the surface's size beyond the smallest key left anywhere
+  // (dozens of rounds over a surface; each round's passes settle what crossed between pieces).
+  const double step = std::max(Piece.LengthScale() / 64.0, 1e-300);
+  const std::int64_t owned = Piece.NumberOfOwnedVertices();
+  std::size_t counted = 0;
+  std::int64_t reached = 0;
+  while (true)
+  {
+    const double lowest = Comm.Min(Solver.Queue.MinKey());
+    if (!(lowest < Inf) || lowest > limit)
+    {
+      break;
+    }
+    const double threshold = std::min(lowest + step, limit);
+    ++result.Rounds;
+    std::int64_t moved = 0;
+    do
+    {
+      ProcessUpTo(threshold);
+      std::vector<ByteBuffer> out, in;
+      const std::int64_t items = Pack(out);
+      moved = ExchangeCounting(Comm, out, in, items);
+      Unpack(in);
+      ++result.Exchanges;
+    } while (moved > 0);
+    for (; counted < Solver.Touched.size(); ++counted)
+    {
+      reached += Piece.IsOwned(Solver.Touched[counted]) ? 1 : 0;
+    }
+    const bool goOn =
+      !progress || progress(owned > 0 ? static_cast<double>(reached) / owned : 1.0);
+    if (Comm.Max(goOn ? 0.0 : 1.0) > 0.0)
+    {
+      return Status::Aborted();
+    }
+  }
+  result.WindowsPropagated = Solver.Stats.WindowsPropagated;
+  result.WindowsSent = Sent;
+  Collect(limit, result);
+  return Status();
+}
+
+Status ComputeExactOnPieces(SurfacePiece& piece, const std::vector<std::int64_t>& sources,
+  double maxDistance, PieceCommunicator& comm, ExactPiecesResult& result,
+  const ProgressCallback& progress)
+{
+  result = ExactPiecesResult();
+  // Two rings: the fans of the vertices of the own faces, and the faces across their outer
+  // edges, where an owned vertex's windows start.
+  if (piece.Rings() < 1)
+  {
+    if (const Status grown = piece.Grow(1 - piece.Rings(), comm); !grown.Ok())
+    {
+      return grown;
+    }
+  }
+  ExactPieceSolve solve(piece, comm);
+  return solve.Run(sources, maxDistance, progress, result);
+}
+
+} // namespace gs

@@ -1,0 +1,202 @@
+// Exact geodesic distance on a surface partitioned over processes (ExactPieces.h), on threads
+// standing for the processes: every vertex of every process's own faces gets the serial exact
+// solver's distance (within 1e-9 of the largest distance: the order of the windows differs, so
+// ties round differently), for several process counts and partitions (slabs, pieces with holes
+// and islands, pieces whose faces are oriented against their neighbours'), on a closed curved
+// mesh (saddles everywhere), a plane with a boundary, an L-shape (a reflex boundary corner) and a
+// torus; sources several and far apart, maximum distances; failures and aborts on every process.
+#include "ExactGeodesic.h"
+#include "ExactPieces.h"
+#include "MeshGenerators.h"
+#include "TestMeshes.h"
+#include "ThreadPieces.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <string>
+
+using namespace gs;
+
+namespace
+{
+struct ExactRun
+{
+  // Per rank: the distance of each vertex of its own faces (global id, distance).
+  std::vector<std::vector<std::pair<std::int64_t, double>>> Seen;
+  std::vector<int> Rings;
+  std::int64_t Windows = 0, Sent = 0;
+  int Rounds = 0;
+  std::vector<Status> Statuses;
+};
+
+// `flipped`: ranks whose own triangles are given the other way round.
+ExactRun RunExact(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
+  const std::vector<std::int64_t>& sources, double maxDistance,
+  const std::vector<int>& flipped = {}, int abortingRank = -1)
+{
+  ExactRun run;
+  run.Seen.resize(static_cast<std::size_t>(processes));
+  run.Rings.resize(static_cast<std::size_t>(processes));
+  run.Statuses.resize(static_cast<std::size_t>(processes));
+  std::mutex lock;
+  gs_test::ThreadHub hub(processes);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    PieceTriangles own = gs_test::PieceOf(mesh, part, rank);
+    if (std::find(flipped.begin(), flipped.end(), rank) != flipped.end())
+    {
+      for (auto& t : own.Triangles)
+      {
+        std::swap(t[1], t[2]);
+      }
+    }
+    SurfacePiece piece;
+    Status status = piece.Build(own, 0, comm);
+    ExactPiecesResult result;
+    if (status.Ok())
+    {
+      status = ComputeExactOnPieces(piece, sources, maxDistance, comm, result,
+        [&](double) { return rank != abortingRank; });
+    }
+    std::lock_guard<std::mutex> guard(lock);
+    run.Statuses[static_cast<std::size_t>(rank)] = status;
+    if (!status.Ok())
+    {
+      return;
+    }
+    run.Rings[static_cast<std::size_t>(rank)] = piece.Rings();
+    for (int f = 0; f < piece.Mesh().NumberOfFaces(); ++f)
+    {
+      if (piece.IsOwnFace(f))
+      {
+        for (const int v : piece.Mesh().Face(f))
+        {
+          run.Seen[static_cast<std::size_t>(rank)].push_back(
+            { piece.GlobalId(v), result.Distance[static_cast<std::size_t>(v)] });
+        }
+      }
+    }
+    run.Windows += result.WindowsPropagated;
+    run.Sent += result.WindowsSent;
+    run.Rounds = result.Rounds;
+  });
+  return run;
+}
+
+void ExpectExactAsSerial(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
+  const std::vector<std::int64_t>& sources, double maxDistance = 0.0,
+  const std::vector<int>& flipped = {})
+{
+  ExactGeodesicSolver serial(mesh);
+  std::vector<SurfacePoint> points;
+  for (const std::int64_t s : sources)
+  {
+    points.push_back(SurfacePoint::AtVertex(static_cast<int>(s)));
+  }
+  ExactGeodesicOptions options;
+  options.MaximumDistance = maxDistance;
+  ASSERT_TRUE(serial.Solve(points, options).Ok());
+  double largest = 0.0;
+  for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+  {
+    if (std::isfinite(serial.Distance(v)))
+    {
+      largest = std::max(largest, serial.Distance(v));
+    }
+  }
+  ASSERT_GT(largest, 0.0);
+
+  const ExactRun run = RunExact(mesh, part, processes, sources, maxDistance, flipped);
+  double worst = 0.0;
+  std::size_t checked = 0, reached = 0;
+  for (int rank = 0; rank < processes; ++rank)
+  {
+    ASSERT_TRUE(run.Statuses[static_cast<std::size_t>(rank)].Ok())
+      << run.Statuses[static_cast<std::size_t>(rank)].Message();
+    for (const auto& [id, d] : run.Seen[static_cast<std::size_t>(rank)])
+    {
+      const double expected = serial.Distance(static_cast<int>(id));
+      ++checked;
+      if (!std::isfinite(expected))
+      {
+        EXPECT_FALSE(std::isfinite(d)) << "vertex " << id << " on rank " << rank;
+        continue;
+      }
+      ++reached;
+      ASSERT_TRUE(std::isfinite(d)) << "vertex " << id << " on rank " << rank;
+      worst = std::max(worst, std::abs(d - expected) / largest);
+    }
+  }
+  EXPECT_LE(worst, 1e-9);
+  EXPECT_GT(reached, 0u);
+  std::size_t faces = 0;
+  for (const int p : part)
+  {
+    faces += p < processes ? 1 : 0;
+  }
+  EXPECT_EQ(checked, 3 * faces); // every own face's corners, on every process
+  std::printf("P = %d: largest difference %.2e of the largest distance; %lld windows propagated "
+              "(serial %lld), %lld sent, %d rounds\n",
+    processes, worst, static_cast<long long>(run.Windows),
+    static_cast<long long>(serial.Statistics().WindowsPropagated),
+    static_cast<long long>(run.Sent), run.Rounds);
+}
+} // namespace
+
+TEST(ExactPieces, CurvedClosedMesh)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
+  for (const int p : { 2, 3 })
+  {
+    ExpectExactAsSerial(mesh, gs_test::PartitionFaces(mesh, p, Vec3(1, 0.3, 0.1)), p, { 0 });
+  }
+  // Pieces with holes and islands, two sources.
+  ExpectExactAsSerial(
+    mesh, gs_test::PartitionFaces(mesh, 4, Vec3(0.2, 1, 0.5), 5), 4, { 17, 600 });
+  // More processes than pieces: the fourth holds no face.
+  ExpectExactAsSerial(mesh, gs_test::PartitionFaces(mesh, 3, Vec3(1, 0.3, 0.1)), 4, { 5 });
+}
+
+TEST(ExactPieces, PlaneAndReflexCornerWithBoundaries)
+{
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
+  ExpectExactAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3, { 5 });
+  const TriangleMesh lshape = gs_test::BuildMesh(MakeLShape(12));
+  ExpectExactAsSerial(lshape, gs_test::PartitionFaces(lshape, 2, Vec3(1, 1, 0), 3), 2, { 0 });
+  ExpectExactAsSerial(lshape, gs_test::PartitionFaces(lshape, 3, Vec3(0, 1, 0)), 3, { 40 }, 1.2);
+}
+
+TEST(ExactPieces, TorusWithPiecesOrientedAgainstTheirNeighbours)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(MakeTorus(1.0, 0.35, 40, 16));
+  ExpectExactAsSerial(mesh, gs_test::PartitionFaces(mesh, 3, Vec3(1, 0.2, 0)), 3, { 3 });
+  ExpectExactAsSerial(
+    mesh, gs_test::PartitionFaces(mesh, 3, Vec3(0, 1, 0.3), 4), 3, { 100, 500 });
+  // Rank 1 gives its triangles the other way round: its own faces outnumber its band, so its
+  // piece's mesh keeps their orientation, against rank 0's (windows and arrival directions
+  // cross mirrored).
+  const TriangleMesh fine = gs_test::BuildMesh(MakeTorus(1.0, 0.35, 80, 24));
+  ExpectExactAsSerial(
+    fine, gs_test::PartitionFaces(fine, 2, Vec3(1, 0, 0)), 2, { 7, 1500 }, 0.0, { 1 });
+}
+
+TEST(ExactPieces, FailuresAndAbortsOnEveryProcess)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(MakePlanarGrid(6, 6, 1.0, 1.0));
+  const std::vector<int> part = gs_test::PartitionFaces(mesh, 2, Vec3(1, 0, 0));
+  for (const Status& s : RunExact(mesh, part, 2, { 1000 }, 0.0).Statuses)
+  {
+    EXPECT_FALSE(s.Ok());
+    EXPECT_NE(s.Message().find("not a point"), std::string::npos) << s.Message();
+  }
+  for (const Status& s : RunExact(mesh, part, 2, {}, 0.0).Statuses)
+  {
+    EXPECT_NE(s.Message().find("no source"), std::string::npos) << s.Message();
+  }
+  for (const Status& s : RunExact(mesh, part, 2, { 0 }, 0.0, {}, 1).Statuses)
+  {
+    EXPECT_TRUE(s.IsAborted()) << s.Message();
+  }
+}
