@@ -12,8 +12,10 @@ separate processes with nothing else running:
            process 0 and builds the graph there (what every run did before the pieces route;
            a point source at a vertex is that vertex: the same distances).
 Both with unfolding refinement (the default), or without it with --no-refine.
-Per process: peak resident memory added by the filter (ru_maxrss after the first Apply minus
-before it), the first Apply (band, graph, solve), a further source, the faces the process held.
+Per process: peak resident memory added by the filter (the process's peak during the first Apply,
+its VmHWM reset just before, minus its resident memory before) and that whole peak (ParaView,
+the reader's output and the filter), the first Apply (band, graph, solve), a further source, the
+faces the process held.
 OMP_NUM_THREADS is 2 / P (at least 1): P > 2 oversubscribes the 2-core machine, and is marked so.
 
     pvpython Benchmarks/mpi_pieces.py --plugin build/lib/paraview-5.11/plugins/GeodesicShapes/GeodesicShapes.so \\
@@ -34,9 +36,15 @@ SOLVERS = {"svg": {"Solver": "SVG (label-correcting)", "K": 50},
 SOURCES = [0, 1000]  # serial vertex ids: the first Apply, then a further source
 
 
+def status_kb(field):
+    """A memory figure of this process from /proc/self/status, in kB."""
+    import re
+    with open("/proc/self/status") as f:
+        return int(re.search(field + r":\s+(\d+)", f.read()).group(1))
+
+
 def run_one(args):
     """One process of a run: the pipeline, then its figures (a JSON file per process)."""
-    import resource
     from paraview.simple import LoadPlugin, PLYReader, XMLPartitionedPolydataReader
     import vtk
     LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -47,7 +55,10 @@ def run_one(args):
     else:
         mesh = PLYReader(FileNames=[args.mesh])
     mesh.UpdatePipeline()
-    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    # The process's peak from here on (Linux: writing 5 to clear_refs resets VmHWM).
+    with open("/proc/self/clear_refs", "w") as f:
+        f.write("5")
+    before = status_kb("VmRSS")
     distance = globals()["SVGGeodesicDistance"](Input=mesh, SourceVertexIds=[SOURCES[0]],
                                                UnfoldingRefinement=int(args.refine),
                                                **SOLVERS[args.solver])
@@ -58,7 +69,7 @@ def run_one(args):
     start = time.perf_counter()
     distance.UpdatePipeline()
     first = time.perf_counter() - start
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    peak = status_kb("VmHWM")
     data = distance.GetClientSideObject().GetOutputDataObject(0)
     writer = vtk.vtkXMLPolyDataWriter()
     writer.SetDataModeToBinary()
@@ -75,6 +86,7 @@ def run_one(args):
     with open(os.path.join(args.out, "figures_%d.json" % rank), "w") as f:
         f.write(json.dumps({
         "rank": rank, "first": first, "further": further, "peak_mb": (peak - before) / 1024.0,
+        "process_mb": peak / 1024.0,
         "cells": data.GetNumberOfCells(),
         "held": faces.GetValue(0) if faces is not None else None}))
 
@@ -167,8 +179,9 @@ def main():
     print("%s, %s, unfolding refinement %s; peak = resident memory added by the filter; "
           "first = first Apply (band, graph, solve); further = another source"
           % (args.mesh, SOLVERS[args.solver], "on" if refine else "off"))
-    print("%-26s %6s %10s %9s %9s %12s %s" % ("run", "P", "peak MB", "first s", "next s",
-                                             "faces held", "largest rel. difference"))
+    print("%-26s %6s %10s %16s %9s %9s %12s %s" % ("run", "P", "peak MB", "process peak MB",
+                                                   "first s", "next s", "faces held",
+                                                   "largest rel. difference"))
 
     def report(label, p, figures, out):
         got = distances(out)
@@ -176,8 +189,9 @@ def main():
                      if k in got and v > 0 and math.isfinite(v) and math.isfinite(got[k])),
                     default=0.0)
         flag = " (oversubscribed)" if p > args.cores else ""
-        print("%-26s %6d %10s %9.2f %9.2f %12s %.3g%s" % (
+        print("%-26s %6d %10s %16s %9.2f %9.2f %12s %.3g%s" % (
             label, p, "/".join("%.0f" % f["peak_mb"] for f in figures),
+            "/".join("%.0f" % f["process_mb"] for f in figures),
             max(f["first"] for f in figures), max(f["further"] for f in figures),
             "/".join(str(f["held"]) for f in figures) if figures[0]["held"] is not None else "-",
             worst, flag))

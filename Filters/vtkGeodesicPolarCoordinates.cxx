@@ -103,8 +103,8 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Under MPI, the exact chart about SourceVertexId (geodesic direction, a finite radius) is
-  // computed on the pieces when they carry global ids (the same decision on every process: it
-  // depends on properties and on CanUse, which is collective); everything else gathers.
+  // computed on the pieces when they hold triangles only (the same decision on every process:
+  // it depends on properties and on CanUse, which is collective); everything else gathers.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);

@@ -114,9 +114,9 @@ int vtkSVGGeodesicDistance::FillInputPortInformation(int port, vtkInformation* i
 int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI, the graph solvers' distances from vertex ids are computed on the pieces when they
-  // carry global ids (the same decision on every process: it depends on properties and on
-  // CanUse, which is collective); everything else gathers the surface.
+  // Under MPI, the graph and exact solvers' distances from vertex ids are computed on the pieces
+  // when they hold triangles only (the same decision on every process: it depends on properties
+  // and on CanUse, which is collective); everything else gathers the surface.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);

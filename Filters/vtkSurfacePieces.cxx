@@ -62,10 +62,6 @@ std::string Lacks(vtkPolyData* piece)
   {
     return "triangle strips";
   }
-  if (!piece->GetPointData()->GetGlobalIds() || !piece->GetCellData()->GetGlobalIds())
-  {
-    return "global point and cell ids";
-  }
   auto it = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
   {
@@ -208,41 +204,75 @@ bool vtkSurfacePieces::UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
     return true;
   }
   this->HasPiece = this->HasGraph = false;
-  // This process's triangles, with their points' and their own global ids.
-  gs::PieceTriangles own;
-  this->PointIds.assign(static_cast<std::size_t>(ownCells->GetNumberOfPoints()), -1);
-  std::vector<int> pointOf(this->PointIds.size(), -1);
+  // This process's triangles (on the piece's points, in cell order).
+  const std::size_t np = static_cast<std::size_t>(ownCells->GetNumberOfPoints());
+  std::vector<std::array<int, 3>> triangles;
   if (ownCells->GetNumberOfPolys() > 0)
   {
-    vtkDataArray* pointIds = ownCells->GetPointData()->GetGlobalIds();
-    vtkDataArray* cellIds = ownCells->GetCellData()->GetGlobalIds();
-    const vtkIdType firstPoly = ownCells->GetNumberOfVerts() + ownCells->GetNumberOfLines();
     auto it = vtk::TakeSmartPointer(ownCells->GetPolys()->NewIterator());
-    vtkIdType cell = firstPoly;
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
     {
       vtkIdType n;
       const vtkIdType* pts;
       it->GetCurrentCell(n, pts);
-      std::array<int, 3> t{};
-      for (int k = 0; k < 3; ++k)
-      {
-        int& p = pointOf[static_cast<std::size_t>(pts[k])];
-        if (p < 0)
-        {
-          double x[3];
-          ownCells->GetPoint(pts[k], x);
-          p = static_cast<int>(own.Points.size());
-          own.Points.emplace_back(x[0], x[1], x[2]);
-          own.PointIds.push_back(GlobalId(pointIds, pts[k]));
-          this->PointIds[static_cast<std::size_t>(pts[k])] = own.PointIds.back();
-        }
-        t[static_cast<std::size_t>(k)] = p;
-      }
-      own.Triangles.push_back(t);
-      own.TriangleIds.push_back(GlobalId(cellIds, cell));
+      triangles.push_back({ static_cast<int>(pts[0]), static_cast<int>(pts[1]),
+        static_cast<int>(pts[2]) });
     }
   }
+  // Their ids: the given global ids when every piece with points has them, otherwise the
+  // numbering of the gathered surface (as gathering would number them).
+  vtkDataArray* pointIds = ownCells->GetPointData()->GetGlobalIds();
+  vtkDataArray* cellIds = ownCells->GetCellData()->GetGlobalIds();
+  this->GivenIds = Comm->Sum(np > 0 && (!pointIds || !cellIds) ? 1 : 0) == 0;
+  std::vector<gs::Vec3> positions(np);
+  for (std::size_t i = 0; i < np; ++i)
+  {
+    double x[3];
+    ownCells->GetPoint(static_cast<vtkIdType>(i), x);
+    positions[i] = gs::Vec3(x[0], x[1], x[2]);
+  }
+  gs::GatheredNumbering numbering;
+  if (this->GivenIds)
+  {
+    numbering.PointIds.resize(np);
+    for (std::size_t i = 0; i < np; ++i)
+    {
+      numbering.PointIds[i] = GlobalId(pointIds, static_cast<vtkIdType>(i));
+    }
+    const vtkIdType firstPoly = ownCells->GetNumberOfVerts() + ownCells->GetNumberOfLines();
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+    {
+      numbering.TriangleIds.push_back(GlobalId(cellIds, firstPoly + static_cast<vtkIdType>(t)));
+    }
+  }
+  else if (!Reported(self, "Numbering the distributed surface: ",
+             gs::NumberAsGathered(positions, triangles, *Comm, numbering)))
+  {
+    return false;
+  }
+  this->FirstPoint = numbering.FirstPoint;
+  // The piece: the points the triangles use, with their ids.
+  gs::PieceTriangles own;
+  this->PointIds.assign(np, -1);
+  std::vector<int> pointOf(np, -1);
+  for (const std::array<int, 3>& corners : triangles)
+  {
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::size_t q = static_cast<std::size_t>(corners[static_cast<std::size_t>(k)]);
+      if (pointOf[q] < 0)
+      {
+        pointOf[q] = static_cast<int>(own.Points.size());
+        own.Points.push_back(positions[q]);
+        own.PointIds.push_back(numbering.PointIds[q]);
+        this->PointIds[q] = numbering.PointIds[q];
+      }
+      t[static_cast<std::size_t>(k)] = pointOf[q];
+    }
+    own.Triangles.push_back(t);
+  }
+  own.TriangleIds = std::move(numbering.TriangleIds);
   if (!Reported(self, "The distributed surface: ", this->SurfacePieceState.Build(own, 0, *Comm)))
   {
     return false;
@@ -250,6 +280,20 @@ bool vtkSurfacePieces::UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
   this->HasPiece = true;
   this->PieceKey = key;
   return true;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::int64_t> vtkSurfacePieces::SurfaceIds(const std::vector<vtkIdType>& pointIds)
+{
+  std::vector<std::int64_t> ids;
+  for (const vtkIdType id : pointIds)
+  {
+    const std::int64_t serial = static_cast<std::int64_t>(id);
+    ids.push_back(this->GivenIds
+        ? serial
+        : gs::GatheredPointId(this->PointIds, this->FirstPoint, serial, *Comm));
+  }
+  return ids;
 }
 
 //------------------------------------------------------------------------------
@@ -285,7 +329,7 @@ bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkIdType source, double radius
   gs::PiecePolarCoordinates& chart)
 {
   if (!Reported(self, "Geodesic polar coordinates about the source point: ",
-        gs::ComputePolarOnPieces(this->SurfacePieceState, source, radius,
+        gs::ComputePolarOnPieces(this->SurfacePieceState, this->SurfaceIds({ source })[0], radius,
           gs::Vec3(referenceDirection[0], referenceDirection[1], referenceDirection[2]), *Comm,
           chart)))
   {
@@ -301,9 +345,9 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType
   double maxDistance, bool refine, std::vector<double>& perPoint)
 {
   std::vector<std::pair<std::int64_t, double>> seeds;
-  for (const vtkIdType id : sources)
+  for (const std::int64_t id : this->SurfaceIds(sources))
   {
-    seeds.push_back({ static_cast<std::int64_t>(id), 0.0 });
+    seeds.push_back({ id, 0.0 });
   }
   gs::PieceDistanceSolver solver(this->GraphState);
   if (!Reported(self, "Source vertex ids: ", solver.Solve(seeds, maxDistance, *Comm, refine)))
@@ -341,7 +385,7 @@ bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
   {
     return false;
   }
-  const std::vector<std::int64_t> ids(sources.begin(), sources.end());
+  const std::vector<std::int64_t> ids = this->SurfaceIds(sources);
   gs::ExactPiecesResult result;
   if (!Reported(self, "Source vertex ids: ",
         gs::ComputeExactOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm, result,

@@ -6,9 +6,11 @@
 // vtkMultiProcessController. Each process keeps its own cells; it gathers from its neighbours
 // only the band of faces its vertices' solves (or the chart) need.
 //
-// The pieces must carry global point and cell ids (GetGlobalIds of the point and cell data:
-// Redistribute DataSet, Global Point And Cell Ids, D3, a partitioned file written with them) and
-// hold triangles only (vertex and line cells are ignored, as serially). Ghost cells are dropped.
+// The pieces hold triangles only (vertex and line cells are ignored, as serially); ghost cells
+// are dropped. Their global point and cell ids (GetGlobalIds of the point and cell data:
+// Redistribute DataSet, Global Point And Cell Ids, D3, a partitioned file written with them)
+// number the surface; pieces without them are numbered as gathering them would number them
+// (PieceNumbering.h), so that point ids keep their serial meaning either way.
 //
 // Every member is collective: every process calls it, in the same order.
 //
@@ -18,6 +20,7 @@
 
 #include "ExactPieces.h"
 #include "GraphPieces.h"
+#include "PieceNumbering.h"
 #include "PolarPieces.h"
 #include "SaddleVertexGraph.h"
 #include "SurfacePiece.h"
@@ -63,24 +66,24 @@ public:
   bool UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
     const gs::SaddleVertexGraphOptions& options, double from, double to, bool& built);
 
-  // Distances from the points of global ids `sources` to every point of `ownCells` (the piece
-  // UseGraph was given), refined by geodesic triangle unfolding when `refine`: NaN where
-  // unreached, beyond maxDistance (> 0) or not on a triangle. False (error on `self`) on every
+  // Distances from the points `sources` (serial point ids, see SurfaceIds) to every point of
+  // `ownCells` (the piece UseGraph was given), refined by geodesic triangle unfolding when
+  // `refine`: NaN where unreached, beyond maxDistance (> 0) or not on a triangle. False (error on `self`) on every
   // process when a source id is no point of the surface.
   bool Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources, double maxDistance,
     bool refine, std::vector<double>& perPoint);
 
-  // Exact distances (window propagation on the pieces, ExactPieces.h) from the points of global
-  // ids `sources` to every point of `ownCells` (the piece of UsePiece, with `key`): NaN where
+  // Exact distances (window propagation on the pieces, ExactPieces.h) from the points `sources`
+  // (serial point ids) to every point of `ownCells` (the piece of UsePiece, with `key`): NaN where
   // unreached, beyond maxDistance (> 0) or not on a triangle. Progress from `self`, abortable.
   // False (error on `self`) on every process when a source id is no point of the surface, or
   // when it aborted.
   bool ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
     const std::vector<vtkIdType>& sources, double maxDistance, std::vector<double>& perPoint);
 
-  // Geodesic polar coordinates about the point of global id `source` within `radius` (finite),
-  // theta's zero from `referenceDirection` (all zero: the source's first edge), at every point
-  // of the piece UsePiece was given (NaN outside the chart); `chart` says what the chart's
+  // Geodesic polar coordinates about the point `source` (a serial point id) within `radius`
+  // (finite), theta's zero from `referenceDirection` (all zero: the source's first edge), at
+  // every point of the piece UsePiece was given (NaN outside the chart); `chart` says what the chart's
   // process found (angle sum, a reference direction normal to the surface, its faces). False
   // (error on `self`) on every process when it fails.
   bool Polar(vtkAlgorithm* self, vtkIdType source, double radius, const double referenceDirection[3],
@@ -110,6 +113,13 @@ private:
   gs::SaddleVertexGraphOptions Options;
   // Per point of the piece's own cells: its global id, or -1 when no triangle uses it.
   std::vector<std::int64_t> PointIds;
+  // Whether the pieces carry global ids; otherwise the ids number the gathered surface
+  // (PieceNumbering.h), and FirstPoint is the gathered index of this piece's first point.
+  bool GivenIds = true;
+  std::int64_t FirstPoint = 0;
+  // Collective. The global ids of points given as the serial run numbers them (global ids, or
+  // indices of the gathered surface's points; -1 for a point no triangle uses).
+  std::vector<std::int64_t> SurfaceIds(const std::vector<vtkIdType>& pointIds);
 };
 
 #endif
