@@ -197,13 +197,9 @@ bool vtkSurfacePieces::CanUse(vtkPolyData* ownCells, std::string& why)
 }
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePieces::UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key)
+bool vtkSurfacePieces::OwnTriangles(
+  vtkAlgorithm* self, vtkPolyData* ownCells, gs::PieceTriangles& own)
 {
-  if (Comm->Sum(this->HasPiece && key == this->PieceKey ? 0 : 1) == 0)
-  {
-    return true;
-  }
-  this->HasPiece = this->HasGraph = false;
   // This process's triangles (on the piece's points, in cell order).
   const std::size_t np = static_cast<std::size_t>(ownCells->GetNumberOfPoints());
   std::vector<std::array<int, 3>> triangles;
@@ -252,7 +248,6 @@ bool vtkSurfacePieces::UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
   }
   this->FirstPoint = numbering.FirstPoint;
   // The piece: the points the triangles use, with their ids.
-  gs::PieceTriangles own;
   this->PointIds.assign(np, -1);
   std::vector<int> pointOf(np, -1);
   for (const std::array<int, 3>& corners : triangles)
@@ -273,7 +268,26 @@ bool vtkSurfacePieces::UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
     own.Triangles.push_back(t);
   }
   own.TriangleIds = std::move(numbering.TriangleIds);
-  if (!Reported(self, "The distributed surface: ", this->SurfacePieceState.Build(own, 0, *Comm)))
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::UsePiece(
+  vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key, int rings)
+{
+  if (Comm->Sum(this->HasPiece && key == this->PieceKey ? 0 : 1) == 0)
+  {
+    return true;
+  }
+  this->HasPiece = this->HasGraph = false;
+  // (The triangles are made in their own scope: what made them is freed before the band.)
+  gs::PieceTriangles own;
+  if (!this->OwnTriangles(self, ownCells, own))
+  {
+    return false;
+  }
+  if (!Reported(
+        self, "The distributed surface: ", this->SurfacePieceState.Build(own, rings, *Comm)))
   {
     return false;
   }
@@ -381,7 +395,8 @@ bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
   vtkMTimeType key, const std::vector<vtkIdType>& sources, double maxDistance,
   std::vector<double>& perPoint)
 {
-  if (!this->UsePiece(self, ownCells, key))
+  // (The exact solve needs two rings: made at once, the band is not restored and grown.)
+  if (!this->UsePiece(self, ownCells, key, 1))
   {
     return false;
   }

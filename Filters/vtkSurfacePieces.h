@@ -55,9 +55,10 @@ public:
   bool CanUse(vtkPolyData* ownCells, std::string& why);
 
   // This process's piece of the surface from `ownCells` (a piece without ghost cells), kept
-  // while every process passes the same `key` (the input's modification time). Errors are
-  // reported on `self`; false on every process when one fails.
-  bool UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key);
+  // while every process passes the same `key` (the input's modification time); a new piece
+  // gathers `rings` rings of faces around its own (SurfacePiece::Build). Errors are reported on
+  // `self`; false on every process when one fails.
+  bool UsePiece(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key, int rings = 0);
 
   // The band and graph for `ownCells` with `options`, kept while every process passes the same
   // `key` (the input's modification time) and options; built otherwise (progress from `self`,
@@ -120,6 +121,10 @@ private:
   // Collective. The global ids of points given as the serial run numbers them (global ids, or
   // indices of the gathered surface's points; -1 for a point no triangle uses).
   std::vector<std::int64_t> SurfaceIds(const std::vector<vtkIdType>& pointIds);
+  // Collective. This process's triangles of `ownCells` with their ids (given, or numbered as
+  // the gathered surface numbers them), into `own`; sets PointIds, GivenIds and FirstPoint.
+  // False (error on `self`) on every process when the numbering fails.
+  bool OwnTriangles(vtkAlgorithm* self, vtkPolyData* ownCells, gs::PieceTriangles& own);
 };
 
 #endif

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 namespace gs
 {
@@ -46,10 +45,6 @@ public:
     for (int f = 0; f < nf; ++f)
     {
       OtherFace[static_cast<std::size_t>(f)] = Piece.IsOwnFace(f) ? 0 : 1;
-      if (Piece.IsOwnFace(f))
-      {
-        OwnFaceOf[Piece.FaceId(f)] = f;
-      }
     }
     OtherVertex.resize(static_cast<std::size_t>(nv));
     for (int v = 0; v < nv; ++v)
@@ -90,7 +85,6 @@ private:
   ExactGeodesicSolver Solver;
   ExactGeodesicSolver::PieceRoute Route;
   std::vector<unsigned char> OtherFace, OtherVertex;
-  std::unordered_map<std::int64_t, int> OwnFaceOf;
   std::int64_t Sent = 0;
 };
 
@@ -188,9 +182,10 @@ std::int64_t ExactPieceSolve::Pack(std::vector<ByteBuffer>& out)
     const int f = w.H / 3;
     ByteWriter put(out[static_cast<std::size_t>(Piece.FaceOwner(f))]);
     put.Put(WindowItem);
-    put.Put(Piece.FaceId(f));
+    // The edge, and the face's third corner (the face across the edge has another).
     put.Put(Piece.GlobalId(Mesh.Origin(w.H)));
     put.Put(Piece.GlobalId(Mesh.Destination(w.H)));
+    put.Put(Piece.GlobalId(Mesh.Opposite(w.H)));
     for (const double x : { w.Key, w.B0, w.B1, w.Ix, w.Iy, w.Sigma, w.Phi })
     {
       put.Put(x);
@@ -232,45 +227,48 @@ std::int64_t ExactPieceSolve::Pack(std::vector<ByteBuffer>& out)
 
 bool ExactPieceSolve::UnpackWindow(ByteReader& r)
 {
-  std::int64_t faceId = 0, a = 0, b = 0;
+  std::int64_t a = 0, b = 0, c = 0;
   Window w;
-  if (!(r.Get(faceId) && r.Get(a) && r.Get(b) && r.Get(w.Key) && r.Get(w.B0) && r.Get(w.B1) &&
+  if (!(r.Get(a) && r.Get(b) && r.Get(c) && r.Get(w.Key) && r.Get(w.B0) && r.Get(w.B1) &&
         r.Get(w.Ix) && r.Get(w.Iy) && r.Get(w.Sigma) && r.Get(w.Phi) && r.Get(w.Src) &&
         r.Get(w.Root)))
   {
     return false;
   }
-  const auto it = OwnFaceOf.find(faceId);
-  if (it == OwnFaceOf.end())
+  const int va = Piece.Vertex(a), vb = Piece.Vertex(b), vc = Piece.Vertex(c);
+  if (va < 0 || vb < 0 || vc < 0)
   {
     return false;
   }
-  for (int k = 0; k < 3; ++k)
+  // The half-edge between a and b in the face whose third corner is c.
+  int h = -1;
+  Mesh.ForEachOutgoingHalfedge(va, [&](int e) {
+    const int back = TriangleMesh::Prev(e); // into a, in e's face
+    if (Mesh.Destination(e) == vb && Mesh.Opposite(e) == vc)
+    {
+      h = e;
+    }
+    else if (Mesh.Origin(back) == vb && Mesh.Destination(e) == vc)
+    {
+      h = back; // the face runs b -> a here
+    }
+  });
+  if (h < 0 || !Piece.IsOwnFace(h / 3))
   {
-    const int h = 3 * it->second + k;
-    const std::int64_t o = Piece.GlobalId(Mesh.Origin(h)), d = Piece.GlobalId(Mesh.Destination(h));
-    if (o == a && d == b)
-    {
-      w.H = h;
-    }
-    else if (o == b && d == a)
-    {
-      // The face is oriented the other way here: the same frame mirrored along the edge (y
-      // still points into the face).
-      const double L = Mesh.EdgeLength(h), b0 = w.B0;
-      w.H = h;
-      w.Ix = L - w.Ix;
-      w.B0 = std::max(0.0, L - w.B1);
-      w.B1 = std::min(L, L - b0);
-    }
-    else
-    {
-      continue;
-    }
-    Solver.PushWindow(w);
-    return true;
+    return false;
   }
-  return false;
+  w.H = h;
+  if (Mesh.Origin(h) != va)
+  {
+    // The face is oriented the other way here: the same frame mirrored along the edge (y still
+    // points into the face).
+    const double L = Mesh.EdgeLength(h), b0 = w.B0;
+    w.Ix = L - w.Ix;
+    w.B0 = std::max(0.0, L - w.B1);
+    w.B1 = std::min(L, L - b0);
+  }
+  Solver.PushWindow(w);
+  return true;
 }
 
 bool ExactPieceSolve::UnpackVertex(ByteReader& r)

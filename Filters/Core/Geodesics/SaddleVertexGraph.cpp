@@ -16,9 +16,6 @@
 #include <memory>
 
 #include <unistd.h>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -27,16 +24,6 @@
 namespace gs
 {
 
-// (The build hands freed memory back after each slab of its gathering, so that the per-vertex
-// blocks gathered and the arrays they fill are not both resident whole: the peak at 711K
-// vertices with reached stencils went from 3.9 KB to 2.1 KB per vertex with the gathering in
-// slabs.)
-void ReturnFreedMemory()
-{
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
 
 namespace
 {

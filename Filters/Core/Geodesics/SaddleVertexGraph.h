@@ -14,6 +14,7 @@
 // file keyed by a hash of the mesh geometry.
 #pragma once
 
+#include "Memory.h"
 #include "Status.h"
 #include "TriangleMesh.h"
 
@@ -29,24 +30,6 @@
 
 namespace gs
 {
-
-// A memory hint: load the cache line holding p (no effect on results).
-inline void Prefetch(const void* p)
-{
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-  // (An asm statement: GCC deletes loops holding nothing but __builtin_prefetch.)
-  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
-#elif defined(__GNUC__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
-
-// Blocks freed inside the heap stay resident until they are handed back to the system: builds
-// that free many small per-vertex blocks before allocating large arrays call this between the
-// two (no effect on results).
-void ReturnFreedMemory();
 
 // Called with the fraction done (0..1) from the calling thread; returning false aborts.
 using ProgressCallback = std::function<bool(double)>;

@@ -1,5 +1,7 @@
 #include "SurfacePiece.h"
 
+#include "Memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -45,9 +47,9 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
 {
   MyRank = comm.Rank();
   NumRings = 0;
-  Faces.clear();
-  Vertices.clear();
-  OwnStar.clear();
+  DropRecords();
+  FaceIds.clear();
+  VertexIds.clear();
   std::vector<std::int64_t> frontier;
 
   Status valid;
@@ -123,6 +125,7 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
       frontier.push_back(edge.second);
     }
   }
+  edgeUses.clear();
   std::sort(frontier.begin(), frontier.end());
   frontier.erase(std::unique(frontier.begin(), frontier.end()), frontier.end());
   // The other own vertices are surrounded by own faces: complete already.
@@ -199,6 +202,7 @@ std::vector<std::int64_t> SurfacePiece::Pinched() const
 
 Status SurfacePiece::Grow(int rings, PieceCommunicator& comm)
 {
+  RestoreRecords();
   for (int r = 0; r < rings; ++r)
   {
     GatherRing(Incomplete(), comm);
@@ -210,6 +214,7 @@ Status SurfacePiece::Grow(int rings, PieceCommunicator& comm)
 Status SurfacePiece::GrowAround(
   const std::vector<std::int64_t>& around, int rings, PieceCommunicator& comm)
 {
+  RestoreRecords();
   std::vector<std::int64_t> frontier;
   for (const std::int64_t v : around)
   {
@@ -241,7 +246,10 @@ Status SurfacePiece::Finish(PieceCommunicator& comm)
     }
     GatherRing(pinched, comm);
   }
-  return MakeMesh(comm);
+  // (The records and the mesh build's temporaries are gone once MakeMesh returns.)
+  const Status made = MakeMesh(comm);
+  ReturnFreedMemory();
+  return made;
 }
 
 std::vector<std::int64_t> SurfacePiece::GatherRing(
@@ -353,11 +361,9 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
     VertexIds.push_back(id);
   }
   std::sort(VertexIds.begin(), VertexIds.end());
-  LocalOf.clear();
   std::vector<Vec3> points(VertexIds.size());
   for (std::size_t i = 0; i < VertexIds.size(); ++i)
   {
-    LocalOf.emplace(VertexIds[i], static_cast<int>(i));
     points[i] = Vertices.at(VertexIds[i]).P;
   }
   std::vector<std::array<long long, 3>> triangles(FaceIds.size());
@@ -367,7 +373,7 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
     const FaceRecord& face = Faces.at(FaceIds[f]);
     for (int k = 0; k < 3; ++k)
     {
-      triangles[f][static_cast<std::size_t>(k)] = LocalOf.at(face.V[static_cast<std::size_t>(k)]);
+      triangles[f][static_cast<std::size_t>(k)] = Vertex(face.V[static_cast<std::size_t>(k)]);
     }
     FaceOwners[f] = face.Owner;
   }
@@ -379,6 +385,17 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
     Local = TriangleMesh();
     return Status::Error("the surface has no triangles");
   }
+  // Each complete vertex's owner; then the records are dropped (not resident with the mesh
+  // that is made from them, nor with the old one).
+  Owners.assign(VertexIds.size(), -1);
+  for (std::size_t v = 0; v < VertexIds.size(); ++v)
+  {
+    const VertexRecord& r = Vertices.at(VertexIds[v]);
+    Owners[v] = r.Complete ? r.Owner : -1;
+  }
+  DropRecords();
+  Local = TriangleMesh();
+  ReturnFreedMemory();
   Status made;
   Result<MeshBuild> built = triangles.empty() ? Result<MeshBuild>(MeshBuild())
                                               : TriangleMeshBuilder::Build(points, triangles);
@@ -398,17 +415,18 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
     return agreed;
   }
   Local = std::move(built->Mesh);
-
-  Owners.assign(VertexIds.size(), -1);
-  OwnedCount = 0;
-  for (std::size_t v = 0; v < VertexIds.size(); ++v)
+  // The mesh turns a face against its record by swapping its corners 1 and 2.
+  Flipped.assign(FaceIds.size(), 0);
+  for (int f = 0; f < Local.NumberOfFaces(); ++f)
   {
-    const VertexRecord& r = Vertices.at(VertexIds[v]);
-    if (r.Complete)
-    {
-      Owners[v] = r.Owner;
-      OwnedCount += r.Owner == MyRank ? 1 : 0;
-    }
+    Flipped[static_cast<std::size_t>(f)] =
+      Local.Face(f)[1] != triangles[static_cast<std::size_t>(f)][1] ? 1 : 0;
+  }
+
+  OwnedCount = 0;
+  for (const int owner : Owners)
+  {
+    OwnedCount += owner == MyRank ? 1 : 0;
   }
   FenceFaces.assign(FaceIds.size(), 0);
   for (int f = 0; f < Local.NumberOfFaces(); ++f)
@@ -423,6 +441,50 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
   }
   GlobalVertexCount = comm.Sum(OwnedCount);
   return Status();
+}
+
+void SurfacePiece::DropRecords()
+{
+  // (Swapped with empty containers: clear() would keep their buckets.)
+  std::unordered_map<std::int64_t, FaceRecord>().swap(Faces);
+  std::unordered_map<std::int64_t, VertexRecord>().swap(Vertices);
+  std::unordered_map<std::int64_t, std::vector<std::int64_t>>().swap(OwnStar);
+}
+
+void SurfacePiece::RestoreRecords()
+{
+  if (!Faces.empty() || FaceIds.empty())
+  {
+    return;
+  }
+  const int maxOwner = std::numeric_limits<int>::max();
+  for (std::size_t v = 0; v < VertexIds.size(); ++v)
+  {
+    Vertices.emplace(
+      VertexIds[v], VertexRecord{ Local.Position(static_cast<int>(v)), maxOwner, Owners[v] >= 0 });
+  }
+  for (std::size_t f = 0; f < FaceIds.size(); ++f)
+  {
+    const auto& corners = Local.Face(static_cast<int>(f));
+    FaceRecord face;
+    for (int k = 0; k < 3; ++k)
+    {
+      face.V[static_cast<std::size_t>(k)] = VertexIds[static_cast<std::size_t>(corners[k])];
+    }
+    if (Flipped[f])
+    {
+      std::swap(face.V[1], face.V[2]);
+    }
+    face.Owner = FaceOwners[f];
+    AddFace(FaceIds[f], face);
+    if (face.Owner == MyRank)
+    {
+      for (const std::int64_t v : face.V)
+      {
+        OwnStar[v].push_back(FaceIds[f]); // (faces in increasing id order: sorted lists)
+      }
+    }
+  }
 }
 
 void SurfacePiece::AppendIncompleteVertices(
@@ -442,8 +504,8 @@ void SurfacePiece::AppendIncompleteVertices(
 
 int SurfacePiece::Vertex(std::int64_t globalId) const
 {
-  const auto it = LocalOf.find(globalId);
-  return it == LocalOf.end() ? -1 : it->second;
+  const auto it = std::lower_bound(VertexIds.begin(), VertexIds.end(), globalId);
+  return it != VertexIds.end() && *it == globalId ? static_cast<int>(it - VertexIds.begin()) : -1;
 }
 
 } // namespace gs

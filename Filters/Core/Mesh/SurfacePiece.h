@@ -103,20 +103,25 @@ private:
   // The incomplete vertices, and those of them whose faces in the piece form several fans.
   std::vector<std::int64_t> Incomplete() const;
   std::vector<std::int64_t> Pinched() const;
-  // Makes the piece's mesh from the records (collective: the processes agree on failure).
+  // Makes the piece's mesh from the records (collective: the processes agree on failure), then
+  // drops the records: between growths the piece keeps its mesh and per-vertex and per-face
+  // arrays only (about a third of the memory), from which RestoreRecords makes them again.
   Status MakeMesh(PieceCommunicator& comm);
+  void DropRecords();
+  void RestoreRecords();
 
   int MyRank = 0;
   int NumRings = 0;
+  // The records, while the band grows.
   std::unordered_map<std::int64_t, FaceRecord> Faces;
   std::unordered_map<std::int64_t, VertexRecord> Vertices;
   // This process's own faces by global vertex id (to answer requests).
   std::unordered_map<std::int64_t, std::vector<std::int64_t>> OwnStar;
   TriangleMesh Local;
-  std::vector<std::int64_t> VertexIds, FaceIds;
+  std::vector<std::int64_t> VertexIds, FaceIds; // sorted: local numbers follow them
   std::vector<int> Owners, FaceOwners;
   std::vector<unsigned char> FenceFaces;
-  std::unordered_map<std::int64_t, int> LocalOf;
+  std::vector<unsigned char> Flipped; // per face: the mesh swapped its record's corners 1 and 2
   double Diagonal = 0.0;
   std::int64_t OwnedCount = 0, GlobalVertexCount = 0;
 };
