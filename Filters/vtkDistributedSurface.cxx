@@ -544,6 +544,33 @@ int vtkDistributedSurface::RequestData(vtkAlgorithm* self, vtkInformationVector*
 }
 
 //------------------------------------------------------------------------------
+bool vtkDistributedSurface::GatherAuxiliaryPoints(
+  vtkPointSet* piece, std::vector<double>& xyz) const
+{
+  xyz.clear();
+  vtkSmartPointer<vtkPointSet> all = this->GatherAuxiliary(piece);
+  vtkIdType count = 0; // -1: line cells
+  if (this->IsRoot() && all)
+  {
+    vtkPolyData* poly = vtkPolyData::SafeDownCast(all);
+    count = poly && poly->GetNumberOfLines() > 0 ? -1 : all->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      double x[3];
+      all->GetPoint(i, x);
+      xyz.insert(xyz.end(), x, x + 3);
+    }
+  }
+  this->Controller->Broadcast(&count, 1, 0);
+  if (count > 0)
+  {
+    xyz.resize(3 * static_cast<std::size_t>(count));
+    this->Controller->Broadcast(xyz.data(), 3 * count, 0);
+  }
+  return count >= 0;
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkPointSet> vtkDistributedSurface::GatherAuxiliary(vtkPointSet* piece) const
 {
   vtkSmartPointer<vtkPointSet> mine = piece;

@@ -95,6 +95,11 @@ public:
   // input is then not connected); nullptr elsewhere.
   vtkSmartPointer<vtkPointSet> GatherAuxiliary(vtkPointSet* piece) const;
 
+  // Collective. The points of an optional point set as GatherAuxiliary gathers it, on every
+  // process (x, y, z of each point in order; none when the input is not connected): true, or
+  // false (and `xyz` empty) on every process when it holds line cells (curves).
+  bool GatherAuxiliaryPoints(vtkPointSet* piece, std::vector<double>& xyz) const;
+
   // Collective. On process 0 the first piece, in rank order, with at least one point (process
   // 0's own when all are empty); nullptr elsewhere.
   vtkSmartPointer<vtkDataObject> GatherFirstNonEmpty(vtkDataObject* piece) const;

@@ -120,15 +120,20 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (distributed && input && output &&
-    (this->UsesGraph() ||
-      static_cast<gs::GeodesicSolver>(this->Solver) == gs::GeodesicSolver::Exact) &&
-    inputVector[1]->GetNumberOfInformationObjects() == 0 && this->CacheFileName.empty())
+  // The exact solver takes source points (no curves) on the pieces too.
+  const bool exact = static_cast<gs::GeodesicSolver>(this->Solver) == gs::GeodesicSolver::Exact;
+  const bool sourcesPort = inputVector[1]->GetNumberOfInformationObjects() > 0;
+  if (distributed && input && output && (this->UsesGraph() || exact) &&
+    (exact || !sourcesPort) && this->CacheFileName.empty())
   {
-    if (vtkSmartPointer<vtkPolyData> own =
-          vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input))
+    std::vector<double> xyz;
+    const bool points = !sourcesPort ||
+      distributed.GatherAuxiliaryPoints(vtkPointSet::GetData(inputVector[1], 0), xyz);
+    vtkSmartPointer<vtkPolyData> own =
+      points ? vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input) : nullptr;
+    if (own)
     {
-      return this->ExecutePieces(input, own, output);
+      return this->ExecutePieces(input, own, output, sourcesPort ? &xyz : nullptr);
     }
   }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
@@ -138,7 +143,8 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
 }
 
 //------------------------------------------------------------------------------
-int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output)
+int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
+  vtkPolyData* output, const std::vector<double>* sourceXyz)
 {
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
@@ -151,11 +157,19 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, 
     return 1;
   }
   const bool exact = static_cast<gs::GeodesicSolver>(this->Solver) == gs::GeodesicSolver::Exact;
-  if (this->ResultArrayName.empty() || !(this->MaximumDistance >= 0.0) ||
-    this->SourceVertexIds.empty())
+  // Source points (the Sources port) replace the vertex ids, as serially.
+  std::vector<gs::Vec3> sourcePoints;
+  for (std::size_t i = 0; sourceXyz && i + 2 < sourceXyz->size(); i += 3)
+  {
+    sourcePoints.emplace_back((*sourceXyz)[i], (*sourceXyz)[i + 1], (*sourceXyz)[i + 2]);
+  }
+  const std::vector<vtkIdType> sourceIds =
+    sourceXyz ? std::vector<vtkIdType>() : this->SourceVertexIds;
+  const bool noSource = sourceXyz ? sourcePoints.empty() : sourceIds.empty();
+  if (this->ResultArrayName.empty() || !(this->MaximumDistance >= 0.0) || noSource)
   {
     vtkErrorMacro(<< (this->ResultArrayName.empty() ? "ResultArrayName is empty."
-                        : this->SourceVertexIds.empty()
+                        : noSource
                         ? "No source: set SourceVertexIds or connect source points or lines to "
                           "the Sources port (with at least one point)."
                         : "MaximumDistance must be at least 0 (0 or infinity: unlimited)."));
@@ -166,7 +180,7 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own, 
   if (exact)
   {
     if (!this->Pieces->ExactDistances(
-          this, own, input->GetMTime(), this->SourceVertexIds, this->MaximumDistance, distances))
+          this, own, input->GetMTime(), sourceIds, sourcePoints, this->MaximumDistance, distances))
     {
       return 1;
     }

@@ -1,6 +1,7 @@
 #include "vtkSurfacePieces.h"
 
 #include "vtkDistributedSurface.h"
+#include "vtkSurfacePointLocator.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
@@ -8,14 +9,17 @@
 #include <vtkCellData.h>
 #include <vtkCommunicator.h>
 #include <vtkDataArray.h>
+#include <vtkGenericCell.h>
 #include <vtkMultiProcessController.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStaticCellLocator.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace
 {
@@ -268,6 +272,7 @@ bool vtkSurfacePieces::OwnTriangles(
     own.Triangles.push_back(t);
   }
   own.TriangleIds = std::move(numbering.TriangleIds);
+  this->TriangleIds = own.TriangleIds;
   return true;
 }
 
@@ -392,8 +397,8 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType
 
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
-  vtkMTimeType key, const std::vector<vtkIdType>& sources, double maxDistance,
-  std::vector<double>& perPoint)
+  vtkMTimeType key, const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
+  double maxDistance, std::vector<double>& perPoint)
 {
   // (The exact solve needs two rings: made at once, the band is not restored and grown.)
   if (!this->UsePiece(self, ownCells, key, 1))
@@ -401,10 +406,15 @@ bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
     return false;
   }
   const std::vector<std::int64_t> ids = this->SurfaceIds(sources);
+  std::vector<gs::SurfacePoint> mine;
+  if (!this->SnapPoints(self, ownCells, points, mine))
+  {
+    return false;
+  }
   gs::ExactPiecesResult result;
-  if (!Reported(self, "Source vertex ids: ",
+  if (!Reported(self, points.empty() ? "Source vertex ids: " : "Source points: ",
         gs::ComputeExactOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm, result,
-          Progress(self, 0.1, 0.95))))
+          Progress(self, 0.1, 0.95), mine)))
   {
     return false;
   }
@@ -413,6 +423,93 @@ bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
   this->LastWindows = result.WindowsPropagated;
   this->LastWindowsSent = result.WindowsSent;
   perPoint = this->AtPoints(result.Distance, maxDistance);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells,
+  const std::vector<gs::Vec3>& points, std::vector<gs::SurfacePoint>& mine)
+{
+  mine.clear();
+  // The closest point of this process's own triangles to each point (distance, triangle, point).
+  vtkNew<vtkPolyData> triangles;
+  triangles->SetPoints(ownCells->GetPoints());
+  triangles->SetPolys(ownCells->GetPolys());
+  std::vector<double> distance(points.size(), std::numeric_limits<double>::infinity());
+  std::vector<vtkIdType> cell(points.size(), -1);
+  std::vector<std::array<double, 3>> closest(points.size());
+  vtkNew<vtkStaticCellLocator> locator;
+  vtkNew<vtkGenericCell> scratch;
+  if (triangles->GetNumberOfPolys() > 0)
+  {
+    locator->SetDataSet(triangles);
+    locator->BuildLocator();
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      const gs::Vec3& p = points[i];
+      double x[3] = { p.x, p.y, p.z }, dist2 = 0.0;
+      int subId = 0;
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+      {
+        locator->FindClosestPoint(x, closest[i].data(), scratch, cell[i], subId, dist2);
+        distance[i] = cell[i] >= 0 ? std::sqrt(dist2) : distance[i];
+      }
+    }
+  }
+  // The closest over the processes; the process holding it makes the surface point.
+  std::vector<double> smallest;
+  const std::vector<int> winner = gs::SmallestOverProcesses(*Comm, distance, smallest);
+  const double diagonal = this->SurfacePieceState.LengthScale();
+  const double reach = vtkSurfacePointLocator::MaximumDistanceFraction * diagonal;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const gs::Vec3& p = points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || winner[i] < 0 ||
+      smallest[i] > reach)
+    {
+      std::ostringstream why;
+      why << "Source point " << i << ": ";
+      if (winner[i] < 0)
+      {
+        why << "non-finite coordinates.";
+      }
+      else
+      {
+        why << "it lies " << smallest[i] << " from the surface, more than "
+            << vtkSurfacePointLocator::MaximumDistanceFraction
+            << " times the mesh's bounding box diagonal (" << diagonal
+            << "): check its coordinates.";
+      }
+      vtkErrorWithObjectMacro(self, << why.str());
+      return false;
+    }
+    if (winner[i] != Comm->Rank())
+    {
+      continue;
+    }
+    // Barycentric coordinates in the triangle's point order, matched to the piece's face
+    // corners by global id (the mesh may have turned the face).
+    double pcoords[3], weights[3], snapped[3], dist2 = 0.0;
+    int subId = 0;
+    triangles->GetCell(cell[i], scratch);
+    scratch->EvaluatePosition(closest[i].data(), snapped, subId, pcoords, dist2, weights);
+    const int face =
+      this->SurfacePieceState.Face(this->TriangleIds[static_cast<std::size_t>(cell[i])]);
+    gs::SurfacePoint q = gs::SurfacePoint::InFace(face, 0.0, 0.0, 0.0);
+    for (int k = 0; k < 3 && face >= 0; ++k)
+    {
+      const std::int64_t id = this->PointIds[static_cast<std::size_t>(scratch->GetPointId(k))];
+      for (int c = 0; c < 3; ++c)
+      {
+        const int corner = this->SurfacePieceState.Mesh().Face(face)[static_cast<std::size_t>(c)];
+        if (this->SurfacePieceState.GlobalId(corner) == id)
+        {
+          q.Bary[static_cast<std::size_t>(c)] = std::max(0.0, weights[k]);
+        }
+      }
+    }
+    mine.push_back(q);
+  }
   return true;
 }
 

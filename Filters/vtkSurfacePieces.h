@@ -69,24 +69,26 @@ public:
 
   // Distances from the points `sources` (serial point ids, see SurfaceIds) to every point of
   // `ownCells` (the piece UseGraph was given), refined by geodesic triangle unfolding when
-  // `refine`: NaN where unreached, beyond maxDistance (> 0) or not on a triangle. False (error on `self`) on every
-  // process when a source id is no point of the surface.
+  // `refine`: NaN where unreached, beyond maxDistance (> 0) or not on a triangle. False (error
+  // on `self`) on every process when a source id is no point of the surface.
   bool Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources, double maxDistance,
     bool refine, std::vector<double>& perPoint);
 
   // Exact distances (window propagation on the pieces, ExactPieces.h) from the points `sources`
-  // (serial point ids) to every point of `ownCells` (the piece of UsePiece, with `key`): NaN where
-  // unreached, beyond maxDistance (> 0) or not on a triangle. Progress from `self`, abortable.
-  // False (error on `self`) on every process when a source id is no point of the surface, or
-  // when it aborted.
+  // (serial point ids) and from `points` in space (the same list on every process, snapped to
+  // the surface as a serial run snaps them) to every point of `ownCells` (the piece of
+  // UsePiece, with `key`): NaN where unreached, beyond maxDistance (> 0) or not on a triangle.
+  // Progress from `self`, abortable. False (error on `self`) on every process when a source id
+  // is no point of the surface, a point cannot be snapped, or it aborted.
   bool ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
-    const std::vector<vtkIdType>& sources, double maxDistance, std::vector<double>& perPoint);
+    const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
+    double maxDistance, std::vector<double>& perPoint);
 
   // Geodesic polar coordinates about the point `source` (a serial point id) within `radius`
   // (finite), theta's zero from `referenceDirection` (all zero: the source's first edge), at
-  // every point of the piece UsePiece was given (NaN outside the chart); `chart` says what the chart's
-  // process found (angle sum, a reference direction normal to the surface, its faces). False
-  // (error on `self`) on every process when it fails.
+  // every point of the piece UsePiece was given (NaN outside the chart); `chart` says what the
+  // chart's process found (angle sum, a reference direction normal to the surface, its faces).
+  // False (error on `self`) on every process when it fails.
   bool Polar(vtkAlgorithm* self, vtkIdType source, double radius, const double referenceDirection[3],
     std::vector<double>& rho, std::vector<double>& theta, gs::PiecePolarCoordinates& chart);
 
@@ -114,6 +116,15 @@ private:
   gs::SaddleVertexGraphOptions Options;
   // Per point of the piece's own cells: its global id, or -1 when no triangle uses it.
   std::vector<std::int64_t> PointIds;
+  // Per triangle of the piece's own cells (in cell order): its global id.
+  std::vector<std::int64_t> TriangleIds;
+  // Collective. `points` snapped to the surface as vtkSurfacePointLocator snaps them serially
+  // (the closest point of the surface, within a quarter of its bounding box diagonal): each
+  // process finds the closest point of its own triangles, the closest over the processes wins
+  // (the lowest rank on a tie). `mine`: the points this process holds, on its piece's mesh.
+  // False (error on `self`, naming the point) on every process when one fails.
+  bool SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells, const std::vector<gs::Vec3>& points,
+    std::vector<gs::SurfacePoint>& mine);
   // Whether the pieces carry global ids; otherwise the ids number the gathered surface
   // (PieceNumbering.h), and FirstPoint is the gathered index of this piece's first point.
   bool GivenIds = true;

@@ -4,7 +4,8 @@
 // ties round differently), for several process counts and partitions (slabs, pieces with holes
 // and islands, pieces whose faces are oriented against their neighbours'), on a closed curved
 // mesh (saddles everywhere), a plane with a boundary, an L-shape (a reflex boundary corner) and a
-// torus; sources several and far apart, maximum distances; failures and aborts on every process.
+// torus; sources several and far apart, vertices and surface points (inside a face, on an edge
+// between two processes' faces), maximum distances; failures and aborts on every process.
 #include "ExactGeodesic.h"
 #include "ExactPieces.h"
 #include "MeshGenerators.h"
@@ -32,10 +33,12 @@ struct ExactRun
   std::vector<Status> Statuses;
 };
 
-// `flipped`: ranks whose own triangles are given the other way round.
+// `flipped`: ranks whose own triangles are given the other way round; `points`: face points of
+// the whole mesh, each added by the process whose face holds it.
 ExactRun RunExact(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
   const std::vector<std::int64_t>& sources, double maxDistance,
-  const std::vector<int>& flipped = {}, int abortingRank = -1)
+  const std::vector<int>& flipped = {}, int abortingRank = -1,
+  const std::vector<SurfacePoint>& points = {})
 {
   ExactRun run;
   run.Seen.resize(static_cast<std::size_t>(processes));
@@ -53,12 +56,35 @@ ExactRun RunExact(const TriangleMesh& mesh, const std::vector<int>& part, int pr
       }
     }
     SurfacePiece piece;
-    Status status = piece.Build(own, 0, comm);
+    // (Points name faces of the piece's mesh: it has its two rings before they are named.)
+    Status status = piece.Build(own, points.empty() ? 0 : 1, comm);
+    std::vector<SurfacePoint> mine;
+    for (const SurfacePoint& p : points)
+    {
+      if (part[static_cast<std::size_t>(p.Face)] != rank)
+      {
+        continue;
+      }
+      const int f = piece.Face(p.Face);
+      SurfacePoint q = SurfacePoint::InFace(f, 0.0, 0.0, 0.0);
+      for (int k = 0; k < 3; ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          if (piece.GlobalId(piece.Mesh().Face(f)[static_cast<std::size_t>(c)]) ==
+            mesh.Face(p.Face)[static_cast<std::size_t>(k)])
+          {
+            q.Bary[static_cast<std::size_t>(c)] = p.Bary[static_cast<std::size_t>(k)];
+          }
+        }
+      }
+      mine.push_back(q);
+    }
     ExactPiecesResult result;
     if (status.Ok())
     {
       status = ComputeExactOnPieces(piece, sources, maxDistance, comm, result,
-        [&](double) { return rank != abortingRank; });
+        [&](double) { return rank != abortingRank; }, mine);
     }
     std::lock_guard<std::mutex> guard(lock);
     run.Statuses[static_cast<std::size_t>(rank)] = status;
@@ -87,10 +113,10 @@ ExactRun RunExact(const TriangleMesh& mesh, const std::vector<int>& part, int pr
 
 void ExpectExactAsSerial(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
   const std::vector<std::int64_t>& sources, double maxDistance = 0.0,
-  const std::vector<int>& flipped = {})
+  const std::vector<int>& flipped = {}, const std::vector<SurfacePoint>& facePoints = {})
 {
   ExactGeodesicSolver serial(mesh);
-  std::vector<SurfacePoint> points;
+  std::vector<SurfacePoint> points = facePoints;
   for (const std::int64_t s : sources)
   {
     points.push_back(SurfacePoint::AtVertex(static_cast<int>(s)));
@@ -108,7 +134,8 @@ void ExpectExactAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
   }
   ASSERT_GT(largest, 0.0);
 
-  const ExactRun run = RunExact(mesh, part, processes, sources, maxDistance, flipped);
+  const ExactRun run =
+    RunExact(mesh, part, processes, sources, maxDistance, flipped, -1, facePoints);
   double worst = 0.0;
   std::size_t checked = 0, reached = 0;
   for (int rank = 0; rank < processes; ++rank)
@@ -182,6 +209,25 @@ TEST(ExactPieces, TorusWithPiecesOrientedAgainstTheirNeighbours)
     fine, gs_test::PartitionFaces(fine, 2, Vec3(1, 0, 0)), 2, { 7, 1500 }, 0.0, { 1 });
 }
 
+TEST(ExactPieces, SurfacePointSources)
+{
+  // A point inside a face, a point on an edge (the face across holds it too) and a vertex, on
+  // faces of different processes.
+  const TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
+  const std::vector<int> part = gs_test::PartitionFaces(mesh, 3, Vec3(1, 0.3, 0.1));
+  std::vector<SurfacePoint> points = { SurfacePoint::InFace(10, 0.2, 0.3, 0.5) };
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+  {
+    if (part[static_cast<std::size_t>(f)] == 2)
+    {
+      points.push_back(SurfacePoint::InFace(f, 0.0, 0.6, 0.4));
+      break;
+    }
+  }
+  ExpectExactAsSerial(mesh, part, 3, { 300 }, 0.0, {}, points);
+  ExpectExactAsSerial(mesh, part, 3, {}, 0.0, {}, points);
+}
+
 TEST(ExactPieces, FailuresAndAbortsOnEveryProcess)
 {
   const TriangleMesh mesh = gs_test::BuildMesh(MakePlanarGrid(6, 6, 1.0, 1.0));
@@ -194,6 +240,27 @@ TEST(ExactPieces, FailuresAndAbortsOnEveryProcess)
   for (const Status& s : RunExact(mesh, part, 2, {}, 0.0).Statuses)
   {
     EXPECT_NE(s.Message().find("no source"), std::string::npos) << s.Message();
+  }
+  // A point on a face of another process.
+  std::vector<Status> statuses(2);
+  gs_test::ThreadHub hub(2);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    SurfacePiece piece;
+    Status s = piece.Build(gs_test::PieceOf(mesh, part, rank), 1, comm);
+    int other = 0;
+    while (other < piece.Mesh().NumberOfFaces() && piece.IsOwnFace(other))
+    {
+      ++other;
+    }
+    ExactPiecesResult result;
+    statuses[static_cast<std::size_t>(rank)] = s.Ok()
+      ? ComputeExactOnPieces(piece, {}, 0.0, comm, result, nullptr,
+          { SurfacePoint::InFace(other, 0.2, 0.3, 0.5) })
+      : s;
+  });
+  for (const Status& s : statuses)
+  {
+    EXPECT_NE(s.Message().find("another process"), std::string::npos) << s.Message();
   }
   for (const Status& s : RunExact(mesh, part, 2, { 0 }, 0.0, {}, 1).Statuses)
   {

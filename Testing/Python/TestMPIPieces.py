@@ -10,7 +10,8 @@ Meshes: the bumpy sphere (closed, saddles everywhere) and the L-shaped plane (a 
 regular grid: ties everywhere). Solvers: SVG (label-correcting, K = 50, unfolding refinement)
 and SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
 from two vertices with a MaximumDistance; the exact solver (window propagation on the pieces)
-from two vertices; and Geodesic Polar Coordinates about a vertex (exact, radius 0.7, a
+from two vertices and from two points of the Sources port (snapped on the pieces); and Geodesic
+Polar Coordinates about a vertex (exact, radius 0.7, a
 reference direction): rho and theta as the serial run's.
 
 Driver (pvpython TestMPIPieces.py --plugin P --data D --work W): splits each mesh in three
@@ -49,6 +50,8 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
          ["GeodesicDistance"]),
         ("exact", "SVGGeodesicDistance", dict(Solver="Exact", SourceVertexIds=[11, 200]),
          ["GeodesicDistance"]),
+        ("exact-points", "SVGGeodesicDistance",
+         dict(Solver="Exact", SourcePoints=[0.9, 0.3, 0.2, 0.2, 0.8, -0.3]), ["GeodesicDistance"]),
         ("polar", "GeodesicPolarCoordinates", dict(SourceVertexId=11, Radius=0.7,
                                                    ReferenceDirection=[1.0, 1.0, 0.0]),
          ["GeodesicDistance", "PolarAngle"])]
@@ -57,7 +60,8 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
 # ---------------------------------------------------------------------------------------------
 def run_filters():
     """One run: in pvbatch (serial or each MPI process) or connected to pvserver."""
-    from paraview.simple import PLYReader, XMLPartitionedPolydataReader, XMLPolyDataReader
+    from paraview.simple import (PLYReader, PolyPointSource, XMLPartitionedPolydataReader,
+                                 XMLPolyDataReader)
     from paraview import servermanager
     rank = gs_test.connect_run(args.connect, args.plugin, globals())
     os.makedirs(args.run, exist_ok=True)
@@ -71,7 +75,12 @@ def run_filters():
         else:
             mesh = PLYReader(FileNames=[mesh_file])
         for name, filter_name, properties, _ in RUNS:
+            properties = dict(properties)
+            points = properties.pop("SourcePoints", None)
             distance = globals()[filter_name](Input=mesh, **properties)
+            if points is not None:
+                # Every process generates the points whole; they count once.
+                distance.Sources = PolyPointSource(Points=points)
             distance.UpdatePipeline()
             if args.connect:
                 data = servermanager.Fetch(distance)  # every process's piece, appended

@@ -133,6 +133,41 @@ inline std::int64_t ExchangeCounting(PieceCommunicator& comm, std::vector<ByteBu
   return sum;
 }
 
+// Collective. For each item i of `values` (as many on every process), the smallest value over
+// the processes into `smallest` and the rank holding it into the result (the lowest such rank
+// on a tie; -1 where no value is below infinity).
+inline std::vector<int> SmallestOverProcesses(
+  PieceCommunicator& comm, const std::vector<double>& values, std::vector<double>& smallest)
+{
+  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.Size())), in;
+  for (ByteBuffer& b : out)
+  {
+    ByteWriter w(b);
+    for (const double v : values)
+    {
+      w.Put(v);
+    }
+  }
+  comm.Exchange(out, in);
+  std::vector<int> rank(values.size(), -1);
+  smallest.assign(values.size(), std::numeric_limits<double>::infinity());
+  for (int q = 0; q < comm.Size(); ++q)
+  {
+    const std::size_t from = static_cast<std::size_t>(q);
+    ByteReader r(q == comm.Rank() ? out[from] : in[from]);
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      double v = std::numeric_limits<double>::infinity();
+      if (r.Get(v) && v < smallest[i])
+      {
+        smallest[i] = v;
+        rank[i] = q;
+      }
+    }
+  }
+  return rank;
+}
+
 // Collective. Each process asks others about ids: asks[q] the ids it asks process q about
 // (none of itself); answer(q, id) is the value it gives process q about `id`, called in the
 // order q asked. Returns, per process q, the values q gave, in the order asked.

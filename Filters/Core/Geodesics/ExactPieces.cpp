@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace gs
 {
@@ -60,13 +61,15 @@ public:
   ExactPieceSolve(const ExactPieceSolve&) = delete;
   ExactPieceSolve& operator=(const ExactPieceSolve&) = delete;
 
-  Status Run(const std::vector<std::int64_t>& sources, double maxDistance,
-    const ProgressCallback& progress, ExactPiecesResult& result);
+  Status Run(const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points,
+    double maxDistance, const ProgressCallback& progress, ExactPiecesResult& result);
 
 private:
   using Window = ExactGeodesicSolver::Window;
-  // Adds the sources this process owns; fails on every process when one is owned by none.
-  Status AddSources(const std::vector<std::int64_t>& sources);
+  // Adds the vertex sources this process owns and its surface points; fails on every process
+  // when a vertex is owned by none or there is no source.
+  Status AddSources(
+    const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points);
   // Propagates the queued windows of keys up to `threshold`, in key order.
   void ProcessUpTo(double threshold);
   // What left this process since the last exchange, into one buffer per process; returns the
@@ -138,7 +141,8 @@ FanReference ExactPieceSolve::Reference(int v) const
   return ref;
 }
 
-Status ExactPieceSolve::AddSources(const std::vector<std::int64_t>& sources)
+Status ExactPieceSolve::AddSources(
+  const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points)
 {
   std::vector<std::int64_t> ids = sources;
   std::sort(ids.begin(), ids.end());
@@ -152,15 +156,35 @@ Status ExactPieceSolve::AddSources(const std::vector<std::int64_t>& sources)
       owned.push_back(v);
     }
   }
-  if (Comm.Sum(static_cast<std::int64_t>(owned.size())) != static_cast<std::int64_t>(ids.size()) ||
-    ids.empty())
+  Status valid = Mesh.CheckPoints(points, "source");
+  for (const SurfacePoint& p : points)
   {
-    return Status::Error(
-      ids.empty() ? "no source given" : "a source vertex id is not a point of the surface");
+    if (valid.Ok() && !Piece.IsOwnFace(p.IsVertex() ? -1 : p.Face))
+    {
+      valid = Status::Error("a source point lies on a face of another process");
+    }
   }
-  for (std::size_t i = 0; i < owned.size(); ++i)
+  std::string problem;
+  if (FirstMessage(Comm, valid.Ok() ? std::string() : valid.Message(), problem) >= 0)
   {
-    Solver.AddSource(static_cast<int>(i), SurfacePoint::AtVertex(owned[i]));
+    return Status::Error(problem);
+  }
+  const std::int64_t allPoints = Comm.Sum(static_cast<std::int64_t>(points.size()));
+  if (Comm.Sum(static_cast<std::int64_t>(owned.size())) != static_cast<std::int64_t>(ids.size()) ||
+    ids.size() + static_cast<std::size_t>(allPoints) == 0)
+  {
+    return Status::Error(ids.empty() && allPoints == 0
+        ? "no source given"
+        : "a source vertex id is not a point of the surface");
+  }
+  int i = 0;
+  for (const int v : owned)
+  {
+    Solver.AddSource(i++, SurfacePoint::AtVertex(v));
+  }
+  for (const SurfacePoint& p : points)
+  {
+    Solver.AddSource(i++, p);
   }
   return Status();
 }
@@ -367,12 +391,13 @@ void ExactPieceSolve::Collect(double limit, ExactPiecesResult& result)
   }
 }
 
-Status ExactPieceSolve::Run(const std::vector<std::int64_t>& sources, double maxDistance,
-  const ProgressCallback& progress, ExactPiecesResult& result)
+Status ExactPieceSolve::Run(const std::vector<std::int64_t>& sources,
+  const std::vector<SurfacePoint>& points, double maxDistance, const ProgressCallback& progress,
+  ExactPiecesResult& result)
 {
   Solver.Reset();
   Solver.Fenced.Start(nullptr, Mesh.NumberOfFaces());
-  if (const Status added = AddSources(sources); !added.Ok())
+  if (const Status added = AddSources(sources, points); !added.Ok())
   {
     return added;
   }
@@ -421,20 +446,25 @@ Status ExactPieceSolve::Run(const std::vector<std::int64_t>& sources, double max
 
 Status ComputeExactOnPieces(SurfacePiece& piece, const std::vector<std::int64_t>& sources,
   double maxDistance, PieceCommunicator& comm, ExactPiecesResult& result,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress, const std::vector<SurfacePoint>& points)
 {
   result = ExactPiecesResult();
   // Two rings: the fans of the vertices of the own faces, and the faces across their outer
   // edges, where an owned vertex's windows start.
   if (piece.Rings() < 1)
   {
+    if (comm.Sum(static_cast<std::int64_t>(points.size())) > 0)
+    {
+      return Status::Error("source points need a piece with two rings of faces (its faces "
+                           "would be renumbered as it grows)");
+    }
     if (const Status grown = piece.Grow(1 - piece.Rings(), comm); !grown.Ok())
     {
       return grown;
     }
   }
   ExactPieceSolve solve(piece, comm);
-  return solve.Run(sources, maxDistance, progress, result);
+  return solve.Run(sources, points, maxDistance, progress, result);
 }
 
 } // namespace gs

@@ -39,13 +39,16 @@ struct ExactPiecesResult
 };
 
 // Collective. The exact geodesic distance from the vertices of global ids `sources` (the same
-// list on every process) on the surface whose pieces the processes hold; vertices farther than
-// maxDistance (> 0 and finite) are unreached. Grows the piece's band to two rings when it is
-// narrower. Fails on every process when a source id is no vertex of the surface, when any
-// process's piece fails to grow, or when the progress callback of any process (called once per
-// round with the fraction of this process's vertices reached) returns false (Aborted).
+// list on every process) and from `points` (surface points of this process's own faces, in its
+// piece's mesh: each process passes those it holds, see SnapToPieces) on the surface whose
+// pieces the processes hold; vertices farther than maxDistance (> 0 and finite) are unreached.
+// Grows the piece's band to two rings when it is narrower (then `points` must be empty on every
+// process: the band's growth renumbers the faces). Fails on every process when there is
+// no source or a source id is no vertex of the surface, when any process's piece fails to grow,
+// or when the progress callback of any process (called once per round with the fraction of
+// this process's vertices reached) returns false (Aborted).
 Status ComputeExactOnPieces(SurfacePiece& piece, const std::vector<std::int64_t>& sources,
   double maxDistance, PieceCommunicator& comm, ExactPiecesResult& result,
-  const ProgressCallback& progress = nullptr);
+  const ProgressCallback& progress = nullptr, const std::vector<SurfacePoint>& points = {});
 
 } // namespace gs

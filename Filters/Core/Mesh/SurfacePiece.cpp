@@ -502,6 +502,12 @@ void SurfacePiece::AppendIncompleteVertices(
   }
 }
 
+int SurfacePiece::Face(std::int64_t globalId) const
+{
+  const auto it = std::lower_bound(FaceIds.begin(), FaceIds.end(), globalId);
+  return it != FaceIds.end() && *it == globalId ? static_cast<int>(it - FaceIds.begin()) : -1;
+}
+
 int SurfacePiece::Vertex(std::int64_t globalId) const
 {
   const auto it = std::lower_bound(VertexIds.begin(), VertexIds.end(), globalId);

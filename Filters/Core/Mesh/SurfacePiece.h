@@ -74,6 +74,8 @@ public:
   void AppendIncompleteVertices(const std::vector<int>& faces, std::vector<std::int64_t>& out) const;
   // The local vertex of a global point id (-1 when it is not in the piece).
   int Vertex(std::int64_t globalId) const;
+  // The local face of a global face id (-1 when it is not in the piece).
+  int Face(std::int64_t globalId) const;
   // The whole surface's bounding box diagonal (the scale of the solvers' tolerances).
   double LengthScale() const { return Diagonal; }
   // Vertices owned by this process, and over all processes.
