@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace gs
 {
@@ -89,55 +90,39 @@ private:
   ExactGeodesicSolver::PieceRoute Route;
   std::vector<unsigned char> OtherFace, OtherVertex;
   std::int64_t Sent = 0;
+  mutable std::vector<std::pair<std::int64_t, double>> Spokes; // Reference's scratch
 };
 
 FanReference ExactPieceSolve::Reference(int v) const
 {
-  struct Spoke
-  {
-    std::int64_t Id;
-    double Angle;
-  };
-  Spoke spokes[64];
-  std::vector<Spoke> many;
-  int n = 0, last = -1;
-  auto add = [&](std::int64_t id, double angle) {
-    if (n < 64)
-    {
-      spokes[n] = { id, angle };
-    }
-    else
-    {
-      if (many.empty())
-      {
-        many.assign(spokes, spokes + 64);
-      }
-      many.push_back({ id, angle });
-    }
-    ++n;
-  };
+  // The spokes (neighbour id, fan angle) counter-clockwise; a boundary fan ends at its last
+  // neighbour, at the total angle.
+  Spokes.clear();
+  int last = -1;
   Mesh.ForEachOutgoingHalfedge(v, [&](int h) {
-    add(Piece.GlobalId(Mesh.Destination(h)), Solver.FanAngle[static_cast<std::size_t>(h)]);
+    const double angle = Solver.FanAngle[static_cast<std::size_t>(h)];
+    Spokes.push_back({ Piece.GlobalId(Mesh.Destination(h)), angle });
     last = h;
   });
   const bool boundary = Mesh.IsBoundaryVertex(v);
   if (boundary && last >= 0)
   {
-    add(Piece.GlobalId(Mesh.Origin(TriangleMesh::Prev(last))), Mesh.TotalAngle(v));
-  }
-  const Spoke* all = n <= 64 ? spokes : many.data();
-  int best = 0;
-  for (int i = 1; i < n; ++i)
-  {
-    best = all[i].Id < all[best].Id ? i : best;
+    Spokes.push_back({ Piece.GlobalId(Mesh.Origin(TriangleMesh::Prev(last))), Mesh.TotalAngle(v) });
   }
   FanReference ref;
-  if (n == 0)
+  if (Spokes.empty())
   {
     return ref;
   }
-  ref.Angle = all[best].Angle;
-  ref.Follower = best + 1 < n ? all[best + 1].Id : boundary ? -1 : all[0].Id;
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < Spokes.size(); ++i)
+  {
+    best = Spokes[i].first < Spokes[best].first ? i : best;
+  }
+  ref.Angle = Spokes[best].second;
+  ref.Follower = best + 1 < Spokes.size() ? Spokes[best + 1].first
+    : boundary                            ? -1
+                                          : Spokes[0].first;
   return ref;
 }
 
