@@ -14,6 +14,9 @@ from two vertices and from two points of the Sources port (snapped on the pieces
 Polar Coordinates about a vertex (exact, radius 0.7, a
 reference direction): rho and theta as the serial run's.
 
+Bad sources (a point far from the surface, a vertex id of no point) give an error and an empty
+output on every process, and the filter works again once mended.
+
 Driver (pvpython TestMPIPieces.py --plugin P --data D --work W): splits each mesh in three
 pieces with global ids (Tools/pieces.py: slabs of x + 0.3 y, not contiguous in id order), runs
 the serial reference in pvbatch, then the distributed runs, and compares.
@@ -87,7 +90,43 @@ def run_filters():
             else:
                 data = distance.GetClientSideObject().GetOutputDataObject(0)
             gs_test.write_polydata(data, os.path.join(args.run, "%s_%s_%d.vtp" % (mesh_name, name, rank)))
+        if not args.connect:
+            bad_sources(mesh, mesh_name, rank, PolyPointSource)
     print("run %s: rank %d wrote its outputs" % (args.run, rank))
+    gs_test.finish("run %s: rank %d done" % (args.run, rank))
+
+
+def bad_sources(mesh, mesh_name, rank, PolyPointSource):
+    """A source point far from the surface, or a vertex id of no point: an error and an empty
+    output on every process (none waits for the others forever), then the mended source works."""
+    for label, properties, points in (
+            ("a far point", dict(Solver="Exact"), [50.0, 50.0, 50.0]),
+            ("an unknown vertex id (Exact)", dict(Solver="Exact", SourceVertexIds=[10 ** 9]), None),
+            ("an unknown vertex id (SVG)", dict(Solver="SVG (label-correcting)", K=30,
+                                                SourceVertexIds=[10 ** 9]), None)):
+        distance = globals()["SVGGeodesicDistance"](Input=mesh, **properties)
+        source = PolyPointSource(Points=points) if points is not None else None
+        if source is not None:
+            distance.Sources = source
+        errors = []
+        algorithm = distance.GetClientSideObject()
+        # (An observer takes the errors instead of the log, which fails a run.)
+        tag = algorithm.AddObserver("ErrorEvent", lambda caller, event, *a: errors.append(event))
+        distance.UpdatePipeline()
+        algorithm.RemoveObserver(tag)
+        data = algorithm.GetOutputDataObject(0)
+        check(data.GetNumberOfPoints() == 0 and errors, "%s, rank %d, %s: an output of %d points "
+              "and %d errors" % (mesh_name, rank, label, data.GetNumberOfPoints(), len(errors)))
+        if source is not None:
+            source.Points = [0.9, 0.3, 0.2]
+        else:
+            distance.SourceVertexIds = [11]
+        distance.UpdatePipeline()
+        data = algorithm.GetOutputDataObject(0)
+        piece = mesh.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
+        check(data.GetNumberOfPoints() == piece, "%s, rank %d, %s: %d points after the source "
+              "was mended, %d in the piece" % (mesh_name, rank, label, data.GetNumberOfPoints(),
+                                               piece))
 
 
 # ---------------------------------------------------------------------------------------------
