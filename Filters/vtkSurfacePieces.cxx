@@ -66,6 +66,12 @@ std::string Lacks(vtkPolyData* piece)
   {
     return "triangle strips";
   }
+  if ((piece->GetPointData()->GetGlobalIds() != nullptr) !=
+    (piece->GetCellData()->GetGlobalIds() != nullptr))
+  {
+    // (Gathering numbers points by point ids and cells by cell ids, each alone.)
+    return "both global point and cell ids, or neither";
+  }
   auto it = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
   {
@@ -334,6 +340,7 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
   if (!Reported(self, "The distributed surface: ",
         this->GraphState.Build(this->SurfacePieceState, options, *Comm, Progress(self, from, to))))
   {
+    this->HasPiece = false; // (its band may have failed to grow: made again next time)
     return false;
   }
   this->HasGraph = true;
@@ -352,6 +359,7 @@ bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkIdType source, double radius
           gs::Vec3(referenceDirection[0], referenceDirection[1], referenceDirection[2]), *Comm,
           chart)))
   {
+    this->HasPiece = this->HasGraph = false; // (its band may have failed to grow)
     return false;
   }
   rho = this->AtPoints(chart.Rho, 0.0);
@@ -400,9 +408,17 @@ bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
   vtkMTimeType key, const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
   double maxDistance, std::vector<double>& perPoint)
 {
-  // (The exact solve needs two rings: made at once, the band is not restored and grown.)
+  // The exact solve needs two rings (made at once when the piece is new; a piece kept from a
+  // graph's run may have fewer), before source points name faces of the piece's mesh.
   if (!this->UsePiece(self, ownCells, key, 1))
   {
+    return false;
+  }
+  const int rings = this->SurfacePieceState.Rings();
+  if (rings < 1 &&
+    !Reported(self, "The distributed surface: ", this->SurfacePieceState.Grow(1 - rings, *Comm)))
+  {
+    this->HasPiece = this->HasGraph = false; // (a piece that failed to grow is not used again)
     return false;
   }
   const std::vector<std::int64_t> ids = this->SurfaceIds(sources);
@@ -416,6 +432,7 @@ bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
         gs::ComputeExactOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm, result,
           Progress(self, 0.1, 0.95), mine)))
   {
+    this->HasPiece = this->HasGraph = false; // (its band may have failed to grow)
     return false;
   }
   this->LastRounds = result.Rounds;

@@ -226,6 +226,15 @@ TEST(ExactPieces, SurfacePointSources)
   }
   ExpectExactAsSerial(mesh, part, 3, { 300 }, 0.0, {}, points);
   ExpectExactAsSerial(mesh, part, 3, {}, 0.0, {}, points);
+
+  // A process holding one triangle inside a plane of the other's, the source point in it: its
+  // windows and corners all belong to the other process, which has nothing queued yet.
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(12, 12, 1.2, 1.2));
+  std::vector<int> island(static_cast<std::size_t>(plane.NumberOfFaces()), 0);
+  const int middle = plane.NumberOfFaces() / 2 + 12;
+  island[static_cast<std::size_t>(middle)] = 1;
+  ExpectExactAsSerial(
+    plane, island, 2, {}, 0.0, {}, { SurfacePoint::InFace(middle, 0.3, 0.3, 0.4) });
 }
 
 TEST(ExactPieces, FailuresAndAbortsOnEveryProcess)

@@ -92,8 +92,35 @@ def run_filters():
             gs_test.write_polydata(data, os.path.join(args.run, "%s_%s_%d.vtp" % (mesh_name, name, rank)))
         if not args.connect:
             bad_sources(mesh, mesh_name, rank, PolyPointSource)
+            switched_solver(mesh, mesh_name, rank, PolyPointSource)
     print("run %s: rank %d wrote its outputs" % (args.run, rank))
     gs_test.finish("run %s: rank %d done" % (args.run, rank))
+
+
+def switched_solver(mesh, mesh_name, rank, PolyPointSource):
+    """One filter switched from a graph solver to Exact with Sources points keeps its piece
+    (whose band the graph made) and gives the exact-points run's distances."""
+    import math
+    points = dict((n, p) for n, _, p, _ in RUNS)["exact-points"]["SourcePoints"]
+    distance = globals()["SVGGeodesicDistance"](Input=mesh, Solver="DGG (accuracy-bounded)",
+                                                GraphAccuracy=0.1, SourceVertexIds=[11])
+    distance.UpdatePipeline()
+    distance.Solver = "Exact"
+    distance.Sources = PolyPointSource(Points=points)
+    distance.UpdatePipeline()
+    if mesh.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() == 0:
+        return  # (a process without a piece: it took part in the runs, it has nothing to compare)
+    got = distance.GetClientSideObject().GetOutputDataObject(0).GetPointData().GetArray(
+        "GeodesicDistance")
+    expected = read(os.path.join(args.run, "%s_exact-points_%d.vtp" % (mesh_name, rank)))
+    expected = expected.GetPointData().GetArray("GeodesicDistance")
+    worst = max((abs(got.GetValue(i) - expected.GetValue(i)) / max(expected.GetValue(i), 1e-300)
+                 for i in range(expected.GetNumberOfTuples())
+                 if not math.isnan(expected.GetValue(i))), default=0.0) \
+        if got is not None and expected is not None and \
+        got.GetNumberOfTuples() == expected.GetNumberOfTuples() else float("inf")
+    check(worst <= 1e-12, "%s, rank %d: DGG switched to Exact with points differs by %.3g" % (
+        mesh_name, rank, worst))
 
 
 def bad_sources(mesh, mesh_name, rank, PolyPointSource):

@@ -3,6 +3,7 @@
 #include "ExactGeodesic.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -144,9 +145,9 @@ Status ExactPieceSolve::AddSources(
   Status valid = Mesh.CheckPoints(points, "source");
   for (const SurfacePoint& p : points)
   {
-    if (valid.Ok() && !Piece.IsOwnFace(p.IsVertex() ? -1 : p.Face))
+    if (valid.Ok() && !(p.IsVertex() ? Piece.IsOwned(p.Vertex) : Piece.IsOwnFace(p.Face)))
     {
-      valid = Status::Error("a source point lies on a face of another process");
+      valid = Status::Error("a source point lies on a face (or is a vertex) of another process");
     }
   }
   std::string problem;
@@ -322,9 +323,12 @@ void ExactPieceSolve::Unpack(const std::vector<ByteBuffer>& in)
     while (r.Get(tag))
     {
       const bool read = tag == WindowItem ? UnpackWindow(r) : tag == VertexItem && UnpackVertex(r);
+      // Every item names a face or vertex of this process (the owners are the same on every
+      // process): an unreadable one is a broken invariant, not an input error.
+      assert(read);
       if (!read)
       {
-        break; // (a malformed message: what follows cannot be read)
+        break;
       }
     }
   }
@@ -393,6 +397,15 @@ Status ExactPieceSolve::Run(const std::vector<std::int64_t>& sources,
   const std::int64_t owned = Piece.NumberOfOwnedVertices();
   std::size_t counted = 0;
   std::int64_t reached = 0;
+  // What the sources sent elsewhere first (a source whose windows all enter other processes'
+  // faces queues nothing here).
+  {
+    std::vector<ByteBuffer> out, in;
+    const std::int64_t items = Pack(out);
+    ExchangeCounting(Comm, out, in, items);
+    Unpack(in);
+    ++result.Exchanges;
+  }
   while (true)
   {
     const double lowest = Comm.Min(Solver.Queue.MinKey());

@@ -46,10 +46,7 @@ void SurfacePiece::AddFace(std::int64_t id, const FaceRecord& face)
 Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicator& comm)
 {
   MyRank = comm.Rank();
-  NumRings = 0;
-  DropRecords();
-  FaceIds.clear();
-  VertexIds.clear();
+  Clear();
   std::vector<std::int64_t> frontier;
 
   Status valid;
@@ -382,7 +379,7 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
   // may not be.
   if (comm.Sum(static_cast<std::int64_t>(FaceIds.size())) == 0)
   {
-    Local = TriangleMesh();
+    Clear();
     return Status::Error("the surface has no triangles");
   }
   // Each complete vertex's owner; then the records are dropped (not resident with the mesh
@@ -411,7 +408,7 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
   }
   if (const Status agreed = Agree(made, comm); !agreed.Ok())
   {
-    Local = TriangleMesh();
+    Clear();
     return agreed;
   }
   Local = std::move(built->Mesh);
@@ -441,6 +438,20 @@ Status SurfacePiece::MakeMesh(PieceCommunicator& comm)
   }
   GlobalVertexCount = comm.Sum(OwnedCount);
   return Status();
+}
+
+void SurfacePiece::Clear()
+{
+  DropRecords();
+  Local = TriangleMesh();
+  VertexIds.clear();
+  FaceIds.clear();
+  Owners.clear();
+  FaceOwners.clear();
+  FenceFaces.clear();
+  Flipped.clear();
+  NumRings = 0;
+  OwnedCount = GlobalVertexCount = 0;
 }
 
 void SurfacePiece::DropRecords()

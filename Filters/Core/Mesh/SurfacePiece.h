@@ -111,6 +111,8 @@ private:
   Status MakeMesh(PieceCommunicator& comm);
   void DropRecords();
   void RestoreRecords();
+  // An empty piece (after a failure: nothing of the failed piece is used again).
+  void Clear();
 
   int MyRank = 0;
   int NumRings = 0;
