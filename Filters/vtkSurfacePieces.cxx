@@ -315,7 +315,7 @@ std::vector<std::int64_t> vtkSurfacePieces::SurfaceIds(const std::vector<vtkIdTy
   {
     const std::int64_t serial = static_cast<std::int64_t>(id);
     ids.push_back(this->GivenIds
-        ? serial
+        ? this->SurfacePieceState.IdOfRank(serial, *Comm)
         : gs::GatheredPointId(this->PointIds, this->FirstPoint, serial, *Comm));
   }
   return ids;

@@ -129,8 +129,9 @@ private:
   // (PieceNumbering.h), and FirstPoint is the gathered index of this piece's first point.
   bool GivenIds = true;
   std::int64_t FirstPoint = 0;
-  // Collective. The global ids of points given as the serial run numbers them (global ids, or
-  // indices of the gathered surface's points; -1 for a point no triangle uses).
+  // Collective. The global ids of points given as the serial run numbers them (with global ids,
+  // the rank of the id among the vertices' ids; without, indices of the gathered surface's
+  // points): -1 for a point no triangle uses.
   std::vector<std::int64_t> SurfaceIds(const std::vector<vtkIdType>& pointIds);
   // Collective. This process's triangles of `ownCells` with their ids (given, or numbered as
   // the gathered surface numbers them), into `own`; sets PointIds, GivenIds and FirstPoint.

@@ -1,8 +1,8 @@
 // Pieces without global ids (PieceNumbering.h), on threads standing for the processes: numbered
 // as the gathered surface numbers them, their graph and its refined distances equal, to the bit,
-// those of the serial graph of the gathered surface (every piece's points in rank order, coincident ones
-// welded), and the exact distances equal its exact solver's; serial point ids name the same
-// points on the pieces.
+// those of the serial graph of the gathered surface (every piece's points in rank order,
+// coincident ones welded), and the exact distances equal its exact solver's; serial point ids
+// name the same points on the pieces. Pieces with ids: serial numbers name the ids by rank.
 #include "ExactGeodesic.h"
 #include "ExactPieces.h"
 #include "GraphPieces.h"
@@ -222,5 +222,38 @@ TEST(PieceNumbering, IdsFollowTheGatheredList)
     EXPECT_EQ(outside[static_cast<std::size_t>(r)], -1);
     EXPECT_EQ(shared[static_cast<std::size_t>(r)], 2);
     EXPECT_EQ(copy[static_cast<std::size_t>(r)], 8);
+  }
+}
+
+TEST(PieceNumbering, SerialNumbersOfGivenIds)
+{
+  // Ids 10 + 3 v (not 0 to N - 1): serial number i names the id of rank i; dense ids name
+  // themselves; numbers beyond the vertices name none.
+  const TriangleMesh mesh = gs_test::BuildMesh(MakePlanarGrid(8, 6, 0.8, 0.6));
+  const std::vector<int> part = gs_test::PartitionFaces(mesh, 3, Vec3(1, 0.3, 0), 2);
+  const std::int64_t n = mesh.NumberOfVertices();
+  std::vector<std::vector<std::int64_t>> sparse(3), dense(3);
+  gs_test::ThreadHub hub(3);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    PieceTriangles own = gs_test::PieceOf(mesh, part, rank);
+    SurfacePiece plain, spread;
+    EXPECT_TRUE(plain.Build(own, 0, comm).Ok());
+    for (std::int64_t& id : own.PointIds)
+    {
+      id = 10 + 3 * id;
+    }
+    EXPECT_TRUE(spread.Build(own, 0, comm).Ok());
+    for (const std::int64_t i : { std::int64_t(0), std::int64_t(7), n - 1, n, std::int64_t(-1) })
+    {
+      sparse[static_cast<std::size_t>(rank)].push_back(spread.IdOfRank(i, comm));
+      dense[static_cast<std::size_t>(rank)].push_back(plain.IdOfRank(i, comm));
+    }
+  });
+  for (int r = 0; r < 3; ++r)
+  {
+    EXPECT_EQ(sparse[static_cast<std::size_t>(r)],
+      (std::vector<std::int64_t>{ 10, 31, 10 + 3 * (n - 1), -1, -1 }));
+    EXPECT_EQ(dense[static_cast<std::size_t>(r)],
+      (std::vector<std::int64_t>{ 0, 7, n - 1, -1, -1 }));
   }
 }

@@ -513,6 +513,47 @@ void SurfacePiece::AppendIncompleteVertices(
   }
 }
 
+std::int64_t SurfacePiece::IdOfRank(std::int64_t index, PieceCommunicator& comm) const
+{
+  // Each vertex counted once: by its owner. (Ids are below 2^53: exact as doubles.)
+  std::vector<std::int64_t> owned;
+  for (std::size_t v = 0; v < VertexIds.size(); ++v)
+  {
+    if (Owners[v] == MyRank)
+    {
+      owned.push_back(VertexIds[v]); // (in increasing order)
+    }
+  }
+  const double none = std::numeric_limits<double>::infinity();
+  const double lowest = comm.Min(owned.empty() ? none : static_cast<double>(owned.front()));
+  const double highest = comm.Max(owned.empty() ? -none : static_cast<double>(owned.back()));
+  if (index < 0 || index >= GlobalVertexCount)
+  {
+    return -1;
+  }
+  if (lowest == 0.0 && highest == static_cast<double>(GlobalVertexCount - 1))
+  {
+    return index; // the ids number the vertices
+  }
+  // The smallest id with more than `index` ids at or below it.
+  std::int64_t lo = static_cast<std::int64_t>(lowest), hi = static_cast<std::int64_t>(highest);
+  while (lo < hi)
+  {
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    const std::int64_t atOrBelow = comm.Sum(static_cast<std::int64_t>(
+      std::upper_bound(owned.begin(), owned.end(), mid) - owned.begin()));
+    if (atOrBelow > index)
+    {
+      hi = mid;
+    }
+    else
+    {
+      lo = mid + 1;
+    }
+  }
+  return lo;
+}
+
 int SurfacePiece::Face(std::int64_t globalId) const
 {
   const auto it = std::lower_bound(FaceIds.begin(), FaceIds.end(), globalId);

@@ -76,6 +76,10 @@ public:
   int Vertex(std::int64_t globalId) const;
   // The local face of a global face id (-1 when it is not in the piece).
   int Face(std::int64_t globalId) const;
+  // Collective. The global id of rank `index` among the surface's vertex ids in increasing order
+  // (the vertex a serial run on the surface put together in id order numbers `index`; the id
+  // itself when the ids number the vertices 0 to N - 1); -1 when there is no such vertex.
+  std::int64_t IdOfRank(std::int64_t index, PieceCommunicator& comm) const;
   // The whole surface's bounding box diagonal (the scale of the solvers' tolerances).
   double LengthScale() const { return Diagonal; }
   // Vertices owned by this process, and over all processes.
