@@ -1,7 +1,8 @@
 #include "PieceNumbering.h"
 
+#include "PositionKey.h"
+
 #include <algorithm>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <unordered_map>
@@ -11,40 +12,6 @@ namespace gs
 
 namespace
 {
-// A position as bits, -0 taken as +0 (they weld, as TriangleMesh welds them).
-struct PositionKey
-{
-  std::uint64_t X, Y, Z;
-  bool operator==(const PositionKey& o) const { return X == o.X && Y == o.Y && Z == o.Z; }
-};
-
-std::uint64_t Bits(double d)
-{
-  if (d == 0.0)
-  {
-    d = 0.0;
-  }
-  std::uint64_t bits;
-  std::memcpy(&bits, &d, sizeof bits);
-  return bits;
-}
-
-PositionKey KeyOf(const Vec3& p)
-{
-  return { Bits(p.x), Bits(p.y), Bits(p.z) };
-}
-
-struct KeyHash
-{
-  std::size_t operator()(const PositionKey& k) const
-  {
-    std::uint64_t h = k.X * 0x9E3779B97F4A7C15ull;
-    h ^= (k.Y + 0x7F4A7C159E3779B9ull) * 0xC2B2AE3D27D4EB4Full;
-    h ^= (k.Z + 0x165667B19E3779F9ull) * 0xD6E8FEB86659FD93ull;
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
-
 // What a process offers for a position: where its triangles first use it, and the gathered
 // index of the point they use there.
 struct Offer
@@ -126,7 +93,7 @@ Status NumberAsGathered(const std::vector<Vec3>& points,
 
   // This process's distinct positions, in the order its triangles first use them, each with the
   // point used there (its own welding).
-  std::unordered_map<PositionKey, int, KeyHash> groupOf;
+  std::unordered_map<PositionKey, int, PositionKey::Hasher> groupOf;
   std::vector<int> group(np, -1);
   std::vector<Offer> offers;
   std::vector<PositionKey> keys;
@@ -139,7 +106,7 @@ Status NumberAsGathered(const std::vector<Vec3>& points,
       {
         continue;
       }
-      const PositionKey key = KeyOf(points[static_cast<std::size_t>(p)]);
+      const PositionKey key = PositionKey::Of(points[static_cast<std::size_t>(p)]);
       const auto [it, added] = groupOf.emplace(key, static_cast<int>(offers.size()));
       if (added)
       {
@@ -157,7 +124,7 @@ Status NumberAsGathered(const std::vector<Vec3>& points,
   std::vector<std::vector<int>> sentTo(size);
   for (std::size_t g = 0; g < offers.size(); ++g)
   {
-    const std::size_t to = KeyHash()(keys[g]) % size;
+    const std::size_t to = keys[g].Hash() % size;
     ByteWriter w(asks[to]);
     w.Put(keys[g]);
     w.Put(offers[g].FirstUse);
@@ -166,7 +133,7 @@ Status NumberAsGathered(const std::vector<Vec3>& points,
   }
   comm.Exchange(asks, asked);
   asked[static_cast<std::size_t>(comm.Rank())] = asks[static_cast<std::size_t>(comm.Rank())];
-  std::unordered_map<PositionKey, Offer, KeyHash> best;
+  std::unordered_map<PositionKey, Offer, PositionKey::Hasher> best;
   for (int pass = 0; pass < 2; ++pass)
   {
     for (std::size_t q = 0; q < size; ++q)

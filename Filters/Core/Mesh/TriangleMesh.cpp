@@ -1,9 +1,10 @@
 #include "TriangleMesh.h"
 
+#include "PositionKey.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -42,7 +43,7 @@ public:
   int Insert(int p)
   {
     const Vec3& x = Points[p];
-    for (std::size_t i = Hash(x) & Mask;; i = (i + 1) & Mask)
+    for (std::size_t i = PositionKey::Of(x).Hash() & Mask;; i = (i + 1) & Mask)
     {
       const int q = Slots[i];
       if (q < 0)
@@ -59,27 +60,6 @@ public:
   }
 
 private:
-  static std::uint64_t Bits(double d)
-  {
-    if (d == 0.0)
-    {
-      d = 0.0; // -0 and +0 weld
-    }
-    std::uint64_t bits;
-    static_assert(sizeof(bits) == sizeof(d), "double size");
-    std::memcpy(&bits, &d, sizeof(d));
-    return bits;
-  }
-  static std::uint64_t Hash(const Vec3& p)
-  {
-    std::uint64_t h = Bits(p.x) ^ (Bits(p.y) * 0x9E3779B97F4A7C15ull) ^
-      (Bits(p.z) * 0xC2B2AE3D27D4EB4Full);
-    // Mix the high bits (exponents and leading mantissa bits) into the low ones the mask keeps.
-    h ^= h >> 31;
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 29;
-    return h;
-  }
   const std::vector<Vec3>& Points;
   std::vector<int> Slots;
   std::size_t Mask = 0;
