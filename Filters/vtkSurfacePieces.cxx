@@ -19,7 +19,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace
 {
@@ -477,6 +476,7 @@ bool vtkSurfacePieces::SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells,
   std::vector<double> smallest;
   const std::vector<int> winner = gs::SmallestOverProcesses(*Comm, distance, smallest);
   const double diagonal = this->SurfacePieceState.LengthScale();
+  std::string problem;
   const double reach = vtkSurfacePointLocator::MaximumDistanceFraction * diagonal;
   for (std::size_t i = 0; i < points.size(); ++i)
   {
@@ -484,48 +484,43 @@ bool vtkSurfacePieces::SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells,
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || winner[i] < 0 ||
       smallest[i] > reach)
     {
-      std::ostringstream why;
-      why << "Source point " << i << ": ";
-      if (winner[i] < 0)
-      {
-        why << "non-finite coordinates.";
-      }
-      else
-      {
-        why << "it lies " << smallest[i] << " from the surface, more than "
-            << vtkSurfacePointLocator::MaximumDistanceFraction
-            << " times the mesh's bounding box diagonal (" << diagonal
-            << "): check its coordinates.";
-      }
-      vtkErrorWithObjectMacro(self, << why.str());
+      vtkErrorWithObjectMacro(self, "Source point " << i << ": "
+          << (winner[i] < 0 ? std::string("non-finite coordinates")
+                            : vtkSurfacePointLocator::TooFar(smallest[i],
+                                vtkSurfacePointLocator::MaximumDistanceFraction, diagonal))
+          << ".");
       return false;
     }
-    if (winner[i] != Comm->Rank())
+    if (winner[i] != Comm->Rank() || !problem.empty())
     {
       continue;
     }
-    // Barycentric coordinates in the triangle's point order, matched to the piece's face
-    // corners by global id (the mesh may have turned the face).
-    double pcoords[3], weights[3], snapped[3], dist2 = 0.0;
-    int subId = 0;
+    // The triangle's global id names the piece's face; its points' global ids its corners.
     triangles->GetCell(cell[i], scratch);
-    scratch->EvaluatePosition(closest[i].data(), snapped, subId, pcoords, dist2, weights);
-    const int face =
-      this->SurfacePieceState.Face(this->TriangleIds[static_cast<std::size_t>(cell[i])]);
-    gs::SurfacePoint q = gs::SurfacePoint::InFace(face, 0.0, 0.0, 0.0);
-    for (int k = 0; k < 3 && face >= 0; ++k)
+    const gs::SurfacePiece& piece = this->SurfacePieceState;
+    const int face = piece.Face(this->TriangleIds[static_cast<std::size_t>(cell[i])]);
+    const gs::Result<gs::SurfacePoint> q = face < 0
+      ? gs::Result<gs::SurfacePoint>(gs::Status::Error("its triangle is not in the piece"))
+      : vtkSurfacePointLocator::OnFace(scratch, closest[i].data(), face, piece.Mesh().Face(face),
+          [this, &piece](vtkIdType point) {
+            return piece.Vertex(this->PointIds[static_cast<std::size_t>(point)]);
+          });
+    if (q.Ok())
     {
-      const std::int64_t id = this->PointIds[static_cast<std::size_t>(scratch->GetPointId(k))];
-      for (int c = 0; c < 3; ++c)
-      {
-        const int corner = this->SurfacePieceState.Mesh().Face(face)[static_cast<std::size_t>(c)];
-        if (this->SurfacePieceState.GlobalId(corner) == id)
-        {
-          q.Bary[static_cast<std::size_t>(c)] = std::max(0.0, weights[k]);
-        }
-      }
+      mine.push_back(*q);
     }
-    mine.push_back(q);
+    else
+    {
+      problem = "Source point " + std::to_string(i) + ": " + q.Message() + ".";
+    }
+  }
+  // (A failure on the process holding a point fails every process.)
+  std::string first;
+  if (gs::FirstMessage(*Comm, problem, first) >= 0)
+  {
+    vtkErrorWithObjectMacro(self, << first);
+    mine.clear();
+    return false;
   }
   return true;
 }

@@ -35,7 +35,7 @@ gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::Snap(const double x[3], dou
   }
   const gs::TriangleMesh& mesh = this->Mesh.Build.Mesh;
   const std::vector<int>& pointToVertex = this->Mesh.Build.PointToVertex;
-  double closest[3], pcoords[3], weights[3], dist2 = 0.0;
+  double closest[3], dist2 = 0.0;
   vtkIdType cellId = -1;
   int subId = 0;
   this->Locator->FindClosestPoint(x, closest, this->Cell, cellId, subId, dist2);
@@ -45,27 +45,42 @@ gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::Snap(const double x[3], dou
   }
   if (std::sqrt(dist2) > maximumFraction * this->Diagonal)
   {
-    std::ostringstream message;
-    message << "it lies " << std::sqrt(dist2) << " from the surface, more than "
-            << maximumFraction << " times the mesh's bounding box diagonal ("
-            << this->Diagonal << "): check its coordinates";
-    return gs::Status::Error(message.str());
+    return gs::Status::Error(TooFar(std::sqrt(dist2), maximumFraction, this->Diagonal));
   }
-  // Barycentric coordinates in the triangle's point order, then matched to the core face's
-  // corners by vertex (the mesh builder may have re-oriented the face). The locator used
-  // Cell as scratch space: fetch the closest triangle itself.
+  // The locator used Cell as scratch space: fetch the closest triangle itself.
   this->Mesh.Triangles->GetCell(cellId, this->Cell);
-  double snapped[3];
-  this->Cell->EvaluatePosition(closest, snapped, subId, pcoords, dist2, weights);
-  const std::array<int, 3>& face = mesh.Face(static_cast<int>(cellId));
+  return OnFace(this->Cell, closest, static_cast<int>(cellId), mesh.Face(static_cast<int>(cellId)),
+    [&pointToVertex](vtkIdType p) { return pointToVertex[static_cast<size_t>(p)]; });
+}
+
+//------------------------------------------------------------------------------
+std::string vtkSurfacePointLocator::TooFar(
+  double distance, double maximumFraction, double diagonal)
+{
+  std::ostringstream message;
+  message << "it lies " << distance << " from the surface, more than " << maximumFraction
+          << " times the mesh's bounding box diagonal (" << diagonal
+          << "): check its coordinates";
+  return message.str();
+}
+
+//------------------------------------------------------------------------------
+gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::OnFace(vtkGenericCell* triangle,
+  double closest[3], int face, const std::array<int, 3>& corners,
+  const std::function<int(vtkIdType)>& vertexOf)
+{
+  // Barycentric coordinates in the triangle's point order, then matched to the face's corners.
+  double snapped[3], pcoords[3], weights[3], dist2 = 0.0;
+  int subId = 0;
+  triangle->EvaluatePosition(closest, snapped, subId, pcoords, dist2, weights);
   std::array<double, 3> bary{ { 0.0, 0.0, 0.0 } };
   int matched = 0;
   for (int k = 0; k < 3; ++k)
   {
-    const int v = pointToVertex[static_cast<size_t>(this->Cell->GetPointId(k))];
+    const int v = vertexOf(triangle->GetPointId(k));
     for (int c = 0; c < 3; ++c)
     {
-      if (face[c] == v)
+      if (corners[c] == v)
       {
         bary[c] = std::max(0.0, weights[k]);
         ++matched;
@@ -76,10 +91,9 @@ gs::Result<gs::SurfacePoint> vtkSurfacePointLocator::Snap(const double x[3], dou
   if (matched != 3 || !(sum > 0.0))
   {
     return gs::Status::Error(
-      "internal error: triangle " + std::to_string(cellId) + " does not match its core face");
+      "internal error: triangle " + std::to_string(face) + " does not match its core face");
   }
-  return gs::SurfacePoint::InFace(
-    static_cast<int>(cellId), bary[0] / sum, bary[1] / sum, bary[2] / sum);
+  return gs::SurfacePoint::InFace(face, bary[0] / sum, bary[1] / sum, bary[2] / sum);
 }
 
 //------------------------------------------------------------------------------

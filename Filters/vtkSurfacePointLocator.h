@@ -16,6 +16,9 @@
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 
+#include <array>
+#include <functional>
+#include <string>
 #include <vector>
 
 class vtkGenericCell;
@@ -37,6 +40,16 @@ public:
   gs::Result<gs::SurfacePoint> Snap(
     const double x[3], double maximumFraction = MaximumDistanceFraction);
   static constexpr double MaximumDistanceFraction = 0.25;
+
+  // What Snap says of a point `distance` from a surface of bounding box diagonal `diagonal`,
+  // beyond maximumFraction of it.
+  static std::string TooFar(double distance, double maximumFraction, double diagonal);
+  // The surface point `closest` of the triangle `triangle` (a cell of three points) as a face
+  // point of the core face `face` of corners `corners`: the cell's weights matched to the
+  // corners by vertex (`vertexOf` a cell point id: the mesh builder may have re-oriented the
+  // face). Fails when the triangle's points are not the face's corners.
+  static gs::Result<gs::SurfacePoint> OnFace(vtkGenericCell* triangle, double closest[3],
+    int face, const std::array<int, 3>& corners, const std::function<int(vtkIdType)>& vertexOf);
 
   // A polyline of `points` (ids[0 .. n)) as a curve on the surface: each segment is sampled at
   // most CurveSampleSpacing mean edge lengths apart in space and every sample snapped
