@@ -277,6 +277,7 @@ struct DecalBuilder
   // Short shapes: the exact polar coordinates of the centre, and the world units per class unit.
   const GeodesicPolarCoordinates* Exact = nullptr;
   double ExactUnit = 1.0;
+  FacePolarCoordinates ExactFace; // Exact over the face last read (a face's pieces read many)
   double TolUV = 0.0;                    // texture units per circumradius
   std::vector<std::pair<int, Vec2>> Local; // (vertex, class point), sorted by vertex
   Vec2 Lo, Hi;                           // the texels that draw (TexelBox)
@@ -411,7 +412,11 @@ struct DecalBuilder
     ghost = false;
     if (Exact)
     {
-      if (!Exact->LogMapAt(SurfacePoint::InFace(f, b[0], b[1], b[2]), q))
+      if (ExactFace.Face() != f)
+      {
+        ExactFace = Exact->OnFace(f);
+      }
+      if (!ExactFace.LogMapAt(b, q))
       {
         return false;
       }

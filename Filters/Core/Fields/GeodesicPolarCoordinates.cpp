@@ -241,83 +241,56 @@ Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius
 
 namespace
 {
+// A snapshot's vertex coordinates, as PolarAtImpl reads them.
+struct SnapshotValues
+{
+  const LogMapSnapshot& Snapshot;
+  bool operator()(int v, double& r, double& a) const
+  {
+    const auto& entries = Snapshot.Entries;
+    const auto it = std::lower_bound(entries.begin(), entries.end(), v,
+      [](const LogMapSnapshot::Entry& e, int vertex) { return e.Vertex < vertex; });
+    if (it == entries.end() || it->Vertex != v || !std::isfinite(it->Rho))
+    {
+      r = a = NaN;
+      return false;
+    }
+    r = it->Rho;
+    a = it->Theta;
+    return true;
+  }
+};
+
+// The coordinates over face f of an engine or of a snapshot (`values` as PolarAtImpl's).
+template <class Values>
+FacePolarCoordinates FaceCoordinates(const TriangleMesh& mesh, const SurfacePoint& source,
+  double reference, double turn, int f, const Values& values)
+{
+  std::array<double, 3> rho{ { NaN, NaN, NaN } }, theta{ { NaN, NaN, NaN } };
+  const auto& t = mesh.Face(f);
+  for (int k = 0; k < 3; ++k)
+  {
+    if (!values(t[k], rho[k], theta[k]))
+    {
+      rho[k] = theta[k] = NaN;
+      break; // (beyond the radius: the face answers only where the source lies in it)
+    }
+  }
+  return FacePolarCoordinates(mesh, source, reference, turn, f, rho, theta);
+}
+
 // PolarAt of an engine or of a snapshot: `values(v, rho, theta)` gives vertex v's coordinates
 // (false outside the radius); the rest as GeodesicPolarCoordinates::PolarAt says.
 template <class Values>
 bool PolarAtImpl(const TriangleMesh& mesh, const SurfacePoint& source, double reference, double turn,
   const SurfacePoint& q, double& rho, double& theta, const Values& values)
 {
-  rho = theta = NaN;
-  auto rawToTheta = [reference, turn](double raw) { return Wrap((raw - reference) * TwoPi / turn); };
   if (q.IsVertex())
   {
+    rho = theta = NaN;
     return values(q.Vertex, rho, theta);
   }
-  const auto& t = mesh.Face(q.Face);
-  const Vec3 x = mesh.Interpolate(q.Face, q.Bary);
-  const bool sourceFace = source.IsVertex()
-    ? (t[0] == source.Vertex || t[1] == source.Vertex || t[2] == source.Vertex)
-    : source.Face == q.Face;
-  if (sourceFace)
-  {
-    // Straight inside the face: exact.
-    const Vec3 s = mesh.Position(source);
-    rho = Norm(x - s);
-    if (rho == 0.0)
-    {
-      theta = 0.0;
-      return true;
-    }
-    // The tangent angle at the source of the direction towards x, measured in x's face.
-    const double raw = TangentAngle(mesh, source, x - s);
-    theta = std::isfinite(raw) ? rawToTheta(raw) : 0.0;
-    return true;
-  }
-  double cornerRho[3], cornerTheta[3];
-  for (int k = 0; k < 3; ++k)
-  {
-    if (!values(t[k], cornerRho[k], cornerTheta[k]))
-    {
-      rho = theta = NaN;
-      return false;
-    }
-  }
-  const UnfoldedTriangle u =
-    UnfoldTriangle(mesh, q.Face, q.Bary, { { cornerRho[0], cornerRho[1], cornerRho[2] } });
-  rho = u.Distance;
-  // Theta: in the unfolding, the direction from the unfolded source to q, turned by the offset
-  // that maps the corners' unfolded directions onto their angles (the same for all corners on a
-  // developable surface; averaged circularly otherwise). Without an unfolded source, the corner
-  // angles are interpolated.
-  double sum = 0.0;
-  if (u.FromEdge)
-  {
-    const Vec2 toQ = u.Point - u.Source;
-    double offset0 = 0.0;
-    for (int k = 0; k < 3; ++k)
-    {
-      const Vec2 c = u.Corners[k] - u.Source;
-      // Angles in the unfolding are true angles at the source: scale them like the raw ones.
-      const double o = cornerTheta[k] - std::atan2(c.y, c.x) * TwoPi / turn;
-      if (k == 0)
-      {
-        offset0 = o;
-      }
-      double d = o - offset0;
-      d -= TwoPi * std::round(d / TwoPi);
-      sum += q.Bary[k] * d;
-    }
-    theta = Wrap(offset0 + sum + std::atan2(toQ.y, toQ.x) * TwoPi / turn);
-    return true;
-  }
-  for (int k = 0; k < 3; ++k)
-  {
-    double d = cornerTheta[k] - cornerTheta[0];
-    d -= TwoPi * std::round(d / TwoPi);
-    sum += q.Bary[k] * d;
-  }
-  theta = Wrap(cornerTheta[0] + sum);
-  return true;
+  return FaceCoordinates(mesh, source, reference, turn, q.Face, values).PolarAt(q.Bary, rho, theta);
 }
 
 // The log map's point of polar coordinates (rho, theta) (theta scaled to the source's total angle).
@@ -328,6 +301,122 @@ Vec2 LogMapFromPolar(double rho, double theta, double turn)
 }
 } // namespace
 
+FacePolarCoordinates::FacePolarCoordinates(const TriangleMesh& mesh, const SurfacePoint& source,
+  double reference, double turn, int face, const std::array<double, 3>& cornerRho,
+  const std::array<double, 3>& cornerTheta)
+  : Mesh(&mesh)
+  , Source(source)
+  , Reference(reference)
+  , Turn(turn)
+  , FaceId(face)
+  , CornerTheta(cornerTheta)
+{
+  const auto& t = mesh.Face(face);
+  SourceFace = source.IsVertex() ? (t[0] == source.Vertex || t[1] == source.Vertex || t[2] == source.Vertex)
+                                 : source.Face == face;
+  Inside = SourceFace ||
+    (std::isfinite(cornerRho[0]) && std::isfinite(cornerRho[1]) && std::isfinite(cornerRho[2]));
+  if (SourceFace || !Inside)
+  {
+    return;
+  }
+  Unfolding = FaceUnfolding(mesh, face, cornerRho);
+  // Without an unfolded source, the corner angles are interpolated.
+  CornerTheta0 = cornerTheta[0];
+  for (int k = 0; k < 3; ++k)
+  {
+    double d = cornerTheta[k] - cornerTheta[0];
+    d -= TwoPi * std::round(d / TwoPi);
+    CornerDelta[k] = d;
+  }
+}
+
+bool FacePolarCoordinates::PolarAt(const std::array<double, 3>& bary, double& rho, double& theta) const
+{
+  rho = theta = NaN;
+  if (!Inside)
+  {
+    return false;
+  }
+  if (SourceFace)
+  {
+    // Straight inside the face: exact.
+    const Vec3 x = Mesh->Interpolate(FaceId, bary);
+    const Vec3 s = Mesh->Position(Source);
+    rho = Norm(x - s);
+    if (rho == 0.0)
+    {
+      theta = 0.0;
+      return true;
+    }
+    // The tangent angle at the source of the direction towards x, measured in x's face.
+    const double raw = TangentAngle(*Mesh, Source, x - s);
+    theta = std::isfinite(raw) ? Wrap((raw - Reference) * TwoPi / Turn) : 0.0;
+    return true;
+  }
+  const UnfoldedTriangle u = Unfolding.At(bary);
+  rho = u.Distance;
+  // Theta: in the unfolding, the direction from the unfolded source to the point, turned by the
+  // offset that maps the corners' unfolded directions onto their angles (the same for all
+  // corners on a developable surface; averaged circularly otherwise). Without an unfolded
+  // source, the corner angles are interpolated.
+  double sum = 0.0;
+  if (u.FromEdge)
+  {
+    EdgeOffsets& o = Offsets[u.Edge];
+    if (!o.Known)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const Vec2 c = u.Corners[k] - u.Source;
+        // Angles in the unfolding are true angles at the source: scale them like the raw ones.
+        const double a = CornerTheta[k] - std::atan2(c.y, c.x) * TwoPi / Turn;
+        if (k == 0)
+        {
+          o.Offset0 = a;
+        }
+        double d = a - o.Offset0;
+        d -= TwoPi * std::round(d / TwoPi);
+        o.Delta[k] = d;
+      }
+      o.Known = true;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      sum += bary[k] * o.Delta[k];
+    }
+    const Vec2 toQ = u.Point - u.Source;
+    theta = Wrap(o.Offset0 + sum + std::atan2(toQ.y, toQ.x) * TwoPi / Turn);
+    return true;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    sum += bary[k] * CornerDelta[k];
+  }
+  theta = Wrap(CornerTheta0 + sum);
+  return true;
+}
+
+bool FacePolarCoordinates::LogMapAt(const std::array<double, 3>& bary, Vec2& p) const
+{
+  double rho = 0.0, theta = 0.0;
+  if (!PolarAt(bary, rho, theta))
+  {
+    return false;
+  }
+  p = LogMapFromPolar(rho, theta, Turn);
+  return true;
+}
+
+FacePolarCoordinates GeodesicPolarCoordinates::OnFace(int f) const
+{
+  if (CurveMode)
+  {
+    return FacePolarCoordinates(); // (PolarAt false everywhere)
+  }
+  return FaceCoordinates(Mesh, Source, Reference, Turn, f, [this](int v, double& r, double& a) { return VertexCoordinates(v, r, a); });
+}
+
 bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, double& theta) const
 {
   if (CurveMode)
@@ -335,11 +424,7 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
     rho = theta = NaN;
     return false; // curve coordinates: CurveCoordinatesAt
   }
-  return PolarAtImpl(Mesh, Source, Reference, Turn, q, rho, theta, [this](int v, double& r, double& a) {
-    r = VertexRho[v];
-    a = VertexTheta[v];
-    return std::isfinite(r);
-  });
+  return PolarAtImpl(Mesh, Source, Reference, Turn, q, rho, theta, [this](int v, double& r, double& a) { return VertexCoordinates(v, r, a); });
 }
 
 bool GeodesicPolarCoordinates::LogMapAt(const SurfacePoint& q, Vec2& p) const
@@ -380,18 +465,7 @@ bool LogMapSnapshot::PolarAt(const TriangleMesh& mesh, const SurfacePoint& q, do
     rho = theta = NaN;
     return false;
   }
-  return PolarAtImpl(mesh, Source, Reference, Turn, q, rho, theta, [this](int v, double& r, double& a) {
-    const auto it = std::lower_bound(Entries.begin(), Entries.end(), v,
-      [](const Entry& e, int vertex) { return e.Vertex < vertex; });
-    if (it == Entries.end() || it->Vertex != v || !std::isfinite(it->Rho))
-    {
-      r = a = NaN;
-      return false;
-    }
-    r = it->Rho;
-    a = it->Theta;
-    return true;
-  });
+  return PolarAtImpl(mesh, Source, Reference, Turn, q, rho, theta, SnapshotValues{ *this });
 }
 
 bool LogMapSnapshot::LogMapAt(const TriangleMesh& mesh, const SurfacePoint& q, Vec2& p) const
@@ -405,6 +479,14 @@ bool LogMapSnapshot::LogMapAt(const TriangleMesh& mesh, const SurfacePoint& q, V
   return true;
 }
 
+FacePolarCoordinates LogMapSnapshot::OnFace(const TriangleMesh& mesh, int f) const
+{
+  if (Entries.empty())
+  {
+    return FacePolarCoordinates(); // (PolarAt false everywhere)
+  }
+  return FaceCoordinates(mesh, Source, Reference, Turn, f, SnapshotValues{ *this });
+}
 
 Result<SurfacePoint> GeodesicPolarCoordinates::ToSurface(double rho, double theta) const
 {

@@ -15,12 +15,15 @@
 
 #include "ExactGeodesic.h"
 #include "GeodesicEngine.h"
+#include "GeodesicUnfolding.h"
 #include "SaddleVertexGraph.h"
 #include "Status.h"
 #include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
+#include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -40,6 +43,47 @@ struct CurveCoordinates
   double Length = 0.0; ///< the curve's length
 };
 
+/// Polar coordinates over one face, set up once for many points of it (a decal reads hundreds
+/// per face where it subdivides): the corners' coordinates, the face unfolded (FaceUnfolding)
+/// and, for each edge whose unfolded source is read, the corners' angle offsets from it.
+/// PolarAt and LogMapAt give what the engine's (or the snapshot's) give at
+/// SurfacePoint::InFace(face, bary), to the bit. Made by GeodesicPolarCoordinates::OnFace or
+/// LogMapSnapshot::OnFace; it fills its offsets as it reads, so one thread uses it.
+class FacePolarCoordinates
+{
+public:
+  FacePolarCoordinates() = default;
+  /// `cornerRho`, `cornerTheta`: the coordinates of the face's corners (rho not finite: beyond
+  /// the radius, and PolarAt is false unless the source lies in the face).
+  FacePolarCoordinates(const TriangleMesh& mesh, const SurfacePoint& source, double reference,
+    double turn, int face, const std::array<double, 3>& cornerRho,
+    const std::array<double, 3>& cornerTheta);
+  int Face() const { return FaceId; }
+  bool PolarAt(const std::array<double, 3>& bary, double& rho, double& theta) const;
+  bool LogMapAt(const std::array<double, 3>& bary, Vec2& p) const;
+
+private:
+  const TriangleMesh* Mesh = nullptr;
+  SurfacePoint Source;
+  double Reference = 0.0, Turn = 0.0;
+  int FaceId = -1;
+  bool SourceFace = false; // the source lies in the face (or is a corner): straight lines
+  bool Inside = false;     // PolarAt can answer
+  FaceUnfolding Unfolding;
+  double CornerTheta0 = 0.0;
+  std::array<double, 3> CornerDelta{ {} }; // corner angles less corner 0's, wrapped
+  std::array<double, 3> CornerTheta{ {} };
+  // Per edge: the offsets that map the corners' unfolded directions from its source onto their
+  // angles (Offset0: corner 0's; Delta: the others' less it, wrapped), once read.
+  struct EdgeOffsets
+  {
+    bool Known = false;
+    double Offset0 = 0.0;
+    std::array<double, 3> Delta{ {} };
+  };
+  mutable EdgeOffsets Offsets[3];
+};
+
 /// The polar coordinates of a GeodesicPolarCoordinates::Compute, kept without the engine (its
 /// per-mesh arrays): the vertices inside the radius, sorted, with the source and the angle
 /// convention. PolarAt and LogMapAt give what the engine's give, to the bit.
@@ -55,6 +99,8 @@ struct LogMapSnapshot
   double Reference = 0.0, Turn = 0.0;
   bool PolarAt(const TriangleMesh& mesh, const SurfacePoint& q, double& rho, double& theta) const;
   bool LogMapAt(const TriangleMesh& mesh, const SurfacePoint& q, Vec2& p) const;
+  /// The coordinates over face f, for many points of it.
+  FacePolarCoordinates OnFace(const TriangleMesh& mesh, int f) const;
 };
 
 class GeodesicPolarCoordinates
@@ -125,6 +171,9 @@ public:
   // saddle source), so that ShootGeodesic(source, reference + a, rho) draws it. False where
   // PolarAt is.
   bool LogMapAt(const SurfacePoint& q, Vec2& p) const;
+  // The coordinates over face f, for many points of it (PolarAt is false everywhere after a
+  // ComputeCurve or a failed Compute).
+  FacePolarCoordinates OnFace(int f) const;
   // The coordinates of the last successful Compute, to keep (empty after ComputeCurve or a
   // failed Compute).
   LogMapSnapshot Snapshot() const;
@@ -183,6 +232,13 @@ private:
   double Reference = 0.0;
   double Turn = 0.0;
   std::vector<double> VertexRho, VertexTheta; // per vertex (Compute)
+  // Vertex v's coordinates (false beyond the radius), as PolarAt reads them.
+  bool VertexCoordinates(int v, double& rho, double& theta) const
+  {
+    rho = VertexRho[v];
+    theta = VertexTheta[v];
+    return std::isfinite(rho);
+  }
   bool CurveMode = false;
   bool Solved = false; // the last Compute or ComputeCurve succeeded
   bool IsoAngles = false;

@@ -16,30 +16,19 @@ double UnfoldedDistance(const TriangleMesh& mesh, int f, const std::array<double
 UnfoldedTriangle UnfoldTriangle(const TriangleMesh& mesh, int f, const std::array<double, 3>& bary,
   const std::array<double, 3>& d)
 {
+  return FaceUnfolding(mesh, f, d).At(bary);
+}
+
+FaceUnfolding::FaceUnfolding(const TriangleMesh& mesh, int f, const std::array<double, 3>& d)
+  : D(d)
+{
   // The face laid out in its plane: corner 0 at the origin, corner 1 on the x axis.
   const double l01 = mesh.EdgeLength(3 * f);
   const double l02 = mesh.EdgeLength(3 * f + 2);
   const double a0 = mesh.CornerAngle(3 * f);
-  const Vec2 P[3] = { Vec2(0.0, 0.0), Vec2(l01, 0.0),
-    Vec2(l02 * std::cos(a0), l02 * std::sin(a0)) };
-  const Vec2 q = P[0] * bary[0] + P[1] * bary[1] + P[2] * bary[2];
-
-  UnfoldedTriangle out;
-  out.Point = q;
-  for (int i = 0; i < 3; ++i)
-  {
-    out.Corners[i] = P[i];
-  }
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 3; ++i)
-  {
-    if (std::isfinite(d[i]) && d[i] + Norm(q - P[i]) < best)
-    {
-      best = d[i] + Norm(q - P[i]);
-      out.Source = P[i];
-      out.FromEdge = false;
-    }
-  }
+  P[0] = Vec2(0.0, 0.0);
+  P[1] = Vec2(l01, 0.0);
+  P[2] = Vec2(l02 * std::cos(a0), l02 * std::sin(a0));
   for (int i = 0; i < 3; ++i)
   {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
@@ -61,10 +50,45 @@ UnfoldedTriangle UnfoldTriangle(const TriangleMesh& mesh, int f, const std::arra
     {
       continue; // the distances violate the triangle inequality: no geodesic triangle
     }
-    const Vec2 s = P[i] + u * x + n * std::sqrt(y2);
-    // The line from s to q must cross the edge between its end points.
+    Edges[i].Valid = true;
+    Edges[i].Edge = e;
+    Edges[i].Source = P[i] + u * x + n * std::sqrt(y2);
+  }
+}
+
+UnfoldedTriangle FaceUnfolding::At(const std::array<double, 3>& bary) const
+{
+  const Vec2 q = P[0] * bary[0] + P[1] * bary[1] + P[2] * bary[2];
+  UnfoldedTriangle out;
+  out.Point = q;
+  for (int i = 0; i < 3; ++i)
+  {
+    out.Corners[i] = P[i];
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!std::isfinite(D[i]))
+    {
+      continue;
+    }
+    const double viaCorner = D[i] + Norm(q - P[i]);
+    if (viaCorner < best)
+    {
+      best = viaCorner;
+      out.Source = P[i];
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!Edges[i].Valid)
+    {
+      continue;
+    }
+    // The line from the unfolded source to q must cross the edge between its end points.
+    const Vec2& s = Edges[i].Source;
     const Vec2 sq = q - s;
-    const double den = Cross(sq, e);
+    const double den = Cross(sq, Edges[i].Edge);
     if (std::abs(den) < 1e-300)
     {
       continue;
@@ -74,11 +98,13 @@ UnfoldedTriangle UnfoldTriangle(const TriangleMesh& mesh, int f, const std::arra
     {
       continue;
     }
-    if (Norm(sq) < best)
+    const double straight = Norm(sq);
+    if (straight < best)
     {
-      best = Norm(sq);
+      best = straight;
       out.Source = s;
       out.FromEdge = true;
+      out.Edge = i;
     }
   }
   out.Distance = best;

@@ -29,8 +29,32 @@ struct UnfoldedTriangle
   Vec2 Corners[3];
   Vec2 Source;
   bool FromEdge = false;
+  int Edge = -1; // FromEdge: the edge (corners Edge, Edge + 1) the source was unfolded across
 };
 UnfoldedTriangle UnfoldTriangle(const TriangleMesh& mesh, int f, const std::array<double, 3>& bary,
   const std::array<double, 3>& cornerDistances);
+
+// One face unfolded for many points of it: the face's layout and each edge's unfolded source,
+// which depend on the corner distances only, set up once (UnfoldTriangle sets them up at every
+// call). At(bary) is UnfoldTriangle(mesh, f, bary, cornerDistances), to the bit.
+class FaceUnfolding
+{
+public:
+  FaceUnfolding() = default;
+  FaceUnfolding(const TriangleMesh& mesh, int f, const std::array<double, 3>& cornerDistances);
+  UnfoldedTriangle At(const std::array<double, 3>& bary) const;
+
+private:
+  Vec2 P[3];                       // the corners laid out
+  std::array<double, 3> D{ {} };   // their distances
+  // Edge i (corners i, i + 1): its vector and the unfolded source across it (Valid: both corner
+  // distances finite and within the triangle inequality).
+  struct EdgeSource
+  {
+    bool Valid = false;
+    Vec2 Edge, Source;
+  };
+  EdgeSource Edges[3];
+};
 
 } // namespace gs
