@@ -257,20 +257,23 @@ struct ShapeDistributor::Impl::PoolEdit
   std::unordered_map<std::uint64_t, int> AcceptedByKey;
   std::unordered_map<int, std::vector<std::uint64_t>> AcceptedInFace;
   std::vector<char> Removed;
-  // Marks of (face, level): the shapes that left within reach of the face (x, reach), or all
-  // of the level's candidates (a changed face).
+  // Marks of a face at the starts of later levels: the shapes that left within reach of the
+  // face (x, reach), each for the levels after its own, or all of a level's candidates (a
+  // changed face). One record per face: a shape reaches its faces once, not once per level.
   struct Source
   {
     Vec3 X;
     int Class;
     double Scale;
+    int Level; // it marks the levels after this one
   };
-  struct Mark
+  struct FaceMarks
   {
-    bool All = false;
+    std::uint32_t Queued = 0, All = 0; // per level: its start is in the heap; all candidates
     std::vector<Source> Sources;
   };
-  std::unordered_map<std::uint64_t, Mark> Marks;
+  std::unordered_map<int, FaceMarks> Marks;
+  std::vector<Source> MarkSources; // (DecideNext's scratch)
   std::vector<char> Alive;
   DecisionScratch Scratch;
 
@@ -366,17 +369,22 @@ struct ShapeDistributor::Impl::PoolEdit
         }
   }
 
-  void AddMark(int f, int level, const Source* source)
+  /// Marks face f at the start of every level after `after`: for `source`, or (null) for all
+  /// of each level's candidates.
+  void AddMarks(int f, int after, const Source* source)
   {
-    const std::uint64_t id = static_cast<std::uint64_t>(f) * 64 + static_cast<std::uint64_t>(level);
-    auto inserted = Marks.emplace(id, Mark());
-    if (inserted.second)
+    FaceMarks& m = Marks[f];
+    for (int level = after + 1; level < I.Options.PoolLevels; ++level)
     {
-      Heap.push({ static_cast<std::uint64_t>(level + 1) << 56, level, f, -1 });
+      const std::uint32_t bit = 1u << level;
+      if (!(m.Queued & bit))
+      {
+        m.Queued |= bit;
+        Heap.push({ static_cast<std::uint64_t>(level + 1) << 56, level, f, -1 });
+      }
+      m.All |= source ? 0u : bit;
     }
-    Mark& m = inserted.first->second;
-    m.All = m.All || !source;
-    if (source && !m.All)
+    if (source)
     {
       m.Sources.push_back(*source);
     }
@@ -386,20 +394,12 @@ struct ShapeDistributor::Impl::PoolEdit
   /// shape (of smaller key) kills there and, unless `all`, within reach of a source.
   void Push(int f, int level, std::uint64_t key, bool all, const std::vector<Source>& sources)
   {
-    bool any = false;
-    for (int c = 0; c < I.NumberOfClasses; ++c)
-    {
-      Alive[c] = !I.KilledBefore(c, f, key);
-      any = any || Alive[c];
-    }
-    if (!any)
-    {
-      return;
-    }
+    // (The cheap tests first; whether a class is killed here, once asked.)
+    constexpr char Unknown = 2;
+    std::fill(Alive.begin(), Alive.end(), Unknown);
     for (const Drawn& d : CandidatesOf(f))
     {
-      if (d.P.Level != level || d.P.Key <= key || !Alive[d.P.Class] || AcceptedByKey.count(d.P.Key) ||
-        Decided.count(d.P.Key))
+      if (d.P.Level != level || d.P.Key <= key)
       {
         continue;
       }
@@ -409,7 +409,16 @@ struct ShapeDistributor::Impl::PoolEdit
         const Source& o = sources[k];
         near = Norm(d.X - o.X) <= I.PoolReach(o.Class, o.Scale, d.P.Class, d.Scale);
       }
-      if (near)
+      if (!near || AcceptedByKey.count(d.P.Key) || Decided.count(d.P.Key))
+      {
+        continue;
+      }
+      char& alive = Alive[d.P.Class];
+      if (alive == Unknown)
+      {
+        alive = I.KilledBefore(d.P.Class, f, key) ? 0 : 1;
+      }
+      if (alive)
       {
         Heap.push({ d.P.Key, d.P.Level, d.P.Face, d.P.Index });
       }
@@ -425,14 +434,11 @@ struct ShapeDistributor::Impl::PoolEdit
   void ReachRejected(const Vec3& x, int cls, double scale, std::uint64_t key)
   {
     const int level = static_cast<int>(key >> 56) - 1;
-    const Source source{ x, cls, scale };
+    const Source source{ x, cls, scale, level };
     const std::vector<Source> one{ source };
     FacesNear(x, Range(cls, scale), [&](int f) {
       Push(f, level, key, false, one);
-      for (int later = level + 1; later < I.Options.PoolLevels; ++later)
-      {
-        AddMark(f, later, &source);
-      }
+      AddMarks(f, level, &source);
     });
   }
 
@@ -483,10 +489,7 @@ struct ShapeDistributor::Impl::PoolEdit
     }
     for (int f : ChangedFaces)
     {
-      for (int level = 0; level < I.Options.PoolLevels; ++level)
-      {
-        AddMark(f, level, nullptr);
-      }
+      AddMarks(f, -1, nullptr);
     }
   }
 
@@ -511,8 +514,17 @@ struct ShapeDistributor::Impl::PoolEdit
     if (next.Index < 0)
     {
       // (A level's start: the kills final now decide which candidates are drawn.)
-      const Mark& m = Marks.at(static_cast<std::uint64_t>(next.Face) * 64 + static_cast<std::uint64_t>(next.Level));
-      Push(next.Face, next.Level, next.Key - 1, m.All, m.Sources);
+      const FaceMarks& m = Marks.at(next.Face);
+      const bool all = (m.All >> next.Level) & 1u;
+      MarkSources.clear();
+      for (std::size_t k = 0; k < m.Sources.size() && !all; ++k)
+      {
+        if (m.Sources[k].Level < next.Level)
+        {
+          MarkSources.push_back(m.Sources[k]);
+        }
+      }
+      Push(next.Face, next.Level, next.Key - 1, all, MarkSources);
       return;
     }
     if (!Decided.insert(next.Key).second)
