@@ -192,7 +192,7 @@ void ShapeDistributor::Impl::PrepareAlone(Record& r, int thread, DecisionScratch
   ComputeCharts(r, *PerThread.Engines[thread]);
   s.ChartSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - chartStart).count();
   ++s.Charts;
-  if (CircleMode || !Options.DrawnCheck)
+  if (CircleMode || !Options.DrawnCheck || FullConflict(r, s.Conflicts))
   {
     return;
   }

@@ -530,7 +530,10 @@ struct ShapeDistributor::Impl
   /// with `masks`, its face is dead for its class).
   void MakePoolRecord(const PoolCandidate& p, bool masks, Record& r, std::vector<int>& scratch) const;
   /// What a candidate's decision needs of itself alone, in Decide's order: a long shape's
-  /// faithfulness (Rejected when it fails), its charts, outline and exact log map.
+  /// faithfulness (Rejected when it fails), its charts, outline and exact log map. The outline
+  /// and exact map serve the drawn check only: not drawn when the full check already finds a
+  /// conflict with the shapes accepted so far, all of smaller key in a fresh run, which then
+  /// rejects it whatever is accepted next.
   void PrepareAlone(Record& r, int thread, DecisionScratch& s) const;
   /// The survivors of the cheap checks (in key order) prepared in parallel, then decided one by
   /// one; `full` once MaximumShapes are placed. False when aborted.
