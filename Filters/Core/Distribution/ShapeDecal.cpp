@@ -305,6 +305,24 @@ struct DecalBuilder
     Vec2 Point;
   };
   KeyedValues<Reading> Midpoints; // face edges' midpoints
+  // A short shape's map at the midpoints of the pieces of the face being added: they fall on
+  // the barycentric coordinates (i, j, k) / 2^MaxDepth exactly, and two pieces share each
+  // inner edge (read once). Valid where the stamp is the face's.
+  static constexpr int MaxDepth = 5;
+  static constexpr int GridSide = (1 << MaxDepth) + 1;
+  std::vector<Reading> PieceMidpoints;
+  std::vector<unsigned> PieceStamps;
+  unsigned FaceStamp = 0;
+  // The slot of barycentric point b on that grid (-1: not on it).
+  static int GridSlot(const std::array<double, 3>& b)
+  {
+    const double i = b[1] * (1 << MaxDepth), j = b[2] * (1 << MaxDepth);
+    if (!(i >= 0.0 && j >= 0.0 && i < GridSide && j < GridSide) || std::floor(i) != i || std::floor(j) != j)
+    {
+      return -1;
+    }
+    return static_cast<int>(i) * GridSide + static_cast<int>(j);
+  }
   // Long shapes: where the grid does not reach (its shots stopped at the mesh boundary, or a
   // nearby sheet of the surface), the affine extension of its border (what the vertices beyond
   // it are given, CurveShapeVertices) can carry the silhouette across a hole; such points are
@@ -517,9 +535,19 @@ struct DecalBuilder
     std::array<bool, 3> Ghost; // per corner
   };
   std::vector<Piece> Stack; // AddFace's (kept across faces)
+  // The departures of the map from the affine map at a piece's edge midpoints (zero where the
+  // map is not known); Above: whether the largest is above a bound.
+  struct Departures
+  {
+    std::array<Vec2, 3> At;
+    bool Above(double bound) const
+    {
+      return NormExceeds(At[0], bound) || NormExceeds(At[1], bound) || NormExceeds(At[2], bound);
+    }
+  };
   // The map at the piece's edge midpoints (mid, trueUV; linear where it is not known; ghost) and
-  // the largest departure from the affine map there.
-  double MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
+  // its departures from the affine map there.
+  Departures MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
     std::array<Vec2, 3>& trueUV, std::array<bool, 3>& ghost);
 };
 
@@ -596,11 +624,11 @@ std::vector<std::pair<int, std::array<Vec2, 3>>> DecalBuilder::WholeFaces(double
   return whole;
 }
 
-double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<double, 3>, 3>& mid,
-  std::array<Vec2, 3>& trueUV, std::array<bool, 3>& ghost)
+DecalBuilder::Departures DecalBuilder::MidpointError(int f, const Piece& t,
+  std::array<std::array<double, 3>, 3>& mid, std::array<Vec2, 3>& trueUV, std::array<bool, 3>& ghost)
 {
   const auto& corners = Mesh.Face(f);
-  double error = 0.0;
+  Departures error;
   for (int k = 0; k < 3; ++k)
   {
     const auto& a = t.B[k];
@@ -612,7 +640,10 @@ double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<
       ? (static_cast<std::uint64_t>(std::min(corners[k], corners[(k + 1) % 3])) << 32) |
         static_cast<std::uint32_t>(std::max(corners[k], corners[(k + 1) % 3]))
       : 0;
-    const Reading* known = t.Depth == 0 ? Midpoints.Find(edge) : nullptr;
+    const int slot = t.Depth > 0 && Exact ? GridSlot(mid[k]) : -1;
+    const Reading* known = t.Depth == 0 ? Midpoints.Find(edge)
+      : slot >= 0 && PieceStamps[slot] == FaceStamp ? &PieceMidpoints[slot]
+                                                   : nullptr;
     Vec2 q;
     bool found = false;
     if (known)
@@ -630,11 +661,16 @@ double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<
       {
         Midpoints.Insert(edge, Reading{ found, g, q });
       }
+      else if (slot >= 0)
+      {
+        PieceMidpoints[slot] = Reading{ found, g, q };
+        PieceStamps[slot] = FaceStamp;
+      }
     }
     if (found)
     {
       trueUV[k] = ToTexture(q);
-      error = std::max(error, Norm(trueUV[k] - linear));
+      error.At[k] = trueUV[k] - linear;
     }
     else
     {
@@ -653,7 +689,13 @@ double DecalBuilder::MidpointError(int f, const Piece& t, std::array<std::array<
 // whose centre is a ghost are dropped: the shape is drawn where its map reaches.
 void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal)
 {
-  const int maxDepth = 5;
+  const int maxDepth = MaxDepth;
+  if (PieceStamps.empty())
+  {
+    PieceMidpoints.resize(GridSide * GridSide);
+    PieceStamps.assign(GridSide * GridSide, 0u);
+  }
+  ++FaceStamp;
   const auto& corners = Mesh.Face(f);
   const Vec3 X[3] = { Mesh.Position(corners[0]), Mesh.Position(corners[1]),
     Mesh.Position(corners[2]) };
@@ -681,7 +723,7 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
       std::array<std::array<double, 3>, 3> mid;
       std::array<Vec2, 3> trueUV;
       std::array<bool, 3> midGhost{ { false, false, false } };
-      const double error = MidpointError(f, t, mid, trueUV, midGhost);
+      const Departures error = MidpointError(f, t, mid, trueUV, midGhost);
       // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
       const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
         Norm(at(t.B[0]) - at(t.B[2])) });
@@ -719,14 +761,14 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
         }
       }
       // (Tolerance 0: no split for the map's bends; a face is split only for its ghosts.)
-      if (TolUV > 0.0 && error > TolUV && finest)
+      if (TolUV > 0.0 && error.Above(TolUV) && finest)
       {
-        if (error > 5.0 * TolUV)
+        if (error.Above(5.0 * TolUV))
         {
           continue; // still not affine at the finest: the map folds or jumps here
         }
       }
-      else if (TolUV > 0.0 && error > TolUV)
+      else if (TolUV > 0.0 && error.Above(TolUV))
       {
         splitInFour(); // (no ghost here: pieces with one were split above)
         continue;
@@ -741,8 +783,7 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
     for (int k = 0; k < 3 && !torn; ++k)
     {
       const double onSurface = Norm(at(t.B[(k + 1) % 3]) - at(t.B[k]));
-      const double inTexture = Norm(t.U[(k + 1) % 3] - t.U[k]) * unit;
-      torn = inTexture > 4.0 * onSurface + 0.05 * unit;
+      torn = NormExceeds(t.U[(k + 1) % 3] - t.U[k], 4.0 * onSurface + 0.05 * unit, unit);
     }
     if (torn)
     {

@@ -68,9 +68,9 @@ UnfoldedTriangle FaceUnfolding::At(const std::array<double, 3>& bary) const
   double best = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i)
   {
-    if (!std::isfinite(D[i]))
+    if (!std::isfinite(D[i]) || D[i] >= best)
     {
-      continue;
+      continue; // (D[i] + a length is never below best)
     }
     const double viaCorner = D[i] + Norm(q - P[i]);
     if (viaCorner < best)
@@ -97,6 +97,10 @@ UnfoldedTriangle FaceUnfolding::At(const std::array<double, 3>& bary) const
     if (t < -1e-9 || t > 1.0 + 1e-9)
     {
       continue;
+    }
+    if (best < std::numeric_limits<double>::infinity() && NormExceeds(sq, best))
+    {
+      continue; // (longer than the best: its hypot spared)
     }
     const double straight = Norm(sq);
     if (straight < best)
