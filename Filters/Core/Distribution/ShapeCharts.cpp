@@ -176,6 +176,36 @@ bool distribution::ChartFaceHolds(const TriangleMesh& mesh, int f, const Vec2 (&
   return chart2 <= most * most;
 }
 
+namespace
+{
+// The exact log map over the face this thread read last: an outline's points come a few to a
+// face, and each face's set-up (its corners found, the face unfolded) is then made once. Keyed
+// by the map itself, held so that its address is not taken by another map meanwhile.
+struct LastFaceRead
+{
+  std::shared_ptr<const LogMapSnapshot> Map;
+  int Face = -1;
+  FacePolarCoordinates Coordinates;
+};
+
+bool ReadExactMap(const TriangleMesh& mesh, const std::shared_ptr<const LogMapSnapshot>& map,
+  const SurfacePoint& x, Vec2& p)
+{
+  if (x.IsVertex())
+  {
+    return map->LogMapAt(mesh, x, p);
+  }
+  thread_local LastFaceRead last;
+  if (last.Map != map || last.Face != x.Face)
+  {
+    last.Map = map;
+    last.Face = x.Face;
+    last.Coordinates = map->OnFace(mesh, x.Face);
+  }
+  return last.Coordinates.LogMapAt(x.Bary, p);
+}
+} // namespace
+
 bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x, Vec2& p) const
 {
   // Charts computed but empty (the engine failed): nothing reads, as ever. Not computed yet
@@ -187,7 +217,7 @@ bool ShapeDistributor::Impl::ClassPointOf(const Record& r, const SurfacePoint& x
   const double unit = Options.ShapeSize * r.Shape.Scale;
   if (r.Exact) // (the drawn check's: the exact log map of the centre)
   {
-    if (!r.Exact->LogMapAt(Mesh, x, p))
+    if (!ReadExactMap(Mesh, r.Exact, x, p))
     {
       return false;
     }
