@@ -197,9 +197,9 @@ void ShapeDistributor::Impl::PrepareAlone(Record& r, int thread, DecisionScratch
     return;
   }
   DrawOutline(r);
-  if (r.Shape.Curve.empty() && !r.Charts.empty() && !r.Charts[0].Entries.empty())
+  if (r.Shape.Curve.empty() && !r.Charts.empty() && !r.Charts[0].Entries.empty() && PrepareExactMap(r))
   {
-    PrepareExactMap(r);
+    Unfaithful(r); // (its verdict kept: the drawn check reads it last, as it would test it)
   }
 }
 

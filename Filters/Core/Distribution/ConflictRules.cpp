@@ -310,10 +310,16 @@ bool ShapeDistributor::Impl::Unfaithful(Record& c) const
   const bool isShort = c.Shape.Curve.empty();
   if (c.FaithfulChecked)
   {
-    return false;
+    return c.FaithfulVerdict;
   }
   DrawOutline(c);
   c.FaithfulChecked = true;
+  c.FaithfulVerdict = FaithfulnessFails(c, isShort);
+  return c.FaithfulVerdict;
+}
+
+bool ShapeDistributor::Impl::FaithfulnessFails(Record& c, bool isShort) const
+{
   const SafeDistanceClass& cls = Tables.Classes[c.Shape.ClassId];
   const double tolerance = Options.FaithfulTolerance * cls.Radius;
   // A short shape is read through the exact log map of its centre, the map its decal draws (the

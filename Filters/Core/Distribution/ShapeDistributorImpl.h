@@ -165,7 +165,8 @@ struct ShapeDistributor::Impl
     // The outline as drawn (Outline, OutlineSpacing), once the tables accept the shape.
     std::vector<OutlinePiece> Drawn;
     bool HasDrawn = false;
-    bool FaithfulChecked = false; // (Unfaithful: tested once)
+    bool FaithfulChecked = false; // (Unfaithful: tested once; its verdict)
+    bool FaithfulVerdict = false; // unfaithful
     // A short shape under the drawn check: the exact log map of its centre (PrepareExactMap),
     // through which the drawn check and FaithfulCheck read it.
     std::shared_ptr<const LogMapSnapshot> Exact;
@@ -417,9 +418,12 @@ struct ShapeDistributor::Impl
   bool DrawnConflict(Record& c, std::vector<int>& scratch) const;
   /// Whether c's drawn outline does not read back through the inverse of its own map to the
   /// class points it was drawn from (Options.FaithfulCheck): its map is not one-to-one over its
-  /// silhouette. Draws the outline (and a long shape's grid) if not done yet; tested once. A
+  /// silhouette. Draws the outline (and a long shape's grid) if not done yet; tested once, the
+  /// verdict kept (a test in parallel ahead of the decision, read where the decision reads it). A
   /// short shape is read through the exact log map of its centre, as its decal is drawn.
   bool Unfaithful(Record& c) const;
+  /// Unfaithful's test itself (the outline drawn).
+  bool FaithfulnessFails(Record& c, bool isShort) const;
   /// The outline as drawn, and a long shape's CurveGrid, kept in the record.
   void DrawOutline(Record& c) const;
   /// A short shape's exact log map (Record::Exact), out to a longest edge of the mesh beyond its
@@ -530,7 +534,8 @@ struct ShapeDistributor::Impl
   /// with `masks`, its face is dead for its class).
   void MakePoolRecord(const PoolCandidate& p, bool masks, Record& r, std::vector<int>& scratch) const;
   /// What a candidate's decision needs of itself alone, in Decide's order: a long shape's
-  /// faithfulness (Rejected when it fails), its charts, outline and exact log map. The outline
+  /// faithfulness (Rejected when it fails), its charts, outline and exact log map (and a short
+  /// shape's faithfulness read through it, kept for the drawn check's end). The outline
   /// and exact map serve the drawn check only: not drawn when the full check already finds a
   /// conflict with the shapes accepted so far, all of smaller key in a fresh run, which then
   /// rejects it whatever is accepted next.
