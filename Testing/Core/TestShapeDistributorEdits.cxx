@@ -222,3 +222,45 @@ TEST(ShapeDistributorEdits, PlaceKeyedRunsAreAsDenseAsRoundsAndRerunFreshWhenMor
   ASSERT_TRUE(expected.Ok());
   EXPECT_EQ(gs_test::HashRun(pool, after->Shapes), gs_test::HashRun(fresh, expected->Shapes));
 }
+
+// A fresh place-keyed run prepares its survivors in parallel (charts, outline, exact map and the
+// faithfulness verdict the drawn check reads last); an edit of the density everywhere re-decides
+// every candidate one at a time, each testing itself where the decision reaches the test. On a
+// rough sphere where FaithfulCheck rejects candidates, the two give the same shapes, bit for bit.
+TEST(ShapeDistributorEdits, ParallelPreparationDecidesAsOneCandidateAtATimeWhereFaithfulnessFails)
+{
+  const TriangleMesh rough = gs_test::BuildMesh(gs_test::BumpySoup(4, 5, 0.04));
+  const SafeDistanceTables tables = gs_test::StarAndBar();
+  std::vector<Vec3> directions(rough.NumberOfFaces());
+  for (int f = 0; f < rough.NumberOfFaces(); ++f)
+  {
+    const auto& v = rough.Face(f);
+    directions[f] = Cross(Vec3{ 0.3, 0.2, 1.0 }, rough.Position(v[0]) + rough.Position(v[1]) + rough.Position(v[2]));
+  }
+  ShapeDistributionOptions o;
+  o.ShapeSize = 0.08;
+  o.Seed = 3;
+  o.Order = CandidateOrder::PlaceKeyed;
+  o.MaximumEditShare = 1.0;
+  o.NumberOfThreads = 2;
+  // (The edit keeps a cap at the largest density, as the kept kills need, and changes the rest.)
+  const std::vector<double> ones(rough.NumberOfVertices(), 1.0);
+  std::vector<double> edited(rough.NumberOfVertices(), 0.999);
+  for (int v = 0; v < rough.NumberOfVertices(); ++v)
+  {
+    edited[v] = rough.Position(v).x > 0.9 ? 1.0 : edited[v];
+  }
+  ShapeDistributor serial(rough, nullptr);
+  ASSERT_TRUE(serial.Run(tables, directions, ones, o).Ok());
+  const Result<ShapeDistribution> a = serial.Run(tables, directions, edited, o);
+  ASSERT_TRUE(a.Ok()) << a.Message();
+  EXPECT_TRUE(a->Statistics.Incremental);
+  ShapeDistributor fresh(rough, nullptr);
+  const Result<ShapeDistribution> b = fresh.Run(tables, directions, edited, o);
+  ASSERT_TRUE(b.Ok()) << b.Message();
+  EXPECT_FALSE(b->Statistics.Incremental);
+  EXPECT_GT(b->Statistics.RejectedByFaithfulCheck, 5);
+  EXPECT_GT(b->Shapes.size(), 20u);
+  EXPECT_GT(a->Statistics.Redecided, b->Statistics.Redecided / 2); // (most of the pool)
+  EXPECT_EQ(gs_test::HashRun(serial, a->Shapes), gs_test::HashRun(fresh, b->Shapes));
+}
