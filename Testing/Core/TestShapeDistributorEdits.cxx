@@ -224,9 +224,10 @@ TEST(ShapeDistributorEdits, PlaceKeyedRunsAreAsDenseAsRoundsAndRerunFreshWhenMor
 }
 
 // A fresh place-keyed run prepares its survivors in parallel (charts, outline, exact map and the
-// faithfulness verdict the drawn check reads last); an edit of the density everywhere re-decides
-// every candidate one at a time, each testing itself where the decision reaches the test. On a
-// rough sphere where FaithfulCheck rejects candidates, the two give the same shapes, bit for bit.
+// faithfulness verdict the drawn check reads last); an edit of the density almost everywhere on
+// one thread re-decides every candidate one at a time, each testing itself where the decision
+// reaches the test, and on two threads with its look-ahead. On a rough sphere where
+// FaithfulCheck rejects candidates, all give the same shapes, bit for bit.
 TEST(ShapeDistributorEdits, ParallelPreparationDecidesAsOneCandidateAtATimeWhereFaithfulnessFails)
 {
   const TriangleMesh rough = gs_test::BuildMesh(gs_test::BumpySoup(4, 5, 0.04));
@@ -250,9 +251,11 @@ TEST(ShapeDistributorEdits, ParallelPreparationDecidesAsOneCandidateAtATimeWhere
   {
     edited[v] = rough.Position(v).x > 0.9 ? 1.0 : edited[v];
   }
+  ShapeDistributionOptions one = o; // (one thread: no look-ahead, every test at its turn)
+  one.NumberOfThreads = 1;
   ShapeDistributor serial(rough, nullptr);
-  ASSERT_TRUE(serial.Run(tables, directions, ones, o).Ok());
-  const Result<ShapeDistribution> a = serial.Run(tables, directions, edited, o);
+  ASSERT_TRUE(serial.Run(tables, directions, ones, one).Ok());
+  const Result<ShapeDistribution> a = serial.Run(tables, directions, edited, one);
   ASSERT_TRUE(a.Ok()) << a.Message();
   EXPECT_TRUE(a->Statistics.Incremental);
   ShapeDistributor fresh(rough, nullptr);
@@ -263,4 +266,12 @@ TEST(ShapeDistributorEdits, ParallelPreparationDecidesAsOneCandidateAtATimeWhere
   EXPECT_GT(b->Shapes.size(), 20u);
   EXPECT_GT(a->Statistics.Redecided, b->Statistics.Redecided / 2); // (most of the pool)
   EXPECT_EQ(gs_test::HashRun(serial, a->Shapes), gs_test::HashRun(fresh, b->Shapes));
+  ShapeDistributor ahead(rough, nullptr);
+  ASSERT_TRUE(ahead.Run(tables, directions, ones, o).Ok());
+  const Result<ShapeDistribution> c = ahead.Run(tables, directions, edited, o);
+  ASSERT_TRUE(c.Ok()) << c.Message();
+  EXPECT_TRUE(c->Statistics.Incremental);
+  EXPECT_EQ(c->Statistics.Redecided, a->Statistics.Redecided);
+  EXPECT_EQ(c->Statistics.Charts, a->Statistics.Charts); // (charts made ahead counted as taken)
+  EXPECT_EQ(gs_test::HashRun(ahead, c->Shapes), gs_test::HashRun(fresh, b->Shapes));
 }

@@ -12,7 +12,9 @@
 #include "ShapeDistributorImpl.h"
 
 #include "Hash.h"
+#include "ParallelFor.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -224,6 +226,8 @@ bool SameBits(double a, double b)
   return std::memcmp(&a, &b, sizeof(double)) == 0;
 }
 using Cell = std::array<long long, 3>;
+// Candidates the look-ahead checks per thread at a time (RunPoolIncremental).
+constexpr int LookAhead = 32;
 } // namespace
 
 /// One edit's run (RunPoolIncremental): what it has reached and decided.
@@ -270,12 +274,36 @@ struct ShapeDistributor::Impl::PoolEdit
   struct FaceMarks
   {
     std::uint32_t Queued = 0, All = 0; // per level: its start is in the heap; all candidates
-    std::vector<Source> Sources;
+    // The shapes that left when the edit started (by level: a level's start reads a prefix),
+    // and those that left since (each marks the levels after its own).
+    std::vector<Source> Early, Late;
   };
   std::unordered_map<int, FaceMarks> Marks;
-  std::vector<Source> MarkSources; // (DecideNext's scratch)
+  bool Started = false; // (Start done: shapes leave one by one, in key order)
+  // Sources as Push reads them: a run of them, and another of which those below a level count.
+  struct Sources
+  {
+    const Source *First, *Last, *More, *MoreLast;
+    int Below;
+  };
   std::vector<char> Alive;
   DecisionScratch Scratch;
+  // Look-ahead: the candidates next in key order get their checks against the accepted shapes
+  // (kills, the cheap check) and what needs the record alone (PrepareAlone: charts, outline,
+  // exact map, faithfulness) in parallel, before their turn. A decision takes the checks' results
+  // only when no shape was accepted or taken out since (State: bumped by each), and the prepared
+  // record whenever it is the shape its turn makes: the decisions stay one by one in key order,
+  // with the results of the serial run.
+  struct Ahead
+  {
+    Record R;
+    std::uint64_t State = 0;
+    bool Killed = false, Conflict = false, Prepared = false;
+  };
+  std::unordered_map<std::uint64_t, Ahead> AheadOf;
+  std::unordered_set<std::uint64_t> Examined;
+  std::uint64_t State = 0;
+  std::vector<DecisionScratch> AheadScratch;
 
   Cell CellOf(const Vec3& x) const
   {
@@ -386,14 +414,17 @@ struct ShapeDistributor::Impl::PoolEdit
     }
     if (source)
     {
-      m.Sources.push_back(*source);
+      (Started ? m.Late : m.Early).push_back(*source);
     }
   }
 
   /// Face f's candidates of `level` after `key` that were not accepted, whose class no final
   /// shape (of smaller key) kills there and, unless `all`, within reach of a source.
-  void Push(int f, int level, std::uint64_t key, bool all, const std::vector<Source>& sources)
+  void Push(int f, int level, std::uint64_t key, bool all, const Sources& sources)
   {
+    auto reaches = [this](const Source& o, const Drawn& d) {
+      return Norm(d.X - o.X) <= I.PoolReach(o.Class, o.Scale, d.P.Class, d.Scale);
+    };
     // (The cheap tests first; whether a class is killed here, once asked.)
     constexpr char Unknown = 2;
     std::fill(Alive.begin(), Alive.end(), Unknown);
@@ -404,10 +435,13 @@ struct ShapeDistributor::Impl::PoolEdit
         continue;
       }
       bool near = all;
-      for (std::size_t k = 0; k < sources.size() && !near; ++k)
+      for (const Source* o = sources.First; o != sources.Last && !near; ++o)
       {
-        const Source& o = sources[k];
-        near = Norm(d.X - o.X) <= I.PoolReach(o.Class, o.Scale, d.P.Class, d.Scale);
+        near = reaches(*o, d);
+      }
+      for (const Source* o = sources.More; o != sources.MoreLast && !near; ++o)
+      {
+        near = o->Level < sources.Below && reaches(*o, d);
       }
       if (!near || AcceptedByKey.count(d.P.Key) || Decided.count(d.P.Key))
       {
@@ -435,7 +469,7 @@ struct ShapeDistributor::Impl::PoolEdit
   {
     const int level = static_cast<int>(key >> 56) - 1;
     const Source source{ x, cls, scale, level };
-    const std::vector<Source> one{ source };
+    const Sources one{ &source, &source + 1, nullptr, nullptr, 0 };
     FacesNear(x, Range(cls, scale), [&](int f) {
       Push(f, level, key, false, one);
       AddMarks(f, level, &source);
@@ -483,6 +517,7 @@ struct ShapeDistributor::Impl::PoolEdit
       if (Changed[I.Accepted.Records[id].Shape.Centre.Face])
       {
         const Record r = I.RemoveAccepted(id);
+        ++State;
         Removed[id] = 1;
         ReachRejected(r.Shape.Position, r.Shape.ClassId, r.Shape.Scale, r.Key);
       }
@@ -491,12 +526,19 @@ struct ShapeDistributor::Impl::PoolEdit
     {
       AddMarks(f, -1, nullptr);
     }
+    for (auto& face : Marks)
+    {
+      std::stable_sort(face.second.Early.begin(), face.second.Early.end(),
+        [](const Source& a, const Source& b) { return a.Level < b.Level; });
+    }
+    Started = true;
   }
 
   /// Takes an accepted shape out, for its decision again.
   Record TakeAccepted(int id)
   {
     Record r = I.RemoveAccepted(id);
+    ++State;
     Removed[id] = 1;
     AcceptedByKey.erase(r.Key);
     std::vector<std::uint64_t>& keys = AcceptedInFace[r.Shape.Centre.Face];
@@ -516,15 +558,12 @@ struct ShapeDistributor::Impl::PoolEdit
       // (A level's start: the kills final now decide which candidates are drawn.)
       const FaceMarks& m = Marks.at(next.Face);
       const bool all = (m.All >> next.Level) & 1u;
-      MarkSources.clear();
-      for (std::size_t k = 0; k < m.Sources.size() && !all; ++k)
-      {
-        if (m.Sources[k].Level < next.Level)
-        {
-          MarkSources.push_back(m.Sources[k]);
-        }
-      }
-      Push(next.Face, next.Level, next.Key - 1, all, MarkSources);
+      const Source* early = m.Early.data();
+      const Source* earlyBelow = std::partition_point(early, early + m.Early.size(),
+        [&next](const Source& o) { return o.Level < next.Level; });
+      const Source* late = m.Late.data();
+      Push(next.Face, next.Level, next.Key - 1, all,
+        Sources{ early, earlyBelow, late, late + m.Late.size(), next.Level });
       return;
     }
     if (!Decided.insert(next.Key).second)
@@ -540,17 +579,47 @@ struct ShapeDistributor::Impl::PoolEdit
       r = TakeAccepted(was->second);
       killed = I.KilledBefore(r.Shape.ClassId, r.Shape.Centre.Face, r.Key);
     }
-    else
+    bool conflict = false; // (a new candidate: the cheap check, done here or ahead)
+    if (!wasAccepted)
     {
-      PoolCandidate p;
-      I.DrawPoolCandidate(next.Level, next.Face, next.Index, p);
-      killed = I.KilledBefore(p.Class, p.Face, p.Key);
-      if (!killed)
+      const auto ahead = AheadOf.find(next.Key);
+      bool checked = false;
+      if (ahead != AheadOf.end() && ahead->second.State == State)
       {
-        I.MakePoolRecord(p, false, r, Scratch.Conflicts);
+        killed = ahead->second.Killed;
+        conflict = ahead->second.Conflict;
+        checked = true;
+        r = std::move(ahead->second.R);
       }
+      else
+      {
+        PoolCandidate p;
+        I.DrawPoolCandidate(next.Level, next.Face, next.Index, p);
+        killed = I.KilledBefore(p.Class, p.Face, p.Key);
+        if (!killed)
+        {
+          I.MakePoolRecord(p, false, r, Scratch.Conflicts);
+          if (ahead != AheadOf.end() && ahead->second.Prepared && r.Valid &&
+            SamePlacement(ahead->second.R.Shape, r.Shape))
+          {
+            r = std::move(ahead->second.R); // (what it needs of itself alone)
+          }
+        }
+      }
+      if (ahead != AheadOf.end())
+      {
+        AheadOf.erase(ahead);
+      }
+      if (!killed && r.Valid && !checked)
+      {
+        conflict = I.CheapConflict(r, Scratch.Conflicts);
+      }
+      // (Charts made ahead count where the decision would have made them: past the cheap check.)
+      Scratch.Charts += !killed && r.Valid && !conflict && !r.Charts.empty() ? 1 : 0;
     }
-    const bool fits = !killed && r.Valid && I.Decide(r, 0, true, false, Scratch);
+    // (A prepared record rejected alone is unfaithful: Decide would not test it again.)
+    const bool fits = !killed && r.Valid && !conflict && !r.Rejected &&
+      I.Decide(r, 0, wasAccepted, false, Scratch);
     if (!fits && !wasAccepted)
     {
       return; // (rejected as before)
@@ -564,6 +633,7 @@ struct ShapeDistributor::Impl::PoolEdit
       AcceptedInFace[r.Shape.Centre.Face].push_back(next.Key);
       Removed.push_back(0);
       I.Commit(std::move(r));
+      ++State;
     }
     if (fits && !wasAccepted)
     {
@@ -572,6 +642,68 @@ struct ShapeDistributor::Impl::PoolEdit
     else if (!fits && wasAccepted)
     {
       ReachRejected(x, cls, scale, next.Key);
+    }
+  }
+
+  /// When the next candidate in key order is one the look-ahead has not seen: the next `count`
+  /// unseen candidates are checked and prepared, in parallel (the heap and the accepted shapes
+  /// only read).
+  void PrepareAhead(int count, int threads)
+  {
+    // (Candidates only: not the marks of a level's start, nor the accepted shapes' entries.)
+    auto unseen = [this](const Reached& r) {
+      return r.Index >= 0 && r.Level >= 0 && !Decided.count(r.Key) && !AcceptedByKey.count(r.Key) &&
+        !Examined.count(r.Key);
+    };
+    if (Heap.empty() || !unseen(Heap.top()))
+    {
+      return;
+    }
+    std::vector<Reached> popped, ahead;
+    while (!Heap.empty() && static_cast<int>(ahead.size()) < count)
+    {
+      const Reached next = Heap.top();
+      Heap.pop();
+      popped.push_back(next);
+      if (unseen(next))
+      {
+        Examined.insert(next.Key);
+        ahead.push_back(next);
+      }
+    }
+    for (const Reached& r : popped)
+    {
+      Heap.push(r);
+    }
+    const int n = static_cast<int>(ahead.size());
+    std::vector<Ahead> results(n);
+    AheadScratch.resize(threads);
+    ParallelFor(n, threads, 1, [&](int i, int thread) {
+      if (I.Poll())
+      {
+        return;
+      }
+      Ahead& a = results[i];
+      a.State = State;
+      PoolCandidate p;
+      I.DrawPoolCandidate(ahead[i].Level, ahead[i].Face, ahead[i].Index, p);
+      DecisionScratch& s = AheadScratch[thread];
+      a.Killed = I.KilledBefore(p.Class, p.Face, p.Key);
+      if (a.Killed)
+      {
+        return;
+      }
+      I.MakePoolRecord(p, false, a.R, s.Conflicts);
+      a.Conflict = a.R.Valid && I.CheapConflict(a.R, s.Conflicts);
+      if (a.R.Valid && !a.Conflict)
+      {
+        I.PrepareAlone(a.R, thread, s);
+        a.Prepared = true;
+      }
+    });
+    for (int i = 0; i < n; ++i)
+    {
+      AheadOf.emplace(ahead[i].Key, std::move(results[i]));
     }
   }
 
@@ -591,12 +723,17 @@ bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDe
   edit.Start();
   // Key order: each candidate sees the final fates of every smaller key.
   Pool.KillOnCommit = false;
+  const int threads = ThreadCount(Options.NumberOfThreads);
   for (long long k = 1; !edit.Heap.empty(); ++k)
   {
     if ((k & 63) == 0 && Poll())
     {
       Pool.KillOnCommit = true;
       return false;
+    }
+    if (threads > 1)
+    {
+      edit.PrepareAhead(LookAhead * threads, threads);
     }
     edit.DecideNext();
   }
@@ -608,6 +745,10 @@ bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDe
   stats.Candidates = stats.Redecided;
   stats.Charts = edit.Scratch.Charts;
   stats.ChartCpuSeconds = edit.Scratch.ChartSeconds;
+  for (const DecisionScratch& t : edit.AheadScratch)
+  {
+    stats.ChartCpuSeconds += t.ChartSeconds; // (its charts counted where decisions took them)
+  }
   stats.CheckSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }
