@@ -234,6 +234,10 @@ TEST(GeodesicUnfolding, NormExceedsDecidesAsTheNorm)
       EXPECT_EQ(NormExceeds(a, bound), Norm(a) > bound) << a.x << " " << a.y << " " << bound;
     }
   }
+  // Squares that overflow or fall below the normal range, alone or in the product.
+  EXPECT_EQ(NormExceeds(Vec2(3e-162, 0.0), 3.05e-12, 1e150), Norm(Vec2(3e-162, 0.0)) * 1e150 > 3.05e-12);
+  EXPECT_EQ(NormExceeds(Vec2(1e155, 0.0), 1e150, 1e-10), Norm(Vec2(1e155, 0.0)) * 1e-10 > 1e150);
+  EXPECT_EQ(NormExceeds(Vec2(1e-150, 0.0), 1e51, 1e200), Norm(Vec2(1e-150, 0.0)) * 1e200 > 1e51);
   EXPECT_EQ(checked, 200000);
   EXPECT_GT(near, 20000);
 }

@@ -21,12 +21,15 @@ inline double Cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x
 inline double Norm(const Vec2& a) { return std::hypot(a.x, a.y); }
 /// Norm(a) * scale > bound, decided as that expression decides it, with std::hypot only where
 /// the squared length cannot settle it: its rounding (a few units in the last place) is far
-/// below the relative margin of 1e-12 kept on either side. `scale` > 0.
+/// below the relative margin of 1e-12 kept on either side. Squares that overflow or leave the
+/// normal range take std::hypot too. `scale` > 0.
 inline bool NormExceeds(const Vec2& a, double bound, double scale = 1.0)
 {
-  const double length2 = Dot(a, a) * (scale * scale), bound2 = bound * bound;
-  constexpr double Margin = 1e-12, Tiny = 1e-280; // (Tiny: no underflow in the squares)
-  if (bound > 0.0 && bound2 > Tiny && length2 > Tiny && std::isfinite(bound2))
+  const double dot = Dot(a, a), scale2 = scale * scale;
+  const double length2 = dot * scale2, bound2 = bound * bound;
+  constexpr double Margin = 1e-12, Tiny = 1e-280, Huge = 1e280;
+  auto normal = [](double x) { return x > Tiny && x < Huge; };
+  if (bound > 0.0 && normal(dot) && normal(scale2) && normal(length2) && normal(bound2))
   {
     if (length2 > bound2 * (1.0 + Margin))
     {

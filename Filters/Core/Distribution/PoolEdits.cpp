@@ -647,8 +647,8 @@ struct ShapeDistributor::Impl::PoolEdit
 
   /// When the next candidate in key order is one the look-ahead has not seen: the next `count`
   /// unseen candidates are checked and prepared, in parallel (the heap and the accepted shapes
-  /// only read).
-  void PrepareAhead(int count, int threads)
+  /// only read). False when aborted (nothing kept).
+  bool PrepareAhead(int count, int threads)
   {
     // (Candidates only: not the marks of a level's start, nor the accepted shapes' entries.)
     auto unseen = [this](const Reached& r) {
@@ -657,7 +657,7 @@ struct ShapeDistributor::Impl::PoolEdit
     };
     if (Heap.empty() || !unseen(Heap.top()))
     {
-      return;
+      return true;
     }
     std::vector<Reached> popped, ahead;
     while (!Heap.empty() && static_cast<int>(ahead.size()) < count)
@@ -701,10 +701,15 @@ struct ShapeDistributor::Impl::PoolEdit
         a.Prepared = true;
       }
     });
+    if (I.Poll())
+    {
+      return false; // (some were left unchecked)
+    }
     for (int i = 0; i < n; ++i)
     {
       AheadOf.emplace(ahead[i].Key, std::move(results[i]));
     }
+    return true;
   }
 
   /// The accepted shapes without the empty slots, in key order.
@@ -731,13 +736,18 @@ bool ShapeDistributor::Impl::RunPoolIncremental(const std::vector<double>& oldDe
       Pool.KillOnCommit = true;
       return false;
     }
-    if (threads > 1)
+    if (threads > 1 && !edit.PrepareAhead(LookAhead * threads, threads))
     {
-      edit.PrepareAhead(LookAhead * threads, threads);
+      Pool.KillOnCommit = true;
+      return false;
     }
     edit.DecideNext();
   }
   Pool.KillOnCommit = true;
+  if (Poll())
+  {
+    return false; // (an abort during the last decisions: their checks gave up)
+  }
   edit.Finish();
   stats.Incremental = true;
   stats.Maximal = true;
