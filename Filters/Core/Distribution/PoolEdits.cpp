@@ -659,8 +659,11 @@ struct ShapeDistributor::Impl::PoolEdit
     {
       return true;
     }
+    // (At most a few batches' worth of entries looked at: the level starts and the entries seen
+    // or decided between them are put back, not searched through to the heap's end.)
     std::vector<Reached> popped, ahead;
-    while (!Heap.empty() && static_cast<int>(ahead.size()) < count)
+    while (!Heap.empty() && static_cast<int>(ahead.size()) < count &&
+      static_cast<int>(popped.size()) < 8 * count)
     {
       const Reached next = Heap.top();
       Heap.pop();
