@@ -300,8 +300,7 @@ struct ShapeDistributor::Impl::PoolEdit
     std::uint64_t State = 0;
     bool Killed = false, Conflict = false, Prepared = false;
   };
-  std::unordered_map<std::uint64_t, Ahead> AheadOf;
-  std::unordered_set<std::uint64_t> Examined;
+  std::unordered_map<std::uint64_t, Ahead> AheadOf; // (the undecided candidates it has seen)
   std::uint64_t State = 0;
   std::vector<DecisionScratch> AheadScratch;
 
@@ -653,7 +652,7 @@ struct ShapeDistributor::Impl::PoolEdit
     // (Candidates only: not the marks of a level's start, nor the accepted shapes' entries.)
     auto unseen = [this](const Reached& r) {
       return r.Index >= 0 && r.Level >= 0 && !Decided.count(r.Key) && !AcceptedByKey.count(r.Key) &&
-        !Examined.count(r.Key);
+        !AheadOf.count(r.Key);
     };
     if (Heap.empty() || !unseen(Heap.top()))
     {
@@ -668,9 +667,8 @@ struct ShapeDistributor::Impl::PoolEdit
       const Reached next = Heap.top();
       Heap.pop();
       popped.push_back(next);
-      if (unseen(next))
+      if (unseen(next) && (ahead.empty() || ahead.back().Key != next.Key)) // (copies come together)
       {
-        Examined.insert(next.Key);
         ahead.push_back(next);
       }
     }

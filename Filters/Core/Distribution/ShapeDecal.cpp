@@ -689,7 +689,6 @@ DecalBuilder::Departures DecalBuilder::MidpointError(int f, const Piece& t,
 // whose centre is a ghost are dropped: the shape is drawn where its map reaches.
 void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, double unit, ShapeDecal& decal)
 {
-  const int maxDepth = MaxDepth;
   if (PieceStamps.empty())
   {
     PieceMidpoints.resize(GridSide * GridSide);
@@ -727,7 +726,7 @@ void DecalBuilder::AddFace(int f, const std::array<Vec2, 3>& uv, double sense, d
       // Finest: depth 5, or pieces as small as half the grid's step (it cannot tell more).
       const double size = std::max({ Norm(at(t.B[1]) - at(t.B[0])), Norm(at(t.B[2]) - at(t.B[1])),
         Norm(at(t.B[0]) - at(t.B[2])) });
-      const bool finest = t.Depth == maxDepth || (Grid && size <= 0.5 * Grid->Step);
+      const bool finest = t.Depth == MaxDepth || (Grid && size <= 0.5 * Grid->Step);
       // Corners 0, 1, 2 and midpoints m01, m12, m20, each with its ghost state.
       auto splitInFour = [&]() {
         stack.push_back(Piece{ { { t.B[0], mid[0], mid[2] } }, { { t.U[0], trueUV[0], trueUV[2] } }, t.Depth + 1,

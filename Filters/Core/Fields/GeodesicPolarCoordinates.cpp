@@ -241,7 +241,7 @@ Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius
 
 namespace
 {
-// A snapshot's vertex coordinates, as PolarAtImpl reads them.
+// A snapshot's vertex coordinates (false beyond its radius).
 struct SnapshotValues
 {
   const LogMapSnapshot& Snapshot;
@@ -261,7 +261,8 @@ struct SnapshotValues
   }
 };
 
-// The coordinates over face f of an engine or of a snapshot (`values` as PolarAtImpl's).
+// The coordinates over face f of an engine or of a snapshot: `values(v, rho, theta)` gives
+// vertex v's coordinates (false beyond the radius).
 template <class Values>
 FacePolarCoordinates FaceCoordinates(const TriangleMesh& mesh, const SurfacePoint& source,
   double reference, double turn, int f, const Values& values)
@@ -277,20 +278,6 @@ FacePolarCoordinates FaceCoordinates(const TriangleMesh& mesh, const SurfacePoin
     }
   }
   return FacePolarCoordinates(mesh, source, reference, turn, f, rho, theta);
-}
-
-// PolarAt of an engine or of a snapshot: `values(v, rho, theta)` gives vertex v's coordinates
-// (false outside the radius); the rest as GeodesicPolarCoordinates::PolarAt says.
-template <class Values>
-bool PolarAtImpl(const TriangleMesh& mesh, const SurfacePoint& source, double reference, double turn,
-  const SurfacePoint& q, double& rho, double& theta, const Values& values)
-{
-  if (q.IsVertex())
-  {
-    rho = theta = NaN;
-    return values(q.Vertex, rho, theta);
-  }
-  return FaceCoordinates(mesh, source, reference, turn, q.Face, values).PolarAt(q.Bary, rho, theta);
 }
 
 // The log map's point of polar coordinates (rho, theta) (theta scaled to the source's total angle).
@@ -414,7 +401,8 @@ FacePolarCoordinates GeodesicPolarCoordinates::OnFace(int f) const
   {
     return FacePolarCoordinates(); // (PolarAt false everywhere)
   }
-  return FaceCoordinates(Mesh, Source, Reference, Turn, f, [this](int v, double& r, double& a) { return VertexCoordinates(v, r, a); });
+  return FaceCoordinates(Mesh, Source, Reference, Turn, f,
+    [this](int v, double& r, double& a) { return VertexCoordinates(v, r, a); });
 }
 
 bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, double& theta) const
@@ -424,7 +412,11 @@ bool GeodesicPolarCoordinates::PolarAt(const SurfacePoint& q, double& rho, doubl
     rho = theta = NaN;
     return false; // curve coordinates: CurveCoordinatesAt
   }
-  return PolarAtImpl(Mesh, Source, Reference, Turn, q, rho, theta, [this](int v, double& r, double& a) { return VertexCoordinates(v, r, a); });
+  if (q.IsVertex())
+  {
+    return VertexCoordinates(q.Vertex, rho, theta);
+  }
+  return OnFace(q.Face).PolarAt(q.Bary, rho, theta);
 }
 
 bool GeodesicPolarCoordinates::LogMapAt(const SurfacePoint& q, Vec2& p) const
@@ -465,7 +457,11 @@ bool LogMapSnapshot::PolarAt(const TriangleMesh& mesh, const SurfacePoint& q, do
     rho = theta = NaN;
     return false;
   }
-  return PolarAtImpl(mesh, Source, Reference, Turn, q, rho, theta, SnapshotValues{ *this });
+  if (q.IsVertex())
+  {
+    return SnapshotValues{ *this }(q.Vertex, rho, theta);
+  }
+  return OnFace(mesh, q.Face).PolarAt(q.Bary, rho, theta);
 }
 
 bool LogMapSnapshot::LogMapAt(const TriangleMesh& mesh, const SurfacePoint& q, Vec2& p) const
