@@ -12,6 +12,7 @@
 #include "TriangleMesh.h"
 #include "VirtualSourceGeodesic.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -133,6 +134,8 @@ int main(int argc, char** argv)
     ExactGeodesicSolver solver(m);
     VirtualSourceSolver virtualSources(m);
     double exact = 0, dijkstra = 0, windows = 0, relGap = 0, vsp = 0, vspSum = 0, vspSigned = 0, vspMax = 0;
+    double vspAngles = 0;
+    std::vector<double> angleErrors; // degrees
     long long vspCount = 0, vspUnreached = 0;
     std::vector<double> graph;
     const double rounding = 1e-9 * m.BoundingBoxDiagonal();
@@ -171,6 +174,17 @@ int main(int argc, char** argv)
               source, v, d, graph[v]);
         }
       }
+      VirtualSourceOptions withAngles;
+      withAngles.Angles = true;
+      vspAngles += Seconds([&] { static_cast<void>(virtualSources.Solve({ SurfacePoint::AtVertex(source) }, withAngles)); });
+      for (int v = 0; v < m.NumberOfVertices(); ++v)
+      {
+        if (v != source && std::isfinite(solver.Distance(v)))
+        {
+          const double a = virtualSources.DepartureAngle(v) - solver.DepartureAngle(v);
+          angleErrors.push_back(std::abs(std::remainder(a, 2.0 * M_PI)) * 180.0 / M_PI);
+        }
+      }
       if (notFinite + aboveGraph > 0)
       {
         std::printf("  source %d: %d reachable vertices not finite, %d above the edge graph\n",
@@ -184,6 +198,22 @@ int main(int argc, char** argv)
       dijkstra / numSources, exact / dijkstra, windows / numSources, relGap, vsp / numSources,
       vspSum / std::max(1LL, vspCount), vspMax, 1e-6 * m.NumberOfVertices() * numSources / vsp);
     std::printf("signed mean %.3e\n", vspSigned / std::max(1LL, vspCount));
+    if (!angleErrors.empty())
+    {
+      // Departure angles (virtual sources against exact): mean, median and 95th percentile.
+      double sum = 0;
+      for (double e : angleErrors)
+        sum += e;
+      const auto at = [&](double q) {
+        std::vector<double> sorted = angleErrors;
+        const std::size_t i = static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1));
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(i), sorted.end());
+        return sorted[i];
+      };
+      std::printf("vsp departure angles: %.2fx the solve's time; difference from exact: mean %.3f deg, "
+                  "median %.3f, 95th percentile %.3f\n",
+        vspAngles / vsp, sum / static_cast<double>(angleErrors.size()), at(0.5), at(0.95));
+    }
   }
   std::printf("exact_s: seconds per single-source exact solve (one thread); dijkstra_s: edge-graph "
               "Dijkstra, same sources; ratio = exact/dijkstra; max_err_dij: largest relative excess "

@@ -8,7 +8,8 @@
 // Two engines: the exact solver truncated at the radius (exact distances and departure angles;
 // behind a saddle or reflex boundary vertex, the angle of the path to it), or, given a saddle
 // vertex graph, the SVG solver (exact in the source's K-disk, near-exact beyond, several times
-// faster on large patches). Theta can be replaced by the iso-curve arc-length angle
+// faster on large patches). Not the virtual sources: their departure angles are off by 1-4
+// degrees on average (VirtualSourceGeodesic.h). Theta can be replaced by the iso-curve arc-length angle
 // (UseIsoCurveAngles). About a curve instead of a point (ComputeCurve), the coordinates are
 // (offset, arc length), a CurveCoordinates of their own.
 #pragma once

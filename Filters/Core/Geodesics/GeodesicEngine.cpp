@@ -156,9 +156,11 @@ public:
     VirtualSourceOptions vsp;
     vsp.MaximumDistance = options.MaximumDistance;
     vsp.Progress = options.Progress;
+    vsp.Angles = options.Angles;
     return Solver_.Solve(points, runs, vsp);
   }
   double Distance(int v) const override { return Solver_.Distance(v); }
+  double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
   std::vector<double> Distances() const override { return Solver_.Distances(); }
   const std::vector<int>& Reached() const override
   {

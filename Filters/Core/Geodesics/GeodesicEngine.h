@@ -55,9 +55,9 @@ struct GeodesicSolveOptions
   /// Graph engines: threads of the refinement of large solves (0: every core; the same
   /// distances to the bit for any number).
   int NumberOfThreads = 0;
-  /// Also the departure angles from a single point source (DepartureAngle): graph engines
-  /// compute them only when asked (their refinement then runs on one thread); the exact engine
-  /// always does; the virtual sources never.
+  /// Also the departure angles from a single point source (DepartureAngle): graph engines and
+  /// the virtual sources compute them only when asked (the graphs' refinement then runs on one
+  /// thread); the exact engine always does.
   bool Angles = false;
   /// Called with the fraction done (engines that report it); false aborts the solve
   /// (Status::Aborted(), every vertex unreached).

@@ -11,6 +11,7 @@ namespace gs
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
+constexpr double Nan = std::numeric_limits<double>::quiet_NaN();
 using window_geometry::Hypot;
 // Crossings between two progress reports.
 constexpr std::int64_t ProgressStride = 1 << 16;
@@ -181,30 +182,50 @@ void VirtualSourceSolver::Seed(int f, double sx, double sy, double tx, double ty
     const double u = vv > 0.0 ? std::min(std::max(((x - sx) * vx + (y - sy) * vy) / vv, 0.0), 1.0) : 0.0;
     return Hypot(x - sx - u * vx, y - sy - u * vy);
   };
-  UpdateVertex(r.Corner[0], distance(0.0, 0.0));
-  UpdateVertex(r.Corner[1], distance(l, 0.0));
-  UpdateVertex(r.Corner[2], distance(cx, cy));
+  // A point source's angles start from the face's first edge (corner 0 to corner 1).
+  const FaceAngle start{ 0.0, 1.0, 0.0 };
+  UpdateVertex(r.Corner[0], distance(0.0, 0.0), TrackAngles, [&] { return Towards(start, sx, sy, 0.0, 0.0); });
+  UpdateVertex(r.Corner[1], distance(l, 0.0), TrackAngles, [&] { return Towards(start, sx, sy, l, 0.0); });
+  UpdateVertex(r.Corner[2], distance(cx, cy), TrackAngles, [&] { return Towards(start, sx, sy, cx, cy); });
   const double key = distance((l + cx) / 3.0, cy / 3.0);
   if (key < KeyOf(r))
   {
     SetSource(r, sx, sy, tx, ty, 0.0, key, -1, -1);
+    if (TrackAngles)
+    {
+      FaceAngles[f] = start;
+    }
   }
 }
 
-void VirtualSourceSolver::SeedAround(int v, double sigma)
+void VirtualSourceSolver::SeedAround(int v, double sigma, bool source)
 {
   // Each face around v, with v as its source: its corners along its edges from v, its key from
-  // its centroid's position in the frame of the half-edge leaving v.
+  // its centroid's position in the frame of the half-edge leaving v. Departure angles: from a
+  // source vertex, each half-edge's fan angle (the corner angles before it, counter-clockwise
+  // from VertexHalfedge); behind a bend, v's own.
+  const double behind = TrackAngles && !source ? VertexAngles[v].Value() : 0.0;
+  double fan = 0.0;
   Surface.ForEachOutgoingHalfedge(v, [&](int h) {
-    FaceRecord& r = Faces[TriangleMesh::FaceOf(h)];
+    const int f = TriangleMesh::FaceOf(h);
+    FaceRecord& r = Faces[f];
     const int k = h % 3;
     const EdgeView e = ViewOf(r, k);
-    UpdateVertex(r.Corner[(k + 1) % 3], sigma + e.Length);
-    UpdateVertex(r.Corner[(k + 2) % 3], sigma + r.L[(k + 2) % 3]);
+    // (The corner angles are read only for angles: a bend's seeding would wait on them.)
+    const double corner = TrackAngles && source ? Surface.CornerAngle(h) : 0.0;
+    const double p0 = source ? fan : behind, p1 = source ? fan + corner : behind;
+    fan += corner;
+    UpdateVertex(r.Corner[(k + 1) % 3], sigma + e.Length, TrackAngles, [&] { return VertexAngle{ p0, 1.0, 0.0 }; });
+    UpdateVertex(
+      r.Corner[(k + 2) % 3], sigma + r.L[(k + 2) % 3], TrackAngles, [&] { return VertexAngle{ p1, 1.0, 0.0 }; });
     const double key = sigma + Hypot((e.Length + e.Px) / 3.0, e.Py / 3.0);
     if (key < KeyOf(r))
     {
       SetSource(r, e.Ox, e.Oy, e.Ox, e.Oy, sigma, key, -1, -1);
+      if (TrackAngles)
+      {
+        FaceAngles[f] = source ? FaceAngle{ p0, e.Ux, e.Uy } : FaceAngle{ behind, Nan, Nan };
+      }
     }
   });
 }
@@ -294,6 +315,7 @@ struct CrossingSource
 };
 } // namespace
 
+template <bool Angles>
 void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
 {
   ++Stats.Crossings;
@@ -350,25 +372,28 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
   }
 
   // The opposite vertex P through this crossing, whatever the face decides: the centroid's bend
-  // when it bends, else its own path.
-  double dP;
+  // when it bends, else its own path; (fx, fy) where that path first turns (P when straight).
+  double fx = px, fy = py, dP;
   if (bend != Bend::None)
   {
+    fx = kx;
+    fy = ky;
     dP = nsigma + Hypot(px - kx, py - ky);
   }
   else
   {
-    double fx, fy;
-    source.Nearest(px, py, fx, fy);
-    const Bend b = source.Route(fx, fy, px, py);
-    double bx = fx, by = fy;
+    double qx, qy;
+    source.Nearest(px, py, qx, qy);
+    const Bend b = source.Route(qx, qy, px, py);
     if (b != Bend::None)
     {
-      source.BendPoint(b, bx, by);
+      source.BendPoint(b, fx, fy);
     }
-    dP = sigma + Hypot(fx - bx, fy - by) + Hypot(px - bx, py - by);
+    dP = sigma + Hypot(qx - fx, qy - fy) + Hypot(px - fx, py - fy);
   }
-  UpdateVertex(to.Corner[(kt + 2) % 3], dP);
+  // Angles: the face left's reference direction in the crossing's frame (turned as its source).
+  const FaceAngle angle = Angles ? Turned(FaceAngles[f], -out.Ux, out.Uy) : FaceAngle{ Nan, Nan, Nan };
+  UpdateVertex(to.Corner[(kt + 2) % 3], dP, Angles, [&] { return Towards(angle, sx, sy, fx, fy); });
 
   const double key = nsigma + Hypot(gx - kx, gy - ky);
   const double current = KeyOf(to);
@@ -388,6 +413,19 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
     carried ? in.Oy + ntx * in.Uy + nty * in.Ux : ny, nsigma, key,
     bend == Bend::AtA || bend == Bend::AtB ? -1 : ht, // a source at A or B lies in the face
     kt);
+  if constexpr (Angles)
+  {
+    // Straight on: the reference direction turned into the next face's frame; bent: the angle
+    // of the path to the bend.
+    FaceAngles[TriangleMesh::FaceOf(ht)] = bend == Bend::None
+      ? Turned(angle, in.Ux, in.Uy)
+      : FaceAngle{ Towards(angle, sx, sy, kx, ky).Value(), Nan, Nan };
+  }
+}
+
+double VirtualSourceSolver::DepartureAngle(int v) const
+{
+  return TrackAngles && std::isfinite(Dist[v]) ? VertexAngles[v].Value() : Nan;
 }
 
 Status VirtualSourceSolver::Solve(
@@ -444,7 +482,11 @@ void VirtualSourceSolver::SeedPoints(const std::vector<SurfacePoint>& sources)
     {
       const int v = source.Vertex;
       Dist[v] = 0.0;
-      SeedAround(v, 0.0);
+      if (TrackAngles)
+      {
+        VertexAngles[v] = { Nan, 1.0, 0.0 }; // the pole
+      }
+      SeedAround(v, 0.0, true);
       continue;
     }
     // A face point: in the frame of the face's first half-edge, corner 0 at (0, 0), corner 1 at
@@ -498,6 +540,7 @@ void VirtualSourceSolver::SeedRuns(const std::vector<std::vector<CurvePiece>>& r
   }
 }
 
+template <bool Angles>
 bool VirtualSourceSolver::ProcessBuckets(const VirtualSourceOptions& options)
 {
   const std::int64_t numFaces = std::max(1, Surface.NumberOfFaces());
@@ -515,7 +558,7 @@ bool VirtualSourceSolver::ProcessBuckets(const VirtualSourceOptions& options)
         const int v = -1 - id;
         if (ItemKey(item) == static_cast<float>(Dist[v]))
         {
-          SeedAround(v, Dist[v]);
+          SeedAround(v, Dist[v], false);
         }
         continue;
       }
@@ -528,7 +571,7 @@ bool VirtualSourceSolver::ProcessBuckets(const VirtualSourceOptions& options)
       {
         if (k != face.Except)
         {
-          Cross(face, id, k);
+          Cross<Angles>(face, id, k);
         }
       }
       if (Stats.Crossings >= nextReport)
@@ -572,13 +615,19 @@ Status VirtualSourceSolver::Solve(const std::vector<SurfacePoint>& sources,
   {
     return valid;
   }
+  TrackAngles = options.Angles && runs.empty();
+  if (TrackAngles)
+  {
+    FaceAngles.resize(static_cast<std::size_t>(Surface.NumberOfFaces()));
+    VertexAngles.assign(Dist.size(), VertexAngle{ Nan, 1.0, 0.0 });
+  }
   const bool limited = options.MaximumDistance > 0.0 && std::isfinite(options.MaximumDistance);
   Horizon = limited ? options.MaximumDistance + Surface.LongestEdgeLength() : Inf;
   Tolerance = 1e-12 * BucketWidth;
 
   SeedPoints(sources);
   SeedRuns(runs);
-  if (!ProcessBuckets(options))
+  if (!(TrackAngles ? ProcessBuckets<true>(options) : ProcessBuckets<false>(options)))
   {
     return Status::Aborted();
   }

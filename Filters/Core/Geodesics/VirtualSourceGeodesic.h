@@ -27,6 +27,12 @@
 // 1.9e-3 on the real meshes measured, up to 3.4e-3 on tori triangulated as regular grids
 // (Docs/BENCHMARKS.md gives the figures against the exact solver). The solve is
 // sequential and deterministic; it touches each face a few times, so it is linear in practice.
+//
+// Departure angles (VirtualSourceOptions::Angles) come from the same unfoldings: exact on flat
+// and developable meshes, but on curved ones a face's source sits off to the side by about the
+// square root of the distance's relative error times the distance, so they are off by 1-4
+// degrees on average (the graph engines' by a fraction of one). Geodesic polar coordinates keep
+// the exact and graph engines for that reason (Docs/BENCHMARKS.md, "Virtual sources").
 #pragma once
 
 #include "Status.h"
@@ -34,6 +40,7 @@
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -51,6 +58,9 @@ struct VirtualSourceOptions
   // Called now and then with the fraction of faces reached (non-decreasing, 0 .. 1); returning
   // false aborts the solve (every vertex is then unreached and Solve returns Status::Aborted()).
   std::function<bool(double)> Progress;
+  // Also the departure angles from point sources (DepartureAngle); ignored when curves are
+  // given.
+  bool Angles = false;
 };
 
 struct VirtualSourceStatistics
@@ -86,6 +96,14 @@ public:
   // MaximumDistance).
   double Distance(int v) const { return Dist[v]; }
   const std::vector<double>& Distances() const { return Dist; }
+  // The angle at which vertex v's path leaves its source, after a solve with Options.Angles (NaN
+  // otherwise, for a source vertex and where unreached), in ExactGeodesicSolver::DepartureAngle's
+  // convention: counter-clockwise about the outward normal from a vertex source's VertexHalfedge
+  // (0 .. its total angle, up to a little rounding either way) or from a face point source's
+  // first edge; behind a bend, the angle of the path to the first bend. The path is the one that
+  // gave the distance: a line from the virtual source of the face crossed, so the angle is as
+  // good as that face's source (Docs/BENCHMARKS.md gives its error against the exact solver).
+  double DepartureAngle(int v) const;
   const VirtualSourceStatistics& Statistics() const { return Stats; }
   const TriangleMesh& Mesh() const { return Surface; }
 
@@ -132,9 +150,45 @@ private:
   double KeyOf(const FaceRecord& r) const { return r.Epoch == Epoch ? r.Key : Unreachable; }
   void SetSource(FaceRecord& r, double sx, double sy, double tx, double ty, double sigma,
     double key, int entry, int except);
+  // Departure angles (Options.Angles), kept beside the records so that a solve without them
+  // touches no more memory. A face's: where its source's paths leave the real source, Base plus
+  // the angle of (x - S) from the direction (Rx, Ry) of its frame while the source is the real
+  // one unfolded (Sigma 0), Base alone behind a bend (Rx NaN). A vertex's: Base + atan2(Y, X),
+  // evaluated only when read (NaN Base: a source).
+  struct FaceAngle
+  {
+    double Base, Rx, Ry;
+  };
+  struct VertexAngle
+  {
+    double Base, X, Y;
+    double Value() const { return Base + std::atan2(Y, X); }
+  };
+  // The reference direction turned by the rotation (c, s) (cos, sin), as frames turn from face
+  // to face (NaN stays NaN).
+  static FaceAngle Turned(const FaceAngle& a, double c, double s)
+  {
+    return { a.Base, c * a.Rx - s * a.Ry, s * a.Rx + c * a.Ry };
+  }
+  // The departure towards (x, y) of the frame where the face's source is (sx, sy) and the
+  // face's reference direction (rx, ry) (NaN: behind a bend).
+  static VertexAngle Towards(const FaceAngle& a, double sx, double sy, double x, double y)
+  {
+    if (std::isnan(a.Rx))
+    {
+      return { a.Base, 1.0, 0.0 };
+    }
+    const double dx = x - sx, dy = y - sy;
+    return { a.Base, a.Rx * dx + a.Ry * dy, a.Rx * dy - a.Ry * dx };
+  }
   void Seed(int f, double sx, double sy, double tx, double ty);
+  // The crossing of edge k of face f (`from`), compiled with and without departure angles: the
+  // solve without them pays nothing for them.
+  template <bool Angles>
   void Cross(const FaceRecord& from, int f, int k);
-  void SeedAround(int v, double sigma);
+  // The faces around v with v as their source: a source vertex (`source`: the departure angles
+  // start there) or a vertex paths bend at.
+  void SeedAround(int v, double sigma, bool source);
   void PushVertex(int v, double key);
   // Solve's steps: a fresh state (a new epoch, no distance, empty buckets); the faces and
   // vertices about the point sources; the faces of the curve pieces, each seeded with its whole
@@ -143,16 +197,24 @@ private:
   void BeginSolve();
   void SeedPoints(const std::vector<SurfacePoint>& sources);
   void SeedRuns(const std::vector<std::vector<CurvePiece>>& runs);
+  template <bool Angles>
   bool ProcessBuckets(const VirtualSourceOptions& options);
   // A shorter distance for the vertex of a corner. A vertex paths may bend at (BendFlag) is
   // queued at that distance: when the front gets there and no shorter distance came since, it
   // becomes the source of the faces around it (SeedAround).
-  void UpdateVertex(unsigned int corner, double d)
+  // `angle()` gives the path's departure (VertexAngle), asked only when angles are kept
+  // (`angles`: TrackAngles, or a constant where the caller is compiled for one case).
+  template <class AngleOf>
+  void UpdateVertex(unsigned int corner, double d, bool angles, AngleOf&& angle)
   {
     const int v = static_cast<int>(corner & ~BendFlag);
     if (d < Dist[v])
     {
       Dist[v] = d;
+      if (angles)
+      {
+        VertexAngles[v] = angle();
+      }
       if (corner & BendFlag)
         PushVertex(v, d);
     }
@@ -163,6 +225,9 @@ private:
   std::unique_ptr<FaceRecord[]> Faces;
   unsigned int Epoch = 0;
   std::vector<double> Dist;
+  bool TrackAngles = false; // this solve keeps departure angles
+  std::vector<FaceAngle> FaceAngles;     // per face (sized at the first solve with angles)
+  std::vector<VertexAngle> VertexAngles; // per vertex (likewise)
   std::vector<std::vector<QueueItem>> Buckets;
   std::size_t Current = 0;
   double BucketWidth = 1.0;
