@@ -18,8 +18,9 @@
  *    Filters/Core/Geodesics/ExactGeodesic.h), the ground truth the graph solvers are measured against.
  *  - VIRTUAL_SOURCES (4, default): virtual source propagation (after Trettner, Bommes,
  *    Kobbelt 2021; Filters/Core/Geodesics/VirtualSourceGeodesic.h): nothing to build, linear time, exact
- *    on flat and developable meshes and a mean relative error of 1e-3 to 1.9e-3 on the real
- *    meshes measured (up to 3.4e-3 on regular-grid tori): the soonest first answer
+ *    on flat and developable meshes and a mean relative error of 1e-3 to 2.3e-3 on the real
+ *    meshes measured (1e-2 on a CAD part with sharp creases, 6-9e-3 on regular-grid tori: DGG
+ *    there): the soonest first answer
  *    (Benchmarks/geodesic_engines.py).
  *
  * Input port 0 ("Input", vtkPolyData): the surface. Polygons with more than three points and

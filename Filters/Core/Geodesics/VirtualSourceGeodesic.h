@@ -24,7 +24,8 @@
 // edge since the bend: on a curved surface a vertex's distance may be a little below the
 // geodesic one (a line no sequence of faces unfolds), and a bend at a vertex that is not a
 // saddle a little above it. Exact on flat and developable meshes; mean relative error 1e-3 ..
-// 1.9e-3 on the real meshes measured, up to 3.4e-3 on tori triangulated as regular grids
+// 2.3e-3 on most real meshes measured, but 6e-3 .. 1e-2 where lines cross fields of saddle
+// vertices: tori triangulated as regular grids, a CAD part with sharp creases (turbine)
 // (Docs/BENCHMARKS.md gives the figures against the exact solver). The solve is
 // sequential and deterministic; it touches each face a few times, so it is linear in practice.
 //
