@@ -7,6 +7,7 @@
 // must get a finite exact distance, never above the edge-graph distance (the length of a path on
 // the surface) by more than rounding. The program exits 1 when a check fails.
 #include "ExactGeodesic.h"
+#include "ExactInParts.h"
 #include "MeshGenerators.h"
 #include "MeshIO.h"
 #include "TriangleMesh.h"
@@ -18,6 +19,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <queue>
 #include <string>
 #include <vector>
@@ -71,7 +74,7 @@ double GraphDijkstra(const TriangleMesh& m, int source, std::vector<double>& d)
 int main(int argc, char** argv)
 {
   std::vector<std::string> files;
-  int numSources = 5, subdivisions = 0, firstSource = 0;
+  int numSources = 5, subdivisions = 0, firstSource = 0, parts = 0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -83,6 +86,10 @@ int main(int argc, char** argv)
     {
       subdivisions = std::max(0, std::atoi(argv[++i]));
     }
+    else if (a == "--parts" && i + 1 < argc)
+    {
+      parts = std::max(0, std::atoi(argv[++i]));
+    }
     else if (a == "--first-source" && i + 1 < argc)
     {
       firstSource = std::max(0, std::atoi(argv[++i]));
@@ -90,7 +97,8 @@ int main(int argc, char** argv)
     else if (a == "--help" || a == "-h")
     {
       std::printf("usage: %s mesh.off|mesh.ply [...] [--sources N] [--subdivide S (midpoint "
-                  "subdivisions first)] [--first-source F (skip the first F sources)]\n",
+                  "subdivisions first)] [--first-source F (skip the first F sources)] [--parts P (also the "
+                  "exact solver in P parts on threads: time and difference)]\n",
         argv[0]);
       return 0;
     }
@@ -132,6 +140,7 @@ int main(int argc, char** argv)
     for (int v = 0; v < m.NumberOfVertices(); ++v)
       saddles += m.IsSaddleVertex(v);
     ExactGeodesicSolver solver(m);
+    std::unique_ptr<ExactSolverInParts> inParts;
     VirtualSourceSolver virtualSources(m);
     double exact = 0, dijkstra = 0, windows = 0, relGap = 0, vsp = 0, vspSum = 0, vspSigned = 0, vspMax = 0;
     double vspAngles = 0;
@@ -142,8 +151,34 @@ int main(int argc, char** argv)
     for (int k = firstSource; k < firstSource + numSources; ++k)
     {
       const int source = static_cast<int>((static_cast<long long>(k) * 7919 + 13) % m.NumberOfVertices());
-      exact += Seconds([&] { static_cast<void>(solver.Solve(source)); }); // a vertex: accepted
+      const double exactTime = Seconds([&] { static_cast<void>(solver.Solve(source)); }); // a vertex: accepted
+      exact += exactTime;
+      auto exactLast = [&] { return exactTime; };
       windows += static_cast<double>(solver.Statistics().WindowsPropagated);
+      if (parts > 0)
+      {
+        // The solver in parts on threads, against the serial one just run.
+        if (!inParts)
+          inParts = std::make_unique<ExactSolverInParts>(m, parts);
+        const double t = Seconds([&] { static_cast<void>(inParts->Solve({ source })); });
+        double largest = 0, worst = 0;
+        for (int v = 0; v < m.NumberOfVertices(); ++v)
+        {
+          const double d = solver.Distance(v);
+          if (std::isfinite(d))
+          {
+            largest = std::max(largest, d);
+            worst = std::max(worst, std::abs(inParts->Distance(v) - d));
+          }
+          else if (std::isfinite(inParts->Distance(v)))
+            worst = std::numeric_limits<double>::infinity();
+        }
+        std::printf("  source %d: exact %.3f s, in %d parts %.3f s (%.2fx), %d rounds, windows %lld "
+                    "against %lld; largest difference %.2e of the largest distance\n",
+          source, exactLast(), parts, t, exactLast() / t, inParts->Rounds(),
+          static_cast<long long>(inParts->WindowsPropagated()),
+          static_cast<long long>(solver.Statistics().WindowsPropagated), worst / largest);
+      }
       dijkstra += Seconds([&] { GraphDijkstra(m, source, graph); });
       vsp += Seconds([&] { static_cast<void>(virtualSources.Solve({ SurfacePoint::AtVertex(source) })); });
       int notFinite = 0, aboveGraph = 0;

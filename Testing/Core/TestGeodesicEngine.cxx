@@ -294,3 +294,54 @@ TEST(GeodesicEngine, ReachedSetsAndDepartureAnglesAgreeAcrossEngines)
     EXPECT_LT(worst, M_PI / 180.0) << GeodesicSolverName(solver);
   }
 }
+
+// On a mesh of ExactInPartsMinimumFaces faces or more, the exact engine solves distances from
+// vertices in parts on threads: Euclidean on a plane (to 1e-12), reached in order of distance,
+// progress reported and an abort honoured (the serial solver has neither); with angles asked
+// or a face point among the sources, the serial solver answers (angles known) with the same
+// distances.
+TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
+{
+  const TriangleMesh large = gs_test::BuildMesh(MakePlanarGrid(230, 230, 1.0, 1.0));
+  ASSERT_GE(large.NumberOfFaces(), ExactInPartsMinimumFaces);
+  Result<std::unique_ptr<GeodesicEngine>> made = MakeGeodesicEngine(GeodesicSolver::Exact, large);
+  ASSERT_TRUE(gs_test::Succeeded(made));
+  GeodesicEngine& e = **made;
+  const int centre = large.NumberOfVertices() / 2 + 7;
+  GeodesicSources sources;
+  sources.Points = { SurfacePoint::AtVertex(centre) };
+  GeodesicSolveOptions options;
+  std::vector<double> reports;
+  options.Progress = [&](double f) {
+    reports.push_back(f);
+    return true;
+  };
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, options)));
+  EXPECT_GT(reports.size(), 3u);
+  EXPECT_TRUE(std::is_sorted(reports.begin(), reports.end()));
+  const Vec3 c = large.Position(centre);
+  double worst = 0.0;
+  for (int v = 0; v < large.NumberOfVertices(); ++v)
+  {
+    worst = std::max(worst, std::abs(e.Distance(v) - Norm(large.Position(v) - c)));
+  }
+  EXPECT_LT(worst, 1e-12);
+  const std::vector<int>& reached = e.Reached();
+  ASSERT_EQ(reached.size(), static_cast<std::size_t>(large.NumberOfVertices()));
+  for (std::size_t i = 1; i < reached.size(); ++i)
+  {
+    ASSERT_LE(e.Distance(reached[i - 1]), e.Distance(reached[i]));
+  }
+  EXPECT_TRUE(std::isnan(e.DepartureAngle(0)));
+
+  int calls = 0;
+  options.Progress = [&](double) { return ++calls < 2; };
+  EXPECT_TRUE(e.Solve(sources, options).IsAborted());
+  EXPECT_FALSE(std::isfinite(e.Distance(centre)));
+
+  options.Progress = nullptr;
+  options.Angles = true;
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, options)));
+  EXPECT_TRUE(std::isfinite(e.DepartureAngle(0)));
+  EXPECT_NEAR(e.Distance(0), Norm(large.Position(0) - c), 1e-12);
+}

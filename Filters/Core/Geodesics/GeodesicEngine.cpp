@@ -4,13 +4,16 @@
 #include "GeodesicEngine.h"
 
 #include "ExactGeodesic.h"
+#include "ExactInParts.h"
 #include "SVGGeodesicSolver.h"
 #include "SaddleVertexGraph.h"
 #include "SurfaceCurve.h"
 #include "VirtualSourceGeodesic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace gs
@@ -54,7 +57,9 @@ double GeodesicEngine::DepartureAngle(int) const
 namespace
 {
 /// Exact window propagation; curves are densely sampled (ExactCurveSampleSpacing), the exact
-/// reference for distances to a curve.
+/// reference for distances to a curve. On a large mesh, distances from vertices alone (no
+/// angles asked) are solved in parts on threads (ExactSolverInParts: the same distances up to
+/// rounding, with progress and abort); the rest by the serial solver.
 class ExactEngine final : public GeodesicEngine
 {
 public:
@@ -66,6 +71,14 @@ public:
   GeodesicSolver Solver() const override { return GeodesicSolver::Exact; }
   Status Solve(const GeodesicSources& sources, const GeodesicSolveOptions& options) override
   {
+    InParts = Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && sources.Curves.empty() &&
+      !options.Angles && !sources.Points.empty() &&
+      std::all_of(sources.Points.begin(), sources.Points.end(),
+        [](const SurfacePoint& p) { return p.IsVertex(); });
+    if (InParts)
+    {
+      return SolveInParts(sources.Points, options);
+    }
     std::vector<SurfacePoint> points = sources.Points;
     for (const auto& curve : sources.Curves)
     {
@@ -78,13 +91,56 @@ public:
     exact.MaximumDistance = options.MaximumDistance;
     return Solver_.Solve(points, exact);
   }
-  double Distance(int v) const override { return Solver_.Distance(v); }
-  std::vector<double> Distances() const override { return Solver_.Distances(); }
-  const std::vector<int>& Reached() const override { return Solver_.FinalVertices(); }
-  double DepartureAngle(int v) const override { return Solver_.DepartureAngle(v); }
+  double Distance(int v) const override { return InParts ? Parts->Distance(v) : Solver_.Distance(v); }
+  std::vector<double> Distances() const override
+  {
+    return InParts ? Parts->Distances() : Solver_.Distances();
+  }
+  const std::vector<int>& Reached() const override
+  {
+    return InParts ? ReachedInParts : Solver_.FinalVertices();
+  }
+  double DepartureAngle(int v) const override
+  {
+    return InParts ? std::numeric_limits<double>::quiet_NaN() : Solver_.DepartureAngle(v);
+  }
 
 private:
+  Status SolveInParts(const std::vector<SurfacePoint>& points, const GeodesicSolveOptions& options)
+  {
+    if (!Parts)
+    {
+      Parts = std::make_unique<ExactSolverInParts>(Surface);
+    }
+    std::vector<int> vertices;
+    for (const SurfacePoint& p : points)
+    {
+      vertices.push_back(p.Vertex);
+    }
+    ReachedInParts.clear();
+    const Status solved = Parts->Solve(vertices, options.MaximumDistance, options.Progress);
+    if (solved.Ok())
+    {
+      // In order of distance, as the serial solver makes them final (ties by vertex).
+      for (int v = 0; v < Surface.NumberOfVertices(); ++v)
+      {
+        if (std::isfinite(Parts->Distance(v)))
+        {
+          ReachedInParts.push_back(v);
+        }
+      }
+      std::sort(ReachedInParts.begin(), ReachedInParts.end(), [&](int a, int b) {
+        const double da = Parts->Distance(a), db = Parts->Distance(b);
+        return da < db || (da == db && a < b);
+      });
+    }
+    return solved;
+  }
+
   ExactGeodesicSolver Solver_;
+  std::unique_ptr<ExactSolverInParts> Parts; // made at the first solve in parts
+  bool InParts = false;                      // the last solve was
+  std::vector<int> ReachedInParts;
 };
 
 /// Shortest paths on a graph (SVG or DGG, as built), refined by geodesic triangle unfolding;

@@ -29,6 +29,10 @@ enum class GeodesicSolver
 };
 constexpr int NumberOfGeodesicSolvers = 5;
 
+/// The exact engine solves distances from vertices on meshes of at least this many faces in
+/// parts on threads (ExactSolverInParts), the same for any number of cores.
+constexpr int ExactInPartsMinimumFaces = 100000;
+
 /// The name users see ("Exact", "SVG (label-correcting)", ...); "" for no engine.
 const char* GeodesicSolverName(GeodesicSolver solver);
 /// Whether the engine solves on a graph built beforehand (SaddleVertexGraph, DGG's included).

@@ -566,4 +566,81 @@ int SurfacePiece::Vertex(std::int64_t globalId) const
   return it != VertexIds.end() && *it == globalId ? static_cast<int>(it - VertexIds.begin()) : -1;
 }
 
+PieceTriangles PieceOfMesh(const TriangleMesh& mesh, const std::vector<int>& partOfFace, int part)
+{
+  PieceTriangles piece;
+  std::vector<int> point(static_cast<std::size_t>(mesh.NumberOfVertices()), -1);
+  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
+  {
+    if (partOfFace[static_cast<std::size_t>(f)] != part)
+    {
+      continue;
+    }
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k)
+    {
+      const int v = mesh.Face(f)[static_cast<std::size_t>(k)];
+      int& local = point[static_cast<std::size_t>(v)];
+      if (local < 0)
+      {
+        local = static_cast<int>(piece.Points.size());
+        piece.Points.push_back(mesh.Position(v));
+        piece.PointIds.push_back(v);
+      }
+      t[static_cast<std::size_t>(k)] = local;
+    }
+    piece.Triangles.push_back(t);
+    piece.TriangleIds.push_back(f);
+  }
+  return piece;
+}
+
+std::vector<int> BlockPartition(const TriangleMesh& mesh, int parts, int blocks)
+{
+  const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
+  std::vector<int> part(static_cast<std::size_t>(nf), 0);
+  if (nv == 0 || parts <= 1)
+  {
+    return part;
+  }
+  Vec3 lo = mesh.Position(0), hi = lo;
+  for (int v = 1; v < nv; ++v)
+  {
+    const Vec3& p = mesh.Position(v);
+    lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+    hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+  }
+  const double side = std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
+  const double cell = side > 0.0 ? side / std::max(blocks, 1) : 1.0;
+  for (int f = 0; f < nf; ++f)
+  {
+    const auto& t = mesh.Face(f);
+    const Vec3 c = (mesh.Position(t[0]) + mesh.Position(t[1]) + mesh.Position(t[2])) / 3.0 - lo;
+    const long long i = static_cast<long long>(c.x / cell), j = static_cast<long long>(c.y / cell),
+                    k = static_cast<long long>(c.z / cell);
+    part[static_cast<std::size_t>(f)] = static_cast<int>((i + j + k) % parts);
+  }
+  return part;
+}
+
+std::vector<int> SlabPartition(const TriangleMesh& mesh, int parts, const Vec3& direction)
+{
+  const int nf = mesh.NumberOfFaces();
+  std::vector<std::pair<double, int>> keys(static_cast<std::size_t>(nf));
+  for (int f = 0; f < nf; ++f)
+  {
+    const auto& t = mesh.Face(f);
+    const Vec3 c = (mesh.Position(t[0]) + mesh.Position(t[1]) + mesh.Position(t[2])) / 3.0;
+    keys[static_cast<std::size_t>(f)] = { Dot(c, direction), f };
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<int> part(static_cast<std::size_t>(nf), 0);
+  for (int i = 0; i < nf; ++i)
+  {
+    part[static_cast<std::size_t>(keys[static_cast<std::size_t>(i)].second)] =
+      static_cast<int>(static_cast<long long>(i) * parts / nf);
+  }
+  return part;
+}
+
 } // namespace gs

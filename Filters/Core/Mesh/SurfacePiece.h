@@ -134,4 +134,16 @@ private:
   std::int64_t OwnedCount = 0, GlobalVertexCount = 0;
 };
 
+// The pieces of a whole mesh held in one process (the in-process solves on pieces, the tests):
+// the faces whose part is `part` (partOfFace, one entry per face), with the mesh's own vertex
+// and face numbers as global ids.
+PieceTriangles PieceOfMesh(const TriangleMesh& mesh, const std::vector<int>& partOfFace, int part);
+// A partition of the faces into `parts` slabs of equal face counts along `direction`, by the
+// faces' centroids (ties by face number): a function of the mesh, `parts` and `direction` only.
+std::vector<int> SlabPartition(const TriangleMesh& mesh, int parts, const Vec3& direction);
+// A partition of the faces into `parts` parts, each made of the cubes of a grid over the
+// bounding box (`blocks` cubes along its longest side) whose index sum i + j + k is the part
+// modulo `parts` (by the faces' centroids): every region of the surface meets every part.
+std::vector<int> BlockPartition(const TriangleMesh& mesh, int parts, int blocks);
+
 } // namespace gs

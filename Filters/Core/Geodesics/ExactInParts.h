@@ -1,0 +1,60 @@
+// Exact geodesic distance on several cores: the surface cut into a fixed number of parts, each
+// solved by the exact window propagation of its piece (ComputeExactOnPieces, ExactPieces.h) on a
+// thread of its own, the pieces exchanging the windows and vertex distances that cross between
+// them (ThreadCommunicator). Window propagation is exact in any order of processing, so the
+// distances are the exact geodesic distances, equal to a serial solve's up to rounding (the
+// order of the windows, and so the rounding of ties, differs: within 1e-12 of the largest
+// distance in the tests). The partition depends on the mesh and the number of parts only, so
+// the result is the same to the bit whatever the number of cores; the parts run as threads even
+// on one core. Vertex sources only; no departure angles (the serial solver gives them).
+#pragma once
+
+#include "Status.h"
+#include "SurfacePiece.h"
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace gs
+{
+
+class ExactSolverInParts
+{
+public:
+  /// The number of parts the surface is cut into (the engine's; a function of nothing else):
+  /// four threads, which on two cores are as fast as two (a part waits for the others at each
+  /// exchange) and use four cores where there are.
+  static constexpr int DefaultParts = 4;
+  /// The parts are cubes of the bounding box's longest side over this, dealt out in turn.
+  static constexpr int BlocksAlongLongestSide = 8;
+
+  /// The mesh must outlive the solver. The pieces are made at the first solve and kept.
+  explicit ExactSolverInParts(const TriangleMesh& mesh, int parts = DefaultParts);
+  ~ExactSolverInParts();
+
+  /// Distances from the nearest of the vertex sources; vertices farther than maxDistance (> 0
+  /// and finite) are unreached (infinite). Fails (every vertex unreached) for no source or an
+  /// invalid one, or when `progress` (called from the calling thread once per round with the
+  /// fraction of the first part's vertices reached) returns false (Status::Aborted()).
+  Status Solve(const std::vector<int>& sources, double maxDistance = 0.0,
+    const std::function<bool(double)>& progress = nullptr);
+
+  double Distance(int v) const { return Dist[static_cast<std::size_t>(v)]; }
+  const std::vector<double>& Distances() const { return Dist; }
+  /// Windows propagated by all parts in the last solve, and its rounds.
+  std::int64_t WindowsPropagated() const { return Windows; }
+  int Rounds() const { return NumRounds; }
+
+private:
+  const TriangleMesh& Surface;
+  const int Parts;
+  std::vector<std::unique_ptr<SurfacePiece>> Pieces; // made at the first solve
+  std::vector<double> Dist;
+  std::int64_t Windows = 0;
+  int NumRounds = 0;
+};
+
+} // namespace gs
