@@ -160,7 +160,7 @@ int main(int argc, char** argv)
         // The solver in parts on threads, against the serial one just run.
         if (!inParts)
           inParts = std::make_unique<ExactSolverInParts>(m, parts);
-        const double t = Seconds([&] { static_cast<void>(inParts->Solve({ source })); });
+        const double t = Seconds([&] { static_cast<void>(inParts->Solve(std::vector<int>{ source })); });
         double largest = 0, worst = 0;
         for (int v = 0; v < m.NumberOfVertices(); ++v)
         {

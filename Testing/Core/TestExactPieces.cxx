@@ -66,20 +66,8 @@ ExactRun RunExact(const TriangleMesh& mesh, const std::vector<int>& part, int pr
       {
         continue;
       }
-      const int f = piece.Face(p.Face);
-      SurfacePoint q = SurfacePoint::InFace(f, 0.0, 0.0, 0.0);
-      for (int k = 0; k < 3; ++k)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          if (piece.GlobalId(piece.Mesh().Face(f)[static_cast<std::size_t>(c)]) ==
-            mesh.Face(p.Face)[static_cast<std::size_t>(k)])
-          {
-            q.Bary[static_cast<std::size_t>(c)] = p.Bary[static_cast<std::size_t>(k)];
-          }
-        }
-      }
-      mine.push_back(q);
+      const std::array<int, 3>& c = mesh.Face(p.Face);
+      mine.push_back(piece.LocalPoint(p.Face, { { c[0], c[1], c[2] } }, p.Bary));
     }
     ExactPiecesResult result;
     if (status.Ok())
@@ -279,27 +267,23 @@ TEST(ExactPieces, FailuresAndAbortsOnEveryProcess)
 }
 
 // The exact solver on threads (ExactSolverInParts): the same distances as the serial solver
-// within 1e-12 of the largest, on a closed curved mesh, on a plane with a boundary and behind
-// the L-shape's reflex corner (paths bent across the cut between the parts), with a maximum
-// distance; the same to the bit for 2 and 3 parts solved twice (made pieces reused); errors and
-// an abort leave every vertex unreached and the next solve whole.
+// within 1e-12 of the largest, from vertices and from face points on several parts, on a closed
+// curved mesh, on a plane with a boundary and behind the L-shape's reflex corner (paths bent
+// across the cuts between the parts), with a maximum distance; the same to the bit solved twice
+// (the pieces made once, reused); errors and an abort leave every vertex unreached and the next
+// solve whole.
 TEST(ExactPieces, SolverInPartsEqualsTheSerialSolver)
 {
-  auto compare = [](const TriangleMesh& mesh, int parts, const std::vector<int>& sources,
+  auto compare = [](const TriangleMesh& mesh, int parts, const std::vector<SurfacePoint>& points,
                    double maxDistance) {
     ExactGeodesicSolver serial(mesh);
-    std::vector<SurfacePoint> points;
-    for (const int s : sources)
-    {
-      points.push_back(SurfacePoint::AtVertex(s));
-    }
     ExactGeodesicOptions options;
     options.MaximumDistance = maxDistance;
     ASSERT_TRUE(serial.Solve(points, options).Ok());
     ExactSolverInParts split(mesh, parts);
-    ASSERT_TRUE(split.Solve(sources, maxDistance).Ok());
+    ASSERT_TRUE(split.Solve(points, maxDistance).Ok());
     const std::vector<double> first = split.Distances();
-    ASSERT_TRUE(split.Solve(sources, maxDistance).Ok());
+    ASSERT_TRUE(split.Solve(points, maxDistance).Ok());
     EXPECT_EQ(first, split.Distances()); // the same pieces again, the same bits
     double largest = 0.0, worst = 0.0;
     int reached = 0;
@@ -318,24 +302,67 @@ TEST(ExactPieces, SolverInPartsEqualsTheSerialSolver)
     EXPECT_GE(reached, maxDistance > 0.0 ? mesh.NumberOfVertices() / 20 : mesh.NumberOfVertices());
     EXPECT_GT(split.Rounds(), 1);
   };
+  using P = SurfacePoint;
   const TriangleMesh bumpy = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
-  compare(bumpy, 2, { 0 }, 0.0);
-  compare(bumpy, 3, { 17, 600 }, 0.0);
-  compare(gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0)), 2, { 5 }, 0.0);
+  compare(bumpy, 2, { P::AtVertex(0) }, 0.0);
+  compare(bumpy, 3, { P::AtVertex(17), P::AtVertex(600) }, 0.0);
+  compare(bumpy, 4, { P::AtVertex(0) }, 0.0);
+  // Face points on several parts (a point inside a face, one on an edge), with a vertex.
+  std::vector<SurfacePoint> points = { P::InFace(10, 0.2, 0.3, 0.5), P::InFace(900, 0.5, 0.5, 0.0),
+    P::InFace(bumpy.NumberOfFaces() - 3, 0.6, 0.1, 0.3), P::AtVertex(300) };
+  compare(bumpy, 4, points, 0.0);
+  compare(gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0)), 2, { P::AtVertex(5) }, 0.0);
   const TriangleMesh lshape = gs_test::BuildMesh(MakeLShape(12));
-  compare(lshape, 2, { 0 }, 0.0);
-  compare(lshape, 2, { 40 }, 1.2);
+  compare(lshape, 2, { P::AtVertex(0) }, 0.0);
+  compare(lshape, 2, { P::AtVertex(40), P::InFace(70, 0.3, 0.3, 0.4) }, 1.2);
 
   ExactSolverInParts split(bumpy, 2);
-  EXPECT_TRUE(gs_test::FailedWith(split.Solve({}), "no source"));
-  EXPECT_TRUE(gs_test::FailedWith(split.Solve({ bumpy.NumberOfVertices() }), "not a vertex"));
+  EXPECT_TRUE(gs_test::FailedWith(split.Solve(std::vector<int>()), "no source"));
+  EXPECT_TRUE(gs_test::FailedWith(split.Solve(std::vector<int>{ bumpy.NumberOfVertices() }), "source"));
+  EXPECT_TRUE(gs_test::FailedWith(
+    split.Solve({ SurfacePoint::InFace(bumpy.NumberOfFaces(), 1.0, 0.0, 0.0) }), "source"));
   int calls = 0;
-  EXPECT_TRUE(split.Solve({ 0 }, 0.0, [&](double) { return ++calls < 3; }).IsAborted());
+  EXPECT_TRUE(
+    split.Solve(std::vector<int>{ 0 }, 0.0, [&](double) { return ++calls < 3; }).IsAborted());
   for (int v = 0; v < bumpy.NumberOfVertices(); ++v)
   {
     ASSERT_FALSE(std::isfinite(split.Distance(v)));
   }
-  ASSERT_TRUE(split.Solve({ 0 }).Ok());
+  ASSERT_TRUE(split.Solve(std::vector<int>{ 0 }).Ok());
   EXPECT_EQ(split.Distance(0), 0.0);
   EXPECT_TRUE(std::isfinite(split.Distance(bumpy.NumberOfVertices() - 1)));
+}
+
+// SurfacePiece::LocalPoint names the same point of the surface in the piece's mesh, whose faces
+// may list their corners in another order than the whole mesh's (here each rotated by one).
+TEST(ExactPieces, LocalPointIsTheSamePointOfThePiece)
+{
+  const TriangleMesh mesh = gs_test::BuildMesh(gs_test::BumpySoup(2, 5, 0.1));
+  const std::vector<int> part = gs_test::PartitionFaces(mesh, 2, Vec3(1, 0.3, 0.1));
+  gs_test::ThreadHub hub(2);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    PieceTriangles own = gs_test::PieceOf(mesh, part, rank);
+    for (auto& t : own.Triangles)
+    {
+      t = { { t[1], t[2], t[0] } };
+    }
+    SurfacePiece piece;
+    ASSERT_TRUE(piece.Build(own, 1, comm).Ok());
+    int checked = 0;
+    for (int f = 0; f < mesh.NumberOfFaces(); f += 7)
+    {
+      if (part[static_cast<std::size_t>(f)] != rank)
+      {
+        continue;
+      }
+      const SurfacePoint p = SurfacePoint::InFace(f, 0.1, 0.3, 0.6);
+      const std::array<int, 3>& c = mesh.Face(f);
+      const SurfacePoint q = piece.LocalPoint(f, { { c[0], c[1], c[2] } }, p.Bary);
+      ASSERT_GE(q.Face, 0);
+      EXPECT_LT(Norm(piece.Mesh().Position(q) - mesh.Position(p)), 1e-12) << "face " << f;
+      ++checked;
+    }
+    EXPECT_GT(checked, 10);
+    EXPECT_LT(piece.LocalPoint(-5, { { 0, 1, 2 } }, { { 1.0, 0.0, 0.0 } }).Face, 0);
+  });
 }

@@ -295,11 +295,10 @@ TEST(GeodesicEngine, ReachedSetsAndDepartureAnglesAgreeAcrossEngines)
   }
 }
 
-// On a mesh of ExactInPartsMinimumFaces faces or more, the exact engine solves distances from
-// vertices in parts on threads: Euclidean on a plane (to 1e-12), reached in order of distance,
-// progress reported and an abort honoured (the serial solver has neither); with angles asked
-// or a face point among the sources, the serial solver answers (angles known) with the same
-// distances.
+// On a mesh of ExactInPartsMinimumFaces faces or more, the exact engine solves distances in
+// parts on threads: Euclidean on a plane (to 1e-12) from a vertex and from a face point,
+// reached in order of distance, progress reported and an abort honoured (the serial solver has
+// neither); with angles asked, the serial solver answers (angles known), the same distances.
 TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
 {
   const TriangleMesh large = gs_test::BuildMesh(MakePlanarGrid(230, 230, 1.0, 1.0));
@@ -332,6 +331,18 @@ TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
   {
     ASSERT_LE(e.Distance(reached[i - 1]), e.Distance(reached[i]));
   }
+  EXPECT_TRUE(std::isnan(e.DepartureAngle(0)));
+
+  GeodesicSources inFace;
+  inFace.Points = { SurfacePoint::InFace(large.NumberOfFaces() / 3, 0.2, 0.3, 0.5) };
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(inFace, GeodesicSolveOptions())));
+  const Vec3 q = large.Position(inFace.Points[0]);
+  worst = 0.0;
+  for (int v = 0; v < large.NumberOfVertices(); ++v)
+  {
+    worst = std::max(worst, std::abs(e.Distance(v) - Norm(large.Position(v) - q)));
+  }
+  EXPECT_LT(worst, 1e-12);
   EXPECT_TRUE(std::isnan(e.DepartureAngle(0)));
 
   int calls = 0;

@@ -24,6 +24,17 @@ ExactSolverInParts::~ExactSolverInParts() = default;
 Status ExactSolverInParts::Solve(
   const std::vector<int>& sources, double maxDistance, const std::function<bool(double)>& progress)
 {
+  std::vector<SurfacePoint> points;
+  for (const int s : sources)
+  {
+    points.push_back(SurfacePoint::AtVertex(s));
+  }
+  return Solve(points, maxDistance, progress);
+}
+
+Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, double maxDistance,
+  const std::function<bool(double)>& progress)
+{
   std::fill(Dist.begin(), Dist.end(), std::numeric_limits<double>::infinity());
   Windows = 0;
   NumRounds = 0;
@@ -31,25 +42,29 @@ Status ExactSolverInParts::Solve(
   {
     return Status::Error("no source given");
   }
-  std::vector<std::int64_t> ids;
-  for (const int s : sources)
+  if (const Status valid = Surface.CheckPoints(sources, "source"); !valid.Ok())
   {
-    if (s < 0 || s >= Surface.NumberOfVertices())
-    {
-      return Status::Error("source vertex " + std::to_string(s) + " is not a vertex of the mesh (" +
-        std::to_string(Surface.NumberOfVertices()) + " vertices)");
-    }
-    ids.push_back(s);
+    return valid;
   }
   // The parts (a function of the mesh alone): cubes of an eighth of the bounding box's longest
   // side dealt out in turn, so that a front crossing the surface meets every part at once.
-  std::vector<int> partOfFace;
-  if (Pieces.empty())
+  const bool make = Pieces.empty();
+  if (make)
   {
-    partOfFace = BlockPartition(Surface, Parts, BlocksAlongLongestSide);
+    PartOfFace = BlockPartition(Surface, Parts, BlocksAlongLongestSide);
     for (int p = 0; p < Parts; ++p)
     {
       Pieces.push_back(std::make_unique<SurfacePiece>());
+    }
+  }
+  // Vertices by global id (the mesh's own numbers) on every part; a face point on the part
+  // holding its face.
+  std::vector<std::int64_t> vertices;
+  for (const SurfacePoint& p : sources)
+  {
+    if (p.IsVertex())
+    {
+      vertices.push_back(p.Vertex);
     }
   }
   std::vector<Status> statuses(static_cast<std::size_t>(Parts));
@@ -58,16 +73,26 @@ Status ExactSolverInParts::Solve(
   hub.Run([&](int rank, PieceCommunicator& comm) {
     SurfacePiece& piece = *Pieces[static_cast<std::size_t>(rank)];
     Status& status = statuses[static_cast<std::size_t>(rank)];
-    if (!partOfFace.empty())
+    if (make)
     {
-      status = piece.Build(PieceOfMesh(Surface, partOfFace, rank), 1, comm);
+      // (One ring at once: face points name the piece's faces, which a growth renumbers.)
+      status = piece.Build(PieceOfMesh(Surface, PartOfFace, rank), 1, comm);
     }
     if (status.Ok())
     {
+      std::vector<SurfacePoint> points;
+      for (const SurfacePoint& p : sources)
+      {
+        if (!p.IsVertex() && PartOfFace[static_cast<std::size_t>(p.Face)] == rank)
+        {
+          const std::array<int, 3>& c = Surface.Face(p.Face);
+          points.push_back(piece.LocalPoint(p.Face, { { c[0], c[1], c[2] } }, p.Bary));
+        }
+      }
       // Rank 0 runs on the calling thread: it alone reports progress (and so may abort).
-      const ProgressCallback report = rank == 0 ? progress : ProgressCallback();
-      status = ComputeExactOnPieces(piece, ids, maxDistance, comm,
-        results[static_cast<std::size_t>(rank)], report);
+      const std::function<bool(double)> report = rank == 0 ? progress : nullptr;
+      status = ComputeExactOnPieces(piece, vertices, maxDistance, comm,
+        results[static_cast<std::size_t>(rank)], report, points);
     }
     if (!status.Ok())
     {

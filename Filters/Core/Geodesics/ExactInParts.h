@@ -6,10 +6,11 @@
 // order of the windows, and so the rounding of ties, differs: within 1e-12 of the largest
 // distance in the tests). The partition depends on the mesh and the number of parts only, so
 // the result is the same to the bit whatever the number of cores; the parts run as threads even
-// on one core. Vertex sources only; no departure angles (the serial solver gives them).
+// on one core. No departure angles (the serial solver gives them).
 #pragma once
 
 #include "Status.h"
+#include "SurfacePoint.h"
 #include "SurfacePiece.h"
 #include "TriangleMesh.h"
 
@@ -41,6 +42,9 @@ public:
   /// fraction of the first part's vertices reached) returns false (Status::Aborted()).
   Status Solve(const std::vector<int>& sources, double maxDistance = 0.0,
     const std::function<bool(double)>& progress = nullptr);
+  /// The same from surface points (vertices and face points; TriangleMesh::CheckPoints).
+  Status Solve(const std::vector<SurfacePoint>& sources, double maxDistance = 0.0,
+    const std::function<bool(double)>& progress = nullptr);
 
   double Distance(int v) const { return Dist[static_cast<std::size_t>(v)]; }
   const std::vector<double>& Distances() const { return Dist; }
@@ -51,6 +55,7 @@ public:
 private:
   const TriangleMesh& Surface;
   const int Parts;
+  std::vector<int> PartOfFace;                       // each face's part
   std::vector<std::unique_ptr<SurfacePiece>> Pieces; // made at the first solve
   std::vector<double> Dist;
   std::int64_t Windows = 0;

@@ -57,9 +57,9 @@ double GeodesicEngine::DepartureAngle(int) const
 namespace
 {
 /// Exact window propagation; curves are densely sampled (ExactCurveSampleSpacing), the exact
-/// reference for distances to a curve. On a large mesh, distances from vertices alone (no
-/// angles asked) are solved in parts on threads (ExactSolverInParts: the same distances up to
-/// rounding, with progress and abort); the rest by the serial solver.
+/// reference for distances to a curve. On a large mesh, distances (no angles asked) are solved
+/// in parts on threads (ExactSolverInParts: the same distances up to rounding, with progress
+/// and abort); angles by the serial solver.
 class ExactEngine final : public GeodesicEngine
 {
 public:
@@ -71,14 +71,6 @@ public:
   GeodesicSolver Solver() const override { return GeodesicSolver::Exact; }
   Status Solve(const GeodesicSources& sources, const GeodesicSolveOptions& options) override
   {
-    InParts = Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && sources.Curves.empty() &&
-      !options.Angles && !sources.Points.empty() &&
-      std::all_of(sources.Points.begin(), sources.Points.end(),
-        [](const SurfacePoint& p) { return p.IsVertex(); });
-    if (InParts)
-    {
-      return SolveInParts(sources.Points, options);
-    }
     std::vector<SurfacePoint> points = sources.Points;
     for (const auto& curve : sources.Curves)
     {
@@ -86,6 +78,11 @@ public:
       const std::vector<SurfacePoint> samples =
         SampleCurvePieces(Surface, traced, ExactCurveSampleSpacing * Surface.MeanEdgeLength());
       points.insert(points.end(), samples.begin(), samples.end());
+    }
+    InParts = Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && !options.Angles;
+    if (InParts)
+    {
+      return SolveInParts(points, options);
     }
     ExactGeodesicOptions exact;
     exact.MaximumDistance = options.MaximumDistance;
@@ -112,13 +109,8 @@ private:
     {
       Parts = std::make_unique<ExactSolverInParts>(Surface);
     }
-    std::vector<int> vertices;
-    for (const SurfacePoint& p : points)
-    {
-      vertices.push_back(p.Vertex);
-    }
     ReachedInParts.clear();
-    const Status solved = Parts->Solve(vertices, options.MaximumDistance, options.Progress);
+    const Status solved = Parts->Solve(points, options.MaximumDistance, options.Progress);
     if (solved.Ok())
     {
       // In order of distance, as the serial solver makes them final (ties by vertex).

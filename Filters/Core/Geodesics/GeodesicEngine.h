@@ -29,8 +29,8 @@ enum class GeodesicSolver
 };
 constexpr int NumberOfGeodesicSolvers = 5;
 
-/// The exact engine solves distances from vertices on meshes of at least this many faces in
-/// parts on threads (ExactSolverInParts), the same for any number of cores.
+/// The exact engine solves distances (no angles asked) on meshes of at least this many faces
+/// in parts on threads (ExactSolverInParts), the same for any number of cores.
 constexpr int ExactInPartsMinimumFaces = 100000;
 
 /// The name users see ("Exact", "SVG (label-correcting)", ...); "" for no engine.

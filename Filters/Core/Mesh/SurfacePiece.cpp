@@ -566,6 +566,28 @@ int SurfacePiece::Vertex(std::int64_t globalId) const
   return it != VertexIds.end() && *it == globalId ? static_cast<int>(it - VertexIds.begin()) : -1;
 }
 
+SurfacePoint SurfacePiece::LocalPoint(std::int64_t globalFace,
+  const std::array<std::int64_t, 3>& corners, const std::array<double, 3>& bary) const
+{
+  const int f = Face(globalFace);
+  if (f < 0)
+  {
+    return SurfacePoint();
+  }
+  SurfacePoint q = SurfacePoint::InFace(f, 0.0, 0.0, 0.0);
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      if (GlobalId(Local.Face(f)[c]) == corners[k])
+      {
+        q.Bary[c] = bary[k];
+      }
+    }
+  }
+  return q;
+}
+
 PieceTriangles PieceOfMesh(const TriangleMesh& mesh, const std::vector<int>& partOfFace, int part)
 {
   PieceTriangles piece;

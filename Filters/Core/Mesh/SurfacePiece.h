@@ -17,6 +17,7 @@
 
 #include "PieceCommunicator.h"
 #include "Status.h"
+#include "SurfacePoint.h"
 #include "TriangleMesh.h"
 #include "Vector.h"
 
@@ -76,6 +77,11 @@ public:
   int Vertex(std::int64_t globalId) const;
   // The local face of a global face id (-1 when it is not in the piece).
   int Face(std::int64_t globalId) const;
+  // The point of face `globalFace` with barycentric coordinates `bary` over the corners of
+  // global ids `corners` (in that order), as a point of the piece's mesh (whose face may order
+  // its corners otherwise); a point of no face (Face -1) when the face is not in the piece.
+  SurfacePoint LocalPoint(std::int64_t globalFace, const std::array<std::int64_t, 3>& corners,
+    const std::array<double, 3>& bary) const;
   // Collective. The global id of rank `index` among the surface's vertex ids in increasing order
   // (the vertex a serial run on the surface put together in id order numbers `index`; the id
   // itself when the ids number the vertices 0 to N - 1); -1 when there is no such vertex.
