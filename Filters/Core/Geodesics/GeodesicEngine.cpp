@@ -65,7 +65,6 @@ class ExactEngine final : public GeodesicEngine
 public:
   explicit ExactEngine(const TriangleMesh& mesh)
     : GeodesicEngine(mesh)
-    , Solver_(mesh)
   {
   }
   GeodesicSolver Solver() const override { return GeodesicSolver::Exact; }
@@ -84,22 +83,35 @@ public:
     {
       return SolveInParts(points, options);
     }
+    if (!Serial)
+    {
+      Serial = std::make_unique<ExactGeodesicSolver>(Surface);
+    }
     ExactGeodesicOptions exact;
     exact.MaximumDistance = options.MaximumDistance;
-    return Solver_.Solve(points, exact);
+    return Serial->Solve(points, exact);
   }
-  double Distance(int v) const override { return InParts ? Parts->Distance(v) : Solver_.Distance(v); }
+  // (Before any solve: no vertex reached.)
+  double Distance(int v) const override
+  {
+    return InParts ? Parts->Distance(v)
+      : Serial     ? Serial->Distance(v)
+                   : std::numeric_limits<double>::infinity();
+  }
   std::vector<double> Distances() const override
   {
-    return InParts ? Parts->Distances() : Solver_.Distances();
+    return InParts ? Parts->Distances()
+      : Serial     ? Serial->Distances()
+                   : std::vector<double>(static_cast<std::size_t>(Surface.NumberOfVertices()),
+                       std::numeric_limits<double>::infinity());
   }
   const std::vector<int>& Reached() const override
   {
-    return InParts ? ReachedInParts : Solver_.FinalVertices();
+    return InParts || !Serial ? ReachedInParts : Serial->FinalVertices();
   }
   double DepartureAngle(int v) const override
   {
-    return InParts ? std::numeric_limits<double>::quiet_NaN() : Solver_.DepartureAngle(v);
+    return InParts || !Serial ? std::numeric_limits<double>::quiet_NaN() : Serial->DepartureAngle(v);
   }
 
 private:
@@ -129,10 +141,11 @@ private:
     return solved;
   }
 
-  ExactGeodesicSolver Solver_;
-  std::unique_ptr<ExactSolverInParts> Parts; // made at the first solve in parts
+  // Each made at its first solve: a large mesh's distances need only the parts.
+  std::unique_ptr<ExactGeodesicSolver> Serial;
+  std::unique_ptr<ExactSolverInParts> Parts;
   bool InParts = false;                      // the last solve was
-  std::vector<int> ReachedInParts;
+  std::vector<int> ReachedInParts; // (empty before any solve)
 };
 
 /// Shortest paths on a graph (SVG or DGG, as built), refined by geodesic triangle unfolding;
