@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <string>
 #include <utility>
 
@@ -90,7 +89,9 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
 
   // Own faces; the edges used once among them bound the own region: their vertices have faces
   // on other processes (or on the surface's boundary) and are the first requests.
-  std::map<std::pair<std::int64_t, std::int64_t>, int> edgeUses;
+  // (Each edge once per use, sorted: an edge used once is a run of one.)
+  std::vector<std::pair<std::int64_t, std::int64_t>> edgeUses;
+  edgeUses.reserve(3 * nt);
   for (std::size_t t = 0; t < nt; ++t)
   {
     FaceRecord face;
@@ -105,7 +106,7 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
     {
       const std::int64_t a = face.V[static_cast<std::size_t>(k)];
       const std::int64_t b = face.V[static_cast<std::size_t>((k + 1) % 3)];
-      ++edgeUses[{ std::min(a, b), std::max(a, b) }];
+      edgeUses.emplace_back(std::min(a, b), std::max(a, b));
       OwnStar[a].push_back(own.TriangleIds[t]);
     }
   }
@@ -114,15 +115,22 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
-  for (const auto& [edge, uses] : edgeUses)
+  std::sort(edgeUses.begin(), edgeUses.end());
+  for (std::size_t i = 0; i < edgeUses.size();)
   {
-    if (uses == 1)
+    std::size_t j = i + 1;
+    while (j < edgeUses.size() && edgeUses[j] == edgeUses[i])
     {
-      frontier.push_back(edge.first);
-      frontier.push_back(edge.second);
+      ++j;
     }
+    if (j - i == 1)
+    {
+      frontier.push_back(edgeUses[i].first);
+      frontier.push_back(edgeUses[i].second);
+    }
+    i = j;
   }
-  edgeUses.clear();
+  std::vector<std::pair<std::int64_t, std::int64_t>>().swap(edgeUses);
   std::sort(frontier.begin(), frontier.end());
   frontier.erase(std::unique(frontier.begin(), frontier.end()), frontier.end());
   // The other own vertices are surrounded by own faces: complete already.
@@ -166,7 +174,8 @@ std::vector<std::int64_t> SurfacePiece::Pinched() const
 {
   // Each face adds the two spokes (v, x) of each of its incomplete vertices v; a spoke used once
   // ends a fan: more than two such ends, more than one fan.
-  std::map<std::pair<std::int64_t, std::int64_t>, int> spokes;
+  // (Each spoke once per use, sorted: a spoke used once is a run of one.)
+  std::vector<std::pair<std::int64_t, std::int64_t>> spokes;
   for (const auto& [id, face] : Faces)
   {
     for (int k = 0; k < 3; ++k)
@@ -174,25 +183,32 @@ std::vector<std::int64_t> SurfacePiece::Pinched() const
       const std::int64_t v = face.V[static_cast<std::size_t>(k)];
       if (!Vertices.at(v).Complete)
       {
-        ++spokes[{ v, face.V[static_cast<std::size_t>((k + 1) % 3)] }];
-        ++spokes[{ v, face.V[static_cast<std::size_t>((k + 2) % 3)] }];
+        spokes.emplace_back(v, face.V[static_cast<std::size_t>((k + 1) % 3)]);
+        spokes.emplace_back(v, face.V[static_cast<std::size_t>((k + 2) % 3)]);
       }
     }
   }
+  std::sort(spokes.begin(), spokes.end());
   std::vector<std::int64_t> ids;
   std::int64_t current = 0;
   int ends = 0;
-  for (auto it = spokes.begin(); it != spokes.end(); ++it)
+  for (std::size_t i = 0; i < spokes.size();)
   {
-    if (it == spokes.begin() || it->first.first != current)
+    std::size_t j = i + 1;
+    while (j < spokes.size() && spokes[j] == spokes[i])
     {
-      current = it->first.first;
+      ++j;
+    }
+    if (i == 0 || spokes[i].first != current)
+    {
+      current = spokes[i].first;
       ends = 0;
     }
-    if (it->second == 1 && ++ends == 3)
+    if (j - i == 1 && ++ends == 3)
     {
       ids.push_back(current);
     }
+    i = j;
   }
   return ids;
 }
