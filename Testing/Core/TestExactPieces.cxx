@@ -366,3 +366,46 @@ TEST(ExactPieces, LocalPointIsTheSamePointOfThePiece)
     EXPECT_LT(piece.LocalPoint(-5, { { 0, 1, 2 } }, { { 1.0, 0.0, 0.0 } }).Face, 0);
   });
 }
+
+// The in-process communicator: reductions combine every rank's value, exchanges deliver each
+// rank's buffers; a rank that throws (out of memory) ends the run with its exception instead of
+// leaving the others waiting in a collective, and the hub's other ranks stop at their next one.
+TEST(ExactPieces, ThreadHubCollectivesAndAFailingRank)
+{
+  gs_test::ThreadHub hub(3);
+  std::vector<double> sums(3), mins(3);
+  std::vector<std::string> got(3);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    sums[static_cast<std::size_t>(rank)] = static_cast<double>(comm.Sum(rank + 1));
+    mins[static_cast<std::size_t>(rank)] = comm.Min(10.0 - rank);
+    std::vector<ByteBuffer> out(3), in;
+    for (int q = 0; q < 3; ++q)
+    {
+      ByteWriter(out[static_cast<std::size_t>(q)]).Put(static_cast<char>('a' + 3 * rank + q));
+    }
+    comm.Exchange(out, in);
+    for (int q = 0; q < 3; ++q)
+    {
+      got[static_cast<std::size_t>(rank)] += static_cast<char>(in[static_cast<std::size_t>(q)][0]);
+    }
+  });
+  EXPECT_EQ(sums, std::vector<double>(3, 6.0));
+  EXPECT_EQ(mins, std::vector<double>(3, 8.0));
+  EXPECT_EQ(got[0], "adg");
+  EXPECT_EQ(got[2], "cfi");
+  std::vector<int> rounds(3, 0);
+  EXPECT_THROW(hub.Run([&](int rank, PieceCommunicator& comm) {
+    for (int r = 0; r < 100; ++r)
+    {
+      if (rank == 1 && r == 3)
+      {
+        throw std::bad_alloc();
+      }
+      comm.Max(static_cast<double>(r));
+      ++rounds[static_cast<std::size_t>(rank)];
+    }
+  }),
+    std::bad_alloc);
+  EXPECT_LE(rounds[0], 4);
+  EXPECT_EQ(rounds[1], 3);
+}

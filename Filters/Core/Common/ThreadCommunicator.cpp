@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <stdexcept>
 #include <thread>
 
 namespace gs
@@ -14,9 +15,30 @@ ThreadHub::ThreadHub(int ranks)
 {
 }
 
+namespace
+{
+// What a rank's collective throws once another rank failed.
+struct HubBroken : std::runtime_error
+{
+  HubBroken()
+    : std::runtime_error("another rank of the computation failed")
+  {
+  }
+};
+} // namespace
+
+void ThreadHub::CheckBroken() const
+{
+  if (Broken)
+  {
+    throw HubBroken();
+  }
+}
+
 void ThreadHub::Barrier()
 {
   std::unique_lock<std::mutex> lock(Mutex);
+  CheckBroken();
   const long generation = Generation;
   if (++Arrived == Ranks)
   {
@@ -25,11 +47,20 @@ void ThreadHub::Barrier()
     Wake.notify_all();
     return;
   }
-  Wake.wait(lock, [&] { return Generation != generation; });
+  Wake.wait(lock, [&] { return Generation != generation || Broken; });
+  if (Generation == generation)
+  {
+    CheckBroken();
+  }
 }
 
 void ThreadHub::Run(const std::function<void(int, PieceCommunicator&)>& body)
 {
+  {
+    std::lock_guard<std::mutex> lock(Mutex);
+    Broken = false;
+    Arrived = 0;
+  }
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(Ranks));
   auto runRank = [&](int rank) {
     try
@@ -37,9 +68,16 @@ void ThreadHub::Run(const std::function<void(int, PieceCommunicator&)>& body)
       ThreadCommunicator comm(*this, rank);
       body(rank, comm);
     }
+    catch (const HubBroken&)
+    {
+      // (Another rank's failure, reported by that rank.)
+    }
     catch (...)
     {
       errors[static_cast<std::size_t>(rank)] = std::current_exception();
+      std::lock_guard<std::mutex> lock(Mutex);
+      Broken = true;
+      Wake.notify_all();
     }
   };
   std::vector<std::thread> threads;

@@ -23,9 +23,9 @@ public:
 
   /// Runs body(rank, communicator) for every rank, rank 0 on the calling thread (so that a
   /// progress report from rank 0 comes from the caller's thread) and the others on threads of
-  /// their own, and waits for them all. An exception from any rank is rethrown once all ended
-  /// (the others must not wait for the failed rank in a collective: bodies catch their errors
-  /// and fail collectively, as the piece computations do).
+  /// their own, and waits for them all. An exception from a rank (out of memory) breaks the
+  /// hub: the other ranks' collectives throw instead of waiting for it, and once all ended the
+  /// first rank's exception is rethrown to the caller.
   void Run(const std::function<void(int rank, PieceCommunicator& comm)>& body);
 
   int Size() const { return Ranks; }
@@ -34,7 +34,11 @@ private:
   friend class ThreadCommunicator;
   void Barrier();
 
+  // Throws when a rank failed (Broken): no collective waits for a rank that will not come.
+  void CheckBroken() const;
+
   const int Ranks;
+  bool Broken = false; // (guarded by Mutex)
   std::vector<std::vector<ByteBuffer>> Mail; // Mail[from][to]
   std::vector<double> Values;                // one per rank, for the reductions
   std::mutex Mutex;

@@ -32,44 +32,11 @@ Status ExactSolverInParts::Solve(
   return Solve(points, maxDistance, progress);
 }
 
-Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, double maxDistance,
-  const std::function<bool(double)>& progress)
+void ExactSolverInParts::RunParts(ThreadHub& hub, const std::vector<SurfacePoint>& sources,
+  const std::vector<std::int64_t>& vertices, double maxDistance,
+  const std::function<bool(double)>& progress, bool make, std::vector<Status>& statuses,
+  std::vector<ExactPiecesResult>& results)
 {
-  std::fill(Dist.begin(), Dist.end(), std::numeric_limits<double>::infinity());
-  Windows = 0;
-  NumRounds = 0;
-  if (sources.empty())
-  {
-    return Status::Error("no source given");
-  }
-  if (const Status valid = Surface.CheckPoints(sources, "source"); !valid.Ok())
-  {
-    return valid;
-  }
-  // The parts (a function of the mesh alone): cubes of an eighth of the bounding box's longest
-  // side dealt out in turn, so that a front crossing the surface meets every part at once.
-  const bool make = Pieces.empty();
-  if (make)
-  {
-    PartOfFace = BlockPartition(Surface, Parts, BlocksAlongLongestSide);
-    for (int p = 0; p < Parts; ++p)
-    {
-      Pieces.push_back(std::make_unique<SurfacePiece>());
-    }
-  }
-  // Vertices by global id (the mesh's own numbers) on every part; a face point on the part
-  // holding its face.
-  std::vector<std::int64_t> vertices;
-  for (const SurfacePoint& p : sources)
-  {
-    if (p.IsVertex())
-    {
-      vertices.push_back(p.Vertex);
-    }
-  }
-  std::vector<Status> statuses(static_cast<std::size_t>(Parts));
-  std::vector<ExactPiecesResult> results(static_cast<std::size_t>(Parts));
-  ThreadHub hub(Parts);
   hub.Run([&](int rank, PieceCommunicator& comm) {
     SurfacePiece& piece = *Pieces[static_cast<std::size_t>(rank)];
     Status& status = statuses[static_cast<std::size_t>(rank)];
@@ -108,6 +75,54 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
       }
     }
   });
+}
+
+Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, double maxDistance,
+  const std::function<bool(double)>& progress)
+{
+  std::fill(Dist.begin(), Dist.end(), std::numeric_limits<double>::infinity());
+  Windows = 0;
+  NumRounds = 0;
+  if (sources.empty())
+  {
+    return Status::Error("no source given");
+  }
+  if (const Status valid = Surface.CheckPoints(sources, "source"); !valid.Ok())
+  {
+    return valid;
+  }
+  // The parts (a function of the mesh alone): cubes of an eighth of the bounding box's longest
+  // side dealt out in turn, so that a front crossing the surface meets every part at once.
+  const bool make = Pieces.empty();
+  if (make)
+  {
+    PartOfFace = BlockPartition(Surface, Parts, BlocksAlongLongestSide);
+    for (int p = 0; p < Parts; ++p)
+    {
+      Pieces.push_back(std::make_unique<SurfacePiece>());
+    }
+  }
+  // Vertices by global id (the mesh's own numbers) on every part; a face point on the part
+  // holding its face.
+  std::vector<std::int64_t> vertices;
+  for (const SurfacePoint& p : sources)
+  {
+    if (p.IsVertex())
+    {
+      vertices.push_back(p.Vertex);
+    }
+  }
+  std::vector<Status> statuses(static_cast<std::size_t>(Parts));
+  std::vector<ExactPiecesResult> results(static_cast<std::size_t>(Parts));
+  ThreadHub hub(Parts);
+  try
+  {
+    RunParts(hub, sources, vertices, maxDistance, progress, make, statuses, results);
+  }
+  catch (const std::exception& e)
+  {
+    statuses[0] = Status::Error(std::string("the exact solve in parts failed: ") + e.what());
+  }
   for (const Status& status : statuses)
   {
     if (!status.Ok())

@@ -21,6 +21,8 @@
 
 namespace gs
 {
+class ThreadHub;
+struct ExactPiecesResult;
 
 class ExactSolverInParts
 {
@@ -53,6 +55,13 @@ public:
   int Rounds() const { return NumRounds; }
 
 private:
+  // Each part's piece (made first when `make`) and solve, on the hub's threads; each part's
+  // status and result.
+  void RunParts(ThreadHub& hub, const std::vector<SurfacePoint>& sources,
+    const std::vector<std::int64_t>& vertices, double maxDistance,
+    const std::function<bool(double)>& progress, bool make, std::vector<Status>& statuses,
+    std::vector<ExactPiecesResult>& results);
+
   const TriangleMesh& Surface;
   const int Parts;
   std::vector<int> PartOfFace;                       // each face's part
