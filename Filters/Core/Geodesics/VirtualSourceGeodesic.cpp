@@ -48,7 +48,7 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
   BucketWidth = std::max(Surface.MeanEdgeLength(), 1e-300);
 }
 
-VirtualSourceSolver::EdgeView VirtualSourceSolver::ViewOf(const FaceRecord& r, int k)
+inline VirtualSourceSolver::EdgeView VirtualSourceSolver::ViewOf(const FaceRecord& r, int k)
 {
   switch (k)
   {

@@ -138,7 +138,7 @@ private:
   {
     double Ox, Oy, Ux, Uy, Length, Px, Py;
   };
-  static EdgeView ViewOf(const FaceRecord& r, int k);
+  [[gnu::always_inline]] static EdgeView ViewOf(const FaceRecord& r, int k);
   // A queue item: a face whose source is to cross its edges (or, -1 - v, vertex v's event) and
   // its key when queued, rounded to float, packed in 64 bits. An item whose face changed since
   // is skipped (one that rounds the same is processed with the face's current state, which is
