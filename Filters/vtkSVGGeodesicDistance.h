@@ -17,7 +17,8 @@
  *  - EXACT (0): exact polyhedral geodesics by window propagation (Chen-Han / ICH family,
  *    Filters/Core/Geodesics/ExactGeodesic.h), the ground truth the graph solvers are measured against;
  *    on meshes of gs::ExactInPartsMinimumFaces faces or more, the distances are solved in parts
- *    on threads (Filters/Core/Geodesics/ExactInParts.h), with progress and abort.
+ *    on threads (Filters/Core/Geodesics/ExactInParts.h), with progress and abort, unless
+ *    MaximumDistance keeps the solve local (gs::ExactInPartsMinimumReach).
  *  - VIRTUAL_SOURCES (4, default): virtual source propagation (after Trettner, Bommes,
  *    Kobbelt 2021; Filters/Core/Geodesics/VirtualSourceGeodesic.h): nothing to build, linear time, exact
  *    on flat and developable meshes and a mean relative error of 1e-3 to 2.3e-3 on the real

@@ -408,4 +408,10 @@ TEST(ExactPieces, ThreadHubCollectivesAndAFailingRank)
     std::bad_alloc);
   EXPECT_LE(rounds[0], 4);
   EXPECT_EQ(rounds[1], 3);
+  // The hub runs again whole after a failed run.
+  std::vector<double> again(3);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    again[static_cast<std::size_t>(rank)] = comm.Max(static_cast<double>(rank));
+  });
+  EXPECT_EQ(again, std::vector<double>(3, 2.0));
 }

@@ -289,6 +289,7 @@ TEST(GeodesicEngine, ReachedSetsAndDepartureAnglesAgreeAcrossEngines)
         continue;
       }
       const double d = std::remainder(e->DepartureAngle(v) - exact->DepartureAngle(v), 2.0 * M_PI);
+      ASSERT_TRUE(std::isfinite(d)) << GeodesicSolverName(solver) << " vertex " << v;
       worst = std::max(worst, std::abs(d));
     }
     EXPECT_LT(worst, M_PI / 180.0) << GeodesicSolverName(solver);
@@ -349,6 +350,20 @@ TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
   options.Progress = [&](double) { return ++calls < 2; };
   EXPECT_TRUE(e.Solve(sources, options).IsAborted());
   EXPECT_FALSE(std::isfinite(e.Distance(centre)));
+  EXPECT_TRUE(e.Reached().empty());
+
+  // A solve bounded to a small disc stays serial (angles known), a wide one goes in parts.
+  GeodesicSolveOptions bounded;
+  bounded.MaximumDistance = 0.05;
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, bounded)));
+  const int near = centre + 1;
+  EXPECT_TRUE(std::isfinite(e.DepartureAngle(near)));
+  EXPECT_NEAR(e.Distance(near), Norm(large.Position(near) - c), 1e-12);
+  EXPECT_FALSE(std::isfinite(e.Distance(0)));
+  bounded.MaximumDistance = 0.5;
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, bounded)));
+  EXPECT_TRUE(std::isnan(e.DepartureAngle(near)));
+  EXPECT_NEAR(e.Distance(near), Norm(large.Position(near) - c), 1e-12);
 
   options.Progress = nullptr;
   options.Angles = true;

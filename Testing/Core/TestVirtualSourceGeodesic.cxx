@@ -176,6 +176,12 @@ TEST(VirtualSourceGeodesic, DepartureAnglesNearTheExactSolver)
   VirtualSourceSolver solver(sphere);
   ASSERT_TRUE(Succeeded(solver.Solve({ SurfacePoint::AtVertex(17) })));
   EXPECT_TRUE(std::isnan(solver.DepartureAngle(0)));
+  VirtualSourceOptions withAngles;
+  withAngles.Angles = true;
+  ASSERT_TRUE(Succeeded(solver.Solve({ SurfacePoint::AtVertex(17) }, withAngles)));
+  EXPECT_TRUE(std::isfinite(solver.DepartureAngle(0)));
+  ASSERT_TRUE(Succeeded(solver.Solve({ SurfacePoint::AtVertex(17) })));
+  EXPECT_TRUE(std::isnan(solver.DepartureAngle(0)));
 }
 
 // MaximumDistance leaves farther vertices unreached; progress rises to 1; a false return aborts

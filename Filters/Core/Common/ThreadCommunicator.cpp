@@ -81,14 +81,34 @@ void ThreadHub::Run(const std::function<void(int, PieceCommunicator&)>& body)
     }
   };
   std::vector<std::thread> threads;
-  for (int rank = 1; rank < Ranks; ++rank)
+  std::exception_ptr notStarted;
+  try
   {
-    threads.emplace_back(runRank, rank);
+    threads.reserve(static_cast<std::size_t>(Ranks - 1));
+    for (int rank = 1; rank < Ranks; ++rank)
+    {
+      threads.emplace_back(runRank, rank);
+    }
   }
-  runRank(0);
+  catch (...)
+  {
+    // A thread that could not start: the started ones must not wait for it.
+    notStarted = std::current_exception();
+    std::lock_guard<std::mutex> lock(Mutex);
+    Broken = true;
+    Wake.notify_all();
+  }
+  if (!notStarted)
+  {
+    runRank(0);
+  }
   for (std::thread& t : threads)
   {
     t.join();
+  }
+  if (notStarted)
+  {
+    std::rethrow_exception(notStarted);
   }
   for (const std::exception_ptr& e : errors)
   {

@@ -115,21 +115,31 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
   std::vector<Status> statuses(static_cast<std::size_t>(Parts));
   std::vector<ExactPiecesResult> results(static_cast<std::size_t>(Parts));
   ThreadHub hub(Parts);
+  bool thrown = false;
   try
   {
     RunParts(hub, sources, vertices, maxDistance, progress, make, statuses, results);
   }
   catch (const std::exception& e)
   {
+    thrown = true;
     statuses[0] = Status::Error(std::string("the exact solve in parts failed: ") + e.what());
+  }
+  catch (...)
+  {
+    thrown = true;
+    statuses[0] = Status::Error("the exact solve in parts failed");
   }
   for (const Status& status : statuses)
   {
     if (!status.Ok())
     {
       std::fill(Dist.begin(), Dist.end(), std::numeric_limits<double>::infinity());
-      Pieces.clear(); // made again at the next solve: nothing of a failed run is used
-      return status;
+      if (make || thrown)
+      {
+        Pieces.clear(); // a piece that failed to build, or any of a run cut short, is made again
+      }
+      return status; // (after an abort or a refused source the pieces stay, as they were)
     }
   }
   for (const ExactPiecesResult& result : results)

@@ -78,8 +78,12 @@ public:
         SampleCurvePieces(Surface, traced, ExactCurveSampleSpacing * Surface.MeanEdgeLength());
       points.insert(points.end(), samples.begin(), samples.end());
     }
-    InParts = Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && !options.Angles;
-    if (InParts)
+    // (A solve bounded to a small disc is local: serial, without making the parts.)
+    const double bound = options.MaximumDistance;
+    const bool wide = !(bound > 0.0 && std::isfinite(bound)) ||
+      bound >= ExactInPartsMinimumReach * Surface.BoundingBoxDiagonal();
+    InParts = false;
+    if (Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && !options.Angles && wide)
     {
       return SolveInParts(points, options);
     }
@@ -121,6 +125,7 @@ private:
     {
       Parts = std::make_unique<ExactSolverInParts>(Surface);
     }
+    InParts = true;
     ReachedInParts.clear();
     const Status solved = Parts->Solve(points, options.MaximumDistance, options.Progress);
     if (solved.Ok())

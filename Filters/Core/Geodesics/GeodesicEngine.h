@@ -30,8 +30,11 @@ enum class GeodesicSolver
 constexpr int NumberOfGeodesicSolvers = 5;
 
 /// The exact engine solves distances (no angles asked) on meshes of at least this many faces
-/// in parts on threads (ExactSolverInParts), the same for any number of cores.
+/// in parts on threads (ExactSolverInParts, four threads whatever NumberOfThreads says: the same
+/// bits for any number of cores), unless MaximumDistance bounds the solve to less than this
+/// fraction of the bounding box's diagonal (a local solve, serial).
 constexpr int ExactInPartsMinimumFaces = 100000;
+constexpr double ExactInPartsMinimumReach = 0.25;
 
 /// The name users see ("Exact", "SVG (label-correcting)", ...); "" for no engine.
 const char* GeodesicSolverName(GeodesicSolver solver);
@@ -61,7 +64,8 @@ struct GeodesicSolveOptions
   int NumberOfThreads = 0;
   /// Also the departure angles from a single point source (DepartureAngle): graph engines and
   /// the virtual sources compute them only when asked (the graphs' refinement then runs on one
-  /// thread); the exact engine always does.
+  /// thread); the exact engine always does on meshes below ExactInPartsMinimumFaces, and on
+  /// larger ones when asked (it then solves serially).
   bool Angles = false;
   /// Called with the fraction done (engines that report it); false aborts the solve
   /// (Status::Aborted(), every vertex unreached).
