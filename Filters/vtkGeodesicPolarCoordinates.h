@@ -44,7 +44,9 @@
  *    warning).
  *  - DecalSize (default 1, > 0): side of the square image mapped by DecalCoordinates.
  *  - Solver (default EXACT), K (default 50), GraphAccuracy (default 1e-3): the geodesic engine,
- *    in SVG Geodesic Distance's vocabulary: EXACT (0) exact geodesics truncated at Radius;
+ *    in SVG Geodesic Distance's vocabulary: EXACT (0) exact geodesics truncated at Radius (on
+ *    surfaces of gs::ExactInPartsMinimumFaces faces or more, a Radius of a quarter of the
+ *    bounding box's diagonal or more is solved in parts on threads: ExactInParts.h);
  *    SVG_LABEL_CORRECTING (1) the saddle vertex graph of K; DGG (3) the discrete geodesic graph
  *    of K and GraphAccuracy (graphs shared process-wide with the other filters; faster on large
  *    patches once built).

@@ -267,7 +267,8 @@ TEST(ExactPieces, FailuresAndAbortsOnEveryProcess)
 }
 
 // The exact solver on threads (ExactSolverInParts): the same distances as the serial solver
-// within 1e-12 of the largest, from vertices and from face points on several parts, on a closed
+// within 1e-12 of the largest (and from a single source the same departure angles within 1e-9,
+// modulo a full turn), from vertices and from face points on several parts, on a closed
 // curved mesh, on a plane with a boundary and behind the L-shape's reflex corner (paths bent
 // across the cuts between the parts), with a maximum distance; the same to the bit solved twice
 // (the pieces made once, reused); errors and an abort leave every vertex unreached and the next
@@ -299,6 +300,31 @@ TEST(ExactPieces, SolverInPartsEqualsTheSerialSolver)
       }
     }
     EXPECT_LE(worst, 1e-12 * largest) << parts << " parts";
+    // From a single source, the departure angles too (modulo a full turn about the source).
+    if (points.size() == 1)
+    {
+      const double turn =
+        points[0].IsVertex() && !mesh.IsBoundaryVertex(points[0].Vertex) ? mesh.TotalAngle(points[0].Vertex) : 2.0 * M_PI;
+      double worstAngle = 0.0;
+      int angles = 0;
+      for (int v = 0; v < mesh.NumberOfVertices(); ++v)
+      {
+        const double a = serial.DepartureAngle(v), b = split.DepartureAngle(v);
+        ASSERT_EQ(std::isfinite(a), std::isfinite(b)) << "vertex " << v;
+        if (std::isfinite(a))
+        {
+          const double d = std::abs(std::remainder(b - a, turn));
+          worstAngle = std::max(worstAngle, d);
+          ++angles;
+        }
+      }
+      EXPECT_LE(worstAngle, 1e-9) << parts << " parts";
+      EXPECT_GT(angles, 0);
+    }
+    else
+    {
+      EXPECT_TRUE(std::isnan(split.DepartureAngle(0)));
+    }
     EXPECT_GE(reached, maxDistance > 0.0 ? mesh.NumberOfVertices() / 20 : mesh.NumberOfVertices());
     EXPECT_GT(split.Rounds(), 1);
   };
@@ -311,7 +337,11 @@ TEST(ExactPieces, SolverInPartsEqualsTheSerialSolver)
   std::vector<SurfacePoint> points = { P::InFace(10, 0.2, 0.3, 0.5), P::InFace(900, 0.5, 0.5, 0.0),
     P::InFace(bumpy.NumberOfFaces() - 3, 0.6, 0.1, 0.3), P::AtVertex(300) };
   compare(bumpy, 4, points, 0.0);
-  compare(gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0)), 2, { P::AtVertex(5) }, 0.0);
+  compare(bumpy, 4, { points[0] }, 0.0);
+  compare(bumpy, 3, { points[2] }, 0.0);
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
+  compare(plane, 2, { P::AtVertex(5) }, 0.0);
+  compare(plane, 4, { P::AtVertex(25 * 10 + 12) }, 0.0);
   const TriangleMesh lshape = gs_test::BuildMesh(MakeLShape(12));
   compare(lshape, 2, { P::AtVertex(0) }, 0.0);
   compare(lshape, 2, { P::AtVertex(40), P::InFace(70, 0.3, 0.3, 0.4) }, 1.2);

@@ -1,6 +1,7 @@
 // The engine seam (GeodesicEngine.h): every engine answers the same questions, from points and
 // curves, bounded by MaximumDistance, with the same errors; on a flat mesh against the
 // Euclidean distances (the exact answer there), each within its stated accuracy.
+#include "ExactGeodesic.h"
 #include "GeodesicEngine.h"
 #include "MeshGenerators.h"
 #include "SaddleVertexGraph.h"
@@ -296,10 +297,11 @@ TEST(GeodesicEngine, ReachedSetsAndDepartureAnglesAgreeAcrossEngines)
   }
 }
 
-// On a mesh of ExactInPartsMinimumFaces faces or more, the exact engine solves distances in
-// parts on threads: Euclidean on a plane (to 1e-12) from a vertex and from a face point,
-// reached in order of distance, progress reported and an abort honoured (the serial solver has
-// neither); with angles asked, the serial solver answers (angles known), the same distances.
+// On a mesh of ExactInPartsMinimumFaces faces or more, the exact engine solves in parts on
+// threads: Euclidean distances on a plane (to 1e-12) from a vertex and from a face point, the
+// serial solver's departure angles (to 1e-9, modulo a turn), reached in order of distance,
+// progress reported and an abort honoured (the serial solver has neither); a solve bounded to
+// a small disc stays serial (no progress), as do angles from two sources.
 TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
 {
   const TriangleMesh large = gs_test::BuildMesh(MakePlanarGrid(230, 230, 1.0, 1.0));
@@ -307,6 +309,25 @@ TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
   Result<std::unique_ptr<GeodesicEngine>> made = MakeGeodesicEngine(GeodesicSolver::Exact, large);
   ASSERT_TRUE(gs_test::Succeeded(made));
   GeodesicEngine& e = **made;
+  ExactGeodesicSolver serial(large);
+  auto expectSerial = [&](const SurfacePoint& source) {
+    ASSERT_TRUE(gs_test::Succeeded(serial.Solve({ source })));
+    const double turn = source.IsVertex() ? large.TotalAngle(source.Vertex) : 2.0 * M_PI;
+    const Vec3 p = large.Position(source);
+    double worst = 0.0, worstAngle = 0.0;
+    for (int v = 0; v < large.NumberOfVertices(); ++v)
+    {
+      worst = std::max(worst, std::abs(e.Distance(v) - Norm(large.Position(v) - p)));
+      const double a = serial.DepartureAngle(v), b = e.DepartureAngle(v);
+      ASSERT_EQ(std::isfinite(a), std::isfinite(b)) << "vertex " << v;
+      if (std::isfinite(a))
+      {
+        worstAngle = std::max(worstAngle, std::abs(std::remainder(b - a, turn)));
+      }
+    }
+    EXPECT_LT(worst, 1e-12);
+    EXPECT_LT(worstAngle, 1e-9);
+  };
   const int centre = large.NumberOfVertices() / 2 + 7;
   GeodesicSources sources;
   sources.Points = { SurfacePoint::AtVertex(centre) };
@@ -319,32 +340,19 @@ TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
   ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, options)));
   EXPECT_GT(reports.size(), 3u);
   EXPECT_TRUE(std::is_sorted(reports.begin(), reports.end()));
-  const Vec3 c = large.Position(centre);
-  double worst = 0.0;
-  for (int v = 0; v < large.NumberOfVertices(); ++v)
-  {
-    worst = std::max(worst, std::abs(e.Distance(v) - Norm(large.Position(v) - c)));
-  }
-  EXPECT_LT(worst, 1e-12);
+  expectSerial(sources.Points[0]);
   const std::vector<int>& reached = e.Reached();
   ASSERT_EQ(reached.size(), static_cast<std::size_t>(large.NumberOfVertices()));
   for (std::size_t i = 1; i < reached.size(); ++i)
   {
     ASSERT_LE(e.Distance(reached[i - 1]), e.Distance(reached[i]));
   }
-  EXPECT_TRUE(std::isnan(e.DepartureAngle(0)));
 
   GeodesicSources inFace;
   inFace.Points = { SurfacePoint::InFace(large.NumberOfFaces() / 3, 0.2, 0.3, 0.5) };
-  ASSERT_TRUE(gs_test::Succeeded(e.Solve(inFace, GeodesicSolveOptions())));
-  const Vec3 q = large.Position(inFace.Points[0]);
-  worst = 0.0;
-  for (int v = 0; v < large.NumberOfVertices(); ++v)
-  {
-    worst = std::max(worst, std::abs(e.Distance(v) - Norm(large.Position(v) - q)));
-  }
-  EXPECT_LT(worst, 1e-12);
-  EXPECT_TRUE(std::isnan(e.DepartureAngle(0)));
+  options.Angles = true;
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(inFace, options)));
+  expectSerial(inFace.Points[0]);
 
   int calls = 0;
   options.Progress = [&](double) { return ++calls < 2; };
@@ -352,22 +360,28 @@ TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
   EXPECT_FALSE(std::isfinite(e.Distance(centre)));
   EXPECT_TRUE(e.Reached().empty());
 
-  // A solve bounded to a small disc stays serial (angles known), a wide one goes in parts.
-  GeodesicSolveOptions bounded;
-  bounded.MaximumDistance = 0.05;
-  ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, bounded)));
-  const int near = centre + 1;
-  EXPECT_TRUE(std::isfinite(e.DepartureAngle(near)));
-  EXPECT_NEAR(e.Distance(near), Norm(large.Position(near) - c), 1e-12);
-  EXPECT_FALSE(std::isfinite(e.Distance(0)));
-  bounded.MaximumDistance = 0.5;
-  ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, bounded)));
-  EXPECT_TRUE(std::isnan(e.DepartureAngle(near)));
-  EXPECT_NEAR(e.Distance(near), Norm(large.Position(near) - c), 1e-12);
-
-  options.Progress = nullptr;
-  options.Angles = true;
+  // A solve bounded to a small disc stays serial (it reports no progress); a wide one goes in
+  // parts; so do angles from two sources.
+  reports.clear();
+  options.Progress = [&](double f) {
+    reports.push_back(f);
+    return true;
+  };
+  options.MaximumDistance = 0.05;
   ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, options)));
-  EXPECT_TRUE(std::isfinite(e.DepartureAngle(0)));
-  EXPECT_NEAR(e.Distance(0), Norm(large.Position(0) - c), 1e-12);
+  EXPECT_TRUE(reports.empty());
+  const int near = centre + 1;
+  EXPECT_NEAR(e.Distance(near), Norm(large.Position(near) - large.Position(centre)), 1e-12);
+  EXPECT_FALSE(std::isfinite(e.Distance(0)));
+  options.MaximumDistance = 0.5;
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(sources, options)));
+  EXPECT_FALSE(reports.empty());
+  reports.clear();
+  options.MaximumDistance = 0.0;
+  GeodesicSources two = sources;
+  two.Points.push_back(SurfacePoint::AtVertex(0));
+  ASSERT_TRUE(gs_test::Succeeded(e.Solve(two, options)));
+  EXPECT_TRUE(reports.empty());
+  EXPECT_TRUE(std::isfinite(e.DepartureAngle(near)));
+  EXPECT_EQ(e.Distance(0), 0.0);
 }

@@ -645,3 +645,42 @@ TEST(GeodesicPolarCoordinates, CoveringDiscReadsTheDiscAsTheLongestEdgeBound)
   std::cout << "covering maps: " << smallEntries << " vertices against " << boundEntries
             << " out to the longest edge; " << disc << " disc points read alike\n";
 }
+
+// A chart over the whole of a large surface (ExactInPartsMinimumFaces faces or more) is solved
+// by the exact engine in parts on threads: the same rho (to 1e-12 of the largest) and theta (to
+// 1e-9, modulo a turn) as the serial solve, which a piece of a partitioned surface (a length
+// scale given) keeps; a chart of a small radius stays serial on any surface.
+TEST(GeodesicPolarCoordinates, WholeChartsOfLargeSurfacesAreSolvedInParts)
+{
+  // (Jittered: on a symmetric torus whole lines of vertices have two shortest paths, and which
+  // one a solve keeps is a matter of rounding.)
+  TriangleSoup soup = MakeTorus(1.0, 0.35, 400, 130);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
+  for (Vec3& p : soup.Points)
+  {
+    p = p + Vec3(jitter(random), jitter(random), jitter(random));
+  }
+  const TriangleMesh torus = BuildMesh(soup);
+  ASSERT_GE(torus.NumberOfFaces(), ExactInPartsMinimumFaces);
+  GeodesicPolarCoordinates parts(torus), serial(torus, nullptr, torus.BoundingBoxDiagonal());
+  for (const SurfacePoint& source : { SurfacePoint::AtVertex(77), SurfacePoint::InFace(5000, 0.2, 0.3, 0.5) })
+  {
+    ASSERT_TRUE(gs_test::Succeeded(parts.Compute(source, std::numeric_limits<double>::infinity(), 0.4)));
+    ASSERT_TRUE(gs_test::Succeeded(serial.Compute(source, std::numeric_limits<double>::infinity(), 0.4)));
+    ASSERT_EQ(parts.Inside().size(), serial.Inside().size());
+    double largest = 0.0, worstRho = 0.0, worstTheta = 0.0;
+    for (int v = 0; v < torus.NumberOfVertices(); ++v)
+    {
+      largest = std::max(largest, serial.Rho(v));
+      worstRho = std::max(worstRho, std::abs(parts.Rho(v) - serial.Rho(v)));
+      const double dt = std::abs(std::remainder(parts.Theta(v) - serial.Theta(v), 2.0 * M_PI));
+      worstTheta = std::max(worstTheta, dt);
+    }
+    EXPECT_LE(worstRho, 1e-12 * largest);
+    EXPECT_LE(worstTheta, 1e-9);
+  }
+  ASSERT_TRUE(gs_test::Succeeded(parts.Compute(SurfacePoint::AtVertex(77), 0.1)));
+  ASSERT_TRUE(gs_test::Succeeded(serial.Compute(SurfacePoint::AtVertex(77), 0.1)));
+  EXPECT_EQ(parts.Inside(), serial.Inside()); // (the serial solver's order: the same solve)
+}

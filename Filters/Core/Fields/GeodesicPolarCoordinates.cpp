@@ -16,6 +16,7 @@ GeodesicPolarCoordinates::GeodesicPolarCoordinates(
   const TriangleMesh& mesh, const SaddleVertexGraph* graph, double lengthScale)
   : Mesh(mesh)
   , Solver(mesh, lengthScale)
+  , WholeSurface(lengthScale == 0.0)
 {
   if (graph)
   {
@@ -191,9 +192,24 @@ Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius
     ? Mesh.TotalAngle(source.Vertex)
     : TwoPi;
   Reference = referenceAngle;
-  if (GraphEngine)
+  // A chart reaching far over a large whole surface: the exact engine, which solves it in parts
+  // on threads (ExactInParts.h; the same rho and theta up to rounding).
+  const bool wide = !GraphEngine && !stopOnceFinal && WholeSurface &&
+    Mesh.NumberOfFaces() >= ExactInPartsMinimumFaces &&
+    (maxDistance == 0.0 || maxDistance >= ExactInPartsMinimumReach * Mesh.BoundingBoxDiagonal());
+  if (wide && !WideExact)
   {
-    GeodesicEngine& engine = *GraphEngine;
+    Result<std::unique_ptr<GeodesicEngine>> made = MakeGeodesicEngine(GeodesicSolver::Exact, Mesh);
+    if (!made.Ok())
+    {
+      return made;
+    }
+    WideExact = std::move(*made);
+  }
+  Engine = GraphEngine ? GraphEngine.get() : wide ? WideExact.get() : nullptr;
+  if (Engine)
+  {
+    GeodesicEngine& engine = *Engine;
     GeodesicSources sources;
     sources.Points = { source };
     GeodesicSolveOptions options;
@@ -229,8 +245,8 @@ Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius
   Source = source;
   for (int v : InsideList)
   {
-    VertexRho[v] = GraphEngine ? GraphEngine->Distance(v) : Solver.Distance(v);
-    const double raw = GraphEngine ? GraphEngine->DepartureAngle(v) : Solver.DepartureAngle(v);
+    VertexRho[v] = Engine ? Engine->Distance(v) : Solver.Distance(v);
+    const double raw = Engine ? Engine->DepartureAngle(v) : Solver.DepartureAngle(v);
     // The source vertex itself is the pole: angle 0 by convention.
     VertexTheta[v] = std::isfinite(raw) ? RawToTheta(raw) : 0.0;
   }

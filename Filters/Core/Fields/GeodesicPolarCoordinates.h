@@ -228,6 +228,11 @@ private:
   const TriangleMesh& Mesh;
   ExactGeodesicSolver Solver;
   std::unique_ptr<GeodesicEngine> GraphEngine; // point sources on the graph (null: exact)
+  // Without a graph, charts reaching far over a large whole surface (not a piece of one): the
+  // exact engine, in parts on threads (made at the first such chart).
+  const bool WholeSurface;
+  std::unique_ptr<GeodesicEngine> WideExact;
+  GeodesicEngine* Engine = nullptr; // the last Compute's engine (null: Solver)
   std::vector<int> InsideList;
   SurfacePoint Source;
   double Reference = 0.0;

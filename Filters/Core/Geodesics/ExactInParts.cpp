@@ -16,7 +16,23 @@ ExactSolverInParts::ExactSolverInParts(const TriangleMesh& mesh, int parts)
   : Surface(mesh)
   , Parts(std::max(parts, 1))
   , Dist(static_cast<std::size_t>(mesh.NumberOfVertices()), std::numeric_limits<double>::infinity())
+  , Departure(static_cast<std::size_t>(mesh.NumberOfVertices()), std::numeric_limits<double>::quiet_NaN())
 {
+}
+
+bool ExactSolverInParts::SameFrame(const SurfacePoint& p, const SurfacePiece& piece) const
+{
+  // A vertex source's angles start from its VertexHalfedge, a face point's from its face's
+  // first edge. The part's mesh lists the faces in the mesh's order with their corners as the
+  // mesh does (PieceOfMesh), so both are the mesh's; checked all the same.
+  const TriangleMesh& local = piece.Mesh();
+  if (p.IsVertex())
+  {
+    const int s = p.Vertex;
+    return piece.GlobalId(local.Destination(local.VertexHalfedge(piece.Vertex(s)))) ==
+      Surface.Destination(Surface.VertexHalfedge(s));
+  }
+  return piece.GlobalId(local.Face(piece.Face(p.Face))[0]) == Surface.Face(p.Face)[0];
 }
 
 ExactSolverInParts::~ExactSolverInParts() = default;
@@ -65,22 +81,49 @@ void ExactSolverInParts::RunParts(ThreadHub& hub, const std::vector<SurfacePoint
     {
       return;
     }
-    // Each vertex from the part that owns it (the parts write disjoint entries).
+    // Each vertex from the part that owns it (the parts write disjoint entries); the single
+    // source's frame from the part that holds it (a vertex's owner, a face's holder).
     const ExactPiecesResult& result = results[static_cast<std::size_t>(rank)];
     for (int v = 0; v < piece.Mesh().NumberOfVertices(); ++v)
     {
       if (piece.IsOwned(v))
       {
-        Dist[static_cast<std::size_t>(piece.GlobalId(v))] = result.Distance[static_cast<std::size_t>(v)];
+        const std::size_t g = static_cast<std::size_t>(piece.GlobalId(v));
+        Dist[g] = result.Distance[static_cast<std::size_t>(v)];
+        Departure[g] = result.Departure[static_cast<std::size_t>(v)];
+      }
+    }
+    if (sources.size() == 1)
+    {
+      const SurfacePoint& s = sources[0];
+      const int local = s.IsVertex() ? piece.Vertex(s.Vertex) : -1;
+      if (s.IsVertex() ? local >= 0 && piece.IsOwned(local) : PartOfFace[static_cast<std::size_t>(s.Face)] == rank)
+      {
+        Framed = SameFrame(s, piece);
       }
     }
   });
+}
+
+void ExactSolverInParts::KeepDepartures(const std::vector<SurfacePoint>& sources)
+{
+  // Angles from one source whose part measures them in the mesh's frame; otherwise none.
+  if (sources.size() != 1 || !Framed)
+  {
+    std::fill(Departure.begin(), Departure.end(), std::numeric_limits<double>::quiet_NaN());
+  }
+  else if (sources[0].IsVertex())
+  {
+    Departure[static_cast<std::size_t>(sources[0].Vertex)] = std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, double maxDistance,
   const std::function<bool(double)>& progress)
 {
   std::fill(Dist.begin(), Dist.end(), std::numeric_limits<double>::infinity());
+  std::fill(Departure.begin(), Departure.end(), std::numeric_limits<double>::quiet_NaN());
+  Framed = false;
   Windows = 0;
   NumRounds = 0;
   if (sources.empty())
@@ -135,6 +178,7 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
     if (!status.Ok())
     {
       std::fill(Dist.begin(), Dist.end(), std::numeric_limits<double>::infinity());
+      std::fill(Departure.begin(), Departure.end(), std::numeric_limits<double>::quiet_NaN());
       if (make || thrown)
       {
         Pieces.clear(); // a piece that failed to build, or any of a run cut short, is made again
@@ -147,6 +191,7 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
     Windows += result.WindowsPropagated;
     NumRounds = std::max(NumRounds, result.Rounds);
   }
+  KeepDepartures(sources);
   return Status();
 }
 

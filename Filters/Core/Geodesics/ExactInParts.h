@@ -6,7 +6,8 @@
 // order of the windows, and so the rounding of ties, differs: within 1e-12 of the largest
 // distance in the tests). The partition depends on the mesh and the number of parts only, so
 // the result is the same to the bit whatever the number of cores; the parts run as threads even
-// on one core. No departure angles (the serial solver gives them).
+// on one core. Departure angles from a single source (so that Geodesic Polar Coordinates solves
+// charts over a whole large surface this way too).
 #pragma once
 
 #include "Status.h"
@@ -49,6 +50,11 @@ public:
     const std::function<bool(double)>& progress = nullptr);
 
   double Distance(int v) const { return Dist[static_cast<std::size_t>(v)]; }
+  /// After a solve from a single source: the angle at which v's path leaves it, in
+  /// ExactGeodesicSolver::DepartureAngle's convention on this mesh (equal to the serial
+  /// solver's up to rounding, modulo a full turn about the source: windows carry their angles
+  /// between the parts); NaN otherwise, for the source itself and where unreached.
+  double DepartureAngle(int v) const { return Departure[static_cast<std::size_t>(v)]; }
   const std::vector<double>& Distances() const { return Dist; }
   /// Windows propagated by all parts in the last solve, and its rounds.
   std::int64_t WindowsPropagated() const { return Windows; }
@@ -66,7 +72,14 @@ private:
   const int Parts;
   std::vector<int> PartOfFace;                       // each face's part
   std::vector<std::unique_ptr<SurfacePiece>> Pieces; // made at the first solve
-  std::vector<double> Dist;
+  // Whether the part holding source `p` (`piece`) measures departure angles from the edge the
+  // mesh measures them from (a vertex's VertexHalfedge, a face's first corner).
+  bool SameFrame(const SurfacePoint& p, const SurfacePiece& piece) const;
+  // After a solve: the departure angles kept from one source in the mesh's frame, else NaN.
+  void KeepDepartures(const std::vector<SurfacePoint>& sources);
+
+  std::vector<double> Dist, Departure;
+  bool Framed = false; // the single source's part measures angles as the mesh
   std::int64_t Windows = 0;
   int NumRounds = 0;
 };

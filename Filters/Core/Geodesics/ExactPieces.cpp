@@ -91,6 +91,7 @@ private:
   ExactGeodesicSolver::PieceRoute Route;
   std::vector<unsigned char> OtherFace, OtherVertex;
   std::int64_t Sent = 0;
+  bool Mirrored = false; // a window came from a piece whose faces turn the other way
   mutable std::vector<std::pair<std::int64_t, double>> Spokes; // Reference's scratch
 };
 
@@ -228,6 +229,7 @@ std::int64_t ExactPieceSolve::Pack(std::vector<ByteBuffer>& out)
     put.Put(Piece.GlobalId(v));
     put.Put(Solver.Dist[static_cast<std::size_t>(v)]);
     put.Put(in);
+    put.Put(Solver.Departure[static_cast<std::size_t>(v)].Value());
     put.Put(ref.Follower);
     ++items;
   }
@@ -271,7 +273,8 @@ bool ExactPieceSolve::UnpackWindow(ByteReader& r)
   if (Mesh.Origin(h) != va)
   {
     // The face is oriented the other way here: the same frame mirrored along the edge (y still
-    // points into the face).
+    // points into the face). (Its departure angles no longer read as Phi plus an angle.)
+    Mirrored = true;
     const double L = Mesh.EdgeLength(h), b0 = w.B0;
     w.Ix = L - w.Ix;
     w.B0 = std::max(0.0, L - w.B1);
@@ -284,8 +287,8 @@ bool ExactPieceSolve::UnpackWindow(ByteReader& r)
 bool ExactPieceSolve::UnpackVertex(ByteReader& r)
 {
   std::int64_t id = 0, follower = 0;
-  double d = 0.0, in = 0.0;
-  if (!(r.Get(id) && r.Get(d) && r.Get(in) && r.Get(follower)))
+  double d = 0.0, in = 0.0, departure = 0.0;
+  if (!(r.Get(id) && r.Get(d) && r.Get(in) && r.Get(departure) && r.Get(follower)))
   {
     return false;
   }
@@ -306,7 +309,7 @@ bool ExactPieceSolve::UnpackVertex(ByteReader& r)
     }
     arrival = ExactGeodesicSolver::LazyAngle::Exactly(local);
   }
-  Solver.UpdateVertex(v, d, -1, -1, 0.0, arrival, ExactGeodesicSolver::LazyAngle(), 0);
+  Solver.UpdateVertex(v, d, -1, -1, 0.0, arrival, ExactGeodesicSolver::LazyAngle::Exactly(departure), 0);
   return true;
 }
 
@@ -338,12 +341,18 @@ void ExactPieceSolve::Collect(double limit, ExactPiecesResult& result)
 {
   const int nv = Mesh.NumberOfVertices();
   result.Distance.assign(static_cast<std::size_t>(nv), std::numeric_limits<double>::quiet_NaN());
+  result.Departure.assign(static_cast<std::size_t>(nv), std::numeric_limits<double>::quiet_NaN());
+  const bool angles = Comm.Max(Mirrored ? 1.0 : 0.0) == 0.0;
   for (int v = 0; v < nv; ++v)
   {
     if (Piece.IsOwned(v))
     {
       const double d = Solver.Dist[static_cast<std::size_t>(v)];
       result.Distance[static_cast<std::size_t>(v)] = d <= limit ? d : Inf;
+      if (angles && d <= limit)
+      {
+        result.Departure[static_cast<std::size_t>(v)] = Solver.Departure[static_cast<std::size_t>(v)].Value();
+      }
     }
   }
   std::vector<std::vector<std::int64_t>> asks(static_cast<std::size_t>(Comm.Size()));

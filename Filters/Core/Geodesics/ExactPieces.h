@@ -12,7 +12,8 @@
 // distance it compares with is the length of a path on the surface); an owned pseudo-source
 // vertex whose distance drops after it spread spreads again. So the distances are the exact
 // geodesic distances, equal to a serial solve's up to rounding (the order of the windows, and
-// so the rounding of ties, differs). Departure angles and path origins are not computed.
+// so the rounding of ties, differs). Departure angles come with them (ExactPiecesResult); path
+// origins are not computed.
 #pragma once
 
 #include "PieceCommunicator.h"
@@ -32,6 +33,13 @@ struct ExactPiecesResult
   // every vertex it owns (infinite where unreached or beyond the maximum distance); NaN for the
   // band's other vertices.
   std::vector<double> Distance;
+  // Per vertex owned by this process: the departure angle of its path (ExactGeodesicSolver::
+  // DepartureAngle's convention, in the frame of the source as its own process's mesh lays it
+  // out: a vertex source's fan from that mesh's VertexHalfedge, a face point's first edge of
+  // that mesh's face); NaN elsewhere, where unknown, and everywhere when a piece's faces turn
+  // the other way from its neighbours' (the angle then no longer carries across). Meaningful
+  // for a single source.
+  std::vector<double> Departure;
   int Rounds = 0;    // distance thresholds
   int Exchanges = 0; // exchanges of windows and vertex distances over all rounds
   std::int64_t WindowsPropagated = 0; // by this process

@@ -57,9 +57,9 @@ double GeodesicEngine::DepartureAngle(int) const
 namespace
 {
 /// Exact window propagation; curves are densely sampled (ExactCurveSampleSpacing), the exact
-/// reference for distances to a curve. On a large mesh, distances (no angles asked) are solved
-/// in parts on threads (ExactSolverInParts: the same distances up to rounding, with progress
-/// and abort); angles by the serial solver.
+/// reference for distances to a curve. On a large mesh, solves that are not local are solved in
+/// parts on threads (ExactSolverInParts: the same distances and single-source departure angles
+/// up to rounding, with progress and abort); angles from several sources by the serial solver.
 class ExactEngine final : public GeodesicEngine
 {
 public:
@@ -83,7 +83,9 @@ public:
     const bool wide = !(bound > 0.0 && std::isfinite(bound)) ||
       bound >= ExactInPartsMinimumReach * Surface.BoundingBoxDiagonal();
     InParts = false;
-    if (Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && !options.Angles && wide)
+    // (Angles come from the parts for a single point source.)
+    const bool anglesKnown = !options.Angles || (points.size() == 1 && sources.Curves.empty());
+    if (Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && anglesKnown && wide)
     {
       return SolveInParts(points, options);
     }
@@ -115,7 +117,9 @@ public:
   }
   double DepartureAngle(int v) const override
   {
-    return InParts || !Serial ? std::numeric_limits<double>::quiet_NaN() : Serial->DepartureAngle(v);
+    return InParts ? Parts->DepartureAngle(v)
+      : Serial     ? Serial->DepartureAngle(v)
+                   : std::numeric_limits<double>::quiet_NaN();
   }
 
 private:

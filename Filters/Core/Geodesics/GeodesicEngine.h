@@ -29,10 +29,10 @@ enum class GeodesicSolver
 };
 constexpr int NumberOfGeodesicSolvers = 5;
 
-/// The exact engine solves distances (no angles asked) on meshes of at least this many faces
-/// in parts on threads (ExactSolverInParts, four threads whatever NumberOfThreads says: the same
-/// bits for any number of cores), unless MaximumDistance bounds the solve to less than this
-/// fraction of the bounding box's diagonal (a local solve, serial).
+/// The exact engine solves on meshes of at least this many faces in parts on threads
+/// (ExactSolverInParts, four threads whatever NumberOfThreads says: the same bits for any
+/// number of cores), unless MaximumDistance bounds the solve to less than this fraction of the
+/// bounding box's diagonal (a local solve, serial) or angles are asked from several sources.
 constexpr int ExactInPartsMinimumFaces = 100000;
 constexpr double ExactInPartsMinimumReach = 0.25;
 
@@ -64,8 +64,8 @@ struct GeodesicSolveOptions
   int NumberOfThreads = 0;
   /// Also the departure angles from a single point source (DepartureAngle): graph engines and
   /// the virtual sources compute them only when asked (the graphs' refinement then runs on one
-  /// thread); the exact engine always does on meshes below ExactInPartsMinimumFaces, and on
-  /// larger ones when asked (it then solves serially).
+  /// thread); the exact engine always does below ExactInPartsMinimumFaces faces, and on larger
+  /// meshes when asked (in parts from a single point source, else serially).
   bool Angles = false;
   /// Called with the fraction done (engines that report it); false aborts the solve
   /// (Status::Aborted(), every vertex unreached).
