@@ -339,6 +339,7 @@ TEST(ExactPieces, SolverInPartsEqualsTheSerialSolver)
   compare(bumpy, 4, points, 0.0);
   compare(bumpy, 4, { points[0] }, 0.0);
   compare(bumpy, 3, { points[2] }, 0.0);
+  compare(bumpy, 4, { P::InFace(700, 0.0, 1.0, 0.0) }, 0.0); // a face point at a corner
   const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
   compare(plane, 2, { P::AtVertex(5) }, 0.0);
   compare(plane, 4, { P::AtVertex(25 * 10 + 12) }, 0.0);

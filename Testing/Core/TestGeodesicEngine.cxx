@@ -361,7 +361,7 @@ TEST(GeodesicEngine, TheExactEngineSolvesLargeMeshesInParts)
   EXPECT_TRUE(e.Reached().empty());
 
   // A solve bounded to a small disc stays serial (it reports no progress); a wide one goes in
-  // parts; so do angles from two sources.
+  // parts; angles from two sources are the serial solver's.
   reports.clear();
   options.Progress = [&](double f) {
     reports.push_back(f);

@@ -649,7 +649,8 @@ TEST(GeodesicPolarCoordinates, CoveringDiscReadsTheDiscAsTheLongestEdgeBound)
 // A chart over the whole of a large surface (ExactInPartsMinimumFaces faces or more) is solved
 // by the exact engine in parts on threads: the same rho (to 1e-12 of the largest) and theta (to
 // 1e-9, modulo a turn) as the serial solve, which a piece of a partitioned surface (a length
-// scale given) keeps; a chart of a small radius stays serial on any surface.
+// scale given) keeps, and the same iso-curve angles; a chart of a small radius stays serial on
+// any surface.
 TEST(GeodesicPolarCoordinates, WholeChartsOfLargeSurfacesAreSolvedInParts)
 {
   // (Jittered: on a symmetric torus whole lines of vertices have two shortest paths, and which
@@ -680,6 +681,22 @@ TEST(GeodesicPolarCoordinates, WholeChartsOfLargeSurfacesAreSolvedInParts)
     EXPECT_LE(worstRho, 1e-12 * largest);
     EXPECT_LE(worstTheta, 1e-9);
   }
+  // Iso-curve angles read the distances beyond the chart from the solve in parts too.
+  const SurfacePoint source = SurfacePoint::AtVertex(77);
+  ASSERT_TRUE(gs_test::Succeeded(parts.Compute(source, 2.0, 0.4)));
+  ASSERT_TRUE(gs_test::Succeeded(serial.Compute(source, 2.0, 0.4)));
+  const Result<int> keptParts = parts.UseIsoCurveAngles(), keptSerial = serial.UseIsoCurveAngles();
+  ASSERT_TRUE(keptParts.Ok() && keptSerial.Ok());
+  EXPECT_EQ(*keptParts, *keptSerial);
+  double worstIso = 0.0;
+  for (int v = 0; v < torus.NumberOfVertices(); ++v)
+  {
+    if (std::isfinite(serial.Theta(v)))
+    {
+      worstIso = std::max(worstIso, std::abs(std::remainder(parts.Theta(v) - serial.Theta(v), 2.0 * M_PI)));
+    }
+  }
+  EXPECT_LE(worstIso, 1e-9);
   ASSERT_TRUE(gs_test::Succeeded(parts.Compute(SurfacePoint::AtVertex(77), 0.1)));
   ASSERT_TRUE(gs_test::Succeeded(serial.Compute(SurfacePoint::AtVertex(77), 0.1)));
   EXPECT_EQ(parts.Inside(), serial.Inside()); // (the serial solver's order: the same solve)

@@ -233,6 +233,10 @@ private:
   const bool WholeSurface;
   std::unique_ptr<GeodesicEngine> WideExact;
   GeodesicEngine* Engine = nullptr; // the last Compute's engine (null: Solver)
+  // Iso-curve angles: the distances a few edges beyond the chart, from the solver or (a chart
+  // solved in parts) the wide engine, as UseIsoCurveAngles last solved them.
+  bool BeyondInParts = false;
+  double BeyondRho(int v) const { return BeyondInParts ? WideExact->Distance(v) : Solver.Distance(v); }
   std::vector<int> InsideList;
   SurfacePoint Source;
   double Reference = 0.0;

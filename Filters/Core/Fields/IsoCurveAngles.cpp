@@ -36,7 +36,7 @@ bool GeodesicPolarCoordinates::TraceIsoCurve(int v,
 {
   const double c = VertexRho[v];
   // Distances just beyond the radius come from an exact solve a few edges further.
-  auto rho = [&](int w) { return std::isfinite(VertexRho[w]) ? VertexRho[w] : Solver.Distance(w); };
+  auto rho = [&](int w) { return std::isfinite(VertexRho[w]) ? VertexRho[w] : BeyondRho(w); };
   // Below the level: strictly closer than v (vertices at exactly the level count as above; v
   // itself is where the loop starts and ends).
   auto below = [&](int w) { return w != v && rho(w) < c; };
@@ -121,9 +121,22 @@ Result<int> GeodesicPolarCoordinates::UseIsoCurveAngles()
     radius = std::max(radius, VertexRho[v]);
   }
   const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, radius * 1.01 + Mesh.MeanEdgeLength());
-  ExactGeodesicOptions beyond;
-  beyond.MaximumDistance = radius + 3.0 * Mesh.MeanEdgeLength();
-  static_cast<void>(Solver.Solve({ Source }, beyond)); // Compute accepted Source
+  // (A chart the exact engine solved in parts goes a few edges further the same way.)
+  BeyondInParts = Engine && Engine == WideExact.get();
+  if (BeyondInParts)
+  {
+    GeodesicSources sources;
+    sources.Points = { Source };
+    GeodesicSolveOptions further;
+    further.MaximumDistance = radius + 3.0 * Mesh.MeanEdgeLength();
+    static_cast<void>(WideExact->Solve(sources, further)); // Compute accepted Source
+  }
+  else
+  {
+    ExactGeodesicOptions beyond;
+    beyond.MaximumDistance = radius + 3.0 * Mesh.MeanEdgeLength();
+    static_cast<void>(Solver.Solve({ Source }, beyond)); // Compute accepted Source
+  }
   for (const CurvePiece& piece : ray.Pieces)
   {
     reference[piece.Face].push_back({ piece.A, piece.B });
@@ -153,7 +166,7 @@ SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) c
 {
   // The level loop at rho = c, traced counter-clockwise from where it crosses the reference
   // geodesic (as UseIsoCurveAngles measured it), walked to the fraction theta / 2 pi of its length.
-  auto rho = [&](int w) { return std::isfinite(VertexRho[w]) ? VertexRho[w] : Solver.Distance(w); };
+  auto rho = [&](int w) { return std::isfinite(VertexRho[w]) ? VertexRho[w] : BeyondRho(w); };
   auto below = [&](int w) { return rho(w) < c; };
   auto crossing = [&](int h) {
     const int a = Mesh.Origin(h), b = Mesh.Destination(h);

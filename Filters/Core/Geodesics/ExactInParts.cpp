@@ -22,17 +22,29 @@ ExactSolverInParts::ExactSolverInParts(const TriangleMesh& mesh, int parts)
 
 bool ExactSolverInParts::SameFrame(const SurfacePoint& p, const SurfacePiece& piece) const
 {
-  // A vertex source's angles start from its VertexHalfedge, a face point's from its face's
-  // first edge. The part's mesh lists the faces in the mesh's order with their corners as the
-  // mesh does (PieceOfMesh), so both are the mesh's; checked all the same.
+  // A vertex source's angles start from its VertexHalfedge and turn counter-clockwise, a face
+  // point's from its face's first edge. The part's mesh lists the faces in the mesh's order
+  // with their corners as the mesh does (PieceOfMesh), so both are the mesh's; checked all the
+  // same.
   const TriangleMesh& local = piece.Mesh();
   if (p.IsVertex())
   {
-    const int s = p.Vertex;
-    return piece.GlobalId(local.Destination(local.VertexHalfedge(piece.Vertex(s)))) ==
-      Surface.Destination(Surface.VertexHalfedge(s));
+    // The first outgoing edge, and the next one counter-clockwise (the fan turns alike).
+    const int s = p.Vertex, h = local.VertexHalfedge(piece.Vertex(s)), g = Surface.VertexHalfedge(s);
+    const int hn = local.RotateCCW(h), gn = Surface.RotateCCW(g);
+    return piece.GlobalId(local.Destination(h)) == Surface.Destination(g) && (hn < 0) == (gn < 0) &&
+      (hn < 0 || piece.GlobalId(local.Destination(hn)) == Surface.Destination(gn));
   }
-  return piece.GlobalId(local.Face(piece.Face(p.Face))[0]) == Surface.Face(p.Face)[0];
+  const std::array<int, 3>& mine = local.Face(piece.Face(p.Face));
+  const std::array<int, 3>& whole = Surface.Face(p.Face);
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    if (piece.GlobalId(mine[k]) != whole[k])
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 ExactSolverInParts::~ExactSolverInParts() = default;
@@ -108,7 +120,9 @@ void ExactSolverInParts::RunParts(ThreadHub& hub, const std::vector<SurfacePoint
 void ExactSolverInParts::KeepDepartures(const std::vector<SurfacePoint>& sources)
 {
   // Angles from one source whose part measures them in the mesh's frame; otherwise none.
-  if (sources.size() != 1 || !Framed)
+  Kept = sources.size() == 1 && Framed &&
+    std::any_of(Departure.begin(), Departure.end(), [](double a) { return std::isfinite(a); });
+  if (!Kept)
   {
     std::fill(Departure.begin(), Departure.end(), std::numeric_limits<double>::quiet_NaN());
   }
@@ -123,7 +137,7 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
 {
   std::fill(Dist.begin(), Dist.end(), std::numeric_limits<double>::infinity());
   std::fill(Departure.begin(), Departure.end(), std::numeric_limits<double>::quiet_NaN());
-  Framed = false;
+  Framed = Kept = false;
   Windows = 0;
   NumRounds = 0;
   if (sources.empty())
@@ -146,9 +160,32 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
     }
   }
   // Vertices by global id (the mesh's own numbers) on every part; a face point on the part
-  // holding its face.
+  // holding its face; a face point at a corner is that vertex (as the serial solver takes it:
+  // the part holding the face may not own the corner).
+  std::vector<SurfacePoint> points = sources;
+  for (SurfacePoint& p : points)
+  {
+    if (p.IsVertex())
+    {
+      continue;
+    }
+    std::array<double, 3> b = p.Bary;
+    for (double& x : b)
+    {
+      x = std::max(x, 0.0);
+    }
+    const double sum = b[0] + b[1] + b[2];
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      if (b[k] / sum > 1.0 - 1e-12)
+      {
+        p = SurfacePoint::AtVertex(Surface.Face(p.Face)[k]);
+        break;
+      }
+    }
+  }
   std::vector<std::int64_t> vertices;
-  for (const SurfacePoint& p : sources)
+  for (const SurfacePoint& p : points)
   {
     if (p.IsVertex())
     {
@@ -161,7 +198,7 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
   bool thrown = false;
   try
   {
-    RunParts(hub, sources, vertices, maxDistance, progress, make, statuses, results);
+    RunParts(hub, points, vertices, maxDistance, progress, make, statuses, results);
   }
   catch (const std::exception& e)
   {
@@ -191,7 +228,7 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
     Windows += result.WindowsPropagated;
     NumRounds = std::max(NumRounds, result.Rounds);
   }
-  KeepDepartures(sources);
+  KeepDepartures(points);
   return Status();
 }
 

@@ -55,6 +55,8 @@ public:
   /// solver's up to rounding, modulo a full turn about the source: windows carry their angles
   /// between the parts); NaN otherwise, for the source itself and where unreached.
   double DepartureAngle(int v) const { return Departure[static_cast<std::size_t>(v)]; }
+  /// Whether the last solve kept departure angles (one source, measured as the mesh does).
+  bool AnglesKept() const { return Kept; }
   const std::vector<double>& Distances() const { return Dist; }
   /// Windows propagated by all parts in the last solve, and its rounds.
   std::int64_t WindowsPropagated() const { return Windows; }
@@ -80,6 +82,7 @@ private:
 
   std::vector<double> Dist, Departure;
   bool Framed = false; // the single source's part measures angles as the mesh
+  bool Kept = false;   // the last solve's departure angles are kept
   std::int64_t Windows = 0;
   int NumRounds = 0;
 };

@@ -273,8 +273,9 @@ bool ExactPieceSolve::UnpackWindow(ByteReader& r)
   if (Mesh.Origin(h) != va)
   {
     // The face is oriented the other way here: the same frame mirrored along the edge (y still
-    // points into the face). (Its departure angles no longer read as Phi plus an angle.)
-    Mirrored = true;
+    // points into the face). (A window seen from the source itself no longer reads its
+    // departure angles as Phi plus an angle; one behind a pseudo-source keeps Phi.)
+    Mirrored = Mirrored || w.Src >= 0;
     const double L = Mesh.EdgeLength(h), b0 = w.B0;
     w.Ix = L - w.Ix;
     w.B0 = std::max(0.0, L - w.B1);

@@ -89,13 +89,7 @@ public:
     {
       return SolveInParts(points, options);
     }
-    if (!Serial)
-    {
-      Serial = std::make_unique<ExactGeodesicSolver>(Surface);
-    }
-    ExactGeodesicOptions exact;
-    exact.MaximumDistance = options.MaximumDistance;
-    return Serial->Solve(points, exact);
+    return SolveSerially(points, options);
   }
   // (Before any solve: no vertex reached.)
   double Distance(int v) const override
@@ -123,6 +117,16 @@ public:
   }
 
 private:
+  Status SolveSerially(const std::vector<SurfacePoint>& points, const GeodesicSolveOptions& options)
+  {
+    if (!Serial)
+    {
+      Serial = std::make_unique<ExactGeodesicSolver>(Surface);
+    }
+    ExactGeodesicOptions exact;
+    exact.MaximumDistance = options.MaximumDistance;
+    return Serial->Solve(points, exact);
+  }
   Status SolveInParts(const std::vector<SurfacePoint>& points, const GeodesicSolveOptions& options)
   {
     if (!Parts)
@@ -132,6 +136,12 @@ private:
     InParts = true;
     ReachedInParts.clear();
     const Status solved = Parts->Solve(points, options.MaximumDistance, options.Progress);
+    if (solved.Ok() && options.Angles && !Parts->AnglesKept())
+    {
+      // (The part holding the source measured angles otherwise: the serial solver gives them.)
+      InParts = false;
+      return SolveSerially(points, options);
+    }
     if (solved.Ok())
     {
       // In order of distance, as the serial solver makes them final (ties by vertex).
