@@ -153,7 +153,6 @@ int main(int argc, char** argv)
       const int source = static_cast<int>((static_cast<long long>(k) * 7919 + 13) % m.NumberOfVertices());
       const double exactTime = Seconds([&] { static_cast<void>(solver.Solve(source)); }); // a vertex: accepted
       exact += exactTime;
-      auto exactLast = [&] { return exactTime; };
       windows += static_cast<double>(solver.Statistics().WindowsPropagated);
       if (parts > 0)
       {
@@ -175,7 +174,7 @@ int main(int argc, char** argv)
         }
         std::printf("  source %d: exact %.3f s, in %d parts %.3f s (%.2fx), %d rounds, windows %lld "
                     "against %lld; largest difference %.2e of the largest distance\n",
-          source, exactLast(), parts, t, exactLast() / t, inParts->Rounds(),
+          source, exactTime, parts, t, exactTime / t, inParts->Rounds(),
           static_cast<long long>(inParts->WindowsPropagated()),
           static_cast<long long>(solver.Statistics().WindowsPropagated), worst / largest);
       }

@@ -194,9 +194,7 @@ Status GeodesicPolarCoordinates::Solve(const SurfacePoint& source, double radius
   Reference = referenceAngle;
   // A chart reaching far over a large whole surface: the exact engine, which solves it in parts
   // on threads (ExactInParts.h; the same rho and theta up to rounding).
-  const bool wide = !GraphEngine && !stopOnceFinal && WholeSurface &&
-    Mesh.NumberOfFaces() >= ExactInPartsMinimumFaces &&
-    (maxDistance == 0.0 || maxDistance >= ExactInPartsMinimumReach * Mesh.BoundingBoxDiagonal());
+  const bool wide = !GraphEngine && !stopOnceFinal && WholeSurface && ExactSolvesInParts(Mesh, maxDistance);
   if (wide && !WideExact)
   {
     Result<std::unique_ptr<GeodesicEngine>> made = MakeGeodesicEngine(GeodesicSolver::Exact, Mesh);

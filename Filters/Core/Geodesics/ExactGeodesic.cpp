@@ -460,31 +460,40 @@ void ExactGeodesicSolver::FinalizeUpTo(double key)
   }
 }
 
+SurfacePoint ExactGeodesicSolver::SourcePoint(const TriangleMesh& mesh, SurfacePoint s)
+{
+  if (s.IsVertex())
+  {
+    return s;
+  }
+  std::array<double, 3>& b = s.Bary;
+  for (double& x : b)
+  {
+    x = std::max(x, 0.0);
+  }
+  const double sum = b[0] + b[1] + b[2];
+  for (double& x : b)
+  {
+    x /= sum;
+  }
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    if (b[k] > 1.0 - 1e-12)
+    {
+      return SurfacePoint::AtVertex(mesh.Face(s.Face)[k]);
+    }
+  }
+  return s;
+}
+
 void ExactGeodesicSolver::AddSource(int i, SurfacePoint s)
 {
   if (!s.IsVertex())
   {
-    // Normalize; a point at a corner is a vertex source.
-    std::array<double, 3> b = s.Bary;
-    for (double& x : b)
-    {
-      x = std::max(x, 0.0);
-    }
-    const double sum = b[0] + b[1] + b[2];
-    for (double& x : b)
-    {
-      x /= sum;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      if (b[k] > 1.0 - 1e-12)
-      {
-        s = SurfacePoint::AtVertex(Surface.Face(s.Face)[k]);
-        break;
-      }
-    }
+    s = SourcePoint(Surface, s);
     if (!s.IsVertex())
     {
+      const std::array<double, 3>& b = s.Bary;
       const Vec3 p = Surface.Interpolate(s.Face, b);
       AddFaceSourceWindows(s.Face, p, i, s.Face);
       for (int k = 0; k < 3; ++k)

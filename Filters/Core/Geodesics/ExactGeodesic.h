@@ -71,6 +71,9 @@ public:
   {
     return this->Solve(std::vector<SurfacePoint>{ SurfacePoint::AtVertex(sourceVertex) }, options);
   }
+  // A source as Solve takes it: a face point's weights clamped to >= 0 and normalized, and a
+  // point at a corner (a weight above 1 - 1e-12) that vertex.
+  static SurfacePoint SourcePoint(const TriangleMesh& mesh, SurfacePoint s);
 
   // Distance of vertex v after the last solve (Unreachable if not reached or beyond the limits).
   double Distance(int v) const

@@ -1,12 +1,12 @@
 #include "ExactInParts.h"
 
+#include "ExactGeodesic.h"
 #include "ExactPieces.h"
 #include "ThreadCommunicator.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <string>
 
 namespace gs
@@ -162,26 +162,13 @@ Status ExactSolverInParts::Solve(const std::vector<SurfacePoint>& sources, doubl
   // Vertices by global id (the mesh's own numbers) on every part; a face point on the part
   // holding its face; a face point at a corner is that vertex (as the serial solver takes it:
   // the part holding the face may not own the corner).
+  // (Only the corners are taken: each part's solver normalizes its face points itself.)
   std::vector<SurfacePoint> points = sources;
   for (SurfacePoint& p : points)
   {
-    if (p.IsVertex())
+    if (const SurfacePoint q = ExactGeodesicSolver::SourcePoint(Surface, p); q.IsVertex())
     {
-      continue;
-    }
-    std::array<double, 3> b = p.Bary;
-    for (double& x : b)
-    {
-      x = std::max(x, 0.0);
-    }
-    const double sum = b[0] + b[1] + b[2];
-    for (std::size_t k = 0; k < 3; ++k)
-    {
-      if (b[k] / sum > 1.0 - 1e-12)
-      {
-        p = SurfacePoint::AtVertex(Surface.Face(p.Face)[k]);
-        break;
-      }
+      p = q;
     }
   }
   std::vector<std::int64_t> vertices;

@@ -69,17 +69,16 @@ private:
     const std::vector<std::int64_t>& vertices, double maxDistance,
     const std::function<bool(double)>& progress, bool make, std::vector<Status>& statuses,
     std::vector<ExactPiecesResult>& results);
-
-  const TriangleMesh& Surface;
-  const int Parts;
-  std::vector<int> PartOfFace;                       // each face's part
-  std::vector<std::unique_ptr<SurfacePiece>> Pieces; // made at the first solve
   // Whether the part holding source `p` (`piece`) measures departure angles from the edge the
   // mesh measures them from (a vertex's VertexHalfedge, a face's first corner).
   bool SameFrame(const SurfacePoint& p, const SurfacePiece& piece) const;
   // After a solve: the departure angles kept from one source in the mesh's frame, else NaN.
   void KeepDepartures(const std::vector<SurfacePoint>& sources);
 
+  const TriangleMesh& Surface;
+  const int Parts;
+  std::vector<int> PartOfFace;                       // each face's part
+  std::vector<std::unique_ptr<SurfacePiece>> Pieces; // made at the first solve
   std::vector<double> Dist, Departure;
   bool Framed = false; // the single source's part measures angles as the mesh
   bool Kept = false;   // the last solve's departure angles are kept

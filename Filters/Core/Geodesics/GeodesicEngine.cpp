@@ -49,6 +49,14 @@ GeodesicSolver GraphSolverOf(const SaddleVertexGraph& graph)
                                                                         : GeodesicSolver::SVGLabelCorrecting;
 }
 
+bool ExactSolvesInParts(const TriangleMesh& mesh, double maximumDistance)
+{
+  // (A solve bounded to a small disc is local: serial, without making the parts.)
+  const bool wide = !(maximumDistance > 0.0 && std::isfinite(maximumDistance)) ||
+    maximumDistance >= ExactInPartsMinimumReach * mesh.BoundingBoxDiagonal();
+  return mesh.NumberOfFaces() >= ExactInPartsMinimumFaces && wide;
+}
+
 double GeodesicEngine::DepartureAngle(int) const
 {
   return std::numeric_limits<double>::quiet_NaN();
@@ -78,14 +86,10 @@ public:
         SampleCurvePieces(Surface, traced, ExactCurveSampleSpacing * Surface.MeanEdgeLength());
       points.insert(points.end(), samples.begin(), samples.end());
     }
-    // (A solve bounded to a small disc is local: serial, without making the parts.)
-    const double bound = options.MaximumDistance;
-    const bool wide = !(bound > 0.0 && std::isfinite(bound)) ||
-      bound >= ExactInPartsMinimumReach * Surface.BoundingBoxDiagonal();
     InParts = false;
     // (Angles come from the parts for a single point source.)
     const bool anglesKnown = !options.Angles || (points.size() == 1 && sources.Curves.empty());
-    if (Surface.NumberOfFaces() >= ExactInPartsMinimumFaces && anglesKnown && wide)
+    if (ExactSolvesInParts(Surface, options.MaximumDistance) && anglesKnown)
     {
       return SolveInParts(points, options);
     }
@@ -107,7 +111,28 @@ public:
   }
   const std::vector<int>& Reached() const override
   {
-    return InParts || !Serial ? ReachedInParts : Serial->FinalVertices();
+    if (!InParts && Serial)
+    {
+      return Serial->FinalVertices();
+    }
+    if (InParts && !ReachedListed)
+    {
+      // In order of distance, as the serial solver makes them final (ties by vertex); listed
+      // when first asked for (the filters read distances only).
+      ReachedListed = true;
+      for (int v = 0; v < Surface.NumberOfVertices(); ++v)
+      {
+        if (std::isfinite(Parts->Distance(v)))
+        {
+          ReachedInParts.push_back(v);
+        }
+      }
+      std::sort(ReachedInParts.begin(), ReachedInParts.end(), [&](int a, int b) {
+        const double da = Parts->Distance(a), db = Parts->Distance(b);
+        return da < db || (da == db && a < b);
+      });
+    }
+    return ReachedInParts;
   }
   double DepartureAngle(int v) const override
   {
@@ -135,6 +160,7 @@ private:
     }
     InParts = true;
     ReachedInParts.clear();
+    ReachedListed = false;
     const Status solved = Parts->Solve(points, options.MaximumDistance, options.Progress);
     if (solved.Ok() && options.Angles && !Parts->AnglesKept())
     {
@@ -142,29 +168,16 @@ private:
       InParts = false;
       return SolveSerially(points, options);
     }
-    if (solved.Ok())
-    {
-      // In order of distance, as the serial solver makes them final (ties by vertex).
-      for (int v = 0; v < Surface.NumberOfVertices(); ++v)
-      {
-        if (std::isfinite(Parts->Distance(v)))
-        {
-          ReachedInParts.push_back(v);
-        }
-      }
-      std::sort(ReachedInParts.begin(), ReachedInParts.end(), [&](int a, int b) {
-        const double da = Parts->Distance(a), db = Parts->Distance(b);
-        return da < db || (da == db && a < b);
-      });
-    }
     return solved;
   }
 
   // Each made at its first solve: a large mesh's distances need only the parts.
   std::unique_ptr<ExactGeodesicSolver> Serial;
   std::unique_ptr<ExactSolverInParts> Parts;
-  bool InParts = false;                      // the last solve was
-  std::vector<int> ReachedInParts; // (empty before any solve)
+  bool InParts = false; // the last solve was
+  // The last solve in parts' reached vertices, listed by Reached (empty before any solve).
+  mutable std::vector<int> ReachedInParts;
+  mutable bool ReachedListed = false;
 };
 
 /// Shortest paths on a graph (SVG or DGG, as built), refined by geodesic triangle unfolding;

@@ -35,6 +35,9 @@ constexpr int NumberOfGeodesicSolvers = 5;
 /// bounding box's diagonal (a local solve, serial) or angles are asked from several sources.
 constexpr int ExactInPartsMinimumFaces = 100000;
 constexpr double ExactInPartsMinimumReach = 0.25;
+/// Whether an exact solve bounded by `maximumDistance` (<= 0 or infinite: unbounded) on `mesh`
+/// is one the exact engine solves in parts (a large mesh, a solve that is not local).
+bool ExactSolvesInParts(const TriangleMesh& mesh, double maximumDistance);
 
 /// The name users see ("Exact", "SVG (label-correcting)", ...); "" for no engine.
 const char* GeodesicSolverName(GeodesicSolver solver);

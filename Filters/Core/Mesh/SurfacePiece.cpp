@@ -13,6 +13,24 @@ namespace gs
 
 namespace
 {
+// Sorts `items` and calls visit(item, uses) once per distinct item, in order, with how many
+// times it appears (counting edge or spoke uses without a map).
+template <class T, class Visit>
+void ForEachRun(std::vector<T>& items, Visit&& visit)
+{
+  std::sort(items.begin(), items.end());
+  for (std::size_t i = 0; i < items.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < items.size() && items[j] == items[i])
+    {
+      ++j;
+    }
+    visit(items[i], j - i);
+    i = j;
+  }
+}
+
 // Every process fails when one does: the first failing rank's message goes to all (a failed
 // Status always has one).
 Status Agree(const Status& mine, PieceCommunicator& comm)
@@ -115,21 +133,13 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
-  std::sort(edgeUses.begin(), edgeUses.end());
-  for (std::size_t i = 0; i < edgeUses.size();)
-  {
-    std::size_t j = i + 1;
-    while (j < edgeUses.size() && edgeUses[j] == edgeUses[i])
+  ForEachRun(edgeUses, [&](const std::pair<std::int64_t, std::int64_t>& edge, std::size_t uses) {
+    if (uses == 1)
     {
-      ++j;
+      frontier.push_back(edge.first);
+      frontier.push_back(edge.second);
     }
-    if (j - i == 1)
-    {
-      frontier.push_back(edgeUses[i].first);
-      frontier.push_back(edgeUses[i].second);
-    }
-    i = j;
-  }
+  });
   std::vector<std::pair<std::int64_t, std::int64_t>>().swap(edgeUses);
   std::sort(frontier.begin(), frontier.end());
   frontier.erase(std::unique(frontier.begin(), frontier.end()), frontier.end());
@@ -188,28 +198,22 @@ std::vector<std::int64_t> SurfacePiece::Pinched() const
       }
     }
   }
-  std::sort(spokes.begin(), spokes.end());
   std::vector<std::int64_t> ids;
+  bool first = true;
   std::int64_t current = 0;
   int ends = 0;
-  for (std::size_t i = 0; i < spokes.size();)
-  {
-    std::size_t j = i + 1;
-    while (j < spokes.size() && spokes[j] == spokes[i])
+  ForEachRun(spokes, [&](const std::pair<std::int64_t, std::int64_t>& spoke, std::size_t uses) {
+    if (first || spoke.first != current)
     {
-      ++j;
-    }
-    if (i == 0 || spokes[i].first != current)
-    {
-      current = spokes[i].first;
+      first = false;
+      current = spoke.first;
       ends = 0;
     }
-    if (j - i == 1 && ++ends == 3)
+    if (uses == 1 && ++ends == 3)
     {
       ids.push_back(current);
     }
-    i = j;
-  }
+  });
   return ids;
 }
 
@@ -635,19 +639,13 @@ PieceTriangles PieceOfMesh(const TriangleMesh& mesh, const std::vector<int>& par
 
 std::vector<int> BlockPartition(const TriangleMesh& mesh, int parts, int blocks)
 {
-  const int nf = mesh.NumberOfFaces(), nv = mesh.NumberOfVertices();
+  const int nf = mesh.NumberOfFaces();
   std::vector<int> part(static_cast<std::size_t>(nf), 0);
-  if (nv == 0 || parts <= 1)
+  if (mesh.NumberOfVertices() == 0 || parts <= 1)
   {
     return part;
   }
-  Vec3 lo = mesh.Position(0), hi = lo;
-  for (int v = 1; v < nv; ++v)
-  {
-    const Vec3& p = mesh.Position(v);
-    lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
-    hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
-  }
+  const Vec3 &lo = mesh.BoundingBoxMin(), &hi = mesh.BoundingBoxMax();
   const double side = std::max({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z });
   const double cell = side > 0.0 ? side / std::max(blocks, 1) : 1.0;
   for (int f = 0; f < nf; ++f)
