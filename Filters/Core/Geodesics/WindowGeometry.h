@@ -6,7 +6,10 @@
 #include "TriangleMesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -131,64 +134,146 @@ ChildWindow MakeChild(const Frame& frame, double length, double ix, double iy, d
   return c;
 }
 
-// Windows by increasing Key: a binary heap of small (key, slot) entries over a pool of windows
-// with a free list (the windows themselves never move in the heap).
+// Windows by increasing Key. A propagation's keys rarely decrease (a child window lies beyond
+// its parent, a vertex spreads from its own distance), so the windows sit in a radix heap: a key
+// no smaller than the last one taken goes to the bucket of the highest bit in which it differs
+// from it, and only the first non-empty bucket is ever sorted out again. The windows are kept in
+// the buckets themselves: moving them on is sequential work, cheaper than a binary heap's
+// sifting and than loading each window from a pool when it is taken. A key below the last one
+// taken (a window from another piece of a partitioned surface, or a rounding step) waits in a
+// binary heap beside the buckets. Pop takes the smallest key of both; among equal keys, the last
+// pushed.
 template <class Window>
 class WindowQueue
 {
 public:
   void Push(const Window& w)
   {
-    int slot;
-    if (!FreeSlots.empty())
+    const std::uint64_t bits = KeyBits(w.Key);
+    if (bits < Last)
     {
-      slot = FreeSlots.back();
-      FreeSlots.pop_back();
-      Pool[slot] = w;
+      Early.push_back({ bits, w });
+      std::push_heap(Early.begin(), Early.end(), Later());
     }
     else
     {
-      slot = static_cast<int>(Pool.size());
-      Pool.push_back(w);
+      Put({ bits, w });
     }
-    Heap.push_back({ w.Key, slot });
-    std::push_heap(Heap.begin(), Heap.end(), Order());
+    ++Count;
   }
   Window Pop()
   {
-    std::pop_heap(Heap.begin(), Heap.end(), Order());
-    const int slot = Heap.back().Slot;
-    Heap.pop_back();
-    FreeSlots.push_back(slot);
-    return Pool[slot];
+    SortOutFirst();
+    --Count;
+    if (TakeEarly())
+    {
+      std::pop_heap(Early.begin(), Early.end(), Later());
+      const Window w = Early.back().W;
+      Early.pop_back();
+      return w;
+    }
+    const Window w = Buckets[0].back().W;
+    Buckets[0].pop_back();
+    return w;
   }
-  bool Empty() const { return Heap.empty(); }
-  std::size_t Size() const { return Heap.size(); }
+  bool Empty() const { return Count == 0; }
+  std::size_t Size() const { return Count; }
   // The smallest key queued (infinite when empty).
-  double MinKey() const
+  double MinKey()
   {
-    return Heap.empty() ? std::numeric_limits<double>::infinity() : Heap.front().Key;
+    SortOutFirst();
+    if (Count == 0)
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    return TakeEarly() ? Early.front().W.Key : Buckets[0].back().W.Key;
   }
   void Clear()
   {
-    Heap.clear();
-    Pool.clear();
-    FreeSlots.clear();
+    for (std::vector<Entry>& b : Buckets)
+    {
+      b.clear();
+    }
+    Early.clear();
+    Last = 0;
+    Count = 0;
+    Filled = 0;
   }
 
 private:
   struct Entry
   {
-    double Key;
-    int Slot;
+    std::uint64_t Bits; // the key's bits: ordered as the keys for keys >= 0
+    Window W;
   };
-  struct Order
+  struct Later
   {
-    bool operator()(const Entry& a, const Entry& b) const { return a.Key > b.Key; }
+    bool operator()(const Entry& a, const Entry& b) const { return a.Bits > b.Bits; }
   };
-  std::vector<Window> Pool;
-  std::vector<int> FreeSlots;
-  std::vector<Entry> Heap;
+  // Keys are distances (>= 0; -0 and anything below 0 count as 0). A non-negative double's bits,
+  // read as an unsigned integer, are in the order of its value.
+  static std::uint64_t KeyBits(double key)
+  {
+    if (!(key > 0.0))
+    {
+      return key == key ? 0 : std::numeric_limits<std::uint64_t>::max();
+    }
+    std::uint64_t bits;
+    std::memcpy(&bits, &key, sizeof bits);
+    return bits;
+  }
+  // 0 for a key equal to Last, else 1 + the highest bit in which it differs from Last.
+  std::size_t BucketOf(std::uint64_t bits) const
+  {
+    const std::uint64_t x = bits ^ Last;
+    return x == 0 ? 0 : static_cast<std::size_t>(64 - __builtin_clzll(x));
+  }
+  // After SortOutFirst: whether the smallest key is in Early rather than in bucket 0.
+  bool TakeEarly() const
+  {
+    return !Early.empty() && (Buckets[0].empty() || Early.front().Bits < Last);
+  }
+  // Makes bucket 0 hold the smallest keys of the buckets (when any is not empty): the first
+  // non-empty bucket's smallest key becomes Last, and its entries move to lower buckets.
+  void SortOutFirst()
+  {
+    if (!Buckets[0].empty())
+    {
+      return;
+    }
+    if (Filled == 0)
+    {
+      return;
+    }
+    const std::size_t i = 1 + static_cast<std::size_t>(__builtin_ctzll(Filled));
+    Filled &= Filled - 1;
+    std::vector<Entry>& from = Buckets[i];
+    std::uint64_t lowest = from.front().Bits;
+    for (const Entry& e : from)
+    {
+      lowest = std::min(lowest, e.Bits);
+    }
+    Last = lowest;
+    for (const Entry& e : from)
+    {
+      Put(e);
+    }
+    from.clear();
+  }
+  void Put(const Entry& e)
+  {
+    const std::size_t b = BucketOf(e.Bits);
+    Buckets[b].push_back(e);
+    if (b > 0)
+    {
+      Filled |= std::uint64_t(1) << (b - 1);
+    }
+  }
+  std::array<std::vector<Entry>, 65> Buckets;
+  std::vector<Entry> Early; // binary heap of keys below Last
+  std::uint64_t Last = 0;   // the bits of the key last sorted out to bucket 0
+  std::size_t Count = 0;
+  std::uint64_t Filled = 0; // bit b - 1 set: bucket b (1 .. 64) is not empty
 };
 
 // Cuts from [b0, b1] the points p = (t, 0) reached at least as short through an end point of
