@@ -17,7 +17,16 @@ using window_geometry::SegmentDistance;
 ExactGeodesicSolver::ExactGeodesicSolver(const TriangleMesh& mesh, double lengthScale)
   : Surface(mesh)
 {
-  window_geometry::HalfedgeFrames(Surface, Cx, Cy, FanAngle);
+  {
+    std::vector<double> cx, cy;
+    window_geometry::HalfedgeFrames(Surface, cx, cy, FanAngle);
+    Edges.resize(cx.size());
+    for (std::size_t h = 0; h < Edges.size(); ++h)
+    {
+      const int e = static_cast<int>(h);
+      Edges[h] = { cx[h], cy[h], Surface.EdgeLength(e), Surface.Origin(e), Surface.Twin(e) };
+    }
+  }
   const int nv = Surface.NumberOfVertices();
   InAngle.assign(nv, LazyAngle());
   Departure.assign(nv, LazyAngle());
@@ -147,9 +156,9 @@ void ExactGeodesicSolver::RouteImprovement(int v, double d, int root)
 bool ExactGeodesicSolver::Trim(Window& w) const
 {
   const int h = w.H;
-  if (!window_geometry::TrimWindow(Surface.EdgeLength(h), w.Ix, w.Iy, w.Sigma, Cx[h], Cy[h],
-        Dist[Surface.Origin(h)], Dist[Surface.Destination(h)], Dist[Surface.Opposite(h)], Tolerance,
-        w.B0, w.B1))
+  const HalfedgeRecord& e = Edges[h];
+  if (!window_geometry::TrimWindow(e.Length, w.Ix, w.Iy, w.Sigma, e.Cx, e.Cy, Dist[e.Origin],
+        Dist[Destination(h)], Dist[Opposite(h)], Tolerance, w.B0, w.B1))
   {
     return false;
   }
@@ -170,15 +179,20 @@ ExactGeodesicSolver::Window ExactGeodesicSolver::Dequeue()
 void ExactGeodesicSolver::PushWindow(Window w)
 {
   ++Stats.WindowsCreated;
-  if (!Trim(w))
-  {
-    return;
-  }
   if (Route && (*Route->OtherFace)[w.H / 3])
   {
-    Route->Leaving.push_back(w);
+    // Trimmed before it leaves: less to send.
+    if (Trim(w))
+    {
+      Route->Leaving.push_back(w);
+    }
     return;
   }
+  // Queued untrimmed: the distance to its untrimmed interval is a lower bound of what it can
+  // give, which is all the queue's order needs, and Handle trims it against the vertex
+  // distances of that time anyway (trimming here as well costs more than it saves: it seldom
+  // empties a window).
+  w.Key = w.Sigma + SegmentDistance(w.Ix, w.Iy, w.B0, w.B1);
   Enqueue(w);
   Stats.MaximumQueueSize =
     std::max<std::int64_t>(Stats.MaximumQueueSize, static_cast<std::int64_t>(Queue.Size()));
@@ -278,10 +292,10 @@ void ExactGeodesicSolver::PropagateFromVertex(int v, double sigma, int src)
       w.H = t;
       w.B0 = toEnd ? 0.0 : std::max(0.0, ab - fromA(r1));
       w.B1 = fromStart ? ab : std::min(ab, ab - fromA(r0));
-      w.Ix = ab - Cx[opp];
-      w.Iy = -Cy[opp];
+      w.Ix = ab - Edges[opp].Cx;
+      w.Iy = -Edges[opp].Cy;
       // In t's frame the direction from v to a is (Cx, Cy) of opp: departure angle p0.
-      w.Phi = src >= 0 ? p0 - std::atan2(Cy[opp], Cx[opp]) : departureHere;
+      w.Phi = src >= 0 ? p0 - std::atan2(Edges[opp].Cy, Edges[opp].Cx) : departureHere;
       w.Sigma = sigma;
       w.Src = src;
       w.Root = root;
@@ -359,8 +373,9 @@ void ExactGeodesicSolver::Propagate(Window w)
 {
   ++Stats.WindowsPropagated;
   const int h = w.H;
-  const double L = Surface.EdgeLength(h);
-  const double cx = Cx[h], cy = Cy[h];
+  const HalfedgeRecord& e = Edges[h];
+  const double L = e.Length;
+  const double cx = e.Cx, cy = e.Cy;
   const double ix = w.Ix, iy = w.Iy;
   // Where the ray from I through C crosses the edge.
   const double xc = ix + (cx - ix) * (-iy) / (cy - iy);
@@ -369,7 +384,7 @@ void ExactGeodesicSolver::Propagate(Window w)
   const double cover = 1e-10 * L;
   if (xc >= w.B0 - cover && xc <= w.B1 + cover)
   {
-    const int vC = Surface.Opposite(h);
+    const int vC = Opposite(h);
     const double dC = w.Sigma + Hypot(cx - ix, cy - iy);
     if (dC < Dist[vC] + Tolerance)
     {
@@ -397,11 +412,12 @@ void ExactGeodesicSolver::Propagate(Window w)
 
   if (left)
   {
-    const int t = Surface.Twin(TriangleMesh::Prev(h));
+    const HalfedgeRecord& ca = Edges[TriangleMesh::Prev(h)];
+    const int t = ca.Twin;
     if (t >= 0)
     {
       // New frame: origin A, x along A -> C.
-      const double b = Surface.EdgeLength(t);
+      const double b = ca.Length;
       PushChild(w, t,
         window_geometry::MakeChild(
           window_geometry::LeftFrame(cx, cy, b), b, ix, iy, w.B0, w.B1, false, right),
@@ -410,11 +426,12 @@ void ExactGeodesicSolver::Propagate(Window w)
   }
   if (right)
   {
-    const int t = Surface.Twin(TriangleMesh::Next(h));
+    const HalfedgeRecord& bc = Edges[TriangleMesh::Next(h)];
+    const int t = bc.Twin;
     if (t >= 0)
     {
       // New frame: origin C, x along C -> B.
-      const double a = Surface.EdgeLength(t);
+      const double a = bc.Length;
       PushChild(w, t,
         window_geometry::MakeChild(
           window_geometry::RightFrame(cx, cy, L, a), a, ix, iy, w.B0, w.B1, left, false),

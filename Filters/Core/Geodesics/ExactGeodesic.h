@@ -173,8 +173,18 @@ private:
   bool ProcessWindows(double maxDistance, std::size_t maxFinal, std::size_t targetsLeft);
 
   const TriangleMesh& Surface; // (Mesh() returns it)
-  // Position of the opposite vertex of each half-edge in the half-edge's frame.
-  std::vector<double> Cx, Cy;
+  // What a window on half-edge h reads of h, kept together so that a face's three half-edges
+  // (3f, 3f + 1, 3f + 2) fill two cache lines instead of one line in each of five arrays: the
+  // opposite vertex in h's frame (Cx, Cy), h's length, origin and twin. The other corners of
+  // face(h) are the origins of Next(h) (h's destination) and of Prev(h) (its opposite vertex).
+  struct alignas(32) HalfedgeRecord
+  {
+    double Cx, Cy, Length;
+    int Origin, Twin;
+  };
+  std::vector<HalfedgeRecord> Edges;
+  int Destination(int h) const { return Edges[TriangleMesh::Next(h)].Origin; }
+  int Opposite(int h) const { return Edges[TriangleMesh::Prev(h)].Origin; }
   // Angle of each half-edge's direction about its origin, counter-clockwise from the origin's
   // VertexHalfedge (0 .. total angle).
   std::vector<double> FanAngle;

@@ -149,15 +149,14 @@ class WindowQueue
 public:
   void Push(const Window& w)
   {
-    const std::uint64_t bits = KeyBits(w.Key);
-    if (bits < Last)
+    if (KeyBits(w.Key) < Last)
     {
-      Early.push_back({ bits, w });
+      Early.push_back(w);
       std::push_heap(Early.begin(), Early.end(), Later());
     }
     else
     {
-      Put({ bits, w });
+      Put(w);
     }
     ++Count;
   }
@@ -168,11 +167,11 @@ public:
     if (TakeEarly())
     {
       std::pop_heap(Early.begin(), Early.end(), Later());
-      const Window w = Early.back().W;
+      const Window w = Early.back();
       Early.pop_back();
       return w;
     }
-    const Window w = Buckets[0].back().W;
+    const Window w = Buckets[0].back();
     Buckets[0].pop_back();
     return w;
   }
@@ -186,11 +185,11 @@ public:
     {
       return std::numeric_limits<double>::infinity();
     }
-    return TakeEarly() ? Early.front().W.Key : Buckets[0].back().W.Key;
+    return TakeEarly() ? Early.front().Key : Buckets[0].back().Key;
   }
   void Clear()
   {
-    for (std::vector<Entry>& b : Buckets)
+    for (std::vector<Window>& b : Buckets)
     {
       b.clear();
     }
@@ -201,14 +200,9 @@ public:
   }
 
 private:
-  struct Entry
-  {
-    std::uint64_t Bits; // the key's bits: ordered as the keys for keys >= 0
-    Window W;
-  };
   struct Later
   {
-    bool operator()(const Entry& a, const Entry& b) const { return a.Bits > b.Bits; }
+    bool operator()(const Window& a, const Window& b) const { return a.Key > b.Key; }
   };
   // Keys are distances (>= 0; -0 and anything below 0 count as 0). A non-negative double's bits,
   // read as an unsigned integer, are in the order of its value.
@@ -231,7 +225,7 @@ private:
   // After SortOutFirst: whether the smallest key is in Early rather than in bucket 0.
   bool TakeEarly() const
   {
-    return !Early.empty() && (Buckets[0].empty() || Early.front().Bits < Last);
+    return !Early.empty() && (Buckets[0].empty() || KeyBits(Early.front().Key) < Last);
   }
   // Makes bucket 0 hold the smallest keys of the buckets (when any is not empty): the first
   // non-empty bucket's smallest key becomes Last, and its entries move to lower buckets.
@@ -247,30 +241,30 @@ private:
     }
     const std::size_t i = 1 + static_cast<std::size_t>(__builtin_ctzll(Filled));
     Filled &= Filled - 1;
-    std::vector<Entry>& from = Buckets[i];
-    std::uint64_t lowest = from.front().Bits;
-    for (const Entry& e : from)
+    std::vector<Window>& from = Buckets[i];
+    std::uint64_t lowest = KeyBits(from.front().Key);
+    for (const Window& w : from)
     {
-      lowest = std::min(lowest, e.Bits);
+      lowest = std::min(lowest, KeyBits(w.Key));
     }
     Last = lowest;
-    for (const Entry& e : from)
+    for (const Window& w : from)
     {
-      Put(e);
+      Put(w);
     }
     from.clear();
   }
-  void Put(const Entry& e)
+  void Put(const Window& w)
   {
-    const std::size_t b = BucketOf(e.Bits);
-    Buckets[b].push_back(e);
+    const std::size_t b = BucketOf(KeyBits(w.Key));
+    Buckets[b].push_back(w);
     if (b > 0)
     {
       Filled |= std::uint64_t(1) << (b - 1);
     }
   }
-  std::array<std::vector<Entry>, 65> Buckets;
-  std::vector<Entry> Early; // binary heap of keys below Last
+  std::array<std::vector<Window>, 65> Buckets;
+  std::vector<Window> Early; // binary heap of keys below Last
   std::uint64_t Last = 0;   // the bits of the key last sorted out to bucket 0
   std::size_t Count = 0;
   std::uint64_t Filled = 0; // bit b - 1 set: bucket b (1 .. 64) is not empty
