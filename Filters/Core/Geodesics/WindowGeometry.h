@@ -139,10 +139,12 @@ ChildWindow MakeChild(const Frame& frame, double length, double ix, double iy, d
 // no smaller than the last one taken goes to the bucket of the highest bit in which it differs
 // from it, and only the first non-empty bucket is ever sorted out again. The windows are kept in
 // the buckets themselves: moving them on is sequential work, cheaper than a binary heap's
-// sifting and than loading each window from a pool when it is taken. A key below the last one
-// taken (a window from another piece of a partitioned surface, or a rounding step) waits in a
-// binary heap beside the buckets. Pop takes the smallest key of both; among equal keys, the last
-// pushed.
+// sifting and than loading each window from a pool when it is taken. Each bucket holds most of
+// the queue at some time, so a bucket sorted out gives its memory back when it kept room for
+// more windows than are queued (otherwise the buckets together kept about 16 times the largest
+// queue). A key below the last one taken (a window from another piece of a partitioned surface,
+// or a rounding step) waits in a binary heap beside the buckets. Pop takes the smallest key of
+// both; among equal keys, the last pushed.
 template <class Window>
 class WindowQueue
 {
@@ -252,7 +254,14 @@ private:
     {
       Put(w);
     }
-    from.clear();
+    if (from.capacity() > 4096 && from.capacity() > Count)
+    {
+      std::vector<Window>().swap(from);
+    }
+    else
+    {
+      from.clear();
+    }
   }
   void Put(const Window& w)
   {
