@@ -1,6 +1,7 @@
 #include "ExactGeodesic.h"
 #include "MeshGenerators.h"
 #include "TriangleMesh.h"
+#include "WindowGeometry.h"
 #include "TestMeshes.h"
 #include "TestStatus.h"
 
@@ -8,7 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
+#include <set>
 #include <random>
 
 using namespace gs;
@@ -463,4 +466,81 @@ TEST(ExactGeodesic, DepartureAnglesAreTheLogMapAngles)
     }
   }
   EXPECT_GT(hidden, 0);
+}
+
+// The window propagations' queue (a radix heap with a binary heap beside it for keys below the
+// last one taken) against a sort: every pop is the smallest key queued, through pushes above the
+// last key taken (children), equal to it, below it (windows from other pieces), zero and a
+// cleared queue reused; MinKey reads that key without taking it.
+TEST(ExactGeodesic, WindowQueuePopsInKeyOrder)
+{
+  struct Item
+  {
+    double Key;
+    int Id;
+  };
+  window_geometry::WindowQueue<Item> queue;
+  std::multiset<std::pair<double, int>> reference;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int id = 0;
+  auto push = [&](double key) {
+    queue.Push({ key, id });
+    reference.insert({ key, id });
+    ++id;
+  };
+  auto popAndCheck = [&]() -> double {
+    EXPECT_FALSE(queue.Empty());
+    const double smallest = reference.begin()->first;
+    EXPECT_EQ(queue.MinKey(), smallest);
+    const Item taken = queue.Pop();
+    EXPECT_EQ(taken.Key, smallest);
+    // Remove the very item taken (equal keys may come in any order).
+    const auto it = reference.find({ taken.Key, taken.Id });
+    EXPECT_TRUE(it != reference.end());
+    reference.erase(it == reference.end() ? reference.begin() : it);
+    return taken.Key;
+  };
+  for (int round = 0; round < 2; ++round)
+  {
+    push(0.0);
+    for (int i = 0; i < 20000; ++i)
+    {
+      push(unit(rng) * 10.0);
+    }
+    double last = 0.0;
+    for (int step = 0; step < 60000 && !reference.empty(); ++step)
+    {
+      last = popAndCheck();
+      const double r = unit(rng);
+      if (step < 40000)
+      {
+        if (r < 0.6)
+        {
+          push(last + unit(rng) * 0.5); // a child beyond its parent
+        }
+        if (r < 0.1)
+        {
+          push(last); // an equal key
+        }
+        if (r > 0.95)
+        {
+          push(last * unit(rng)); // below the last one taken
+        }
+      }
+      ASSERT_EQ(queue.Size(), reference.size());
+    }
+    while (!reference.empty())
+    {
+      popAndCheck();
+    }
+    EXPECT_TRUE(queue.Empty());
+    EXPECT_EQ(queue.MinKey(), std::numeric_limits<double>::infinity());
+    // A cleared queue starts again from key 0 (a new solve's keys restart low).
+    push(5.0);
+    push(1.0);
+    queue.Clear();
+    reference.clear();
+    EXPECT_TRUE(queue.Empty());
+  }
 }
