@@ -84,6 +84,10 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
       }
     }
   }
+  // (Room for the own faces and their points and a ring around them: no rehashing as they come.)
+  Faces.reserve(nt + nt / 4);
+  Vertices.reserve(np + np / 4);
+  OwnStar.reserve(3 * nt);
   // Vertices: every point used, by id (a point listed twice under one id must sit in one place).
   const int maxOwner = std::numeric_limits<int>::max();
   for (std::size_t t = 0; t < nt && valid.Ok(); ++t)
@@ -125,14 +129,10 @@ Status SurfacePiece::Build(const PieceTriangles& own, int rings, PieceCommunicat
       const std::int64_t a = face.V[static_cast<std::size_t>(k)];
       const std::int64_t b = face.V[static_cast<std::size_t>((k + 1) % 3)];
       edgeUses.emplace_back(std::min(a, b), std::max(a, b));
-      OwnStar[a].push_back(own.TriangleIds[t]);
+      OwnStar.emplace_back(a, own.TriangleIds[t]);
     }
   }
-  for (auto& [id, list] : OwnStar)
-  {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  SortOwnStar();
   ForEachRun(edgeUses, [&](const std::pair<std::int64_t, std::int64_t>& edge, std::size_t uses) {
     if (uses == 1)
     {
@@ -305,10 +305,11 @@ std::vector<std::int64_t> SurfacePiece::GatherRing(
     std::int64_t v = 0;
     while (r.Get(v))
     {
-      const auto it = OwnStar.find(v);
-      if (it != OwnStar.end())
+      const auto first = std::lower_bound(OwnStar.begin(), OwnStar.end(),
+        std::make_pair(v, std::numeric_limits<std::int64_t>::min()));
+      for (auto it = first; it != OwnStar.end() && it->first == v; ++it)
       {
-        faces.insert(faces.end(), it->second.begin(), it->second.end());
+        faces.push_back(it->second);
       }
     }
     std::sort(faces.begin(), faces.end());
@@ -479,7 +480,13 @@ void SurfacePiece::DropRecords()
   // (Swapped with empty containers: clear() would keep their buckets.)
   std::unordered_map<std::int64_t, FaceRecord>().swap(Faces);
   std::unordered_map<std::int64_t, VertexRecord>().swap(Vertices);
-  std::unordered_map<std::int64_t, std::vector<std::int64_t>>().swap(OwnStar);
+  std::vector<std::pair<std::int64_t, std::int64_t>>().swap(OwnStar);
+}
+
+void SurfacePiece::SortOwnStar()
+{
+  std::sort(OwnStar.begin(), OwnStar.end());
+  OwnStar.erase(std::unique(OwnStar.begin(), OwnStar.end()), OwnStar.end());
 }
 
 void SurfacePiece::RestoreRecords()
@@ -512,10 +519,11 @@ void SurfacePiece::RestoreRecords()
     {
       for (const std::int64_t v : face.V)
       {
-        OwnStar[v].push_back(FaceIds[f]); // (faces in increasing id order: sorted lists)
+        OwnStar.emplace_back(v, FaceIds[f]);
       }
     }
   }
+  SortOwnStar();
 }
 
 void SurfacePiece::AppendIncompleteVertices(

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace gs
@@ -130,7 +131,10 @@ private:
   std::unordered_map<std::int64_t, FaceRecord> Faces;
   std::unordered_map<std::int64_t, VertexRecord> Vertices;
   // This process's own faces by global vertex id (to answer requests).
-  std::unordered_map<std::int64_t, std::vector<std::int64_t>> OwnStar;
+  // (Pairs (vertex, face), sorted: one allocation instead of a list per vertex.)
+  std::vector<std::pair<std::int64_t, std::int64_t>> OwnStar;
+  // Sorts OwnStar and drops repeated pairs.
+  void SortOwnStar();
   TriangleMesh Local;
   std::vector<std::int64_t> VertexIds, FaceIds; // sorted: local numbers follow them
   std::vector<int> Owners, FaceOwners;
