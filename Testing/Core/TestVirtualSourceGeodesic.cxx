@@ -50,31 +50,41 @@ Errors AgainstExact(const TriangleMesh& m, const std::vector<SurfacePoint>& sour
             << "\n";
   return e;
 }
+
+// visit(mesh, source) for the flat meshes' sources: a corner, an interior vertex and a point
+// inside a face, on a regular and an irregular grid.
+template <class Visit>
+void ForEachFlatSource(Visit&& visit)
+{
+  for (const TriangleSoup& soup :
+    { MakePlanarGrid(20, 20, 1.0, 1.0), MakeIrregularPlanarGrid(24, 1.0, 0.3, true, 7) })
+  {
+    const TriangleMesh m = BuildMesh(soup);
+    for (const SurfacePoint& s :
+      { SurfacePoint::AtVertex(0), SurfacePoint::AtVertex(m.NumberOfVertices() / 2 + 3),
+        SurfacePoint::InFace(m.NumberOfFaces() / 3, 0.2, 0.3, 0.5) })
+    {
+      visit(m, s);
+    }
+  }
+}
 } // namespace
 
 // On a flat mesh every straight line is a geodesic: distances are Euclidean to rounding, from a
 // corner, an interior vertex and a point inside a face, on a regular and an irregular grid.
 TEST(VirtualSourceGeodesic, ExactOnFlatMeshes)
 {
-  for (const TriangleSoup& soup :
-    { MakePlanarGrid(20, 20, 1.0, 1.0), MakeIrregularPlanarGrid(24, 1.0, 0.3, true, 7) })
-  {
-    const TriangleMesh m = BuildMesh(soup);
+  ForEachFlatSource([](const TriangleMesh& m, const SurfacePoint& s) {
     VirtualSourceSolver solver(m);
-    for (const SurfacePoint& s :
-      { SurfacePoint::AtVertex(0), SurfacePoint::AtVertex(m.NumberOfVertices() / 2 + 3),
-        SurfacePoint::InFace(m.NumberOfFaces() / 3, 0.2, 0.3, 0.5) })
+    ASSERT_TRUE(Succeeded(solver.Solve({ s })));
+    const Vec3 p = m.Position(s);
+    double worst = 0.0;
+    for (int v = 0; v < m.NumberOfVertices(); ++v)
     {
-      ASSERT_TRUE(Succeeded(solver.Solve({ s })));
-      const Vec3 p = m.Position(s);
-      double worst = 0.0;
-      for (int v = 0; v < m.NumberOfVertices(); ++v)
-      {
-        worst = std::max(worst, std::abs(solver.Distance(v) - Norm(m.Position(v) - p)));
-      }
-      EXPECT_LT(worst, 1e-12) << m.NumberOfVertices() << " vertices, source vertex " << s.Vertex;
+      worst = std::max(worst, std::abs(solver.Distance(v) - Norm(m.Position(v) - p)));
     }
-  }
+    EXPECT_LT(worst, 1e-12) << m.NumberOfVertices() << " vertices, source vertex " << s.Vertex;
+  });
 }
 
 // Around the reflex corner of an L-shaped domain paths bend at the corner vertex (a boundary
@@ -152,18 +162,10 @@ Errors AnglesAgainstExact(const TriangleMesh& m, const SurfacePoint& source)
 // the angle of its bent part is off by radians. A solve without Angles leaves them NaN.
 TEST(VirtualSourceGeodesic, DepartureAnglesNearTheExactSolver)
 {
-  for (const TriangleSoup& soup :
-    { MakePlanarGrid(20, 20, 1.0, 1.0), MakeIrregularPlanarGrid(24, 1.0, 0.3, true, 7) })
-  {
-    const TriangleMesh m = BuildMesh(soup);
-    for (const SurfacePoint& s : { SurfacePoint::AtVertex(0),
-           SurfacePoint::AtVertex(m.NumberOfVertices() / 2 + 3),
-           SurfacePoint::InFace(m.NumberOfFaces() / 3, 0.2, 0.3, 0.5) })
-    {
-      const Errors e = AnglesAgainstExact(m, s);
-      EXPECT_LT(e.Max, 1e-9) << m.NumberOfVertices() << " vertices, source vertex " << s.Vertex;
-    }
-  }
+  ForEachFlatSource([](const TriangleMesh& m, const SurfacePoint& s) {
+    const Errors e = AnglesAgainstExact(m, s);
+    EXPECT_LT(e.Max, 1e-9) << m.NumberOfVertices() << " vertices, source vertex " << s.Vertex;
+  });
   const Errors l = AnglesAgainstExact(BuildMesh(MakeLShape(16)), SurfacePoint::AtVertex(0));
   EXPECT_LT(l.Max, 1e-9);
   const TriangleMesh sphere = BuildMesh(MakeIcosphere(1.0, 4));

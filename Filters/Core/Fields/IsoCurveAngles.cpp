@@ -123,19 +123,20 @@ Result<int> GeodesicPolarCoordinates::UseIsoCurveAngles()
   const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, radius * 1.01 + Mesh.MeanEdgeLength());
   // (A chart the exact engine solved in parts goes a few edges further the same way.)
   BeyondInParts = Engine && Engine == WideExact.get();
+  const double beyond = radius + 3.0 * Mesh.MeanEdgeLength();
   if (BeyondInParts)
   {
     GeodesicSources sources;
     sources.Points = { Source };
     GeodesicSolveOptions further;
-    further.MaximumDistance = radius + 3.0 * Mesh.MeanEdgeLength();
+    further.MaximumDistance = beyond;
     static_cast<void>(WideExact->Solve(sources, further)); // Compute accepted Source
   }
   else
   {
-    ExactGeodesicOptions beyond;
-    beyond.MaximumDistance = radius + 3.0 * Mesh.MeanEdgeLength();
-    static_cast<void>(Solver.Solve({ Source }, beyond)); // Compute accepted Source
+    ExactGeodesicOptions further;
+    further.MaximumDistance = beyond;
+    static_cast<void>(Solver.Solve({ Source }, further)); // Compute accepted Source
   }
   for (const CurvePiece& piece : ray.Pieces)
   {

@@ -127,15 +127,7 @@ private:
     int Src;       // PathOrigin code of the pseudo-source
     int Root;      // index of the source the window's paths start from
   };
-  // An angle kept as Base + atan2(Y, X), evaluated only when asked for: every window that
-  // improves a vertex would otherwise pay for trigonometry it rarely needs.
-  struct LazyAngle
-  {
-    double Base = std::numeric_limits<double>::quiet_NaN();
-    double X = 1.0, Y = 0.0;
-    static LazyAngle Exactly(double a) { return { a, 1.0, 0.0 }; }
-    double Value() const { return Y == 0.0 && X > 0.0 ? Base : Base + std::atan2(Y, X); }
-  };
+  using LazyAngle = window_geometry::LazyAngle;
   void Reset();
   // inAngle: direction (in v's fan, see FanAngle) towards where the path comes from; NaN if
   // unknown. It limits which directions v spreads into when it becomes a pseudo-source.

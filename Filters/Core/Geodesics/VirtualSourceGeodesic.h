@@ -40,6 +40,7 @@
 #include "SurfaceCurve.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
+#include "WindowGeometry.h"
 
 #include <cmath>
 #include <cstdint>
@@ -154,17 +155,13 @@ private:
   // Departure angles (Options.Angles), kept beside the records so that a solve without them
   // touches no more memory. A face's: where its source's paths leave the real source, Base plus
   // the angle of (x - S) from the direction (Rx, Ry) of its frame while the source is the real
-  // one unfolded (Sigma 0), Base alone behind a bend (Rx NaN). A vertex's: Base + atan2(Y, X),
+  // one unfolded (Sigma 0), Base alone behind a bend (Rx NaN). A vertex's: a LazyAngle,
   // evaluated only when read (NaN Base: a source).
   struct FaceAngle
   {
     double Base, Rx, Ry;
   };
-  struct VertexAngle
-  {
-    double Base, X, Y;
-    double Value() const { return Base + std::atan2(Y, X); }
-  };
+  using VertexAngle = window_geometry::LazyAngle;
   // The reference direction turned by the rotation (c, s) (cos, sin), as frames turn from face
   // to face (NaN stays NaN).
   static FaceAngle Turned(const FaceAngle& a, double c, double s)

@@ -25,6 +25,16 @@ inline double Hypot(double x, double y)
   return std::sqrt(x * x + y * y);
 }
 
+// An angle kept as Base + atan2(Y, X), evaluated only when asked for: every update of a vertex
+// would otherwise pay for trigonometry it rarely needs (the propagations' departure angles).
+struct LazyAngle
+{
+  double Base = std::numeric_limits<double>::quiet_NaN();
+  double X = 1.0, Y = 0.0;
+  static LazyAngle Exactly(double a) { return { a, 1.0, 0.0 }; }
+  double Value() const { return Y == 0.0 && X > 0.0 ? Base : Base + std::atan2(Y, X); }
+};
+
 // Distance from (ix, iy) to the segment [b0, b1] of the x axis.
 inline double SegmentDistance(double ix, double iy, double b0, double b1)
 {
