@@ -114,17 +114,19 @@ int vtkSVGGeodesicDistance::FillInputPortInformation(int port, vtkInformation* i
 int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI, the graph and exact solvers' distances from vertex ids are computed on the pieces
-  // when they hold triangles only (the same decision on every process: it depends on properties
-  // and on CanUse, which is collective); everything else gathers the surface.
+  // Under MPI, the distances from vertex ids are computed on the pieces when they hold triangles
+  // only (the same decision on every process: it depends on properties and on CanUse, which is
+  // collective); everything else gathers the surface.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  // The exact solver takes source points (no curves) on the pieces too.
-  const bool exact = static_cast<gs::GeodesicSolver>(this->Solver) == gs::GeodesicSolver::Exact;
+  // The exact solver and the virtual sources take source points (no curves) on the pieces too.
+  const gs::GeodesicSolver solver = static_cast<gs::GeodesicSolver>(this->Solver);
+  const bool noGraph =
+    solver == gs::GeodesicSolver::Exact || solver == gs::GeodesicSolver::VirtualSources;
   const bool sourcesPort = inputVector[1]->GetNumberOfInformationObjects() > 0;
-  if (distributed && input && output && (this->UsesGraph() || exact) &&
-    (exact || !sourcesPort) && this->CacheFileName.empty())
+  if (distributed && input && output && (this->UsesGraph() || noGraph) &&
+    (noGraph || !sourcesPort) && this->CacheFileName.empty())
   {
     std::vector<double> xyz;
     const bool points = !sourcesPort ||
@@ -151,12 +153,15 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
   // (Property checks: the same outcome on every process.)
   if (!vtkCachedSurface::CheckEngine(this, this->Solver,
         { gs::GeodesicSolver::Exact, gs::GeodesicSolver::SVGLabelCorrecting,
-          gs::GeodesicSolver::SVGDijkstra, gs::GeodesicSolver::DGG },
+          gs::GeodesicSolver::SVGDijkstra, gs::GeodesicSolver::DGG,
+          gs::GeodesicSolver::VirtualSources },
         this->K))
   {
     return 1;
   }
-  const bool exact = static_cast<gs::GeodesicSolver>(this->Solver) == gs::GeodesicSolver::Exact;
+  const gs::GeodesicSolver solver = static_cast<gs::GeodesicSolver>(this->Solver);
+  const bool noGraph =
+    solver == gs::GeodesicSolver::Exact || solver == gs::GeodesicSolver::VirtualSources;
   // Source points (the Sources port) replace the vertex ids, as serially.
   std::vector<gs::Vec3> sourcePoints;
   for (std::size_t i = 0; sourceXyz && i + 2 < sourceXyz->size(); i += 3)
@@ -177,10 +182,10 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
   }
   bool built = false;
   std::vector<double> distances;
-  if (exact)
+  if (noGraph)
   {
-    if (!this->Pieces->ExactDistances(
-          this, own, input->GetMTime(), sourceIds, sourcePoints, this->MaximumDistance, distances))
+    if (!this->Pieces->DistancesWithoutGraph(this, solver, own, input->GetMTime(), sourceIds,
+          sourcePoints, this->MaximumDistance, distances))
     {
       return 1;
     }
@@ -222,7 +227,7 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
     a->InsertNextValue(value);
     fieldData->AddArray(a);
   };
-  if (!exact)
+  if (!noGraph)
   {
     addDouble("SVGMeanDegree",
       piece.GlobalNumberOfVertices() > 0
@@ -236,10 +241,15 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
     fieldData->AddArray(origin);
     addInt("PieceRefinementRounds", this->Pieces->RefinementRounds());
   }
-  else
+  else if (solver == gs::GeodesicSolver::Exact)
   {
     addDouble("PieceWindowsPropagated", static_cast<double>(this->Pieces->WindowsPropagated()));
     addDouble("PieceWindowsSent", static_cast<double>(this->Pieces->WindowsSent()));
+  }
+  else
+  {
+    addDouble("PieceCrossings", static_cast<double>(this->Pieces->WindowsPropagated()));
+    addDouble("PieceSourcesSent", static_cast<double>(this->Pieces->WindowsSent()));
   }
   addInt("PieceFaces", piece.Mesh().NumberOfFaces());
   addInt("PieceOwnedVertices", static_cast<int>(piece.NumberOfOwnedVertices()));

@@ -403,12 +403,12 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType
 }
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
-  vtkMTimeType key, const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
-  double maxDistance, std::vector<double>& perPoint)
+bool vtkSurfacePieces::DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSolver solver,
+  vtkPolyData* ownCells, vtkMTimeType key, const std::vector<vtkIdType>& sources,
+  const std::vector<gs::Vec3>& points, double maxDistance, std::vector<double>& perPoint)
 {
-  // The exact solve needs two rings (made at once when the piece is new; a piece kept from a
-  // graph's run may have fewer), before source points name faces of the piece's mesh.
+  // Both solves need two rings (made at once when the piece is new; a piece kept from a graph's
+  // run may have fewer), before source points name faces of the piece's mesh.
   if (!this->UsePiece(self, ownCells, key, 1))
   {
     return false;
@@ -426,19 +426,35 @@ bool vtkSurfacePieces::ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells,
   {
     return false;
   }
-  gs::ExactPiecesResult result;
-  if (!Reported(self, points.empty() ? "Source vertex ids: " : "Source points: ",
-        gs::ComputeExactOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm, result,
-          Progress(self, 0.1, 0.95), mine)))
+  gs::Status status;
+  std::vector<double> perVertex;
+  if (solver == gs::GeodesicSolver::VirtualSources)
+  {
+    gs::VirtualSourcePiecesResult result;
+    status = gs::ComputeVirtualSourcesOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm,
+      result, Progress(self, 0.1, 0.95), mine);
+    this->LastRounds = result.Rounds;
+    this->LastWindows = result.Crossings;
+    this->LastWindowsSent = result.FacesSent;
+    perVertex = std::move(result.Distance);
+  }
+  else
+  {
+    gs::ExactPiecesResult result;
+    status = gs::ComputeExactOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm, result,
+      Progress(self, 0.1, 0.95), mine);
+    this->LastRounds = result.Rounds;
+    this->LastWindows = result.WindowsPropagated;
+    this->LastWindowsSent = result.WindowsSent;
+    perVertex = std::move(result.Distance);
+  }
+  if (!Reported(self, points.empty() ? "Source vertex ids: " : "Source points: ", status))
   {
     this->HasPiece = this->HasGraph = false; // (its band may have failed to grow)
     return false;
   }
-  this->LastRounds = result.Rounds;
   this->LastRefinementRounds = 0;
-  this->LastWindows = result.WindowsPropagated;
-  this->LastWindowsSent = result.WindowsSent;
-  perPoint = this->AtPoints(result.Distance, maxDistance);
+  perPoint = this->AtPoints(perVertex, maxDistance);
   return true;
 }
 

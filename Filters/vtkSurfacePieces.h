@@ -19,6 +19,8 @@
 #define vtkSurfacePieces_h
 
 #include "ExactPieces.h"
+#include "GeodesicEngine.h"
+#include "VirtualSourcePieces.h"
 #include "GraphPieces.h"
 #include "PieceNumbering.h"
 #include "PolarPieces.h"
@@ -74,14 +76,15 @@ public:
   bool Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources, double maxDistance,
     bool refine, std::vector<double>& perPoint);
 
-  // Exact distances (window propagation on the pieces, ExactPieces.h) from the points `sources`
-  // (serial point ids) and from `points` in space (the same list on every process, snapped to
-  // the surface as a serial run snaps them) to every point of `ownCells` (the piece of
-  // UsePiece, with `key`): NaN where unreached, beyond maxDistance (> 0) or not on a triangle.
-  // Progress from `self`, abortable. False (error on `self`) on every process when a source id
-  // is no point of the surface, a point cannot be snapped, or it aborted.
-  bool ExactDistances(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
-    const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
+  // Distances without a graph from the points `sources` (serial point ids) and from `points` in
+  // space (the same list on every process, snapped to the surface as a serial run snaps them)
+  // to every point of `ownCells` (the piece of UsePiece, with `key`): exact (window propagation
+  // on the pieces, ExactPieces.h) or by virtual sources (VirtualSourcePieces.h) as `solver`
+  // says. NaN where unreached, beyond maxDistance (> 0) or not on a triangle. Progress from
+  // `self`, abortable. False (error on `self`) on every process when a source id is no point of
+  // the surface, a point cannot be snapped, or it aborted.
+  bool DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSolver solver, vtkPolyData* ownCells,
+    vtkMTimeType key, const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
     double maxDistance, std::vector<double>& perPoint);
 
   // Geodesic polar coordinates about the point `source` (a serial point id) within `radius`
@@ -96,7 +99,8 @@ public:
   // Rounds of exchanges the last Distances took: the graph search's and the refinement's.
   int SolveRounds() const { return LastRounds; }
   int RefinementRounds() const { return LastRefinementRounds; }
-  // This process's windows in the last ExactDistances: propagated, and sent to other processes.
+  // This process's work in the last DistancesWithoutGraph: windows propagated and sent to other
+  // processes (exact), or edges crossed and sources sent (virtual sources).
   std::int64_t WindowsPropagated() const { return LastWindows; }
   std::int64_t WindowsSent() const { return LastWindowsSent; }
   const gs::PieceGraph& Graph() const { return GraphState; }

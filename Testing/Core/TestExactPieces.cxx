@@ -24,14 +24,10 @@ using namespace gs;
 
 namespace
 {
-struct ExactRun
+struct ExactRun : gs_test::PiecesRun
 {
-  // Per rank: the distance of each vertex of its own faces (global id, distance).
-  std::vector<std::vector<std::pair<std::int64_t, double>>> Seen;
-  std::vector<int> Rings;
   std::int64_t Windows = 0, Sent = 0;
   int Rounds = 0;
-  std::vector<Status> Statuses;
 };
 
 // `flipped`: ranks whose own triangles are given the other way round; `points`: face points of
@@ -42,61 +38,21 @@ ExactRun RunExact(const TriangleMesh& mesh, const std::vector<int>& part, int pr
   const std::vector<SurfacePoint>& points = {})
 {
   ExactRun run;
-  run.Seen.resize(static_cast<std::size_t>(processes));
-  run.Rings.resize(static_cast<std::size_t>(processes));
-  run.Statuses.resize(static_cast<std::size_t>(processes));
   std::mutex lock;
-  gs_test::ThreadHub hub(processes);
-  hub.Run([&](int rank, PieceCommunicator& comm) {
-    PieceTriangles own = gs_test::PieceOf(mesh, part, rank);
-    if (std::find(flipped.begin(), flipped.end(), rank) != flipped.end())
-    {
-      for (auto& t : own.Triangles)
-      {
-        std::swap(t[1], t[2]);
-      }
-    }
-    SurfacePiece piece;
-    // (Points name faces of the piece's mesh: it has its two rings before they are named.)
-    Status status = piece.Build(own, points.empty() ? 0 : 1, comm);
-    std::vector<SurfacePoint> mine;
-    for (const SurfacePoint& p : points)
-    {
-      if (part[static_cast<std::size_t>(p.Face)] != rank)
-      {
-        continue;
-      }
-      const std::array<int, 3>& c = mesh.Face(p.Face);
-      mine.push_back(piece.LocalPoint(p.Face, { { c[0], c[1], c[2] } }, p.Bary));
-    }
-    ExactPiecesResult result;
-    if (status.Ok())
-    {
-      status = ComputeExactOnPieces(piece, sources, maxDistance, comm, result,
+  static_cast<gs_test::PiecesRun&>(run) = gs_test::RunOnPieces(mesh, part, processes, flipped,
+    points,
+    [&](int rank, SurfacePiece& piece, PieceCommunicator& comm,
+      const std::vector<SurfacePoint>& mine, std::vector<double>& perVertex) {
+      ExactPiecesResult result;
+      const Status status = ComputeExactOnPieces(piece, sources, maxDistance, comm, result,
         [&](double) { return rank != abortingRank; }, mine);
-    }
-    std::lock_guard<std::mutex> guard(lock);
-    run.Statuses[static_cast<std::size_t>(rank)] = status;
-    if (!status.Ok())
-    {
-      return;
-    }
-    run.Rings[static_cast<std::size_t>(rank)] = piece.Rings();
-    for (int f = 0; f < piece.Mesh().NumberOfFaces(); ++f)
-    {
-      if (piece.IsOwnFace(f))
-      {
-        for (const int v : piece.Mesh().Face(f))
-        {
-          run.Seen[static_cast<std::size_t>(rank)].push_back(
-            { piece.GlobalId(v), result.Distance[static_cast<std::size_t>(v)] });
-        }
-      }
-    }
-    run.Windows += result.WindowsPropagated;
-    run.Sent += result.WindowsSent;
-    run.Rounds = result.Rounds;
-  });
+      perVertex = result.Distance;
+      std::lock_guard<std::mutex> guard(lock);
+      run.Windows += result.WindowsPropagated;
+      run.Sent += result.WindowsSent;
+      run.Rounds = result.Rounds;
+      return status;
+    });
   return run;
 }
 

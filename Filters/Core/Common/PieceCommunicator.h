@@ -4,6 +4,7 @@
 // operation is collective: every process calls it, in the same order.
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -106,6 +107,63 @@ inline int FirstMessage(PieceCommunicator& comm, const std::string& message, std
   const ByteBuffer& bytes = in[static_cast<std::size_t>(first)];
   text.assign(bytes.begin(), bytes.end());
   return static_cast<int>(first);
+}
+
+// Collective. Whether every process goes on: false on every process when the progress callback
+// of any (called with `fraction`; an empty callback goes on) returns false.
+template <class Progress>
+bool EveryProcessGoesOn(PieceCommunicator& comm, const Progress& progress, double fraction)
+{
+  const bool goOn = !progress || progress(fraction);
+  return comm.Max(goOn ? 0.0 : 1.0) == 0.0;
+}
+
+// What the other processes sent (incoming[q], q not this process), read as records that each
+// start with a tag: read(tag, reader) reads one record and returns false when it is malformed,
+// which ends that process's buffer (every record names what the receiver holds: a malformed
+// one is a broken invariant, not an input error).
+template <class Read>
+void ReadTaggedRecords(PieceCommunicator& comm, const std::vector<ByteBuffer>& incoming, Read&& read)
+{
+  for (std::size_t q = 0; q < incoming.size(); ++q)
+  {
+    if (static_cast<int>(q) == comm.Rank())
+    {
+      continue;
+    }
+    ByteReader r(incoming[q]);
+    std::uint8_t tag = 0;
+    while (r.Get(tag))
+    {
+      const bool readable = read(tag, r);
+      assert(readable);
+      if (!readable)
+      {
+        break;
+      }
+    }
+  }
+}
+
+// What the other processes sent (incoming[q], q not this process), read as (global id, value)
+// pairs: take(id, value) for each.
+template <class Take>
+void ReadIdValuePairs(PieceCommunicator& comm, const std::vector<ByteBuffer>& incoming, Take&& take)
+{
+  for (std::size_t q = 0; q < incoming.size(); ++q)
+  {
+    if (static_cast<int>(q) == comm.Rank())
+    {
+      continue;
+    }
+    ByteReader r(incoming[q]);
+    std::int64_t id = 0;
+    double value = 0.0;
+    while (r.Get(id) && r.Get(value))
+    {
+      take(id, value);
+    }
+  }
 }
 
 // Collective. Exchange whose buffers carry each sender's `count` at their end (taken off on

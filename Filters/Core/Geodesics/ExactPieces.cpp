@@ -131,38 +131,10 @@ FanReference ExactPieceSolve::Reference(int v) const
 Status ExactPieceSolve::AddSources(
   const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points)
 {
-  std::vector<std::int64_t> ids = sources;
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   std::vector<int> owned;
-  for (const std::int64_t id : ids)
+  if (const Status own = Piece.OwnSources(sources, points, Comm, owned); !own.Ok())
   {
-    const int v = Piece.Vertex(id);
-    if (v >= 0 && Piece.IsOwned(v))
-    {
-      owned.push_back(v);
-    }
-  }
-  Status valid = Mesh.CheckPoints(points, "source");
-  for (const SurfacePoint& p : points)
-  {
-    if (valid.Ok() && !(p.IsVertex() ? Piece.IsOwned(p.Vertex) : Piece.IsOwnFace(p.Face)))
-    {
-      valid = Status::Error("a source point lies on a face (or is a vertex) of another process");
-    }
-  }
-  std::string problem;
-  if (FirstMessage(Comm, valid.Ok() ? std::string() : valid.Message(), problem) >= 0)
-  {
-    return Status::Error(problem);
-  }
-  const std::int64_t allPoints = Comm.Sum(static_cast<std::int64_t>(points.size()));
-  if (Comm.Sum(static_cast<std::int64_t>(owned.size())) != static_cast<std::int64_t>(ids.size()) ||
-    ids.size() + static_cast<std::size_t>(allPoints) == 0)
-  {
-    return Status::Error(ids.empty() && allPoints == 0
-        ? "no source given"
-        : "a source vertex id is not a point of the surface");
+    return own;
   }
   int i = 0;
   for (const int v : owned)
@@ -316,26 +288,10 @@ bool ExactPieceSolve::UnpackVertex(ByteReader& r)
 
 void ExactPieceSolve::Unpack(const std::vector<ByteBuffer>& in)
 {
-  for (std::size_t q = 0; q < in.size(); ++q)
-  {
-    if (static_cast<int>(q) == Comm.Rank())
-    {
-      continue;
-    }
-    ByteReader r(in[q]);
-    std::uint8_t tag = 0;
-    while (r.Get(tag))
-    {
-      const bool read = tag == WindowItem ? UnpackWindow(r) : tag == VertexItem && UnpackVertex(r);
-      // Every item names a face or vertex of this process (the owners are the same on every
-      // process): an unreadable one is a broken invariant, not an input error.
-      assert(read);
-      if (!read)
-      {
-        break;
-      }
-    }
-  }
+  // (Every item names a face or vertex of this process: the owners are the same everywhere.)
+  ReadTaggedRecords(Comm, in, [this](std::uint8_t tag, ByteReader& r) {
+    return tag == WindowItem ? UnpackWindow(r) : tag == VertexItem && UnpackVertex(r);
+  });
 }
 
 void ExactPieceSolve::Collect(double limit, ExactPiecesResult& result)
@@ -356,38 +312,7 @@ void ExactPieceSolve::Collect(double limit, ExactPiecesResult& result)
       }
     }
   }
-  std::vector<std::vector<std::int64_t>> asks(static_cast<std::size_t>(Comm.Size()));
-  std::vector<std::vector<int>> askedFor(asks.size());
-  std::vector<unsigned char> asked(static_cast<std::size_t>(nv), 0);
-  for (int f = 0; f < Mesh.NumberOfFaces(); ++f)
-  {
-    if (!Piece.IsOwnFace(f))
-    {
-      continue;
-    }
-    for (const int v : Mesh.Face(f))
-    {
-      const int owner = Piece.Owner(v);
-      if (owner >= 0 && owner != Comm.Rank() && !asked[static_cast<std::size_t>(v)])
-      {
-        asked[static_cast<std::size_t>(v)] = 1;
-        asks[static_cast<std::size_t>(owner)].push_back(Piece.GlobalId(v));
-        askedFor[static_cast<std::size_t>(owner)].push_back(v);
-      }
-    }
-  }
-  const std::vector<std::vector<double>> answers =
-    AskProcesses(Comm, asks, [&](int, std::int64_t id) {
-      const int v = Piece.Vertex(id);
-      return v >= 0 && Piece.IsOwned(v) ? result.Distance[static_cast<std::size_t>(v)] : Inf;
-    });
-  for (std::size_t q = 0; q < asks.size(); ++q)
-  {
-    for (std::size_t i = 0; i < askedFor[q].size() && i < answers[q].size(); ++i)
-    {
-      result.Distance[static_cast<std::size_t>(askedFor[q][i])] = answers[q][i];
-    }
-  }
+  Piece.ValuesFromOwners(result.Distance, Comm);
 }
 
 Status ExactPieceSolve::Run(const std::vector<std::int64_t>& sources,
@@ -439,9 +364,8 @@ Status ExactPieceSolve::Run(const std::vector<std::int64_t>& sources,
     {
       reached += Piece.IsOwned(Solver.Touched[counted]) ? 1 : 0;
     }
-    const bool goOn =
-      !progress || progress(owned > 0 ? static_cast<double>(reached) / owned : 1.0);
-    if (Comm.Max(goOn ? 0.0 : 1.0) > 0.0)
+    if (!EveryProcessGoesOn(
+          Comm, progress, owned > 0 ? static_cast<double>(reached) / owned : 1.0))
     {
       return Status::Aborted();
     }
@@ -459,17 +383,9 @@ Status ComputeExactOnPieces(SurfacePiece& piece, const std::vector<std::int64_t>
   result = ExactPiecesResult();
   // Two rings: the fans of the vertices of the own faces, and the faces across their outer
   // edges, where an owned vertex's windows start.
-  if (piece.Rings() < 1)
+  if (const Status grown = piece.GrowTo(1, points.size(), comm); !grown.Ok())
   {
-    if (comm.Sum(static_cast<std::int64_t>(points.size())) > 0)
-    {
-      return Status::Error("source points need a piece with two rings of faces (its faces "
-                           "would be renumbered as it grows)");
-    }
-    if (const Status grown = piece.Grow(1 - piece.Rings(), comm); !grown.Ok())
-    {
-      return grown;
-    }
+    return grown;
   }
   ExactPieceSolve solve(piece, comm);
   return solve.Run(sources, points, maxDistance, progress, result);

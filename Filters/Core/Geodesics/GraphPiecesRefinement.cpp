@@ -255,26 +255,15 @@ struct PieceDistanceSolver::SweepRounds
       }
       // (The vertices left everywhere come with the messages: the rounds end when none is.)
       const std::int64_t everywhere = ExchangeCounting(Comm, outgoing, incoming, Left);
-      for (std::size_t q = 0; q < size; ++q)
-      {
-        if (static_cast<int>(q) == Comm.Rank())
+      ReadIdValuePairs(Comm, incoming, [&](std::int64_t id, double value) {
+        const int code = graph.Encode(id);
+        const int slot = -1 - code;
+        if (code < 0 && slot < graph.NumberOfRemote() && graph.RemoteId(slot) == id)
         {
-          continue;
+          S.RemoteRefined[static_cast<std::size_t>(slot)] = value;
+          Release(n + static_cast<std::size_t>(slot));
         }
-        ByteReader r(incoming[q]);
-        std::int64_t id = 0;
-        double value = 0.0;
-        while (r.Get(id) && r.Get(value))
-        {
-          const int code = graph.Encode(id);
-          const int slot = -1 - code;
-          if (code < 0 && slot < graph.NumberOfRemote() && graph.RemoteId(slot) == id)
-          {
-            S.RemoteRefined[static_cast<std::size_t>(slot)] = value;
-            Release(n + static_cast<std::size_t>(slot));
-          }
-        }
-      }
+      });
       if (everywhere == 0)
       {
         return rounds;

@@ -17,7 +17,7 @@ using window_geometry::Hypot;
 constexpr std::int64_t ProgressStride = 1 << 16;
 } // namespace
 
-VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
+VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh, double bucketWidth)
   : Surface(mesh)
 {
   // Corner 2 in the frame of edge 0 from the three edge lengths (law of cosines): no
@@ -45,7 +45,7 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh)
     r.Epoch = 0;
   }
   Dist.assign(Surface.NumberOfVertices(), Inf);
-  BucketWidth = std::max(Surface.MeanEdgeLength(), 1e-300);
+  BucketWidth = std::max(bucketWidth > 0.0 ? bucketWidth : Surface.MeanEdgeLength(), 1e-300);
 }
 
 inline VirtualSourceSolver::EdgeView VirtualSourceSolver::ViewOf(const FaceRecord& r, int k)
@@ -78,21 +78,6 @@ VirtualSourceSolver::QueueItem VirtualSourceSolver::Item(int id, double key)
   return static_cast<std::uint64_t>(static_cast<std::uint32_t>(id)) |
     (static_cast<std::uint64_t>(bits) << 32);
 }
-
-namespace
-{
-int ItemId(std::uint64_t item)
-{
-  return static_cast<int>(static_cast<std::uint32_t>(item));
-}
-float ItemKey(std::uint64_t item)
-{
-  const std::uint32_t bits = static_cast<std::uint32_t>(item >> 32);
-  float k;
-  std::memcpy(&k, &bits, sizeof(k));
-  return k;
-}
-} // namespace
 
 std::vector<VirtualSourceSolver::QueueItem>* VirtualSourceSolver::BucketFor(double key)
 {
@@ -541,6 +526,36 @@ void VirtualSourceSolver::SeedRuns(const std::vector<std::vector<CurvePiece>>& r
 }
 
 template <bool Angles>
+void VirtualSourceSolver::ProcessItem(QueueItem item)
+{
+  const int id = ItemId(item);
+  if (id < 0)
+  {
+    const int v = -1 - id;
+    if (ItemKey(item) == static_cast<float>(Dist[v]))
+    {
+      SeedAround(v, Dist[v], false);
+    }
+    return;
+  }
+  const FaceRecord& face = Faces[id];
+  if (ItemKey(item) != static_cast<float>(face.Key))
+  {
+    return; // the face changed since: its newer item carries its source
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    if (k != face.Except)
+    {
+      Cross<Angles>(face, id, k);
+    }
+  }
+}
+
+// (The solve on pieces processes items without angles.)
+template void VirtualSourceSolver::ProcessItem<false>(QueueItem item);
+
+template <bool Angles>
 bool VirtualSourceSolver::ProcessBuckets(const VirtualSourceOptions& options)
 {
   const std::int64_t numFaces = std::max(1, Surface.NumberOfFaces());
@@ -551,29 +566,7 @@ bool VirtualSourceSolver::ProcessBuckets(const VirtualSourceOptions& options)
     for (std::size_t i = 0; i < Buckets[Current].size(); ++i)
     {
       Prefetch(Buckets[Current], i);
-      const QueueItem item = Buckets[Current][i];
-      const int id = ItemId(item);
-      if (id < 0)
-      {
-        const int v = -1 - id;
-        if (ItemKey(item) == static_cast<float>(Dist[v]))
-        {
-          SeedAround(v, Dist[v], false);
-        }
-        continue;
-      }
-      const FaceRecord& face = Faces[id];
-      if (ItemKey(item) != static_cast<float>(face.Key))
-      {
-        continue; // the face changed since: its newer item carries its source
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        if (k != face.Except)
-        {
-          Cross<Angles>(face, id, k);
-        }
-      }
+      ProcessItem<Angles>(Buckets[Current][i]);
       if (Stats.Crossings >= nextReport)
       {
         nextReport += ProgressStride;

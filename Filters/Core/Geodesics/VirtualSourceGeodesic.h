@@ -44,6 +44,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -77,8 +78,10 @@ class VirtualSourceSolver
 public:
   static constexpr double Unreachable = std::numeric_limits<double>::infinity();
 
-  // The mesh must outlive the solver. Sets up a record of 128 bytes per face (parallel).
-  explicit VirtualSourceSolver(const TriangleMesh& mesh);
+  // The mesh must outlive the solver. Sets up a record of 128 bytes per face (parallel). The
+  // front advances in buckets of `bucketWidth` of distance (0: the mesh's mean edge length; a
+  // piece of a larger surface passes the whole surface's).
+  explicit VirtualSourceSolver(const TriangleMesh& mesh, double bucketWidth = 0.0);
 
   // Distances from the nearest of the sources (vertices or face points). Fails (every vertex
   // unreached) when there is no source or a source is invalid (TriangleMesh::CheckPoint), the
@@ -110,6 +113,9 @@ public:
   const TriangleMesh& Mesh() const { return Surface; }
 
 private:
+  // The solve on one piece of a surface partitioned over processes (VirtualSourcePieces.cpp)
+  // drives the solver's queue.
+  friend class VirtualSourcePieceSolve;
   // One record per face, two cache lines: the face's geometry (fixed) and its virtual source
   // (per solve). A crossing reads the record it leaves and the one it enters, and the distance of
   // one vertex: the solve is bound by memory latency, so everything a crossing needs of a face
@@ -146,6 +152,14 @@ private:
   // what the newer item would do).
   using QueueItem = std::uint64_t;
   static QueueItem Item(int id, double key);
+  static int ItemId(QueueItem item) { return static_cast<int>(static_cast<std::uint32_t>(item)); }
+  static float ItemKey(QueueItem item)
+  {
+    const std::uint32_t bits = static_cast<std::uint32_t>(item >> 32);
+    float k;
+    std::memcpy(&k, &bits, sizeof(k));
+    return k;
+  }
   // The bucket of a key (null beyond the horizon).
   std::vector<QueueItem>* BucketFor(double key);
   void Prefetch(const std::vector<QueueItem>& bucket, std::size_t i) const;
@@ -197,6 +211,9 @@ private:
   void SeedRuns(const std::vector<std::vector<CurvePiece>>& runs);
   template <bool Angles>
   bool ProcessBuckets(const VirtualSourceOptions& options);
+  // One queue item: a face crosses its edges, or a vertex paths bend at seeds its faces.
+  template <bool Angles>
+  void ProcessItem(QueueItem item);
   // A shorter distance for the vertex of a corner. A vertex paths may bend at (BendFlag) is
   // queued at that distance: when the front gets there and no shorter distance came since, it
   // becomes the source of the faces around it (SeedAround).

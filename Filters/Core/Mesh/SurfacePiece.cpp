@@ -228,6 +228,20 @@ Status SurfacePiece::Grow(int rings, PieceCommunicator& comm)
   return Finish(comm);
 }
 
+Status SurfacePiece::GrowTo(int rings, std::size_t points, PieceCommunicator& comm)
+{
+  if (NumRings >= rings)
+  {
+    return Status();
+  }
+  if (comm.Sum(static_cast<std::int64_t>(points)) > 0)
+  {
+    return Status::Error("source points need a piece with " + std::to_string(rings + 1) +
+      " rings of faces (its faces would be renumbered as it grows)");
+  }
+  return Grow(rings - NumRings, comm);
+}
+
 Status SurfacePiece::GrowAround(
   const std::vector<std::int64_t>& around, int rings, PieceCommunicator& comm)
 {
@@ -685,6 +699,88 @@ std::vector<int> SlabPartition(const TriangleMesh& mesh, int parts, const Vec3& 
       static_cast<int>(static_cast<long long>(i) * parts / nf);
   }
   return part;
+}
+
+} // namespace gs
+
+namespace gs
+{
+
+Status SurfacePiece::OwnSources(const std::vector<std::int64_t>& sources,
+  const std::vector<SurfacePoint>& points, PieceCommunicator& comm, std::vector<int>& owned) const
+{
+  owned.clear();
+  std::vector<std::int64_t> ids = sources;
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  for (const std::int64_t id : ids)
+  {
+    const int v = Vertex(id);
+    if (v >= 0 && IsOwned(v))
+    {
+      owned.push_back(v);
+    }
+  }
+  Status valid = Local.CheckPoints(points, "source");
+  for (const SurfacePoint& p : points)
+  {
+    if (valid.Ok() && !(p.IsVertex() ? IsOwned(p.Vertex) : IsOwnFace(p.Face)))
+    {
+      valid = Status::Error("a source point lies on a face (or is a vertex) of another process");
+    }
+  }
+  std::string problem;
+  if (FirstMessage(comm, valid.Ok() ? std::string() : valid.Message(), problem) >= 0)
+  {
+    return Status::Error(problem);
+  }
+  const std::int64_t allPoints = comm.Sum(static_cast<std::int64_t>(points.size()));
+  if (comm.Sum(static_cast<std::int64_t>(owned.size())) != static_cast<std::int64_t>(ids.size()) ||
+    ids.size() + static_cast<std::size_t>(allPoints) == 0)
+  {
+    return Status::Error(ids.empty() && allPoints == 0
+        ? "no source given"
+        : "a source vertex id is not a point of the surface");
+  }
+  return Status();
+}
+
+void SurfacePiece::ValuesFromOwners(std::vector<double>& perVertex, PieceCommunicator& comm) const
+{
+  const int nv = Local.NumberOfVertices();
+  std::vector<std::vector<std::int64_t>> asks(static_cast<std::size_t>(comm.Size()));
+  std::vector<std::vector<int>> askedFor(asks.size());
+  std::vector<unsigned char> asked(static_cast<std::size_t>(nv), 0);
+  for (int f = 0; f < Local.NumberOfFaces(); ++f)
+  {
+    if (!IsOwnFace(f))
+    {
+      continue;
+    }
+    for (const int v : Local.Face(f))
+    {
+      const int owner = Owner(v);
+      if (owner >= 0 && owner != comm.Rank() && !asked[static_cast<std::size_t>(v)])
+      {
+        asked[static_cast<std::size_t>(v)] = 1;
+        asks[static_cast<std::size_t>(owner)].push_back(GlobalId(v));
+        askedFor[static_cast<std::size_t>(owner)].push_back(v);
+      }
+    }
+  }
+  const std::vector<std::vector<double>> answers =
+    AskProcesses(comm, asks, [&](int, std::int64_t id) {
+      const int v = Vertex(id);
+      return v >= 0 && IsOwned(v) ? perVertex[static_cast<std::size_t>(v)]
+                                  : std::numeric_limits<double>::infinity();
+    });
+  for (std::size_t q = 0; q < asks.size(); ++q)
+  {
+    for (std::size_t i = 0; i < askedFor[q].size() && i < answers[q].size(); ++i)
+    {
+      perVertex[static_cast<std::size_t>(askedFor[q][i])] = answers[q][i];
+    }
+  }
 }
 
 } // namespace gs

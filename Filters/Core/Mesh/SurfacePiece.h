@@ -50,6 +50,9 @@ public:
   Status Build(const PieceTriangles& own, int rings, PieceCommunicator& comm);
   // Collective: `rings` more rings.
   Status Grow(int rings, PieceCommunicator& comm);
+  // Collective: at least `rings` rings. Fails on every process when the band must grow and a
+  // process holds `points` > 0 surface points of its piece (growing renumbers the faces).
+  Status GrowTo(int rings, std::size_t points, PieceCommunicator& comm);
   // Collective: `rings` rings of faces around the incomplete vertices of `around` only (global
   // ids; the others are ignored): the band grows where a computation needs it, not all along
   // the piece's edge. `rings` is the same on every process; `around` may differ (or be empty).
@@ -83,6 +86,19 @@ public:
   // its corners otherwise); a point of no face (Face -1) when the face is not in the piece.
   SurfacePoint LocalPoint(std::int64_t globalFace, const std::array<std::int64_t, 3>& corners,
     const std::array<double, 3>& bary) const;
+  // Collective. The vertex sources of a solve on the pieces: checks them as a serial solve
+  // would and gives, in `owned`, the vertices of `sources` (global ids, the same list on every
+  // process) this process owns, in increasing id order, once each. `points` are this process's
+  // surface points (on its own faces, or vertices it owns). Fails on every process, with the
+  // first failing process's message, when a point is invalid or another process's, when an id
+  // is no vertex of the surface, or when there is no source at all.
+  Status OwnSources(const std::vector<std::int64_t>& sources,
+    const std::vector<SurfacePoint>& points, PieceCommunicator& comm,
+    std::vector<int>& owned) const;
+  // Collective. Sets perVertex (one value per vertex of the piece's mesh) at the vertices of
+  // this process's own faces that other processes own to their owners' values (infinite where
+  // the owner has none).
+  void ValuesFromOwners(std::vector<double>& perVertex, PieceCommunicator& comm) const;
   // Collective. The global id of rank `index` among the surface's vertex ids in increasing order
   // (the vertex a serial run on the surface put together in id order numbers `index`; the id
   // itself when the ids number the vertices 0 to N - 1); -1 when there is no such vertex.
