@@ -66,12 +66,24 @@ void ForEachFlatSource(Visit&& visit)
     {
       visit(m, s);
     }
+    // Points on an edge (each of a face's three) and at a face's corner: sources of the faces
+    // on both sides (and all around).
+    for (const int f : { m.NumberOfFaces() / 2 + 1, m.NumberOfFaces() / 5 })
+    {
+      for (const SurfacePoint& s : { SurfacePoint::InFace(f, 0.0, 0.35, 0.65),
+             SurfacePoint::InFace(f, 0.3, 0.0, 0.7), SurfacePoint::InFace(f, 0.45, 0.55, 0.0),
+             SurfacePoint::InFace(f, 0.0, 1.0, 0.0) })
+      {
+        visit(m, s);
+      }
+    }
   }
 }
 } // namespace
 
 // On a flat mesh every straight line is a geodesic: distances are Euclidean to rounding, from a
-// corner, an interior vertex and a point inside a face, on a regular and an irregular grid.
+// corner, an interior vertex, a point inside a face, points on edges and a face's corner, on a
+// regular and an irregular grid.
 TEST(VirtualSourceGeodesic, ExactOnFlatMeshes)
 {
   ForEachFlatSource([](const TriangleMesh& m, const SurfacePoint& s) {
@@ -122,8 +134,9 @@ namespace
 {
 // Mean and largest difference of the departure angles (modulo a full turn) from the exact
 // solver's, over the vertices both reach other than the sources.
-Errors AnglesAgainstExact(const TriangleMesh& m, const SurfacePoint& source)
+Errors AnglesAgainstExact(const TriangleMesh& m, const SurfacePoint& point)
 {
+  const SurfacePoint source = ExactGeodesicSolver::SourcePoint(m, point); // (a corner: a vertex)
   ExactGeodesicSolver exact(m);
   VirtualSourceSolver solver(m);
   VirtualSourceOptions o;

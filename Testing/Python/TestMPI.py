@@ -79,7 +79,10 @@ out.GetPointData().AddArray(idx)
                                         for t in [-0.6 + 0.1 * k for k in range(13)]), []))
     field = CrossField(Input=mesh, Singularities=poles, Strokes=stroke, Symmetry=1,
                        Mode="Prescribed singularities")
-    distance = SVGGeodesicDistance(Input=field, SourceVertexIds=[args.brush])
+    # (A graph solver: its distances on pieces are the serial ones, so the shapes placed with them
+    # are too; the default virtual sources' depend a little on the partition.)
+    distance = SVGGeodesicDistance(Input=field, SourceVertexIds=[args.brush],
+                                   Solver="SVG (label-correcting)")
     density = Calculator(Input=distance, ResultArrayName="Density",
                          Function="max(0.45, min(1.0, GeodesicDistance / 0.9))")
     polar = GeodesicPolarCoordinates(Input=density, Radius=0.8)

@@ -1,6 +1,6 @@
 """SVG Geodesic Distance and Geodesic Polar Coordinates on pieces, without gathering: under
 `mpiexec -n P pvbatch --symmetric` (P = 2, 3, and 4: one process without a piece) and a
-2-process pvserver, the graph solvers and the exact solver from SourceVertexIds, and the exact
+2-process pvserver, the graph solvers, the exact solver and the virtual sources, and the exact
 chart about a vertex, on a surface split in three pieces with global ids give the serial
 results, each process outputs its own input cells, and no process holds the whole surface. The
 same pieces without global ids (numbered as gathering them numbers them) give, under `mpiexec
@@ -10,9 +10,11 @@ Meshes: the bumpy sphere (closed, saddles everywhere) and the L-shaped plane (a 
 regular grid: ties everywhere). Solvers: SVG (label-correcting, K = 50, unfolding refinement)
 and SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
 from two vertices with a MaximumDistance; the exact solver (window propagation on the pieces)
-from two vertices and from two points of the Sources port (snapped on the pieces); and Geodesic
-Polar Coordinates about a vertex (exact, radius 0.7, a
-reference direction): rho and theta as the serial run's.
+from two vertices and from two points of the Sources port (snapped on the pieces); the virtual
+sources (propagation on the pieces) from two vertices and from two points (one on an edge of the
+plane): as the serial run's to rounding on the plane, within 2% of the largest distance
+on the bumpy sphere (VIRTUAL_SOURCES_TOLERANCE); and Geodesic Polar Coordinates about a vertex
+(exact, radius 0.7, a reference direction): rho and theta as the serial run's.
 
 Bad sources (a point far from the surface, a vertex id of no point) give an error and an empty
 output on every process, and the filter works again once mended.
@@ -39,6 +41,11 @@ args = gs_test.arguments(plugin=gs_test.REQUIRED, data=gs_test.REQUIRED, work=gs
                          pvpython="pvpython")
 
 MESHES = ["bumpy_sphere", "lshape"]
+# Virtual sources on pieces: the order of processing picks between sources of nearly equal key,
+# so on curved meshes the distances differ from the serial ones by up to about the method's own
+# error (measured against the largest distance; the core tests check the accuracy against the
+# exact solver); on flat ones they are the serial ones to rounding.
+VIRTUAL_SOURCES_TOLERANCE = {"bumpy_sphere": 2e-2, "lshape": 1e-12}
 PIECES = 3
 TIMEOUT = 600
 # (name, properties): the filters each run applies to each mesh.
@@ -55,6 +62,11 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
          ["GeodesicDistance"]),
         ("exact-points", "SVGGeodesicDistance",
          dict(Solver="Exact", SourcePoints=[0.9, 0.3, 0.2, 0.2, 0.8, -0.3]), ["GeodesicDistance"]),
+        ("vs", "SVGGeodesicDistance", dict(Solver="Virtual sources (no precompute)",
+                                           SourceVertexIds=[11, 200]), ["GeodesicDistance"]),
+        ("vs-points", "SVGGeodesicDistance",
+         dict(Solver="Virtual sources (no precompute)",
+              SourcePoints=[0.9, 0.3, 0.2, 0.2, 0.8, -0.3]), ["GeodesicDistance"]),
         ("polar", "GeodesicPolarCoordinates", dict(SourceVertexId=11, Radius=0.7,
                                                    ReferenceDirection=[1.0, 1.0, 0.0]),
          ["GeodesicDistance", "PolarAngle"])]
@@ -129,6 +141,10 @@ def bad_sources(mesh, mesh_name, rank, PolyPointSource):
     for label, properties, points in (
             ("a far point", dict(Solver="Exact"), [50.0, 50.0, 50.0]),
             ("an unknown vertex id (Exact)", dict(Solver="Exact", SourceVertexIds=[10 ** 9]), None),
+            ("a far point (virtual sources)", dict(Solver="Virtual sources (no precompute)"),
+             [50.0, 50.0, 50.0]),
+            ("an unknown vertex id (virtual sources)",
+             dict(Solver="Virtual sources (no precompute)", SourceVertexIds=[10 ** 9]), None),
             ("an unknown vertex id (SVG)", dict(Solver="SVG (label-correcting)", K=30,
                                                 SourceVertexIds=[10 ** 9]), None)):
         distance = globals()["SVGGeodesicDistance"](Input=mesh, **properties)
@@ -189,6 +205,9 @@ def compare(reference, candidate, label, processes=None, faces=None):
                     table[k] = v
             expected = [ref.GetPointData().GetArray(a) for a in arrays]
             worst, nans, missing = 0.0, 0, 0
+            virtual = name.startswith("vs")
+            largest = max((abs(e.GetValue(i)) for e in expected for i in range(ref.GetNumberOfPoints())
+                           if not math.isnan(e.GetValue(i))), default=1.0)
             for i in range(ref.GetNumberOfPoints()):
                 k = ref.GetPoint(i)
                 if k not in table:
@@ -198,17 +217,20 @@ def compare(reference, candidate, label, processes=None, faces=None):
                     if math.isnan(a) or math.isnan(b):
                         nans += math.isnan(a) != math.isnan(b)
                     else:
-                        worst = max(worst, abs(a - b) / max(abs(a), 1e-300))
+                        scale = largest if virtual else max(abs(a), 1e-300)
+                        worst = max(worst, abs(a - b) / scale)
             expected = expected[0]
             reached = sum(not math.isnan(expected.GetValue(i)) for i in range(ref.GetNumberOfPoints()))
             positions = len(set(ref.GetPoint(i) for i in range(ref.GetNumberOfPoints())))
             check(missing == 0 and len(table) == positions,
                   "%s: %d points, serial %d" % (what, len(table), positions))
             check(nans == 0, "%s: %d points reached in one run only" % (what, nans))
-            check(worst <= 1e-9, "%s: %s differ by %.3g relative" % (what, "/".join(arrays), worst))
+            tolerance = VIRTUAL_SOURCES_TOLERANCE[mesh_name] if virtual else 1e-9
+            check(worst <= tolerance, "%s: %s differ by %.3g relative%s" % (
+                what, "/".join(arrays), worst, " to the largest" if virtual else ""))
             check(reached > 100, "%s: only %d points reached" % (what, reached))
-            line = "%s: %d points (%d reached), largest relative difference %.3g" % (
-                what, ref.GetNumberOfPoints(), reached, worst)
+            line = "%s: %d points (%d reached), largest relative difference %.3g%s" % (
+                what, ref.GetNumberOfPoints(), reached, worst, " (to the largest)" if virtual else "")
             if processes is not None:
                 check(len(got) == processes, "%s: %d outputs" % (what, len(got)))
                 held = [field(data, "PieceFaces") for data in got]

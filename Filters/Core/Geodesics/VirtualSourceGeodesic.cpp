@@ -1,4 +1,5 @@
 #include "VirtualSourceGeodesic.h"
+#include "ExactGeodesic.h"
 #include "WindowGeometry.h"
 
 #include <algorithm>
@@ -157,7 +158,8 @@ void VirtualSourceSolver::PushVertex(int v, double key)
   }
 }
 
-void VirtualSourceSolver::Seed(int f, double sx, double sy, double tx, double ty)
+void VirtualSourceSolver::Seed(
+  int f, double sx, double sy, double tx, double ty, const FaceAngle& start)
 {
   // The segment's distance from a point of f's frame.
   FaceRecord& r = Faces[f];
@@ -167,8 +169,6 @@ void VirtualSourceSolver::Seed(int f, double sx, double sy, double tx, double ty
     const double u = vv > 0.0 ? std::min(std::max(((x - sx) * vx + (y - sy) * vy) / vv, 0.0), 1.0) : 0.0;
     return Hypot(x - sx - u * vx, y - sy - u * vy);
   };
-  // A point source's angles start from the face's first edge (corner 0 to corner 1).
-  const FaceAngle start{ 0.0, 1.0, 0.0 };
   UpdateVertex(r.Corner[0], distance(0.0, 0.0), TrackAngles, [&] { return Towards(start, sx, sy, 0.0, 0.0); });
   UpdateVertex(r.Corner[1], distance(l, 0.0), TrackAngles, [&] { return Towards(start, sx, sy, l, 0.0); });
   UpdateVertex(r.Corner[2], distance(cx, cy), TrackAngles, [&] { return Towards(start, sx, sy, cx, cy); });
@@ -459,10 +459,13 @@ Status CheckPieces(const TriangleMesh& mesh, const std::vector<CurvePiece>& piec
 }
 } // namespace
 
-void VirtualSourceSolver::SeedPoints(const std::vector<SurfacePoint>& sources)
+void VirtualSourceSolver::SeedPoints(const std::vector<SurfacePoint>& points)
 {
-  for (const SurfacePoint& source : sources)
+  for (const SurfacePoint& point : points)
   {
+    // A face point at a corner is that vertex (as the exact solver takes it): its faces all
+    // around are seeded, not only the one that names it.
+    const SurfacePoint source = ExactGeodesicSolver::SourcePoint(Surface, point);
     if (source.IsVertex())
     {
       const int v = source.Vertex;
@@ -474,18 +477,40 @@ void VirtualSourceSolver::SeedPoints(const std::vector<SurfacePoint>& sources)
       SeedAround(v, 0.0, true);
       continue;
     }
-    // A face point: in the frame of the face's first half-edge, corner 0 at (0, 0), corner 1 at
-    // (L, 0), corner 2 at (Cx, Cy). Points on an edge reach the face across it by crossing.
-    std::array<double, 3> b = source.Bary;
-    for (double& x : b)
-    {
-      x = std::max(x, 0.0);
-    }
-    const double sum = b[0] + b[1] + b[2];
+    // A face point (weights clamped and normalized by SourcePoint): in the frame of the face's
+    // first half-edge, corner 0 at (0, 0), corner 1 at (L, 0), corner 2 at (Cx, Cy).
+    auto seed = [this](int f, const std::array<double, 3>& b, const FaceAngle& start) {
+      const FaceRecord& r = Faces[f];
+      const double sx = b[1] * r.L[0] + b[2] * r.Cx, sy = b[2] * r.Cy;
+      Seed(f, sx, sy, sx, sy, start);
+    };
+    const std::array<double, 3>& b = source.Bary;
+    seed(source.Face, b, FaceAngle{ 0.0, 1.0, 0.0 });
+    // A point on an edge is a source of the face across it too (as the exact solver seeds both
+    // faces): crossing the edge it lies on, a rounding error would put it in front of the edge
+    // or behind.
     const FaceRecord& r = Faces[source.Face];
-    const double sx = (b[1] * r.L[0] + b[2] * r.Cx) / sum;
-    const double sy = b[2] * r.Cy / sum;
-    Seed(source.Face, sx, sy, sx, sy);
+    for (int k = 0; k < 3; ++k)
+    {
+      const int t = r.Twin[(k + 1) % 3]; // the edge opposite corner k
+      if (b[static_cast<std::size_t>(k)] >= 1e-12 || t < 0)
+      {
+        continue;
+      }
+      // t runs from corner c = k + 2 to corner a = k + 1 of the face: from corner j to j + 1
+      // across.
+      const int a = (k + 1) % 3, c = (k + 2) % 3, g = TriangleMesh::FaceOf(t), j = t % 3;
+      std::array<double, 3> w{};
+      w[static_cast<std::size_t>(j)] = b[static_cast<std::size_t>(c)];
+      w[static_cast<std::size_t>((j + 1) % 3)] = b[static_cast<std::size_t>(a)];
+      // Angles start from the face's first edge, unfolded across: the edge's direction turned
+      // by the rotation that takes the shared edge from this face's frame into the other's.
+      const FaceRecord& q = Faces[g];
+      const double fx = CornerX(r, a) - CornerX(r, c), fy = CornerY(r, a) - CornerY(r, c);
+      const double gx = CornerX(q, (j + 1) % 3) - CornerX(q, j), gy = CornerY(q, (j + 1) % 3) - CornerY(q, j);
+      const double norm = Hypot(fx, fy) * Hypot(gx, gy);
+      seed(g, w, FaceAngle{ 0.0, (fx * gx + fy * gy) / norm, (fx * gy - fy * gx) / norm });
+    }
   }
 }
 

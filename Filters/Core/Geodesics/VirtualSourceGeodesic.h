@@ -193,7 +193,13 @@ private:
     const double dx = x - sx, dy = y - sy;
     return { a.Base, a.Rx * dx + a.Ry * dy, a.Rx * dy - a.Ry * dx };
   }
-  void Seed(int f, double sx, double sy, double tx, double ty);
+  // Seeds face f with a point (or segment) source in its frame; its departure angles start
+  // from `start` (the face's first edge for a point of it).
+  void Seed(int f, double sx, double sy, double tx, double ty,
+    const FaceAngle& start = FaceAngle{ 0.0, 1.0, 0.0 });
+  // Corner k of a face in its frame.
+  static double CornerX(const FaceRecord& r, int k) { return k == 0 ? 0.0 : k == 1 ? r.L[0] : r.Cx; }
+  static double CornerY(const FaceRecord& r, int k) { return k == 2 ? r.Cy : 0.0; }
   // The crossing of edge k of face f (`from`), compiled with and without departure angles: the
   // solve without them pays nothing for them.
   template <bool Angles>
