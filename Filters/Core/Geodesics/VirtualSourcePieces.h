@@ -11,11 +11,14 @@
 // late crosses its edges again, in any order. At the end each vertex takes the smallest
 // distance any process's crossings gave it.
 //
-// The serial solve's buckets and tolerance are kept (both from the whole surface's mean edge
-// length), and crossings are computed from the same face records, so a face ends with the
-// serial solve's source wherever the order of processing does not decide between sources of
-// (nearly) equal key; where it does, a vertex may end with another of the distances the
-// method gives it (Docs/BENCHMARKS.md, "Under MPI", gives the differences measured).
+// The serial solve's buckets, tolerance and horizon are kept (from the whole surface's mean and
+// longest edge), and crossings are computed from the same face records, so a face ends with
+// the serial solve's source wherever the order of processing does not decide between sources
+// of nearly equal key. Where it does, a vertex ends with another of the distances the method
+// gives it: on flat and developable meshes (where it is exact) the serial distances to
+// rounding; on curved ones distances as accurate against the exact solver as the serial ones,
+// but a little different, by partition (Docs/FILTERS.md, "Under MPI", gives the differences
+// measured).
 #pragma once
 
 #include "PieceCommunicator.h"
