@@ -102,20 +102,26 @@ int vtkGeodesicPolarCoordinates::FillInputPortInformation(int port, vtkInformati
 int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI, the exact chart about SourceVertexId (geodesic direction, a finite radius) is
-  // computed on the pieces when they hold triangles only (the same decision on every process:
-  // it depends on properties and on CanUse, which is collective); everything else gathers.
+  // Under MPI, the exact chart about SourceVertexId or a point of the Source input (geodesic
+  // direction, a finite radius) is computed on the pieces when they hold triangles only (the
+  // same decision on every process: it depends on properties, on the Source input's cells and
+  // on CanUse, which is collective); everything else gathers.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (distributed && input && output && this->Solver == EXACT &&
-    this->AngleMode == GEODESIC_DIRECTION && std::isfinite(this->Radius) &&
-    inputVector[1]->GetNumberOfInformationObjects() == 0)
+    this->AngleMode == GEODESIC_DIRECTION && std::isfinite(this->Radius))
   {
-    if (vtkSmartPointer<vtkPolyData> own =
-          vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input))
+    const bool sourcePort = inputVector[1]->GetNumberOfInformationObjects() > 0;
+    std::vector<double> xyz;
+    // (Points only: a curve source gathers.)
+    const bool points = !sourcePort ||
+      distributed.GatherAuxiliaryPoints(vtkPointSet::GetData(inputVector[1], 0), xyz);
+    vtkSmartPointer<vtkPolyData> own =
+      points ? vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input) : nullptr;
+    if (own)
     {
-      return this->ExecutePieces(input, own, output);
+      return this->ExecutePieces(input, own, output, sourcePort ? &xyz : nullptr);
     }
   }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
@@ -125,16 +131,32 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
 }
 
 //------------------------------------------------------------------------------
-int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output)
+int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
+  vtkPolyData* output, const std::vector<double>* sourceXyz)
 {
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
   std::vector<double> rho, theta;
   gs::PiecePolarCoordinates chart;
+  // The Source input's points (every process has them all), as serially: the first one.
+  std::vector<gs::Vec3> points;
+  for (std::size_t i = 0; sourceXyz && i + 2 < sourceXyz->size(); i += 3)
+  {
+    points.emplace_back((*sourceXyz)[i], (*sourceXyz)[i + 1], (*sourceXyz)[i + 2]);
+  }
+  if (sourceXyz && points.empty())
+  {
+    vtkErrorMacro("The Source input has no point.");
+    return 1;
+  }
+  if (points.size() > 1)
+  {
+    vtkWarningMacro("The Source input has " << points.size() << " points: only the first one is used.");
+  }
   // (CheckParameters: the same outcome on every process.)
   if (!this->CheckParameters() || !this->Pieces->UsePiece(this, own, input->GetMTime()) ||
-    !this->Pieces->Polar(this, this->SourceVertexId, this->Radius, this->ReferenceDirection, rho,
-      theta, chart))
+    !this->Pieces->Polar(this, own, this->SourceVertexId, points, this->Radius,
+      this->ReferenceDirection, rho, theta, chart))
   {
     return 1;
   }

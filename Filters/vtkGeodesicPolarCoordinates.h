@@ -79,6 +79,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory> // for std::unique_ptr
+#include <vector> // for std::vector
 
 class vtkDoubleArray;
 class vtkSurfacePieces;
@@ -182,10 +183,12 @@ protected:
   // RequestData's work on the whole surface (the input itself, or under MPI the gathered
   // surface on process 0).
   int Execute(vtkPolyData* input, vtkPointSet* source, vtkPolyData* output);
-  // Under MPI, the exact chart about SourceVertexId on pieces with global ids: each process
-  // outputs its own cells (`own`), the chart's process grows its band to the chart
-  // (vtkSurfacePieces::Polar), nothing gathered.
-  int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output);
+  // Under MPI, the exact chart about SourceVertexId or the Source input's first point on pieces:
+  // each process outputs its own cells (`own`), the chart's process grows its band to the chart
+  // (vtkSurfacePieces::Polar), nothing gathered. `sourceXyz`: the Source input's points (x, y, z, ...) gathered to every process, or null
+  // for SourceVertexId.
+  int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output,
+    const std::vector<double>* sourceXyz);
   // The warning that ReferenceDirection is normal to the surface at the source.
   void WarnReferenceNormal();
   // The output: `surface` (shallow) with the coordinates' arrays (rho the active scalars, the

@@ -349,14 +349,22 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
 }
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkIdType source, double radius,
-  const double referenceDirection[3], std::vector<double>& rho, std::vector<double>& theta,
-  gs::PiecePolarCoordinates& chart)
+bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdType source,
+  const std::vector<gs::Vec3>& points, double radius, const double referenceDirection[3],
+  std::vector<double>& rho, std::vector<double>& theta, gs::PiecePolarCoordinates& chart)
 {
+  const gs::Vec3 reference(referenceDirection[0], referenceDirection[1], referenceDirection[2]);
+  std::vector<gs::SurfacePoint> mine;
+  if (!points.empty() && !this->SnapPoints(self, ownCells, { points.front() }, mine))
+  {
+    return false;
+  }
   if (!Reported(self, "Geodesic polar coordinates about the source point: ",
-        gs::ComputePolarOnPieces(this->SurfacePieceState, this->SurfaceIds({ source })[0], radius,
-          gs::Vec3(referenceDirection[0], referenceDirection[1], referenceDirection[2]), *Comm,
-          chart)))
+        points.empty()
+          ? gs::ComputePolarOnPieces(this->SurfacePieceState, this->SurfaceIds({ source })[0],
+              radius, reference, *Comm, chart)
+          : gs::ComputePolarOnPieces(this->SurfacePieceState, mine.empty() ? nullptr : &mine[0],
+              radius, reference, *Comm, chart)))
   {
     this->HasPiece = this->HasGraph = false; // (its band may have failed to grow)
     return false;

@@ -87,12 +87,15 @@ public:
     vtkMTimeType key, const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
     double maxDistance, std::vector<double>& perPoint);
 
-  // Geodesic polar coordinates about the point `source` (a serial point id) within `radius`
-  // (finite), theta's zero from `referenceDirection` (all zero: the source's first edge), at
-  // every point of the piece UsePiece was given (NaN outside the chart); `chart` says what the
+  // Geodesic polar coordinates about the point `source` (a serial point id) or, when `points`
+  // is not empty, about the first of `points` in space (the same list on every process, snapped
+  // as a serial run snaps it: a point of `ownCells`' triangles, the piece UsePiece was given)
+  // within `radius` (finite), theta's zero from `referenceDirection` (all zero: the source's
+  // first edge), at every point of that piece (NaN outside the chart); `chart` says what the
   // chart's process found (angle sum, a reference direction normal to the surface, its faces).
   // False (error on `self`) on every process when it fails.
-  bool Polar(vtkAlgorithm* self, vtkIdType source, double radius, const double referenceDirection[3],
+  bool Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdType source,
+    const std::vector<gs::Vec3>& points, double radius, const double referenceDirection[3],
     std::vector<double>& rho, std::vector<double>& theta, gs::PiecePolarCoordinates& chart);
 
   const gs::SurfacePiece& Piece() const { return SurfacePieceState; }

@@ -330,12 +330,12 @@ TEST(GraphPieces, BuildRefusedBeyondTheAvailableMemoryEverywhere)
 
 namespace
 {
-// Polar coordinates about `source` on pieces against GeodesicPolarCoordinates on the whole mesh.
+// Polar coordinates about `at` (a vertex, by its id, or a face point, passed by the process of
+// its face) on pieces against GeodesicPolarCoordinates on the whole mesh: the same bits.
 void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
-  int source, double radius, const Vec3& reference)
+  const SurfacePoint& at, double radius, const Vec3& reference)
 {
   GeodesicPolarCoordinates serial(mesh);
-  const SurfacePoint at = SurfacePoint::AtVertex(source);
   const double angle = reference.x == 0.0 && reference.y == 0.0 && reference.z == 0.0
     ? 0.0
     : TangentAngle(mesh, at, reference);
@@ -350,9 +350,16 @@ void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
     SurfacePiece piece;
     PiecePolarCoordinates polar;
     Status s = piece.Build(gs_test::PieceOf(mesh, part, rank), 0, comm);
-    if (s.Ok())
+    if (s.Ok() && at.IsVertex())
     {
-      s = ComputePolarOnPieces(piece, source, radius, reference, comm, polar);
+      s = ComputePolarOnPieces(piece, at.Vertex, radius, reference, comm, polar);
+    }
+    else if (s.Ok())
+    {
+      const std::array<int, 3>& c = mesh.Face(at.Face);
+      const SurfacePoint mine = piece.LocalPoint(at.Face, { { c[0], c[1], c[2] } }, at.Bary);
+      s = ComputePolarOnPieces(piece, part[static_cast<std::size_t>(at.Face)] == rank ? &mine : nullptr,
+        radius, reference, comm, polar);
     }
     errors[static_cast<std::size_t>(rank)] = s.Message();
     if (!s.Ok())
@@ -392,14 +399,22 @@ void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
 
 TEST(GraphPieces, PolarCoordinatesSpanPieces)
 {
-  // A chart about a vertex near a piece's edge reaches into the others; its process's band grows
-  // there until the exact solve within the radius stays inside.
+  // A chart about a vertex or a point near a piece's edge reaches into the others; its process's
+  // band grows there until the exact solve within the radius stays inside.
   const TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
   const std::vector<int> slabs = gs_test::PartitionFaces(sphere, 3, Vec3(1, 0.3, 0.1));
-  ExpectPolarAsSerial(sphere, slabs, 3, 5, 0.6, Vec3(0, 0, 0));
-  ExpectPolarAsSerial(sphere, gs_test::PartitionFaces(sphere, 2, Vec3(0.2, 1, 0.5), 5), 2, 40,
-    0.9, Vec3(0, 0, 1));
+  ExpectPolarAsSerial(sphere, slabs, 3, SurfacePoint::AtVertex(5), 0.6, Vec3(0, 0, 0));
+  ExpectPolarAsSerial(sphere, gs_test::PartitionFaces(sphere, 2, Vec3(0.2, 1, 0.5), 5), 2,
+    SurfacePoint::AtVertex(40), 0.9, Vec3(0, 0, 1));
   const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
-  ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3, 260, 0.5,
-    Vec3(1, 1, 0));
+  ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
+    SurfacePoint::AtVertex(260), 0.5, Vec3(1, 1, 0));
+  // About points inside faces of each process (the band grows after the point is named: it is
+  // named again in the grown piece) and a point on an edge.
+  for (const int f : { 7, 900, sphere.NumberOfFaces() - 40 })
+  {
+    ExpectPolarAsSerial(sphere, slabs, 3, SurfacePoint::InFace(f, 0.2, 0.5, 0.3), 0.6, Vec3(0, 0, 1));
+  }
+  ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
+    SurfacePoint::InFace(300, 0.0, 0.4, 0.6), 0.5, Vec3(1, 0, 0));
 }

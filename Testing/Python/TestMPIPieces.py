@@ -14,7 +14,8 @@ from two vertices and from two points of the Sources port (snapped on the pieces
 sources (propagation on the pieces) from two vertices and from two points (one on an edge of the
 plane): as the serial run's to rounding on the plane, within 2% of the largest distance
 on the bumpy sphere (VIRTUAL_SOURCES_TOLERANCE); and Geodesic Polar Coordinates about a vertex
-(exact, radius 0.7, a reference direction): rho and theta as the serial run's.
+(exact, radius 0.7, a reference direction) and about a point of the Source input: rho and
+theta as the serial run's.
 
 Bad sources (a point far from the surface, a vertex id of no point) give an error and an empty
 output on every process, and the filter works again once mended.
@@ -69,6 +70,9 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
               SourcePoints=[0.9, 0.3, 0.2, 0.2, 0.8, -0.3]), ["GeodesicDistance"]),
         ("polar", "GeodesicPolarCoordinates", dict(SourceVertexId=11, Radius=0.7,
                                                    ReferenceDirection=[1.0, 1.0, 0.0]),
+         ["GeodesicDistance", "PolarAngle"]),
+        ("polar-point", "GeodesicPolarCoordinates",
+         dict(SourcePoints=[0.05, 0.1, 0.6], Radius=0.7, ReferenceDirection=[1.0, 0.0, 0.0]),
          ["GeodesicDistance", "PolarAngle"])]
 
 
@@ -95,7 +99,10 @@ def run_filters():
             distance = globals()[filter_name](Input=mesh, **properties)
             if points is not None:
                 # Every process generates the points whole; they count once.
-                distance.Sources = PolyPointSource(Points=points)
+                if filter_name == "GeodesicPolarCoordinates":
+                    distance.Source = PolyPointSource(Points=points)
+                else:
+                    distance.Sources = PolyPointSource(Points=points)
             distance.UpdatePipeline()
             if args.connect:
                 data = servermanager.Fetch(distance)  # every process's piece, appended
@@ -243,7 +250,7 @@ def compare(reference, candidate, label, processes=None, faces=None):
                     check(max(held) < faces[mesh_name],
                           "%s: a process held %d of the %d faces" % (what, max(held), faces[mesh_name]))
                 line += "; faces held per process %s of %d" % (held, faces[mesh_name])
-                if name == "polar":
+                if name.startswith("polar"):
                     # The chart spans pieces: its values reach more than one process's cells.
                     spans = sum(any(not math.isnan(x) for x in
                                     (data.GetPointData().GetArray("PolarAngle").GetValue(i)

@@ -5,6 +5,7 @@
 #include "GeodesicShooting.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -47,19 +48,59 @@ ByteBuffer Pack(const Status& status, const PiecePolarCoordinates& result,
 Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double radius,
   const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result)
 {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  result = PiecePolarCoordinates();
   const int local = piece.Vertex(source);
   const bool mine = local >= 0 && piece.IsOwned(local);
   if (comm.Sum(mine ? 1 : 0) != 1)
   {
+    result = PiecePolarCoordinates();
     return Status::Error("vertex " + std::to_string(source) + " is not a point of the surface");
+  }
+  const SurfacePoint at = SurfacePoint::AtVertex(local);
+  return ComputePolarOnPieces(piece, mine ? &at : nullptr, radius, referenceDirection, comm, result);
+}
+
+Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, double radius,
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  result = PiecePolarCoordinates();
+  const bool mine = point != nullptr;
+  if (comm.Sum(mine ? 1 : 0) != 1)
+  {
+    return Status::Error("the source point lies on no process's faces, or on several");
   }
   if (!(radius > 0.0) || !std::isfinite(radius))
   {
     return Status::Error("the radius must be finite and above 0");
   }
   const int chartRank = static_cast<int>(comm.Max(mine ? comm.Rank() : -1.0));
+  // The point by global ids (the band's growth renumbers the piece's faces and vertices).
+  SurfacePoint at;
+  std::int64_t globalFace = -1, globalVertex = -1;
+  std::array<std::int64_t, 3> corners{};
+  if (mine)
+  {
+    at = ExactGeodesicSolver::SourcePoint(piece.Mesh(), *point);
+    if (at.IsVertex())
+    {
+      globalVertex = piece.GlobalId(at.Vertex);
+    }
+    else
+    {
+      globalFace = piece.FaceId(at.Face);
+      for (std::size_t k = 0; k < 3; ++k)
+      {
+        corners[k] = piece.GlobalId(piece.Mesh().Face(at.Face)[k]);
+      }
+    }
+  }
+  auto relocate = [&] {
+    if (mine)
+    {
+      at = globalVertex >= 0 ? SurfacePoint::AtVertex(piece.Vertex(globalVertex))
+                             : piece.LocalPoint(globalFace, corners, at.Bary);
+    }
+  };
 
   // The band grows where the truncated solve reaches its edge, by rings that double.
   for (int rings = 2;; rings *= 2)
@@ -71,7 +112,7 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
       ExactGeodesicOptions options;
       options.MaximumDistance = radius;
       options.Fence = &piece.Fence();
-      static_cast<void>(solver.Solve(piece.Vertex(source), options)); // a vertex: accepted
+      static_cast<void>(solver.Solve({ at }, options)); // (a point of the piece: accepted)
       piece.AppendIncompleteVertices(solver.FenceFacesEntered(), around);
     }
     if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
@@ -82,6 +123,7 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
     {
       return grown;
     }
+    relocate();
   }
 
   // The chart, on its process's piece; every process gets it.
@@ -89,7 +131,6 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
   if (mine)
   {
     const TriangleMesh& mesh = piece.Mesh();
-    const SurfacePoint at = SurfacePoint::AtVertex(piece.Vertex(source));
     double reference = 0.0;
     const Vec3& d = referenceDirection;
     if (!(d.x == 0.0 && d.y == 0.0 && d.z == 0.0))

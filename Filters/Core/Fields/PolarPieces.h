@@ -1,4 +1,4 @@
-// Geodesic polar coordinates about a vertex of a surface partitioned over processes
+// Geodesic polar coordinates about a vertex or surface point of a surface partitioned over processes
 // (SurfacePiece), without any process holding the whole surface: the chart spans pieces within
 // its radius. The process owning the source grows its band where the exact solve truncated at
 // the radius reaches the band's edge (the fence), until it stays inside; it then computes the
@@ -10,6 +10,7 @@
 #include "PieceCommunicator.h"
 #include "Status.h"
 #include "SurfacePiece.h"
+#include "SurfacePoint.h"
 #include "Vector.h"
 
 #include <cstdint>
@@ -36,6 +37,13 @@ struct PiecePolarCoordinates
 // source's first edge). Fails on every process when the id is no vertex of the surface or the
 // coordinates cannot be computed (the message of the process that computed them).
 Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double radius,
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result);
+
+// Collective. The same about a surface point: `point` is this process's (a point of one of its
+// own faces, or a vertex it owns, in its piece's mesh; a face point at a corner is that
+// vertex), null on every other process. Fails on every process unless exactly one process
+// passes one.
+Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, double radius,
   const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result);
 
 } // namespace gs
