@@ -120,13 +120,13 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  // The exact solver and the virtual sources take source points (no curves) on the pieces too.
+  // Source points (no curves) too.
   const gs::GeodesicSolver solver = static_cast<gs::GeodesicSolver>(this->Solver);
   const bool noGraph =
     solver == gs::GeodesicSolver::Exact || solver == gs::GeodesicSolver::VirtualSources;
   const bool sourcesPort = inputVector[1]->GetNumberOfInformationObjects() > 0;
   if (distributed && input && output && (this->UsesGraph() || noGraph) &&
-    (noGraph || !sourcesPort) && this->CacheFileName.empty())
+    this->CacheFileName.empty())
   {
     std::vector<double> xyz;
     const bool points = !sourcesPort ||
@@ -194,8 +194,8 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
              vtkCachedSurface::GraphOptions(
                this->Solver, this->K, this->GraphAccuracy, this->ReachedStencil),
              0.1, 0.8, built) ||
-    !this->Pieces->Distances(
-      this, this->SourceVertexIds, this->MaximumDistance, this->UnfoldingRefinement, distances))
+    !this->Pieces->Distances(this, own, sourceIds, sourcePoints, this->MaximumDistance,
+      this->UnfoldingRefinement, distances))
   {
     return 1;
   }

@@ -375,16 +375,32 @@ bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdTyp
 }
 
 //------------------------------------------------------------------------------
-bool vtkSurfacePieces::Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources,
-  double maxDistance, bool refine, std::vector<double>& perPoint)
+bool vtkSurfacePieces::Distances(vtkAlgorithm* self, vtkPolyData* ownCells,
+  const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points, double maxDistance,
+  bool refine, std::vector<double>& perPoint)
 {
   std::vector<std::pair<std::int64_t, double>> seeds;
-  for (const std::int64_t id : this->SurfaceIds(sources))
+  if (points.empty())
   {
-    seeds.push_back({ id, 0.0 });
+    for (const std::int64_t id : this->SurfaceIds(sources))
+    {
+      seeds.push_back({ id, 0.0 });
+    }
+  }
+  else
+  {
+    std::vector<gs::SurfacePoint> mine;
+    if (!this->SnapPoints(self, ownCells, points, mine) ||
+      !Reported(self, "Source points: ",
+        gs::GraphSeedsFromPoints(this->SurfacePieceState, this->GraphState, {}, mine,
+          maxDistance, *Comm, seeds)))
+    {
+      return false;
+    }
   }
   gs::PieceDistanceSolver solver(this->GraphState);
-  if (!Reported(self, "Source vertex ids: ", solver.Solve(seeds, maxDistance, *Comm, refine)))
+  if (!Reported(self, points.empty() ? "Source vertex ids: " : "Source points: ",
+        solver.Solve(seeds, maxDistance, *Comm, refine)))
   {
     return false;
   }

@@ -69,12 +69,16 @@ public:
   bool UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMTimeType key,
     const gs::SaddleVertexGraphOptions& options, double from, double to, bool& built);
 
-  // Distances from the points `sources` (serial point ids, see SurfaceIds) to every point of
-  // `ownCells` (the piece UseGraph was given), refined by geodesic triangle unfolding when
-  // `refine`: NaN where unreached, beyond maxDistance (> 0) or not on a triangle. False (error
-  // on `self`) on every process when a source id is no point of the surface.
-  bool Distances(vtkAlgorithm* self, const std::vector<vtkIdType>& sources, double maxDistance,
-    bool refine, std::vector<double>& perPoint);
+  // Distances from the points `sources` (serial point ids, see SurfaceIds) or, when `points` is
+  // not empty, from `points` in space (the same list on every process, snapped as a serial run
+  // snaps them; the graph searched from the exact distances around them, GraphSeedsFromPoints)
+  // to every point of `ownCells` (the piece UseGraph was given), refined by geodesic triangle
+  // unfolding when `refine`: NaN where unreached, beyond maxDistance (> 0) or not on a
+  // triangle. False (error on `self`) on every process when a source id is no point of the
+  // surface or a point cannot be snapped.
+  bool Distances(vtkAlgorithm* self, vtkPolyData* ownCells, const std::vector<vtkIdType>& sources,
+    const std::vector<gs::Vec3>& points, double maxDistance, bool refine,
+    std::vector<double>& perPoint);
 
   // Distances without a graph from the points `sources` (serial point ids) and from `points` in
   // space (the same list on every process, snapped to the surface as a serial run snaps them)

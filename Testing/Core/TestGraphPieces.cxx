@@ -418,3 +418,112 @@ TEST(GraphPieces, PolarCoordinatesSpanPieces)
   ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
     SurfacePoint::InFace(300, 0.0, 0.4, 0.6), 0.5, Vec3(1, 0, 0));
 }
+
+namespace
+{
+// Graph distances from surface points on pieces (GraphSeedsFromPoints, then the graph search
+// and refinement) against SVGGeodesicSolver's from the same points on the whole mesh.
+void ExpectPointSourcesAsSerial(const TriangleMesh& mesh, const SaddleVertexGraphOptions& options,
+  const std::vector<int>& part, int processes, const std::vector<SurfacePoint>& points,
+  double maxDistance)
+{
+  SaddleVertexGraph serialGraph;
+  ASSERT_TRUE(gs_test::Succeeded(serialGraph.Build(mesh, options, nullptr)));
+  SVGGeodesicSolver serial(mesh, serialGraph);
+  SVGSolveOptions o;
+  o.MaximumDistance = maxDistance;
+  std::vector<std::vector<double>> expected;
+  for (const bool refine : { false, true })
+  {
+    o.Refine = refine;
+    ASSERT_TRUE(gs_test::Succeeded(serial.Solve(points, o)));
+    expected.push_back(serial.Distances());
+  }
+  std::vector<std::int64_t> vertexIds;
+  for (const SurfacePoint& p : points)
+  {
+    if (p.IsVertex())
+    {
+      vertexIds.push_back(p.Vertex);
+    }
+  }
+  std::mutex lock;
+  std::vector<std::string> errors;
+  std::int64_t compared = 0, differ = 0;
+  double worst = 0.0, largest = 0.0;
+  gs_test::ThreadHub hub(processes);
+  hub.Run([&](int rank, PieceCommunicator& comm) {
+    SurfacePiece piece;
+    PieceGraph graph;
+    SaddleVertexGraphOptions single = options;
+    single.NumberOfThreads = 1;
+    Status s = piece.Build(gs_test::PieceOf(mesh, part, rank), 0, comm);
+    s = s.Ok() ? graph.Build(piece, single, comm) : s;
+    // This process's points, named in its piece's mesh once the graph has its band.
+    std::vector<SurfacePoint> mine;
+    for (const SurfacePoint& p : points)
+    {
+      if (!p.IsVertex() && part[static_cast<std::size_t>(p.Face)] == rank)
+      {
+        const std::array<int, 3>& c = mesh.Face(p.Face);
+        mine.push_back(piece.LocalPoint(p.Face, { { c[0], c[1], c[2] } }, p.Bary));
+      }
+    }
+    std::vector<std::pair<std::int64_t, double>> seeds;
+    s = s.Ok() ? GraphSeedsFromPoints(piece, graph, vertexIds, mine, maxDistance, comm, seeds) : s;
+    for (int k = 0; k < 2 && s.Ok(); ++k)
+    {
+      PieceDistanceSolver solver(graph);
+      s = solver.Solve(seeds, maxDistance, comm, k == 1);
+      std::lock_guard<std::mutex> guard(lock);
+      for (int i = 0; s.Ok() && i < graph.NumberOfOwned(); ++i)
+      {
+        const double d = solver.Distance(i);
+        const double e = expected[static_cast<std::size_t>(k)][static_cast<std::size_t>(graph.OwnedId(i))];
+        ++compared;
+        if (std::isfinite(e))
+        {
+          largest = std::max(largest, e);
+        }
+        if (!(d == e || (std::isinf(d) && std::isinf(e))))
+        {
+          ++differ;
+          worst = std::max(worst, std::isfinite(d - e) ? std::abs(d - e) : 1e300);
+        }
+      }
+    }
+    std::lock_guard<std::mutex> guard(lock);
+    if (!s.Ok())
+    {
+      errors.push_back(s.Message());
+    }
+  });
+  ASSERT_TRUE(errors.empty()) << errors.front();
+  EXPECT_EQ(compared, 2 * mesh.NumberOfVertices());
+  // The exact local solves agree to rounding; their vertices seed the same graph search.
+  EXPECT_LE(worst, 1e-12 * largest) << differ << " of " << compared << " distances differ";
+  std::printf("points on pieces, P = %d: %lld of %lld distances differ from the serial solver's, "
+              "by %.2e of the largest at most\n",
+    processes, static_cast<long long>(differ), static_cast<long long>(compared), worst / largest);
+}
+} // namespace
+
+TEST(GraphPieces, SurfacePointSourcesAsSerial)
+{
+  const TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
+  const std::vector<int> slabs = gs_test::PartitionFaces(sphere, 3, Vec3(1, 0.3, 0.1));
+  SaddleVertexGraphOptions svg;
+  svg.K = 30;
+  // A point inside a face, one on an edge, and a vertex, on faces of different processes.
+  ExpectPointSourcesAsSerial(sphere, svg, slabs, 3,
+    { SurfacePoint::InFace(12, 0.2, 0.3, 0.5), SurfacePoint::InFace(sphere.NumberOfFaces() - 9, 0.0, 0.4, 0.6),
+      SurfacePoint::AtVertex(300) },
+    0.0);
+  ExpectPointSourcesAsSerial(sphere, svg, slabs, 3, { SurfacePoint::InFace(700, 0.1, 0.1, 0.8) }, 0.8);
+  SaddleVertexGraphOptions dgg;
+  dgg.Construction = GraphConstruction::DiscreteGeodesic;
+  dgg.Accuracy = 0.01;
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
+  ExpectPointSourcesAsSerial(plane, dgg, gs_test::PartitionFaces(plane, 2, Vec3(1, 0, 0)), 2,
+    { SurfacePoint::InFace(400, 0.3, 0.3, 0.4) }, 0.0);
+}

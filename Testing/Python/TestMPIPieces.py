@@ -8,7 +8,8 @@ same pieces without global ids (numbered as gathering them numbers them) give, u
 
 Meshes: the bumpy sphere (closed, saddles everywhere) and the L-shaped plane (a boundary, a
 regular grid: ties everywhere). Solvers: SVG (label-correcting, K = 50, unfolding refinement)
-and SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
+from one vertex and from two points of the Sources port (the exact distances around them on the
+pieces seeding the graph search), SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
 from two vertices with a MaximumDistance; the exact solver (window propagation on the pieces)
 from two vertices and from two points of the Sources port (snapped on the pieces); the virtual
 sources (propagation on the pieces) from two vertices and from two points (one on an edge of the
@@ -58,6 +59,9 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
          ["GeodesicDistance"]),
         ("dgg", "SVGGeodesicDistance", dict(Solver="DGG (accuracy-bounded)", GraphAccuracy=0.01,
                                             SourceVertexIds=[3, 200], MaximumDistance=1.0),
+         ["GeodesicDistance"]),
+        ("svg-points", "SVGGeodesicDistance",
+         dict(Solver="SVG (label-correcting)", K=50, SourcePoints=[0.9, 0.3, 0.2, 0.2, 0.8, -0.3]),
          ["GeodesicDistance"]),
         ("exact", "SVGGeodesicDistance", dict(Solver="Exact", SourceVertexIds=[11, 200]),
          ["GeodesicDistance"]),

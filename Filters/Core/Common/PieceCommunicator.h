@@ -109,6 +109,27 @@ inline int FirstMessage(PieceCommunicator& comm, const std::string& message, std
   return static_cast<int>(first);
 }
 
+// Collective. The sum of `value` over the processes, added in rank order (the same on every
+// process).
+inline double SumOverProcesses(PieceCommunicator& comm, double value)
+{
+  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.Size())), in;
+  for (ByteBuffer& b : out)
+  {
+    ByteWriter(b).Put(value);
+  }
+  comm.Exchange(out, in);
+  double sum = 0.0;
+  for (int q = 0; q < comm.Size(); ++q)
+  {
+    double v = 0.0;
+    ByteReader(q == comm.Rank() ? out[static_cast<std::size_t>(q)] : in[static_cast<std::size_t>(q)])
+      .Get(v);
+    sum += v;
+  }
+  return sum;
+}
+
 // Collective. Whether every process goes on: false on every process when the progress callback
 // of any (called with `fraction`; an empty callback goes on) returns false.
 template <class Progress>

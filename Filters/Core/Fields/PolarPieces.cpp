@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace gs
@@ -59,10 +60,113 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
   return ComputePolarOnPieces(piece, mine ? &at : nullptr, radius, referenceDirection, comm, result);
 }
 
+namespace
+{
+// A surface point by global ids (the band's growth renumbers the piece's faces and vertices).
+struct GlobalPoint
+{
+  std::int64_t Vertex = -1, Face = -1;
+  std::array<std::int64_t, 3> Corners{};
+  std::array<double, 3> Bary{};
+
+  GlobalPoint(const SurfacePiece& piece, const SurfacePoint& p)
+  {
+    if (p.IsVertex())
+    {
+      Vertex = piece.GlobalId(p.Vertex);
+      return;
+    }
+    Face = piece.FaceId(p.Face);
+    Bary = p.Bary;
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      Corners[k] = piece.GlobalId(piece.Mesh().Face(p.Face)[k]);
+    }
+  }
+  SurfacePoint In(const SurfacePiece& piece) const
+  {
+    return Vertex >= 0 ? SurfacePoint::AtVertex(piece.Vertex(Vertex))
+                       : piece.LocalPoint(Face, Corners, Bary);
+  }
+};
+
+// Collective. Grows the band of the process holding `at` (null elsewhere) where the exact solve
+// about it truncated at `radius` reaches the band's edge, by rings that double, until it stays
+// inside; `at` then names the point in the grown piece.
+Status GrowToChart(SurfacePiece& piece, SurfacePoint* at, double radius, PieceCommunicator& comm)
+{
+  const std::unique_ptr<GlobalPoint> named = at ? std::make_unique<GlobalPoint>(piece, *at) : nullptr;
+  for (int rings = 2;; rings *= 2)
+  {
+    std::vector<std::int64_t> around;
+    if (at)
+    {
+      ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
+      ExactGeodesicOptions options;
+      options.MaximumDistance = radius;
+      options.Fence = &piece.Fence();
+      static_cast<void>(solver.Solve({ *at }, options)); // (a point of the piece: accepted)
+      piece.AppendIncompleteVertices(solver.FenceFacesEntered(), around);
+    }
+    if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
+    {
+      return Status();
+    }
+    if (const Status grown = piece.GrowAround(around, rings, comm); !grown.Ok())
+    {
+      return grown;
+    }
+    if (at)
+    {
+      *at = named->In(piece);
+    }
+  }
+}
+
+// What the chart's process sent (Pack), into every process's result.
+Status Unpack(const ByteBuffer& bytes, const SurfacePiece& piece, PiecePolarCoordinates& result)
+{
+  ByteReader r(bytes);
+  std::int32_t ok = 0;
+  r.Get(ok);
+  if (!ok)
+  {
+    std::string message;
+    char c = 0;
+    while (r.Get(c))
+    {
+      message += c;
+    }
+    return Status::Error(message.empty() ? "the polar coordinates failed" : message);
+  }
+  std::int32_t normal = 0, faces = 0;
+  r.Get(result.SourceAngleSum);
+  r.Get(normal);
+  r.Get(faces);
+  result.ReferenceNormal = normal != 0;
+  result.ChartFaces = faces;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const int nv = piece.Mesh().NumberOfVertices();
+  result.Rho.assign(static_cast<std::size_t>(nv), nan);
+  result.Theta.assign(static_cast<std::size_t>(nv), nan);
+  std::int64_t id = 0;
+  double rho = 0.0, theta = 0.0;
+  while (r.Get(id) && r.Get(rho) && r.Get(theta))
+  {
+    const int v = piece.Vertex(id);
+    if (v >= 0)
+    {
+      result.Rho[static_cast<std::size_t>(v)] = rho;
+      result.Theta[static_cast<std::size_t>(v)] = theta;
+    }
+  }
+  return Status();
+}
+} // namespace
+
 Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, double radius,
   const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result)
 {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   result = PiecePolarCoordinates();
   const bool mine = point != nullptr;
   if (comm.Sum(mine ? 1 : 0) != 1)
@@ -74,56 +178,10 @@ Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, doub
     return Status::Error("the radius must be finite and above 0");
   }
   const int chartRank = static_cast<int>(comm.Max(mine ? comm.Rank() : -1.0));
-  // The point by global ids (the band's growth renumbers the piece's faces and vertices).
-  SurfacePoint at;
-  std::int64_t globalFace = -1, globalVertex = -1;
-  std::array<std::int64_t, 3> corners{};
-  if (mine)
+  SurfacePoint at = mine ? ExactGeodesicSolver::SourcePoint(piece.Mesh(), *point) : SurfacePoint();
+  if (const Status grown = GrowToChart(piece, mine ? &at : nullptr, radius, comm); !grown.Ok())
   {
-    at = ExactGeodesicSolver::SourcePoint(piece.Mesh(), *point);
-    if (at.IsVertex())
-    {
-      globalVertex = piece.GlobalId(at.Vertex);
-    }
-    else
-    {
-      globalFace = piece.FaceId(at.Face);
-      for (std::size_t k = 0; k < 3; ++k)
-      {
-        corners[k] = piece.GlobalId(piece.Mesh().Face(at.Face)[k]);
-      }
-    }
-  }
-  auto relocate = [&] {
-    if (mine)
-    {
-      at = globalVertex >= 0 ? SurfacePoint::AtVertex(piece.Vertex(globalVertex))
-                             : piece.LocalPoint(globalFace, corners, at.Bary);
-    }
-  };
-
-  // The band grows where the truncated solve reaches its edge, by rings that double.
-  for (int rings = 2;; rings *= 2)
-  {
-    std::vector<std::int64_t> around;
-    if (mine)
-    {
-      ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
-      ExactGeodesicOptions options;
-      options.MaximumDistance = radius;
-      options.Fence = &piece.Fence();
-      static_cast<void>(solver.Solve({ at }, options)); // (a point of the piece: accepted)
-      piece.AppendIncompleteVertices(solver.FenceFacesEntered(), around);
-    }
-    if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
-    {
-      break;
-    }
-    if (const Status grown = piece.GrowAround(around, rings, comm); !grown.Ok())
-    {
-      return grown;
-    }
-    relocate();
+    return grown;
   }
 
   // The chart, on its process's piece; every process gets it.
@@ -150,40 +208,7 @@ Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, doub
     }
   }
   comm.Exchange(outgoing, incoming);
-  ByteReader r(incoming[static_cast<std::size_t>(chartRank)]);
-  std::int32_t ok = 0;
-  r.Get(ok);
-  if (!ok)
-  {
-    std::string message;
-    char c = 0;
-    while (r.Get(c))
-    {
-      message += c;
-    }
-    return Status::Error(message.empty() ? "the polar coordinates failed" : message);
-  }
-  std::int32_t normal = 0, faces = 0;
-  r.Get(result.SourceAngleSum);
-  r.Get(normal);
-  r.Get(faces);
-  result.ReferenceNormal = normal != 0;
-  result.ChartFaces = faces;
-  const int nv = piece.Mesh().NumberOfVertices();
-  result.Rho.assign(static_cast<std::size_t>(nv), nan);
-  result.Theta.assign(static_cast<std::size_t>(nv), nan);
-  std::int64_t id = 0;
-  double rho = 0.0, theta = 0.0;
-  while (r.Get(id) && r.Get(rho) && r.Get(theta))
-  {
-    const int v = piece.Vertex(id);
-    if (v >= 0)
-    {
-      result.Rho[static_cast<std::size_t>(v)] = rho;
-      result.Theta[static_cast<std::size_t>(v)] = theta;
-    }
-  }
-  return Status();
+  return Unpack(incoming[static_cast<std::size_t>(chartRank)], piece, result);
 }
 
 } // namespace gs

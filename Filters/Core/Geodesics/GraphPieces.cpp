@@ -151,6 +151,8 @@ Status PieceGraph::Build(SurfacePiece& piece, const SaddleVertexGraphOptions& op
   const int k = SaddleVertexGraph::EffectiveK(options,
     static_cast<int>(std::min<std::int64_t>(piece.GlobalNumberOfVertices(),
       std::numeric_limits<int>::max())));
+  DiskSize = SaddleVertexGraph::LocalDiskSizeFor(
+    Construction, k, Accuracy, piece.GlobalNumberOfVertices());
   if (piece.Rings() < InitialRings(options, k))
   {
     if (const Status grown = piece.Grow(InitialRings(options, k) - piece.Rings(), comm);

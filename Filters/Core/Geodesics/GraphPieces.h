@@ -87,6 +87,8 @@ public:
   bool IsInterior(int i) const { return Interior[static_cast<std::size_t>(i)] != 0; }
   // The construction and accuracy the graph was built with.
   GraphConstruction GetConstruction() const { return Construction; }
+  // SaddleVertexGraph::LocalDiskSize of the serial graph on the whole surface.
+  int LocalDiskSize() const { return DiskSize; }
   double GetAccuracy() const { return Accuracy; }
   std::int64_t RemoteId(int r) const { return RemoteIds[static_cast<std::size_t>(r)]; }
   int RemoteOwner(int r) const { return RemoteOwners[static_cast<std::size_t>(r)]; }
@@ -157,10 +159,23 @@ private:
   std::vector<unsigned char> Interior;
   GraphConstruction Construction = GraphConstruction::SaddleVertex;
   double Accuracy = 0.0;
+  int DiskSize = 1;
   std::int64_t GlobalEntries = 0, Resolved = 0;
   int BandRings = 0;
   double Seconds = 0.0;
 };
+
+// Collective. The seeds SVGGeodesicSolver searches the graph from when its sources include
+// surface points: the exact distances (window propagation on the pieces) of the
+// graph.LocalDiskSize() x n vertices nearest to the sources (n: the vertex ids `sources`, the
+// same list on every process, and the surface points `points` of every process: each passes
+// those of its own faces), within maxDistance (> 0), and the corners of the points' faces at
+// their straight distance. Every process gets the whole list, as PieceDistanceSolver::Solve
+// takes it. Ties at the last vertex taken go to the smaller global id (the serial solve takes
+// the one its windows finalize first). Fails on every process as ComputeExactOnPieces does.
+Status GraphSeedsFromPoints(SurfacePiece& piece, const PieceGraph& graph,
+  const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points,
+  double maxDistance, PieceCommunicator& comm, std::vector<std::pair<std::int64_t, double>>& seeds);
 
 class PieceDistanceSolver
 {

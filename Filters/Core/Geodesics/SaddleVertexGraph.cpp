@@ -110,17 +110,24 @@ double SaddleVertexGraph::DiscreteGeodesicEpsilon(double accuracy)
 
 int SaddleVertexGraph::LocalDiskSize() const
 {
-  if (Construction == GraphConstruction::SaddleVertex)
+  return LocalDiskSizeFor(Construction, K, Accuracy, NumberOfVertices());
+}
+
+int SaddleVertexGraph::LocalDiskSizeFor(
+  GraphConstruction construction, int k, double accuracy, std::int64_t numberOfVertices)
+{
+  if (construction == GraphConstruction::SaddleVertex)
   {
-    return std::max(K, 1);
+    return std::max(k, 1);
   }
   // A path from the source leaves the exactly solved disk (radius r) through one of its vertices,
   // at most about half an edge (l / 2) off the geodesic: a detour of l^2 / (8 r) over a path at
   // least r long, within epsilon when r^2 >= l^2 / (8 epsilon), that is for about
   // pi r^2 / (0.87 l^2) = 0.45 / epsilon vertices.
-  const double epsilon = DGGEpsilonPerAccuracy * std::max(Accuracy, 1e-5);
+  const double epsilon = DGGEpsilonPerAccuracy * std::max(accuracy, 1e-5);
   const double wanted = std::ceil(0.45 / epsilon);
-  return static_cast<int>(std::min<double>(std::max(50.0, wanted), std::max(NumberOfVertices(), 1)));
+  return static_cast<int>(std::min<double>(
+    std::max(50.0, wanted), static_cast<double>(std::max<std::int64_t>(numberOfVertices, 1))));
 }
 
 std::size_t SaddleVertexGraph::MemoryBytes() const

@@ -96,6 +96,10 @@ public:
   // whose edge-sized gaps between seeds cost at most its epsilon (about 0.45 / epsilon
   // vertices, at least 50; see DiscreteGeodesicGraph.h for epsilon).
   int LocalDiskSize() const;
+  // The same for a graph of `construction` with K = k (clamped) or `accuracy` on a surface of
+  // `numberOfVertices` vertices.
+  static int LocalDiskSizeFor(
+    GraphConstruction construction, int k, double accuracy, std::int64_t numberOfVertices);
   // The epsilon of the discrete geodesic graph's propagation (DGGPropagation::Run) for the
   // accuracy asked for (see DiscreteGeodesicGraph.h).
   static double DiscreteGeodesicEpsilon(double accuracy);

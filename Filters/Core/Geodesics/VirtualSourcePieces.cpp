@@ -22,26 +22,6 @@ enum ItemTag : std::uint8_t
   VertexItem = 2
 };
 
-// Collective. The sum of `value` over the processes, added in rank order (the same on every
-// process).
-double SumInRankOrder(PieceCommunicator& comm, double value)
-{
-  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.Size())), in;
-  for (ByteBuffer& b : out)
-  {
-    ByteWriter(b).Put(value);
-  }
-  comm.Exchange(out, in);
-  double sum = 0.0;
-  for (int q = 0; q < comm.Size(); ++q)
-  {
-    double v = 0.0;
-    ByteReader(q == comm.Rank() ? out[static_cast<std::size_t>(q)] : in[static_cast<std::size_t>(q)])
-      .Get(v);
-    sum += v;
-  }
-  return sum;
-}
 } // namespace
 
 // Drives a VirtualSourceSolver on one piece (a friend of the solver): processes its queue and
@@ -444,7 +424,7 @@ Status ComputeVirtualSourcesOnPieces(SurfacePiece& piece, const std::vector<std:
     }
   }
   const std::int64_t faces = comm.Sum(own);
-  const double mean = faces > 0 ? SumInRankOrder(comm, sum) / (3.0 * static_cast<double>(faces)) : 0.0;
+  const double mean = faces > 0 ? SumOverProcesses(comm, sum) / (3.0 * static_cast<double>(faces)) : 0.0;
   const double longest = comm.Max(mesh.LongestEdgeLength());
   VirtualSourcePieceSolve solve(piece, comm, mean);
   return solve.Run(sources, points, maxDistance, longest, progress, result);
