@@ -102,15 +102,16 @@ int vtkGeodesicPolarCoordinates::FillInputPortInformation(int port, vtkInformati
 int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI, the exact chart about SourceVertexId or a point of the Source input (geodesic
-  // direction, a finite radius) is computed on the pieces when they hold triangles only (the
+  // Under MPI, the exact chart about SourceVertexId or a point of the Source input (a finite
+  // radius, either angle mode) is computed on the pieces when they hold triangles only (the
   // same decision on every process: it depends on properties, on the Source input's cells and
   // on CanUse, which is collective); everything else gathers.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (distributed && input && output && this->Solver == EXACT &&
-    this->AngleMode == GEODESIC_DIRECTION && std::isfinite(this->Radius))
+    (this->AngleMode == GEODESIC_DIRECTION || this->AngleMode == ISO_CURVE_ARC_LENGTH) &&
+    std::isfinite(this->Radius))
   {
     const bool sourcePort = inputVector[1]->GetNumberOfInformationObjects() > 0;
     std::vector<double> xyz;
@@ -156,7 +157,7 @@ int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* 
   // (CheckParameters: the same outcome on every process.)
   if (!this->CheckParameters() || !this->Pieces->UsePiece(this, own, input->GetMTime()) ||
     !this->Pieces->Polar(this, own, this->SourceVertexId, points, this->Radius,
-      this->ReferenceDirection, rho, theta, chart))
+      this->ReferenceDirection, this->AngleMode == ISO_CURVE_ARC_LENGTH, rho, theta, chart))
   {
     return 1;
   }
@@ -164,6 +165,7 @@ int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* 
   {
     this->WarnReferenceNormal();
   }
+  this->WarnIsoCurveKept(chart.IsoCurveKept);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const vtkIdType n = static_cast<vtkIdType>(rho.size());
   vtkNew<vtkDoubleArray> rhoArray, thetaArray, decal;
@@ -464,15 +466,21 @@ bool vtkGeodesicPolarCoordinates::Solve(Cache& cache, Run& run)
       vtkErrorMacro("Iso-curve angles: " << kept.Message() << ".");
       return false;
     }
-    if (*kept > 0)
-    {
-      vtkWarningMacro(<< *kept
-                      << " point(s) whose iso-distance curve is not a closed loop round the source "
-                         "(it meets the mesh boundary or misses the reference geodesic) keep the "
-                         "geodesic-direction angle.");
-    }
+    this->WarnIsoCurveKept(*kept);
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkGeodesicPolarCoordinates::WarnIsoCurveKept(int kept)
+{
+  if (kept > 0)
+  {
+    vtkWarningMacro(<< kept
+                    << " point(s) whose iso-distance curve is not a closed loop round the source "
+                       "(it meets the mesh boundary or misses the reference geodesic) keep the "
+                       "geodesic-direction angle.");
+  }
 }
 
 //------------------------------------------------------------------------------

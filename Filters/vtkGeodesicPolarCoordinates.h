@@ -191,6 +191,8 @@ protected:
     const std::vector<double>* sourceXyz);
   // The warning that ReferenceDirection is normal to the surface at the source.
   void WarnReferenceNormal();
+  // The warning that `kept` points keep the geodesic-direction angle (iso-curve angles).
+  void WarnIsoCurveKept(int kept);
   // The output: `surface` (shallow) with the coordinates' arrays (rho the active scalars, the
   // decal coordinates the texture coordinates).
   static void SetOutputArrays(vtkPolyData* output, vtkPolyData* surface, vtkDoubleArray* rho,

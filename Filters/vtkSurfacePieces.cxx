@@ -351,7 +351,8 @@ bool vtkSurfacePieces::UseGraph(vtkAlgorithm* self, vtkPolyData* ownCells, vtkMT
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdType source,
   const std::vector<gs::Vec3>& points, double radius, const double referenceDirection[3],
-  std::vector<double>& rho, std::vector<double>& theta, gs::PiecePolarCoordinates& chart)
+  bool isoCurveAngles, std::vector<double>& rho, std::vector<double>& theta,
+  gs::PiecePolarCoordinates& chart)
 {
   const gs::Vec3 reference(referenceDirection[0], referenceDirection[1], referenceDirection[2]);
   std::vector<gs::SurfacePoint> mine;
@@ -362,9 +363,9 @@ bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdTyp
   if (!Reported(self, "Geodesic polar coordinates about the source point: ",
         points.empty()
           ? gs::ComputePolarOnPieces(this->SurfacePieceState, this->SurfaceIds({ source })[0],
-              radius, reference, *Comm, chart)
+              radius, reference, *Comm, chart, isoCurveAngles)
           : gs::ComputePolarOnPieces(this->SurfacePieceState, mine.empty() ? nullptr : &mine[0],
-              radius, reference, *Comm, chart)))
+              radius, reference, *Comm, chart, isoCurveAngles)))
   {
     this->HasPiece = this->HasGraph = false; // (its band may have failed to grow)
     return false;

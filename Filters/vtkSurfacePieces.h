@@ -98,9 +98,11 @@ public:
   // first edge), at every point of that piece (NaN outside the chart); `chart` says what the
   // chart's process found (angle sum, a reference direction normal to the surface, its faces).
   // False (error on `self`) on every process when it fails.
+  // With `isoCurveAngles`, theta is the iso-curve arc-length angle.
   bool Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdType source,
     const std::vector<gs::Vec3>& points, double radius, const double referenceDirection[3],
-    std::vector<double>& rho, std::vector<double>& theta, gs::PiecePolarCoordinates& chart);
+    bool isoCurveAngles, std::vector<double>& rho, std::vector<double>& theta,
+    gs::PiecePolarCoordinates& chart);
 
   const gs::SurfacePiece& Piece() const { return SurfacePieceState; }
   // Rounds of exchanges the last Distances took: the graph search's and the refinement's.

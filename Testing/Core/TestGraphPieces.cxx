@@ -331,15 +331,18 @@ TEST(GraphPieces, BuildRefusedBeyondTheAvailableMemoryEverywhere)
 namespace
 {
 // Polar coordinates about `at` (a vertex, by its id, or a face point, passed by the process of
-// its face) on pieces against GeodesicPolarCoordinates on the whole mesh: the same bits.
+// its face) on pieces against GeodesicPolarCoordinates on the whole mesh (with iso-curve angles
+// when `iso`): the same bits.
 void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
-  const SurfacePoint& at, double radius, const Vec3& reference)
+  const SurfacePoint& at, double radius, const Vec3& reference, bool iso = false)
 {
   GeodesicPolarCoordinates serial(mesh);
   const double angle = reference.x == 0.0 && reference.y == 0.0 && reference.z == 0.0
     ? 0.0
     : TangentAngle(mesh, at, reference);
   ASSERT_TRUE(gs_test::Succeeded(serial.Compute(at, radius, angle)));
+  const int kept = iso ? *serial.UseIsoCurveAngles() : 0;
+  std::vector<int> keptOnPieces(static_cast<std::size_t>(processes), -1);
   std::vector<std::map<std::int64_t, std::pair<double, double>>> got(
     static_cast<std::size_t>(processes));
   std::vector<std::string> errors(static_cast<std::size_t>(processes));
@@ -352,14 +355,14 @@ void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
     Status s = piece.Build(gs_test::PieceOf(mesh, part, rank), 0, comm);
     if (s.Ok() && at.IsVertex())
     {
-      s = ComputePolarOnPieces(piece, at.Vertex, radius, reference, comm, polar);
+      s = ComputePolarOnPieces(piece, at.Vertex, radius, reference, comm, polar, iso);
     }
     else if (s.Ok())
     {
       const std::array<int, 3>& c = mesh.Face(at.Face);
       const SurfacePoint mine = piece.LocalPoint(at.Face, { { c[0], c[1], c[2] } }, at.Bary);
       s = ComputePolarOnPieces(piece, part[static_cast<std::size_t>(at.Face)] == rank ? &mine : nullptr,
-        radius, reference, comm, polar);
+        radius, reference, comm, polar, iso);
     }
     errors[static_cast<std::size_t>(rank)] = s.Message();
     if (!s.Ok())
@@ -367,6 +370,7 @@ void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
       return;
     }
     sums[static_cast<std::size_t>(rank)] = polar.SourceAngleSum;
+    keptOnPieces[static_cast<std::size_t>(rank)] = polar.IsoCurveKept;
     held[static_cast<std::size_t>(rank)] = polar.ChartFaces;
     for (int v = 0; v < piece.Mesh().NumberOfVertices(); ++v)
     {
@@ -379,6 +383,7 @@ void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
   {
     ASSERT_EQ(errors[static_cast<std::size_t>(r)], "");
     EXPECT_EQ(sums[static_cast<std::size_t>(r)], serial.SourceAngleSum());
+    EXPECT_EQ(keptOnPieces[static_cast<std::size_t>(r)], kept);
     for (const auto& [id, value] : got[static_cast<std::size_t>(r)])
     {
       const double rho = serial.Rho(static_cast<int>(id)), theta = serial.Theta(static_cast<int>(id));
@@ -417,6 +422,12 @@ TEST(GraphPieces, PolarCoordinatesSpanPieces)
   }
   ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
     SurfacePoint::InFace(300, 0.0, 0.4, 0.6), 0.5, Vec3(1, 0, 0));
+  // Iso-curve angles: the band also holds what they read beyond the chart (the loops' distances
+  // a few edges further, the reference geodesic), in the whole surface's mean edges.
+  ExpectPolarAsSerial(sphere, slabs, 3, SurfacePoint::AtVertex(5), 0.6, Vec3(0, 0, 0), true);
+  ExpectPolarAsSerial(sphere, slabs, 3, SurfacePoint::InFace(900, 0.2, 0.5, 0.3), 0.8, Vec3(0, 0, 1), true);
+  ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
+    SurfacePoint::AtVertex(260), 0.5, Vec3(1, 1, 0), true);
 }
 
 namespace

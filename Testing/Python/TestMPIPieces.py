@@ -15,8 +15,8 @@ from two vertices and from two points of the Sources port (snapped on the pieces
 sources (propagation on the pieces) from two vertices and from two points (one on an edge of the
 plane): as the serial run's to rounding on the plane, within 2% of the largest distance
 on the bumpy sphere (VIRTUAL_SOURCES_TOLERANCE); and Geodesic Polar Coordinates about a vertex
-(exact, radius 0.7, a reference direction) and about a point of the Source input: rho and
-theta as the serial run's.
+(exact, radius 0.7, a reference direction), about a point of the Source input, and with
+iso-curve angles: rho and theta as the serial run's.
 
 Bad sources (a point far from the surface, a vertex id of no point) give an error and an empty
 output on every process, and the filter works again once mended.
@@ -77,6 +77,9 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
          ["GeodesicDistance", "PolarAngle"]),
         ("polar-point", "GeodesicPolarCoordinates",
          dict(SourcePoints=[0.05, 0.1, 0.6], Radius=0.7, ReferenceDirection=[1.0, 0.0, 0.0]),
+         ["GeodesicDistance", "PolarAngle"]),
+        ("polar-iso", "GeodesicPolarCoordinates",
+         dict(SourceVertexId=11, Radius=0.6, AngleMode="Iso-curve arc length"),
          ["GeodesicDistance", "PolarAngle"])]
 
 

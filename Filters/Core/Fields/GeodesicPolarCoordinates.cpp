@@ -12,9 +12,10 @@
 namespace gs
 {
 
-GeodesicPolarCoordinates::GeodesicPolarCoordinates(
-  const TriangleMesh& mesh, const SaddleVertexGraph* graph, double lengthScale)
+GeodesicPolarCoordinates::GeodesicPolarCoordinates(const TriangleMesh& mesh,
+  const SaddleVertexGraph* graph, double lengthScale, double meanEdgeLength)
   : Mesh(mesh)
+  , MeanEdge(meanEdgeLength > 0.0 ? meanEdgeLength : mesh.MeanEdgeLength())
   , Solver(mesh, lengthScale)
   , WholeSurface(lengthScale == 0.0)
 {

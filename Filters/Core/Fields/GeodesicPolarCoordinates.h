@@ -23,6 +23,7 @@
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -110,9 +111,17 @@ public:
   // The mesh (and graph) must outlive this object. Without a graph: the exact engine. A graph
   // built for another mesh (another number of vertices) makes Compute and ComputeCurve fail.
   // `lengthScale`: the exact engine's tolerance scale (ExactGeodesicSolver; 0: the mesh's
-  // bounding box diagonal; a piece of a partitioned surface passes the whole surface's).
-  explicit GeodesicPolarCoordinates(
-    const TriangleMesh& mesh, const SaddleVertexGraph* graph = nullptr, double lengthScale = 0.0);
+  // bounding box diagonal; a piece of a partitioned surface passes the whole surface's), and
+  // `meanEdgeLength` the length iso-curve angles measure their margins in (0: the mesh's mean
+  // edge length; a piece passes the whole surface's).
+  explicit GeodesicPolarCoordinates(const TriangleMesh& mesh,
+    const SaddleVertexGraph* graph = nullptr, double lengthScale = 0.0, double meanEdgeLength = 0.0);
+  // How far beyond a chart of `radius` UseIsoCurveAngles reads the surface: its further exact
+  // solve and its reference geodesic, with the mean edge length `meanEdge`.
+  static double IsoCurveReach(double radius, double meanEdge)
+  {
+    return std::max(radius + 3.0 * meanEdge, 1.01 * radius + meanEdge);
+  }
 
   // Coordinates about `source` of every vertex closer than `radius` (> 0; infinity: the whole
   // reachable surface). `referenceAngle` is theta's zero, as a tangent angle at the source (see
@@ -226,6 +235,7 @@ private:
     double& toReference, double& length) const;
 
   const TriangleMesh& Mesh;
+  double MeanEdge = 0.0; // (see the constructor)
   ExactGeodesicSolver Solver;
   std::unique_ptr<GeodesicEngine> GraphEngine; // point sources on the graph (null: exact)
   // Without a graph, charts reaching far over a large whole surface (not a piece of one): the

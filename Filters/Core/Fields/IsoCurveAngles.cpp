@@ -120,10 +120,10 @@ Result<int> GeodesicPolarCoordinates::UseIsoCurveAngles()
   {
     radius = std::max(radius, VertexRho[v]);
   }
-  const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, radius * 1.01 + Mesh.MeanEdgeLength());
+  const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, radius * 1.01 + MeanEdge);
   // (A chart the exact engine solved in parts goes a few edges further the same way.)
   BeyondInParts = Engine && Engine == WideExact.get();
-  const double beyond = radius + 3.0 * Mesh.MeanEdgeLength();
+  const double beyond = radius + 3.0 * MeanEdge;
   if (BeyondInParts)
   {
     GeodesicSources sources;
@@ -181,7 +181,7 @@ SurfacePoint GeodesicPolarCoordinates::InverseIsoCurve(double c, double theta) c
     return p;
   };
   // 1. Where the reference geodesic reaches the level.
-  const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, c * 1.01 + Mesh.MeanEdgeLength());
+  const GeodesicShot ray = ShootGeodesic(Mesh, Source, Reference, c * 1.01 + MeanEdge);
   int f0 = -1;
   Vec3 start;
   for (const CurvePiece& piece : ray.Pieces)

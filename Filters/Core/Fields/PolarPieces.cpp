@@ -36,6 +36,7 @@ ByteBuffer Pack(const Status& status, const PiecePolarCoordinates& result,
   w.Put(result.SourceAngleSum);
   w.Put(static_cast<std::int32_t>(result.ReferenceNormal ? 1 : 0));
   w.Put(static_cast<std::int32_t>(result.ChartFaces));
+  w.Put(static_cast<std::int32_t>(result.IsoCurveKept));
   for (const int v : polar->Inside())
   {
     w.Put(piece.GlobalId(v));
@@ -47,7 +48,8 @@ ByteBuffer Pack(const Status& status, const PiecePolarCoordinates& result,
 } // namespace
 
 Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double radius,
-  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result)
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result,
+  bool isoCurveAngles)
 {
   const int local = piece.Vertex(source);
   const bool mine = local >= 0 && piece.IsOwned(local);
@@ -57,7 +59,8 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
     return Status::Error("vertex " + std::to_string(source) + " is not a point of the surface");
   }
   const SurfacePoint at = SurfacePoint::AtVertex(local);
-  return ComputePolarOnPieces(piece, mine ? &at : nullptr, radius, referenceDirection, comm, result);
+  return ComputePolarOnPieces(
+    piece, mine ? &at : nullptr, radius, referenceDirection, comm, result, isoCurveAngles);
 }
 
 namespace
@@ -139,12 +142,14 @@ Status Unpack(const ByteBuffer& bytes, const SurfacePiece& piece, PiecePolarCoor
     }
     return Status::Error(message.empty() ? "the polar coordinates failed" : message);
   }
-  std::int32_t normal = 0, faces = 0;
+  std::int32_t normal = 0, faces = 0, kept = 0;
   r.Get(result.SourceAngleSum);
   r.Get(normal);
   r.Get(faces);
+  r.Get(kept);
   result.ReferenceNormal = normal != 0;
   result.ChartFaces = faces;
+  result.IsoCurveKept = kept;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const int nv = piece.Mesh().NumberOfVertices();
   result.Rho.assign(static_cast<std::size_t>(nv), nan);
@@ -165,7 +170,8 @@ Status Unpack(const ByteBuffer& bytes, const SurfacePiece& piece, PiecePolarCoor
 } // namespace
 
 Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, double radius,
-  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result)
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result,
+  bool isoCurveAngles)
 {
   result = PiecePolarCoordinates();
   const bool mine = point != nullptr;
@@ -179,7 +185,11 @@ Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, doub
   }
   const int chartRank = static_cast<int>(comm.Max(mine ? comm.Rank() : -1.0));
   SurfacePoint at = mine ? ExactGeodesicSolver::SourcePoint(piece.Mesh(), *point) : SurfacePoint();
-  if (const Status grown = GrowToChart(piece, mine ? &at : nullptr, radius, comm); !grown.Ok())
+  // Iso-curve angles read the surface a few edges beyond the chart (of the whole surface's).
+  const double meanEdge = isoCurveAngles ? piece.MeanEdgeLength(comm) : 0.0;
+  const double reach =
+    isoCurveAngles ? GeodesicPolarCoordinates::IsoCurveReach(radius, meanEdge) : radius;
+  if (const Status grown = GrowToChart(piece, mine ? &at : nullptr, reach, comm); !grown.Ok())
   {
     return grown;
   }
@@ -197,8 +207,14 @@ Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, doub
       result.ReferenceNormal = !std::isfinite(angle);
       reference = std::isfinite(angle) ? angle : 0.0;
     }
-    GeodesicPolarCoordinates polar(mesh, nullptr, piece.LengthScale());
-    const Status computed = polar.Compute(at, radius, reference);
+    GeodesicPolarCoordinates polar(mesh, nullptr, piece.LengthScale(), meanEdge);
+    Status computed = polar.Compute(at, radius, reference);
+    if (computed.Ok() && isoCurveAngles)
+    {
+      const Result<int> kept = polar.UseIsoCurveAngles();
+      computed = kept.Ok() ? Status() : Status::Error("iso-curve angles: " + kept.Message());
+      result.IsoCurveKept = kept.Ok() ? *kept : 0;
+    }
     result.SourceAngleSum = polar.SourceAngleSum();
     result.ChartFaces = mesh.NumberOfFaces();
     const ByteBuffer packed = Pack(computed, result, &polar, piece);

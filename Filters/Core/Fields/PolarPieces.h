@@ -30,20 +30,27 @@ struct PiecePolarCoordinates
   bool ReferenceNormal = false;
   // Faces of the chart's process's piece once its band covered the chart.
   int ChartFaces = 0;
+  // With iso-curve angles: the vertices that kept their geodesic-direction angle
+  // (GeodesicPolarCoordinates::UseIsoCurveAngles).
+  int IsoCurveKept = 0;
 };
 
 // Collective. Coordinates about the vertex of global id `source` within `radius` (finite, > 0),
 // theta's zero the tangent projection of `referenceDirection` at the source (all zero: the
 // source's first edge). Fails on every process when the id is no vertex of the surface or the
 // coordinates cannot be computed (the message of the process that computed them).
+// With `isoCurveAngles`, theta is the iso-curve arc-length angle (UseIsoCurveAngles; the band
+// then covers what it reads beyond the chart, GeodesicPolarCoordinates::IsoCurveReach).
 Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double radius,
-  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result);
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result,
+  bool isoCurveAngles = false);
 
 // Collective. The same about a surface point: `point` is this process's (a point of one of its
 // own faces, or a vertex it owns, in its piece's mesh; a face point at a corner is that
 // vertex), null on every other process. Fails on every process unless exactly one process
 // passes one.
 Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, double radius,
-  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result);
+  const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result,
+  bool isoCurveAngles = false);
 
 } // namespace gs

@@ -412,20 +412,8 @@ Status ComputeVirtualSourcesOnPieces(SurfacePiece& piece, const std::vector<std:
   }
   // The whole surface's mean edge length (the serial solve's buckets and tolerance) and longest
   // edge (its horizon).
-  const TriangleMesh& mesh = piece.Mesh();
-  double sum = 0.0;
-  std::int64_t own = 0;
-  for (int f = 0; f < mesh.NumberOfFaces(); ++f)
-  {
-    if (piece.IsOwnFace(f))
-    {
-      sum += mesh.EdgeLength(3 * f) + mesh.EdgeLength(3 * f + 1) + mesh.EdgeLength(3 * f + 2);
-      ++own;
-    }
-  }
-  const std::int64_t faces = comm.Sum(own);
-  const double mean = faces > 0 ? SumOverProcesses(comm, sum) / (3.0 * static_cast<double>(faces)) : 0.0;
-  const double longest = comm.Max(mesh.LongestEdgeLength());
+  const double mean = piece.MeanEdgeLength(comm);
+  const double longest = comm.Max(piece.Mesh().LongestEdgeLength());
   VirtualSourcePieceSolve solve(piece, comm, mean);
   return solve.Run(sources, points, maxDistance, longest, progress, result);
 }

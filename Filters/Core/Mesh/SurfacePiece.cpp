@@ -745,6 +745,23 @@ Status SurfacePiece::OwnSources(const std::vector<std::int64_t>& sources,
   return Status();
 }
 
+double SurfacePiece::MeanEdgeLength(PieceCommunicator& comm) const
+{
+  double sum = 0.0;
+  std::int64_t own = 0;
+  for (int f = 0; f < Local.NumberOfFaces(); ++f)
+  {
+    if (IsOwnFace(f))
+    {
+      sum += Local.EdgeLength(3 * f) + Local.EdgeLength(3 * f + 1) + Local.EdgeLength(3 * f + 2);
+      ++own;
+    }
+  }
+  const std::int64_t faces = comm.Sum(own);
+  const double total = SumOverProcesses(comm, sum);
+  return faces > 0 ? total / (3.0 * static_cast<double>(faces)) : 0.0;
+}
+
 void SurfacePiece::ValuesFromOwners(std::vector<double>& perVertex, PieceCommunicator& comm) const
 {
   const int nv = Local.NumberOfVertices();

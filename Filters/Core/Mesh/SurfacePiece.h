@@ -105,6 +105,9 @@ public:
   std::int64_t IdOfRank(std::int64_t index, PieceCommunicator& comm) const;
   // The whole surface's bounding box diagonal (the scale of the solvers' tolerances).
   double LengthScale() const { return Diagonal; }
+  // Collective. The whole surface's mean edge length (over every face's three edges, as
+  // TriangleMesh::MeanEdgeLength; added in rank order, the same on every process).
+  double MeanEdgeLength(PieceCommunicator& comm) const;
   // Vertices owned by this process, and over all processes.
   std::int64_t NumberOfOwnedVertices() const { return OwnedCount; }
   std::int64_t GlobalNumberOfVertices() const { return GlobalVertexCount; }
