@@ -45,7 +45,15 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh, double bucket
     r.Entry = r.Except = -1;
     r.Epoch = 0;
   }
-  Dist.assign(Surface.NumberOfVertices(), Inf);
+  const int nv = Surface.NumberOfVertices();
+  FanStart.assign(static_cast<std::size_t>(nv) + 1, 0);
+  FanHalfedges.reserve(3 * static_cast<std::size_t>(nf));
+  for (int v = 0; v < nv; ++v)
+  {
+    Surface.ForEachOutgoingHalfedge(v, [this](int h) { FanHalfedges.push_back(h); });
+    FanStart[static_cast<std::size_t>(v) + 1] = static_cast<int>(FanHalfedges.size());
+  }
+  Dist.assign(static_cast<std::size_t>(nv), Inf);
   BucketWidth = std::max(bucketWidth > 0.0 ? bucketWidth : Surface.MeanEdgeLength(), 1e-300);
 }
 
@@ -101,7 +109,8 @@ void VirtualSourceSolver::Prefetch(const std::vector<QueueItem>& bucket, std::si
 {
   // The solve waits on memory: each crossing enters a record far from the last. Two stages
   // ahead of the item being processed: the face of the item Lead2 ahead, then the neighbours of
-  // the one Lead1 ahead (whose record the first stage brought in).
+  // the one Lead1 ahead (whose record the first stage brought in); for a vertex item, its fan's
+  // list, then its fan's records.
   constexpr std::size_t Lead1 = 6, Lead2 = 12;
   auto fetch = [](const FaceRecord& r) {
     __builtin_prefetch(&r);
@@ -113,6 +122,10 @@ void VirtualSourceSolver::Prefetch(const std::vector<QueueItem>& bucket, std::si
     if (id >= 0)
     {
       fetch(Faces[id]);
+    }
+    else
+    {
+      __builtin_prefetch(FanHalfedges.data() + FanStart[static_cast<std::size_t>(-1 - id)]);
     }
   }
   if (i + Lead1 < bucket.size())
@@ -126,6 +139,14 @@ void VirtualSourceSolver::Prefetch(const std::vector<QueueItem>& bucket, std::si
         {
           fetch(Faces[TriangleMesh::FaceOf(t)]);
         }
+      }
+    }
+    else
+    {
+      const std::size_t v = static_cast<std::size_t>(-1 - id);
+      for (int k = FanStart[v]; k < FanStart[v + 1]; ++k)
+      {
+        fetch(Faces[TriangleMesh::FaceOf(FanHalfedges[static_cast<std::size_t>(k)])]);
       }
     }
   }
@@ -191,7 +212,9 @@ void VirtualSourceSolver::SeedAround(int v, double sigma, bool source)
   // from VertexHalfedge); behind a bend, v's own.
   const double behind = TrackAngles && !source ? VertexAngles[v].Value() : 0.0;
   double fan = 0.0;
-  Surface.ForEachOutgoingHalfedge(v, [&](int h) {
+  for (int i = FanStart[static_cast<std::size_t>(v)]; i < FanStart[static_cast<std::size_t>(v) + 1]; ++i)
+  {
+    const int h = FanHalfedges[static_cast<std::size_t>(i)];
     const int f = TriangleMesh::FaceOf(h);
     FaceRecord& r = Faces[f];
     const int k = h % 3;
@@ -212,7 +235,7 @@ void VirtualSourceSolver::SeedAround(int v, double sigma, bool source)
         FaceAngles[f] = source ? FaceAngle{ p0, e.Ux, e.Uy } : FaceAngle{ behind, Nan, Nan };
       }
     }
-  });
+  }
 }
 
 namespace

@@ -244,6 +244,10 @@ private:
   const TriangleMesh& Surface;
   // Not value-initialized: the parallel setup touches each page first (no serial zeroing pass).
   std::unique_ptr<FaceRecord[]> Faces;
+  // Each vertex's outgoing half-edges counter-clockwise (ForEachOutgoingHalfedge's order), the
+  // fans one after another: a bend's seeding reads its fan's records without walking the mesh
+  // from one to the next, and the queue fetches them ahead (Prefetch).
+  std::vector<int> FanStart, FanHalfedges;
   unsigned int Epoch = 0;
   std::vector<double> Dist;
   bool TrackAngles = false; // this solve keeps departure angles
