@@ -102,16 +102,16 @@ int vtkGeodesicPolarCoordinates::FillInputPortInformation(int port, vtkInformati
 int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI, the exact chart about SourceVertexId or a point of the Source input (a finite
-  // radius, either angle mode) is computed on the pieces when they hold triangles only (the
+  // Under MPI, the exact chart about SourceVertexId or a point of the Source input (either angle
+  // mode; iso-curve angles within a finite radius) is computed on the pieces when they hold triangles only (the
   // same decision on every process: it depends on properties, on the Source input's cells and
   // on CanUse, which is collective); everything else gathers.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (distributed && input && output && this->Solver == EXACT &&
-    (this->AngleMode == GEODESIC_DIRECTION || this->AngleMode == ISO_CURVE_ARC_LENGTH) &&
-    std::isfinite(this->Radius))
+    (this->AngleMode == GEODESIC_DIRECTION ||
+      (this->AngleMode == ISO_CURVE_ARC_LENGTH && std::isfinite(this->Radius))))
   {
     const bool sourcePort = inputVector[1]->GetNumberOfInformationObjects() > 0;
     std::vector<double> xyz;

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <string>
@@ -332,7 +333,8 @@ namespace
 {
 // Polar coordinates about `at` (a vertex, by its id, or a face point, passed by the process of
 // its face) on pieces against GeodesicPolarCoordinates on the whole mesh (with iso-curve angles
-// when `iso`): the same bits.
+// when `iso`): the same bits; over the whole surface (an infinite radius: the exact solve on the
+// pieces) rho within 1e-12 of the largest and theta within 1e-9 modulo a turn.
 void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part, int processes,
   const SurfacePoint& at, double radius, const Vec3& reference, bool iso = false)
 {
@@ -372,10 +374,22 @@ void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
     sums[static_cast<std::size_t>(rank)] = polar.SourceAngleSum;
     keptOnPieces[static_cast<std::size_t>(rank)] = polar.IsoCurveKept;
     held[static_cast<std::size_t>(rank)] = polar.ChartFaces;
+    // (A whole chart is given at the vertices of the process's own faces.)
+    std::vector<unsigned char> corner(static_cast<std::size_t>(piece.Mesh().NumberOfVertices()), 0);
+    for (int f = 0; f < piece.Mesh().NumberOfFaces(); ++f)
+    {
+      for (const int v : piece.Mesh().Face(f))
+      {
+        corner[static_cast<std::size_t>(v)] |= piece.IsOwnFace(f) ? 1 : 0;
+      }
+    }
     for (int v = 0; v < piece.Mesh().NumberOfVertices(); ++v)
     {
-      got[static_cast<std::size_t>(rank)][piece.GlobalId(v)] = { polar.Rho[static_cast<std::size_t>(v)],
-        polar.Theta[static_cast<std::size_t>(v)] };
+      if (std::isfinite(radius) || corner[static_cast<std::size_t>(v)])
+      {
+        got[static_cast<std::size_t>(rank)][piece.GlobalId(v)] = {
+          polar.Rho[static_cast<std::size_t>(v)], polar.Theta[static_cast<std::size_t>(v)] };
+      }
     }
   });
   int inside = 0;
@@ -387,8 +401,13 @@ void ExpectPolarAsSerial(const TriangleMesh& mesh, const std::vector<int>& part,
     for (const auto& [id, value] : got[static_cast<std::size_t>(r)])
     {
       const double rho = serial.Rho(static_cast<int>(id)), theta = serial.Theta(static_cast<int>(id));
-      const bool same = (value.first == rho || (std::isnan(rho) && std::isnan(value.first))) &&
-        (value.second == theta || (std::isnan(theta) && std::isnan(value.second)));
+      const bool whole = !std::isfinite(radius);
+      const bool same = whole
+        ? std::isnan(rho) == std::isnan(value.first) && std::isnan(theta) == std::isnan(value.second) &&
+          (std::isnan(rho) || (std::abs(rho - value.first) <= 1e-12 * 10.0 &&
+                                std::abs(std::remainder(theta - value.second, 2.0 * M_PI)) <= 1e-9))
+        : (value.first == rho || (std::isnan(rho) && std::isnan(value.first))) &&
+          (value.second == theta || (std::isnan(theta) && std::isnan(value.second)));
       EXPECT_TRUE(same) << "vertex " << id << " on process " << r << ": (" << value.first << ", "
                         << value.second << "), serial (" << rho << ", " << theta << ")";
       inside += r == 0 && !std::isnan(rho) ? 1 : 0;
@@ -428,6 +447,13 @@ TEST(GraphPieces, PolarCoordinatesSpanPieces)
   ExpectPolarAsSerial(sphere, slabs, 3, SurfacePoint::InFace(900, 0.2, 0.5, 0.3), 0.8, Vec3(0, 0, 1), true);
   ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
     SurfacePoint::AtVertex(260), 0.5, Vec3(1, 1, 0), true);
+  // The whole surface: the exact distances and departure angles on the pieces.
+  const double whole = std::numeric_limits<double>::infinity();
+  ExpectPolarAsSerial(sphere, slabs, 3, SurfacePoint::AtVertex(5), whole, Vec3(0, 0, 0));
+  ExpectPolarAsSerial(sphere, gs_test::PartitionFaces(sphere, 2, Vec3(0.2, 1, 0.5), 5), 2,
+    SurfacePoint::InFace(900, 0.2, 0.5, 0.3), whole, Vec3(0, 0, 1));
+  ExpectPolarAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
+    SurfacePoint::AtVertex(260), whole, Vec3(1, 1, 0));
 }
 
 namespace

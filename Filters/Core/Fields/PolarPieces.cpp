@@ -1,7 +1,8 @@
 #include "PolarPieces.h"
 
 #include "ExactGeodesic.h"
-#include "GeodesicPolarCoordinates.h"
+#include "ExactPieces.h"
+#include "GeodesicPolarCoordinatesImpl.h"
 #include "GeodesicShooting.h"
 
 #include <algorithm>
@@ -167,6 +168,75 @@ Status Unpack(const ByteBuffer& bytes, const SurfacePiece& piece, PiecePolarCoor
   }
   return Status();
 }
+// Collective. The chart over the whole surface (an infinite radius): the exact distances and
+// departure angles on the pieces (ComputeExactOnPieces, the source's process measuring the
+// angles in its mesh's frame), theta from them as GeodesicPolarCoordinates makes it, the source's
+// turn and the reference angle sent by the process of `at` (null elsewhere).
+Status WholeChart(SurfacePiece& piece, const SurfacePoint* at, const Vec3& referenceDirection,
+  PieceCommunicator& comm, PiecePolarCoordinates& result)
+{
+  // Two rings before the point is named in the piece's mesh (ComputeExactOnPieces).
+  const std::unique_ptr<GlobalPoint> named = at ? std::make_unique<GlobalPoint>(piece, *at) : nullptr;
+  if (const Status grown = piece.GrowTo(1, 0, comm); !grown.Ok())
+  {
+    return grown;
+  }
+  std::vector<SurfacePoint> mine;
+  double turn = -1.0, reference = -std::numeric_limits<double>::infinity(), normal = 0.0;
+  if (named)
+  {
+    mine.push_back(named->In(piece));
+    const SurfacePoint& p = mine.front();
+    turn = p.IsVertex() ? piece.Mesh().TotalAngle(p.Vertex) : TwoPi;
+    reference = 0.0;
+    const Vec3& d = referenceDirection;
+    if (!(d.x == 0.0 && d.y == 0.0 && d.z == 0.0))
+    {
+      const double angle = TangentAngle(piece.Mesh(), p, d);
+      normal = std::isfinite(angle) ? 0.0 : 1.0;
+      reference = std::isfinite(angle) ? angle : 0.0;
+    }
+  }
+  turn = comm.Max(turn);
+  reference = comm.Max(reference);
+  result.ReferenceNormal = comm.Max(normal) > 0.0;
+  result.SourceAngleSum = turn;
+  result.ChartFaces = static_cast<int>(comm.Max(named ? piece.Mesh().NumberOfFaces() : 0.0));
+  ExactPiecesResult exact;
+  if (const Status solved = ComputeExactOnPieces(piece, {}, 0.0, comm, exact, nullptr, mine);
+      !solved.Ok())
+  {
+    return solved;
+  }
+  const TriangleMesh& mesh = piece.Mesh();
+  const int nv = mesh.NumberOfVertices();
+  result.Rho.assign(static_cast<std::size_t>(nv), NaN);
+  result.Theta.assign(static_cast<std::size_t>(nv), NaN);
+  std::int64_t lost = 0;
+  for (int v = 0; v < nv; ++v)
+  {
+    const double rho = exact.Distance[static_cast<std::size_t>(v)];
+    if (!piece.IsOwned(v) || !std::isfinite(rho))
+    {
+      continue;
+    }
+    const double raw = exact.Departure[static_cast<std::size_t>(v)];
+    // The source vertex itself is the pole: angle 0 by convention.
+    lost += !std::isfinite(raw) && rho > 0.0 ? 1 : 0;
+    result.Rho[static_cast<std::size_t>(v)] = rho;
+    result.Theta[static_cast<std::size_t>(v)] =
+      std::isfinite(raw) ? Wrap((raw - reference) * TwoPi / turn) : 0.0;
+  }
+  if (comm.Sum(lost) > 0)
+  {
+    return Status::Error("the pieces orient their faces against each other, so the angles "
+                         "cannot be carried across them; give the pieces one orientation or a "
+                         "finite Radius");
+  }
+  piece.ValuesFromOwners(result.Rho, comm);
+  piece.ValuesFromOwners(result.Theta, comm);
+  return Status();
+}
 } // namespace
 
 Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, double radius,
@@ -179,12 +249,17 @@ Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, doub
   {
     return Status::Error("the source point lies on no process's faces, or on several");
   }
-  if (!(radius > 0.0) || !std::isfinite(radius))
+  if (!(radius > 0.0) || (isoCurveAngles && !std::isfinite(radius)))
   {
-    return Status::Error("the radius must be finite and above 0");
+    return Status::Error(isoCurveAngles ? "iso-curve angles need a finite radius"
+                                        : "the radius must be above 0");
   }
   const int chartRank = static_cast<int>(comm.Max(mine ? comm.Rank() : -1.0));
   SurfacePoint at = mine ? ExactGeodesicSolver::SourcePoint(piece.Mesh(), *point) : SurfacePoint();
+  if (!std::isfinite(radius))
+  {
+    return WholeChart(piece, mine ? &at : nullptr, referenceDirection, comm, result);
+  }
   // Iso-curve angles read the surface a few edges beyond the chart (of the whole surface's).
   const double meanEdge = isoCurveAngles ? piece.MeanEdgeLength(comm) : 0.0;
   const double reach =

@@ -4,7 +4,8 @@
 // the radius reaches the band's edge (the fence), until it stays inside; it then computes the
 // coordinates on its piece as GeodesicPolarCoordinates does on the whole surface (the same
 // faces in the same order, the same tolerance: the same bits) and sends every process the
-// chart's vertices (global id, rho, theta).
+// chart's vertices (global id, rho, theta). A chart over the whole surface (an infinite radius)
+// is the exact distances and departure angles on the pieces instead (ComputeExactOnPieces).
 #pragma once
 
 #include "PieceCommunicator.h"
@@ -22,7 +23,7 @@ namespace gs
 struct PiecePolarCoordinates
 {
   // Per vertex of the piece: rho and theta (GeodesicPolarCoordinates::Rho, Theta); NaN outside
-  // the radius.
+  // the radius (a whole chart: at the vertices of this process's own faces, NaN elsewhere).
   std::vector<double> Rho, Theta;
   double SourceAngleSum = 0.0;
   // Whether the reference direction was normal to the surface at the source (the first edge is
@@ -35,7 +36,9 @@ struct PiecePolarCoordinates
   int IsoCurveKept = 0;
 };
 
-// Collective. Coordinates about the vertex of global id `source` within `radius` (finite, > 0),
+// Collective. Coordinates about the vertex of global id `source` within `radius` (> 0; infinite:
+// the whole surface, from the exact distances and departure angles on the pieces, no process
+// holding more than its piece: the serial chart's up to rounding),
 // theta's zero the tangent projection of `referenceDirection` at the source (all zero: the
 // source's first edge). Fails on every process when the id is no vertex of the surface or the
 // coordinates cannot be computed (the message of the process that computed them).
