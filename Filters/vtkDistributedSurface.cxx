@@ -571,6 +571,37 @@ bool vtkDistributedSurface::GatherAuxiliaryPoints(
 }
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> vtkDistributedSurface::GatherAuxiliaryEverywhere(vtkPointSet* piece) const
+{
+  vtkSmartPointer<vtkPointSet> all = this->GatherAuxiliary(piece);
+  int connected = this->IsRoot() && all ? 1 : 0;
+  this->Controller->Broadcast(&connected, 1, 0);
+  if (!connected)
+  {
+    return nullptr;
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  if (this->IsRoot())
+  {
+    if (vtkPolyData* p = vtkPolyData::SafeDownCast(all))
+    {
+      poly->SetPoints(p->GetPoints());
+      poly->SetLines(p->GetLines());
+    }
+    else
+    {
+      poly->SetPoints(all->GetPoints());
+    }
+    if (!poly->GetPoints())
+    {
+      poly->SetPoints(vtkSmartPointer<vtkPoints>::New());
+    }
+  }
+  this->Controller->Broadcast(poly, 0);
+  return poly;
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkPointSet> vtkDistributedSurface::GatherAuxiliary(vtkPointSet* piece) const
 {
   vtkSmartPointer<vtkPointSet> mine = piece;

@@ -100,6 +100,11 @@ public:
   // false (and `xyz` empty) on every process when it holds line cells (curves).
   bool GatherAuxiliaryPoints(vtkPointSet* piece, std::vector<double>& xyz) const;
 
+  // Collective. An optional point set as GatherAuxiliary gathers it, on every process, as
+  // polydata (its points and, for polydata, its line cells; another point set: its points
+  // only); nullptr on every process when the input is not connected.
+  vtkSmartPointer<vtkPolyData> GatherAuxiliaryEverywhere(vtkPointSet* piece) const;
+
   // Collective. On process 0 the first piece, in rank order, with at least one point (process
   // 0's own when all are empty); nullptr elsewhere.
   vtkSmartPointer<vtkDataObject> GatherFirstNonEmpty(vtkDataObject* piece) const;

@@ -110,6 +110,44 @@ int vtkSVGGeodesicDistance::FillInputPortInformation(int port, vtkInformation* i
   return 0;
 }
 
+namespace
+{
+// The Sources input (whole, on every process) as the pieces take it: the points no line cell
+// uses (x, y, z in order, as a serial run takes them as points) and, when it has line cells,
+// the curves (the input itself).
+void SplitSources(vtkPolyData* all, std::vector<double>& xyz, vtkSmartPointer<vtkPolyData>& curves)
+{
+  std::vector<unsigned char> onCurve(static_cast<std::size_t>(all->GetNumberOfPoints()), 0);
+  if (all->GetLines() && all->GetNumberOfLines() > 0)
+  {
+    curves = all;
+    auto it = vtk::TakeSmartPointer(all->GetLines()->NewIterator());
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      it->GetCurrentCell(npts, pts);
+      for (vtkIdType i = 0; i < npts; ++i)
+      {
+        if (pts[i] >= 0 && pts[i] < all->GetNumberOfPoints())
+        {
+          onCurve[static_cast<std::size_t>(pts[i])] = 1;
+        }
+      }
+    }
+  }
+  for (vtkIdType i = 0; i < all->GetNumberOfPoints(); ++i)
+  {
+    if (!onCurve[static_cast<std::size_t>(i)])
+    {
+      double x[3];
+      all->GetPoint(i, x);
+      xyz.insert(xyz.end(), x, x + 3);
+    }
+  }
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -129,13 +167,28 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
     this->CacheFileName.empty())
   {
     std::vector<double> xyz;
-    const bool points = !sourcesPort ||
-      distributed.GatherAuxiliaryPoints(vtkPointSet::GetData(inputVector[1], 0), xyz);
+    vtkSmartPointer<vtkPolyData> curves;
+    bool usable = true;
+    if (sourcesPort && noGraph)
+    {
+      // Points and curves (line cells): the Sources whole on every process.
+      vtkSmartPointer<vtkPolyData> all =
+        distributed.GatherAuxiliaryEverywhere(vtkPointSet::GetData(inputVector[1], 0));
+      if (all)
+      {
+        SplitSources(all, xyz, curves);
+      }
+    }
+    else if (sourcesPort)
+    {
+      // (The graph solvers take points only on the pieces.)
+      usable = distributed.GatherAuxiliaryPoints(vtkPointSet::GetData(inputVector[1], 0), xyz);
+    }
     vtkSmartPointer<vtkPolyData> own =
-      points ? vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input) : nullptr;
+      usable ? vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input) : nullptr;
     if (own)
     {
-      return this->ExecutePieces(input, own, output, sourcesPort ? &xyz : nullptr);
+      return this->ExecutePieces(input, own, output, sourcesPort ? &xyz : nullptr, curves);
     }
   }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
@@ -146,7 +199,7 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
 
 //------------------------------------------------------------------------------
 int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
-  vtkPolyData* output, const std::vector<double>* sourceXyz)
+  vtkPolyData* output, const std::vector<double>* sourceXyz, vtkPolyData* curves)
 {
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
@@ -170,7 +223,7 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
   }
   const std::vector<vtkIdType> sourceIds =
     sourceXyz ? std::vector<vtkIdType>() : this->SourceVertexIds;
-  const bool noSource = sourceXyz ? sourcePoints.empty() : sourceIds.empty();
+  const bool noSource = sourceXyz ? sourcePoints.empty() && !curves : sourceIds.empty();
   if (this->ResultArrayName.empty() || !(this->MaximumDistance >= 0.0) || noSource)
   {
     vtkErrorMacro(<< (this->ResultArrayName.empty() ? "ResultArrayName is empty."
@@ -185,7 +238,7 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
   if (noGraph)
   {
     if (!this->Pieces->DistancesWithoutGraph(this, solver, own, input->GetMTime(), sourceIds,
-          sourcePoints, this->MaximumDistance, distances))
+          sourcePoints, curves, this->MaximumDistance, distances))
     {
       return 1;
     }

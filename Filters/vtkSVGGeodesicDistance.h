@@ -210,12 +210,13 @@ protected:
   // RequestData's work on the whole surface (the input itself, or under MPI the gathered
   // surface on process 0).
   int Execute(vtkPolyData* input, vtkPointSet* sources, vtkPolyData* output);
-  // Under MPI, a graph solver or the exact solver on pieces: each process works on its own cells
-  // (`own`, ghost cells dropped) and a band of its neighbours' (vtkSurfacePieces), nothing
-  // gathered; the sources are SourceVertexIds, or, when `sourceXyz` is not null, the Sources
-  // port's points (x, y, z of each, the same on every process; Exact only).
+  // Under MPI, on pieces: each process works on its own cells (`own`, ghost cells dropped) and a
+  // band of its neighbours' (vtkSurfacePieces), nothing gathered; the sources are
+  // SourceVertexIds, or, when `sourceXyz` is not null, the Sources port's points (x, y, z of
+  // each, the same on every process) and `curves` (its line cells, the same on every process;
+  // the exact solver and the virtual sources only).
   int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output,
-    const std::vector<double>* sourceXyz);
+    const std::vector<double>* sourceXyz, vtkPolyData* curves);
 
 
 private:

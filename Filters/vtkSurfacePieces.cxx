@@ -4,6 +4,8 @@
 #include "vtkSurfacePointLocator.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkMath.h>
+#include <vtkSmartPointer.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
@@ -430,7 +432,8 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, vtkPolyData* ownCells,
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSolver solver,
   vtkPolyData* ownCells, vtkMTimeType key, const std::vector<vtkIdType>& sources,
-  const std::vector<gs::Vec3>& points, double maxDistance, std::vector<double>& perPoint)
+  const std::vector<gs::Vec3>& points, vtkPolyData* curves, double maxDistance,
+  std::vector<double>& perPoint)
 {
   // Both solves need two rings (made at once when the piece is new; a piece kept from a graph's
   // run may have fewer), before source points name faces of the piece's mesh.
@@ -446,18 +449,30 @@ bool vtkSurfacePieces::DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSol
     return false;
   }
   const std::vector<std::int64_t> ids = this->SurfaceIds(sources);
+  // Curves first: their band's growth renumbers the piece's faces.
+  std::vector<gs::SurfacePoint> samples;
+  std::vector<std::vector<gs::CurvePiece>> runs;
+  std::vector<std::vector<gs::PiecePointName>> names;
+  const bool exact = solver == gs::GeodesicSolver::Exact;
+  if (curves &&
+    (!this->SnapCurves(self, ownCells, curves, names) ||
+      !this->TraceCurves(self, names, exact, samples, runs)))
+  {
+    return false;
+  }
   std::vector<gs::SurfacePoint> mine;
   if (!this->SnapPoints(self, ownCells, points, mine))
   {
     return false;
   }
+  mine.insert(mine.end(), samples.begin(), samples.end());
   gs::Status status;
   std::vector<double> perVertex;
-  if (solver == gs::GeodesicSolver::VirtualSources)
+  if (!exact)
   {
     gs::VirtualSourcePiecesResult result;
     status = gs::ComputeVirtualSourcesOnPieces(this->SurfacePieceState, ids, maxDistance, *Comm,
-      result, Progress(self, 0.1, 0.95), mine);
+      result, Progress(self, 0.1, 0.95), mine, runs);
     this->LastRounds = result.Rounds;
     this->LastWindows = result.Crossings;
     this->LastWindowsSent = result.FacesSent;
@@ -473,7 +488,8 @@ bool vtkSurfacePieces::DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSol
     this->LastWindowsSent = result.WindowsSent;
     perVertex = std::move(result.Distance);
   }
-  if (!Reported(self, points.empty() ? "Source vertex ids: " : "Source points: ", status))
+  if (!Reported(self,
+        curves ? "Source curves: " : points.empty() ? "Source vertex ids: " : "Source points: ", status))
   {
     this->HasPiece = this->HasGraph = false; // (its band may have failed to grow)
     return false;
@@ -485,9 +501,11 @@ bool vtkSurfacePieces::DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSol
 
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells,
-  const std::vector<gs::Vec3>& points, std::vector<gs::SurfacePoint>& mine)
+  const std::vector<gs::Vec3>& points, std::vector<gs::SurfacePoint>& mine,
+  const std::vector<unsigned char>* anywhere, std::vector<gs::PiecePointName>* everywhere)
 {
   mine.clear();
+  std::vector<std::pair<std::size_t, gs::SurfacePoint>> held; // (point, its surface point)
   // The closest point of this process's own triangles to each point (distance, triangle, point).
   vtkNew<vtkPolyData> triangles;
   triangles->SetPoints(ownCells->GetPoints());
@@ -523,7 +541,7 @@ bool vtkSurfacePieces::SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells,
   {
     const gs::Vec3& p = points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || winner[i] < 0 ||
-      smallest[i] > reach)
+      (smallest[i] > reach && !(anywhere && (*anywhere)[i])))
     {
       vtkErrorWithObjectMacro(self, "Source point " << i << ": "
           << (winner[i] < 0 ? std::string("non-finite coordinates")
@@ -549,6 +567,7 @@ bool vtkSurfacePieces::SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells,
     if (q.Ok())
     {
       mine.push_back(*q);
+      held.push_back({ i, *q });
     }
     else
     {
@@ -563,7 +582,202 @@ bool vtkSurfacePieces::SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells,
     mine.clear();
     return false;
   }
+  if (everywhere)
+  {
+    // Every point's name, from the process holding it, to every process.
+    everywhere->assign(points.size(), gs::PiecePointName());
+    std::vector<gs::ByteBuffer> out(static_cast<std::size_t>(Comm->Size())), in;
+    for (const auto& [i, q] : held)
+    {
+      const gs::PiecePointName name(this->SurfacePieceState, q);
+      (*everywhere)[i] = name;
+      for (gs::ByteBuffer& b : out)
+      {
+        gs::ByteWriter(b).Put(static_cast<std::int64_t>(i));
+        gs::ByteWriter(b).Put(name);
+      }
+    }
+    Comm->Exchange(out, in);
+    for (std::size_t q = 0; q < in.size(); ++q)
+    {
+      gs::ByteReader r(in[q]);
+      std::int64_t i = 0;
+      gs::PiecePointName name;
+      while (static_cast<int>(q) != Comm->Rank() && r.Get(i) && r.Get(name))
+      {
+        (*everywhere)[static_cast<std::size_t>(i)] = name;
+      }
+    }
+  }
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::SnapCurves(vtkAlgorithm* self, vtkPolyData* ownCells, vtkPolyData* sources,
+  std::vector<std::vector<gs::PiecePointName>>& curves)
+{
+  curves.clear();
+  // The samples as vtkSurfacePointLocator::SnapCurve places them, with the whole surface's mean
+  // edge length; the polyline's own points within the usual reach, the samples anywhere.
+  const double spacing = vtkSurfacePointLocator::CurveSampleSpacing *
+    this->SurfacePieceState.MeanEdgeLength(*Comm);
+  constexpr vtkIdType MaximumSamplesPerSegment = 1 << 20;
+  std::vector<gs::Vec3> xyz;
+  std::vector<unsigned char> anywhere;
+  std::vector<std::size_t> starts; // each curve's first sample
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  auto lines = vtk::TakeSmartPointer(sources->GetLines()->NewIterator());
+  for (lines->GoToFirstCell(); !lines->IsDoneWithTraversal(); lines->GoToNextCell())
+  {
+    lines->GetCurrentCell(npts, pts);
+    starts.push_back(xyz.size());
+    for (vtkIdType i = 0; i < npts; ++i)
+    {
+      double a[3], b[3];
+      sources->GetPoint(pts[i], a);
+      xyz.emplace_back(a[0], a[1], a[2]);
+      anywhere.push_back(0);
+      if (i + 1 == npts)
+      {
+        break;
+      }
+      sources->GetPoint(pts[i + 1], b);
+      const double length = std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
+      const vtkIdType steps = std::isfinite(length)
+        ? static_cast<vtkIdType>(std::min<double>(MaximumSamplesPerSegment, std::ceil(length / spacing)))
+        : 1;
+      for (vtkIdType s = 1; s < steps; ++s)
+      {
+        const double t = static_cast<double>(s) / static_cast<double>(steps);
+        xyz.emplace_back(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]));
+        anywhere.push_back(1);
+      }
+    }
+  }
+  starts.push_back(xyz.size());
+  std::vector<gs::SurfacePoint> mine;
+  std::vector<gs::PiecePointName> names;
+  if (!this->SnapPoints(self, ownCells, xyz, mine, &anywhere, &names))
+  {
+    return false;
+  }
+  // Consecutive samples snapped to the same surface point count once, as serially.
+  auto same = [](const gs::PiecePointName& a, const gs::PiecePointName& b) {
+    return a.Vertex == b.Vertex && a.Face == b.Face && a.Bary == b.Bary;
+  };
+  for (std::size_t c = 0; c + 1 < starts.size(); ++c)
+  {
+    std::vector<gs::PiecePointName> curve;
+    for (std::size_t i = starts[c]; i < starts[c + 1]; ++i)
+    {
+      if (curve.empty() || !same(curve.back(), names[i]))
+      {
+        curve.push_back(names[i]);
+      }
+    }
+    if (!curve.empty())
+    {
+      curves.push_back(std::move(curve));
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfacePieces::TraceCurves(vtkAlgorithm* self,
+  const std::vector<std::vector<gs::PiecePointName>>& curves, bool exact,
+  std::vector<gs::SurfacePoint>& points, std::vector<std::vector<gs::CurvePiece>>& runs)
+{
+  gs::SurfacePiece& piece = this->SurfacePieceState;
+  const double mean = piece.MeanEdgeLength(*Comm);
+  // The band grows around the curves' points (by rings that double) until no walk enters the
+  // fence (faces with a vertex whose other faces the piece lacks): a walk stopped by the band's
+  // edge would keep a point alone where the whole surface goes on.
+  std::vector<std::int64_t> around;
+  for (const auto& curve : curves)
+  {
+    for (const gs::PiecePointName& p : curve)
+    {
+      if (p.Vertex >= 0)
+      {
+        around.push_back(p.Vertex);
+      }
+      else
+      {
+        around.insert(around.end(), p.Corners.begin(), p.Corners.end());
+      }
+    }
+  }
+  for (int rings = 2;; rings *= 2)
+  {
+    if (rings > (1 << 12))
+    {
+      vtkErrorWithObjectMacro(self, "Source curve: its walks on the surface keep leaving the "
+                                    "faces gathered around it.");
+      return false;
+    }
+    if (!Reported(self, "Source curve: ", piece.GrowAround(around, rings, *Comm)))
+    {
+      this->HasPiece = this->HasGraph = false;
+      return false;
+    }
+    std::vector<gs::SurfacePoint> samples;
+    std::vector<std::vector<gs::CurvePiece>> traced;
+    bool inside = true;
+    for (const auto& names : curves)
+    {
+      std::vector<gs::SurfacePoint> curve;
+      for (const gs::PiecePointName& p : names)
+      {
+        curve.push_back(p.In(piece));
+      }
+      std::vector<std::vector<gs::CurvePiece>> walks;
+      if (exact)
+      {
+        walks.push_back(gs::TraceSurfaceCurve(piece.Mesh(), curve));
+      }
+      else
+      {
+        gs::AppendStraightRuns(piece.Mesh(), curve, walks);
+        if (curve.size() == 1)
+        {
+          samples.push_back(curve[0]); // (a one-point curve is a point)
+        }
+      }
+      for (const auto& walk : walks)
+      {
+        for (const gs::CurvePiece& step : walk)
+        {
+          inside = inside && !piece.Fence()[static_cast<std::size_t>(step.Face)];
+        }
+      }
+      if (exact)
+      {
+        const std::vector<gs::SurfacePoint> s = gs::SampleCurvePieces(
+          piece.Mesh(), walks.front(), gs::ExactCurveSampleSpacing * mean);
+        samples.insert(samples.end(), s.begin(), s.end());
+      }
+      else
+      {
+        traced.insert(traced.end(), walks.begin(), walks.end());
+      }
+    }
+    if (Comm->Sum(inside ? 0 : 1) == 0)
+    {
+      // This process's share: the samples on its own faces (or vertices it owns); the runs
+      // whole (each process seeds the pieces on its own faces).
+      for (const gs::SurfacePoint& s : samples)
+      {
+        if (s.IsVertex() ? piece.IsOwned(s.Vertex) : piece.IsOwnFace(s.Face))
+        {
+          points.push_back(s);
+        }
+      }
+      runs = std::move(traced);
+      return true;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -19,6 +19,7 @@
 #define vtkSurfacePieces_h
 
 #include "ExactPieces.h"
+#include "SurfaceCurve.h"
 #include "GeodesicEngine.h"
 #include "VirtualSourcePieces.h"
 #include "GraphPieces.h"
@@ -87,9 +88,11 @@ public:
   // says. NaN where unreached, beyond maxDistance (> 0) or not on a triangle. Progress from
   // `self`, abortable. False (error on `self`) on every process when a source id is no point of
   // the surface, a point cannot be snapped, or it aborted.
+  // `curves`: line cells (the same on every process; null: none), each a curve source as a
+  // serial run takes it (SnapCurves, TraceCurves).
   bool DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSolver solver, vtkPolyData* ownCells,
     vtkMTimeType key, const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points,
-    double maxDistance, std::vector<double>& perPoint);
+    vtkPolyData* curves, double maxDistance, std::vector<double>& perPoint);
 
   // Geodesic polar coordinates about the point `source` (a serial point id) or, when `points`
   // is not empty, about the first of `points` in space (the same list on every process, snapped
@@ -135,9 +138,23 @@ private:
   // (the closest point of the surface, within a quarter of its bounding box diagonal): each
   // process finds the closest point of its own triangles, the closest over the processes wins
   // (the lowest rank on a tie). `mine`: the points this process holds, on its piece's mesh.
-  // False (error on `self`, naming the point) on every process when one fails.
+  // False (error on `self`, naming the point) on every process when one fails. Points flagged
+  // in `anywhere` may lie farther (a curve's samples between its own points); `everywhere`
+  // (when given) gets every point's name, on every process.
   bool SnapPoints(vtkAlgorithm* self, vtkPolyData* ownCells, const std::vector<gs::Vec3>& points,
-    std::vector<gs::SurfacePoint>& mine);
+    std::vector<gs::SurfacePoint>& mine, const std::vector<unsigned char>* anywhere = nullptr,
+    std::vector<gs::PiecePointName>* everywhere = nullptr);
+  // Collective. The line cells of `sources` (the same on every process) snapped as
+  // vtkSurfacePointLocator::SnapCurve snaps them serially (samples at most a quarter of the
+  // whole surface's mean edge apart), each curve's points named by global ids, on every process.
+  bool SnapCurves(vtkAlgorithm* self, vtkPolyData* ownCells, vtkPolyData* sources,
+    std::vector<std::vector<gs::PiecePointName>>& curves);
+  // Collective. The curves traced on every process's piece (its band grown around them until
+  // every trace stays inside): for the exact solver, their samples on this process's own faces
+  // (appended to `points`); for the virtual sources, their straight runs (`runs`).
+  bool TraceCurves(vtkAlgorithm* self, const std::vector<std::vector<gs::PiecePointName>>& curves,
+    bool exact, std::vector<gs::SurfacePoint>& points,
+    std::vector<std::vector<gs::CurvePiece>>& runs);
   // Whether the pieces carry global ids; otherwise the ids number the gathered surface
   // (PieceNumbering.h), and FirstPoint is the gathered index of this piece's first point.
   bool GivenIds = true;

@@ -66,40 +66,12 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
 
 namespace
 {
-// A surface point by global ids (the band's growth renumbers the piece's faces and vertices).
-struct GlobalPoint
-{
-  std::int64_t Vertex = -1, Face = -1;
-  std::array<std::int64_t, 3> Corners{};
-  std::array<double, 3> Bary{};
-
-  GlobalPoint(const SurfacePiece& piece, const SurfacePoint& p)
-  {
-    if (p.IsVertex())
-    {
-      Vertex = piece.GlobalId(p.Vertex);
-      return;
-    }
-    Face = piece.FaceId(p.Face);
-    Bary = p.Bary;
-    for (std::size_t k = 0; k < 3; ++k)
-    {
-      Corners[k] = piece.GlobalId(piece.Mesh().Face(p.Face)[k]);
-    }
-  }
-  SurfacePoint In(const SurfacePiece& piece) const
-  {
-    return Vertex >= 0 ? SurfacePoint::AtVertex(piece.Vertex(Vertex))
-                       : piece.LocalPoint(Face, Corners, Bary);
-  }
-};
-
 // Collective. Grows the band of the process holding `at` (null elsewhere) where the exact solve
 // about it truncated at `radius` reaches the band's edge, by rings that double, until it stays
 // inside; `at` then names the point in the grown piece.
 Status GrowToChart(SurfacePiece& piece, SurfacePoint* at, double radius, PieceCommunicator& comm)
 {
-  const std::unique_ptr<GlobalPoint> named = at ? std::make_unique<GlobalPoint>(piece, *at) : nullptr;
+  const std::unique_ptr<PiecePointName> named = at ? std::make_unique<PiecePointName>(piece, *at) : nullptr;
   for (int rings = 2;; rings *= 2)
   {
     std::vector<std::int64_t> around;
@@ -176,7 +148,7 @@ Status WholeChart(SurfacePiece& piece, const SurfacePoint* at, const Vec3& refer
   PieceCommunicator& comm, PiecePolarCoordinates& result)
 {
   // Two rings before the point is named in the piece's mesh (ComputeExactOnPieces).
-  const std::unique_ptr<GlobalPoint> named = at ? std::make_unique<GlobalPoint>(piece, *at) : nullptr;
+  const std::unique_ptr<PiecePointName> named = at ? std::make_unique<PiecePointName>(piece, *at) : nullptr;
   if (const Status grown = piece.GrowTo(1, 0, comm); !grown.Ok())
   {
     return grown;

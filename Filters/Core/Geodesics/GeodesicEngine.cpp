@@ -240,7 +240,7 @@ public:
     std::vector<std::vector<CurvePiece>> runs;
     for (const auto& curve : sources.Curves)
     {
-      AddStraightRuns(curve, runs);
+      AppendStraightRuns(Surface, curve, runs);
       if (curve.size() == 1)
       {
         points.push_back(curve[0]);
@@ -270,27 +270,6 @@ public:
 
 private:
   mutable std::vector<int> ReachedVertices; // Reached()'s buffer
-  void AddStraightRuns(const std::vector<SurfacePoint>& curve, std::vector<std::vector<CurvePiece>>& runs) const
-  {
-    std::size_t i = 0;
-    while (i + 1 < curve.size())
-    {
-      const Vec3 p = Surface.Position(curve[i]);
-      std::size_t j = i + 1;
-      while (j + 1 < curve.size())
-      {
-        const Vec3 d = Surface.Position(curve[j]) - p, e = Surface.Position(curve[j + 1]) - p;
-        const double nd = Norm(d), ne = Norm(e);
-        if (!(nd > 0.0 && ne > nd && Norm(Cross(d, e)) <= 1e-9 * nd * ne))
-        {
-          break;
-        }
-        ++j;
-      }
-      runs.push_back(TraceSurfaceCurve(Surface, { curve[i], curve[j] }));
-      i = j;
-    }
-  }
   VirtualSourceSolver Solver_;
 };
 } // namespace

@@ -537,7 +537,8 @@ void VirtualSourceSolver::SeedPoints(const std::vector<SurfacePoint>& points)
   }
 }
 
-void VirtualSourceSolver::SeedRuns(const std::vector<std::vector<CurvePiece>>& runs)
+void VirtualSourceSolver::SeedRuns(
+  const std::vector<std::vector<CurvePiece>>& runs, const std::vector<unsigned char>* skip)
 {
   for (const std::vector<CurvePiece>& run : runs)
   {
@@ -568,7 +569,10 @@ void VirtualSourceSolver::SeedRuns(const std::vector<std::vector<CurvePiece>>& r
         by += after * dy;
       }
       before += length;
-      Seed(piece.Face, ax, ay, bx, by);
+      if (!skip || !(*skip)[static_cast<std::size_t>(piece.Face)])
+      {
+        Seed(piece.Face, ax, ay, bx, by);
+      }
     }
   }
 }

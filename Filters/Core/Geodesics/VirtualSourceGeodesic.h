@@ -214,7 +214,9 @@ private:
   // unreached).
   void BeginSolve();
   void SeedPoints(const std::vector<SurfacePoint>& sources);
-  void SeedRuns(const std::vector<std::vector<CurvePiece>>& runs);
+  // (`skip`: faces flagged there, another process's, are not seeded.)
+  void SeedRuns(const std::vector<std::vector<CurvePiece>>& runs,
+    const std::vector<unsigned char>* skip = nullptr);
   template <bool Angles>
   bool ProcessBuckets(const VirtualSourceOptions& options);
   // One queue item: a face crosses its edges, or a vertex paths bend at seeds its faces.

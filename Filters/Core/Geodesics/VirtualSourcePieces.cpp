@@ -55,8 +55,8 @@ public:
   VirtualSourcePieceSolve& operator=(const VirtualSourcePieceSolve&) = delete;
 
   Status Run(const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points,
-    double maxDistance, double longestEdge, const ProgressCallback& progress,
-    VirtualSourcePiecesResult& result);
+    const std::vector<std::vector<CurvePiece>>& runs, double maxDistance, double longestEdge,
+    const ProgressCallback& progress, VirtualSourcePiecesResult& result);
 
 private:
   using FaceRecord = VirtualSourceSolver::FaceRecord;
@@ -340,12 +340,13 @@ void VirtualSourcePieceSolve::Collect(double limit, VirtualSourcePiecesResult& r
 }
 
 Status VirtualSourcePieceSolve::Run(const std::vector<std::int64_t>& sources,
-  const std::vector<SurfacePoint>& points, double maxDistance, double longestEdge,
-  const ProgressCallback& progress, VirtualSourcePiecesResult& result)
+  const std::vector<SurfacePoint>& points, const std::vector<std::vector<CurvePiece>>& runs,
+  double maxDistance, double longestEdge, const ProgressCallback& progress,
+  VirtualSourcePiecesResult& result)
 {
   Solver.BeginSolve();
   std::vector<int> owned;
-  if (const Status own = Piece.OwnSources(sources, points, Comm, owned); !own.Ok())
+  if (const Status own = Piece.OwnSources(sources, points, Comm, owned, runs.size()); !own.Ok())
   {
     return own;
   }
@@ -361,6 +362,7 @@ Status VirtualSourcePieceSolve::Run(const std::vector<std::int64_t>& sources,
   }
   seeds.insert(seeds.end(), points.begin(), points.end());
   Solver.SeedPoints(seeds);
+  Solver.SeedRuns(runs, &OtherFace);
 
   // Each round's threshold: a step of the surface's size beyond the first bucket left anywhere.
   const double step =
@@ -401,12 +403,13 @@ Status VirtualSourcePieceSolve::Run(const std::vector<std::int64_t>& sources,
 
 Status ComputeVirtualSourcesOnPieces(SurfacePiece& piece, const std::vector<std::int64_t>& sources,
   double maxDistance, PieceCommunicator& comm, VirtualSourcePiecesResult& result,
-  const ProgressCallback& progress, const std::vector<SurfacePoint>& points)
+  const ProgressCallback& progress, const std::vector<SurfacePoint>& points,
+  const std::vector<std::vector<CurvePiece>>& runs)
 {
   result = VirtualSourcePiecesResult();
   // Two rings: the faces across the own faces' edges, and the fans of their corners, whose
   // owners a crossing's distances go to.
-  if (const Status grown = piece.GrowTo(1, points.size(), comm); !grown.Ok())
+  if (const Status grown = piece.GrowTo(1, points.size() + runs.size(), comm); !grown.Ok())
   {
     return grown;
   }
@@ -415,7 +418,7 @@ Status ComputeVirtualSourcesOnPieces(SurfacePiece& piece, const std::vector<std:
   const double mean = piece.MeanEdgeLength(comm);
   const double longest = comm.Max(piece.Mesh().LongestEdgeLength());
   VirtualSourcePieceSolve solve(piece, comm, mean);
-  return solve.Run(sources, points, maxDistance, longest, progress, result);
+  return solve.Run(sources, points, runs, maxDistance, longest, progress, result);
 }
 
 } // namespace gs

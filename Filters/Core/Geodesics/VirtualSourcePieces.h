@@ -24,6 +24,7 @@
 #include "PieceCommunicator.h"
 #include "SaddleVertexGraph.h"
 #include "Status.h"
+#include "SurfaceCurve.h"
 #include "SurfacePiece.h"
 
 #include <cstdint>
@@ -51,8 +52,12 @@ struct VirtualSourcePiecesResult
 // narrower (then `points` must be empty on every process: the band's growth renumbers the
 // faces). Fails on every process as ComputeExactOnPieces does (no source, an id that is no
 // vertex, a band that fails to grow, Aborted by the progress callback of any process).
+// `runs`: curve sources as VirtualSourceSolver::Solve takes them, each whole on every process
+// that holds one of its faces (in its piece's mesh); each process seeds the pieces on its own
+// faces.
 Status ComputeVirtualSourcesOnPieces(SurfacePiece& piece, const std::vector<std::int64_t>& sources,
   double maxDistance, PieceCommunicator& comm, VirtualSourcePiecesResult& result,
-  const ProgressCallback& progress = nullptr, const std::vector<SurfacePoint>& points = {});
+  const ProgressCallback& progress = nullptr, const std::vector<SurfacePoint>& points = {},
+  const std::vector<std::vector<CurvePiece>>& runs = {});
 
 } // namespace gs

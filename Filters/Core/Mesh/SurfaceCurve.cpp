@@ -150,6 +150,29 @@ std::vector<CurvePiece> TraceSurfaceCurve(const TriangleMesh& M, const std::vect
   return out;
 }
 
+void AppendStraightRuns(const TriangleMesh& mesh, const std::vector<SurfacePoint>& curve,
+  std::vector<std::vector<CurvePiece>>& runs)
+{
+  std::size_t i = 0;
+  while (i + 1 < curve.size())
+  {
+    const Vec3 p = mesh.Position(curve[i]);
+    std::size_t j = i + 1;
+    while (j + 1 < curve.size())
+    {
+      const Vec3 d = mesh.Position(curve[j]) - p, e = mesh.Position(curve[j + 1]) - p;
+      const double nd = Norm(d), ne = Norm(e);
+      if (!(nd > 0.0 && ne > nd && Norm(Cross(d, e)) <= 1e-9 * nd * ne))
+      {
+        break;
+      }
+      ++j;
+    }
+    runs.push_back(TraceSurfaceCurve(mesh, { curve[i], curve[j] }));
+    i = j;
+  }
+}
+
 std::vector<SurfacePoint> SampleCurvePieces(
   const TriangleMesh& M, const std::vector<CurvePiece>& pieces, double spacing)
 {

@@ -35,6 +35,13 @@ FaceExit FindFaceExit(const TriangleMesh& mesh, int f, const Vec3& x, const Vec3
 // lengths: the exact reference for distances to a curve and for curve coordinates.
 constexpr double ExactCurveSampleSpacing = 1.0 / 16.0;
 
+// The curve as runs, each as long as the curve goes straight in space (consecutive points on one
+// line, going on), traced on the surface (TraceSurfaceCurve of the run's ends): how virtual
+// source propagation carries a curve (a straight line snapped onto a flat part of the mesh is
+// one run). Appended to `runs`.
+void AppendStraightRuns(const TriangleMesh& mesh, const std::vector<SurfacePoint>& curve,
+  std::vector<std::vector<CurvePiece>>& runs);
+
 // Surface points along the pieces, at most `spacing` apart within each piece (both ends kept).
 std::vector<SurfacePoint> SampleCurvePieces(
   const TriangleMesh& mesh, const std::vector<CurvePiece>& pieces, double spacing);

@@ -250,7 +250,7 @@ Status SurfacePiece::GrowAround(
   for (const std::int64_t v : around)
   {
     const auto it = Vertices.find(v);
-    if (it != Vertices.end() && !it->second.Complete)
+    if (it == Vertices.end() || !it->second.Complete)
     {
       frontier.push_back(v);
     }
@@ -371,7 +371,11 @@ std::vector<std::int64_t> SurfacePiece::GatherRing(
   }
   for (const std::int64_t v : request)
   {
-    Vertices.at(v).Complete = true;
+    // (A vertex no process has a face of stays out of the piece.)
+    if (const auto it = Vertices.find(v); it != Vertices.end())
+    {
+      it->second.Complete = true;
+    }
   }
   std::sort(brought.begin(), brought.end());
   return brought;
@@ -707,7 +711,8 @@ namespace gs
 {
 
 Status SurfacePiece::OwnSources(const std::vector<std::int64_t>& sources,
-  const std::vector<SurfacePoint>& points, PieceCommunicator& comm, std::vector<int>& owned) const
+  const std::vector<SurfacePoint>& points, PieceCommunicator& comm, std::vector<int>& owned,
+  std::size_t others) const
 {
   owned.clear();
   std::vector<std::int64_t> ids = sources;
@@ -734,7 +739,7 @@ Status SurfacePiece::OwnSources(const std::vector<std::int64_t>& sources,
   {
     return Status::Error(problem);
   }
-  const std::int64_t allPoints = comm.Sum(static_cast<std::int64_t>(points.size()));
+  const std::int64_t allPoints = comm.Sum(static_cast<std::int64_t>(points.size() + others));
   if (comm.Sum(static_cast<std::int64_t>(owned.size())) != static_cast<std::int64_t>(ids.size()) ||
     ids.size() + static_cast<std::size_t>(allPoints) == 0)
   {
@@ -743,6 +748,31 @@ Status SurfacePiece::OwnSources(const std::vector<std::int64_t>& sources,
         : "a source vertex id is not a point of the surface");
   }
   return Status();
+}
+
+PiecePointName::PiecePointName(const SurfacePiece& piece, const SurfacePoint& p)
+{
+  if (p.IsVertex())
+  {
+    Vertex = piece.GlobalId(p.Vertex);
+    return;
+  }
+  Face = piece.FaceId(p.Face);
+  Bary = p.Bary;
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    Corners[k] = piece.GlobalId(piece.Mesh().Face(p.Face)[k]);
+  }
+}
+
+SurfacePoint PiecePointName::In(const SurfacePiece& piece) const
+{
+  if (Vertex >= 0)
+  {
+    const int v = piece.Vertex(Vertex);
+    return v >= 0 ? SurfacePoint::AtVertex(v) : SurfacePoint::InFace(-1, 1.0, 0.0, 0.0);
+  }
+  return piece.LocalPoint(Face, Corners, Bary);
 }
 
 double SurfacePiece::MeanEdgeLength(PieceCommunicator& comm) const

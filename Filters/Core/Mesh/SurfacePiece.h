@@ -39,6 +39,23 @@ struct PieceTriangles
   std::vector<std::int64_t> TriangleIds;     // global ids, one per triangle
 };
 
+class SurfacePiece;
+
+// A surface point named by global ids (a vertex, or a face with its corners and the point's
+// weights over them), as every process holding the face can name it in its own piece's mesh
+// (whose numbers change as the band grows).
+struct PiecePointName
+{
+  std::int64_t Vertex = -1, Face = -1;
+  std::array<std::int64_t, 3> Corners{};
+  std::array<double, 3> Bary{};
+
+  PiecePointName() = default;
+  PiecePointName(const SurfacePiece& piece, const SurfacePoint& p);
+  // The point in `piece`'s mesh (a point of no face, Face -1, when the piece lacks it).
+  SurfacePoint In(const SurfacePiece& piece) const;
+};
+
 class SurfacePiece
 {
 public:
@@ -53,9 +70,11 @@ public:
   // Collective: at least `rings` rings. Fails on every process when the band must grow and a
   // process holds `points` > 0 surface points of its piece (growing renumbers the faces).
   Status GrowTo(int rings, std::size_t points, PieceCommunicator& comm);
-  // Collective: `rings` rings of faces around the incomplete vertices of `around` only (global
-  // ids; the others are ignored): the band grows where a computation needs it, not all along
-  // the piece's edge. `rings` is the same on every process; `around` may differ (or be empty).
+  // Collective: `rings` rings of faces around the vertices of `around` that are incomplete or
+  // not in the piece yet (global ids; complete ones are ignored, and ids of no vertex stay out):
+  // the band grows where a computation needs it, not all along the piece's edge, and may reach
+  // parts of the surface far from the piece (a curve source's). `rings` is the same on every
+  // process; `around` may differ (or be empty).
   Status GrowAround(const std::vector<std::int64_t>& around, int rings, PieceCommunicator& comm);
 
   const TriangleMesh& Mesh() const { return Local; }
@@ -92,9 +111,10 @@ public:
   // surface points (on its own faces, or vertices it owns). Fails on every process, with the
   // first failing process's message, when a point is invalid or another process's, when an id
   // is no vertex of the surface, or when there is no source at all.
+  // (`others`: this process's sources of other kinds, curves, which count against "no source".)
   Status OwnSources(const std::vector<std::int64_t>& sources,
-    const std::vector<SurfacePoint>& points, PieceCommunicator& comm,
-    std::vector<int>& owned) const;
+    const std::vector<SurfacePoint>& points, PieceCommunicator& comm, std::vector<int>& owned,
+    std::size_t others = 0) const;
   // Collective. Sets perVertex (one value per vertex of the piece's mesh) at the vertices of
   // this process's own faces that other processes own to their owners' values (infinite where
   // the owner has none).
