@@ -158,7 +158,7 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  // Source points (no curves) too.
+  // Source points and curves too.
   const gs::GeodesicSolver solver = static_cast<gs::GeodesicSolver>(this->Solver);
   const bool noGraph =
     solver == gs::GeodesicSolver::Exact || solver == gs::GeodesicSolver::VirtualSources;
@@ -168,8 +168,7 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   {
     std::vector<double> xyz;
     vtkSmartPointer<vtkPolyData> curves;
-    bool usable = true;
-    if (sourcesPort && noGraph)
+    if (sourcesPort)
     {
       // Points and curves (line cells): the Sources whole on every process.
       vtkSmartPointer<vtkPolyData> all =
@@ -179,13 +178,8 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
         SplitSources(all, xyz, curves);
       }
     }
-    else if (sourcesPort)
-    {
-      // (The graph solvers take points only on the pieces.)
-      usable = distributed.GatherAuxiliaryPoints(vtkPointSet::GetData(inputVector[1], 0), xyz);
-    }
     vtkSmartPointer<vtkPolyData> own =
-      usable ? vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input) : nullptr;
+      vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input);
     if (own)
     {
       return this->ExecutePieces(input, own, output, sourcesPort ? &xyz : nullptr, curves);
@@ -247,7 +241,7 @@ int vtkSVGGeodesicDistance::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
              vtkCachedSurface::GraphOptions(
                this->Solver, this->K, this->GraphAccuracy, this->ReachedStencil),
              0.1, 0.8, built) ||
-    !this->Pieces->Distances(this, own, sourceIds, sourcePoints, this->MaximumDistance,
+    !this->Pieces->Distances(this, own, sourceIds, sourcePoints, curves, this->MaximumDistance,
       this->UnfoldingRefinement, distances))
   {
     return 1;

@@ -213,8 +213,7 @@ protected:
   // Under MPI, on pieces: each process works on its own cells (`own`, ghost cells dropped) and a
   // band of its neighbours' (vtkSurfacePieces), nothing gathered; the sources are
   // SourceVertexIds, or, when `sourceXyz` is not null, the Sources port's points (x, y, z of
-  // each, the same on every process) and `curves` (its line cells, the same on every process;
-  // the exact solver and the virtual sources only).
+  // each, the same on every process) and `curves` (its line cells, the same on every process).
   int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output,
     const std::vector<double>* sourceXyz, vtkPolyData* curves);
 

@@ -3,6 +3,8 @@
 #include "vtkDistributedSurface.h"
 #include "vtkSurfacePointLocator.h"
 
+#include "SVGGeodesicSolver.h"
+
 #include <vtkAlgorithm.h>
 #include <vtkMath.h>
 #include <vtkSmartPointer.h>
@@ -379,11 +381,38 @@ bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdTyp
 
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::Distances(vtkAlgorithm* self, vtkPolyData* ownCells,
-  const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points, double maxDistance,
-  bool refine, std::vector<double>& perPoint)
+  const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points, vtkPolyData* curves,
+  double maxDistance, bool refine, std::vector<double>& perPoint)
 {
   std::vector<std::pair<std::int64_t, double>> seeds;
-  if (points.empty())
+  if (curves)
+  {
+    // The curves and the points as one-point curves; traced where every process can see them,
+    // then sampled and seeded as SVGGeodesicSolver::SolveCurves does.
+    std::vector<std::vector<gs::PiecePointName>> names;
+    std::vector<gs::SurfacePoint> mine, samples;
+    std::vector<gs::PiecePointName> pointNames;
+    std::vector<std::vector<gs::CurvePiece>> unused;
+    std::vector<gs::CurvePiece> pieces;
+    std::int64_t crossed = 0;
+    if (!this->SnapCurves(self, ownCells, curves, names) ||
+      !this->SnapPoints(self, ownCells, points, mine, nullptr, &pointNames))
+    {
+      return false;
+    }
+    for (const gs::PiecePointName& p : pointNames)
+    {
+      names.push_back({ p });
+    }
+    if (!this->TraceCurves(self, names, CurveUse::GraphSeeds, samples, unused, pieces, crossed) ||
+      !Reported(self, "Source curves: ",
+        gs::GraphSeedsFromPoints(this->SurfacePieceState, this->GraphState, {}, samples,
+          maxDistance, *Comm, seeds, pieces, crossed)))
+    {
+      return false;
+    }
+  }
+  else if (points.empty())
   {
     for (const std::int64_t id : this->SurfaceIds(sources))
     {
@@ -402,7 +431,8 @@ bool vtkSurfacePieces::Distances(vtkAlgorithm* self, vtkPolyData* ownCells,
     }
   }
   gs::PieceDistanceSolver solver(this->GraphState);
-  if (!Reported(self, points.empty() ? "Source vertex ids: " : "Source points: ",
+  if (!Reported(self,
+        curves ? "Source curves: " : points.empty() ? "Source vertex ids: " : "Source points: ",
         solver.Solve(seeds, maxDistance, *Comm, refine)))
   {
     return false;
@@ -453,10 +483,13 @@ bool vtkSurfacePieces::DistancesWithoutGraph(vtkAlgorithm* self, gs::GeodesicSol
   std::vector<gs::SurfacePoint> samples;
   std::vector<std::vector<gs::CurvePiece>> runs;
   std::vector<std::vector<gs::PiecePointName>> names;
+  std::vector<gs::CurvePiece> unused;
+  std::int64_t crossed = 0;
   const bool exact = solver == gs::GeodesicSolver::Exact;
   if (curves &&
     (!this->SnapCurves(self, ownCells, curves, names) ||
-      !this->TraceCurves(self, names, exact, samples, runs)))
+      !this->TraceCurves(self, names, exact ? CurveUse::ExactSamples : CurveUse::Runs, samples,
+        runs, unused, crossed)))
   {
     return false;
   }
@@ -686,8 +719,9 @@ bool vtkSurfacePieces::SnapCurves(vtkAlgorithm* self, vtkPolyData* ownCells, vtk
 
 //------------------------------------------------------------------------------
 bool vtkSurfacePieces::TraceCurves(vtkAlgorithm* self,
-  const std::vector<std::vector<gs::PiecePointName>>& curves, bool exact,
-  std::vector<gs::SurfacePoint>& points, std::vector<std::vector<gs::CurvePiece>>& runs)
+  const std::vector<std::vector<gs::PiecePointName>>& curves, CurveUse use,
+  std::vector<gs::SurfacePoint>& points, std::vector<std::vector<gs::CurvePiece>>& runs,
+  std::vector<gs::CurvePiece>& pieces, std::int64_t& faces)
 {
   gs::SurfacePiece& piece = this->SurfacePieceState;
   const double mean = piece.MeanEdgeLength(*Comm);
@@ -723,8 +757,7 @@ bool vtkSurfacePieces::TraceCurves(vtkAlgorithm* self,
       return false;
     }
     std::vector<gs::SurfacePoint> samples;
-    std::vector<std::vector<gs::CurvePiece>> traced;
-    bool inside = true;
+    std::vector<std::vector<gs::CurvePiece>> walks; // a walk per curve, or the runs
     for (const auto& names : curves)
     {
       std::vector<gs::SurfacePoint> curve;
@@ -732,8 +765,7 @@ bool vtkSurfacePieces::TraceCurves(vtkAlgorithm* self,
       {
         curve.push_back(p.In(piece));
       }
-      std::vector<std::vector<gs::CurvePiece>> walks;
-      if (exact)
+      if (use != CurveUse::Runs)
       {
         walks.push_back(gs::TraceSurfaceCurve(piece.Mesh(), curve));
       }
@@ -745,38 +777,52 @@ bool vtkSurfacePieces::TraceCurves(vtkAlgorithm* self,
           samples.push_back(curve[0]); // (a one-point curve is a point)
         }
       }
-      for (const auto& walk : walks)
-      {
-        for (const gs::CurvePiece& step : walk)
-        {
-          inside = inside && !piece.Fence()[static_cast<std::size_t>(step.Face)];
-        }
-      }
-      if (exact)
-      {
-        const std::vector<gs::SurfacePoint> s = gs::SampleCurvePieces(
-          piece.Mesh(), walks.front(), gs::ExactCurveSampleSpacing * mean);
-        samples.insert(samples.end(), s.begin(), s.end());
-      }
-      else
-      {
-        traced.insert(traced.end(), walks.begin(), walks.end());
-      }
     }
-    if (Comm->Sum(inside ? 0 : 1) == 0)
+    std::vector<gs::CurvePiece> all;
+    for (const auto& walk : walks)
     {
-      // This process's share: the samples on its own faces (or vertices it owns); the runs
-      // whole (each process seeds the pieces on its own faces).
-      for (const gs::SurfacePoint& s : samples)
-      {
-        if (s.IsVertex() ? piece.IsOwned(s.Vertex) : piece.IsOwnFace(s.Face))
-        {
-          points.push_back(s);
-        }
-      }
-      runs = std::move(traced);
-      return true;
+      all.insert(all.end(), walk.begin(), walk.end());
     }
+    bool inside = true;
+    for (const gs::CurvePiece& step : all)
+    {
+      inside = inside && !piece.Fence()[static_cast<std::size_t>(step.Face)];
+    }
+    if (Comm->Sum(inside ? 0 : 1) > 0)
+    {
+      continue;
+    }
+    if (use != CurveUse::Runs)
+    {
+      samples = gs::SampleCurvePieces(piece.Mesh(), all,
+        (use == CurveUse::ExactSamples ? gs::ExactCurveSampleSpacing
+                                       : gs::SVGGeodesicSolver::CurveSeedSpacing) * mean);
+    }
+    // This process's share: the samples on its own faces (or vertices it owns) and the pieces on
+    // its own faces; the runs whole (each process seeds the pieces on its own faces).
+    for (const gs::SurfacePoint& s : samples)
+    {
+      if (s.IsVertex() ? piece.IsOwned(s.Vertex) : piece.IsOwnFace(s.Face))
+      {
+        points.push_back(s);
+      }
+    }
+    std::vector<std::int64_t> crossed;
+    for (const gs::CurvePiece& step : all)
+    {
+      crossed.push_back(piece.FaceId(step.Face));
+      if (piece.IsOwnFace(step.Face))
+      {
+        pieces.push_back(step);
+      }
+    }
+    std::sort(crossed.begin(), crossed.end());
+    faces = std::unique(crossed.begin(), crossed.end()) - crossed.begin();
+    if (use == CurveUse::Runs)
+    {
+      runs = std::move(walks);
+    }
+    return true;
   }
 }
 

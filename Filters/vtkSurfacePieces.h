@@ -77,8 +77,10 @@ public:
   // unfolding when `refine`: NaN where unreached, beyond maxDistance (> 0) or not on a
   // triangle. False (error on `self`) on every process when a source id is no point of the
   // surface or a point cannot be snapped.
+  // With `curves` (line cells, the same on every process; null: none) the sources are curves,
+  // the points joining them as one-point curves, as SVGGeodesicSolver::SolveCurves takes them.
   bool Distances(vtkAlgorithm* self, vtkPolyData* ownCells, const std::vector<vtkIdType>& sources,
-    const std::vector<gs::Vec3>& points, double maxDistance, bool refine,
+    const std::vector<gs::Vec3>& points, vtkPolyData* curves, double maxDistance, bool refine,
     std::vector<double>& perPoint);
 
   // Distances without a graph from the points `sources` (serial point ids) and from `points` in
@@ -149,12 +151,21 @@ private:
   // whole surface's mean edge apart), each curve's points named by global ids, on every process.
   bool SnapCurves(vtkAlgorithm* self, vtkPolyData* ownCells, vtkPolyData* sources,
     std::vector<std::vector<gs::PiecePointName>>& curves);
+  // What a solver takes of a curve source (TraceCurves).
+  enum class CurveUse
+  {
+    ExactSamples, // the exact solver's samples (ExactCurveSampleSpacing)
+    Runs,         // the virtual sources' straight runs
+    GraphSeeds    // the graph solvers' seeds: samples (CurveSeedSpacing) and traced pieces
+  };
   // Collective. The curves traced on every process's piece (its band grown around them until
-  // every trace stays inside): for the exact solver, their samples on this process's own faces
-  // (appended to `points`); for the virtual sources, their straight runs (`runs`).
+  // every trace stays inside), as `use` says: samples on this process's own faces (appended to
+  // `points`), the straight runs whole (`runs`), the traced pieces on its own faces (`pieces`)
+  // and the number of faces the curves cross (`faces`, over all processes).
   bool TraceCurves(vtkAlgorithm* self, const std::vector<std::vector<gs::PiecePointName>>& curves,
-    bool exact, std::vector<gs::SurfacePoint>& points,
-    std::vector<std::vector<gs::CurvePiece>>& runs);
+    CurveUse use, std::vector<gs::SurfacePoint>& points,
+    std::vector<std::vector<gs::CurvePiece>>& runs, std::vector<gs::CurvePiece>& pieces,
+    std::int64_t& faces);
   // Whether the pieces carry global ids; otherwise the ids number the gathered surface
   // (PieceNumbering.h), and FirstPoint is the gathered index of this piece's first point.
   bool GivenIds = true;

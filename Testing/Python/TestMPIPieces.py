@@ -8,8 +8,8 @@ same pieces without global ids (numbered as gathering them numbers them) give, u
 
 Meshes: the bumpy sphere (closed, saddles everywhere) and the L-shaped plane (a boundary, a
 regular grid: ties everywhere). Solvers: SVG (label-correcting, K = 50, unfolding refinement)
-from one vertex and from two points of the Sources port (the exact distances around them on the
-pieces seeding the graph search), SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
+from one vertex, from two points of the Sources port (the exact distances around them on the
+pieces seeding the graph search) and from a polyline, SVG (Dijkstra, K = 30, graph distances) from one vertex, and DGG (accuracy 0.01, refinement)
 from two vertices with a MaximumDistance; the exact solver (window propagation on the pieces)
 from two vertices, from two points of the Sources port (snapped on the pieces) and from a
 polyline (sampled, snapped and traced on every process's piece, grown around it); the virtual
@@ -62,6 +62,9 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
         ("dgg", "SVGGeodesicDistance", dict(Solver="DGG (accuracy-bounded)", GraphAccuracy=0.01,
                                             SourceVertexIds=[3, 200], MaximumDistance=1.0),
          ["GeodesicDistance"]),
+        ("svg-curve", "SVGGeodesicDistance",
+         dict(Solver="SVG (label-correcting)", K=50,
+              SourceCurve=[0.9, 0.3, 0.2, 0.5, 0.7, 0.3, 0.1, 0.9, 0.2]), ["GeodesicDistance"]),
         ("svg-points", "SVGGeodesicDistance",
          dict(Solver="SVG (label-correcting)", K=50, SourcePoints=[0.9, 0.3, 0.2, 0.2, 0.8, -0.3]),
          ["GeodesicDistance"]),

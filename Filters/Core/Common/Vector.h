@@ -1,6 +1,7 @@
 // Small fixed-size vector types used by the geometry core (plain structs: no VTK, no Eigen).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace gs
@@ -83,6 +84,16 @@ inline Vec3 RotateTangent(const Vec3& t, const Vec3& n, double angle)
 inline bool IsFinite(const Vec3& a)
 {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+
+// The distance from p to the segment from a to b (a point when a == b).
+inline double PointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
+{
+  const Vec3 ab = b - a;
+  const double l2 = Dot(ab, ab);
+  double t = l2 > 0.0 ? Dot(p - a, ab) / l2 : 0.0;
+  t = std::min(1.0, std::max(0.0, t));
+  return Norm(p - (a + ab * t));
 }
 
 } // namespace gs

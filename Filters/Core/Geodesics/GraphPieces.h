@@ -25,6 +25,7 @@
 #include "PieceCommunicator.h"
 #include "SaddleVertexGraph.h"
 #include "Status.h"
+#include "SurfaceCurve.h"
 #include "SurfacePiece.h"
 
 #include <cmath>
@@ -166,16 +167,20 @@ private:
 };
 
 // Collective. The seeds SVGGeodesicSolver searches the graph from when its sources include
-// surface points: the exact distances (window propagation on the pieces) of the
-// graph.LocalDiskSize() x n vertices nearest to the sources (n: the vertex ids `sources`, the
-// same list on every process, and the surface points `points` of every process: each passes
-// those of its own faces), within maxDistance (> 0), and the corners of the points' faces at
-// their straight distance. Every process gets the whole list, as PieceDistanceSolver::Solve
-// takes it. Ties at the last vertex taken go to the smaller global id (the serial solve takes
-// the one its windows finalize first). Fails on every process as ComputeExactOnPieces does.
+// surface points or curves: the exact distances (window propagation on the pieces) of the
+// graph.LocalDiskSize() x n vertices nearest to the sources (the vertex ids `sources`, the same
+// list on every process, and the surface points `points` of every process: each passes those
+// of its own faces; n their number, or `disks` when > 0), within maxDistance (> 0), and the
+// corners of the faces of `pieces` (each process those on its own faces; none given: the
+// points' faces) at their straight distance. Curves (SVGGeodesicSolver::SolveCurves) pass
+// their samples as points, their traced pieces, and the number of faces the curves cross as
+// `disks`. Every process gets the whole list, as PieceDistanceSolver::Solve takes it. Ties at
+// the last vertex taken go to the smaller global id (the serial solve takes the one its windows
+// finalize first). Fails on every process as ComputeExactOnPieces does.
 Status GraphSeedsFromPoints(SurfacePiece& piece, const PieceGraph& graph,
   const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points,
-  double maxDistance, PieceCommunicator& comm, std::vector<std::pair<std::int64_t, double>>& seeds);
+  double maxDistance, PieceCommunicator& comm, std::vector<std::pair<std::int64_t, double>>& seeds,
+  const std::vector<CurvePiece>& pieces = {}, std::int64_t disks = 0);
 
 class PieceDistanceSolver
 {

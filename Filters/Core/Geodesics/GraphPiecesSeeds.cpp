@@ -37,7 +37,8 @@ std::vector<std::pair<std::int64_t, double>> AllPairs(
 
 Status GraphSeedsFromPoints(SurfacePiece& piece, const PieceGraph& graph,
   const std::vector<std::int64_t>& sources, const std::vector<SurfacePoint>& points,
-  double maxDistance, PieceCommunicator& comm, std::vector<std::pair<std::int64_t, double>>& seeds)
+  double maxDistance, PieceCommunicator& comm, std::vector<std::pair<std::int64_t, double>>& seeds,
+  const std::vector<CurvePiece>& pieces, std::int64_t disks)
 {
   seeds.clear();
   std::vector<std::int64_t> ids = sources;
@@ -46,7 +47,7 @@ Status GraphSeedsFromPoints(SurfacePiece& piece, const PieceGraph& graph,
   const std::int64_t n =
     static_cast<std::int64_t>(ids.size()) + comm.Sum(static_cast<std::int64_t>(points.size()));
   const std::int64_t wanted = std::min<std::int64_t>(
-    static_cast<std::int64_t>(graph.LocalDiskSize()) * std::max<std::int64_t>(n, 1),
+    static_cast<std::int64_t>(graph.LocalDiskSize()) * std::max<std::int64_t>(disks > 0 ? disks : n, 1),
     piece.GlobalNumberOfVertices());
   const double limit =
     maxDistance > 0.0 && std::isfinite(maxDistance) ? maxDistance : std::numeric_limits<double>::infinity();
@@ -97,17 +98,24 @@ Status GraphSeedsFromPoints(SurfacePiece& piece, const PieceGraph& graph,
   {
     seeds.resize(static_cast<std::size_t>(wanted));
   }
-  // The corners of the points' faces, at their straight distance.
-  std::vector<std::pair<std::int64_t, double>> corners;
-  for (const SurfacePoint& p : points)
+  // The corners of the pieces' faces (the points' faces), at their straight distance.
+  std::vector<CurvePiece> ends = pieces;
+  if (pieces.empty())
   {
-    if (!p.IsVertex())
+    for (const SurfacePoint& p : points)
     {
-      const Vec3 at = mesh.Position(p);
-      for (const int c : mesh.Face(p.Face))
+      if (!p.IsVertex())
       {
-        corners.push_back({ piece.GlobalId(c), Norm(mesh.Position(c) - at) });
+        ends.push_back({ p.Face, mesh.Position(p), mesh.Position(p) });
       }
+    }
+  }
+  std::vector<std::pair<std::int64_t, double>> corners;
+  for (const CurvePiece& p : ends)
+  {
+    for (const int c : mesh.Face(p.Face))
+    {
+      corners.push_back({ piece.GlobalId(c), PointSegmentDistance(mesh.Position(c), p.A, p.B) });
     }
   }
   const std::vector<std::pair<std::int64_t, double>> all = AllPairs(comm, corners);

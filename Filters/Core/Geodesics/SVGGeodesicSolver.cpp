@@ -16,14 +16,6 @@ namespace
 constexpr double Inf = std::numeric_limits<double>::infinity();
 const double NaN = std::numeric_limits<double>::quiet_NaN();
 
-double PointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
-{
-  const Vec3 ab = b - a;
-  const double l2 = Dot(ab, ab);
-  double t = l2 > 0.0 ? Dot(p - a, ab) / l2 : 0.0;
-  t = std::min(1.0, std::max(0.0, t));
-  return Norm(p - (a + ab * t));
-}
 } // namespace
 
 SVGGeodesicSolver::SVGGeodesicSolver(const TriangleMesh& mesh, const SaddleVertexGraph& graph)
