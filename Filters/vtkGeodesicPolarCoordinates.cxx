@@ -103,26 +103,36 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Under MPI, the exact chart about SourceVertexId or a point of the Source input (either angle
-  // mode; iso-curve angles within a finite radius) is computed on the pieces when they hold triangles only (the
+  // mode; iso-curve angles within a finite radius), or the curve coordinates about its first
+  // line cell (a finite radius), are computed on the pieces when they hold triangles only (the
   // same decision on every process: it depends on properties, on the Source input's cells and
   // on CanUse, which is collective); everything else gathers.
   const vtkDistributedSurface distributed(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (distributed && input && output && this->Solver == EXACT &&
-    (this->AngleMode == GEODESIC_DIRECTION ||
-      (this->AngleMode == ISO_CURVE_ARC_LENGTH && std::isfinite(this->Radius))))
+  if (distributed && input && output && this->Solver == EXACT)
   {
     const bool sourcePort = inputVector[1]->GetNumberOfInformationObjects() > 0;
+    vtkSmartPointer<vtkPolyData> all = sourcePort
+      ? distributed.GatherAuxiliaryEverywhere(vtkPointSet::GetData(inputVector[1], 0))
+      : nullptr;
+    const bool curve = all && all->GetLines() && all->GetNumberOfLines() > 0;
     std::vector<double> xyz;
-    // (Points only: a curve source gathers.)
-    const bool points = !sourcePort ||
-      distributed.GatherAuxiliaryPoints(vtkPointSet::GetData(inputVector[1], 0), xyz);
+    for (vtkIdType i = 0; all && !curve && i < all->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      all->GetPoint(i, x);
+      xyz.insert(xyz.end(), x, x + 3);
+    }
+    const bool pieces = curve ? std::isfinite(this->Radius)
+                              : this->AngleMode == GEODESIC_DIRECTION ||
+        (this->AngleMode == ISO_CURVE_ARC_LENGTH && std::isfinite(this->Radius));
     vtkSmartPointer<vtkPolyData> own =
-      points ? vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input) : nullptr;
+      pieces ? vtkSurfacePieces::OwnCellsInPlace(this, distributed, this->Pieces, input) : nullptr;
     if (own)
     {
-      return this->ExecutePieces(input, own, output, sourcePort ? &xyz : nullptr);
+      return this->ExecutePieces(
+        input, own, output, sourcePort ? &xyz : nullptr, curve ? all.Get() : nullptr);
     }
   }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,
@@ -133,12 +143,44 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
 
 //------------------------------------------------------------------------------
 int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* own,
-  vtkPolyData* output, const std::vector<double>* sourceXyz)
+  vtkPolyData* output, const std::vector<double>* sourceXyz, vtkPolyData* curve)
 {
   output->Initialize(); // empty unless everything succeeds
   this->UpdateProgress(0.0);
   std::vector<double> rho, theta;
   gs::PiecePolarCoordinates chart;
+  if (curve)
+  {
+    // The first line cell, as serially.
+    if (curve->GetNumberOfLines() > 1)
+    {
+      vtkWarningMacro("The Source input has " << curve->GetNumberOfLines()
+                                              << " line cells: only the first one is used.");
+    }
+    const bool referenceSet = this->ReferenceDirection[0] != 0.0 ||
+      this->ReferenceDirection[1] != 0.0 || this->ReferenceDirection[2] != 0.0;
+    if (referenceSet || this->AngleMode != GEODESIC_DIRECTION)
+    {
+      vtkWarningMacro("Curve source: ReferenceDirection, AngleMode and Solver apply to point "
+                      "sources only and are ignored (offset and arc length from exact geodesics).");
+    }
+    vtkNew<vtkPolyData> first;
+    first->SetPoints(curve->GetPoints());
+    vtkNew<vtkCellArray> line;
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    auto it = vtk::TakeSmartPointer(curve->GetLines()->NewIterator());
+    it->GoToFirstCell();
+    it->GetCurrentCell(npts, pts);
+    line->InsertNextCell(npts, pts);
+    first->SetLines(line);
+    if (!this->CheckParameters() || !this->Pieces->UsePiece(this, own, input->GetMTime()) ||
+      !this->Pieces->PolarCurve(this, own, first, this->Radius, rho, theta, chart))
+    {
+      return 1;
+    }
+    return this->WritePieceOutput(own, output, rho, theta, chart, true);
+  }
   // The Source input's points (every process has them all), as serially: the first one.
   std::vector<gs::Vec3> points;
   for (std::size_t i = 0; sourceXyz && i + 2 < sourceXyz->size(); i += 3)
@@ -166,12 +208,20 @@ int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* 
     this->WarnReferenceNormal();
   }
   this->WarnIsoCurveKept(chart.IsoCurveKept);
+  return this->WritePieceOutput(own, output, rho, theta, chart, false);
+}
+
+//------------------------------------------------------------------------------
+int vtkGeodesicPolarCoordinates::WritePieceOutput(vtkPolyData* own, vtkPolyData* output,
+  const std::vector<double>& rho, const std::vector<double>& theta,
+  const gs::PiecePolarCoordinates& chart, bool curve)
+{
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const vtkIdType n = static_cast<vtkIdType>(rho.size());
   vtkNew<vtkDoubleArray> rhoArray, thetaArray, decal;
-  rhoArray->SetName("GeodesicDistance");
+  rhoArray->SetName(curve ? "Offset" : "GeodesicDistance");
   rhoArray->SetNumberOfTuples(n);
-  thetaArray->SetName("PolarAngle");
+  thetaArray->SetName(curve ? "ArcLength" : "PolarAngle");
   thetaArray->SetNumberOfTuples(n);
   decal->SetName("DecalCoordinates");
   decal->SetNumberOfComponents(2);
@@ -185,16 +235,17 @@ int vtkGeodesicPolarCoordinates::ExecutePieces(vtkPolyData* input, vtkPolyData* 
     }
     rhoArray->SetValue(i, r);
     thetaArray->SetValue(i, t);
-    // A square of side DecalSize centred on the source -> [0, 1]^2 (NaN stays NaN), as Execute.
-    decal->SetTypedComponent(i, 0, r * std::cos(t) / this->DecalSize + 0.5);
-    decal->SetTypedComponent(i, 1, r * std::sin(t) / this->DecalSize + 0.5);
+    // As WriteOutput: a curve's (u, delta) band of width DecalSize -> [0, 1]; a point's square of
+    // side DecalSize centred on the source -> [0, 1]^2 (NaN stays NaN).
+    decal->SetTypedComponent(i, 0, curve ? t : r * std::cos(t) / this->DecalSize + 0.5);
+    decal->SetTypedComponent(i, 1, curve ? r / this->DecalSize + 0.5 : r * std::sin(t) / this->DecalSize + 0.5);
   }
   SetOutputArrays(output, own, rhoArray, thetaArray, decal);
   vtkNew<vtkFieldData> fieldData;
   fieldData->ShallowCopy(own->GetFieldData());
   vtkNew<vtkDoubleArray> sum;
-  sum->SetName("SourceAngleSum");
-  sum->InsertNextValue(chart.SourceAngleSum);
+  sum->SetName(curve ? "CurveLength" : "SourceAngleSum");
+  sum->InsertNextValue(curve ? chart.CurveLength : chart.SourceAngleSum);
   fieldData->AddArray(sum);
   // What this process held, and the chart's process (the band grew where the chart needed).
   for (const auto& value : { std::make_pair("PieceFaces", this->Pieces->Piece().Mesh().NumberOfFaces()),

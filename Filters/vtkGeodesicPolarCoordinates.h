@@ -83,6 +83,10 @@
 
 class vtkDoubleArray;
 class vtkSurfacePieces;
+namespace gs
+{
+struct PiecePolarCoordinates;
+}
 
 class GEODESICSHAPESFILTERS_EXPORT vtkGeodesicPolarCoordinates : public vtkPolyDataAlgorithm
 {
@@ -183,12 +187,17 @@ protected:
   // RequestData's work on the whole surface (the input itself, or under MPI the gathered
   // surface on process 0).
   int Execute(vtkPolyData* input, vtkPointSet* source, vtkPolyData* output);
-  // Under MPI, the exact chart about SourceVertexId or the Source input's first point on pieces:
+  // Under MPI, the exact chart about SourceVertexId or the Source input's first point (`curve`:
+  // its first line cell, the same on every process: curve coordinates) on pieces:
   // each process outputs its own cells (`own`), the chart's process grows its band to the chart
   // (vtkSurfacePieces::Polar), nothing gathered. `sourceXyz`: the Source input's points (x, y, z, ...) gathered to every process, or null
   // for SourceVertexId.
   int ExecutePieces(vtkPolyData* input, vtkPolyData* own, vtkPolyData* output,
-    const std::vector<double>* sourceXyz);
+    const std::vector<double>* sourceXyz, vtkPolyData* curve);
+  // ExecutePieces' output: the arrays as WriteOutput names and fills them (`curve`: a curve
+  // source's offset and arc length), at the points of `own`, and the field data.
+  int WritePieceOutput(vtkPolyData* own, vtkPolyData* output, const std::vector<double>& rho,
+    const std::vector<double>& theta, const gs::PiecePolarCoordinates& chart, bool curve);
   // The warning that ReferenceDirection is normal to the surface at the source.
   void WarnReferenceNormal();
   // The warning that `kept` points keep the geodesic-direction angle (iso-curve angles).

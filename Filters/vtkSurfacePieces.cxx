@@ -380,6 +380,33 @@ bool vtkSurfacePieces::Polar(vtkAlgorithm* self, vtkPolyData* ownCells, vtkIdTyp
 }
 
 //------------------------------------------------------------------------------
+bool vtkSurfacePieces::PolarCurve(vtkAlgorithm* self, vtkPolyData* ownCells, vtkPolyData* curve,
+  double radius, std::vector<double>& rho, std::vector<double>& theta,
+  gs::PiecePolarCoordinates& chart)
+{
+  std::vector<std::vector<gs::PiecePointName>> names;
+  if (!this->SnapCurves(self, ownCells, curve, names))
+  {
+    return false;
+  }
+  if (names.empty() || names.front().size() < 2)
+  {
+    vtkErrorWithObjectMacro(self, "The Source curve has fewer than two distinct points on the surface.");
+    return false;
+  }
+  if (!Reported(self, "Geodesic polar coordinates about the source curve: ",
+        gs::ComputeCurveCoordinatesOnPieces(
+          this->SurfacePieceState, names.front(), radius, *Comm, chart)))
+  {
+    this->HasPiece = this->HasGraph = false; // (its band may have failed to grow)
+    return false;
+  }
+  rho = this->AtPoints(chart.Rho, 0.0);
+  theta = this->AtPoints(chart.Theta, 0.0);
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkSurfacePieces::Distances(vtkAlgorithm* self, vtkPolyData* ownCells,
   const std::vector<vtkIdType>& sources, const std::vector<gs::Vec3>& points, vtkPolyData* curves,
   double maxDistance, bool refine, std::vector<double>& perPoint)

@@ -109,6 +109,12 @@ public:
     bool isoCurveAngles, std::vector<double>& rho, std::vector<double>& theta,
     gs::PiecePolarCoordinates& chart);
 
+  // Geodesic curve coordinates (offset in `rho`, normalized arc length in `theta`) about the
+  // first line cell of `curve` (the same on every process) within `radius` (finite), at every
+  // point of `ownCells` (the piece UsePiece was given; NaN outside): ComputeCurveCoordinatesOnPieces.
+  bool PolarCurve(vtkAlgorithm* self, vtkPolyData* ownCells, vtkPolyData* curve, double radius,
+    std::vector<double>& rho, std::vector<double>& theta, gs::PiecePolarCoordinates& chart);
+
   const gs::SurfacePiece& Piece() const { return SurfacePieceState; }
   // Rounds of exchanges the last Distances took: the graph search's and the refinement's.
   int SolveRounds() const { return LastRounds; }

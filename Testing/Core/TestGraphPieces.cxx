@@ -564,3 +564,82 @@ TEST(GraphPieces, SurfacePointSourcesAsSerial)
   ExpectPointSourcesAsSerial(plane, dgg, gs_test::PartitionFaces(plane, 2, Vec3(1, 0, 0)), 2,
     { SurfacePoint::InFace(400, 0.3, 0.3, 0.4) }, 0.0);
 }
+
+// Curve coordinates about a curve on pieces (ComputeCurveCoordinatesOnPieces: process 0 grows
+// its band around the curve and the chart) against GeodesicPolarCoordinates::ComputeCurve on the
+// whole mesh: the same bits, the curve's length too.
+TEST(GraphPieces, CurveCoordinatesSpanPieces)
+{
+  auto expectAsSerial = [](const TriangleMesh& mesh, const std::vector<int>& part, int processes,
+                          const std::vector<SurfacePoint>& curve, double radius) {
+    GeodesicPolarCoordinates serial(mesh);
+    ASSERT_TRUE(gs_test::Succeeded(serial.ComputeCurve(curve, radius)));
+    std::vector<PiecePointName> names;
+    for (const SurfacePoint& p : curve)
+    {
+      PiecePointName n;
+      if (p.IsVertex())
+      {
+        n.Vertex = p.Vertex;
+      }
+      else
+      {
+        n.Face = p.Face;
+        n.Bary = p.Bary;
+        for (std::size_t k = 0; k < 3; ++k)
+        {
+          n.Corners[k] = mesh.Face(p.Face)[k];
+        }
+      }
+      names.push_back(n);
+    }
+    std::mutex lock;
+    std::vector<std::string> errors;
+    int compared = 0, differ = 0, inside = 0;
+    std::vector<double> lengths;
+    gs_test::ThreadHub hub(processes);
+    hub.Run([&](int rank, PieceCommunicator& comm) {
+      SurfacePiece piece;
+      PiecePolarCoordinates chart;
+      Status s = piece.Build(gs_test::PieceOf(mesh, part, rank), 0, comm);
+      s = s.Ok() ? ComputeCurveCoordinatesOnPieces(piece, names, radius, comm, chart) : s;
+      std::lock_guard<std::mutex> guard(lock);
+      if (!s.Ok())
+      {
+        errors.push_back(s.Message());
+        return;
+      }
+      lengths.push_back(chart.CurveLength);
+      for (int v = 0; v < piece.Mesh().NumberOfVertices(); ++v)
+      {
+        const int w = static_cast<int>(piece.GlobalId(v));
+        const double o = serial.Curve().Offset[static_cast<std::size_t>(w)];
+        const double a = serial.Curve().ArcLength[static_cast<std::size_t>(w)];
+        const double po = chart.Rho[static_cast<std::size_t>(v)];
+        const double pa = chart.Theta[static_cast<std::size_t>(v)];
+        const bool serialIn = !std::isnan(o) && std::abs(o) <= radius;
+        const bool piecesIn = !std::isnan(po);
+        ++compared;
+        inside += serialIn && rank == 0 ? 1 : 0;
+        if (serialIn != piecesIn || (serialIn && (o != po || !(a == pa || (std::isnan(a) && std::isnan(pa))))))
+        {
+          ++differ;
+        }
+      }
+    });
+    ASSERT_TRUE(errors.empty()) << errors.front();
+    EXPECT_EQ(differ, 0) << "of " << compared;
+    EXPECT_GT(inside, 20);
+    for (const double l : lengths)
+    {
+      EXPECT_EQ(l, serial.Curve().Length);
+    }
+  };
+  const TriangleMesh sphere = gs_test::BuildMesh(gs_test::BumpySoup(3, 7, 0.1));
+  const std::vector<int> slabs = gs_test::PartitionFaces(sphere, 3, Vec3(1, 0.3, 0.1));
+  expectAsSerial(sphere, slabs, 3,
+    { SurfacePoint::AtVertex(5), SurfacePoint::AtVertex(40), SurfacePoint::InFace(900, 0.2, 0.5, 0.3) }, 0.4);
+  const TriangleMesh plane = gs_test::BuildMesh(MakePlanarGrid(24, 20, 2.4, 2.0));
+  expectAsSerial(plane, gs_test::PartitionFaces(plane, 3, Vec3(1, 0, 0)), 3,
+    { SurfacePoint::AtVertex(30), SurfacePoint::AtVertex(260), SurfacePoint::AtVertex(480) }, 0.3);
+}

@@ -17,7 +17,8 @@ sources (propagation on the pieces) from two vertices and from two points (one o
 plane): as the serial run's to rounding on the plane, within 2% of the largest distance
 on the bumpy sphere (VIRTUAL_SOURCES_TOLERANCE); and Geodesic Polar Coordinates about a vertex
 (exact, radius 0.7, a reference direction), about a point of the Source input, and with
-iso-curve angles: rho and theta as the serial run's; over the whole surface (an infinite radius:
+iso-curve angles, and the curve coordinates about a polyline: rho and theta (offset and arc
+length) as the serial run's; over the whole surface (an infinite radius:
 the exact distances and departure angles on the pieces) within 1e-9 (angles modulo a turn).
 
 Bad sources (a point far from the surface, a vertex id of no point) give an error and an empty
@@ -92,6 +93,9 @@ RUNS = [("svg", "SVGGeodesicDistance", dict(Solver="SVG (label-correcting)", K=5
         ("polar-iso", "GeodesicPolarCoordinates",
          dict(SourceVertexId=11, Radius=0.6, AngleMode="Iso-curve arc length"),
          ["GeodesicDistance", "PolarAngle"]),
+        ("polar-curve", "GeodesicPolarCoordinates",
+         dict(SourceCurve=[0.9, 0.3, 0.2, 0.2, 0.6, 0.3, -0.3, 0.8, 0.2], Radius=0.4),
+         ["Offset", "ArcLength"]),
         ("polar-whole", "GeodesicPolarCoordinates",
          dict(SourceVertexId=11, Radius=float("inf"), ReferenceDirection=[1.0, 1.0, 0.0]),
          ["GeodesicDistance", "PolarAngle"])]
@@ -121,7 +125,10 @@ def run_filters():
             distance = globals()[filter_name](Input=mesh, **properties)
             if curve is not None:
                 # A polyline every process generates whole (it counts once).
-                distance.Sources = PolyLineSource(Points=curve)
+                if filter_name == "GeodesicPolarCoordinates":
+                    distance.Source = PolyLineSource(Points=curve)
+                else:
+                    distance.Sources = PolyLineSource(Points=curve)
             if points is not None:
                 # Every process generates the points whole; they count once.
                 if filter_name == "GeodesicPolarCoordinates":
@@ -276,7 +283,8 @@ def compare(reference, candidate, label, processes=None, faces=None):
                 check(all(h is not None for h in held),
                       "%s: a process gathered the surface instead of working on its piece" % what)
                 check(all(field(data, "SVGMeanDegree") == field(ref, "SVGMeanDegree") and
-                          field(data, "SourceAngleSum") == field(ref, "SourceAngleSum") for data in got),
+                          field(data, "SourceAngleSum") == field(ref, "SourceAngleSum") and
+                          field(data, "CurveLength") == field(ref, "CurveLength") for data in got),
                       "%s: the field data differs from the serial run's" % what)
                 if name != "dgg" and all(h is not None for h in held):
                     check(max(held) < faces[mesh_name],
@@ -285,7 +293,7 @@ def compare(reference, candidate, label, processes=None, faces=None):
                 if name.startswith("polar"):
                     # The chart spans pieces: its values reach more than one process's cells.
                     spans = sum(any(not math.isnan(x) for x in
-                                    (data.GetPointData().GetArray("PolarAngle").GetValue(i)
+                                    (data.GetPointData().GetArray(arrays[-1]).GetValue(i)
                                      for i in range(data.GetNumberOfPoints()))) for data in got)
                     check(spans >= 2, "%s: the chart lies on %d process's piece" % (what, spans))
                     line += "; the chart on %d pieces" % spans

@@ -153,7 +153,7 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
   CurvePieces = TraceSurfaceCurve(Mesh, curve);
   // Samples along the pieces (as SampleCurvePieces makes them), with their arc length and the
   // curve's tangent angle there.
-  const double spacing = ExactCurveSampleSpacing * Mesh.MeanEdgeLength();
+  const double spacing = ExactCurveSampleSpacing * MeanEdge;
   std::vector<SurfacePoint> samples = SampleCurvePieces(Mesh, CurvePieces, spacing);
   SnapSamplesToVertices(Mesh, samples);
   std::vector<double> arc;
@@ -163,13 +163,13 @@ Status GeodesicPolarCoordinates::ComputeCurve(const std::vector<SurfacePoint>& c
   {
     return Status::Error("the curve has zero length");
   }
-  const double tiny = 1e-6 * Mesh.MeanEdgeLength();
+  const double tiny = 1e-6 * MeanEdge;
   const std::vector<double> tangent = SampleTangents(Mesh, samples, direction, tiny);
   std::vector<double> runStart(samples.size(), 0.0), runEnd(samples.size(), CurveResult.Length);
   StraightRuns(direction, arc, tiny, runStart, runEnd);
   // A few edges beyond the radius, so that the offset curves near the radius can be traced.
   ExactGeodesicOptions options;
-  options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * Mesh.MeanEdgeLength() : 0.0;
+  options.MaximumDistance = std::isfinite(radius) ? radius + 3.0 * MeanEdge : 0.0;
   if (const Status solved = Solver.Solve(samples, options); !solved.Ok())
   {
     return solved;
@@ -423,7 +423,7 @@ Result<SurfacePoint> GeodesicPolarCoordinates::ToSurfaceFromCurve(double u, doub
   }
   // The curve point at arc length u L, and the curve's direction there.
   const double target = std::min(1.0, std::max(0.0, u)) * CurveResult.Length;
-  const double tiny = 1e-6 * Mesh.MeanEdgeLength();
+  const double tiny = 1e-6 * MeanEdge;
   double start = 0.0;
   const CurvePiece* at = nullptr;
   double t = 0.0;

@@ -112,8 +112,8 @@ public:
   // built for another mesh (another number of vertices) makes Compute and ComputeCurve fail.
   // `lengthScale`: the exact engine's tolerance scale (ExactGeodesicSolver; 0: the mesh's
   // bounding box diagonal; a piece of a partitioned surface passes the whole surface's), and
-  // `meanEdgeLength` the length iso-curve angles measure their margins in (0: the mesh's mean
-  // edge length; a piece passes the whole surface's).
+  // `meanEdgeLength` the length iso-curve angles and curve coordinates measure their spacings
+  // and margins in (0: the mesh's mean edge length; a piece passes the whole surface's).
   explicit GeodesicPolarCoordinates(const TriangleMesh& mesh,
     const SaddleVertexGraph* graph = nullptr, double lengthScale = 0.0, double meanEdgeLength = 0.0);
   // How far beyond a chart of `radius` UseIsoCurveAngles reads the surface: its further exact

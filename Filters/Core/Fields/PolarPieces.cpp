@@ -18,7 +18,8 @@ namespace gs
 namespace
 {
 // The chart's process's result as it sends it: a status, the source's angle sum, the reference
-// flag, its faces, then (id, rho, theta) per vertex of the chart.
+// flag, its faces, the iso-curve count, the curve's length, then (id, rho, theta) per vertex of
+// the chart (about a curve: the offset and the arc length).
 ByteBuffer Pack(const Status& status, const PiecePolarCoordinates& result,
   const GeodesicPolarCoordinates* polar, const SurfacePiece& piece)
 {
@@ -38,11 +39,13 @@ ByteBuffer Pack(const Status& status, const PiecePolarCoordinates& result,
   w.Put(static_cast<std::int32_t>(result.ReferenceNormal ? 1 : 0));
   w.Put(static_cast<std::int32_t>(result.ChartFaces));
   w.Put(static_cast<std::int32_t>(result.IsoCurveKept));
+  w.Put(result.CurveLength);
+  const bool curve = result.CurveLength > 0.0;
   for (const int v : polar->Inside())
   {
     w.Put(piece.GlobalId(v));
-    w.Put(polar->Rho(v));
-    w.Put(polar->Theta(v));
+    w.Put(curve ? polar->Curve().Offset[static_cast<std::size_t>(v)] : polar->Rho(v));
+    w.Put(curve ? polar->Curve().ArcLength[static_cast<std::size_t>(v)] : polar->Theta(v));
   }
   return bytes;
 }
@@ -120,6 +123,7 @@ Status Unpack(const ByteBuffer& bytes, const SurfacePiece& piece, PiecePolarCoor
   r.Get(normal);
   r.Get(faces);
   r.Get(kept);
+  r.Get(result.CurveLength);
   result.ReferenceNormal = normal != 0;
   result.ChartFaces = faces;
   result.IsoCurveKept = kept;
@@ -272,6 +276,101 @@ Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, doub
   }
   comm.Exchange(outgoing, incoming);
   return Unpack(incoming[static_cast<std::size_t>(chartRank)], piece, result);
+}
+
+Status ComputeCurveCoordinatesOnPieces(SurfacePiece& piece,
+  const std::vector<PiecePointName>& curve, double radius, PieceCommunicator& comm,
+  PiecePolarCoordinates& result)
+{
+  result = PiecePolarCoordinates();
+  if (!(radius > 0.0) || !std::isfinite(radius))
+  {
+    return Status::Error("the radius must be finite and above 0");
+  }
+  if (curve.empty())
+  {
+    return Status::Error("the curve has no point");
+  }
+  const double mean = piece.MeanEdgeLength(comm);
+  const bool chart = comm.Rank() == 0;
+  // Process 0's band grows around the curve's points, then (by rings that double) where its
+  // trace or the exact solve from its samples to what ComputeCurve solves reaches the fence.
+  std::vector<std::int64_t> around;
+  for (const PiecePointName& p : curve)
+  {
+    if (!chart)
+    {
+      break;
+    }
+    if (p.Vertex >= 0)
+    {
+      around.push_back(p.Vertex);
+    }
+    else
+    {
+      around.insert(around.end(), p.Corners.begin(), p.Corners.end());
+    }
+  }
+  std::vector<SurfacePoint> local;
+  for (int rings = 2;; rings *= 2)
+  {
+    if (const Status grown = piece.GrowAround(around, rings, comm); !grown.Ok())
+    {
+      return grown;
+    }
+    around.clear();
+    if (chart)
+    {
+      local.clear();
+      for (const PiecePointName& p : curve)
+      {
+        local.push_back(p.In(piece));
+      }
+      const std::vector<CurvePiece> traced = TraceSurfaceCurve(piece.Mesh(), local);
+      std::vector<int> faces;
+      for (const CurvePiece& step : traced)
+      {
+        faces.push_back(step.Face);
+      }
+      ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
+      ExactGeodesicOptions options;
+      options.MaximumDistance = radius + 3.0 * mean + 1.01 * piece.Mesh().LongestEdgeLength();
+      options.Fence = &piece.Fence();
+      const std::vector<SurfacePoint> samples =
+        SampleCurvePieces(piece.Mesh(), traced, ExactCurveSampleSpacing * mean);
+      static_cast<void>(solver.Solve(samples, options)); // (points of the piece: accepted)
+      faces.insert(faces.end(), solver.FenceFacesEntered().begin(), solver.FenceFacesEntered().end());
+      std::vector<int> fenced;
+      for (const int f : faces)
+      {
+        if (piece.Fence()[static_cast<std::size_t>(f)])
+        {
+          fenced.push_back(f);
+        }
+      }
+      piece.AppendIncompleteVertices(fenced, around);
+    }
+    if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
+    {
+      break;
+    }
+  }
+  // The coordinates, on process 0's piece; every process gets them.
+  std::vector<ByteBuffer> outgoing(static_cast<std::size_t>(comm.Size())), incoming;
+  if (chart)
+  {
+    GeodesicPolarCoordinates polar(piece.Mesh(), nullptr, piece.LengthScale(), mean);
+    const Status computed = polar.ComputeCurve(local, radius);
+    result.CurveLength = computed.Ok() ? polar.Curve().Length : 0.0;
+    result.ChartFaces = piece.Mesh().NumberOfFaces();
+    const ByteBuffer packed = Pack(computed, result, &polar, piece);
+    for (ByteBuffer& b : outgoing)
+    {
+      b = packed;
+    }
+  }
+  comm.Exchange(outgoing, incoming);
+  return Unpack(incoming[0], piece, result);
 }
 
 } // namespace gs

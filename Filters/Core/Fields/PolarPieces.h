@@ -34,6 +34,9 @@ struct PiecePolarCoordinates
   // With iso-curve angles: the vertices that kept their geodesic-direction angle
   // (GeodesicPolarCoordinates::UseIsoCurveAngles).
   int IsoCurveKept = 0;
+  // About a curve: Rho and Theta are the offset and the normalized arc length
+  // (GeodesicPolarCoordinates::Curve), and this is the curve's length.
+  double CurveLength = 0.0;
 };
 
 // Collective. Coordinates about the vertex of global id `source` within `radius` (> 0; infinite:
@@ -55,5 +58,15 @@ Status ComputePolarOnPieces(SurfacePiece& piece, std::int64_t source, double rad
 Status ComputePolarOnPieces(SurfacePiece& piece, const SurfacePoint* point, double radius,
   const Vec3& referenceDirection, PieceCommunicator& comm, PiecePolarCoordinates& result,
   bool isoCurveAngles = false);
+
+// Collective. Geodesic curve coordinates (GeodesicPolarCoordinates::ComputeCurve) about the
+// curve of points `curve` (named by global ids, the same list on every process) within `radius`
+// (finite, > 0): process 0 grows its band around the curve until its trace and the exact solve
+// from its samples within the radius (and the margin ComputeCurve solves beyond) stay inside,
+// computes them there (the whole surface's mean edge length: the serial result to the bit) and
+// sends every process the chart's vertices. Fails on every process as ComputeCurve fails.
+Status ComputeCurveCoordinatesOnPieces(SurfacePiece& piece,
+  const std::vector<PiecePointName>& curve, double radius, PieceCommunicator& comm,
+  PiecePolarCoordinates& result);
 
 } // namespace gs
