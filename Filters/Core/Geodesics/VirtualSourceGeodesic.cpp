@@ -35,7 +35,8 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh, double bucket
       r.L[k] = Surface.EdgeLength(3 * f + k);
       r.Twin[k] = Surface.Twin(3 * f + k);
       r.Corner[k] = static_cast<unsigned int>(corners[k]) |
-        (Surface.IsPseudoSourceVertex(corners[k]) ? BendFlag : 0u);
+        (Surface.IsPseudoSourceVertex(corners[k]) ? BendFlag : 0u) |
+        (Surface.IsPseudoSourceVertex(corners[k]) && Surface.IsBoundaryVertex(corners[k]) ? EdgeFlag : 0u);
     }
     const double l = r.L[0], b = r.L[2], a = r.L[1];
     r.Cx = (l * l + b * b - a * a) / (2.0 * l);
@@ -44,6 +45,7 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh, double bucket
     r.Key = Inf;
     r.Entry = r.Except = -1;
     r.Epoch = 0;
+    r.Funneled = false;
   }
   const int nv = Surface.NumberOfVertices();
   FanStart.assign(static_cast<std::size_t>(nv) + 1, 0);
@@ -53,6 +55,7 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh, double bucket
     Surface.ForEachOutgoingHalfedge(v, [this](int h) { FanHalfedges.push_back(h); });
     FanStart[static_cast<std::size_t>(v) + 1] = static_cast<int>(FanHalfedges.size());
   }
+  Funnels.resize(static_cast<std::size_t>(nf));
   Dist.assign(static_cast<std::size_t>(nv), Inf);
   BucketWidth = std::max(bucketWidth > 0.0 ? bucketWidth : Surface.MeanEdgeLength(), 1e-300);
 }
@@ -153,8 +156,13 @@ void VirtualSourceSolver::Prefetch(const std::vector<QueueItem>& bucket, std::si
 }
 
 void VirtualSourceSolver::SetSource(FaceRecord& r, double sx, double sy, double tx, double ty,
-  double sigma, double key, int entry, int except)
+  double sigma, double key, int entry, int except, const Funnel& funnel)
 {
+  r.Funneled = !std::isnan(funnel.Lx) || !std::isnan(funnel.Rx);
+  if (r.Funneled)
+  {
+    Funnels[static_cast<std::size_t>(&r - Faces.get())] = funnel;
+  }
   Stats.FacesReached += r.Epoch != Epoch;
   r.Sx = sx;
   r.Sy = sy;
@@ -247,7 +255,9 @@ enum class Bend
   None,
   AtA,
   AtB,
-  AtD
+  AtD,
+  AtLeft, // the funnel's bounds (CrossingSource)
+  AtRight
 };
 
 // The source of the face being left, in the frame of the half-edge it crosses into (origin
@@ -268,6 +278,43 @@ struct CrossingSource
   int Entry; // the half-edge the source is seen through in the face left
   int Hs;    // the half-edge crossed, in the face left
   bool CheckD;
+  // The face left's funnel (a point source): a line from the source to the left of (Lx, Ly) or
+  // to the right of (Rx, Ry), reflex boundary corners of the edges crossed since the source,
+  // leaves the surface: the path bends there.
+  bool HasLeft = false, HasRight = false;
+  double Lx = 0.0, Ly = 0.0, Rx = 0.0, Ry = 0.0;
+  // For a face that takes the point source straight on: the funnel narrowed by this edge's ends
+  // that are reflex boundary corners (A on the left, B on the right), NaN x where unbounded.
+  void Narrowed(bool reflexA, bool reflexB, double& lx, double& ly, double& rx, double& ry) const
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    lx = HasLeft ? Lx : nan;
+    ly = Ly;
+    rx = HasRight ? Rx : nan;
+    ry = Ry;
+    if (reflexA && (!HasLeft || (Lx - Sx) * (-Sy) - (Ly - Sy) * (-Sx) < 0.0))
+    {
+      lx = ly = 0.0;
+    }
+    if (reflexB && (!HasRight || (Rx - Sx) * (-Sy) - (Ry - Sy) * (L - Sx) > 0.0))
+    {
+      rx = L;
+      ry = 0.0;
+    }
+  }
+  Bend OutsideFunnel(double ex, double ey, double x, double y) const
+  {
+    const double ux = x - ex, uy = y - ey;
+    if (HasLeft && (Lx - ex) * uy - (Ly - ey) * ux > 0.0)
+    {
+      return Bend::AtLeft;
+    }
+    if (HasRight && (Rx - ex) * uy - (Ry - ey) * ux < 0.0)
+    {
+      return Bend::AtRight;
+    }
+    return Bend::None;
+  }
 
   // The point of the source nearest to (x, y): where the path to it starts.
   void Nearest(double x, double y, double& ex, double& ey) const
@@ -310,15 +357,38 @@ struct CrossingSource
       return t < -slack ? Bend::AtA
         : t > L + slack ? Bend::AtB
         : BeyondD(ex, ey, x, y) ? Bend::AtD
-                                : Bend::None;
+                                : OutsideFunnel(ex, ey, x, y);
     }
     return Hypot(ex, ey) + Hypot(x, y) <= Hypot(ex - L, ey) + Hypot(x - L, y) ? Bend::AtA
                                                                             : Bend::AtB;
   }
+  // The distance through this crossing to (px, py), the opposite vertex of the next face: the
+  // centroid's bend (`bend` at (kx, ky), nsigma there) when it bends, else its own path from
+  // the source at sigma; (fx, fy) where that path first turns ((px, py) when straight).
+  double DistanceTo(double px, double py, double sigma, Bend bend, double kx, double ky,
+    double nsigma, double& fx, double& fy) const
+  {
+    fx = px;
+    fy = py;
+    if (bend != Bend::None)
+    {
+      fx = kx;
+      fy = ky;
+      return nsigma + Hypot(px - kx, py - ky);
+    }
+    double qx, qy;
+    Nearest(px, py, qx, qy);
+    const Bend b = Route(qx, qy, px, py);
+    if (b != Bend::None)
+    {
+      BendPoint(b, fx, fy);
+    }
+    return sigma + Hypot(qx - fx, qy - fy) + Hypot(px - fx, py - fy);
+  }
   void BendPoint(Bend b, double& bx, double& by) const
   {
-    bx = b == Bend::AtA ? 0.0 : b == Bend::AtB ? L : Dx;
-    by = b == Bend::AtD ? Dy : 0.0;
+    bx = b == Bend::AtA ? 0.0 : b == Bend::AtB ? L : b == Bend::AtLeft ? Lx : b == Bend::AtRight ? Rx : Dx;
+    by = b == Bend::AtD ? Dy : b == Bend::AtLeft ? Ly : b == Bend::AtRight ? Ry : 0.0;
   }
 };
 } // namespace
@@ -362,6 +432,14 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
   source.Entry = from.Entry;
   source.Hs = hs;
   source.CheckD = from.Entry >= 0 && (from.Corner[(k + 2) % 3] & BendFlag);
+  if (from.Funneled && !source.Segment)
+  {
+    const Funnel& funnel = Funnels[static_cast<std::size_t>(f)];
+    source.HasLeft = !std::isnan(funnel.Lx);
+    source.HasRight = !std::isnan(funnel.Rx);
+    toEdge(funnel.Lx, funnel.Ly, source.Lx, source.Ly); // (NaN stays NaN, unread)
+    toEdge(funnel.Rx, funnel.Ry, source.Rx, source.Ry);
+  }
   const double sx = source.Sx, sy = source.Sy, tx = source.Tx, ty = source.Ty;
   const double sigma = from.Sigma;
   const double px = in.Px, py = in.Py;
@@ -379,26 +457,9 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
     nsy = nty = ky;
   }
 
-  // The opposite vertex P through this crossing, whatever the face decides: the centroid's bend
-  // when it bends, else its own path; (fx, fy) where that path first turns (P when straight).
-  double fx = px, fy = py, dP;
-  if (bend != Bend::None)
-  {
-    fx = kx;
-    fy = ky;
-    dP = nsigma + Hypot(px - kx, py - ky);
-  }
-  else
-  {
-    double qx, qy;
-    source.Nearest(px, py, qx, qy);
-    const Bend b = source.Route(qx, qy, px, py);
-    if (b != Bend::None)
-    {
-      source.BendPoint(b, fx, fy);
-    }
-    dP = sigma + Hypot(qx - fx, qy - fy) + Hypot(px - fx, py - fy);
-  }
+  // The opposite vertex P through this crossing, whatever the face decides.
+  double fx, fy;
+  const double dP = source.DistanceTo(px, py, sigma, bend, kx, ky, nsigma, fx, fy);
   // Angles: the face left's reference direction in the crossing's frame (turned as its source).
   const FaceAngle angle = Angles ? Turned(FaceAngles[f], -out.Ux, out.Uy) : FaceAngle{ Nan, Nan, Nan };
   UpdateVertex(to.Corner[(kt + 2) % 3], dP, Angles, [&] { return Towards(angle, sx, sy, fx, fy); });
@@ -417,10 +478,24 @@ void VirtualSourceSolver::Cross(const FaceRecord& from, int f, int k)
   const double nx = in.Ox + nsx * in.Ux - nsy * in.Uy;
   const double ny = in.Oy + nsx * in.Uy + nsy * in.Ux;
   const bool carried = source.Segment && bend == Bend::None;
+  // The funnel goes on with a point source that goes straight on, narrowed by the ends of the
+  // edge that are reflex boundary corners (A on the left, B on the right, as seen from the
+  // source); a bend opens it again.
+  Funnel next = Open();
+  const unsigned int a = from.Corner[(k + 1) % 3], b = from.Corner[k];
+  if (bend == Bend::None && !source.Segment &&
+    (source.HasLeft || source.HasRight || ((a | b) & EdgeFlag)))
+  {
+    double lx, ly, rx, ry;
+    source.Narrowed((a & EdgeFlag) != 0, (b & EdgeFlag) != 0, lx, ly, rx, ry);
+    // (Into the next face's frame; NaN stays NaN.)
+    next = { in.Ox + lx * in.Ux - ly * in.Uy, in.Oy + lx * in.Uy + ly * in.Ux,
+      in.Ox + rx * in.Ux - ry * in.Uy, in.Oy + rx * in.Uy + ry * in.Ux };
+  }
   SetSource(to, nx, ny, carried ? in.Ox + ntx * in.Ux - nty * in.Uy : nx,
     carried ? in.Oy + ntx * in.Uy + nty * in.Ux : ny, nsigma, key,
     bend == Bend::AtA || bend == Bend::AtB ? -1 : ht, // a source at A or B lies in the face
-    kt);
+    kt, next);
   if constexpr (Angles)
   {
     // Straight on: the reference direction turned into the next face's frame; bent: the angle

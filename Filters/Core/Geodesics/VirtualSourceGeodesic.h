@@ -12,7 +12,10 @@
 // boundary vertex a path may bend at), the path bends at that corner instead. Such a vertex is
 // also a source of its own: when the front reaches its distance, the faces around it take it
 // as their source where that is shorter (the shadow behind a saddle or a reflex boundary
-// corner, which no single unfolded line reaches).
+// corner, which no single unfolded line reaches). A point source also carries its funnel: the
+// reflex boundary corners at the ends of the edges crossed since the source that bound, left
+// and right, the lines through all those edges; a line beyond one leaves the surface (it
+// would cut across a notch or a hole), and the path bends at that corner instead.
 // A face takes the crossing that gives its centroid the smallest distance, and on a tie the one
 // with the smaller Sigma (fewer bends behind it: exact on flat meshes). The search is label
 // correcting: a face may be improved several times; faces are processed in buckets of one mean
@@ -20,11 +23,14 @@
 // crossings that reach it: the straight line from the source when it passes through the edge
 // crossed, else the bend around the nearer end.
 //
-// A line from a virtual source is checked against the last two edges it crosses only, not every
-// edge since the bend: on a curved surface a vertex's distance may be a little below the
-// geodesic one (a line no sequence of faces unfolds), and a bend at a vertex that is not a
-// saddle a little above it. Exact on flat and developable meshes; mean relative error 1e-3 ..
-// 2.3e-3 on most real meshes measured, but 6e-3 .. 1e-2 where lines cross fields of saddle
+// Past saddles a line is checked against the last two edges it crosses only, not every edge
+// since the bend (bounding lines by saddles too makes closed meshes' errors larger, turning lines too
+// short into bends too long): on a curved surface a vertex's distance may be a little below
+// the geodesic one (a line no sequence of faces unfolds), and a bend at a vertex that is not a
+// saddle a little above it. Exact on flat and developable meshes from most sources (behind a
+// reflex corner a face whose centroid is in its shadow hands the bend on to faces that see the
+// source: up to about 1% too long on the L-shaped plane); mean relative error 1e-3 ..
+// 1.9e-3 on most real meshes measured, but 6e-3 .. 1e-2 where lines cross fields of saddle
 // vertices: tori triangulated as regular grids, a CAD part with sharp creases (turbine)
 // (Docs/BENCHMARKS.md gives the figures against the exact solver). The solve is
 // sequential and deterministic; it touches each face a few times, so it is linear in practice.
@@ -136,8 +142,11 @@ private:
     int Entry;  // the half-edge the source is seen through (-1: the source lies in the face)
     int Except; // the edge (0 .. 2) the front came in by, not crossed back; -1 for none
     unsigned int Epoch;
+    bool Funneled; // the source has a funnel (Funnels), read only then
   };
   static constexpr unsigned int BendFlag = 0x80000000u; // a saddle or reflex boundary vertex
+  static constexpr unsigned int EdgeFlag = 0x40000000u; // a reflex boundary vertex (funnels)
+  static constexpr unsigned int VertexMask = ~(BendFlag | EdgeFlag); // (up to 2^30 vertices)
   // Edge k of a face in the face's frame: its origin (Ox, Oy) and unit direction (Ux, Uy), its
   // length, and the face's third corner (Px, Py) in the edge's own frame (origin at the edge's
   // start, x along it, y > 0 into the face).
@@ -164,8 +173,22 @@ private:
   std::vector<QueueItem>* BucketFor(double key);
   void Prefetch(const std::vector<QueueItem>& bucket, std::size_t i) const;
   double KeyOf(const FaceRecord& r) const { return r.Epoch == Epoch ? r.Key : Unreachable; }
+  // A face's funnel (point sources): the reflex boundary corners that bound, on the left and on
+  // the right seen from its source, the lines that pass through every edge crossed since the
+  // source (a line beyond one leaves the surface), in the face's frame (NaN x: no bound).
+  struct Funnel
+  {
+    double Lx, Ly, Rx, Ry;
+  };
+  static Funnel Open()
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return { nan, 0.0, nan, 0.0 };
+  }
+  std::vector<Funnel> Funnels; // per face, valid while its record is Funneled
   void SetSource(FaceRecord& r, double sx, double sy, double tx, double ty, double sigma,
-    double key, int entry, int except);
+    double key, int entry, int except,
+    const Funnel& funnel = Open());
   // Departure angles (Options.Angles), kept beside the records so that a solve without them
   // touches no more memory. A face's: where its source's paths leave the real source, Base plus
   // the angle of (x - S) from the direction (Rx, Ry) of its frame while the source is the real
@@ -230,7 +253,7 @@ private:
   template <class AngleOf>
   void UpdateVertex(unsigned int corner, double d, bool angles, AngleOf&& angle)
   {
-    const int v = static_cast<int>(corner & ~BendFlag);
+    const int v = static_cast<int>(corner & VertexMask);
     if (d < Dist[v])
     {
       Dist[v] = d;

@@ -221,6 +221,13 @@ std::int64_t VirtualSourcePieceSolve::Pack(std::vector<ByteBuffer>& out)
     }
     put.Put(EdgeName(f, r.Entry < 0 ? -1 : r.Entry % 3));
     put.Put(EdgeName(f, r.Except));
+    // The funnel, in the same frame (NaN x: no bound).
+    const VirtualSourceSolver::Funnel funnel =
+      r.Funneled ? Solver.Funnels[static_cast<std::size_t>(f)] : VirtualSourceSolver::Open();
+    for (const double x : { funnel.Lx, funnel.Ly, funnel.Rx, funnel.Ry })
+    {
+      put.Put(x);
+    }
     ++items;
   }
   Sent += static_cast<std::int64_t>(LeavingFaces.size());
@@ -249,9 +256,11 @@ bool VirtualSourcePieceSolve::UnpackFace(ByteReader& r)
   std::int64_t id = 0, entry = 0, except = 0;
   std::array<std::int64_t, 3> corners{};
   double sx = 0, sy = 0, tx = 0, ty = 0, sigma = 0, key = 0;
+  VirtualSourceSolver::Funnel funnel = VirtualSourceSolver::Open();
   if (!(r.Get(id) && r.Get(corners[0]) && r.Get(corners[1]) && r.Get(corners[2]) && r.Get(sx) &&
         r.Get(sy) && r.Get(tx) && r.Get(ty) && r.Get(sigma) && r.Get(key) && r.Get(entry) &&
-        r.Get(except)))
+        r.Get(except) && r.Get(funnel.Lx) && r.Get(funnel.Ly) && r.Get(funnel.Rx) &&
+        r.Get(funnel.Ry)))
   {
     return false;
   }
@@ -262,6 +271,14 @@ bool VirtualSourcePieceSolve::UnpackFace(ByteReader& r)
   }
   ToLocalFrame(f, corners, sx, sy);
   ToLocalFrame(f, corners, tx, ty);
+  if (!std::isnan(funnel.Lx))
+  {
+    ToLocalFrame(f, corners, funnel.Lx, funnel.Ly);
+  }
+  if (!std::isnan(funnel.Rx))
+  {
+    ToLocalFrame(f, corners, funnel.Rx, funnel.Ry);
+  }
   FaceRecord& to = Solver.Faces[f];
   // The crossing's own rule (VirtualSourceSolver::Cross): a smaller key, or on a tie fewer bends.
   const double current = Solver.KeyOf(to), tol = Solver.Tolerance;
@@ -271,7 +288,7 @@ bool VirtualSourcePieceSolve::UnpackFace(ByteReader& r)
   }
   const int entryEdge = EdgeOf(f, entry);
   Solver.SetSource(to, sx, sy, tx, ty, sigma, key, entryEdge < 0 ? -1 : 3 * f + entryEdge,
-    EdgeOf(f, except));
+    EdgeOf(f, except), funnel);
   return true;
 }
 
