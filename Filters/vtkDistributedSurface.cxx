@@ -2,6 +2,7 @@
 
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDataSet.h>
@@ -599,6 +600,40 @@ vtkSmartPointer<vtkPolyData> vtkDistributedSurface::GatherAuxiliaryEverywhere(vt
   }
   this->Controller->Broadcast(poly, 0);
   return poly;
+}
+
+//------------------------------------------------------------------------------
+void vtkDistributedSurface::SplitPointsAndCurves(
+  vtkPolyData* all, std::vector<double>& xyz, vtkSmartPointer<vtkPolyData>& curves)
+{
+  std::vector<unsigned char> onCurve(static_cast<std::size_t>(all->GetNumberOfPoints()), 0);
+  if (all->GetLines() && all->GetNumberOfLines() > 0)
+  {
+    curves = all;
+    auto it = vtk::TakeSmartPointer(all->GetLines()->NewIterator());
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      it->GetCurrentCell(npts, pts);
+      for (vtkIdType i = 0; i < npts; ++i)
+      {
+        if (pts[i] >= 0 && pts[i] < all->GetNumberOfPoints())
+        {
+          onCurve[static_cast<std::size_t>(pts[i])] = 1;
+        }
+      }
+    }
+  }
+  for (vtkIdType i = 0; i < all->GetNumberOfPoints(); ++i)
+  {
+    if (!onCurve[static_cast<std::size_t>(i)])
+    {
+      double x[3];
+      all->GetPoint(i, x);
+      xyz.insert(xyz.end(), x, x + 3);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

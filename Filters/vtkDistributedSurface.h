@@ -104,6 +104,11 @@ public:
   // polydata (its points and, for polydata, its line cells; another point set: its points
   // only); nullptr on every process when the input is not connected.
   vtkSmartPointer<vtkPolyData> GatherAuxiliaryEverywhere(vtkPointSet* piece) const;
+  // Source points and curves as the pieces take them from such a polydata: the points no line
+  // cell uses (x, y, z in order, as a serial run takes them as points) and, when it has line
+  // cells, the curves (`all` itself).
+  static void SplitPointsAndCurves(
+    vtkPolyData* all, std::vector<double>& xyz, vtkSmartPointer<vtkPolyData>& curves);
 
   // Collective. On process 0 the first piece, in rank order, with at least one point (process
   // 0's own when all are empty); nullptr elsewhere.

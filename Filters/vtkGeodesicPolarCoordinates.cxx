@@ -116,14 +116,14 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
     vtkSmartPointer<vtkPolyData> all = sourcePort
       ? distributed.GatherAuxiliaryEverywhere(vtkPointSet::GetData(inputVector[1], 0))
       : nullptr;
-    const bool curve = all && all->GetLines() && all->GetNumberOfLines() > 0;
+    // (With line cells, a curve source: its first polyline, the points unused, as serially.)
     std::vector<double> xyz;
-    for (vtkIdType i = 0; all && !curve && i < all->GetNumberOfPoints(); ++i)
+    vtkSmartPointer<vtkPolyData> curves;
+    if (all)
     {
-      double x[3];
-      all->GetPoint(i, x);
-      xyz.insert(xyz.end(), x, x + 3);
+      vtkDistributedSurface::SplitPointsAndCurves(all, xyz, curves);
     }
+    const bool curve = curves != nullptr;
     const bool pieces = curve ? std::isfinite(this->Radius)
                               : this->AngleMode == GEODESIC_DIRECTION ||
         (this->AngleMode == ISO_CURVE_ARC_LENGTH && std::isfinite(this->Radius));
@@ -132,7 +132,7 @@ int vtkGeodesicPolarCoordinates::RequestData(vtkInformation* vtkNotUsed(request)
     if (own)
     {
       return this->ExecutePieces(
-        input, own, output, sourcePort ? &xyz : nullptr, curve ? all.Get() : nullptr);
+        input, own, output, sourcePort ? &xyz : nullptr, curves.Get());
     }
   }
   return vtkDistributedSurface::RequestData(this, inputVector, outputVector,

@@ -110,44 +110,6 @@ int vtkSVGGeodesicDistance::FillInputPortInformation(int port, vtkInformation* i
   return 0;
 }
 
-namespace
-{
-// The Sources input (whole, on every process) as the pieces take it: the points no line cell
-// uses (x, y, z in order, as a serial run takes them as points) and, when it has line cells,
-// the curves (the input itself).
-void SplitSources(vtkPolyData* all, std::vector<double>& xyz, vtkSmartPointer<vtkPolyData>& curves)
-{
-  std::vector<unsigned char> onCurve(static_cast<std::size_t>(all->GetNumberOfPoints()), 0);
-  if (all->GetLines() && all->GetNumberOfLines() > 0)
-  {
-    curves = all;
-    auto it = vtk::TakeSmartPointer(all->GetLines()->NewIterator());
-    vtkIdType npts = 0;
-    const vtkIdType* pts = nullptr;
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-    {
-      it->GetCurrentCell(npts, pts);
-      for (vtkIdType i = 0; i < npts; ++i)
-      {
-        if (pts[i] >= 0 && pts[i] < all->GetNumberOfPoints())
-        {
-          onCurve[static_cast<std::size_t>(pts[i])] = 1;
-        }
-      }
-    }
-  }
-  for (vtkIdType i = 0; i < all->GetNumberOfPoints(); ++i)
-  {
-    if (!onCurve[static_cast<std::size_t>(i)])
-    {
-      double x[3];
-      all->GetPoint(i, x);
-      xyz.insert(xyz.end(), x, x + 3);
-    }
-  }
-}
-} // namespace
-
 //------------------------------------------------------------------------------
 int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -175,7 +137,7 @@ int vtkSVGGeodesicDistance::RequestData(vtkInformation* vtkNotUsed(request),
         distributed.GatherAuxiliaryEverywhere(vtkPointSet::GetData(inputVector[1], 0));
       if (all)
       {
-        SplitSources(all, xyz, curves);
+        vtkDistributedSurface::SplitPointsAndCurves(all, xyz, curves);
       }
     }
     vtkSmartPointer<vtkPolyData> own =

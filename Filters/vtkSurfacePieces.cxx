@@ -752,39 +752,23 @@ bool vtkSurfacePieces::TraceCurves(vtkAlgorithm* self,
 {
   gs::SurfacePiece& piece = this->SurfacePieceState;
   const double mean = piece.MeanEdgeLength(*Comm);
-  // The band grows around the curves' points (by rings that double) until no walk enters the
-  // fence (faces with a vertex whose other faces the piece lacks): a walk stopped by the band's
-  // edge would keep a point alone where the whole surface goes on.
+  // The band grows around the curves' points until no walk enters the fence (faces with a
+  // vertex whose other faces the piece lacks): a walk stopped by the band's edge would keep a
+  // point alone where the whole surface goes on.
   std::vector<std::int64_t> around;
   for (const auto& curve : curves)
   {
     for (const gs::PiecePointName& p : curve)
     {
-      if (p.Vertex >= 0)
-      {
-        around.push_back(p.Vertex);
-      }
-      else
-      {
-        around.insert(around.end(), p.Corners.begin(), p.Corners.end());
-      }
+      p.AppendVertexIds(around);
     }
   }
-  for (int rings = 2;; rings *= 2)
-  {
-    if (rings > (1 << 12))
-    {
-      vtkErrorWithObjectMacro(self, "Source curve: its walks on the surface keep leaving the "
-                                    "faces gathered around it.");
-      return false;
-    }
-    if (!Reported(self, "Source curve: ", piece.GrowAround(around, rings, *Comm)))
-    {
-      this->HasPiece = this->HasGraph = false;
-      return false;
-    }
-    std::vector<gs::SurfacePoint> samples;
-    std::vector<std::vector<gs::CurvePiece>> walks; // a walk per curve, or the runs
+  std::vector<gs::SurfacePoint> samples;
+  std::vector<std::vector<gs::CurvePiece>> walks; // a walk per curve, or the runs
+  std::vector<gs::CurvePiece> all;
+  const gs::Status grown = piece.GrowUntilInside(around, *Comm, [&] {
+    samples.clear();
+    walks.clear();
     for (const auto& names : curves)
     {
       std::vector<gs::SurfacePoint> curve;
@@ -805,52 +789,54 @@ bool vtkSurfacePieces::TraceCurves(vtkAlgorithm* self,
         }
       }
     }
-    std::vector<gs::CurvePiece> all;
+    all.clear();
+    std::vector<int> faces;
     for (const auto& walk : walks)
     {
-      all.insert(all.end(), walk.begin(), walk.end());
-    }
-    bool inside = true;
-    for (const gs::CurvePiece& step : all)
-    {
-      inside = inside && !piece.Fence()[static_cast<std::size_t>(step.Face)];
-    }
-    if (Comm->Sum(inside ? 0 : 1) > 0)
-    {
-      continue;
-    }
-    if (use != CurveUse::Runs)
-    {
-      samples = gs::SampleCurvePieces(piece.Mesh(), all,
-        (use == CurveUse::ExactSamples ? gs::ExactCurveSampleSpacing
-                                       : gs::SVGGeodesicSolver::CurveSeedSpacing) * mean);
-    }
-    // This process's share: the samples on its own faces (or vertices it owns) and the pieces on
-    // its own faces; the runs whole (each process seeds the pieces on its own faces).
-    for (const gs::SurfacePoint& s : samples)
-    {
-      if (s.IsVertex() ? piece.IsOwned(s.Vertex) : piece.IsOwnFace(s.Face))
+      for (const gs::CurvePiece& step : walk)
       {
-        points.push_back(s);
+        all.push_back(step);
+        faces.push_back(step.Face);
       }
     }
-    std::vector<std::int64_t> crossed;
-    for (const gs::CurvePiece& step : all)
-    {
-      crossed.push_back(piece.FaceId(step.Face));
-      if (piece.IsOwnFace(step.Face))
-      {
-        pieces.push_back(step);
-      }
-    }
-    std::sort(crossed.begin(), crossed.end());
-    faces = std::unique(crossed.begin(), crossed.end()) - crossed.begin();
-    if (use == CurveUse::Runs)
-    {
-      runs = std::move(walks);
-    }
-    return true;
+    return faces;
+  });
+  if (!Reported(self, "Source curve: ", grown))
+  {
+    this->HasPiece = this->HasGraph = false;
+    return false;
   }
+  if (use != CurveUse::Runs)
+  {
+    samples = gs::SampleCurvePieces(piece.Mesh(), all,
+      (use == CurveUse::ExactSamples ? gs::ExactCurveSampleSpacing
+                                     : gs::SVGGeodesicSolver::CurveSeedSpacing) * mean);
+  }
+  // This process's share: the samples on its own faces (or vertices it owns) and the pieces on
+  // its own faces; the runs whole (each process seeds the pieces on its own faces).
+  for (const gs::SurfacePoint& s : samples)
+  {
+    if (s.IsVertex() ? piece.IsOwned(s.Vertex) : piece.IsOwnFace(s.Face))
+    {
+      points.push_back(s);
+    }
+  }
+  std::vector<std::int64_t> crossed;
+  for (const gs::CurvePiece& step : all)
+  {
+    crossed.push_back(piece.FaceId(step.Face));
+    if (piece.IsOwnFace(step.Face))
+    {
+      pieces.push_back(step);
+    }
+  }
+  std::sort(crossed.begin(), crossed.end());
+  faces = std::unique(crossed.begin(), crossed.end()) - crossed.begin();
+  if (use == CurveUse::Runs)
+  {
+    runs = std::move(walks);
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

@@ -75,31 +75,19 @@ namespace
 Status GrowToChart(SurfacePiece& piece, SurfacePoint* at, double radius, PieceCommunicator& comm)
 {
   const std::unique_ptr<PiecePointName> named = at ? std::make_unique<PiecePointName>(piece, *at) : nullptr;
-  for (int rings = 2;; rings *= 2)
-  {
-    std::vector<std::int64_t> around;
-    if (at)
+  return piece.GrowUntilInside({}, comm, [&]() -> std::vector<int> {
+    if (!at)
     {
-      ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
-      ExactGeodesicOptions options;
-      options.MaximumDistance = radius;
-      options.Fence = &piece.Fence();
-      static_cast<void>(solver.Solve({ *at }, options)); // (a point of the piece: accepted)
-      piece.AppendIncompleteVertices(solver.FenceFacesEntered(), around);
+      return {};
     }
-    if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
-    {
-      return Status();
-    }
-    if (const Status grown = piece.GrowAround(around, rings, comm); !grown.Ok())
-    {
-      return grown;
-    }
-    if (at)
-    {
-      *at = named->In(piece);
-    }
-  }
+    *at = named->In(piece);
+    ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
+    ExactGeodesicOptions options;
+    options.MaximumDistance = radius;
+    options.Fence = &piece.Fence();
+    static_cast<void>(solver.Solve({ *at }, options)); // (a point of the piece: accepted)
+    return solver.FenceFacesEntered();
+  });
 }
 
 // What the chart's process sent (Pack), into every process's result.
@@ -293,67 +281,46 @@ Status ComputeCurveCoordinatesOnPieces(SurfacePiece& piece,
   }
   const double mean = piece.MeanEdgeLength(comm);
   const bool chart = comm.Rank() == 0;
-  // Process 0's band grows around the curve's points, then (by rings that double) where its
-  // trace or the exact solve from its samples to what ComputeCurve solves reaches the fence.
+  // Process 0's band grows around the curve's points, then where its trace or the exact solve
+  // from its samples to what ComputeCurve solves reaches the fence.
   std::vector<std::int64_t> around;
   for (const PiecePointName& p : curve)
   {
-    if (!chart)
+    if (chart)
     {
-      break;
-    }
-    if (p.Vertex >= 0)
-    {
-      around.push_back(p.Vertex);
-    }
-    else
-    {
-      around.insert(around.end(), p.Corners.begin(), p.Corners.end());
+      p.AppendVertexIds(around);
     }
   }
   std::vector<SurfacePoint> local;
-  for (int rings = 2;; rings *= 2)
+  const Status grown = piece.GrowUntilInside(around, comm, [&]() -> std::vector<int> {
+    if (!chart)
+    {
+      return {};
+    }
+    local.clear();
+    for (const PiecePointName& p : curve)
+    {
+      local.push_back(p.In(piece));
+    }
+    const std::vector<CurvePiece> traced = TraceSurfaceCurve(piece.Mesh(), local);
+    std::vector<int> faces;
+    for (const CurvePiece& step : traced)
+    {
+      faces.push_back(step.Face);
+    }
+    ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
+    ExactGeodesicOptions options;
+    options.MaximumDistance = radius + 3.0 * mean + 1.01 * piece.Mesh().LongestEdgeLength();
+    options.Fence = &piece.Fence();
+    const std::vector<SurfacePoint> samples =
+      SampleCurvePieces(piece.Mesh(), traced, ExactCurveSampleSpacing * mean);
+    static_cast<void>(solver.Solve(samples, options)); // (points of the piece: accepted)
+    faces.insert(faces.end(), solver.FenceFacesEntered().begin(), solver.FenceFacesEntered().end());
+    return faces;
+  });
+  if (!grown.Ok())
   {
-    if (const Status grown = piece.GrowAround(around, rings, comm); !grown.Ok())
-    {
-      return grown;
-    }
-    around.clear();
-    if (chart)
-    {
-      local.clear();
-      for (const PiecePointName& p : curve)
-      {
-        local.push_back(p.In(piece));
-      }
-      const std::vector<CurvePiece> traced = TraceSurfaceCurve(piece.Mesh(), local);
-      std::vector<int> faces;
-      for (const CurvePiece& step : traced)
-      {
-        faces.push_back(step.Face);
-      }
-      ExactGeodesicSolver solver(piece.Mesh(), piece.LengthScale());
-      ExactGeodesicOptions options;
-      options.MaximumDistance = radius + 3.0 * mean + 1.01 * piece.Mesh().LongestEdgeLength();
-      options.Fence = &piece.Fence();
-      const std::vector<SurfacePoint> samples =
-        SampleCurvePieces(piece.Mesh(), traced, ExactCurveSampleSpacing * mean);
-      static_cast<void>(solver.Solve(samples, options)); // (points of the piece: accepted)
-      faces.insert(faces.end(), solver.FenceFacesEntered().begin(), solver.FenceFacesEntered().end());
-      std::vector<int> fenced;
-      for (const int f : faces)
-      {
-        if (piece.Fence()[static_cast<std::size_t>(f)])
-        {
-          fenced.push_back(f);
-        }
-      }
-      piece.AppendIncompleteVertices(fenced, around);
-    }
-    if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
-    {
-      break;
-    }
+    return grown;
   }
   // The coordinates, on process 0's piece; every process gets them.
   std::vector<ByteBuffer> outgoing(static_cast<std::size_t>(comm.Size())), incoming;

@@ -34,9 +34,9 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh, double bucket
     {
       r.L[k] = Surface.EdgeLength(3 * f + k);
       r.Twin[k] = Surface.Twin(3 * f + k);
-      r.Corner[k] = static_cast<unsigned int>(corners[k]) |
-        (Surface.IsPseudoSourceVertex(corners[k]) ? BendFlag : 0u) |
-        (Surface.IsPseudoSourceVertex(corners[k]) && Surface.IsBoundaryVertex(corners[k]) ? EdgeFlag : 0u);
+      const bool bend = Surface.IsPseudoSourceVertex(corners[k]);
+      r.Corner[k] = static_cast<unsigned int>(corners[k]) | (bend ? BendFlag : 0u) |
+        (bend && Surface.IsBoundaryVertex(corners[k]) ? EdgeFlag : 0u);
     }
     const double l = r.L[0], b = r.L[2], a = r.L[1];
     r.Cx = (l * l + b * b - a * a) / (2.0 * l);
@@ -55,7 +55,6 @@ VirtualSourceSolver::VirtualSourceSolver(const TriangleMesh& mesh, double bucket
     Surface.ForEachOutgoingHalfedge(v, [this](int h) { FanHalfedges.push_back(h); });
     FanStart[static_cast<std::size_t>(v) + 1] = static_cast<int>(FanHalfedges.size());
   }
-  Funnels.resize(static_cast<std::size_t>(nf));
   Dist.assign(static_cast<std::size_t>(nv), Inf);
   BucketWidth = std::max(bucketWidth > 0.0 ? bucketWidth : Surface.MeanEdgeLength(), 1e-300);
 }
@@ -161,6 +160,10 @@ void VirtualSourceSolver::SetSource(FaceRecord& r, double sx, double sy, double 
   r.Funneled = !std::isnan(funnel.Lx) || !std::isnan(funnel.Rx);
   if (r.Funneled)
   {
+    if (Funnels.empty())
+    {
+      Funnels.resize(static_cast<std::size_t>(Surface.NumberOfFaces())); // (the first funnel)
+    }
     Funnels[static_cast<std::size_t>(&r - Faces.get())] = funnel;
   }
   Stats.FacesReached += r.Epoch != Epoch;
@@ -613,7 +616,7 @@ void VirtualSourceSolver::SeedPoints(const std::vector<SurfacePoint>& points)
 }
 
 void VirtualSourceSolver::SeedRuns(
-  const std::vector<std::vector<CurvePiece>>& runs, const std::vector<unsigned char>* skip)
+  const std::vector<std::vector<CurvePiece>>& runs, const std::function<bool(int)>& seeds)
 {
   for (const std::vector<CurvePiece>& run : runs)
   {
@@ -644,7 +647,7 @@ void VirtualSourceSolver::SeedRuns(
         by += after * dy;
       }
       before += length;
-      if (!skip || !(*skip)[static_cast<std::size_t>(piece.Face)])
+      if (!seeds || seeds(piece.Face))
       {
         Seed(piece.Face, ax, ay, bx, by);
       }

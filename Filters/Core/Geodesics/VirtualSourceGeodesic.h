@@ -84,7 +84,9 @@ class VirtualSourceSolver
 public:
   static constexpr double Unreachable = std::numeric_limits<double>::infinity();
 
-  // The mesh must outlive the solver. Sets up a record of 128 bytes per face (parallel). The
+  // The mesh must outlive the solver. Sets up a record of 128 bytes per face (parallel), each
+  // vertex's fan (12 bytes per face) and, at the first funnel a solve makes (a reflex boundary
+  // corner), the funnels (32 bytes per face). The
   // front advances in buckets of `bucketWidth` of distance (0: the mesh's mean edge length; a
   // piece of a larger surface passes the whole surface's).
   explicit VirtualSourceSolver(const TriangleMesh& mesh, double bucketWidth = 0.0);
@@ -185,7 +187,7 @@ private:
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return { nan, 0.0, nan, 0.0 };
   }
-  std::vector<Funnel> Funnels; // per face, valid while its record is Funneled
+  std::vector<Funnel> Funnels; // per face, valid while its record is Funneled (made at the first)
   void SetSource(FaceRecord& r, double sx, double sy, double tx, double ty, double sigma,
     double key, int entry, int except,
     const Funnel& funnel = Open());
@@ -237,9 +239,10 @@ private:
   // unreached).
   void BeginSolve();
   void SeedPoints(const std::vector<SurfacePoint>& sources);
-  // (`skip`: faces flagged there, another process's, are not seeded.)
+  // (`seeds`: whether to seed a piece in face f; null: every piece. A piece of a partitioned
+  // surface seeds its own faces only.)
   void SeedRuns(const std::vector<std::vector<CurvePiece>>& runs,
-    const std::vector<unsigned char>* skip = nullptr);
+    const std::function<bool(int)>& seeds = nullptr);
   template <bool Angles>
   bool ProcessBuckets(const VirtualSourceOptions& options);
   // One queue item: a face crosses its edges, or a vertex paths bend at seeds its faces.

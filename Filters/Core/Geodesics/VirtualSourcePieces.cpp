@@ -37,19 +37,8 @@ public:
   {
     // The solver queues every face given a source and every bend vertex reached; this driver
     // processes the own ones and sends the others to their owners.
-    const int nf = Mesh.NumberOfFaces(), nv = Mesh.NumberOfVertices();
-    OtherFace.resize(static_cast<std::size_t>(nf));
-    for (int f = 0; f < nf; ++f)
-    {
-      OtherFace[static_cast<std::size_t>(f)] = Piece.IsOwnFace(f) ? 0 : 1;
-    }
-    OtherVertex.resize(static_cast<std::size_t>(nv));
-    for (int v = 0; v < nv; ++v)
-    {
-      OtherVertex[static_cast<std::size_t>(v)] = Piece.IsOwned(v) ? 0 : 1;
-    }
-    Listed.assign(static_cast<std::size_t>(nf), 0);
-    VertexListed.assign(static_cast<std::size_t>(nv), 0);
+    Listed.assign(static_cast<std::size_t>(Mesh.NumberOfFaces()), 0);
+    VertexListed.assign(static_cast<std::size_t>(Mesh.NumberOfVertices()), 0);
   }
   VirtualSourcePieceSolve(const VirtualSourcePieceSolve&) = delete;
   VirtualSourcePieceSolve& operator=(const VirtualSourcePieceSolve&) = delete;
@@ -86,7 +75,6 @@ private:
   const TriangleMesh& Mesh;
   PieceCommunicator& Comm;
   VirtualSourceSolver Solver;
-  std::vector<unsigned char> OtherFace, OtherVertex;
   // Faces and bend vertices of other processes to send at the next exchange, each once.
   std::vector<int> LeavingFaces, LeavingVertices;
   std::vector<unsigned char> Listed, VertexListed;
@@ -115,7 +103,7 @@ void VirtualSourcePieceSolve::ProcessUpTo(std::size_t last)
       Solver.Prefetch(Solver.Buckets[Solver.Current], i);
       const VirtualSourceSolver::QueueItem item = Solver.Buckets[Solver.Current][i];
       const int id = VirtualSourceSolver::ItemId(item);
-      if (id >= 0 ? OtherFace[static_cast<std::size_t>(id)] : OtherVertex[static_cast<std::size_t>(-1 - id)])
+      if (id >= 0 ? !Piece.IsOwnFace(id) : !Piece.IsOwned(-1 - id))
       {
         Leave(item);
       }
@@ -271,14 +259,8 @@ bool VirtualSourcePieceSolve::UnpackFace(ByteReader& r)
   }
   ToLocalFrame(f, corners, sx, sy);
   ToLocalFrame(f, corners, tx, ty);
-  if (!std::isnan(funnel.Lx))
-  {
-    ToLocalFrame(f, corners, funnel.Lx, funnel.Ly);
-  }
-  if (!std::isnan(funnel.Rx))
-  {
-    ToLocalFrame(f, corners, funnel.Rx, funnel.Ry);
-  }
+  ToLocalFrame(f, corners, funnel.Lx, funnel.Ly); // (a NaN x, no bound, stays NaN)
+  ToLocalFrame(f, corners, funnel.Rx, funnel.Ry);
   FaceRecord& to = Solver.Faces[f];
   // The crossing's own rule (VirtualSourceSolver::Cross): a smaller key, or on a tie fewer bends.
   const double current = Solver.KeyOf(to), tol = Solver.Tolerance;
@@ -379,7 +361,7 @@ Status VirtualSourcePieceSolve::Run(const std::vector<std::int64_t>& sources,
   }
   seeds.insert(seeds.end(), points.begin(), points.end());
   Solver.SeedPoints(seeds);
-  Solver.SeedRuns(runs, &OtherFace);
+  Solver.SeedRuns(runs, [this](int f) { return Piece.IsOwnFace(f); });
 
   // Each round's threshold: a step of the surface's size beyond the first bucket left anywhere.
   const double step =

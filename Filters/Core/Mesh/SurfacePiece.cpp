@@ -775,6 +775,46 @@ SurfacePoint PiecePointName::In(const SurfacePiece& piece) const
   return piece.LocalPoint(Face, Corners, Bary);
 }
 
+void PiecePointName::AppendVertexIds(std::vector<std::int64_t>& out) const
+{
+  if (Vertex >= 0)
+  {
+    out.push_back(Vertex);
+  }
+  else
+  {
+    out.insert(out.end(), Corners.begin(), Corners.end());
+  }
+}
+
+Status SurfacePiece::GrowUntilInside(std::vector<std::int64_t> around, PieceCommunicator& comm,
+  const std::function<std::vector<int>()>& reach)
+{
+  int rings = 2;
+  while (true)
+  {
+    if (comm.Sum(static_cast<std::int64_t>(around.size())) > 0)
+    {
+      if (rings > (1 << 12))
+      {
+        return Status::Error("the band of faces around the computation keeps growing past 4096 rings");
+      }
+      if (const Status grown = GrowAround(around, rings, comm); !grown.Ok())
+      {
+        return grown;
+      }
+      rings *= 2;
+    }
+    around.clear();
+    // (Only the fence's faces have incomplete vertices.)
+    AppendIncompleteVertices(reach(), around);
+    if (comm.Sum(static_cast<std::int64_t>(around.size())) == 0)
+    {
+      return Status();
+    }
+  }
+}
+
 double SurfacePiece::MeanEdgeLength(PieceCommunicator& comm) const
 {
   double sum = 0.0;

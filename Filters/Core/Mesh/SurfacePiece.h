@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -54,6 +55,8 @@ struct PiecePointName
   PiecePointName(const SurfacePiece& piece, const SurfacePoint& p);
   // The point in `piece`'s mesh (a point of no face, Face -1, when the piece lacks it).
   SurfacePoint In(const SurfacePiece& piece) const;
+  // Appends the global ids of the vertex, or of the face's corners.
+  void AppendVertexIds(std::vector<std::int64_t>& out) const;
 };
 
 class SurfacePiece
@@ -67,6 +70,15 @@ public:
   Status Build(const PieceTriangles& own, int rings, PieceCommunicator& comm);
   // Collective: `rings` more rings.
   Status Grow(int rings, PieceCommunicator& comm);
+  // Collective. Grows the band, by rings that double (2, 4, ...), around the vertices `around`
+  // (global ids; they may differ between processes, or be none) and then around the incomplete
+  // vertices of the faces `reach` names, until it names none on any process. `reach` is called
+  // on every process once before and once after each growth (which renumbers the piece): the
+  // faces of the piece the process's computation goes through, none where it computes
+  // nothing; its last call computed on the final piece. Fails on every process when the band
+  // fails to grow, or keeps growing past 4096 rings.
+  Status GrowUntilInside(std::vector<std::int64_t> around, PieceCommunicator& comm,
+    const std::function<std::vector<int>()>& reach);
   // Collective: at least `rings` rings. Fails on every process when the band must grow and a
   // process holds `points` > 0 surface points of its piece (growing renumbers the faces).
   Status GrowTo(int rings, std::size_t points, PieceCommunicator& comm);
